@@ -1,0 +1,33 @@
+# fegear: two commands for a fresh machine with Python 3.11 and pip.
+#   make demo   set up .venv and run the main job
+#   make test   set up .venv, lint, run the default test suite
+PYTHON ?= python3
+VENV := .venv
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.installed-stamp
+
+.PHONY: demo test test-all lint bench clean
+
+$(STAMP): pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e '.[dev]'
+	touch $(STAMP)
+
+demo: $(STAMP)
+	$(BIN)/fegear profile --m 2 --h1 0.3 --f1 0.15 --shift 0.016 --rotation 0.002 --out out/demo
+
+lint: $(STAMP)
+	$(BIN)/ruff check fegear tests
+
+test: lint
+	$(BIN)/python -m pytest -q
+
+test-all: lint
+	$(BIN)/python -m pytest -q -m ""
+
+bench: $(STAMP)
+	$(BIN)/fegear bench
+
+clean:
+	rm -rf $(VENV) out .pytest_cache

@@ -1,0 +1,53 @@
+"""Benchmarks: time per pipeline stage, printed as a markdown table (never asserted in tests)."""
+
+from __future__ import annotations
+
+import platform
+import time
+
+import numpy as np
+
+from .cycloid import gear2_curve
+from .params import PairParameters
+from .profile import Gear1Profile
+from .tca import ToothContact
+
+GEOMETRY_TARGET_S = 1.0
+
+
+def _best(fn, repeat: int):
+    best, value = np.inf, None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        value = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, value
+
+
+def geometry_bench(params: PairParameters, repeat: int = 3, chord_error: float = 1e-4) -> str:
+    """Time the geometry stage: profiles plus clearance table (target < 1 s), and backlash."""
+    rows = []
+    t_env, g1 = _best(lambda: Gear1Profile(params), repeat)
+    rows.append(("gear-1 envelope (exact pieces)", t_env))
+    t_poly, _ = _best(lambda: (g1.polyline(chord_error),
+                               gear2_curve(params).polyline(chord_error)), repeat)
+    rows.append((f"polylines, both gears (chord error {chord_error * 1e3:g} µm)", t_poly))
+    t_tca, _ = _best(lambda: ToothContact(params, g1).state(0.0), repeat)
+    rows.append((f"clearance table at β = 0 ({params.z1} teeth × 2 directions)", t_tca))
+    total = t_env + t_poly + t_tca
+    t_bl, bl = _best(lambda: ToothContact(params, g1).backlash(), 1)
+    lines = [
+        f"fegear geometry benchmark: {params.describe()}",
+        f"python {platform.python_version()}, numpy {np.__version__}, "
+        f"{platform.machine()}, best of {repeat}",
+        "",
+        "| stage | time [s] |",
+        "|---|---:|",
+    ]
+    lines += [f"| {name} | {t:.3f} |" for name, t in rows]
+    status = "met" if total < GEOMETRY_TARGET_S else "MISSED"
+    lines.append(f"| **profiles + clearance table** (target < {GEOMETRY_TARGET_S:g} s: {status})"
+                 f" | **{total:.3f}** |")
+    lines.append(f"| backlash over one mesh cycle (+ {bl.plus_um:.3f} µm, − {bl.minus_um:.3f} µm)"
+                 f" | {t_bl:.3f} |")
+    return "\n".join(lines)

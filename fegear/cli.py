@@ -1,0 +1,140 @@
+"""Command line: ``fegear profile`` and ``fegear bench``.
+
+User errors (bad parameters, unwritable output) print one line ``fegear: error: …`` on stderr
+and exit with code 2, without a traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import sys
+
+from .errors import FegearError
+from .params import PairParameters, require_range
+
+EXIT_USAGE = 2
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # one line, no usage dump
+        self.exit(EXIT_USAGE, f"fegear: error: {message}\n")
+
+
+def _add_pair_args(p: argparse.ArgumentParser) -> None:
+    g = p.add_argument_group("pair")
+    g.add_argument("--m", type=float, default=2.0, help="module [mm] (default 2)")
+    g.add_argument("--z2", type=int, default=45, help="internal gear teeth (default 45)")
+    g.add_argument("--z1", type=int, default=44, help="external gear teeth (default 44)")
+    g.add_argument("--h1", type=float, default=0.30, help="tooth-height coefficient (0.30)")
+    g.add_argument("--f1", type=float, default=0.15, help="tooth-shape coefficient (0.15)")
+    g.add_argument("--shift", type=float, default=0.0,
+                   help="Δ1 negative shift [mm]: gear 1 generated at e + shift (default 0)")
+    g.add_argument("--rotation", type=float, default=0.0,
+                   help="Δ2 rotation modification of the generating tool [mm] (default 0)")
+    g.add_argument("--tip-relief", type=float, default=None,
+                   help="gear-1 radial tip clearance to the far side [mm] (default: = shift)")
+
+
+def _params(a: argparse.Namespace) -> PairParameters:
+    return PairParameters(m=a.m, z2=a.z2, z1=a.z1, h1=a.h1, f1=a.f1, shift=a.shift,
+                          rotation=a.rotation, tip_relief=a.tip_relief)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="fegear", description=__doc__.splitlines()[0])
+    parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    prof = sub.add_parser("profile", help="generate both tooth profiles and the clearance table")
+    _add_pair_args(prof)
+    prof.add_argument("--chord-error", type=float, default=1e-4,
+                      help="max chord error of the written polylines [mm] (default 1e-4)")
+    prof.add_argument("--positions", type=int, default=16,
+                      help="rolling positions scanned for the backlash (default 16)")
+    prof.add_argument("--out", required=True, help="output directory")
+    prof.add_argument("--json", action="store_true", help="print the summary as JSON")
+
+    bench = sub.add_parser("bench", help="time the pipeline stages and print a table")
+    _add_pair_args(bench)
+    bench.add_argument("--repeat", type=int, default=3, help="repetitions (best is kept)")
+    return parser
+
+
+def cmd_profile(a: argparse.Namespace) -> int:
+    from .output import prepare_dir, write_json, write_points_csv
+    from .pair import build_pair
+    from .plot import pair_png
+
+    params = _params(a)
+    chord = require_range("chord_error", a.chord_error, 1e-7, 0.1, unit="mm")
+    positions = int(require_range("positions", a.positions, 4, 360))
+    out = prepare_dir(a.out)
+    geo = build_pair(params, chord, positions)
+    summary = geo.summary()
+    files = {
+        "gear1_csv": write_points_csv(out / "gear1.csv", geo.gear1),
+        "gear2_csv": write_points_csv(out / "gear2.csv", geo.gear2),
+        "png": pair_png(out / "pair.png", geo.gear1, geo.gear2, params.e, params.r0,
+                        f"compound-cycloid pair: {params.describe()}",
+                        zoom_half_width=4.0 * params.m),
+    }
+    summary["files"] = {k: str(v) for k, v in files.items()}
+    write_json(out / "summary.json", summary)
+    if a.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        print(_profile_table(geo))
+        for k, v in files.items():
+            print(f"{k:10s} {v}")
+    return 0
+
+
+def _profile_table(geo) -> str:
+    rows = sorted(geo.contact.teeth, key=lambda t: abs(t.position_deg))[:7]
+    rows.sort(key=lambda t: t.position_deg)
+
+    def f(v):
+        return "   none" if v is None else f"{v:8.3f}"
+
+    lines = [f"gear 1 tip radius {geo.tip_radius:.6f} mm, root radius {geo.root_radius:.6f} mm",
+             "", "clearance at β = 0 (µm of arc at r0; + = gear 1 turning counter-clockwise)",
+             "| tooth | position [deg] |     + µm |     − µm |",
+             "|------:|---------------:|---------:|---------:|"]
+    for t in rows:
+        lines.append(f"| {t.tooth:5d} | {t.position_deg:14.3f} | {f(t.plus_um)} | "
+                     f"{f(t.minus_um)} |")
+    if geo.backlash is not None:
+        b = geo.backlash
+        lines += ["", f"backlash over one mesh cycle: + {b.plus_um:.3f} µm, − {b.minus_um:.3f} µm"]
+    if geo.contact.interference:
+        worst = max(geo.contact.interference, key=lambda i: i.depth_um)
+        lines += [f"INTERFERENCE: {len(geo.contact.interference)} teeth, worst tooth "
+                  f"{worst.tooth} by {worst.depth_um:.3f} µm at ({worst.point[0]:.4f}, "
+                  f"{worst.point[1]:.4f}) mm"]
+    return "\n".join(lines)
+
+
+def cmd_bench(a: argparse.Namespace) -> int:
+    from .bench import geometry_bench
+
+    repeat = int(require_range("repeat", a.repeat, 1, 100))
+    print(geometry_bench(_params(a), repeat))
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    a = parser.parse_args(argv)
+    logging.basicConfig(level=logging.INFO if a.verbose else logging.WARNING,
+                        format="%(levelname)s %(name)s: %(message)s")
+    try:
+        return {"profile": cmd_profile, "bench": cmd_bench}[a.command](a)
+    except FegearError as exc:
+        print(f"fegear: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+
+
+if __name__ == "__main__":
+    sys.exit(main())
