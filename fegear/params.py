@@ -94,7 +94,7 @@ class PairParameters:
         set_(self, "z1", _require_int("z1", self.z1, 3))
         set_(self, "z2", _require_int("z2", self.z2, 4))
         if self.z2 <= self.z1:
-            raise ParameterError("z2", self.z2, f"an integer > z1 = {self.z1}",
+            raise ParameterError("z2", self.z2, f"an integer z2 > z1 = {self.z1}",
                                  "the internal gear needs more teeth than the external gear")
         if self.z2 > 2000:
             raise ParameterError("z2", self.z2, f"an integer with {self.z1} < z2 <= 2000")

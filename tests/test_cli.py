@@ -1,0 +1,73 @@
+"""CLI: outputs, JSON summary, and user errors (exit 2, one line, no traceback, no files)."""
+
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+FEGEAR = [sys.executable, "-m", "fegear"]
+
+
+def run(*args, **kw):
+    return subprocess.run([*FEGEAR, *args], capture_output=True, text=True, timeout=300, **kw)
+
+
+def test_profile_writes_csv_png_and_json(tmp_path):
+    r = run("profile", "--m", "2", "--h1", "0.3", "--f1", "0.15", "--shift", "0.016",
+            "--rotation", "0.002", "--positions", "6", "--out", str(tmp_path), "--json")
+    assert r.returncode == 0, r.stderr
+    s = json.loads(r.stdout)
+    assert set(s["backlash_um"]) >= {"plus", "minus"}
+    assert 4.0 < s["backlash_um"]["plus"] < 6.0
+    assert len(s["clearance_um"]) == 44
+    assert {"tooth", "position_deg", "plus_um", "minus_um"} <= set(s["clearance_um"][0])
+    assert s["interference"] == []
+    for name in ("gear1.csv", "gear2.csv", "pair.png", "summary.json"):
+        assert (tmp_path / name).stat().st_size > 0
+    g1 = np.loadtxt(tmp_path / "gear1.csv", delimiter=",", skiprows=1)
+    g2 = np.loadtxt(tmp_path / "gear2.csv", delimiter=",", skiprows=1)
+    # each gear in its own frame: gear 1 within its tip radius, gear 2 within 43.8 … 46.2
+    assert np.hypot(*g1.T).max() == pytest.approx(44.784, abs=1e-9)
+    assert np.hypot(*g2.T).min() == pytest.approx(43.8, abs=1e-9)
+    # no temporary files left behind
+    assert not [p for p in os.listdir(tmp_path) if p.startswith(".")]
+
+
+def test_profile_table_output(tmp_path):
+    r = run("profile", "--positions", "4", "--out", str(tmp_path))
+    assert r.returncode == 0, r.stderr
+    assert "clearance at β = 0" in r.stdout and "backlash" in r.stdout
+
+
+@pytest.mark.parametrize("args,fragment", [
+    (["--m", "-1"], "m = -1.0 is not admissible"),
+    (["--m", "nan"], "m = nan is not admissible"),
+    (["--h1", "inf"], "h1 = inf is not admissible"),
+    (["--z2", "44", "--z1", "44"], "z2 = 44"),
+    (["--f1", "0.7"], "f1 = 0.7 is not admissible"),
+    (["--h1", "0.8"], "admissible: 0 < h1 <="),
+    (["--chord-error", "0"], "chord_error"),
+    (["--m", "abc"], "invalid float value"),
+])
+def test_user_errors_exit_2_with_one_line(tmp_path, args, fragment):
+    out = tmp_path / "o"
+    r = run("profile", *args, "--out", str(out))
+    assert r.returncode == 2
+    assert r.stdout == ""
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("fegear: error:")
+    assert fragment in lines[0]
+    assert "Traceback" not in r.stderr
+    assert not out.exists() or not any(out.iterdir())
+
+
+def test_unwritable_output_path(tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    r = run("profile", "--positions", "4", "--out", str(blocker / "sub"))
+    assert r.returncode == 2
+    assert "--out" in r.stderr and "Traceback" not in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1

@@ -1,0 +1,83 @@
+"""Unloaded tooth contact: clearances checked by rotating gear 1 and measuring independently."""
+
+import numpy as np
+import pytest
+from conftest import CONJUGATE, MODIFIED
+from swept_reference import signed_distance
+
+from fegear.params import PairParameters
+from fegear.tca import ToothContact
+
+UM = 1e-3
+
+
+@pytest.fixture(scope="module")
+def tca_modified(modified_profile):
+    return ToothContact(MODIFIED, modified_profile)
+
+
+def _min_gap_after_rotation(tca, tooth, delta, beta=0.0):
+    """Rotate gear 1 by delta about O1 and return the smallest signed distance [mm] of the
+    tooth to the nominal gear 2, measured with the independent eq.-11 reference."""
+    g, p = tca.gear1, tca.params
+    q = g.period_polyline(2e-5)
+    ang = tooth * g.pitch + p.ratio * beta + delta
+    c, s = np.cos(ang), np.sin(ang)
+    x = np.stack([c * q[:, 0] - s * q[:, 1], s * q[:, 0] + c * q[:, 1] + p.e], -1)
+    cb, sb = np.cos(beta), np.sin(beta)
+    y = np.stack([cb * x[:, 0] + sb * x[:, 1], -sb * x[:, 0] + cb * x[:, 1]], -1)
+    return signed_distance(y, p.r0, p.e1, p.e2, p.z2, 0.0).min()
+
+
+@pytest.mark.parametrize("direction", [+1, -1])
+def test_reported_clearance_closes_exactly(tca_modified, direction):
+    """Turning gear 1 by the reported clearance makes the tooth touch (to 0.05 µm), and
+    turning it 0.1 µm less leaves a gap."""
+    st = tca_modified.state(0.0)
+    key = "plus_um" if direction > 0 else "minus_um"
+    for t in sorted(st.teeth, key=lambda t: getattr(t, key) or np.inf)[:3]:
+        c = getattr(t, key)
+        delta = direction * c * UM / MODIFIED.r0
+        assert abs(_min_gap_after_rotation(tca_modified, t.tooth, delta)) < 0.05 * UM
+        less = direction * (c - 0.1) * UM / MODIFIED.r0
+        assert _min_gap_after_rotation(tca_modified, t.tooth, less) > 0
+
+
+def test_conjugate_pair_has_zero_backlash(conjugate_profile):
+    b = ToothContact(CONJUGATE, conjugate_profile).backlash(8)
+    assert abs(b.plus_um) < 1e-3 and abs(b.minus_um) < 1e-3
+
+
+def test_paper_section2_backlash():
+    """Paper §2: Δ1 = 0.016 mm gives ≈ 8 µm single-side backlash; Δ2 = 0.002 mm changes it by
+    2Δ2 = 4 µm. Definition: smallest rotation of gear 1 (µm of arc at r0) over one mesh cycle."""
+    shift_only = ToothContact(PairParameters(shift=0.016)).backlash(8)
+    both = ToothContact(PairParameters(shift=0.016, rotation=0.002)).backlash(8)
+    # measured: 8.959 µm each side (the paper reads ≈ 8 µm off its Fig. 6)
+    assert shift_only.plus_um == pytest.approx(8.959, abs=0.01)
+    assert shift_only.minus_um == pytest.approx(shift_only.plus_um, abs=0.01)
+    change = shift_only.plus_um - both.plus_um
+    assert change == pytest.approx(4.0, abs=0.4)
+    assert shift_only.minus_um - both.minus_um == pytest.approx(4.0, abs=0.4)
+
+
+def test_unrelieved_gear_interferes_by_about_shift_on_far_side():
+    """Without tip relief (tip_relief = −shift: gear 1 exactly as generated at e + Δ1) the
+    assembled pair interferes on the far side by ≈ Δ1 (DOMAIN.md §1)."""
+    p = PairParameters(shift=0.016, tip_relief=-0.016)
+    st = ToothContact(p).state(0.0)
+    assert st.interference
+    worst = max(st.interference, key=lambda i: i.depth_um)
+    assert worst.depth_um == pytest.approx(16.0, rel=0.05)  # measured 15.97 µm
+    assert worst.point[1] < 0  # the far side (opposite the pitch point)
+    # the default relief removes it
+    assert not ToothContact(PairParameters(shift=0.016)).state(0.0).interference
+
+
+def test_tooth_positions_and_counts(tca_modified):
+    st = tca_modified.state(0.1)
+    assert len(st.teeth) == MODIFIED.z1
+    pos = sorted(t.position_deg for t in st.teeth)
+    assert np.allclose(np.diff(pos), 360 / MODIFIED.z1, atol=1e-9)
+    # the closest teeth are near the pitch point
+    assert abs(st.closest(+1).position_deg) < 30 and abs(st.closest(-1).position_deg) < 30
