@@ -9,11 +9,6 @@ import numpy as np
 from .output import write_atomic
 
 
-def _rotate(v: np.ndarray, ang: float) -> np.ndarray:
-    c, s = np.cos(ang), np.sin(ang)
-    return v @ np.array([[c, s], [-s, c]])
-
-
 def pair_png(path: Path, gear1: np.ndarray, gear2: np.ndarray, e: float, r0: float,
              title: str, zoom_half_width: float) -> Path:
     """Draw the assembled pair at β = 0 (fixed frame) with a zoom on the pitch-point teeth.

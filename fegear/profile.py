@@ -242,7 +242,7 @@ class Gear1Profile:
         for _, (sel, pts) in parts.items():
             ang = turn[sel] * self.pitch
             for f in fields:
-                fields[f][sel] = _rotate(getattr(pts, f), ang)
+                fields[f][sel] = rotate(getattr(pts, f), ang)
             for f in scal:
                 scal[f][sel] = getattr(pts, f)
         return BranchPoints(**fields, **scal)
@@ -274,7 +274,7 @@ class Gear1Profile:
                 return e.q, d1, d2
 
             xi = adaptive_parameters(derivs, pc.xi0, pc.xi1, chord_error, n0=16)
-            q = _rotate(b.evaluate(xi).q, pc.turn * self.pitch)
+            q = rotate(b.evaluate(xi).q, pc.turn * self.pitch)
             ang = np.unwrap(np.arctan2(q[:, 1], q[:, 0]))
             if ang[-1] < ang[0]:
                 q = q[::-1]
@@ -284,10 +284,11 @@ class Gear1Profile:
     def polyline(self, chord_error: float) -> np.ndarray:
         """Closed gear-1 profile (all teeth, counter-clockwise, last point not repeated)."""
         one = self.period_polyline(chord_error)
-        return np.concatenate([_rotate(one, j * self.pitch) for j in range(self.params.z1)])
+        return np.concatenate([rotate(one, j * self.pitch) for j in range(self.params.z1)])
 
 
-def _rotate(v: np.ndarray, ang) -> np.ndarray:
+def rotate(v: np.ndarray, ang) -> np.ndarray:
+    """Rotate (n, 2) points counter-clockwise by ``ang`` (scalar or per point)."""
     c, s = np.cos(ang), np.sin(ang)
     return np.stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]], axis=-1)
 

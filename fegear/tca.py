@@ -27,6 +27,7 @@ import numpy as np
 from .cycloid import Cycloid, gear2_curve
 from .params import PairParameters
 from .profile import Gear1Profile, wrap
+from .profile import rotate as _rotate
 
 POINTS_PER_FLANK = 160
 GEAR2_SAMPLES_PER_TOOTH = 48
@@ -352,18 +353,7 @@ class ToothContact:
                 out[ok] = wrap(direction * (ang - np.arctan2(q[ok, 1], q[ok, 0])))
             return out
 
-        x1, x2 = b - GOLDEN * (b - a), a + GOLDEN * (b - a)
-        f1, f2 = f(x1), f(x2)
-        for _ in range(iters):
-            left = f1 < f2
-            b = np.where(left, x2, b)
-            a = np.where(left, a, x1)
-            xn = np.where(left, b - GOLDEN * (b - a), a + GOLDEN * (b - a))
-            fn = f(xn)
-            x1, x2 = np.where(left, xn, x2), np.where(left, x1, xn)
-            f1, f2 = np.where(left, fn, f2), np.where(left, f1, fn)
-        take1 = f1 < f2
-        return np.where(take1, f1, f2), np.where(take1, x1, x2)
+        return golden_min(f, a, b, iters)
 
     @cached_property
     def _period_points(self) -> np.ndarray:
@@ -406,22 +396,26 @@ class ToothContact:
             def f(b, key=key, direction=direction, near=near):
                 return getattr(self.state(b, teeth=near).closest(direction), key)
 
-            a, b = betas[i] - h, betas[i] + h
-            x1, x2 = b - GOLDEN * (b - a), a + GOLDEN * (b - a)
-            f1, f2 = f(x1), f(x2)
-            for _ in range(16):
-                if f1 < f2:
-                    b, x2, f2 = x2, x1, f1
-                    x1 = b - GOLDEN * (b - a)
-                    f1 = f(x1)
-                else:
-                    a, x1, f1 = x1, x2, f2
-                    x2 = a + GOLDEN * (b - a)
-                    f2 = f(x2)
-            out[direction] = min((f1, x1), (f2, x2), (f(betas[i]), betas[i]))
+            fb, xb = golden_min(f, betas[i] - h, betas[i] + h, 16)
+            out[direction] = min((float(fb), float(xb)), (float(vals[i]), float(betas[i])))
         return Backlash(float(out[1][0]), float(out[-1][0]), float(out[1][1]), float(out[-1][1]))
 
 
-def _rotate(v: np.ndarray, ang) -> np.ndarray:
-    c, s = np.cos(ang), np.sin(ang)
-    return np.stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]], axis=-1)
+def golden_min(f, a, b, iters: int):
+    """Golden-section minimisation of ``f`` on ``[a, b]``, elementwise over arrays.
+
+    Returns (smallest value found, its argument), with the shapes of ``a`` and ``b``.
+    """
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    x1, x2 = b - GOLDEN * (b - a), a + GOLDEN * (b - a)
+    f1, f2 = f(x1), f(x2)
+    for _ in range(iters):
+        left = f1 < f2
+        b = np.where(left, x2, b)
+        a = np.where(left, a, x1)
+        xn = np.where(left, b - GOLDEN * (b - a), a + GOLDEN * (b - a))
+        fn = f(xn)
+        x1, x2 = np.where(left, xn, x2), np.where(left, x1, xn)
+        f1, f2 = np.where(left, fn, f2), np.where(left, f1, fn)
+    take1 = f1 < f2
+    return np.where(take1, f1, f2), np.where(take1, x1, x2)
