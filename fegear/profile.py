@@ -252,10 +252,6 @@ class Gear1Profile:
         return self.evaluate(phi).radius
 
     @cached_property
-    def tooth_space_center(self) -> float:
-        return self.phi_space
-
-    @cached_property
     def tooth_center(self) -> float:
         """Polar angle of the middle of tooth 0's tip [rad]."""
         return self.phi_space + 0.5 * self.pitch

@@ -397,7 +397,7 @@ class ToothContact:
                 return getattr(self.state(b, teeth=near).closest(direction), key)
 
             fb, xb = golden_min(f, betas[i] - h, betas[i] + h, 16)
-            out[direction] = min((float(fb), float(xb)), (float(vals[i]), float(betas[i])))
+            out[direction] = min((float(fb), float(xb)), (float(f(betas[i])), float(betas[i])))
         return Backlash(float(out[1][0]), float(out[-1][0]), float(out[1][1]), float(out[-1][1]))
 
 
