@@ -1,4 +1,4 @@
-"""Command line: ``fegear profile`` and ``fegear bench``.
+"""Command line: ``fegear profile``, ``fegear hertz`` and ``fegear bench``.
 
 User errors (bad parameters, unwritable output) print one line ``fegear: error: …`` on stderr
 and exit with code 2, without a traceback.
@@ -55,6 +55,23 @@ def build_parser() -> argparse.ArgumentParser:
                       help="rolling positions scanned for the backlash (default 16)")
     prof.add_argument("--out", required=True, help="output directory")
     prof.add_argument("--json", action="store_true", help="print the summary as JSON")
+
+    hz = sub.add_parser("hertz", help="FE line contact of two disks (or disk in bore) vs Hertz")
+    hz.add_argument("--r1", type=float, default=10.0, help="disk 1 radius [mm] (default 10)")
+    hz.add_argument("--r2", type=float, default=10.0,
+                    help="disk 2 radius [mm]; negative = a bore holding disk 1 (default 10)")
+    hz.add_argument("--load", type=float, default=1000.0, help="normal load [N] (default 1000)")
+    hz.add_argument("--thickness", type=float, default=5.0, help="thickness [mm] (default 5)")
+    hz.add_argument("--E", type=float, default=206000.0, help="Young's modulus [MPa] (206000)")
+    hz.add_argument("--nu", type=float, default=0.29, help="Poisson ratio (default 0.29)")
+    hz.add_argument("--plane", choices=("stress", "strain"), default="stress",
+                    help="plane assumption (default stress)")
+    hz.add_argument("--quality", default="standard",
+                    help="coarse / standard / fine = 4 / 8 / 16 elements across b, or a number")
+    hz.add_argument("--penalty-factor", type=float, default=None,
+                    help="penalty κ = factor·E*/h (default 300)")
+    hz.add_argument("--out", default=None, help="write VTU files and summary.json here")
+    hz.add_argument("--json", action="store_true", help="print the summary as JSON")
 
     bench = sub.add_parser("bench", help="time the pipeline stages and print a table")
     _add_pair_args(bench)
@@ -116,6 +133,70 @@ def _profile_table(geo) -> str:
     return "\n".join(lines)
 
 
+def cmd_hertz(a: argparse.Namespace) -> int:
+    import time
+
+    from .disks import DiskCase, solve_disks, write_disk_outputs
+    from .output import prepare_dir
+
+    quality = a.quality if a.quality in ("coarse", "standard", "fine") else _number(
+        "quality", a.quality)
+    kw = {} if a.penalty_factor is None else {"penalty_factor": a.penalty_factor}
+    case = DiskCase(r1=a.r1, r2=a.r2, load=a.load, thickness=a.thickness, E=a.E, nu=a.nu,
+                    plane=a.plane, quality=quality, **kw)
+    out = prepare_dir(a.out) if a.out else None
+    result = solve_disks(case)
+    summary = result.summary()
+    if out is not None:
+        t0 = time.perf_counter()
+        files = write_disk_outputs(result, out)
+        result.timings_s["output"] = time.perf_counter() - t0
+        summary = result.summary()
+        summary["files"] = {k: str(v) for k, v in files.items()}
+    if a.json:
+        print(json.dumps(summary, indent=2))
+    else:
+        print(_hertz_table(result))
+        if out is not None:
+            for k, v in summary["files"].items():
+                print(f"{k:10s} {v}")
+    return 0
+
+
+def _number(name: str, text: str) -> float:
+    from .errors import ParameterError
+
+    try:
+        return float(text)
+    except ValueError:
+        raise ParameterError(name, text, "coarse / standard / fine or a number") from None
+
+
+def _hertz_table(r) -> str:
+    c, h = r.case, r.hertz
+    kind = "disk in bore" if c.r2 < 0 else "two disks"
+    lines = [f"{kind}: r1 {c.r1:g} mm, r2 {c.r2:g} mm, P {c.load:g} N, t {c.thickness:g} mm, "
+             f"E {c.E:g} MPa, nu {c.nu:g}, plane {c.plane}, quality {c.quality}",
+             "",
+             "| quantity           |          FE |       Hertz |  FE − Hertz |",
+             "|--------------------|------------:|------------:|------------:|",
+             f"| p_max [MPa]        | {r.p_max:11.3f} | {h.p0:11.3f} | {r.p_error_pct:+10.3f}% |",
+             f"| half-width b [mm]  | {r.half_width:11.6f} | {h.b:11.6f} | "
+             f"{r.b_error_pct:+10.3f}% |",
+             "",
+             f"b/R* = {h.b_over_R:.4f} (R* = {h.R_star:.4g} mm; Hertz assumes b/R* << 1)",
+             f"recovered surface normal stress at the contact: {r.surface_stress:.3f} MPa "
+             f"({100 * (r.surface_stress / r.p_max - 1):+.2f}% vs FE p_max)",
+             f"DOFs {r.dofs}, contact points {r.contact_points}, active-set iterations "
+             f"{r.iterations}, max penetration {r.max_penetration * 1e3:.3g} µm "
+             f"({r.max_penetration / r.half_width:.1e} b)",
+             "",
+             "| stage | time [s] |", "|-------|---------:|"]
+    lines += [f"| {k} | {v:.3f} |" for k, v in r.timings_s.items()]
+    lines.append(f"| total | {sum(r.timings_s.values()):.3f} |")
+    return "\n".join(lines)
+
+
 def cmd_bench(a: argparse.Namespace) -> int:
     from .bench import geometry_bench
 
@@ -130,7 +211,7 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(level=logging.INFO if a.verbose else logging.WARNING,
                         format="%(levelname)s %(name)s: %(message)s")
     try:
-        return {"profile": cmd_profile, "bench": cmd_bench}[a.command](a)
+        return {"profile": cmd_profile, "hertz": cmd_hertz, "bench": cmd_bench}[a.command](a)
     except FegearError as exc:
         print(f"fegear: error: {exc}", file=sys.stderr)
         return EXIT_USAGE

@@ -71,3 +71,40 @@ def test_unwritable_output_path(tmp_path):
     assert r.returncode == 2
     assert "--out" in r.stderr and "Traceback" not in r.stderr
     assert len(r.stderr.strip().splitlines()) == 1
+
+
+def test_hertz_prints_fe_beside_hertz_and_writes_vtu(tmp_path):
+    r = run("hertz", "--r1", "10", "--r2", "10", "--load", "1000", "--thickness", "5",
+            "--quality", "coarse", "--out", str(tmp_path), "--json")
+    assert r.returncode == 0, r.stderr
+    s = json.loads(r.stdout)
+    assert abs(s["error_pct"]["p_max"]) < 0.5 and abs(s["error_pct"]["half_width"]) < 2.0
+    assert s["hertz"]["b_over_R"] == pytest.approx(0.0222, abs=1e-4)
+    assert s["dofs"] > 0 and s["contact_iterations"] > 0
+    assert {"mesh", "assemble_factor", "condense", "contact", "recovery", "output"} <= set(
+        s["timings_s"])
+    for name in ("disk1.vtu", "disk2.vtu", "summary.json"):
+        assert (tmp_path / name).stat().st_size > 0
+    table = run("hertz", "--r2", "-12", "--quality", "coarse")
+    assert table.returncode == 0, table.stderr
+    assert "disk in bore" in table.stdout and "b/R*" in table.stdout
+
+
+@pytest.mark.parametrize("args,fragment", [
+    (["--r2", "-5"], "r2 = -5.0 is not admissible"),
+    (["--r1", "0"], "r1 = 0.0 is not admissible"),
+    (["--load", "nan"], "load = nan is not admissible"),
+    (["--E", "-2"], "E = -2.0 is not admissible"),
+    (["--nu", "0.5"], "nu = 0.5 is not admissible"),
+    (["--thickness", "inf"], "thickness = inf is not admissible"),
+    (["--quality", "best"], "quality = 'best' is not admissible"),
+    (["--penalty-factor", "0"], "penalty_factor = 0.0 is not admissible"),
+    (["--load", "1e9"], "load = 1000000000.0 is not admissible"),
+])
+def test_hertz_user_errors_exit_2_with_one_line(tmp_path, args, fragment):
+    out = tmp_path / "o"
+    r = run("hertz", *args, "--out", str(out))
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and fragment in lines[0] and "Traceback" not in r.stderr
+    assert not out.exists() or not any(out.iterdir())

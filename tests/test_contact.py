@@ -1,0 +1,99 @@
+"""Penalty contact against Hertz line contact; penalty insensitivity; disk in bore; load and
+motion control; recovered surface stress; VTU round trip."""
+
+import math
+
+import meshio
+import numpy as np
+import pytest
+
+from fegear.contact_solve import solve_contact
+from fegear.disks import DiskCase, solve_disks, write_disk_outputs
+from fegear.errors import ParameterError
+from fegear.hertz import line_contact
+
+
+def test_hertz_formulas_by_hand():
+    # r1 = r2 = 10 mm → R* = 5 mm; E* = E/2 = 103000 MPa; q = 1000 N / 5 mm = 200 N/mm
+    h = line_contact(10.0, 10.0, 1000.0, 5.0)
+    b = math.sqrt(4 * 200 * 5 / (math.pi * 103000))
+    assert h.R_star == pytest.approx(5.0, rel=1e-15)
+    assert h.E_star == pytest.approx(103000.0, rel=1e-15)
+    assert h.b == pytest.approx(b, rel=1e-15)
+    assert h.p0 == pytest.approx(2 * 200 / (math.pi * b), rel=1e-15)
+    assert math.pi / 2 * h.p0 * h.b == pytest.approx(200.0, rel=1e-14)  # ∫p = q
+    assert h.b_over_R == pytest.approx(b / 5.0)
+    bore = line_contact(10.0, -12.0, 1000.0, 5.0)  # concave: 1/R* = 1/10 − 1/12
+    assert bore.R_star == pytest.approx(60.0, rel=1e-14)
+    strain = line_contact(10.0, 10.0, 1000.0, 5.0, plane="strain")
+    assert strain.E_star == pytest.approx(103000.0 / (1 - 0.29**2), rel=1e-14)
+
+
+@pytest.mark.parametrize("r2", [-5.0, -10.0, 0.0])
+def test_hertz_refuses_bodies_that_cannot_touch_at_a_point(r2):
+    with pytest.raises(ParameterError, match="r2"):
+        line_contact(10.0, r2, 1000.0, 5.0)
+
+
+@pytest.fixture(scope="module")
+def convex():
+    return solve_disks(DiskCase())
+
+
+@pytest.mark.parametrize("plane", ["stress", "strain"])
+def test_convex_pair_matches_hertz(plane, convex):
+    r = convex if plane == "stress" else solve_disks(DiskCase(plane="strain"))
+    assert r.hertz.b_over_R < 0.05
+    assert abs(r.p_error_pct) < 0.5, r.summary()
+    assert abs(r.b_error_pct) < 2.0, r.summary()
+    sol = r.solution
+    assert sol.link_force == pytest.approx(r.case.load, rel=1e-9)  # load balance
+    assert max(sol.residuals) < 1e-9
+    assert sol.max_penetration < 0.01 * r.half_width
+    # the recovered surface normal stress agrees with the penalty traction
+    assert r.surface_stress == pytest.approx(r.p_max, rel=0.01)
+
+
+def test_penalty_over_three_decades_changes_p0_less_than_one_percent():
+    default = DiskCase().penalty_factor
+    factors = default * 10.0 ** np.array([-1.5, -0.5, 0.5, 1.5])
+    p = np.array([solve_disks(DiskCase(penalty_factor=f)).p_max for f in factors])
+    assert (p.max() - p.min()) / p.mean() < 0.01, p
+
+
+def test_disk_in_bore_converges_and_reports_against_hertz():
+    std = solve_disks(DiskCase(r1=10.0, r2=-12.0, quality="standard"))
+    fine = solve_disks(DiskCase(r1=10.0, r2=-12.0, quality="fine"))
+    assert fine.p_max == pytest.approx(std.p_max, rel=0.01)
+    assert fine.half_width == pytest.approx(std.half_width, rel=0.01)
+    assert std.summary()["hertz"]["b_over_R"] == pytest.approx(std.hertz.b / 60.0)
+    # small contact angle (b/r1 ≈ 0.04): Hertz still holds to about a percent
+    assert abs(fine.p_error_pct) < 1.0 and abs(fine.b_error_pct) < 2.0
+
+
+def test_motion_control_inverts_load_control(convex):
+    sol = solve_contact(convex.model, motion=convex.solution.link_value)
+    assert sol.link_force == pytest.approx(convex.case.load, rel=1e-8)
+    assert np.allclose(sol.force, convex.solution.force, rtol=1e-6, atol=1e-9)
+
+
+def test_light_load_matches_hertz():
+    # 100× lighter: b and p0 shrink 10×, the window and its mesh follow the Hertz estimate
+    light = solve_disks(DiskCase(load=10.0))
+    assert abs(light.p_error_pct) < 0.5 and abs(light.b_error_pct) < 2.0
+
+
+def test_vtu_round_trip(convex, tmp_path):
+    files = write_disk_outputs(convex, tmp_path)
+    for i, body in enumerate(convex.bodies):
+        back = meshio.read(files[body.name])
+        assert back.cells[0].type == "triangle6"
+        assert np.array_equal(back.cells[0].data, body.mesh.dofs.element_dofs.T)
+        assert np.abs(back.points[:, :2] - body.mesh.doflocs.T).max() <= 1e-12
+        u = convex.solution.displacements[i].reshape(-1, 2)
+        assert np.abs(back.point_data["displacement"][:, :2] - u).max() <= 1e-12 * np.abs(u).max()
+        vm = convex.stresses[i].von_mises
+        assert np.abs(back.point_data["von_mises"] - vm).max() <= 1e-12 * vm.max()
+    pressure = meshio.read(files["disk1"]).point_data["contact_pressure"]
+    assert pressure.max() == pytest.approx(convex.p_max, rel=0.01)
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]

@@ -1,0 +1,98 @@
+"""Meshing: exact boundaries, named parts that survive the quadratic import, refinement, quality.
+Invariants only (areas, lengths, node positions), never node counts."""
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from skfem import Basis, ElementTriP2, FacetBasis, LinearForm, asm
+
+from fegear.assembly import facet_nodes
+from fegear.contact import Circle
+from fegear.mesh import BodyGeometry, MeshError, Refinement, Segment, mesh_bodies, mesh_quality
+
+R = 10.0
+C = (0.0, R)
+W = 0.05  # half-angle of the refined window, rad
+
+
+def arc(a0, a1, n=40):
+    a = np.linspace(a0, a1, n)
+    return np.asarray(C) + R * np.column_stack([np.cos(a), np.sin(a)])
+
+
+def half_disk(window_size=0.01, size=2.0):
+    circle = Circle(C, R)
+    down = 1.5 * math.pi
+    return BodyGeometry("half_disk", (
+        Segment("left", arc(math.pi, down - W), circle.project),
+        Segment("window", arc(down - W, down + W), circle.project),
+        Segment("right", arc(down + W, 2 * math.pi), circle.project),
+        Segment("cut", np.array([[R, R], [-R, R]])),
+    ), size=size, refinements=(Refinement(("window",), window_size),))
+
+
+@pytest.fixture(scope="module")
+def disk():
+    return mesh_bodies([half_disk()])[0]
+
+
+def length(mesh, name):
+    fb = FacetBasis(mesh, ElementTriP2(), facets=mesh.boundaries[name])
+    return asm(LinearForm(lambda v, w: v), fb).sum()
+
+
+def test_area_and_boundary_lengths_are_exact(disk):
+    m = disk.mesh
+    area = asm(LinearForm(lambda v, w: v), Basis(m, ElementTriP2())).sum()
+    assert area == pytest.approx(math.pi * R * R / 2, rel=1e-5)
+    assert length(m, "window") == pytest.approx(2 * W * R, rel=1e-9)
+    assert length(m, "cut") == pytest.approx(2 * R, rel=1e-12)
+    assert length(m, "left") == pytest.approx((0.5 * math.pi - W) * R, rel=1e-6)
+
+
+def test_boundary_nodes_including_midside_lie_on_the_exact_curve(disk):
+    m = disk.mesh
+    for name in ("left", "window", "right"):
+        nodes = np.unique(facet_nodes(m, m.boundaries[name]))
+        r = np.linalg.norm(m.doflocs.T[nodes] - np.asarray(C), axis=1)
+        assert np.abs(r - R).max() < 1e-12
+
+
+def test_named_parts_partition_the_boundary(disk):
+    m = disk.mesh
+    named = np.concatenate([m.boundaries[n] for n in ("left", "window", "right", "cut")])
+    assert len(named) == len(np.unique(named))
+    assert np.array_equal(np.sort(named), np.sort(m.boundary_facets()))
+
+
+def test_refinement_reaches_the_requested_size_and_grades_out(disk):
+    m = disk.mesh
+    ends = m.doflocs.T[m.facets[:, m.boundaries["window"]]]
+    h = np.linalg.norm(ends[0] - ends[1], axis=1)
+    assert h.max() < 1.5 * 0.01
+    assert disk.quality.h_max < 2.0 * 1.5
+    assert disk.quality.min_shape > 0.3
+    assert disk.quality.min_jacobian_ratio > 0.5
+
+
+def test_quality_check_detects_an_inverted_element(disk):
+    m = disk.mesh
+    doflocs = m.doflocs.copy()
+    corner = m.t[0, 0]
+    opposite = 0.5 * (doflocs[:, m.t[1, 0]] + doflocs[:, m.t[2, 0]])
+    doflocs[:, corner] = opposite + 2.0 * (opposite - doflocs[:, corner])  # fold it over
+    assert mesh_quality(m).min_jacobian_ratio > 0
+    assert mesh_quality(replace(m, doflocs=doflocs)).min_jacobian_ratio < 0
+
+
+def test_bad_geometry_is_refused_with_a_named_reason():
+    g = half_disk()
+    with pytest.raises(MeshError, match="unknown"):
+        mesh_bodies([BodyGeometry(g.name, g.outer, g.size,
+                                  refinements=(Refinement(("nowhere",), 0.1),))])
+    with pytest.raises(MeshError, match="does not end where"):
+        mesh_bodies([BodyGeometry(g.name, g.outer[:3], g.size)])
+    with pytest.raises(MeshError, match="finite"):
+        Segment("x", np.array([[0.0, np.nan], [1.0, 0.0]]))
