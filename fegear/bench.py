@@ -51,3 +51,23 @@ def geometry_bench(params: PairParameters, repeat: int = 3, chord_error: float =
     lines.append(f"| backlash over one mesh cycle (+ {bl.plus_um:.3f} µm, − {bl.minus_um:.3f} µm)"
                  f" | {t_bl:.3f} |")
     return "\n".join(lines)
+
+
+def hertz_bench(repeat: int = 3) -> str:
+    """Time the FE stages on the Hertz case (two 10 mm disks, 1000 N, 5 mm) per quality level."""
+    from .disks import QUALITY, DiskCase, solve_disks
+
+    lines = ["fegear FE benchmark: two disks r 10 mm, P 1000 N, t 5 mm, plane stress "
+             f"(best of {repeat} per stage)", "",
+             "| quality | DOFs | contact points | mesh | assemble+factor | condense | contact | "
+             "recovery | total [s] | p_max err % | b err % |",
+             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for quality in QUALITY:
+        runs = [solve_disks(DiskCase(quality=quality)) for _ in range(repeat)]
+        best = {k: min(r.timings_s[k] for r in runs) for k in runs[0].timings_s}
+        r = runs[0]
+        lines.append(f"| {quality} | {r.dofs} | {r.contact_points} | {best['mesh']:.3f} | "
+                     f"{best['assemble_factor']:.3f} | {best['condense']:.3f} | "
+                     f"{best['contact']:.3f} | {best['recovery']:.3f} | "
+                     f"{sum(best.values()):.3f} | {r.p_error_pct:+.3f} | {r.b_error_pct:+.3f} |")
+    return "\n".join(lines)

@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import json
 import logging
+import math
 import sys
 
 from .errors import FegearError
@@ -184,7 +185,8 @@ def _hertz_table(r) -> str:
              f"| half-width b [mm]  | {r.half_width:11.6f} | {h.b:11.6f} | "
              f"{r.b_error_pct:+10.3f}% |",
              "",
-             f"b/R* = {h.b_over_R:.4f} (R* = {h.R_star:.4g} mm; Hertz assumes b/R* << 1)",
+             f"b/R* = {h.b_over_R:.4f} (R* = {h.R_star:.4g} mm; Hertz assumes b/R* << 1); "
+             f"contact half-angle on disk 1 {math.degrees(r.half_width / c.r1):.1f}°",
              f"recovered surface normal stress at the contact: {r.surface_stress:.3f} MPa "
              f"({100 * (r.surface_stress / r.p_max - 1):+.2f}% vs FE p_max)",
              f"DOFs {r.dofs}, contact points {r.contact_points}, active-set iterations "
@@ -198,10 +200,12 @@ def _hertz_table(r) -> str:
 
 
 def cmd_bench(a: argparse.Namespace) -> int:
-    from .bench import geometry_bench
+    from .bench import geometry_bench, hertz_bench
 
     repeat = int(require_range("repeat", a.repeat, 1, 100))
     print(geometry_bench(_params(a), repeat))
+    print()
+    print(hertz_bench(repeat))
     return 0
 
 
