@@ -111,6 +111,34 @@ class RigidLink:
         return x + value * np.asarray(self.direction)
 
 
+@dataclass(frozen=True)
+class Placement:
+    """Where a body sits in the fixed frame: x_fixed = R(angle) x_body + offset (rad, mm).
+
+    Meshes, stiffness and factors live in the body frame, so a body can be placed at any
+    rolling position without re-assembly; contact rows turn their normals into the body frame.
+    """
+
+    angle: float = 0.0
+    offset: tuple[float, float] = (0.0, 0.0)
+
+    def vec_to_fixed(self, v: np.ndarray) -> np.ndarray:
+        c, s = np.cos(self.angle), np.sin(self.angle)
+        v = np.asarray(v, dtype=float)
+        return np.column_stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]])
+
+    def vec_to_body(self, v: np.ndarray) -> np.ndarray:
+        c, s = np.cos(self.angle), np.sin(self.angle)
+        v = np.asarray(v, dtype=float)
+        return np.column_stack([c * v[:, 0] + s * v[:, 1], -s * v[:, 0] + c * v[:, 1]])
+
+    def to_fixed(self, x: np.ndarray) -> np.ndarray:
+        return self.vec_to_fixed(x) + np.asarray(self.offset)
+
+    def to_body(self, x: np.ndarray) -> np.ndarray:
+        return self.vec_to_body(np.asarray(x, dtype=float) - np.asarray(self.offset))
+
+
 class SupportError(FegearError):
     """A body is not held: its stiffness is singular with the given supports."""
 
@@ -134,6 +162,8 @@ class Body:
     psi: np.ndarray = field(repr=False)
     link_stiffness: float
     factor: object = field(repr=False)
+    placement: Placement = Placement()
+    flex_cache: dict = field(default_factory=dict, repr=False)
 
     @property
     def mesh(self):
@@ -163,6 +193,24 @@ class Body:
         v = np.zeros(f.shape)
         v[self.free] = self.factor.solve(np.ascontiguousarray(f[self.free]))
         return v
+
+    def flexibility(self, nodes: np.ndarray) -> np.ndarray:
+        """F = E K⁻¹ Eᵀ (mm/N) for the x, y dofs of ``nodes`` (2n × 2n, node-major), with zero
+        rows for supported dofs. Cached per node set: it depends only on the body frame."""
+        nodes = np.asarray(nodes, dtype=np.int64)
+        key = nodes.tobytes()
+        if key not in self.flex_cache:
+            dofs = self.node_dofs(nodes).ravel()
+            pos = np.searchsorted(self.free, dofs)
+            pos = np.minimum(pos, len(self.free) - 1)
+            is_free = self.free[pos] == dofs
+            rhs = np.zeros((len(self.free), int(is_free.sum())))
+            rhs[pos[is_free], np.arange(rhs.shape[1])] = 1.0
+            X = self.factor.solve(rhs)
+            F = np.zeros((len(dofs), len(dofs)))
+            F[np.ix_(is_free, is_free)] = X[pos[is_free]]
+            self.flex_cache[key] = F
+        return self.flex_cache[key]
 
     def displacement(self, v: np.ndarray, link_value: float) -> np.ndarray:
         """Total displacement u = θψ + v (linear in the link motion), (ndofs,)."""

@@ -109,10 +109,10 @@ class ContactModel:
     pairs: tuple[ContactPair, ...]
     settings: ContactSettings
     pair_index: np.ndarray = field(repr=False)   # (nq,) which pair
-    x: np.ndarray = field(repr=False)            # (nq, 2) slave points, reference, mm
+    x: np.ndarray = field(repr=False)            # (nq, 2) slave points, slave body frame, mm
     weight: np.ndarray = field(repr=False)       # (nq,) w·|dx/ds|·t, mm²
     arc: np.ndarray = field(repr=False)          # (nq,) arc length along the slave boundary, mm
-    normal: np.ndarray = field(repr=False)       # (nq, 2) master normal at the paired point
+    normal: np.ndarray = field(repr=False)       # (nq, 2) master normal (fixed frame)
     C: tuple[sp.csr_matrix, ...] = field(repr=False)  # per body, gap_elastic = Σ C_b v_b
     G: np.ndarray = field(repr=False)            # (nq, nq) flexibility, mm/N
     kappa: float                                  # penalty, MPa/mm
@@ -139,17 +139,27 @@ class ContactModel:
         return g, a
 
     def exact_gap(self, k: int, x: np.ndarray, value: float) -> tuple[CurvePoints, np.ndarray]:
-        """Closest points on pair k's master curve of slave points x (reference, (n, 2)) when a
-        mechanism link is moved exactly by ``value``, and d(gap)/d(value) (0 if not moved)."""
+        """Closest points on pair k's master curve (fixed frame) of slave points x (slave body
+        frame, (n, 2)) when a mechanism link is moved exactly by ``value``, and d(gap)/d(value)
+        (0 if the link does not move either body of the pair)."""
         pair = self.pairs[k]
+        slave = self.bodies[pair.slave]
         lb = self.link_body
-        if lb is None or not self.bodies[lb].is_mechanism or lb not in (pair.slave, pair.master):
-            return pair.master_curve.closest(x), np.zeros(len(x))
-        link = self.bodies[lb].link
-        sign = 1.0 if lb == pair.slave else -1.0
-        moved = link.move(x, sign * value)
-        cp = pair.master_curve.closest(moved)
-        return cp, sign * np.sum(cp.normal * link.velocity(moved), axis=1)
+        moves = lb is not None and self.bodies[lb].is_mechanism and lb in (pair.slave,
+                                                                           pair.master)
+        if not moves:
+            return pair.master_curve.closest(slave.placement.to_fixed(x)), np.zeros(len(x))
+        body = self.bodies[lb]
+        if lb == pair.slave:
+            moved = body.link.move(x, value)
+            cp = pair.master_curve.closest(body.placement.to_fixed(moved))
+            velocity = body.placement.vec_to_fixed(body.link.velocity(moved))
+            return cp, np.sum(cp.normal * velocity, axis=1)
+        # the master moves by +value: equivalently the slave point moves by −value in its frame
+        y = body.link.move(body.placement.to_body(slave.placement.to_fixed(x)), -value)
+        cp = pair.master_curve.closest(body.placement.to_fixed(y))
+        velocity = body.placement.vec_to_fixed(body.link.velocity(y))
+        return cp, -np.sum(cp.normal * velocity, axis=1)
 
 
 def p2_edge_shape(s: np.ndarray) -> np.ndarray:
@@ -192,19 +202,13 @@ def locate_on_facets(body: Body, facets: np.ndarray,
     return f, s
 
 
-def _rows(body: Body, nodes: np.ndarray, shape: np.ndarray, normal: np.ndarray,
-          sign: float) -> sp.csr_matrix:
-    """Sparse rows: sign · n · u(x) with u interpolated by ``shape`` on ``nodes`` (n, 3)."""
-    n = len(nodes)
-    rows = np.repeat(np.arange(n), 6)
-    cols = np.stack([2 * nodes, 2 * nodes + 1], axis=-1).reshape(n, 6)
-    vals = (shape[:, :, None] * normal[:, None, :]).reshape(n, 6) * sign
-    return sp.csr_matrix((vals.ravel(), (rows, cols.ravel())), shape=(n, body.ndofs))
-
-
 def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
                   settings: ContactSettings = ContactSettings()) -> ContactModel:
-    """Pair the slave quadrature points, build the gap rows and condense the flexibility."""
+    """Pair the slave quadrature points, build the gap rows and condense the flexibility.
+
+    Bodies sit at their ``placement``; slave points and rows are kept in body frames. The
+    flexibility is taken from each body's nodal flexibility on its contact boundaries
+    (computed once per body and boundary set, then reused for every pairing)."""
     bodies = tuple(bodies)
     links = [i for i, b in enumerate(bodies) if b.link is not None]
     if len(links) > 1:
@@ -212,35 +216,35 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
     gauss, gw = np.polynomial.legendre.leggauss(settings.gauss_points)
     gauss, gw = 0.5 * (gauss + 1.0), 0.5 * gw
 
-    parts = {k: [] for k in ("pair", "x", "w", "arc", "n", "rows_s", "rows_m")}
+    parts = {k: [] for k in ("pair", "x", "w", "arc", "n", "rows")}
     lengths, moduli, dropped = [], [], 0
     for k, pair in enumerate(pairs):
         sb, mb = bodies[pair.slave], bodies[pair.master]
         facets = _ordered(sb, pair.slave_boundary)
         nf = len(facets)
         s = np.tile(gauss, nf)
-        f = np.repeat(facets, len(gauss))
-        x, dx, nodes = facet_curve(sb, f, s)
-        jac = np.linalg.norm(dx, axis=1)
-        w = np.tile(gw, nf) * jac * sb.material.thickness
+        x, dx, nodes = facet_curve(sb, np.repeat(facets, len(gauss)), s)
+        w = np.tile(gw, nf) * np.linalg.norm(dx, axis=1) * sb.material.thickness
         seg = np.linalg.norm(np.diff(sb.mesh.doflocs.T[facet_nodes(sb.mesh, facets)[:, :2]],
                                      axis=1)[:, 0], axis=1)
-        arc = np.repeat(np.concatenate([[0.0], np.cumsum(seg)[:-1]]), len(gauss)) + s * np.repeat(
-            seg, len(gauss))
-        cp = pair.master_curve.closest(x)
-        mf, ms = locate_on_facets(mb, mb.mesh.boundaries[pair.master_boundary], cp.foot)
+        arc = (np.repeat(np.concatenate([[0.0], np.cumsum(seg)[:-1]]), len(gauss))
+               + s * np.repeat(seg, len(gauss)))
+        cp = pair.master_curve.closest(sb.placement.to_fixed(x))
+        mf, ms = locate_on_facets(mb, mb.mesh.boundaries[pair.master_boundary],
+                                  mb.placement.to_body(cp.foot))
         ok = (ms > -1e-9) & (ms < 1 + 1e-9)
         dropped += int(np.count_nonzero(~ok))
         _, _, mnodes = facet_curve(mb, mf[ok], ms[ok])
-        rows_s = _rows(sb, nodes[ok], p2_edge_shape(s[ok]), cp.normal[ok], +1.0)
-        rows_m = _rows(mb, mnodes, p2_edge_shape(np.clip(ms[ok], 0, 1)), cp.normal[ok], -1.0)
+        n_fixed = cp.normal[ok]
+        parts["rows"].append([
+            (pair.slave, nodes[ok], p2_edge_shape(s[ok]), sb.placement.vec_to_body(n_fixed)),
+            (pair.master, mnodes, -p2_edge_shape(np.clip(ms[ok], 0, 1)),
+             mb.placement.vec_to_body(n_fixed))])
         parts["pair"].append(np.full(np.count_nonzero(ok), k))
         parts["x"].append(x[ok])
         parts["w"].append(w[ok])
         parts["arc"].append(arc[ok])
-        parts["n"].append(cp.normal[ok])
-        parts["rows_s"].append((pair.slave, rows_s))
-        parts["rows_m"].append((pair.master, rows_m))
+        parts["n"].append(n_fixed)
         lengths.append(seg)
         moduli.append(1.0 / (1.0 / sb.material.plane_modulus + 1.0 / mb.material.plane_modulus))
 
@@ -248,20 +252,32 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
     if nq == 0:
         raise ContactError("no slave point has a master facet under it: check the contact pairs")
     offsets = np.cumsum([0] + [len(p) for p in parts["pair"]])
-    C = []
+    C, G = [], np.zeros((nq, nq))
     for b, body in enumerate(bodies):
-        blocks = []
+        names = sorted({p.slave_boundary for p in pairs if p.slave == b}
+                       | {p.master_boundary for p in pairs if p.master == b})
+        if not names:
+            C.append(sp.csr_matrix((nq, body.ndofs)))
+            continue
+        window = np.unique(np.concatenate(
+            [facet_nodes(body.mesh, body.mesh.boundaries[n]).ravel() for n in names]))
+        local = np.full(body.mesh.doflocs.shape[1], -1)
+        local[window] = np.arange(len(window))
+        Cw = np.zeros((nq, 2 * len(window)))
         for k in range(len(pairs)):
-            blk = sp.csr_matrix((offsets[k + 1] - offsets[k], body.ndofs))
-            for key in ("rows_s", "rows_m"):
-                owner, rows = parts[key][k]
-                if owner == b:
-                    blk = blk + rows
-            blocks.append(blk)
-        C.append(sp.vstack(blocks).tocsr())
-    G = np.zeros((nq, nq))
-    for body, Cb in zip(bodies, C):
-        G += _flexibility(body, Cb)
+            rows = np.arange(offsets[k], offsets[k + 1])
+            for owner, nodes, shape, normal in parts["rows"][k]:
+                if owner != b:
+                    continue
+                cols = 2 * local[nodes]  # (n, 3)
+                for j in range(3):
+                    np.add.at(Cw, (rows, cols[:, j]), shape[:, j] * normal[:, 0])
+                    np.add.at(Cw, (rows, cols[:, j] + 1), shape[:, j] * normal[:, 1])
+        F = body.flexibility(window)
+        G += Cw @ F @ Cw.T
+        Cs = sp.csr_matrix(Cw)  # window columns → the body's dofs
+        dofs = body.node_dofs(window).ravel()
+        C.append(sp.csr_matrix((Cs.data, dofs[Cs.indices], Cs.indptr), shape=(nq, body.ndofs)))
     h = float(np.mean(np.concatenate(lengths)))
     kappa = settings.penalty_factor * min(moduli) / h
     return ContactModel(bodies, tuple(pairs), settings, np.concatenate(parts["pair"]),
@@ -287,17 +303,3 @@ def _ordered(body: Body, name: str) -> np.ndarray:
         order.append(i)
         node = ends[i, 1] if ends[i, 0] == node else ends[i, 0]
     return facets[np.array(order)]
-
-
-def _flexibility(body: Body, Cb: sp.csr_matrix, chunk: int = 256) -> np.ndarray:
-    """C K⁻¹ Cᵀ restricted to the free dofs, by multi-right-hand-side solves with the factor."""
-    Cf = Cb[:, body.free].tocsr()
-    touched = np.flatnonzero(np.diff(Cf.indptr))
-    G = np.zeros((Cb.shape[0], Cb.shape[0]))
-    if len(touched) == 0:
-        return G
-    for start in range(0, len(touched), chunk):
-        idx = touched[start:start + chunk]
-        X = body.factor.solve(np.ascontiguousarray(Cf[idx].T.toarray()))
-        G[:, idx] = Cf @ X
-    return G

@@ -25,10 +25,10 @@ log = logging.getLogger(__name__)
 
 @dataclass(frozen=True)
 class ContactPatch:
-    """One contact zone of a pair. ``load`` (N), ``p_max`` (MPa, peak of the penalty traction:
-    parabola through the largest quadrature-point value and its neighbours), ``half_width``
-    (mm, twice the standard deviation of the traction along the slave arc: b for a Hertz
-    ellipse), ``center`` (mm, reference configuration)."""
+    """One contact zone of a pair. ``load`` (N); ``p_max`` (MPa), the peak of the penalty
+    traction: the parabola through the largest quadrature-point value and its neighbours;
+    ``half_width`` (mm), twice the standard deviation of the traction along the slave arc (b for
+    a Hertz ellipse); ``center`` (mm, fixed frame)."""
 
     pair: str
     load: float
@@ -191,7 +191,8 @@ def _patches(model: ContactModel, lam: np.ndarray, us, theta: float) -> tuple[Co
         s = model.arc[sel]
         mean = np.sum(w * s) / w.sum()
         half = 2.0 * np.sqrt(np.sum(w * (s - mean) ** 2) / w.sum())
-        centre = np.sum(w[:, None] * model.x[sel], axis=0) / w.sum()
+        placed = model.bodies[pair.slave].placement.to_fixed(model.x[sel])
+        centre = np.sum(w[:, None] * placed, axis=0) / w.sum()
         p_max = _peak(model.arc[sel], lam[sel] / model.weight[sel])
         out.append(ContactPatch(pair.name, float(w.sum()), p_max, float(half),
                                 (float(centre[0]), float(centre[1])), int(sel.sum())))
@@ -227,9 +228,10 @@ def nodal_pressure(model: ContactModel, solution: ContactSolution, body: int) ->
         if not names or len(sel) < 2:
             continue
         order = sel[np.argsort(model.arc[sel])]
+        xq = model.bodies[pair.slave].placement.to_fixed(model.x[order])
         for name in names:
             nodes = np.unique(facet_nodes(b.mesh, b.mesh.boundaries[name]))
-            p = _along(model.x[order], solution.pressure[order], b.mesh.doflocs.T[nodes])
+            p = _along(xq, solution.pressure[order], b.placement.to_fixed(b.mesh.doflocs.T[nodes]))
             out[nodes] = np.maximum(out[nodes], p)
     return out
 
