@@ -204,11 +204,15 @@ class Body:
             pos = np.searchsorted(self.free, dofs)
             pos = np.minimum(pos, len(self.free) - 1)
             is_free = self.free[pos] == dofs
-            rhs = np.zeros((len(self.free), int(is_free.sum())))
-            rhs[pos[is_free], np.arange(rhs.shape[1])] = 1.0
-            X = self.factor.solve(rhs)
+            rows = pos[is_free]
+            Ff = np.empty((len(rows), len(rows)))
+            for start in range(0, len(rows), 256):  # bounded memory: 256 right-hand sides
+                cols = rows[start:start + 256]
+                rhs = np.zeros((len(self.free), len(cols)))
+                rhs[cols, np.arange(len(cols))] = 1.0
+                Ff[:, start:start + len(cols)] = self.factor.solve(rhs)[rows]
             F = np.zeros((len(dofs), len(dofs)))
-            F[np.ix_(is_free, is_free)] = X[pos[is_free]]
+            F[np.ix_(is_free, is_free)] = Ff
             self.flex_cache[key] = F
         return self.flex_cache[key]
 

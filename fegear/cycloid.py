@@ -138,7 +138,11 @@ class Cycloid:
         return np.hypot(u, w)
 
     def signed_distance(self, y: np.ndarray) -> np.ndarray:
-        """Exact signed distance [mm] of points ``y`` (n, 2) to the curve; > 0 in the gap.
+        """Exact signed distance [mm] of points ``y`` (n, 2) to the curve; > 0 in the gap."""
+        return self.closest(y)[2]
+
+    def closest(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Foot points, unit gap-side normals and signed distances (> 0 in the gap) of ``y``.
 
         Newton's method on the foot-point condition ``(P(ξ) - y) · P'(ξ) = 0``, started at the
         point of the curve with the same polar angle (meant for points within a fraction of a
@@ -158,7 +162,8 @@ class Cycloid:
                 break
         p, d1 = self.derivatives(xi, 1)
         t = d1 / np.hypot(d1[:, 0], d1[:, 1])[:, None]
-        return np.einsum("ij,ij->i", y - p, np.stack([-t[:, 1], t[:, 0]], axis=-1))
+        n = np.stack([-t[:, 1], t[:, 0]], axis=-1)
+        return p, n, np.einsum("ij,ij->i", y - p, n)
 
     def polyline(self, chord_error: float, xi0: float = 0.0, xi1: float | None = None
                  ) -> np.ndarray:

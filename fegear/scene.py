@@ -1,0 +1,291 @@
+"""The tooth-pair FE scene: which teeth to mesh and pair, and the two sector bodies.
+
+Frames (README "Conventions"): gear 2 centred at the origin, gear 1 at O1 = (0, e); at rolling
+angle β gear 2 is turned by β and gear 1 by α = (z2/z1) β. Each body is meshed in its own frame
+and placed at β (:class:`fegear.assembly.Placement`), so one factorisation serves every
+position.
+
+* Gear 1 is an annular sector: its exact profile over the chosen teeth, radial cuts through the
+  middle of an unloaded extra tooth at each end, and a bore of radius ρ1,min − ``rim1`` tied to
+  the rotation unknown that carries the torque (a mechanism: rigid rotation about O1).
+* Gear 2 is a ring sector: its exact profile over the same angular range, radial cuts through
+  the middle of an extra tooth, and the outer rim at ρ2,max + ``rim2``, fixed.
+* Cut faces are traction free. The refined parts are a contact window on every candidate
+  flank (both gears) and the root zone (the lower ``ROOT_BAND`` of the tooth height) of every
+  tooth space.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .contact import CurvePoints
+from .cycloid import Cycloid, gear2_curve
+from .errors import ParameterError
+from .hertz import line_contact
+from .mesh import BodyGeometry, Refinement, Segment
+from .params import PairParameters
+from .profile import Gear1Profile, rotate, wrap
+
+#: quality → (elements across the Hertz half-width, root size / m, global size / m)
+QUALITY = {"fast": (4, 1 / 10, 1 / 2), "standard": (8, 1 / 20, 1 / 4),
+           "fine": (16, 1 / 40, 1 / 8)}
+ROOT_BAND = 0.3          # root zone: the lower 30 % of the tooth height
+WINDOW_B = 3.0           # gear-1 window half-length, in Hertz half-widths at the shared load
+MASTER_FACTOR = 1.6      # gear-2 window half-length relative to gear 1's
+SHARE_GUESS = 3.0        # teeth assumed to share the load when sizing the contact elements
+SPLINE_CHORD = 1e-3      # mm, polyline handed to gmsh (nodes are snapped to the exact curve)
+
+
+@dataclass(frozen=True)
+class Gear2Master:
+    """Gear 2's exact curve at rolling angle β, as an exact master curve (fixed frame)."""
+
+    curve: Cycloid
+    beta: float
+
+    def closest(self, points: np.ndarray) -> CurvePoints:
+        foot, normal, dist = self.curve.closest(rotate(np.asarray(points, float), -self.beta))
+        return CurvePoints(rotate(foot, self.beta), rotate(normal, self.beta), dist)
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """A gear-1 tooth paired for contact: unloaded clearance (µm of arc at r0), the predicted
+    contact point (fixed frame at β, mm), its polar angle on gear 1 (body frame, rad) and on
+    gear 2 (body frame, rad), and the analytic curvature radii there (mm, + convex)."""
+
+    tooth: int
+    clearance_um: float
+    point: tuple[float, float]
+    phi1: float
+    theta2: float
+    radius1: float
+    radius2: float
+
+
+@dataclass(frozen=True)
+class Scene:
+    """Both sector geometries, the paired teeth and the exact master curve at β."""
+
+    params: PairParameters
+    beta: float
+    gear1: BodyGeometry
+    gear2: BodyGeometry
+    candidates: tuple[Candidate, ...]
+    master: Gear2Master
+    teeth1: tuple[int, ...]       # gear-1 teeth in the sector (loaded candidates and extras)
+    root_zones1: tuple[str, ...]
+    root_zones2: tuple[str, ...]
+    b_full: float                 # Hertz half-width for the whole load on one tooth, mm
+
+
+def candidate_data(params: PairParameters, profile: Gear1Profile, state, teeth,
+                   beta: float) -> tuple[Candidate, ...]:
+    """Contact point, polar angles and curvature radii of each paired tooth's + flank."""
+    g2 = gear2_curve(params)
+    alpha = params.ratio * beta
+    out = []
+    for c in state.teeth:
+        if c.tooth not in teeth:
+            continue
+        x = np.array([c.plus_point])
+        body1 = rotate(x - np.array([0.0, params.e]), -alpha)
+        phi1 = float(math.atan2(body1[0, 1], body1[0, 0]))
+        ev = profile.evaluate(np.array([phi1]))
+        r1 = float(1.0 / ev.kappa[0])
+        body2 = rotate(x, -beta)
+        theta2 = float(math.atan2(body2[0, 1], body2[0, 0]))
+        xi = g2.xi_at_angle(np.array([theta2]))
+        r2 = float(g2.curvature_radius(xi)[0])
+        out.append(Candidate(c.tooth, float(c.plus_um), (float(x[0, 0]), float(x[0, 1])), phi1,
+                             theta2, r1, r2))
+    return tuple(out)
+
+
+def hertz_half_width(params: PairParameters, torque_nmm: float, c: Candidate, thickness: float,
+                     E: float, nu: float) -> float:
+    """Hertz b (mm) at a candidate if it carried ``torque_nmm`` alone (normal load T / r0)."""
+    load = torque_nmm / params.r0
+    try:
+        return line_contact(c.radius1, c.radius2, load, thickness, E, nu).b
+    except ParameterError:  # not a Hertz pair (1/R* <= 0): size as a cylinder on a plane
+        r = max(abs(c.radius1), abs(c.radius2))
+        return line_contact(r, math.inf, load, thickness, E, nu).b
+
+
+def build_scene(params: PairParameters, profile: Gear1Profile, state, teeth: tuple[int, ...],
+                beta: float, torque_nmm: float, thickness: float, E: float, nu: float,
+                quality: str, rim1: float, rim2: float, extra: int = 1) -> Scene:
+    """Sector geometries for the paired ``teeth`` (gear-1 indices) at rolling angle β."""
+    n_b, root_m, global_m = QUALITY[quality]
+    m = params.m
+    cands = candidate_data(params, profile, state, teeth, beta)
+    b_full = max(hertz_half_width(params, torque_nmm, c, thickness, E, nu) for c in cands)
+    b_shared = b_full / math.sqrt(SHARE_GUESS)  # b ∝ sqrt(load)
+    h_contact = b_shared / n_b
+    window = WINDOW_B * b_shared
+
+    # gear-1 sector: teeth from min - extra to max + extra (indices modulo z1, contiguous)
+    pitch1 = profile.pitch
+    rel = sorted(round(float(wrap((t - teeth[0]) * pitch1)) / pitch1) for t in teeth)
+    lo, hi = rel[0] - extra, rel[-1] + extra
+    centre0 = profile.tooth_center + teeth[0] * pitch1
+    phi_a, phi_b = centre0 + lo * pitch1, centre0 + hi * pitch1
+    teeth1 = tuple(int((teeth[0] + k) % params.z1) for k in range(lo, hi + 1))
+
+    rho = profile.radius(np.linspace(0, pitch1, 400) + profile.phi_space)
+    rho_min, rho_max = float(rho.min()), float(rho.max())
+    bore = rho_min - rim1
+    windows1 = [(c.tooth, _unwrap_near(c.phi1, 0.5 * (phi_a + phi_b)),
+                 window / math.hypot(*_g1_point(profile, c.phi1))) for c in cands]
+    roots1 = [(k, profile.phi_space + (teeth[0] + k) * pitch1) for k in range(lo + 1, hi + 1)]
+    root_half1 = _root_half_angle(lambda p: profile.radius(p), roots1[0][1], pitch1, rho_min,
+                                  rho_max)
+
+    def g1_curve(phi):
+        r = profile.radius(phi)
+        return np.column_stack([r * np.cos(phi), r * np.sin(phi)])
+
+    def g1_project(x):
+        phi = np.arctan2(x[:, 1], x[:, 0])
+        return g1_curve(phi)
+
+    segs1, root_names1 = _profile_segments(
+        "g1", g1_curve, g1_project, phi_a, phi_b,
+        [(f"g1_contact_{t}", p, w) for t, p, w in windows1],
+        [(f"g1_root_{k}", p, root_half1) for k, p in roots1])
+    a0, b0 = g1_curve(np.array([phi_a]))[0], g1_curve(np.array([phi_b]))[0]
+    bore_pts = bore * np.column_stack([np.cos(np.linspace(phi_b, phi_a, 60)),
+                                       np.sin(np.linspace(phi_b, phi_a, 60))])
+
+    def bore_project(x):
+        return bore * x / np.linalg.norm(x, axis=1)[:, None]
+
+    geo1 = BodyGeometry("gear1", (
+        *segs1,
+        Segment("g1_cut_b", np.array([b0, bore_pts[0]])),
+        Segment("g1_bore", bore_pts, bore_project),
+        Segment("g1_cut_a", np.array([bore_pts[-1], a0])),
+    ), size=global_m * m, refinements=(
+        Refinement(tuple(f"g1_contact_{c.tooth}" for c in cands), h_contact),
+        Refinement(tuple(root_names1), root_m * m)))
+
+    # gear-2 sector, in gear 2's frame: the same fixed-frame range, cut at gear-2 tooth tips
+    g2 = gear2_curve(params)
+    pitch2 = 2 * math.pi / params.z2
+    alpha = params.ratio * beta
+
+    def fixed_angle(phi):  # polar angle about the origin of a gear-1 body point
+        x = rotate(g1_curve(np.array([phi])), alpha)[0] + np.array([0.0, params.e])
+        return math.atan2(x[1], x[0])
+
+    t_a = _unwrap_near(fixed_angle(phi_a) - beta, 0.0)
+    t_b = _unwrap_near(fixed_angle(phi_b) - beta, t_a + (phi_b - phi_a))
+    k_a, k_b = math.floor(t_a / pitch2), math.ceil(t_b / pitch2)
+    th_a, th_b = k_a * pitch2, k_b * pitch2  # tooth tips (ξ = 2πk/z2 is a tip)
+    R_max, R_min = params.r0 + 2 * params.e1, params.r0 - 2 * params.e1
+    outer = R_max + rim2
+    windows2 = [(c.tooth, _unwrap_near(c.theta2, 0.5 * (th_a + th_b)), MASTER_FACTOR * window
+                 / params.r0) for c in cands]
+    roots2 = [(k, (k + 0.5) * pitch2) for k in range(k_a, k_b)]
+    root_half2 = _root_half_angle(lambda t: g2.radius_at_angle(t), roots2[0][1], pitch2,
+                                  R_min, R_max, inverted=True)
+
+    def g2_curve(theta):
+        r = g2.radius_at_angle(theta)
+        return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
+
+    def g2_project(x):
+        return g2_curve(np.arctan2(x[:, 1], x[:, 0]))
+
+    segs2, root_names2 = _profile_segments(
+        "g2", g2_curve, g2_project, th_a, th_b,
+        [(f"g2_contact_{t}", p, w) for t, p, w in windows2],
+        [(f"g2_root_{k}", p, root_half2) for k, p in roots2])
+    rim_pts = outer * np.column_stack([np.cos(np.linspace(th_a, th_b, 80)),
+                                       np.sin(np.linspace(th_a, th_b, 80))])
+
+    def rim_project(x):
+        return outer * x / np.linalg.norm(x, axis=1)[:, None]
+
+    pa2, pb2 = g2_curve(np.array([th_a]))[0], g2_curve(np.array([th_b]))[0]
+    reversed_segs = tuple(Segment(s.name, s.points[::-1], s.project) for s in reversed(segs2))
+    geo2 = BodyGeometry("gear2", (
+        Segment("g2_rim", rim_pts, rim_project),
+        Segment("g2_cut_b", np.array([rim_pts[-1], pb2])),
+        *reversed_segs,
+        Segment("g2_cut_a", np.array([pa2, rim_pts[0]])),
+    ), size=global_m * m, refinements=(
+        Refinement(tuple(f"g2_contact_{c.tooth}" for c in cands), h_contact),
+        Refinement(tuple(root_names2), root_m * m)))
+    return Scene(params, beta, geo1, geo2, cands, Gear2Master(g2, beta), teeth1,
+                 tuple(root_names1), tuple(root_names2), b_full)
+
+
+def _g1_point(profile: Gear1Profile, phi: float) -> np.ndarray:
+    return profile.evaluate(np.array([phi])).q[0]
+
+
+def _unwrap_near(angle: float, ref: float) -> float:
+    return ref + float(wrap(angle - ref))
+
+
+def _root_half_angle(radius, centre: float, pitch: float, r_min: float, r_max: float,
+                     inverted: bool = False) -> float:
+    """Half-angle about a tooth-space centre covering the lower ROOT_BAND of the tooth height."""
+    t = np.linspace(0.0, 0.5 * pitch, 400)
+    r = radius(centre + t)
+    height = (r - r_min) / (r_max - r_min)
+    if inverted:  # gear 2: the root is the outermost radius
+        height = 1.0 - height
+    inside = t[height <= ROOT_BAND]
+    return float(inside.max()) if len(inside) else 0.05 * pitch
+
+
+def _profile_segments(prefix, curve, project, a, b, windows, roots):
+    """Split the profile over polar angles [a, b] into named segments.
+
+    ``windows``/``roots``: (name, centre angle, half-angle). Overlapping windows are split at
+    the middle of their overlap; windows take precedence over roots, and earlier roots over
+    later ones (a root may become two pieces under one name); the rest is
+    ``{prefix}_flank``. Returns segments in increasing angle and the names of the root
+    segments that were kept.
+    """
+    wins = sorted((max(a, c - h), min(b, c + h), name) for name, c, h in windows)
+    for i in range(1, len(wins)):
+        lo, hi, name = wins[i]
+        plo, phi_, pname = wins[i - 1]
+        if lo < phi_:
+            mid = 0.5 * (lo + phi_)
+            wins[i - 1] = (plo, mid, pname)
+            wins[i] = (mid, hi, name)
+    pieces = [(lo, hi, name, False) for lo, hi, name in wins if hi - lo > 1e-9]
+    for name, c, h in roots:  # each root keeps only what no window or earlier root took
+        parts = [(max(a, c - h), min(b, c + h))]
+        for wlo, whi, _, _ in list(pieces):
+            parts = [q for lo, hi in parts for q in ((lo, min(hi, wlo)), (max(lo, whi), hi))]
+        pieces += [(lo, hi, name, True) for lo, hi in parts if hi - lo > 1e-9]
+    pieces.sort()
+    segments, root_names = [], []
+    pos = a
+    for lo, hi, name, is_root in pieces:
+        if lo - pos > 1e-9:
+            segments.append(_sampled(f"{prefix}_flank", curve, project, pos, lo))
+        segments.append(_sampled(name, curve, project, lo, hi))
+        if is_root and name not in root_names:
+            root_names.append(name)
+        pos = hi
+    if b - pos > 1e-9:
+        segments.append(_sampled(f"{prefix}_flank", curve, project, pos, b))
+    return tuple(segments), root_names
+
+
+def _sampled(name, curve, project, lo, hi) -> Segment:
+    r = np.hypot(*curve(np.array([0.5 * (lo + hi)]))[0])
+    spacing = math.sqrt(8 * 0.5 * SPLINE_CHORD)  # chord error SPLINE_CHORD at 0.5 mm radius
+    n = max(8, int((hi - lo) * r / spacing) + 2)
+    return Segment(name, curve(np.linspace(lo, hi, min(n, 400))), project)
