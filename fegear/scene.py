@@ -267,8 +267,10 @@ def _profile_segments(prefix, curve, project, a, b, windows, roots):
     for name, c, h in roots:  # each root keeps only what no window or earlier root took
         parts = [(max(a, c - h), min(b, c + h))]
         for wlo, whi, _, _ in list(pieces):
-            parts = [q for lo, hi in parts for q in ((lo, min(hi, wlo)), (max(lo, whi), hi))]
-        pieces += [(lo, hi, name, True) for lo, hi in parts if hi - lo > 1e-9]
+            parts = [(lo, hi) for p_lo, p_hi in parts
+                     for lo, hi in ((p_lo, min(p_hi, wlo)), (max(p_lo, whi), p_hi))
+                     if hi - lo > 1e-9]
+        pieces += [(lo, hi, name, True) for lo, hi in parts]
     pieces.sort()
     segments, root_names = [], []
     pos = a

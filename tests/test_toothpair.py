@@ -39,3 +39,13 @@ def test_baseline_pair_balances_torque_and_shares():
     assert max(r.contact.residuals) < 1e-9
     assert r.teeth_in_contact >= 2
     assert r.rotation > r.first_touch > 0
+
+
+def test_profile_segments_with_many_zones_stay_contiguous():
+    # a sector of 20 tooth spaces: every root is cut against every piece placed before it
+    roots = [(f"r{k}", 0.05 * k + 0.025, 0.01) for k in range(20)]
+    windows = [(f"w{k}", 0.05 * k + 0.04, 0.012) for k in range(0, 20, 2)]
+    segs, root_names = _profile_segments("p", circle, None, 0.0, 1.0, windows, roots)
+    for s0, s1 in zip(segs, segs[1:]):
+        assert np.allclose(s0.points[-1], s1.points[0], atol=1e-12)
+    assert len(root_names) == 20
