@@ -180,8 +180,7 @@ class Body:
 
     def node_dofs(self, nodes: np.ndarray) -> np.ndarray:
         """(n, 2) global dofs (x, y) of mesh nodes (indices into ``mesh.doflocs``)."""
-        nodes = np.asarray(nodes)
-        return np.stack([2 * nodes, 2 * nodes + 1], axis=-1)
+        return node_dofs(nodes)
 
     def facet_nodes(self, facets: np.ndarray) -> np.ndarray:
         """(n, 3) nodes of facets: first corner, second corner, midside."""
@@ -227,6 +226,12 @@ class Body:
         return float(np.linalg.norm(r) / scale)
 
 
+def node_dofs(nodes: np.ndarray) -> np.ndarray:
+    """(n, 2) dofs (x, y) of nodes: node k ↔ dofs 2k, 2k+1 (checked in :func:`assemble_body`)."""
+    nodes = np.asarray(nodes)
+    return np.stack([2 * nodes, 2 * nodes + 1], axis=-1)
+
+
 def facet_nodes(mesh, facets: np.ndarray) -> np.ndarray:
     """(n, 3) node indices of facets of a MeshTri2: first corner, second corner, midside."""
     facets = np.asarray(facets)
@@ -248,15 +253,13 @@ def assemble_body(body_mesh: BodyMesh, material: Material, fixed: tuple[str, ...
     def boundary_dofs(name: str) -> np.ndarray:
         if name not in mesh.boundaries:
             raise FegearError(f"body {body_mesh.name!r} has no boundary {name!r}")
-        nodes = np.unique(facet_nodes(mesh, mesh.boundaries[name]))
-        return np.stack([2 * nodes, 2 * nodes + 1], axis=-1).ravel()
+        return node_dofs(np.unique(facet_nodes(mesh, mesh.boundaries[name]))).ravel()
 
+    if not fixed and link is None:
+        raise SupportError(f"body {body_mesh.name!r} has no support (fixed boundary or link)")
     held = [boundary_dofs(n) for n in fixed]
     link_dofs = boundary_dofs(link.boundary) if link is not None else np.zeros(0, dtype=np.int64)
-    constrained = np.unique(np.concatenate([*held, link_dofs])) if (held or link) else None
-    if constrained is None:
-        raise SupportError(f"body {body_mesh.name!r} has no support (fixed boundary or link)")
-    free = np.setdiff1d(np.arange(basis.N), constrained)
+    free = np.setdiff1d(np.arange(basis.N), np.concatenate([*held, link_dofs]))
     Kff = K[free][:, free].tocsc()
     try:
         factor = splu(Kff, permc_spec="MMD_AT_PLUS_A")

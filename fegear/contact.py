@@ -112,7 +112,6 @@ class ContactModel:
     x: np.ndarray = field(repr=False)            # (nq, 2) slave points, slave body frame, mm
     weight: np.ndarray = field(repr=False)       # (nq,) w·|dx/ds|·t, mm²
     arc: np.ndarray = field(repr=False)          # (nq,) arc length along the slave boundary, mm
-    normal: np.ndarray = field(repr=False)       # (nq, 2) master normal (fixed frame)
     C: tuple[sp.csr_matrix, ...] = field(repr=False)  # per body, gap_elastic = Σ C_b v_b
     G: np.ndarray = field(repr=False)            # (nq, nq) flexibility, mm/N
     kappa: float                                  # penalty, MPa/mm
@@ -216,7 +215,7 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
     gauss, gw = np.polynomial.legendre.leggauss(settings.gauss_points)
     gauss, gw = 0.5 * (gauss + 1.0), 0.5 * gw
 
-    parts = {k: [] for k in ("pair", "x", "w", "arc", "n", "rows")}
+    parts = {k: [] for k in ("pair", "x", "w", "arc", "rows")}
     lengths, moduli, dropped = [], [], 0
     for k, pair in enumerate(pairs):
         sb, mb = bodies[pair.slave], bodies[pair.master]
@@ -244,7 +243,6 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
         parts["x"].append(x[ok])
         parts["w"].append(w[ok])
         parts["arc"].append(arc[ok])
-        parts["n"].append(n_fixed)
         lengths.append(seg)
         moduli.append(1.0 / (1.0 / sb.material.plane_modulus + 1.0 / mb.material.plane_modulus))
 
@@ -282,7 +280,7 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
     kappa = settings.penalty_factor * min(moduli) / h
     return ContactModel(bodies, tuple(pairs), settings, np.concatenate(parts["pair"]),
                         np.vstack(parts["x"]), np.concatenate(parts["w"]),
-                        np.concatenate(parts["arc"]), np.vstack(parts["n"]), tuple(C), G,
+                        np.concatenate(parts["arc"]), tuple(C), G,
                         kappa, h, links[0] if links else None, dropped)
 
 

@@ -60,10 +60,6 @@ class ContactSolution:
     patches: tuple[ContactPatch, ...]
 
     @property
-    def active(self) -> np.ndarray:
-        return self.force > 0
-
-    @property
     def total_load(self) -> float:
         return float(self.force.sum())
 
@@ -122,11 +118,10 @@ def solve_contact(model: ContactModel, load: float | None = None,
     lam = np.where(gap < 0, -gap / inv_pen, 0.0)
     force_on_link = float(a @ lam)
     link_force = k_link * theta - force_on_link
-    applied = link_force if load is None else load
-    balance = abs(link_force - applied) / max(abs(applied), 1e-300) if load is not None else 0.0
+    balance = abs(link_force - load) / max(abs(load), 1e-300) if load is not None else 0.0
     displacements, residuals = _displacements(model, lam, theta)
     pressure = model.kappa * np.maximum(-gap, 0.0)
-    patches = _patches(model, lam, displacements, theta)
+    patches = _patches(model, lam)
     max_pen = float(max(0.0, -gap.min()))
     widest = max((p.half_width for p in patches), default=0.0)
     if widest > 0 and max_pen > st.penetration_tol * widest:
@@ -181,7 +176,7 @@ def _displacements(model: ContactModel, lam: np.ndarray, theta: float):
     return tuple(us), tuple(res)
 
 
-def _patches(model: ContactModel, lam: np.ndarray, us, theta: float) -> tuple[ContactPatch, ...]:
+def _patches(model: ContactModel, lam: np.ndarray) -> tuple[ContactPatch, ...]:
     out = []
     for k, pair in enumerate(model.pairs):
         sel = (model.pair_index == k) & (lam > 0)

@@ -16,7 +16,7 @@ from __future__ import annotations
 import contextlib
 import logging
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from skfem import MeshTri2
@@ -110,7 +110,6 @@ class BodyMesh:
     name: str
     mesh: MeshTri2
     quality: MeshQuality
-    segments: dict[str, Segment] = field(repr=False)
 
 
 @contextlib.contextmanager
@@ -275,7 +274,7 @@ def _build(body: BodyGeometry, xy: np.ndarray, tri: np.ndarray,
         raise MeshError(f"body {body.name!r}: badly shaped element (quality "
                         f"{quality.min_shape:.3f} < {body.min_quality})")
     log.debug("meshed %s: %s", body.name, quality)
-    return BodyMesh(body.name, mesh, quality, segs)
+    return BodyMesh(body.name, mesh, quality)
 
 
 def _corner_areas(xy: np.ndarray, tri: np.ndarray) -> np.ndarray:

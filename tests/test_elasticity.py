@@ -111,18 +111,24 @@ def test_lame_cylinder_stress_converges_at_p2_rate():
     assert errs[-1] < 3e-4
 
 
-def test_annulus_turned_through_its_bore_rotates_by_closed_form():
-    a, b, torque = 5.0, 20.0, 2.0e5  # mm, mm, N·mm
+def annulus(a, b, size):
+    """Annulus about the origin: outer boundary "rim" and hole "bore", each of two halves
+    (a name may cover several segments)."""
     bore = Circle((0, 0), a, "outside")
     rim = Circle((0, 0), b, "inside")
-    geo = BodyGeometry("annulus", (  # a name may cover several segments
+    geo = BodyGeometry("annulus", (
         Segment("rim", arc((0, 0), b, 0, math.pi), rim.project),
         Segment("rim", arc((0, 0), b, math.pi, 2 * math.pi), rim.project),
-    ), size=1.5, holes=((
+    ), size=size, holes=((
         Segment("bore", arc((0, 0), a, 0, math.pi), bore.project),
         Segment("bore", arc((0, 0), a, math.pi, 2 * math.pi), bore.project),
     ),))
-    (bm,) = mesh_bodies([geo])
+    return mesh_bodies([geo])[0]
+
+
+def test_annulus_turned_through_its_bore_rotates_by_closed_form():
+    a, b, torque = 5.0, 20.0, 2.0e5  # mm, mm, N·mm
+    bm = annulus(a, b, size=1.5)
     mat = Material(E, NU, T)
     body = assemble_body(bm, mat, fixed=("rim",), link=RigidLink("bore", "rotation"))
     assert not body.is_mechanism
@@ -137,17 +143,8 @@ def test_annulus_turned_through_its_bore_rotates_by_closed_form():
 
 
 def test_mechanism_link_gives_rigid_response():
-    a, b = 5.0, 20.0
-    bore = Circle((0, 0), a, "outside")
-    rim = Circle((0, 0), b, "inside")
-    geo = BodyGeometry("wheel", (
-        Segment("rim", arc((0, 0), b, 0, math.pi), rim.project),
-        Segment("rim", arc((0, 0), b, math.pi, 2 * math.pi), rim.project),
-    ), size=4.0, holes=((
-        Segment("bore", arc((0, 0), a, 0, math.pi), bore.project),
-        Segment("bore", arc((0, 0), a, math.pi, 2 * math.pi), bore.project),
-    ),))
-    (bm,) = mesh_bodies([geo])
+    b = 20.0
+    bm = annulus(5.0, b, size=4.0)
     body = assemble_body(bm, Material(E, NU, T), link=RigidLink("bore", "rotation"))
     assert body.is_mechanism and body.link_stiffness == 0.0
     assert np.abs(body.K @ body.psi).max() < 1e-8 * np.abs(body.K).max() * b
