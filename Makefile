@@ -15,7 +15,8 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 demo: $(STAMP)
-	$(BIN)/fegear profile --m 2 --h1 0.3 --f1 0.15 --shift 0.016 --rotation 0.002 --out out/demo
+	$(BIN)/fegear solve --m 2 --h1 0.3 --f1 0.15 --shift 0.016 --rotation 0.002 --torque 200 \
+	    --quality standard --out out/demo
 
 lint: $(STAMP)
 	$(BIN)/ruff check fegear tests

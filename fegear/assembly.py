@@ -262,7 +262,7 @@ def assemble_body(body_mesh: BodyMesh, material: Material, fixed: tuple[str, ...
     free = np.setdiff1d(np.arange(basis.N), np.concatenate([*held, link_dofs]))
     Kff = K[free][:, free].tocsc()
     try:
-        factor = splu(Kff, permc_spec="MMD_AT_PLUS_A")
+        factor = splu(Kff, permc_spec="COLAMD")  # more fill than MMD, but solves ~2x faster
     except RuntimeError as exc:
         raise SupportError(f"body {body_mesh.name!r}: stiffness is singular ({exc})") from None
 

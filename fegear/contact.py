@@ -219,15 +219,16 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
     lengths, moduli, dropped = [], [], 0
     for k, pair in enumerate(pairs):
         sb, mb = bodies[pair.slave], bodies[pair.master]
-        facets = _ordered(sb, pair.slave_boundary)
+        facets, flipped = _ordered(sb, pair.slave_boundary)
         nf = len(facets)
         s = np.tile(gauss, nf)
+        s_arc = np.where(np.repeat(flipped, len(gauss)), 1.0 - s, s)  # along the chain
         x, dx, nodes = facet_curve(sb, np.repeat(facets, len(gauss)), s)
         w = np.tile(gw, nf) * np.linalg.norm(dx, axis=1) * sb.material.thickness
         seg = np.linalg.norm(np.diff(sb.mesh.doflocs.T[facet_nodes(sb.mesh, facets)[:, :2]],
                                      axis=1)[:, 0], axis=1)
         arc = (np.repeat(np.concatenate([[0.0], np.cumsum(seg)[:-1]]), len(gauss))
-               + s * np.repeat(seg, len(gauss)))
+               + s_arc * np.repeat(seg, len(gauss)))
         cp = pair.master_curve.closest(sb.placement.to_fixed(x))
         mf, ms = locate_on_facets(mb, mb.mesh.boundaries[pair.master_boundary],
                                   mb.placement.to_body(cp.foot))
@@ -284,14 +285,15 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
                         kappa, h, links[0] if links else None, dropped)
 
 
-def _ordered(body: Body, name: str) -> np.ndarray:
-    """Facets of a boundary chained end to end (so that arc length is meaningful)."""
+def _ordered(body: Body, name: str) -> tuple[np.ndarray, np.ndarray]:
+    """Facets of a boundary chained end to end (so that arc length is meaningful), and whether
+    each runs against the chain (its second corner comes first)."""
     facets = np.asarray(body.mesh.boundaries[name])
     ends = body.mesh.facets[:, facets].T
     count = np.bincount(ends.ravel(), minlength=body.mesh.nvertices)
     start = [n for n in ends.ravel() if count[n] == 1]
     node = start[0] if start else ends[0, 0]
-    order, used = [], np.zeros(len(facets), bool)
+    order, flipped, used = [], [], np.zeros(len(facets), bool)
     for _ in range(len(facets)):
         hit = np.flatnonzero(~used & ((ends[:, 0] == node) | (ends[:, 1] == node)))
         if len(hit) == 0:
@@ -299,5 +301,6 @@ def _ordered(body: Body, name: str) -> np.ndarray:
         i = hit[0]
         used[i] = True
         order.append(i)
+        flipped.append(bool(ends[i, 0] != node))
         node = ends[i, 1] if ends[i, 0] == node else ends[i, 0]
-    return facets[np.array(order)]
+    return facets[np.array(order)], np.array(flipped)

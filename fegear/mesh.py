@@ -40,11 +40,13 @@ class Segment:
     ``points`` is an (n, 2) polyline in mm, ordered along the loop (outer loops counter-clockwise,
     holes clockwise are both accepted: gmsh orients them). Two points make a straight line; more
     make a spline through them. ``project`` maps an (k, 2) array of points onto the exact curve.
+    ``zone`` is an extra name a :class:`Refinement` can refer to (the boundary keeps ``name``).
     """
 
     name: str
     points: np.ndarray
     project: Callable[[np.ndarray], np.ndarray] | None = None
+    zone: str | None = None
 
     def __post_init__(self) -> None:
         pts = np.asarray(self.points, dtype=float)
@@ -62,7 +64,8 @@ class Segment:
 
 @dataclass(frozen=True)
 class Refinement:
-    """Element size ``size`` (mm) on the named segments, growing by ``growth`` mm per mm away."""
+    """Element size ``size`` (mm) on the segments named (or zoned) ``segments``, growing by
+    ``growth`` mm per mm away."""
 
     segments: tuple[str, ...]
     size: float
@@ -132,7 +135,8 @@ def mesh_bodies(bodies: Sequence[BodyGeometry]) -> tuple[BodyMesh, ...]:
         return tuple(_mesh_one(gmsh, body) for body in bodies)
 
 
-def _loop(gmsh, segments: Sequence[Segment], tags: dict[str, list[int]], start_pts: dict) -> int:
+def _loop(gmsh, segments: Sequence[Segment], tags: dict[str, list[int]],
+          zones: dict[str, list[int]], start_pts: dict) -> int:
     geo = gmsh.model.geo
     curves = []
     n = len(segments)
@@ -149,6 +153,8 @@ def _loop(gmsh, segments: Sequence[Segment], tags: dict[str, list[int]], start_p
             c = geo.addLine(pt[0], pt[1])
         curves.append(c)
         tags.setdefault(seg.name, []).append(c)
+        if seg.zone is not None:
+            zones.setdefault(seg.zone, []).append(c)
     return geo.addCurveLoop(curves)
 
 
@@ -165,20 +171,22 @@ def _mesh_one(gmsh, body: BodyGeometry) -> BodyMesh:
     gmsh.model.add(body.name)
     geo = gmsh.model.geo
     curve_tags: dict[str, list[int]] = {}
+    zone_tags: dict[str, list[int]] = {}
     corner_pts: dict = {}
-    loops = [_loop(gmsh, body.outer, curve_tags, corner_pts)]
-    loops += [_loop(gmsh, hole, curve_tags, corner_pts) for hole in body.holes]
+    loops = [_loop(gmsh, body.outer, curve_tags, zone_tags, corner_pts)]
+    loops += [_loop(gmsh, hole, curve_tags, zone_tags, corner_pts) for hole in body.holes]
     surface = geo.addPlaneSurface(loops)
     geo.synchronize()
 
     fields = []
     for ref in body.refinements:
-        missing = [s for s in ref.segments if s not in curve_tags]
+        known = {**curve_tags, **zone_tags}
+        missing = [s for s in ref.segments if s not in known]
         if missing or not (ref.size > 0 and ref.growth > 0):
             raise MeshError(f"body {body.name!r}: bad refinement {ref} (unknown {missing})")
-        tags = [t for s in ref.segments for t in curve_tags[s]]
+        tags = sorted({t for s in ref.segments for t in known[s]})
         length = sum(_polyline_length(seg.points) for seg in body.segments()
-                     if seg.name in ref.segments)
+                     if seg.name in ref.segments or seg.zone in ref.segments)
         dist = gmsh.model.mesh.field.add("Distance")
         gmsh.model.mesh.field.setNumbers(dist, "CurvesList", tags)
         gmsh.model.mesh.field.setNumber(dist, "Sampling", int(min(2e4, 4 * length / ref.size + 20)))

@@ -72,15 +72,17 @@ def vtu_fields(mesh, u: np.ndarray, stress, extra: dict[str, np.ndarray] | None 
     return data
 
 
-def write_vtu(path: Path, mesh, point_data: dict[str, np.ndarray]) -> Path:
+def write_vtu(path: Path, mesh, point_data: dict[str, np.ndarray],
+              xy: np.ndarray | None = None) -> Path:
     """Write a MeshTri2 with nodal fields as a ParaView-readable ``triangle6`` VTU (atomic).
 
     Node order: the mesh's corner nodes, then one midside node per facet; each cell lists its
-    corners and then the midside nodes of edges 01, 12, 20 (VTK's quadratic triangle)."""
+    corners and then the midside nodes of edges 01, 12, 20 (VTK's quadratic triangle).
+    ``xy`` (n, 2) replaces the node coordinates (e.g. a body placed in the fixed frame)."""
     import meshio
 
     points = np.zeros((mesh.doflocs.shape[1], 3))
-    points[:, :2] = mesh.doflocs.T
+    points[:, :2] = mesh.doflocs.T if xy is None else xy
     cells = [("triangle6", mesh.dofs.element_dofs.T.astype(np.int64))]
     out = meshio.Mesh(points, cells, point_data=point_data)
 

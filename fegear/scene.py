@@ -18,7 +18,7 @@ position.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -29,13 +29,14 @@ from .hertz import line_contact
 from .mesh import BodyGeometry, Refinement, Segment
 from .params import PairParameters
 from .profile import Gear1Profile, rotate, wrap
+from .rounding import RoundedProfile
 
 #: quality → (elements across the Hertz half-width, root size / m, global size / m)
 QUALITY = {"fast": (4, 1 / 10, 1 / 2), "standard": (8, 1 / 20, 1 / 4),
            "fine": (16, 1 / 40, 1 / 8)}
 ROOT_BAND = 0.3          # root zone: the lower 30 % of the tooth height
-WINDOW_B = 3.0           # gear-1 window half-length, in Hertz half-widths at the shared load
-MASTER_FACTOR = 1.6      # gear-2 window half-length relative to gear 1's
+WINDOW_B = 2.5           # gear-1 window half-length, in Hertz half-widths at the shared load
+MASTER_FACTOR = 1.4      # gear-2 window half-length relative to gear 1's
 SHARE_GUESS = 3.0        # teeth assumed to share the load when sizing the contact elements
 SPLINE_CHORD = 1e-3      # mm, polyline handed to gmsh (nodes are snapped to the exact curve)
 
@@ -78,12 +79,15 @@ class Scene:
     candidates: tuple[Candidate, ...]
     master: Gear2Master
     teeth1: tuple[int, ...]       # gear-1 teeth in the sector (loaded candidates and extras)
-    root_zones1: tuple[str, ...]
-    root_zones2: tuple[str, ...]
+    profile1: tuple[str, ...]     # boundary names along each gear's tooth profile
+    profile2: tuple[str, ...]
+    root_band1: tuple[float, float]  # radii (mm) of the root zone: the lower ROOT_BAND of the
+    root_band2: tuple[float, float]  # tooth height, whatever segment the nodes belong to
     b_full: float                 # Hertz half-width for the whole load on one tooth, mm
+    shape: RoundedProfile = field(repr=False)
 
 
-def candidate_data(params: PairParameters, profile: Gear1Profile, state, teeth,
+def candidate_data(params: PairParameters, shape: RoundedProfile, state, teeth,
                    beta: float) -> tuple[Candidate, ...]:
     """Contact point, polar angles and curvature radii of each paired tooth's + flank."""
     g2 = gear2_curve(params)
@@ -95,8 +99,7 @@ def candidate_data(params: PairParameters, profile: Gear1Profile, state, teeth,
         x = np.array([c.plus_point])
         body1 = rotate(x - np.array([0.0, params.e]), -alpha)
         phi1 = float(math.atan2(body1[0, 1], body1[0, 0]))
-        ev = profile.evaluate(np.array([phi1]))
-        r1 = float(1.0 / ev.kappa[0])
+        r1 = float(1.0 / shape.curvature(np.array([phi1]))[0])
         body2 = rotate(x, -beta)
         theta2 = float(math.atan2(body2[0, 1], body2[0, 0]))
         xi = g2.xi_at_angle(np.array([theta2]))
@@ -119,60 +122,66 @@ def hertz_half_width(params: PairParameters, torque_nmm: float, c: Candidate, th
 
 def build_scene(params: PairParameters, profile: Gear1Profile, state, teeth: tuple[int, ...],
                 beta: float, torque_nmm: float, thickness: float, E: float, nu: float,
-                quality: str, rim1: float, rim2: float, extra: int = 1) -> Scene:
-    """Sector geometries for the paired ``teeth`` (gear-1 indices) at rolling angle β."""
+                quality: str, rim1: float, rim2: float, extra: int = 1,
+                tip_round: float = 0.0, shape: RoundedProfile | None = None) -> Scene:
+    """Sector geometries for the paired ``teeth`` (gear-1 indices) at rolling angle β.
+
+    Gear 1's tip edges are rounded to ``tip_round`` mm (:mod:`fegear.rounding`); pass ``shape``
+    to reuse one :class:`RoundedProfile`."""
     n_b, root_m, global_m = QUALITY[quality]
     m = params.m
-    cands = candidate_data(params, profile, state, teeth, beta)
+    shape = shape if shape is not None else RoundedProfile(profile, tip_round)
+    cands = candidate_data(params, shape, state, teeth, beta)
     b_full = max(hertz_half_width(params, torque_nmm, c, thickness, E, nu) for c in cands)
     b_shared = b_full / math.sqrt(SHARE_GUESS)  # b ∝ sqrt(load)
     h_contact = b_shared / n_b
     window = WINDOW_B * b_shared
 
     # gear-1 sector: teeth from min - extra to max + extra (indices modulo z1, contiguous)
-    pitch1 = profile.pitch
+    pitch1 = shape.pitch
     rel = sorted(round(float(wrap((t - teeth[0]) * pitch1)) / pitch1) for t in teeth)
     lo, hi = rel[0] - extra, rel[-1] + extra
-    centre0 = profile.tooth_center + teeth[0] * pitch1
+    centre0 = shape.tooth_center + teeth[0] * pitch1
     phi_a, phi_b = centre0 + lo * pitch1, centre0 + hi * pitch1
     teeth1 = tuple(int((teeth[0] + k) % params.z1) for k in range(lo, hi + 1))
 
-    rho = profile.radius(np.linspace(0, pitch1, 400) + profile.phi_space)
+    rho = shape.radius(np.linspace(0, pitch1, 400) + shape.phi_space)
     rho_min, rho_max = float(rho.min()), float(rho.max())
     bore = rho_min - rim1
     windows1 = [(c.tooth, _unwrap_near(c.phi1, 0.5 * (phi_a + phi_b)),
-                 window / math.hypot(*_g1_point(profile, c.phi1))) for c in cands]
-    roots1 = [(k, profile.phi_space + (teeth[0] + k) * pitch1) for k in range(lo + 1, hi + 1)]
-    root_half1 = _root_half_angle(lambda p: profile.radius(p), roots1[0][1], pitch1, rho_min,
-                                  rho_max)
-
-    def g1_curve(phi):
-        r = profile.radius(phi)
-        return np.column_stack([r * np.cos(phi), r * np.sin(phi)])
+                 window / math.hypot(*shape.point(np.array([c.phi1]))[0])) for c in cands]
+    roots1 = [(k, shape.phi_space + (teeth[0] + k) * pitch1) for k in range(lo + 1, hi + 1)]
+    root_half1 = _root_half_angle(shape.radius, roots1[0][1], pitch1, rho_min, rho_max)
+    turn0 = math.floor((phi_a - shape.phi_space) / pitch1)
+    rounds = [(c - h, c + h) for c, h, _ in
+              shape.fillet_angles(range(turn0 - 1, turn0 + hi - lo + 2))]
+    h_round = min([h_contact] + [f.radius * f.kink / n_b for f in shape.fillets])
 
     def g1_project(x):
-        phi = np.arctan2(x[:, 1], x[:, 0])
-        return g1_curve(phi)
+        return shape.point(np.arctan2(x[:, 1], x[:, 0]))
 
-    segs1, root_names1 = _profile_segments(
-        "g1", g1_curve, g1_project, phi_a, phi_b,
+    segs1, names1 = _profile_segments(
+        "g1", shape.point, g1_project, phi_a, phi_b,
         [(f"g1_contact_{t}", p, w) for t, p, w in windows1],
-        [(f"g1_root_{k}", p, root_half1) for k, p in roots1])
-    a0, b0 = g1_curve(np.array([phi_a]))[0], g1_curve(np.array([phi_b]))[0]
+        [(f"g1_root_{k}", p, root_half1) for k, p in roots1],
+        marks=[(a, b, "g1_round") for a, b in rounds])
+    a0, b0 = shape.point(np.array([phi_a]))[0], shape.point(np.array([phi_b]))[0]
     bore_pts = bore * np.column_stack([np.cos(np.linspace(phi_b, phi_a, 60)),
                                        np.sin(np.linspace(phi_b, phi_a, 60))])
 
     def bore_project(x):
         return bore * x / np.linalg.norm(x, axis=1)[:, None]
 
+    refine1 = [Refinement(tuple(f"g1_contact_{c.tooth}" for c in cands), h_contact),
+               Refinement(tuple(n for n in names1 if n.startswith("g1_root")), root_m * m)]
+    if any(s.zone == "g1_round" for s in segs1):
+        refine1.append(Refinement(("g1_round",), h_round))
     geo1 = BodyGeometry("gear1", (
         *segs1,
         Segment("g1_cut_b", np.array([b0, bore_pts[0]])),
         Segment("g1_bore", bore_pts, bore_project),
         Segment("g1_cut_a", np.array([bore_pts[-1], a0])),
-    ), size=global_m * m, refinements=(
-        Refinement(tuple(f"g1_contact_{c.tooth}" for c in cands), h_contact),
-        Refinement(tuple(root_names1), root_m * m)))
+    ), size=global_m * m, refinements=tuple(refine1))
 
     # gear-2 sector, in gear 2's frame: the same fixed-frame range, cut at gear-2 tooth tips
     g2 = gear2_curve(params)
@@ -180,7 +189,7 @@ def build_scene(params: PairParameters, profile: Gear1Profile, state, teeth: tup
     alpha = params.ratio * beta
 
     def fixed_angle(phi):  # polar angle about the origin of a gear-1 body point
-        x = rotate(g1_curve(np.array([phi])), alpha)[0] + np.array([0.0, params.e])
+        x = rotate(shape.point(np.array([phi])), alpha)[0] + np.array([0.0, params.e])
         return math.atan2(x[1], x[0])
 
     t_a = _unwrap_near(fixed_angle(phi_a) - beta, 0.0)
@@ -202,7 +211,7 @@ def build_scene(params: PairParameters, profile: Gear1Profile, state, teeth: tup
     def g2_project(x):
         return g2_curve(np.arctan2(x[:, 1], x[:, 0]))
 
-    segs2, root_names2 = _profile_segments(
+    segs2, names2 = _profile_segments(
         "g2", g2_curve, g2_project, th_a, th_b,
         [(f"g2_contact_{t}", p, w) for t, p, w in windows2],
         [(f"g2_root_{k}", p, root_half2) for k, p in roots2])
@@ -213,7 +222,8 @@ def build_scene(params: PairParameters, profile: Gear1Profile, state, teeth: tup
         return outer * x / np.linalg.norm(x, axis=1)[:, None]
 
     pa2, pb2 = g2_curve(np.array([th_a]))[0], g2_curve(np.array([th_b]))[0]
-    reversed_segs = tuple(Segment(s.name, s.points[::-1], s.project) for s in reversed(segs2))
+    reversed_segs = tuple(Segment(s.name, s.points[::-1], s.project, s.zone)
+                          for s in reversed(segs2))
     geo2 = BodyGeometry("gear2", (
         Segment("g2_rim", rim_pts, rim_project),
         Segment("g2_cut_b", np.array([rim_pts[-1], pb2])),
@@ -221,13 +231,11 @@ def build_scene(params: PairParameters, profile: Gear1Profile, state, teeth: tup
         Segment("g2_cut_a", np.array([pa2, rim_pts[0]])),
     ), size=global_m * m, refinements=(
         Refinement(tuple(f"g2_contact_{c.tooth}" for c in cands), h_contact),
-        Refinement(tuple(root_names2), root_m * m)))
+        Refinement(tuple(n for n in names2 if n.startswith("g2_root")), root_m * m)))
+    band1 = (rho_min, rho_min + ROOT_BAND * (rho_max - rho_min))
+    band2 = (R_max - ROOT_BAND * (R_max - R_min), R_max)
     return Scene(params, beta, geo1, geo2, cands, Gear2Master(g2, beta), teeth1,
-                 tuple(root_names1), tuple(root_names2), b_full)
-
-
-def _g1_point(profile: Gear1Profile, phi: float) -> np.ndarray:
-    return profile.evaluate(np.array([phi])).q[0]
+                 names1, names2, band1, band2, b_full, shape)
 
 
 def _unwrap_near(angle: float, ref: float) -> float:
@@ -246,14 +254,14 @@ def _root_half_angle(radius, centre: float, pitch: float, r_min: float, r_max: f
     return float(inside.max()) if len(inside) else 0.05 * pitch
 
 
-def _profile_segments(prefix, curve, project, a, b, windows, roots):
+def _profile_segments(prefix, curve, project, a, b, windows, roots, marks=()):
     """Split the profile over polar angles [a, b] into named segments.
 
     ``windows``/``roots``: (name, centre angle, half-angle). Overlapping windows are split at
     the middle of their overlap; windows take precedence over roots, and earlier roots over
     later ones (a root may become two pieces under one name); the rest is
-    ``{prefix}_flank``. Returns segments in increasing angle and the names of the root
-    segments that were kept.
+    ``{prefix}_flank``. ``marks``: (lo, hi, zone) angle ranges whose pieces get that refinement
+    zone (whatever their name). Returns segments in increasing angle and the distinct names.
     """
     wins = sorted((max(a, c - h), min(b, c + h), name) for name, c, h in windows)
     for i in range(1, len(wins)):
@@ -263,31 +271,38 @@ def _profile_segments(prefix, curve, project, a, b, windows, roots):
             mid = 0.5 * (lo + phi_)
             wins[i - 1] = (plo, mid, pname)
             wins[i] = (mid, hi, name)
-    pieces = [(lo, hi, name, False) for lo, hi, name in wins if hi - lo > 1e-9]
+    pieces = [(lo, hi, name) for lo, hi, name in wins if hi - lo > 1e-9]
     for name, c, h in roots:  # each root keeps only what no window or earlier root took
         parts = [(max(a, c - h), min(b, c + h))]
-        for wlo, whi, _, _ in list(pieces):
+        for wlo, whi, _ in list(pieces):
             parts = [(lo, hi) for p_lo, p_hi in parts
                      for lo, hi in ((p_lo, min(p_hi, wlo)), (max(p_lo, whi), p_hi))
                      if hi - lo > 1e-9]
-        pieces += [(lo, hi, name, True) for lo, hi in parts]
+        pieces += [(lo, hi, name) for lo, hi in parts]
     pieces.sort()
-    segments, root_names = [], []
-    pos = a
-    for lo, hi, name, is_root in pieces:
+    filled, pos = [], a
+    for lo, hi, name in pieces:
         if lo - pos > 1e-9:
-            segments.append(_sampled(f"{prefix}_flank", curve, project, pos, lo))
-        segments.append(_sampled(name, curve, project, lo, hi))
-        if is_root and name not in root_names:
-            root_names.append(name)
+            filled.append((pos, lo, f"{prefix}_flank"))
+        filled.append((lo, hi, name))
         pos = hi
     if b - pos > 1e-9:
-        segments.append(_sampled(f"{prefix}_flank", curve, project, pos, b))
-    return tuple(segments), root_names
+        filled.append((pos, b, f"{prefix}_flank"))
+    segments, names = [], []
+    for lo, hi, name in filled:
+        cuts = sorted({lo, hi} | {x for m_lo, m_hi, _ in marks for x in (m_lo, m_hi)
+                                  if lo + 1e-9 < x < hi - 1e-9})
+        for p0, p1 in zip(cuts, cuts[1:]):
+            mid = 0.5 * (p0 + p1)
+            zone = next((z for m_lo, m_hi, z in marks if m_lo <= mid <= m_hi), None)
+            segments.append(_sampled(name, curve, project, p0, p1, zone))
+        if name not in names:
+            names.append(name)
+    return tuple(segments), tuple(names)
 
 
-def _sampled(name, curve, project, lo, hi) -> Segment:
+def _sampled(name, curve, project, lo, hi, zone=None) -> Segment:
     r = np.hypot(*curve(np.array([0.5 * (lo + hi)]))[0])
     spacing = math.sqrt(8 * 0.5 * SPLINE_CHORD)  # chord error SPLINE_CHORD at 0.5 mm radius
     n = max(8, int((hi - lo) * r / spacing) + 2)
-    return Segment(name, curve(np.linspace(lo, hi, min(n, 400))), project)
+    return Segment(name, curve(np.linspace(lo, hi, min(n, 400))), project, zone)

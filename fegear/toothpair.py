@@ -16,13 +16,13 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .assembly import Body, Material, Placement, RigidLink, assemble_body, facet_nodes
-from .contact import ContactPair, ContactSettings, build_contact
+from .contact import ContactModel, ContactPair, ContactSettings, build_contact
 from .contact_solve import ContactSolution, solve_contact
 from .errors import FegearError, ParameterError
 from .hertz import line_contact
 from .mesh import mesh_bodies
 from .params import PairParameters, require_range
-from .profile import Gear1Profile
+from .profile import Gear1Profile, wrap
 from .scene import QUALITY, Scene, build_scene
 from .stress import StressField, recover
 from .tca import ToothContact
@@ -30,6 +30,7 @@ from .tca import ToothContact
 TOOTH_STIFFNESS = 14.0   # N/(mm·µm): ISO 6336 single-pair stiffness c', for the load estimate
 MARGIN_FACTOR = 1.5      # pair every tooth whose clearance is below 1.5 × the loaded rotation
 MARGIN_UM = 3.0          # … plus 3 µm
+TIP_ROUND = 0.125        # default tip-edge round of gear 1, in modules (0.25 mm at m = 2)
 
 
 @dataclass(frozen=True)
@@ -48,7 +49,8 @@ class SolveCase:
     rim1: float | None = None
     rim2: float | None = None
     extra_teeth: int = 1
-    penalty_factor: float = ContactSettings.penalty_factor
+    penalty_factor: float = 30.0
+    tip_round: float | None = None
 
     def __post_init__(self) -> None:
         require_range("torque", self.torque, 0.0, 1e5, lo_open=True, unit="N·m")
@@ -61,10 +63,17 @@ class SolveCase:
             if v is not None:
                 require_range(name, v, 0.5 * self.params.m, 20 * self.params.m, unit="mm")
         require_range("extra_teeth", self.extra_teeth, 1, 10)
+        if self.tip_round is not None:
+            require_range("tip_round", self.tip_round, 0.0, 0.5 * self.params.m, unit="mm")
 
     @property
     def material(self) -> Material:
         return Material(self.E, self.nu, self.thickness, "stress")
+
+    @property
+    def edge_radius(self) -> float:
+        """Gear 1's tip-edge round (mm); default TIP_ROUND · m."""
+        return self.tip_round if self.tip_round is not None else TIP_ROUND * self.params.m
 
     @property
     def rims(self) -> tuple[float, float]:
@@ -88,6 +97,8 @@ class ToothResult:
     hertz_p0_MPa: float | None
     hertz_b_mm: float | None
     b_over_R: float | None
+    root1_MPa: float          # max σ1 in the root zone within ± half a pitch of this tooth
+    root2_MPa: float          # … and of the gear-2 tooth it meshes with
 
 
 @dataclass(frozen=True)
@@ -97,6 +108,7 @@ class PairSolution:
     case: SolveCase
     scene: Scene = field(repr=False)
     bodies: tuple[Body, ...] = field(repr=False)
+    model: ContactModel = field(repr=False)
     contact: ContactSolution = field(repr=False)
     stresses: tuple[StressField, ...] = field(repr=False)
     teeth: tuple[ToothResult, ...]
@@ -160,7 +172,8 @@ def _solve_teeth(case, profile, state, teeth, times) -> PairSolution:
     t0 = time.perf_counter()
     rim1, rim2 = case.rims
     scene = build_scene(p, profile, state, teeth, case.beta, case.torque * 1e3, case.thickness,
-                        case.E, case.nu, case.quality, rim1, rim2, case.extra_teeth)
+                        case.E, case.nu, case.quality, rim1, rim2, case.extra_teeth,
+                        case.edge_radius)
     m1, m2 = mesh_bodies([scene.gear1, scene.gear2])
     times["mesh"] = time.perf_counter() - t0
 
@@ -185,8 +198,11 @@ def _solve_teeth(case, profile, state, teeth, times) -> PairSolution:
 
     t0 = time.perf_counter()
     stresses = tuple(recover(b, u) for b, u in zip((g1, g2), sol.displacements))
-    roots = (_zone_max(g1, stresses[0], scene.root_zones1),
-             _zone_max(g2, stresses[1], scene.root_zones2))
+    zone1 = _root_nodes(g1, scene.profile1, scene.root_band1)
+    zone2 = _root_nodes(g2, scene.profile2, scene.root_band2)
+    roots = (float(stresses[0].max_principal[zone1].max()),
+             float(stresses[1].max_principal[zone2].max()))
+    pitch1, pitch2 = scene.shape.pitch, 2 * math.pi / p.z2
     vm = float(max(s.von_mises.max() for s in stresses))
     patches = {pt.pair: pt for pt in sol.patches}
     a = model.gap0(sol.link_value)[1]
@@ -197,14 +213,32 @@ def _solve_teeth(case, profile, state, teeth, times) -> PairSolution:
         patch = patches.get(pairs[k].name)
         load = patch.load if patch else 0.0
         hz = _hertz(c, load, case) if load > 0 else None
+        centre2 = round(c.theta2 / pitch2) * pitch2  # gear-2 tooth tips sit at 2πk/z2
         results.append(ToothResult(
             c.tooth, c.clearance_um, load, share, patch.p_max if patch else 0.0,
             patch.half_width if patch else 0.0, hz.p0 if hz else None, hz.b if hz else None,
-            hz.b_over_R if hz else None))
+            hz.b_over_R if hz else None,
+            _sector_max(g1, stresses[0], zone1, scene.shape.tooth_center + c.tooth * pitch1,
+                        pitch1),
+            _sector_max(g2, stresses[1], zone2, centre2, pitch2)))
     times["recovery"] = time.perf_counter() - t0
-    first = min(c.clearance_um for c in scene.candidates) / (p.r0 * 1e3)
-    return PairSolution(case, scene, (g1, g2), sol, stresses, tuple(results), roots, vm,
+    first = _touch_rotation(model)
+    return PairSolution(case, scene, (g1, g2), model, sol, stresses, tuple(results), roots, vm,
                         sol.link_value, first, g1.ndofs + g2.ndofs, dict(times))
+
+
+def _touch_rotation(model) -> float:
+    """Rotation θ (rad) of the rigid gear 1 at which the first slave point touches (the meshed,
+    tip-rounded teeth; Newton on the exact rigid gaps)."""
+    theta = 0.0
+    for _ in range(6):
+        g0, a = model.gap0(theta)
+        closing = a < 0
+        step = float(np.min(g0[closing] / -a[closing]))
+        theta += step
+        if abs(step) < 1e-13:
+            break
+    return theta
 
 
 def _hertz(c, load: float, case: SolveCase):
@@ -214,8 +248,18 @@ def _hertz(c, load: float, case: SolveCase):
         return None
 
 
-def _zone_max(body: Body, stress: StressField, names: tuple[str, ...]) -> float:
-    """Largest first principal stress on the boundary nodes of the named zones."""
+def _root_nodes(body: Body, names: tuple[str, ...], band: tuple[float, float]) -> np.ndarray:
+    """Profile nodes (on boundaries ``names``) whose radius lies in ``band`` (mm, body frame):
+    the root zone, whichever segment (root, flank or contact window) the nodes belong to."""
     nodes = np.unique(np.concatenate([facet_nodes(body.mesh, body.mesh.boundaries[n]).ravel()
                                       for n in names]))
-    return float(stress.max_principal[nodes].max())
+    r = np.linalg.norm(body.mesh.doflocs[:, nodes], axis=0)
+    return nodes[(r >= band[0] - 1e-9) & (r <= band[1] + 1e-9)]
+
+
+def _sector_max(body: Body, stress: StressField, nodes: np.ndarray, centre: float,
+                pitch: float) -> float:
+    """Largest σ1 among ``nodes`` within half a pitch of the polar angle ``centre``."""
+    x = body.mesh.doflocs[:, nodes]
+    near = np.abs(wrap(np.arctan2(x[1], x[0]) - centre)) <= 0.5 * pitch
+    return float(stress.max_principal[nodes[near]].max()) if near.any() else 0.0

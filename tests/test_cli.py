@@ -60,6 +60,12 @@ def test_profile_table_output(tmp_path):
     ("hertz", ["--quality", "best"], "quality = 'best' is not admissible"),
     ("hertz", ["--penalty-factor", "0"], "penalty_factor = 0.0 is not admissible"),
     ("hertz", ["--load", "1e9"], "load = 1000000000.0 is not admissible"),
+    ("solve", ["--torque", "-5"], "torque = -5.0 is not admissible"),
+    ("solve", ["--quality", "best"], "quality = 'best' is not admissible"),
+    ("solve", ["--tip-round", "5"], "tip_round = 5.0 is not admissible"),
+    ("solve", ["--position", "400"], "position = 400.0 is not admissible"),
+    ("solve", ["--extra-teeth", "0"], "extra_teeth = 0 is not admissible"),
+    ("solve", ["--h1", "0.8"], "admissible: 0 < h1 <="),
 ])
 def test_user_errors_exit_2_with_one_line(tmp_path, command, args, fragment):
     out = tmp_path / "o"
@@ -97,3 +103,26 @@ def test_hertz_prints_fe_beside_hertz_and_writes_vtu(tmp_path):
     table = run("hertz", "--r2", "-12", "--quality", "coarse")
     assert table.returncode == 0, table.stderr
     assert "disk in bore" in table.stdout and "b/R*" in table.stdout
+
+
+@pytest.mark.slow
+def test_solve_writes_vtu_png_and_summary(tmp_path):
+    import meshio
+
+    r = run("solve", "--shift", "0.016", "--rotation", "0.002", "--quality", "fast",
+            "--no-estimate", "--out", str(tmp_path), "--json")
+    assert r.returncode == 0, r.stderr
+    s = json.loads(r.stdout)
+    for key in ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa",
+                "von_mises_max_MPa", "hertz_p0_MPa", "teeth_in_contact", "load_share",
+                "transmission_error_urad", "mesh_stiffness_Nm_per_rad", "error_estimate_pct",
+                "wall_s", "inputs"):
+        assert key in s
+    assert sum(s["load_share"].values()) == pytest.approx(1.0, abs=1e-3)
+    assert s["torque_balance_error"] < 1e-6
+    for name in ("gear1", "gear2"):
+        m = meshio.read(tmp_path / f"{name}.vtu")
+        assert "triangle6" in m.cells_dict
+        assert {"displacement", "von_mises", "s1", "contact_pressure"} <= set(m.point_data)
+        assert m.point_data["contact_pressure"].max() > 0
+    assert (tmp_path / "von_mises.png").stat().st_size > 10_000

@@ -1,9 +1,14 @@
-"""Tooth-pair scene and solve (issue 4, in progress)."""
+"""Tooth-pair scene, tip rounding and solve (issue 4, in progress)."""
+
+import math
 
 import numpy as np
 import pytest
 
+from fegear.errors import ParameterError
 from fegear.params import PairParameters
+from fegear.profile import Gear1Profile
+from fegear.rounding import RoundedProfile
 from fegear.scene import _profile_segments
 from fegear.toothpair import SolveCase, solve_pair
 
@@ -15,19 +20,25 @@ def circle(phi):
 def test_profile_segments_are_contiguous_with_windows_over_roots():
     windows = [("w1", 0.30, 0.10), ("w2", 0.45, 0.10)]       # overlapping windows
     roots = [("r1", 0.20, 0.05), ("r2", 0.50, 0.02), ("r3", 0.40, 0.3)]  # r3 around all
-    segs, root_names = _profile_segments("p", circle, None, 0.0, 1.0, windows, roots)
+    marks = [(0.05, 0.1, "edge")]
+    segs, names = _profile_segments("p", circle, None, 0.0, 1.0, windows, roots, marks)
     for s0, s1 in zip(segs, segs[1:]):
         assert np.allclose(s0.points[-1], s1.points[0], atol=1e-12)
     assert np.allclose(segs[0].points[0], circle(np.array([0.0]))[0])
     assert np.allclose(segs[-1].points[-1], circle(np.array([1.0]))[0])
-    names = [s.name for s in segs]
-    assert names.count("w1") == 1 and names.count("w2") == 1
-    w1 = segs[names.index("w1")].points
-    w2 = segs[names.index("w2")].points
+    seg_names = [s.name for s in segs]
+    assert seg_names.count("w1") == 1 and seg_names.count("w2") == 1
+    w1 = segs[seg_names.index("w1")].points
+    w2 = segs[seg_names.index("w2")].points
     ang = lambda p: np.arctan2(p[:, 1], p[:, 0])  # noqa: E731
     assert ang(w1)[-1] == pytest.approx(0.375) and ang(w2)[0] == pytest.approx(0.375)
-    assert "r2" not in root_names  # wholly inside window w2
-    assert names.count("r3") == 2  # split by the windows and r1, one name for both pieces
+    assert "r2" not in names  # wholly inside window w2
+    seg_names = [s.name for s in segs]
+    assert seg_names.count("r3") == 2  # split by the windows and r1, one name for both pieces
+    zoned = [s for s in segs if s.zone == "edge"]
+    ang0 = ang(np.vstack([z.points for z in zoned]))
+    assert ang0.min() == pytest.approx(0.05) and ang0.max() == pytest.approx(0.1)
+    assert sum(s.zone is None for s in segs) == len(segs) - len(zoned)
 
 
 @pytest.mark.slow
@@ -39,13 +50,48 @@ def test_baseline_pair_balances_torque_and_shares():
     assert max(r.contact.residuals) < 1e-9
     assert r.teeth_in_contact >= 2
     assert r.rotation > r.first_touch > 0
+    # root zone found by radius, also where a contact window covers the fillet
+    assert all(s > 100.0 for s in r.root_stress)
 
 
 def test_profile_segments_with_many_zones_stay_contiguous():
     # a sector of 20 tooth spaces: every root is cut against every piece placed before it
     roots = [(f"r{k}", 0.05 * k + 0.025, 0.01) for k in range(20)]
     windows = [(f"w{k}", 0.05 * k + 0.04, 0.012) for k in range(0, 20, 2)]
-    segs, root_names = _profile_segments("p", circle, None, 0.0, 1.0, windows, roots)
+    segs, names = _profile_segments("p", circle, None, 0.0, 1.0, windows, roots)
     for s0, s1 in zip(segs, segs[1:]):
         assert np.allclose(s0.points[-1], s1.points[0], atol=1e-12)
-    assert len(root_names) == 20
+    assert len([n for n in names if n.startswith("r")]) == 20
+
+
+@pytest.mark.parametrize("rho", [0.1, 0.25, 0.5])
+def test_tip_round_is_tangent_and_only_removes_material(rho):
+    p = PairParameters(shift=0.016, rotation=0.002)
+    sharp = Gear1Profile(p)
+    shape = RoundedProfile(sharp, rho)
+    assert len(shape.kinks) == 2 and all(math.degrees(g) > 15 for _, g in shape.kinks)
+    for f in shape.fillets:
+        c = np.asarray(f.centre)
+        for phi in (f.phi_a, f.phi_b):
+            # the arc meets the flank at the tangent point: same point, same normal
+            q = shape.point(np.array([phi]))[0]
+            ev = sharp.evaluate(np.array([phi]))
+            assert np.linalg.norm(q - ev.q[0]) < 1e-9
+            assert np.allclose((q - c) / rho, ev.normal[0], atol=1e-7)
+        inside = np.linspace(f.phi_a, f.phi_b, 50)
+        assert np.allclose(np.linalg.norm(shape.point(inside) - c, axis=1), rho, atol=1e-9)
+        assert np.allclose(shape.curvature(inside[1:-1]), 1.0 / rho)
+    phi = np.linspace(shape.phi_space, shape.phi_space + 3 * shape.pitch, 20001)
+    removed = sharp.radius(phi) - shape.radius(phi)
+    assert removed.min() > -1e-12            # material is only removed
+    assert 0.0 < removed.max() < 0.2 * rho   # and only near the edge
+    # a second tooth turn carries the same round
+    f = shape.fillets[0]
+    mid = 0.5 * (f.phi_a + f.phi_b)
+    assert shape.radius(np.array([mid + shape.pitch]))[0] == pytest.approx(
+        shape.radius(np.array([mid]))[0], abs=1e-12)
+
+
+def test_tip_round_too_large_is_refused():
+    with pytest.raises(ParameterError, match="tip_round"):
+        RoundedProfile(Gear1Profile(PairParameters()), 5.0)

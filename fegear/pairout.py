@@ -1,0 +1,205 @@
+"""Results of the tooth-pair solve: JSON summary, table, VTU files and the von Mises picture.
+
+Files are written in the fixed frame (gear 2 centred at the origin, gear 1 at (0, e), both at
+the solved rolling angle), so the two VTUs overlay in ParaView. Stress components are rotated
+into that frame; invariants (von Mises, σ1, σ2) need no rotation.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from .contact_solve import nodal_pressure
+from .output import vtu_fields, write_atomic, write_json, write_vtu
+from .toothpair import PairSolution
+
+#: headline stress → JSON key (MPa)
+HEADLINE = ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa",
+            "von_mises_max_MPa")
+
+
+def error_estimate(fine: dict[str, float], coarse: dict[str, float]) -> dict[str, float]:
+    """Discretisation error (%) of each headline stress of the finer mesh, by Richardson
+    extrapolation from the coarser one with the P2 stress rate h² and a mesh ratio of 2:
+    e ≈ |s_fine − s_coarse| / (2² − 1)."""
+    return {k: 100.0 * abs(fine[k] - coarse[k]) / 3.0 / abs(fine[k]) for k in HEADLINE}
+
+
+def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float | None = None,
+                 coarse_quality: str | None = None) -> dict:
+    """The JSON summary: inputs, headline stresses, per-tooth results and checks."""
+    c, p = sol.case, sol.case.params
+    loaded = [t for t in sol.teeth if t.load_N > 0]
+    peak = max(loaded, key=lambda t: t.p_max_MPa)
+    out = {
+        "inputs": {"m": p.m, "z1": p.z1, "z2": p.z2, "h1": p.h1, "f1": p.f1, "shift": p.shift,
+                   "rotation": p.rotation, "tip_relief": p.tip_relief, "torque_Nm": c.torque,
+                   "position_deg": math.degrees(c.beta), "thickness_mm": c.thickness,
+                   "E_MPa": c.E, "nu": c.nu, "quality": c.quality, "tip_round_mm": c.edge_radius,
+                   "rim1_mm": c.rims[0], "rim2_mm": c.rims[1], "extra_teeth": c.extra_teeth,
+                   "penalty_factor": c.penalty_factor},
+        **sol.headline(),
+        "hertz_p0_MPa": peak.hertz_p0_MPa,
+        "hertz_b_over_R": peak.b_over_R,
+        "teeth_in_contact": sol.teeth_in_contact,
+        "load_share": {str(t.tooth): t.load_share for t in loaded},
+        "transmission_error_urad": 1e6 * (sol.rotation - sol.first_touch),
+        "rotation_urad": 1e6 * sol.rotation,
+        "first_touch_urad": 1e6 * sol.first_touch,
+        "mesh_stiffness_Nm_per_rad": sol.mesh_stiffness,
+        "error_estimate_pct": max(estimate.values()) if estimate else None,
+        "error_estimate_by_stress_pct": estimate,
+        "error_estimate_from": coarse_quality,
+        "torque_balance_error": sol.contact.balance_error,
+        "load_share_sum": sum(t.load_share for t in sol.teeth),
+        "max_penetration_um": 1e3 * sol.contact.max_penetration,
+        "iterations": sol.contact.iterations,
+        "body_residuals": list(sol.contact.residuals),
+        "dofs": sol.dofs,
+        "contact_points": int(sol.model.npoints),
+        "teeth": [{"tooth": t.tooth, "clearance_um": t.clearance_um, "load_N": t.load_N,
+                   "load_share": t.load_share, "p_max_MPa": t.p_max_MPa,
+                   "half_width_mm": t.half_width_mm, "hertz_p0_MPa": t.hertz_p0_MPa,
+                   "hertz_b_mm": t.hertz_b_mm, "b_over_R": t.b_over_R,
+                   "root_stress_gear1_MPa": t.root1_MPa, "root_stress_gear2_MPa": t.root2_MPa}
+                  for t in sol.teeth],
+        "timings_s": sol.timings_s,
+        "wall_s": wall_s,
+    }
+    return out
+
+
+def pair_table(summary: dict) -> str:
+    """Short plain-text report of a summary (the `fegear solve` output)."""
+    i = summary["inputs"]
+    est = summary["error_estimate_by_stress_pct"] or {}
+
+    def e(k):
+        return f"{est[k]:6.2f}" if k in est else "     -"
+
+    lines = [
+        f"pair m {i['m']:g}, z {i['z2']}/{i['z1']}, h1 {i['h1']:g}, f1 {i['f1']:g}, "
+        f"shift {i['shift']:g}, rotation {i['rotation']:g} mm; T {i['torque_Nm']:g} N·m at "
+        f"β {i['position_deg']:g}°, t {i['thickness_mm']:g} mm, quality {i['quality']}, "
+        f"tip round {i['tip_round_mm']:g} mm",
+        "",
+        "| headline [MPa]          |      FE | err est % |",
+        "|-------------------------|--------:|----------:|",
+    ]
+    for k, label in zip(HEADLINE, ("root σ1, gear 1", "root σ1, gear 2", "contact pressure",
+                                   "von Mises max")):
+        lines.append(f"| {label:23s} | {summary[k]:7.1f} |    {e(k)} |")
+    lines += ["",
+              "| tooth | clear. µm | load N | share | p_max MPa | b mm  | Hertz p0 | b/R*   "
+              "| root1 | root2 |",
+              "|------:|---------:|-------:|------:|----------:|------:|---------:|-------:"
+              "|------:|------:|"]
+    for t in summary["teeth"]:
+        if t["load_N"] <= 0:
+            continue
+        hz = f"{t['hertz_p0_MPa']:8.1f}" if t["hertz_p0_MPa"] else "       -"
+        br = f"{t['b_over_R']:.4f}" if t["b_over_R"] else "     -"
+        lines.append(f"| {t['tooth']:5d} | {t['clearance_um']:8.2f} | {t['load_N']:6.0f} | "
+                     f"{t['load_share']:.3f} | {t['p_max_MPa']:9.1f} | {t['half_width_mm']:.3f} "
+                     f"| {hz} | {br} | {t['root_stress_gear1_MPa']:5.0f} | "
+                     f"{t['root_stress_gear2_MPa']:5.0f} |")
+    unloaded = [t["tooth"] for t in summary["teeth"] if t["load_N"] <= 0]
+    lines += ["",
+              f"teeth in contact {summary['teeth_in_contact']} (paired but open: {unloaded}); "
+              f"load shares sum to {summary['load_share_sum']:.6f}; torque balance error "
+              f"{summary['torque_balance_error']:.1e}",
+              f"transmission error {summary['transmission_error_urad']:.1f} µrad (rotation "
+              f"{summary['rotation_urad']:.1f}, first touch {summary['first_touch_urad']:.1f}); "
+              f"mesh stiffness {summary['mesh_stiffness_Nm_per_rad']:.4g} N·m/rad",
+              f"DOFs {summary['dofs']}, contact points {summary['contact_points']}, "
+              f"iterations {summary['iterations']}, max penetration "
+              f"{summary['max_penetration_um']:.3g} µm",
+              "time [s]: " + ", ".join(f"{k} {v:.2f}" for k, v in summary["timings_s"].items())
+              + (f"; wall {summary['wall_s']:.1f}" if summary["wall_s"] else "")]
+    return "\n".join(lines)
+
+
+def fixed_frame_fields(sol: PairSolution, body: int) -> tuple[np.ndarray, dict]:
+    """Node coordinates (fixed frame) and VTU point data of one body."""
+    b, u, s = sol.bodies[body], sol.contact.displacements[body], sol.stresses[body]
+    ang = b.placement.angle
+    c, si = math.cos(ang), math.sin(ang)
+    data = vtu_fields(b.mesh, u, s, {"contact_pressure": nodal_pressure(sol.model, sol.contact,
+                                                                         body)})
+    disp = data["displacement"]
+    disp[:, :2] = b.placement.vec_to_fixed(disp[:, :2])
+    sxx, syy, sxy = s.sxx, s.syy, s.sxy
+    data["sxx"] = c * c * sxx + si * si * syy - 2 * c * si * sxy
+    data["syy"] = si * si * sxx + c * c * syy + 2 * c * si * sxy
+    data["sxy"] = c * si * (sxx - syy) + (c * c - si * si) * sxy
+    return b.placement.to_fixed(b.mesh.doflocs.T), data
+
+
+def write_pair_outputs(sol: PairSolution, out: Path, summary: dict) -> dict[str, Path]:
+    """gear1.vtu, gear2.vtu (fixed frame), von_mises.png and summary.json in ``out``."""
+    files = {}
+    for i, b in enumerate(sol.bodies):
+        xy, data = fixed_frame_fields(sol, i)
+        files[b.name] = write_vtu(out / f"{b.name}.vtu", b.mesh, data, xy)
+    files["png"] = von_mises_png(out / "von_mises.png", sol)
+    summary = {**summary, "files": {k: str(v) for k, v in files.items()}}
+    files["summary"] = write_json(out / "summary.json", summary)
+    return files
+
+
+def von_mises_png(path: Path, sol: PairSolution) -> Path:
+    """Von Mises on both bodies (pyvista, off-screen) with a zoomed inset on the most loaded
+    contact zone."""
+    import pyvista as pv
+
+    pv.OFF_SCREEN = True
+    grids = []
+    for i, b in enumerate(sol.bodies):
+        xy, data = fixed_frame_fields(sol, i)
+        pts = np.column_stack([xy, np.zeros(len(xy))])
+        tri = b.mesh.dofs.element_dofs.T[:, :3]  # corner nodes: a linear picture is enough
+        cells = np.column_stack([np.full(len(tri), 3), tri]).ravel()
+        g = pv.PolyData(pts, faces=cells)
+        g.point_data["von Mises [MPa]"] = data["von_mises"]
+        grids.append(g)
+    # colour scale: up to twice the larger root stress, so that the tooth bending shows beside
+    # the (much higher, very local) contact peak, which saturates
+    vmax = min(max(float(g.point_data["von Mises [MPa]"].max()) for g in grids),
+               2.0 * max(sol.root_stress))
+    loaded = max(sol.contact.patches, key=lambda pt: pt.load)
+    cx, cy = loaded.center
+    zoom = max(8.0 * loaded.half_width, 1.5 * sol.case.params.m)
+
+    def scene(plotter, focus, half, bar):
+        for g in grids:
+            plotter.add_mesh(g, scalars="von Mises [MPa]", cmap="turbo", clim=(0.0, vmax),
+                             show_scalar_bar=bar,
+                             scalar_bar_args={"vertical": True, "position_x": 0.82,
+                                              "title": "von Mises [MPa] (clipped)"})
+        plotter.camera_position = "xy"
+        plotter.camera.focal_point = (focus[0], focus[1], 0.0)
+        plotter.camera.position = (focus[0], focus[1], 10.0 * half + 100.0)
+        plotter.camera.parallel_projection = True
+        plotter.camera.parallel_scale = half
+
+    bounds = np.vstack([g.points[:, :2] for g in grids])
+    centre = 0.5 * (bounds.min(axis=0) + bounds.max(axis=0))
+    half = 0.55 * float(np.ptp(bounds[:, 1]) + 0.5 * np.ptp(bounds[:, 0]))
+    p = pv.Plotter(off_screen=True, shape=(1, 2), window_size=(1600, 800))
+    p.subplot(0, 0)
+    scene(p, centre, half, False)
+    p.add_text(f"von Mises, T {sol.case.torque:g} N·m", font_size=10)
+    p.subplot(0, 1)
+    scene(p, (cx, cy), zoom, True)
+    p.add_text(f"contact zone ({loaded.pair}), ±{zoom:.2g} mm", font_size=10)
+
+    def w(tmp: Path) -> None:
+        p.screenshot(str(tmp))
+
+    try:
+        return write_atomic(path, w)
+    finally:
+        p.close()
