@@ -47,7 +47,7 @@ def test_convex_pair_matches_hertz(plane, convex):
     assert abs(r.p_error_pct) < 0.5, r.summary()
     assert abs(r.b_error_pct) < 2.0, r.summary()
     sol = r.solution
-    assert sol.link_force == pytest.approx(r.case.load, rel=1e-9)  # load balance
+    assert sol.link_force == pytest.approx(r.case.load, rel=1e-8)  # load balance (LU accuracy)
     assert max(sol.residuals) < 1e-9
     assert sol.max_penetration < 0.01 * r.half_width
     # the recovered surface normal stress agrees with the penalty traction
