@@ -11,7 +11,6 @@ import json
 import logging
 import math
 import sys
-from dataclasses import replace
 
 from .errors import FegearError
 from .params import PairParameters, require_range
@@ -39,6 +38,12 @@ def _add_pair_args(p: argparse.ArgumentParser) -> None:
                    help="gear-1 radial tip clearance to the far side [mm] (default: = shift)")
 
 
+def _add_material_args(p: argparse.ArgumentParser, thickness: str) -> None:
+    p.add_argument("--thickness", type=float, default=5.0, help=f"{thickness} [mm] (default 5)")
+    p.add_argument("--E", type=float, default=206000.0, help="Young's modulus [MPa] (206000)")
+    p.add_argument("--nu", type=float, default=0.29, help="Poisson ratio (default 0.29)")
+
+
 def _params(a: argparse.Namespace) -> PairParameters:
     return PairParameters(m=a.m, z2=a.z2, z1=a.z1, h1=a.h1, f1=a.f1, shift=a.shift,
                           rotation=a.rotation, tip_relief=a.tip_relief)
@@ -63,9 +68,7 @@ def build_parser() -> argparse.ArgumentParser:
     hz.add_argument("--r2", type=float, default=10.0,
                     help="disk 2 radius [mm]; negative = a bore holding disk 1 (default 10)")
     hz.add_argument("--load", type=float, default=1000.0, help="normal load [N] (default 1000)")
-    hz.add_argument("--thickness", type=float, default=5.0, help="thickness [mm] (default 5)")
-    hz.add_argument("--E", type=float, default=206000.0, help="Young's modulus [MPa] (206000)")
-    hz.add_argument("--nu", type=float, default=0.29, help="Poisson ratio (default 0.29)")
+    _add_material_args(hz, "thickness")
     hz.add_argument("--plane", choices=("stress", "strain"), default="stress",
                     help="plane assumption (default stress)")
     hz.add_argument("--quality", default="standard",
@@ -80,9 +83,7 @@ def build_parser() -> argparse.ArgumentParser:
     sv.add_argument("--torque", type=float, default=200.0, help="torque on gear 1 [N·m] (200)")
     sv.add_argument("--position", type=float, default=0.0,
                     help="rolling angle β of gear 2 [deg] (default 0)")
-    sv.add_argument("--thickness", type=float, default=5.0, help="face width [mm] (default 5)")
-    sv.add_argument("--E", type=float, default=206000.0, help="Young's modulus [MPa] (206000)")
-    sv.add_argument("--nu", type=float, default=0.29, help="Poisson ratio (default 0.29)")
+    _add_material_args(sv, "face width")
     sv.add_argument("--quality", default="standard", help="fast / standard / fine")
     sv.add_argument("--tip-round", type=float, default=None,
                     help="gear-1 tip-edge round radius [mm] (default 0.125 m)")
@@ -228,7 +229,7 @@ def cmd_solve(a: argparse.Namespace) -> int:
     import time
 
     from .output import prepare_dir
-    from .pairout import error_estimate, pair_summary, pair_table, write_pair_outputs
+    from .pairout import pair_summary, pair_table, second_level_estimate, write_pair_outputs
     from .profile import Gear1Profile
     from .toothpair import SolveCase, solve_pair
 
@@ -242,17 +243,7 @@ def cmd_solve(a: argparse.Namespace) -> int:
     out = prepare_dir(a.out)
     profile = Gear1Profile(case.params)
     sol = solve_pair(case, profile)
-    estimate, other = None, None
-    if not a.no_estimate:
-        levels = ("fast", "standard", "fine")
-        k = levels.index(case.quality)
-        other = levels[k - 1] if k > 0 else levels[1]
-        second = solve_pair(replace(case, quality=other), profile).headline()
-        fine, coarse = (sol.headline(), second) if k > 0 else (second, sol.headline())
-        estimate = error_estimate(fine, coarse)
-        if k == 0:  # the estimate is for the finer level; fast's own error is 4× larger
-            estimate = {key: 4.0 * v * fine[key] / sol.headline()[key]
-                        for key, v in estimate.items()}
+    estimate, other = (None, None) if a.no_estimate else second_level_estimate(sol, profile)
     summary = pair_summary(sol, estimate, time.perf_counter() - t0, other)
     files = write_pair_outputs(sol, out, summary)
     if a.json:

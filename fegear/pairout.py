@@ -8,13 +8,15 @@ into that frame; invariants (von Mises, σ1, σ2) need no rotation.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
 from .contact_solve import nodal_pressure
 from .output import vtu_fields, write_atomic, write_json, write_vtu
-from .toothpair import PairSolution
+from .profile import Gear1Profile
+from .toothpair import PairSolution, solve_pair
 
 #: headline stress → JSON key (MPa)
 HEADLINE = ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa",
@@ -26,6 +28,23 @@ def error_estimate(fine: dict[str, float], coarse: dict[str, float]) -> dict[str
     extrapolation from the coarser one with the P2 stress rate h² and a mesh ratio of 2:
     e ≈ |s_fine − s_coarse| / (2² − 1)."""
     return {k: 100.0 * abs(fine[k] - coarse[k]) / 3.0 / abs(fine[k]) for k in HEADLINE}
+
+
+def second_level_estimate(sol: PairSolution,
+                          profile: Gear1Profile | None = None) -> tuple[dict[str, float], str]:
+    """Solve the same case at the next coarser quality (``standard`` for ``fast``: the next
+    finer) and estimate the headline errors (%) of ``sol``. Returns the estimate and the
+    other quality."""
+    levels = ("fast", "standard", "fine")
+    k = levels.index(sol.case.quality)
+    other = levels[k - 1] if k > 0 else levels[1]
+    second = solve_pair(replace(sol.case, quality=other), profile).headline()
+    own = sol.headline()
+    if k > 0:
+        return error_estimate(own, second), other
+    # the estimate is for the finer level; the coarser one's error is 4× larger (rate h²)
+    finer = error_estimate(second, own)
+    return {key: 4.0 * v * second[key] / own[key] for key, v in finer.items()}, other
 
 
 def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float | None = None,
@@ -141,24 +160,24 @@ def fixed_frame_fields(sol: PairSolution, body: int) -> tuple[np.ndarray, dict]:
 def write_pair_outputs(sol: PairSolution, out: Path, summary: dict) -> dict[str, Path]:
     """gear1.vtu, gear2.vtu (fixed frame), von_mises.png and summary.json in ``out``."""
     files = {}
-    for i, b in enumerate(sol.bodies):
-        xy, data = fixed_frame_fields(sol, i)
+    fields = [fixed_frame_fields(sol, i) for i in range(len(sol.bodies))]
+    for b, (xy, data) in zip(sol.bodies, fields):
         files[b.name] = write_vtu(out / f"{b.name}.vtu", b.mesh, data, xy)
-    files["png"] = von_mises_png(out / "von_mises.png", sol)
+    files["png"] = von_mises_png(out / "von_mises.png", sol, fields)
     summary = {**summary, "files": {k: str(v) for k, v in files.items()}}
     files["summary"] = write_json(out / "summary.json", summary)
     return files
 
 
-def von_mises_png(path: Path, sol: PairSolution) -> Path:
+def von_mises_png(path: Path, sol: PairSolution,
+                  fields: list[tuple[np.ndarray, dict]]) -> Path:
     """Von Mises on both bodies (pyvista, off-screen) with a zoomed inset on the most loaded
-    contact zone."""
+    contact zone; ``fields``: each body's :func:`fixed_frame_fields`."""
     import pyvista as pv
 
     pv.OFF_SCREEN = True
     grids = []
-    for i, b in enumerate(sol.bodies):
-        xy, data = fixed_frame_fields(sol, i)
+    for b, (xy, data) in zip(sol.bodies, fields):
         pts = np.column_stack([xy, np.zeros(len(xy))])
         tri = b.mesh.dofs.element_dofs.T[:, :3]  # corner nodes: a linear picture is enough
         cells = np.column_stack([np.full(len(tri), 3), tri]).ravel()
