@@ -163,7 +163,7 @@ class Body:
     link_stiffness: float
     factor: object = field(repr=False)
     placement: Placement = Placement()
-    flex_cache: dict = field(default_factory=dict, repr=False)
+    cache: dict = field(default_factory=dict, repr=False)  # shared by placed copies
 
     @property
     def mesh(self):
@@ -197,8 +197,8 @@ class Body:
         """F = E K⁻¹ Eᵀ (mm/N) for the x, y dofs of ``nodes`` (2n × 2n, node-major), with zero
         rows for supported dofs. Cached per node set: it depends only on the body frame."""
         nodes = np.asarray(nodes, dtype=np.int64)
-        key = nodes.tobytes()
-        if key not in self.flex_cache:
+        key = ("flexibility", nodes.tobytes())
+        if key not in self.cache:
             dofs = self.node_dofs(nodes).ravel()
             pos = np.searchsorted(self.free, dofs)
             pos = np.minimum(pos, len(self.free) - 1)
@@ -212,8 +212,8 @@ class Body:
                 Ff[:, start:start + len(cols)] = self.factor.solve(rhs)[rows]
             F = np.zeros((len(dofs), len(dofs)))
             F[np.ix_(is_free, is_free)] = Ff
-            self.flex_cache[key] = F
-        return self.flex_cache[key]
+            self.cache[key] = F
+        return self.cache[key]
 
     def displacement(self, v: np.ndarray, link_value: float) -> np.ndarray:
         """Total displacement u = θψ + v (linear in the link motion), (ndofs,)."""

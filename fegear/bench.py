@@ -71,3 +71,43 @@ def hertz_bench(repeat: int = 3) -> str:
                      f"{best['contact']:.3f} | {best['recovery']:.3f} | "
                      f"{sum(best.values()):.3f} | {r.p_error_pct:+.3f} | {r.b_error_pct:+.3f} |")
     return "\n".join(lines)
+
+
+CYCLE_TARGET = 3.0  # a mesh cycle of N positions costs less than 3× one position
+
+
+def pair_bench(params: PairParameters, torque: float = 200.0, quality: str = "standard",
+               positions: int = 24) -> str:
+    """Time the baseline tooth-pair solve at one position against a mesh cycle of
+    ``positions`` rolling angles on one mesh (target: the cycle < 3× one position)."""
+    from .toothpair import SolveCase, cycle_positions, solve_positions
+
+    case = SolveCase(params, torque=torque, quality=quality)
+    profile = Gear1Profile(params)
+    t0 = time.perf_counter()
+    one = solve_positions(case, (case.beta,), profile)[0]
+    t_one = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    cycle = solve_positions(case, cycle_positions(case.beta, positions, params.z2), profile)
+    t_cycle = time.perf_counter() - t0
+    stages = ("profile", "mesh", "assemble_factor", "condense", "contact", "recovery")
+    later = cycle[1:]
+
+    def per_position(k):
+        return sum(s.timings_s[k] for s in later) / len(later) if later else 0.0
+
+    lines = [f"fegear tooth-pair benchmark: {params.describe()}, T {torque:g} N·m, quality "
+             f"{quality}", "",
+             "| run | DOFs | contact points | " + " | ".join(stages) + " | total [s] |",
+             "|---|---:|---:|" + "---:|" * (len(stages) + 1)]
+    for name, s, total in (("one position", one, f"{t_one:.2f}"),
+                           (f"cycle, first of {positions}", cycle[0], "")):
+        times = " | ".join(f"{s.timings_s.get(k, 0.0):.2f}" for k in stages)
+        lines.append(f"| {name} | {s.dofs} | {s.model.npoints} | {times} | {total} |")
+    lines.append(f"| cycle, each later position (mean) | | | | | | {per_position('condense'):.2f}"
+                 f" | {per_position('contact'):.2f} | {per_position('recovery'):.2f} | |")
+    ratio = t_cycle / t_one
+    status = "met" if ratio < CYCLE_TARGET else "MISSED"
+    lines.append(f"| **{positions}-position cycle** (target < {CYCLE_TARGET:g}× one position: "
+                 f"{status}, {ratio:.2f}×) | | | | | | | | | **{t_cycle:.2f}** |")
+    return "\n".join(lines)

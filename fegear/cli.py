@@ -83,6 +83,9 @@ def build_parser() -> argparse.ArgumentParser:
     sv.add_argument("--torque", type=float, default=200.0, help="torque on gear 1 [N·m] (200)")
     sv.add_argument("--position", type=float, default=0.0,
                     help="rolling angle β of gear 2 [deg] (default 0)")
+    sv.add_argument("--positions", type=int, default=None,
+                    help="solve N rolling angles across one tooth pitch from --position on one "
+                         "mesh; writes cycle.csv and cycle.png")
     _add_material_args(sv, "face width")
     sv.add_argument("--quality", default="standard", help="fast / standard / fine")
     sv.add_argument("--tip-round", type=float, default=None,
@@ -93,6 +96,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="gear-2 rim beyond the roots, to the fixed rim [mm] (default 3 m)")
     sv.add_argument("--extra-teeth", type=int, default=1,
                     help="unloaded teeth meshed beyond the paired ones on each side (default 1)")
+    sv.add_argument("--extra-pairs", type=int, default=0,
+                    help="pair this many more teeth on each side than the closure needs "
+                         "(default 0; a safety check)")
     sv.add_argument("--penalty-factor", type=float, default=None,
                     help="penalty κ = factor·E*/h (default 30)")
     sv.add_argument("--no-estimate", action="store_true",
@@ -103,6 +109,10 @@ def build_parser() -> argparse.ArgumentParser:
     bench = sub.add_parser("bench", help="time the pipeline stages and print a table")
     _add_pair_args(bench)
     bench.add_argument("--repeat", type=int, default=3, help="repetitions (best is kept)")
+    bench.add_argument("--pair-quality", default="standard",
+                       help="quality of the tooth-pair benchmark (fast / standard / fine)")
+    bench.add_argument("--cycle", type=int, default=24,
+                       help="positions in the benchmarked mesh cycle (default 24)")
     return parser
 
 
@@ -229,26 +239,54 @@ def cmd_solve(a: argparse.Namespace) -> int:
     import time
 
     from .output import prepare_dir
-    from .pairout import pair_summary, pair_table, second_level_estimate, write_pair_outputs
+    from .pairout import (
+        cycle_rows,
+        cycle_summary,
+        cycle_table,
+        pair_summary,
+        pair_table,
+        second_level_estimate,
+        write_cycle_outputs,
+        write_pair_outputs,
+    )
     from .profile import Gear1Profile
-    from .toothpair import SolveCase, solve_pair
+    from .toothpair import SolveCase, cycle_positions, solve_positions
 
     t0 = time.perf_counter()
     kw = {} if a.penalty_factor is None else {"penalty_factor": a.penalty_factor}
     position = require_range("position", a.position, -180.0, 180.0, unit="deg")
+    n = 1 if a.positions is None else int(require_range("positions", a.positions, 2, 360))
     case = SolveCase(_params(a), torque=a.torque, beta=math.radians(position),
                      thickness=a.thickness, E=a.E, nu=a.nu, quality=a.quality,
                      rim1=a.rim1, rim2=a.rim2, extra_teeth=a.extra_teeth,
-                     tip_round=a.tip_round, **kw)
+                     extra_pairs=a.extra_pairs, tip_round=a.tip_round, **kw)
     out = prepare_dir(a.out)
     profile = Gear1Profile(case.params)
-    sol = solve_pair(case, profile)
+    betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
+    sols = solve_positions(case, betas, profile)
+    cycle_s = time.perf_counter() - t0
+    # pictures, VTUs and the error estimate at the position of the largest gear-1 root stress
+    sol = max(sols, key=lambda s: s.root_stress[0])
     estimate, other = (None, None) if a.no_estimate else second_level_estimate(sol, profile)
     summary = pair_summary(sol, estimate, time.perf_counter() - t0, other)
-    files = write_pair_outputs(sol, out, summary)
+    files, rows = {}, None
+    if n > 1:
+        rows = cycle_rows(sols)
+        summary["cycle"] = {"positions": n, "solve_s": cycle_s, **cycle_summary(rows),
+                            "rows": rows}
+        i = summary["inputs"]
+        files.update(write_cycle_outputs(
+            rows, out, f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T {i['torque_Nm']:g} "
+                       f"N·m, {n} positions, quality {i['quality']}"))
+    files.update(write_pair_outputs(sol, out, {**summary, "files": {
+        k: str(v) for k, v in files.items()}}))
     if a.json:
         print(json.dumps({**summary, "files": {k: str(v) for k, v in files.items()}}, indent=2))
     else:
+        if rows:
+            print(cycle_table(rows))
+            print(f"\n{n} positions on one mesh in {cycle_s:.1f} s; the details below are at "
+                  f"the position of the largest gear-1 root stress\n")
         print(pair_table(summary))
         for k, v in files.items():
             print(f"{k:10s} {v}")
@@ -256,12 +294,19 @@ def cmd_solve(a: argparse.Namespace) -> int:
 
 
 def cmd_bench(a: argparse.Namespace) -> int:
-    from .bench import geometry_bench, hertz_bench
+    from .bench import geometry_bench, hertz_bench, pair_bench
+    from .errors import ParameterError
+    from .scene import QUALITY
 
     repeat = int(require_range("repeat", a.repeat, 1, 100))
+    cycle = int(require_range("cycle", a.cycle, 2, 360))
+    if a.pair_quality not in QUALITY:
+        raise ParameterError("pair_quality", a.pair_quality, " / ".join(QUALITY))
     print(geometry_bench(_params(a), repeat))
     print()
     print(hertz_bench(repeat))
+    print()
+    print(pair_bench(_params(a), quality=a.pair_quality, positions=cycle))
     return 0
 
 

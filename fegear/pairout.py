@@ -59,6 +59,7 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
                    "position_deg": math.degrees(c.beta), "thickness_mm": c.thickness,
                    "E_MPa": c.E, "nu": c.nu, "quality": c.quality, "tip_round_mm": c.edge_radius,
                    "rim1_mm": c.rims[0], "rim2_mm": c.rims[1], "extra_teeth": c.extra_teeth,
+                   "extra_pairs": c.extra_pairs,
                    "penalty_factor": c.penalty_factor},
         **sol.headline(),
         "hertz_p0_MPa": peak.hertz_p0_MPa,
@@ -141,6 +142,122 @@ def pair_table(summary: dict) -> str:
     return "\n".join(lines)
 
 
+#: cycle CSV columns besides the headline stresses and the per-tooth shares
+CYCLE_COLUMNS = ("position_deg", *HEADLINE, "transmission_error_urad", "rotation_urad",
+                 "first_touch_urad", "mesh_stiffness_Nm_per_rad", "teeth_in_contact",
+                 "torque_balance_error")
+
+
+def cycle_rows(sols) -> list[dict]:
+    """One row per position of a :func:`fegear.toothpair.solve_positions` run: headline
+    stresses, transmission error, stiffness, teeth in contact and ``share_<tooth>`` for every
+    paired tooth."""
+    teeth = sorted({t.tooth for s in sols for t in s.teeth})
+    rows = []
+    for s in sols:
+        share = {t.tooth: t.load_share for t in s.teeth}
+        rows.append({"position_deg": math.degrees(s.case.beta), **s.headline(),
+                     "transmission_error_urad": 1e6 * (s.rotation - s.first_touch),
+                     "rotation_urad": 1e6 * s.rotation, "first_touch_urad": 1e6 * s.first_touch,
+                     "mesh_stiffness_Nm_per_rad": s.mesh_stiffness,
+                     "teeth_in_contact": s.teeth_in_contact,
+                     "torque_balance_error": s.contact.balance_error,
+                     **{f"share_{t}": share.get(t, 0.0) for t in teeth}})
+    return rows
+
+
+def cycle_summary(rows: list[dict]) -> dict:
+    """Extremes over the cycle: the largest of each headline stress and where it occurs,
+    transmission-error and stiffness range, teeth in contact."""
+    out = {}
+    for k in HEADLINE:
+        worst = max(rows, key=lambda r: r[k])
+        out[k] = {"max": worst[k], "at_position_deg": worst["position_deg"]}
+    for k in ("transmission_error_urad", "mesh_stiffness_Nm_per_rad"):
+        v = [r[k] for r in rows]
+        out[k] = {"min": min(v), "max": max(v), "mean": sum(v) / len(v),
+                  "peak_to_peak": max(v) - min(v)}
+    n = [r["teeth_in_contact"] for r in rows]
+    out["teeth_in_contact"] = {"min": min(n), "max": max(n)}
+    return out
+
+
+def cycle_table(rows: list[dict]) -> str:
+    """Markdown table of a cycle (the `fegear solve --positions` output)."""
+    share_keys = [k for k in rows[0] if k.startswith("share_")]
+    shown = [k for k in share_keys if any(r[k] > 0 for r in rows)]
+    head = ("| β [deg] | root1 | root2 | p_max | vM max | TE µrad | k N·m/rad | teeth | "
+            + " | ".join(f"tooth {k[6:]}" for k in shown) + " |")
+    lines = [head, "|" + "---:|" * (8 + len(shown))]
+    for r in rows:
+        lines.append(
+            f"| {r['position_deg']:7.3f} | {r['root_stress_gear1_MPa']:5.1f} | "
+            f"{r['root_stress_gear2_MPa']:5.1f} | {r['contact_pressure_MPa']:6.0f} | "
+            f"{r['von_mises_max_MPa']:6.0f} | {r['transmission_error_urad']:7.1f} | "
+            f"{r['mesh_stiffness_Nm_per_rad']:.4g} | {r['teeth_in_contact']} | "
+            + " | ".join(f"{r[k]:.3f}" if abs(r[k]) >= 5e-4 else "0.000"
+                         for k in shown) + " |")
+    return "\n".join(lines)
+
+
+def write_cycle_outputs(rows: list[dict], out: Path, title: str) -> dict[str, Path]:
+    """cycle.csv (one row per position) and cycle.png (load shares, stresses, TE)."""
+    cols = list(rows[0])
+
+    def csv(tmp: Path) -> None:
+        lines = [",".join(cols)] + [",".join(repr(float(r[c])) if isinstance(r[c], float)
+                                             else str(r[c]) for c in cols) for r in rows]
+        tmp.write_text("\n".join(lines) + "\n")
+
+    files = {"csv": write_atomic(out / "cycle.csv", csv)}
+    files["cycle_png"] = cycle_png(out / "cycle.png", rows, title)
+    return files
+
+
+def cycle_png(path: Path, rows: list[dict], title: str) -> Path:
+    """Load share per tooth, headline stresses and transmission error against position."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    beta = [r["position_deg"] for r in rows]
+    fig, ax = plt.subplots(3, 1, figsize=(8, 10), sharex=True)
+    for k in (k for k in rows[0] if k.startswith("share_")):
+        v = [r[k] for r in rows]
+        if any(x > 0 for x in v):
+            ax[0].plot(beta, v, marker="o", ms=3, label=f"tooth {k[6:]}")
+    ax[0].set_ylabel("load share")
+    ax[0].legend(fontsize=8, ncol=3)
+    for k, label in zip(HEADLINE, ("root σ1 gear 1", "root σ1 gear 2", "contact p_max",
+                                   "von Mises max")):
+        ax[1].plot(beta, [r[k] for r in rows], marker="o", ms=3, label=label)
+    ax[1].set_yscale("log")
+    ax[1].set_ylabel("stress [MPa]")
+    ax[1].legend(fontsize=8)
+    ax[2].plot(beta, [r["rotation_urad"] for r in rows], marker="o", ms=3,
+               label="loaded rotation θ (from kinematic)")
+    ax[2].plot(beta, [r["first_touch_urad"] for r in rows], marker="o", ms=3,
+               label="unloaded (first touch)")
+    ax[2].plot(beta, [r["transmission_error_urad"] for r in rows], marker="o", ms=3,
+               label="elastic part θ − θ_touch")
+    ax[2].set_ylabel("gear-1 rotation [µrad]")
+    ax[2].set_xlabel("rolling angle β of gear 2 [deg]")
+    ax[2].legend(fontsize=8)
+    for a in ax:
+        a.grid(alpha=0.3)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+
+    def w(tmp: Path) -> None:
+        fig.savefig(tmp, dpi=110, format="png")
+
+    try:
+        return write_atomic(path, w)
+    finally:
+        plt.close(fig)
+
+
 def fixed_frame_fields(sol: PairSolution, body: int) -> tuple[np.ndarray, dict]:
     """Node coordinates (fixed frame) and VTU point data of one body."""
     b, u, s = sol.bodies[body], sol.contact.displacements[body], sol.stresses[body]
@@ -164,7 +281,8 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict) -> dict[str,
     for b, (xy, data) in zip(sol.bodies, fields):
         files[b.name] = write_vtu(out / f"{b.name}.vtu", b.mesh, data, xy)
     files["png"] = von_mises_png(out / "von_mises.png", sol, fields)
-    summary = {**summary, "files": {k: str(v) for k, v in files.items()}}
+    summary = {**summary, "files": {**summary.get("files", {}),
+                                    **{k: str(v) for k, v in files.items()}}}
     files["summary"] = write_json(out / "summary.json", summary)
     return files
 

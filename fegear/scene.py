@@ -36,6 +36,7 @@ QUALITY = {"fast": (4, 1 / 10, 1 / 2), "standard": (8, 1 / 20, 1 / 4),
            "fine": (16, 1 / 40, 1 / 8)}
 ROOT_BAND = 0.3          # root zone: the lower 30 % of the tooth height
 WINDOW_B = 2.5           # gear-1 window half-length, in Hertz half-widths at the shared load
+WINDOW_MIN = 0.1         # … and at least this many modules
 MASTER_FACTOR = 1.4      # gear-2 window half-length relative to gear 1's
 SHARE_GUESS = 3.0        # teeth assumed to share the load when sizing the contact elements
 SPLINE_CHORD = 1e-3      # mm, polyline handed to gmsh (nodes are snapped to the exact curve)
@@ -70,31 +71,37 @@ class Candidate:
 
 @dataclass(frozen=True)
 class Scene:
-    """Both sector geometries, the paired teeth and the exact master curve at β."""
+    """Both sector geometries for a set of rolling angles: the paired teeth (contact windows
+    covering their contact points at every β of the set) and the exact gear-2 curve."""
 
     params: PairParameters
-    beta: float
+    betas: tuple[float, ...]
     gear1: BodyGeometry
     gear2: BodyGeometry
-    candidates: tuple[Candidate, ...]
-    master: Gear2Master
-    teeth1: tuple[int, ...]       # gear-1 teeth in the sector (loaded candidates and extras)
+    paired: tuple[int, ...]       # gear-1 teeth with contact windows
+    teeth1: tuple[int, ...]       # gear-1 teeth in the sector (paired teeth and extras)
     profile1: tuple[str, ...]     # boundary names along each gear's tooth profile
     profile2: tuple[str, ...]
     root_band1: tuple[float, float]  # radii (mm) of the root zone: the lower ROOT_BAND of the
     root_band2: tuple[float, float]  # tooth height, whatever segment the nodes belong to
     b_full: float                 # Hertz half-width for the whole load on one tooth, mm
     shape: RoundedProfile = field(repr=False)
+    curve2: Cycloid = field(repr=False)
+
+    def master(self, beta: float) -> Gear2Master:
+        """Gear 2's exact curve placed at rolling angle β."""
+        return Gear2Master(self.curve2, beta)
 
 
 def candidate_data(params: PairParameters, shape: RoundedProfile, state, teeth,
                    beta: float) -> tuple[Candidate, ...]:
-    """Contact point, polar angles and curvature radii of each paired tooth's + flank."""
+    """Contact point, polar angles and curvature radii of each paired tooth's + flank at β
+    (teeth whose + flank has no contact point at β are left out)."""
     g2 = gear2_curve(params)
     alpha = params.ratio * beta
     out = []
     for c in state.teeth:
-        if c.tooth not in teeth:
+        if c.tooth not in teeth or c.plus_point is None:
             continue
         x = np.array([c.plus_point])
         body1 = rotate(x - np.array([0.0, params.e]), -alpha)
@@ -120,22 +127,26 @@ def hertz_half_width(params: PairParameters, torque_nmm: float, c: Candidate, th
         return line_contact(r, math.inf, load, thickness, E, nu).b
 
 
-def build_scene(params: PairParameters, profile: Gear1Profile, state, teeth: tuple[int, ...],
-                beta: float, torque_nmm: float, thickness: float, E: float, nu: float,
-                quality: str, rim1: float, rim2: float, extra: int = 1,
-                tip_round: float = 0.0, shape: RoundedProfile | None = None) -> Scene:
-    """Sector geometries for the paired ``teeth`` (gear-1 indices) at rolling angle β.
+def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth: tuple[int, ...],
+                torque_nmm: float, thickness: float, E: float, nu: float, quality: str,
+                rim1: float, rim2: float, extra: int = 1, tip_round: float = 0.0,
+                shape: RoundedProfile | None = None) -> Scene:
+    """Sector geometries for the paired ``teeth`` (gear-1 indices) over ``positions``, a
+    sequence of (β, clearance state at β): each tooth's contact windows cover its predicted
+    contact points at every β, and the gear-2 sector covers gear 1's at every β.
 
     Gear 1's tip edges are rounded to ``tip_round`` mm (:mod:`fegear.rounding`); pass ``shape``
     to reuse one :class:`RoundedProfile`."""
     n_b, root_m, global_m = QUALITY[quality]
     m = params.m
     shape = shape if shape is not None else RoundedProfile(profile, tip_round)
-    cands = candidate_data(params, shape, state, teeth, beta)
-    b_full = max(hertz_half_width(params, torque_nmm, c, thickness, E, nu) for c in cands)
+    betas = tuple(b for b, _ in positions)
+    cands = [(b, c) for b, st in positions for c in candidate_data(params, shape, st, teeth, b)]
+    if not cands:
+        raise ParameterError("teeth", teeth, "teeth with a contact point on the + flank")
+    b_full = max(hertz_half_width(params, torque_nmm, c, thickness, E, nu) for _, c in cands)
     b_shared = b_full / math.sqrt(SHARE_GUESS)  # b ∝ sqrt(load)
     h_contact = b_shared / n_b
-    window = WINDOW_B * b_shared
 
     # gear-1 sector: teeth from min - extra to max + extra (indices modulo z1, contiguous)
     pitch1 = shape.pitch
@@ -144,18 +155,31 @@ def build_scene(params: PairParameters, profile: Gear1Profile, state, teeth: tup
     centre0 = shape.tooth_center + teeth[0] * pitch1
     phi_a, phi_b = centre0 + lo * pitch1, centre0 + hi * pitch1
     teeth1 = tuple(int((teeth[0] + k) % params.z1) for k in range(lo, hi + 1))
+    mid1 = 0.5 * (phi_a + phi_b)
+    paired = tuple(sorted({c.tooth for _, c in cands}))
 
     rho = shape.radius(np.linspace(0, pitch1, 400) + shape.phi_space)
     rho_min, rho_max = float(rho.min()), float(rho.max())
     bore = rho_min - rim1
-    windows1 = [(c.tooth, _unwrap_near(c.phi1, 0.5 * (phi_a + phi_b)),
-                 window / math.hypot(*shape.point(np.array([c.phi1]))[0])) for c in cands]
+    # window half-length per candidate: WINDOW_B Hertz half-widths of its own curvatures at
+    # the shared load, at least WINDOW_MIN modules (a contact that only just closes)
+    half = [(b, c, max(WINDOW_B * hertz_half_width(params, torque_nmm, c, thickness, E, nu)
+                       / math.sqrt(SHARE_GUESS), WINDOW_MIN * m)) for b, c in cands]
+    windows1 = _path_windows(
+        paired, [(c.tooth, _unwrap_near(c.phi1, mid1),
+                  w / math.hypot(*shape.point(np.array([c.phi1]))[0])) for _, c, w in half])
     roots1 = [(k, shape.phi_space + (teeth[0] + k) * pitch1) for k in range(lo + 1, hi + 1)]
     root_half1 = _root_half_angle(shape.radius, roots1[0][1], pitch1, rho_min, rho_max)
     turn0 = math.floor((phi_a - shape.phi_space) / pitch1)
+    # refine the rounds that a contact window reaches (the others never touch)
     rounds = [(c - h, c + h) for c, h, _ in
-              shape.fillet_angles(range(turn0 - 1, turn0 + hi - lo + 2))]
-    h_round = min([h_contact] + [f.radius * f.kink / n_b for f in shape.fillets])
+              shape.fillet_angles(range(turn0 - 1, turn0 + hi - lo + 2))
+              if any(abs(c - p) < h + w for _, p, w in windows1)]
+    # the rounds meet the gear-2 flank like a cylinder of radius ρ on a plane: elements sized
+    # to that Hertz half-width at the shared load
+    h_round = min([h_contact] + [line_contact(f.radius, math.inf, torque_nmm / params.r0
+                                              / SHARE_GUESS, thickness, E, nu).b / n_b
+                                 for f in shape.fillets])
 
     def g1_project(x):
         return shape.point(np.arctan2(x[:, 1], x[:, 0]))
@@ -172,7 +196,7 @@ def build_scene(params: PairParameters, profile: Gear1Profile, state, teeth: tup
     def bore_project(x):
         return bore * x / np.linalg.norm(x, axis=1)[:, None]
 
-    refine1 = [Refinement(tuple(f"g1_contact_{c.tooth}" for c in cands), h_contact),
+    refine1 = [Refinement(tuple(f"g1_contact_{t}" for t in paired), h_contact),
                Refinement(tuple(n for n in names1 if n.startswith("g1_root")), root_m * m)]
     if any(s.zone == "g1_round" for s in segs1):
         refine1.append(Refinement(("g1_round",), h_round))
@@ -183,23 +207,25 @@ def build_scene(params: PairParameters, profile: Gear1Profile, state, teeth: tup
         Segment("g1_cut_a", np.array([bore_pts[-1], a0])),
     ), size=global_m * m, refinements=tuple(refine1))
 
-    # gear-2 sector, in gear 2's frame: the same fixed-frame range, cut at gear-2 tooth tips
+    # gear-2 sector, in gear 2's frame: the fixed-frame range of gear 1's sector at every β,
+    # cut at gear-2 tooth tips
     g2 = gear2_curve(params)
     pitch2 = 2 * math.pi / params.z2
-    alpha = params.ratio * beta
 
-    def fixed_angle(phi):  # polar angle about the origin of a gear-1 body point
-        x = rotate(shape.point(np.array([phi])), alpha)[0] + np.array([0.0, params.e])
-        return math.atan2(x[1], x[0])
+    def body2_angle(phi, beta):  # polar angle in gear 2's frame of a gear-1 body point at β
+        x = rotate(shape.point(np.array([phi])), params.ratio * beta)[0] + np.array([0.0,
+                                                                                      params.e])
+        return math.atan2(x[1], x[0]) - beta
 
-    t_a = _unwrap_near(fixed_angle(phi_a) - beta, 0.0)
-    t_b = _unwrap_near(fixed_angle(phi_b) - beta, t_a + (phi_b - phi_a))
+    t_a = min(_unwrap_near(body2_angle(phi_a, b), 0.0) for b in betas)
+    t_b = max(_unwrap_near(body2_angle(phi_b, b), t_a + (phi_b - phi_a)) for b in betas)
     k_a, k_b = math.floor(t_a / pitch2), math.ceil(t_b / pitch2)
     th_a, th_b = k_a * pitch2, k_b * pitch2  # tooth tips (ξ = 2πk/z2 is a tip)
     R_max, R_min = params.r0 + 2 * params.e1, params.r0 - 2 * params.e1
     outer = R_max + rim2
-    windows2 = [(c.tooth, _unwrap_near(c.theta2, 0.5 * (th_a + th_b)), MASTER_FACTOR * window
-                 / params.r0) for c in cands]
+    windows2 = _path_windows(
+        paired, [(c.tooth, _unwrap_near(c.theta2, 0.5 * (th_a + th_b)),
+                  MASTER_FACTOR * w / params.r0) for _, c, w in half])
     roots2 = [(k, (k + 0.5) * pitch2) for k in range(k_a, k_b)]
     root_half2 = _root_half_angle(lambda t: g2.radius_at_angle(t), roots2[0][1], pitch2,
                                   R_min, R_max, inverted=True)
@@ -213,7 +239,7 @@ def build_scene(params: PairParameters, profile: Gear1Profile, state, teeth: tup
 
     segs2, names2 = _profile_segments(
         "g2", g2_curve, g2_project, th_a, th_b,
-        [(f"g2_contact_{t}", p, w) for t, p, w in windows2],
+        [("g2_contact", p, w) for _, p, w in windows2],
         [(f"g2_root_{k}", p, root_half2) for k, p in roots2])
     rim_pts = outer * np.column_stack([np.cos(np.linspace(th_a, th_b, 80)),
                                        np.sin(np.linspace(th_a, th_b, 80))])
@@ -230,12 +256,23 @@ def build_scene(params: PairParameters, profile: Gear1Profile, state, teeth: tup
         *reversed_segs,
         Segment("g2_cut_a", np.array([pa2, rim_pts[0]])),
     ), size=global_m * m, refinements=(
-        Refinement(tuple(f"g2_contact_{c.tooth}" for c in cands), h_contact),
+        Refinement(("g2_contact",), h_contact),
         Refinement(tuple(n for n in names2 if n.startswith("g2_root")), root_m * m)))
     band1 = (rho_min, rho_min + ROOT_BAND * (rho_max - rho_min))
     band2 = (R_max - ROOT_BAND * (R_max - R_min), R_max)
-    return Scene(params, beta, geo1, geo2, cands, Gear2Master(g2, beta), teeth1,
-                 names1, names2, band1, band2, b_full, shape)
+    return Scene(params, betas, geo1, geo2, paired, teeth1, names1, names2, band1, band2, b_full,
+                 shape, g2)
+
+
+def _path_windows(teeth, points) -> list[tuple[int, float, float]]:
+    """One window (tooth, centre angle, half-angle) per tooth covering all of its
+    (tooth, angle, half-angle) contact windows: the contact path over the positions."""
+    out = []
+    for t in teeth:
+        spans = [(p - h, p + h) for tooth, p, h in points if tooth == t]
+        lo, hi = min(s[0] for s in spans), max(s[1] for s in spans)
+        out.append((t, 0.5 * (lo + hi), 0.5 * (hi - lo)))
+    return out
 
 
 def _unwrap_near(angle: float, ref: float) -> float:

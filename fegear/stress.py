@@ -2,8 +2,8 @@
 
 The stress at the quadrature points, σ = λ tr(ε) I + 2 μ ε with the plane assumption's λ, is
 L2-projected onto the continuous P2 space of the same mesh (one mass matrix, factorised once per
-recovery). σzz = 0 in plane stress and ν(σxx + σyy) in plane strain; von Mises and the
-principal stresses use that σzz. Units MPa.
+body and cached on it). σzz = 0 in plane stress and ν(σxx + σyy) in plane strain; von Mises and
+the principal stresses use that σzz. Units MPa.
 """
 
 from __future__ import annotations
@@ -68,9 +68,11 @@ def quadrature_stress(body: Body, u: np.ndarray) -> np.ndarray:
 
 def recover(body: Body, u: np.ndarray) -> StressField:
     """Nodal stresses of displacement ``u`` (ndofs,) by L2 projection onto continuous P2."""
-    scalar = Basis(body.mesh, ElementTriP2(), quadrature=body.basis.quadrature)
-    mass = asm(BilinearForm(lambda a, b, w: a * b), scalar).tocsc()
-    factor = splu(mass)
+    if "mass" not in body.cache:  # depends only on the mesh: shared by placed copies
+        scalar = Basis(body.mesh, ElementTriP2(), quadrature=body.basis.quadrature)
+        mass = asm(BilinearForm(lambda a, b, w: a * b), scalar).tocsc()
+        body.cache["mass"] = (scalar, splu(mass))
+    scalar, factor = body.cache["mass"]
     sq = quadrature_stress(body, u)
     rhs = np.column_stack([asm(LinearForm(lambda v, w: w.s * v), scalar, s=c) for c in sq])
     nodal = factor.solve(rhs)

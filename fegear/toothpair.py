@@ -9,6 +9,7 @@ rebuilt with more teeth if one would have closed.
 
 from __future__ import annotations
 
+import logging
 import math
 import time
 from dataclasses import dataclass, field, replace
@@ -23,13 +24,16 @@ from .hertz import line_contact
 from .mesh import mesh_bodies
 from .params import PairParameters, require_range
 from .profile import Gear1Profile, wrap
-from .scene import QUALITY, Scene, build_scene
+from .scene import QUALITY, Scene, build_scene, candidate_data
 from .stress import StressField, recover
 from .tca import ToothContact
 
+log = logging.getLogger(__name__)
+
 TOOTH_STIFFNESS = 14.0   # N/(mm·µm): ISO 6336 single-pair stiffness c', for the load estimate
-MARGIN_FACTOR = 1.5      # pair every tooth whose clearance is below 1.5 × the loaded rotation
-MARGIN_UM = 3.0          # … plus 3 µm
+MARGIN_UM = 3.0          # pair every tooth whose clearance is below the rigid closure + 3 µm,
+MARGIN_FACTOR = 1.5      # … or below 1.5 × the closure + 3 µm within NEAR_TEETH of such a tooth
+NEAR_TEETH = 2
 TIP_ROUND = 0.125        # default tip-edge round of gear 1, in modules (0.25 mm at m = 2)
 
 
@@ -37,7 +41,9 @@ TIP_ROUND = 0.125        # default tip-edge round of gear 1, in modules (0.25 mm
 class SolveCase:
     """Inputs: the pair, torque (N·m) on gear 1, rolling angle β (rad), face width (mm), one
     material (E MPa, ν), quality, rim thicknesses below the roots (mm; default 3 m), unloaded
-    extra teeth meshed on each side, penalty factor."""
+    extra teeth meshed on each side, extra teeth paired on each side of the chosen ones
+    (beyond what the closure needs: the safety check), penalty factor, gear 1's tip-edge
+    round (mm)."""
 
     params: PairParameters
     torque: float = 200.0
@@ -49,6 +55,7 @@ class SolveCase:
     rim1: float | None = None
     rim2: float | None = None
     extra_teeth: int = 1
+    extra_pairs: int = 0
     penalty_factor: float = 30.0
     tip_round: float | None = None
 
@@ -63,6 +70,7 @@ class SolveCase:
             if v is not None:
                 require_range(name, v, 0.5 * self.params.m, 20 * self.params.m, unit="mm")
         require_range("extra_teeth", self.extra_teeth, 1, 10)
+        require_range("extra_pairs", self.extra_pairs, 0, 5)
         if self.tip_round is not None:
             require_range("tip_round", self.tip_round, 0.0, 0.5 * self.params.m, unit="mm")
 
@@ -89,7 +97,7 @@ class ToothResult:
     (None where the curvatures are not a Hertz pair), b/R*, unloaded clearance (µm)."""
 
     tooth: int
-    clearance_um: float
+    clearance_um: float | None    # None: no + contact point on this tooth at this β
     load_N: float
     load_share: float
     p_max_MPa: float
@@ -139,91 +147,163 @@ class PairSolution:
                 "von_mises_max_MPa": self.von_mises_max}
 
 
-def choose_teeth(state, threshold_um: float) -> tuple[int, ...]:
-    """Gear-1 teeth whose + clearance is below ``threshold_um`` (at least the closest one)."""
-    open_ = [(c.plus_um, c.tooth) for c in state.teeth if c.plus_um is not None]
-    chosen = [t for c, t in open_ if c < threshold_um]
-    return tuple(sorted(chosen or [min(open_)[1]]))
+def choose_teeth(state, closure_um: float, widen: int = 0) -> tuple[int, ...]:
+    """Gear-1 teeth to pair at one position, for a rigid closure ``closure_um`` (µm of arc at
+    r0) of gear 1 against its kinematic position.
+
+    A tooth is paired if its + clearance is below the closure plus MARGIN_UM, or, within
+    NEAR_TEETH of such a tooth, below MARGIN_FACTOR × the closure plus MARGIN_UM (the loaded
+    teeth's neighbours also move elastically); at least the closest tooth. ``widen`` adds that
+    many teeth on each side of every paired tooth (to show the choice is safe)."""
+    open_ = {c.tooth: c.plus_um for c in state.teeth if c.plus_um is not None}
+    z1 = len(state.teeth)
+    rigid = {t for t, c in open_.items() if c < closure_um + MARGIN_UM}
+    rigid = rigid or {min(open_, key=open_.get)}
+    near = {(t + k) % z1 for t in rigid for k in range(-NEAR_TEETH, NEAR_TEETH + 1)}
+    chosen = rigid | {t for t in near if t in open_
+                      and open_[t] < MARGIN_FACTOR * closure_um + MARGIN_UM}
+    chosen |= {(t + k) % z1 for t in chosen for k in range(-widen, widen + 1)}
+    return tuple(sorted(t for t in chosen if t in open_))
+
+
+@dataclass(frozen=True)
+class PairModel:
+    """The meshed and factorised sector bodies (in their own frames) for a set of rolling
+    angles; :func:`solve_position` places them at one β and solves the contact there."""
+
+    case: SolveCase
+    scene: Scene = field(repr=False)
+    bodies: tuple[Body, Body] = field(repr=False)
+    root_zones: tuple[np.ndarray, np.ndarray] = field(repr=False)
+    timings_s: dict
+
+
+def build_model(case: SolveCase, profile: Gear1Profile, positions, teeth) -> PairModel:
+    """Mesh and factorise the sector for the paired ``teeth`` over ``positions`` (β, state)."""
+    p = case.params
+    times = {}
+    t0 = time.perf_counter()
+    rim1, rim2 = case.rims
+    scene = build_scene(p, profile, positions, teeth, case.torque * 1e3, case.thickness, case.E,
+                        case.nu, case.quality, rim1, rim2, case.extra_teeth, case.edge_radius)
+    m1, m2 = mesh_bodies([scene.gear1, scene.gear2])
+    times["mesh"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    mat = case.material
+    g1 = assemble_body(m1, mat, link=RigidLink("g1_bore", "rotation", (0.0, 0.0)))
+    g2 = assemble_body(m2, mat, fixed=("g2_rim",))
+    times["assemble_factor"] = time.perf_counter() - t0
+    zones = (_root_nodes(g1, scene.profile1, scene.root_band1),
+             _root_nodes(g2, scene.profile2, scene.root_band2))
+    return PairModel(case, scene, (g1, g2), zones, times)
 
 
 def solve_pair(case: SolveCase, profile: Gear1Profile | None = None) -> PairSolution:
     """Solve one position; pairs more teeth until no unpaired tooth would close."""
+    profile = profile if profile is not None else Gear1Profile(case.params)
+    return solve_positions(case, (case.beta,), profile)[0]
+
+
+def cycle_positions(beta0: float, n: int, z2: int) -> tuple[float, ...]:
+    """``n`` rolling angles evenly across one tooth pitch 2π/z2 of gear 2, from β0."""
+    return tuple(float(wrap(beta0 + k * 2 * math.pi / z2 / n)) for k in range(n))
+
+
+def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None
+                    ) -> tuple[PairSolution, ...]:
+    """Solve at each rolling angle of ``betas`` on one mesh: the windows cover every paired
+    tooth's contact path over the positions, the bodies are factorised and condensed once,
+    and each position only re-pairs the contact points and solves the small contact problem.
+    If an unpaired tooth would close at some position, the scene is rebuilt with it."""
     p = case.params
-    times: dict[str, float] = {}
     t0 = time.perf_counter()
     profile = profile if profile is not None else Gear1Profile(p)
-    state = ToothContact(p, profile).state(case.beta)
-    times["profile"] = time.perf_counter() - t0
+    tca = ToothContact(p, profile)
+    states = [(b, tca.state(b)) for b in betas]
+    t_profile = time.perf_counter() - t0
     force = case.torque * 1e3 / p.r0
     estimate_um = force / (case.thickness * TOOTH_STIFFNESS) / 3.0
-    teeth = choose_teeth(state, MARGIN_FACTOR * estimate_um + MARGIN_UM)
+    teeth = _union(choose_teeth(st, _first_clearance(st) + estimate_um, case.extra_pairs)
+                   for _, st in states)
     for _ in range(4):
-        sol = _solve_teeth(case, profile, state, teeth, times)
-        closed_um = sol.rotation * p.r0 * 1e3
-        more = choose_teeth(state, MARGIN_FACTOR * closed_um + MARGIN_UM)
-        if set(more) <= set(teeth):
-            return sol
-        teeth = tuple(sorted(set(teeth) | set(more)))
+        model = build_model(case, profile, states, teeth)
+        sols = []
+        for k, (beta, state) in enumerate(states):
+            sol = solve_position(model, beta, state)
+            if k == 0:  # the first position carries the one-off stages
+                sol = replace(sol, timings_s={"profile": t_profile, **model.timings_s,
+                                              **sol.timings_s})
+            sols.append(sol)
+        more = _union(choose_teeth(st, s.rotation * p.r0 * 1e3, case.extra_pairs)
+                      for (_, st), s in zip(states, sols))
+        if set(more) <= set(model.scene.paired):
+            return tuple(sols)
+        log.info("teeth %s would close: rebuilding the scene", sorted(set(more) - set(teeth)))
+        teeth = _union((teeth, more))
     raise FegearError("the paired teeth did not settle after 4 rebuilds")
 
 
-def _solve_teeth(case, profile, state, teeth, times) -> PairSolution:
-    p = case.params
-    t0 = time.perf_counter()
-    rim1, rim2 = case.rims
-    scene = build_scene(p, profile, state, teeth, case.beta, case.torque * 1e3, case.thickness,
-                        case.E, case.nu, case.quality, rim1, rim2, case.extra_teeth,
-                        case.edge_radius)
-    m1, m2 = mesh_bodies([scene.gear1, scene.gear2])
-    times["mesh"] = time.perf_counter() - t0
+def _first_clearance(state) -> float:
+    """Smallest + clearance at a position (µm): the rigid closure at first touch."""
+    return min(c.plus_um for c in state.teeth if c.plus_um is not None)
 
-    t0 = time.perf_counter()
-    mat = case.material
-    alpha = p.ratio * case.beta
-    g1 = replace(assemble_body(m1, mat, link=RigidLink("g1_bore", "rotation", (0.0, 0.0))),
-                 placement=Placement(alpha, (0.0, p.e)))
-    g2 = replace(assemble_body(m2, mat, fixed=("g2_rim",)), placement=Placement(case.beta))
-    times["assemble_factor"] = time.perf_counter() - t0
 
+def _union(groups) -> tuple[int, ...]:
+    return tuple(sorted(set().union(*groups)))
+
+
+def solve_position(model: PairModel, beta: float, state) -> PairSolution:
+    """Place the model's bodies at β, pair the contact points and solve; stresses per tooth.
+    ``state`` is the clearance state at β (for the predicted contact points)."""
+    case = replace(model.case, beta=beta)
+    p, scene = case.params, model.scene
+    times: dict[str, float] = {}
     t0 = time.perf_counter()
-    pairs = [ContactPair(f"tooth {c.tooth}", 0, f"g1_contact_{c.tooth}", 1,
-                         f"g2_contact_{c.tooth}", scene.master) for c in scene.candidates]
-    model = build_contact([g1, g2], pairs, ContactSettings(penalty_factor=case.penalty_factor))
+    alpha = p.ratio * beta
+    g1 = replace(model.bodies[0], placement=Placement(alpha, (0.0, p.e)))
+    g2 = replace(model.bodies[1], placement=Placement(beta))
+    cands = candidate_data(p, scene.shape, state, scene.paired, beta)
+    master = scene.master(beta)
+    pairs = [ContactPair(f"tooth {t}", 0, f"g1_contact_{t}", 1, "g2_contact", master)
+             for t in scene.paired]
+    contact = build_contact([g1, g2], pairs, ContactSettings(penalty_factor=case.penalty_factor))
     times["condense"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
     torque = case.torque * 1e3
-    sol = solve_contact(model, load=torque)
+    sol = solve_contact(contact, load=torque)
     times["contact"] = time.perf_counter() - t0
 
     t0 = time.perf_counter()
     stresses = tuple(recover(b, u) for b, u in zip((g1, g2), sol.displacements))
-    zone1 = _root_nodes(g1, scene.profile1, scene.root_band1)
-    zone2 = _root_nodes(g2, scene.profile2, scene.root_band2)
+    zone1, zone2 = model.root_zones
     roots = (float(stresses[0].max_principal[zone1].max()),
              float(stresses[1].max_principal[zone2].max()))
     pitch1, pitch2 = scene.shape.pitch, 2 * math.pi / p.z2
     vm = float(max(s.von_mises.max() for s in stresses))
     patches = {pt.pair: pt for pt in sol.patches}
-    a = model.gap0(sol.link_value)[1]
+    a = contact.gap0(sol.link_value)[1]
+    by_tooth = {c.tooth: c for c in cands}
     results = []
-    for k, c in enumerate(scene.candidates):
-        sel = model.pair_index == k
+    for k, tooth in enumerate(scene.paired):
+        c = by_tooth.get(tooth)
+        sel = contact.pair_index == k
         share = float(-(a[sel] @ sol.force[sel]) / torque)
         patch = patches.get(pairs[k].name)
         load = patch.load if patch else 0.0
-        hz = _hertz(c, load, case) if load > 0 else None
-        centre2 = round(c.theta2 / pitch2) * pitch2  # gear-2 tooth tips sit at 2πk/z2
+        hz = _hertz(c, load, case) if load > 0 and c is not None else None
+        clearance = c.clearance_um if c is not None else None
+        root2 = (_sector_max(g2, stresses[1], zone2, round(c.theta2 / pitch2) * pitch2, pitch2)
+                 if c is not None else 0.0)  # gear-2 tooth tips sit at 2πk/z2
         results.append(ToothResult(
-            c.tooth, c.clearance_um, load, share, patch.p_max if patch else 0.0,
+            tooth, clearance, load, share, patch.p_max if patch else 0.0,
             patch.half_width if patch else 0.0, hz.p0 if hz else None, hz.b if hz else None,
             hz.b_over_R if hz else None,
-            _sector_max(g1, stresses[0], zone1, scene.shape.tooth_center + c.tooth * pitch1,
-                        pitch1),
-            _sector_max(g2, stresses[1], zone2, centre2, pitch2)))
+            _sector_max(g1, stresses[0], zone1, scene.shape.tooth_center + tooth * pitch1,
+                        pitch1), root2))
     times["recovery"] = time.perf_counter() - t0
-    first = _touch_rotation(model)
-    return PairSolution(case, scene, (g1, g2), model, sol, stresses, tuple(results), roots, vm,
+    first = _touch_rotation(contact)
+    return PairSolution(case, scene, (g1, g2), contact, sol, stresses, tuple(results), roots, vm,
                         sol.link_value, first, g1.ndofs + g2.ndofs, dict(times))
 
 

@@ -1,6 +1,7 @@
-"""Tooth-pair scene, tip rounding and solve (issue 4, in progress)."""
+"""Tooth-pair scene, tip rounding, tooth choice and solve, one position and a mesh cycle."""
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -10,7 +11,13 @@ from fegear.params import PairParameters
 from fegear.profile import Gear1Profile
 from fegear.rounding import RoundedProfile
 from fegear.scene import _profile_segments
-from fegear.toothpair import SolveCase, solve_pair
+from fegear.toothpair import (
+    SolveCase,
+    choose_teeth,
+    cycle_positions,
+    solve_pair,
+    solve_positions,
+)
 
 
 def circle(phi):
@@ -95,3 +102,49 @@ def test_tip_round_is_tangent_and_only_removes_material(rho):
 def test_tip_round_too_large_is_refused():
     with pytest.raises(ParameterError, match="tip_round"):
         RoundedProfile(Gear1Profile(PairParameters()), 5.0)
+
+
+def clearance_state(plus_um):
+    return SimpleNamespace(teeth=[SimpleNamespace(tooth=k, plus_um=c)
+                                  for k, c in enumerate(plus_um)])
+
+
+def test_choose_teeth_pairs_rigid_closures_and_elastic_neighbours():
+    # closure 10 µm: rigid threshold 13 µm; within 2 teeth of a closed one 1.5·10 + 3 = 18 µm
+    state = clearance_state([4, 17, 60, 60, 16, 60, 60, 60, None, 19, 14.5])
+    # 10 (14.5) and 1 (17) are neighbours of 0 (across the wrap); 4 (16) is too far away;
+    # 9 (19) is a neighbour but above 18 µm
+    assert choose_teeth(state, 10.0) == (0, 1, 10)
+    assert choose_teeth(state, 10.0, widen=1) == (0, 1, 2, 9, 10)  # 8 has no + flank
+    # nothing within reach: the closest tooth is still paired
+    assert choose_teeth(clearance_state([30, 20, 40]), 1.0) == (1,)
+
+
+def test_mesh_cycle_repeats_after_one_pitch_with_the_next_tooth():
+    """β and β + 2π/z2 are the same state with every tooth index moved by one: one mesh and
+    one factorisation serve both; the two meshes around the loaded teeth differ, so the match
+    is to discretisation accuracy."""
+    p = PairParameters(shift=0.016, rotation=0.002)
+    b0, b1 = 0.0, 2 * math.pi / p.z2
+    s0, s1 = solve_positions(SolveCase(p, torque=200.0, quality="fast"), (b0, b1))
+    assert s0.bodies[0].cache is s1.bodies[0].cache   # one factorisation and flexibility
+    assert s1.timings_s["condense"] < 0.2 * s0.timings_s["condense"]
+    share0 = {t.tooth: t.load_share for t in s0.teeth}
+    share1 = {t.tooth: t.load_share for t in s1.teeth}
+    # gear 2 turns by one of its pitches: tooth t then stands where tooth t + 1 stood
+    assert sum(share0.values()) == pytest.approx(1.0, abs=1e-6)
+    for tooth, share in share0.items():
+        assert share1.get(tooth - 1, 0.0) == pytest.approx(share, abs=0.01)
+    assert s1.rotation == pytest.approx(s0.rotation, rel=0.01)
+    assert s1.first_touch == pytest.approx(s0.first_touch, rel=0.01)
+    for a, b in zip(s0.root_stress, s1.root_stress):
+        assert b == pytest.approx(a, rel=0.03)
+    for s in (s0, s1):
+        assert s.contact.balance_error < 1e-6
+        assert sum(t.load_share for t in s.teeth) == pytest.approx(1.0, abs=1e-6)
+
+
+def test_cycle_positions_span_one_pitch():
+    b = cycle_positions(0.1, 4, 45)
+    assert np.allclose(np.diff(b), 2 * math.pi / 45 / 4)
+    assert b[0] == 0.1
