@@ -94,8 +94,8 @@ def build_parser() -> argparse.ArgumentParser:
                     help="gear-1 rim below the roots, to the bore [mm] (default 3 m)")
     sv.add_argument("--rim2", type=float, default=None,
                     help="gear-2 rim beyond the roots, to the fixed rim [mm] (default 3 m)")
-    sv.add_argument("--extra-teeth", type=int, default=1,
-                    help="unloaded teeth meshed beyond the paired ones on each side (default 1)")
+    sv.add_argument("--extra-teeth", type=int, default=2,
+                    help="unloaded teeth meshed beyond the paired ones on each side (default 2)")
     sv.add_argument("--extra-pairs", type=int, default=0,
                     help="pair this many more teeth on each side than the closure needs "
                          "(default 0; a safety check)")

@@ -6,13 +6,15 @@ and placed at β (:class:`fegear.assembly.Placement`), so one factorisation serv
 position.
 
 * Gear 1 is an annular sector: its exact profile over the chosen teeth, radial cuts through the
-  middle of an unloaded extra tooth at each end, and a bore of radius ρ1,min − ``rim1`` tied to
-  the rotation unknown that carries the torque (a mechanism: rigid rotation about O1).
+  middle of the ``extra``-th unpaired tooth beyond them at each end, and a bore of radius
+  ρ1,min − ``rim1`` tied to the rotation unknown that carries the torque (a mechanism: rigid
+  rotation about O1).
 * Gear 2 is a ring sector: its exact profile over the same angular range, radial cuts through
-  the middle of an extra tooth, and the outer rim at ρ2,max + ``rim2``, fixed.
-* Cut faces are traction free. The refined parts are a contact window on every candidate
-  flank (both gears) and the root zone (the lower ``ROOT_BAND`` of the tooth height) of every
-  tooth space.
+  a gear-2 tooth tip just beyond gear 1's cuts, and the outer rim at ρ2,max + ``rim2``, fixed.
+* Cut faces are traction free. The refined parts are a contact window on every paired flank
+  (both gears), long enough to cover the tooth's contact points at every rolling angle of the
+  scene, the root zone (the lower ``ROOT_BAND`` of the tooth height) of every tooth space, and
+  gear 1's tip rounds that a window reaches.
 """
 
 from __future__ import annotations
@@ -141,10 +143,14 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
     m = params.m
     shape = shape if shape is not None else RoundedProfile(profile, tip_round)
     betas = tuple(b for b, _ in positions)
-    cands = [(b, c) for b, st in positions for c in candidate_data(params, shape, st, teeth, b)]
+    at = [(b, candidate_data(params, shape, st, teeth, b)) for b, st in positions]
+    cands = [(b, c) for b, cs in at for c in cs]
     if not cands:
         raise ParameterError("teeth", teeth, "teeth with a contact point on the + flank")
-    b_full = max(hertz_half_width(params, torque_nmm, c, thickness, E, nu) for _, c in cands)
+    # element size from the tooth that touches first at each position (it carries the most
+    # load), not from every paired tooth: pairing more teeth leaves the mesh of the others
+    first = [min(cs, key=lambda c: c.clearance_um) for _, cs in at if cs]
+    b_full = max(hertz_half_width(params, torque_nmm, c, thickness, E, nu) for c in first)
     b_shared = b_full / math.sqrt(SHARE_GUESS)  # b ∝ sqrt(load)
     h_contact = b_shared / n_b
 

@@ -2,9 +2,13 @@
 
 Torque T (N·m) acts on gear 1 counter-clockwise (the ``+`` direction of the clearance table),
 through a rigid rotation θ of its bore about O1; gear 2's outer rim is fixed. Teeth are paired
-when their unloaded clearance is below an estimate of the loaded rotation (with a margin); after
-the solve, every unpaired tooth is checked against the computed rotation, and the scene is
+from the unloaded clearance table and an estimate of the loaded rotation (:func:`choose_teeth`);
+after the solve every unpaired tooth is checked against the computed rotation, and the scene is
 rebuilt with more teeth if one would have closed.
+
+A set of rolling angles (a mesh cycle) shares one scene, one factorisation and one condensed
+flexibility per body (:class:`PairModel`); each position only places the bodies, pairs the
+contact points against gear 2's exact curve and solves the small contact problem.
 """
 
 from __future__ import annotations
@@ -54,7 +58,7 @@ class SolveCase:
     quality: str = "standard"
     rim1: float | None = None
     rim2: float | None = None
-    extra_teeth: int = 1
+    extra_teeth: int = 2
     extra_pairs: int = 0
     penalty_factor: float = 30.0
     tip_round: float | None = None

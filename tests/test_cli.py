@@ -126,3 +126,22 @@ def test_solve_writes_vtu_png_and_summary(tmp_path):
         assert {"displacement", "von_mises", "s1", "contact_pressure"} <= set(m.point_data)
         assert m.point_data["contact_pressure"].max() > 0
     assert (tmp_path / "von_mises.png").stat().st_size > 10_000
+
+
+@pytest.mark.slow
+def test_solve_positions_writes_cycle_csv_and_plot(tmp_path):
+    r = run("solve", "--shift", "0.016", "--rotation", "0.002", "--quality", "fast",
+            "--positions", "3", "--no-estimate", "--out", str(tmp_path), "--json")
+    assert r.returncode == 0, r.stderr
+    s = json.loads(r.stdout)
+    rows = np.genfromtxt(tmp_path / "cycle.csv", delimiter=",", names=True)
+    assert len(rows) == 3 == s["cycle"]["positions"]
+    assert np.allclose(np.diff(rows["position_deg"]), 360 / 45 / 3)
+    shares = np.column_stack([rows[n] for n in rows.dtype.names if n.startswith("share_")])
+    assert np.allclose(shares.sum(axis=1), 1.0, atol=1e-6)
+    worst = max(rows["root_stress_gear1_MPa"])
+    assert s["root_stress_gear1_MPa"] == pytest.approx(worst)  # details at the worst position
+    assert s["cycle"]["root_stress_gear1_MPa"]["max"] == pytest.approx(worst)
+    assert (tmp_path / "cycle.png").stat().st_size > 10_000
+    for name in ("gear1.vtu", "gear2.vtu", "von_mises.png", "summary.json"):
+        assert (tmp_path / name).stat().st_size > 0
