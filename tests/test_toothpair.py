@@ -127,8 +127,9 @@ def test_mesh_cycle_repeats_after_one_pitch_with_the_next_tooth():
     p = PairParameters(shift=0.016, rotation=0.002)
     b0, b1 = 0.0, 2 * math.pi / p.z2
     s0, s1 = solve_positions(SolveCase(p, torque=200.0, quality="fast"), (b0, b1))
-    assert s0.bodies[0].cache is s1.bodies[0].cache   # one factorisation and flexibility
-    assert s1.timings_s["condense"] < 0.2 * s0.timings_s["condense"]
+    for b0_, b1_ in zip(s0.bodies, s1.bodies):   # one factorisation and one flexibility
+        assert b0_.factor is b1_.factor and b0_.cache is b1_.cache
+        assert sum(1 for k in b0_.cache if k[0] == "flexibility") == 1
     share0 = {t.tooth: t.load_share for t in s0.teeth}
     share1 = {t.tooth: t.load_share for t in s1.teeth}
     # gear 2 turns by one of its pitches: tooth t then stands where tooth t + 1 stood
