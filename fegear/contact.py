@@ -262,7 +262,7 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
             [facet_nodes(body.mesh, body.mesh.boundaries[n]).ravel() for n in names]))
         local = np.full(body.mesh.doflocs.shape[1], -1)
         local[window] = np.arange(len(window))
-        Cw = np.zeros((nq, 2 * len(window)))
+        rows_, cols_, vals_ = [], [], []
         for k in range(len(pairs)):
             rows = np.arange(offsets[k], offsets[k + 1])
             for owner, nodes, shape, normal in parts["rows"][k]:
@@ -270,12 +270,16 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
                     continue
                 cols = 2 * local[nodes]  # (n, 3)
                 for j in range(3):
-                    np.add.at(Cw, (rows, cols[:, j]), shape[:, j] * normal[:, 0])
-                    np.add.at(Cw, (rows, cols[:, j] + 1), shape[:, j] * normal[:, 1])
+                    for d in range(2):
+                        rows_.append(rows)
+                        cols_.append(cols[:, j] + d)
+                        vals_.append(shape[:, j] * normal[:, d])
+        Cs = sp.coo_matrix((np.concatenate(vals_), (np.concatenate(rows_),
+                                                    np.concatenate(cols_))),
+                           shape=(nq, 2 * len(window))).tocsr()  # duplicates summed
         F = body.flexibility(window)
-        G += Cw @ F @ Cw.T
-        Cs = sp.csr_matrix(Cw)  # window columns → the body's dofs
-        dofs = body.node_dofs(window).ravel()
+        G += Cs @ (Cs @ F).T  # C F Cᵀ, F symmetric; C sparse, so no dense product
+        dofs = body.node_dofs(window).ravel()  # window columns → the body's dofs
         C.append(sp.csr_matrix((Cs.data, dofs[Cs.indices], Cs.indptr), shape=(nq, body.ndofs)))
     h = float(np.mean(np.concatenate(lengths)))
     kappa = settings.penalty_factor * min(moduli) / h
