@@ -26,8 +26,10 @@ from skfem import Basis, ElementTriP2, ElementVector, asm
 from skfem.models.elasticity import lame_parameters, linear_elasticity, plane_stress
 
 from .errors import FegearError, ParameterError
+from .hertz import plane_modulus
 from .mesh import BodyMesh
 from .params import require_finite
+from .profile import rotate
 
 PLANE_MODES = ("stress", "strain")
 
@@ -66,7 +68,7 @@ class Material:
     @property
     def plane_modulus(self) -> float:
         """E' of Hertz theory: E in plane stress, E/(1 − ν²) in plane strain (MPa)."""
-        return self.E if self.plane == "stress" else self.E / (1.0 - self.nu**2)
+        return plane_modulus(self.E, self.nu, self.plane)
 
     @property
     def shear_modulus(self) -> float:
@@ -105,9 +107,7 @@ class RigidLink:
         x = np.asarray(x, dtype=float)
         if self.kind == "rotation":
             c = np.asarray(self.center)
-            cs, sn = np.cos(value), np.sin(value)
-            r = x - c
-            return c + np.column_stack([cs * r[:, 0] - sn * r[:, 1], sn * r[:, 0] + cs * r[:, 1]])
+            return c + rotate(x - c, value)
         return x + value * np.asarray(self.direction)
 
 
@@ -123,14 +123,10 @@ class Placement:
     offset: tuple[float, float] = (0.0, 0.0)
 
     def vec_to_fixed(self, v: np.ndarray) -> np.ndarray:
-        c, s = np.cos(self.angle), np.sin(self.angle)
-        v = np.asarray(v, dtype=float)
-        return np.column_stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]])
+        return rotate(np.asarray(v, dtype=float), self.angle)
 
     def vec_to_body(self, v: np.ndarray) -> np.ndarray:
-        c, s = np.cos(self.angle), np.sin(self.angle)
-        v = np.asarray(v, dtype=float)
-        return np.column_stack([c * v[:, 0] + s * v[:, 1], -s * v[:, 0] + c * v[:, 1]])
+        return rotate(np.asarray(v, dtype=float), -self.angle)
 
     def to_fixed(self, x: np.ndarray) -> np.ndarray:
         return self.vec_to_fixed(x) + np.asarray(self.offset)

@@ -173,10 +173,10 @@ def _profile_table(geo) -> str:
 def cmd_hertz(a: argparse.Namespace) -> int:
     import time
 
-    from .disks import DiskCase, solve_disks, write_disk_outputs
+    from .disks import QUALITY, DiskCase, solve_disks, write_disk_outputs
     from .output import prepare_dir
 
-    quality = a.quality if a.quality in ("coarse", "standard", "fine") else _number(
+    quality = a.quality if a.quality in QUALITY else _number(
         "quality", a.quality)
     kw = {} if a.penalty_factor is None else {"penalty_factor": a.penalty_factor}
     case = DiskCase(r1=a.r1, r2=a.r2, load=a.load, thickness=a.thickness, E=a.E, nu=a.nu,

@@ -78,7 +78,7 @@ def solve_contact(model: ContactModel, load: float | None = None,
     theta = 0.0 if motion is None else float(motion)
     g0, a = model.gap0(theta)
     if motion is None:
-        theta = _first_touch(g0, a, load, k_link)
+        theta = first_touch(g0, a, load, k_link)
         g0, a = model.gap0(theta)
     active = g0 < 0
     if motion is None and not active.any():
@@ -132,8 +132,9 @@ def solve_contact(model: ContactModel, load: float | None = None,
                            balance, displacements, residuals, patches)
 
 
-def _first_touch(g0: np.ndarray, a: np.ndarray, load: float, k_link: float) -> float:
-    """Link motion at which the first point closes, moving the way the load pushes."""
+def first_touch(g0: np.ndarray, a: np.ndarray, load: float, k_link: float) -> float:
+    """Link motion at which the first point closes, moving the way the load pushes, for the
+    gaps g0 + a·motion linearised at the current motion (for a stiff link: load / k)."""
     if k_link > 0:
         return load / k_link
     direction = np.sign(load) if load != 0 else -1.0

@@ -179,8 +179,8 @@ def _mesh_one(gmsh, body: BodyGeometry) -> BodyMesh:
     geo.synchronize()
 
     fields = []
+    known = {**curve_tags, **zone_tags}
     for ref in body.refinements:
-        known = {**curve_tags, **zone_tags}
         missing = [s for s in ref.segments if s not in known]
         if missing or not (ref.size > 0 and ref.growth > 0):
             raise MeshError(f"body {body.name!r}: bad refinement {ref} (unknown {missing})")

@@ -15,6 +15,7 @@ import numpy as np
 
 from .contact_solve import nodal_pressure
 from .output import vtu_fields, write_atomic, write_json, write_vtu
+from .plot import cycle_png
 from .profile import Gear1Profile
 from .toothpair import PairSolution, solve_pair
 
@@ -210,52 +211,8 @@ def write_cycle_outputs(rows: list[dict], out: Path, title: str) -> dict[str, Pa
         tmp.write_text("\n".join(lines) + "\n")
 
     files = {"csv": write_atomic(out / "cycle.csv", csv)}
-    files["cycle_png"] = cycle_png(out / "cycle.png", rows, title)
+    files["cycle_png"] = cycle_png(out / "cycle.png", rows, title, HEADLINE)
     return files
-
-
-def cycle_png(path: Path, rows: list[dict], title: str) -> Path:
-    """Load share per tooth, headline stresses and transmission error against position."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    beta = [r["position_deg"] for r in rows]
-    fig, ax = plt.subplots(3, 1, figsize=(8, 10), sharex=True)
-    for k in (k for k in rows[0] if k.startswith("share_")):
-        v = [r[k] for r in rows]
-        if any(x > 0 for x in v):
-            ax[0].plot(beta, v, marker="o", ms=3, label=f"tooth {k[6:]}")
-    ax[0].set_ylabel("load share")
-    ax[0].legend(fontsize=8, ncol=3)
-    for k, label in zip(HEADLINE, ("root σ1 gear 1", "root σ1 gear 2", "contact p_max",
-                                   "von Mises max")):
-        ax[1].plot(beta, [r[k] for r in rows], marker="o", ms=3, label=label)
-    ax[1].set_yscale("log")
-    ax[1].set_ylabel("stress [MPa]")
-    ax[1].legend(fontsize=8)
-    ax[2].plot(beta, [r["rotation_urad"] for r in rows], marker="o", ms=3,
-               label="loaded rotation θ (from kinematic)")
-    ax[2].plot(beta, [r["first_touch_urad"] for r in rows], marker="o", ms=3,
-               label="unloaded (first touch)")
-    ax[2].plot(beta, [r["transmission_error_urad"] for r in rows], marker="o", ms=3,
-               label="elastic part θ − θ_touch")
-    ax[2].set_ylabel("gear-1 rotation [µrad]")
-    ax[2].set_xlabel("rolling angle β of gear 2 [deg]")
-    ax[2].legend(fontsize=8)
-    for a in ax:
-        a.grid(alpha=0.3)
-    fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
-
-    def w(tmp: Path) -> None:
-        fig.savefig(tmp, dpi=110, format="png")
-
-    try:
-        return write_atomic(path, w)
-    finally:
-        plt.close(fig)
 
 
 def fixed_frame_fields(sol: PairSolution, body: int) -> tuple[np.ndarray, dict]:

@@ -59,8 +59,55 @@ def pair_png(path: Path, gear1: np.ndarray, gear2: np.ndarray, e: float, r0: flo
     az.set_title("zoom on the pitch-point teeth (β = 0)", fontsize=9)
     fig.tight_layout()
 
+    return _save_png(fig, path, 130)
+
+
+def cycle_png(path: Path, rows: list[dict], title: str, stresses: tuple[str, ...]) -> Path:
+    """Load share per tooth, the ``stresses`` (row keys: root σ1 of gear 1 and 2, contact
+    pressure, von Mises) and gear 1's rotation against position, from the rows of
+    :func:`fegear.pairout.cycle_rows`."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    beta = [r["position_deg"] for r in rows]
+    fig, ax = plt.subplots(3, 1, figsize=(8, 10), sharex=True)
+    for k in (k for k in rows[0] if k.startswith("share_")):
+        v = [r[k] for r in rows]
+        if any(x > 0 for x in v):
+            ax[0].plot(beta, v, marker="o", ms=3, label=f"tooth {k[6:]}")
+    ax[0].set_ylabel("load share")
+    ax[0].legend(fontsize=8, ncol=3)
+    for k, label in zip(stresses, ("root σ1 gear 1", "root σ1 gear 2", "contact p_max",
+                                   "von Mises max")):
+        ax[1].plot(beta, [r[k] for r in rows], marker="o", ms=3, label=label)
+    ax[1].set_yscale("log")
+    ax[1].set_ylabel("stress [MPa]")
+    ax[1].legend(fontsize=8)
+    ax[2].plot(beta, [r["rotation_urad"] for r in rows], marker="o", ms=3,
+               label="loaded rotation θ (from kinematic)")
+    ax[2].plot(beta, [r["first_touch_urad"] for r in rows], marker="o", ms=3,
+               label="unloaded (first touch)")
+    ax[2].plot(beta, [r["transmission_error_urad"] for r in rows], marker="o", ms=3,
+               label="elastic part θ − θ_touch")
+    ax[2].set_ylabel("gear-1 rotation [µrad]")
+    ax[2].set_xlabel("rolling angle β of gear 2 [deg]")
+    ax[2].legend(fontsize=8)
+    for a in ax:
+        a.grid(alpha=0.3)
+    fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+
+    return _save_png(fig, path, 110)
+
+
+def _save_png(fig, path: Path, dpi: int) -> Path:
+    """Write a matplotlib figure as PNG (atomically) and close it."""
+    import matplotlib.pyplot as plt
+
     def w(tmp: Path) -> None:
-        fig.savefig(tmp, dpi=130, format="png")
+        fig.savefig(tmp, dpi=dpi, format="png")
 
     try:
         return write_atomic(path, w)

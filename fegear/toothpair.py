@@ -22,7 +22,7 @@ import numpy as np
 
 from .assembly import Body, Material, Placement, RigidLink, assemble_body, facet_nodes
 from .contact import ContactModel, ContactPair, ContactSettings, build_contact
-from .contact_solve import ContactSolution, solve_contact
+from .contact_solve import ContactSolution, first_touch, solve_contact
 from .errors import FegearError, ParameterError
 from .hertz import line_contact
 from .mesh import mesh_bodies
@@ -313,12 +313,10 @@ def solve_position(model: PairModel, beta: float, state) -> PairSolution:
 
 def _touch_rotation(model) -> float:
     """Rotation θ (rad) of the rigid gear 1 at which the first slave point touches (the meshed,
-    tip-rounded teeth; Newton on the exact rigid gaps)."""
+    tip-rounded teeth): the linearised first touch, repeated on the exact rigid gaps."""
     theta = 0.0
     for _ in range(6):
-        g0, a = model.gap0(theta)
-        closing = a < 0
-        step = float(np.min(g0[closing] / -a[closing]))
+        step = first_touch(*model.gap0(theta), load=1.0, k_link=0.0)
         theta += step
         if abs(step) < 1e-13:
             break
