@@ -21,14 +21,15 @@ from .toothpair import PairSolution, solve_pair
 
 #: headline stress → JSON key (MPa)
 HEADLINE = ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa",
-            "von_mises_max_MPa")
+            "flank_pressure_MPa", "von_mises_max_MPa")
 
 
 def error_estimate(fine: dict[str, float], coarse: dict[str, float]) -> dict[str, float]:
     """Discretisation error (%) of each headline stress of the finer mesh, by Richardson
     extrapolation from the coarser one with the P2 stress rate h² and a mesh ratio of 2:
     e ≈ |s_fine − s_coarse| / (2² − 1)."""
-    return {k: 100.0 * abs(fine[k] - coarse[k]) / 3.0 / abs(fine[k]) for k in HEADLINE}
+    return {k: 100.0 * abs(fine[k] - coarse[k]) / 3.0 / max(abs(fine[k]), 1e-300)
+            for k in HEADLINE}
 
 
 def second_level_estimate(sol: PairSolution,
@@ -63,6 +64,7 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
                    "extra_pairs": c.extra_pairs,
                    "penalty_factor": c.penalty_factor},
         **sol.headline(),
+        "contact_peak_on_tip_round": peak.peak_on_round,
         "hertz_p0_MPa": peak.hertz_p0_MPa,
         "hertz_b_over_R": peak.b_over_R,
         "teeth_in_contact": sol.teeth_in_contact,
@@ -85,7 +87,8 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
                    "load_share": t.load_share, "p_max_MPa": t.p_max_MPa,
                    "half_width_mm": t.half_width_mm, "hertz_p0_MPa": t.hertz_p0_MPa,
                    "hertz_b_mm": t.hertz_b_mm, "b_over_R": t.b_over_R,
-                   "root_stress_gear1_MPa": t.root1_MPa, "root_stress_gear2_MPa": t.root2_MPa}
+                   "root_stress_gear1_MPa": t.root1_MPa, "root_stress_gear2_MPa": t.root2_MPa,
+                   "flank_pressure_MPa": t.flank_MPa, "peak_on_tip_round": t.peak_on_round}
                   for t in sol.teeth],
         "timings_s": sol.timings_s,
         "wall_s": wall_s,
@@ -111,7 +114,7 @@ def pair_table(summary: dict) -> str:
         "|-------------------------|--------:|----------:|",
     ]
     for k, label in zip(HEADLINE, ("root σ1, gear 1", "root σ1, gear 2", "contact pressure",
-                                   "von Mises max")):
+                                   "… off the tip round", "von Mises max")):
         lines.append(f"| {label:23s} | {summary[k]:7.1f} |    {e(k)} |")
     lines += ["",
               "| tooth | clear. µm | load N | share | p_max MPa | b mm  | Hertz p0 | b/R*   "
@@ -123,11 +126,16 @@ def pair_table(summary: dict) -> str:
             continue
         hz = f"{t['hertz_p0_MPa']:8.1f}" if t["hertz_p0_MPa"] else "       -"
         br = f"{t['b_over_R']:.4f}" if t["b_over_R"] else "     -"
+        edge = "e" if t["peak_on_tip_round"] else " "
         lines.append(f"| {t['tooth']:5d} | {t['clearance_um']:8.2f} | {t['load_N']:6.0f} | "
-                     f"{t['load_share']:.3f} | {t['p_max_MPa']:9.1f} | {t['half_width_mm']:.3f} "
+                     f"{t['load_share']:.3f} | {t['p_max_MPa']:8.1f}{edge} | "
+                     f"{t['half_width_mm']:.3f} "
                      f"| {hz} | {br} | {t['root_stress_gear1_MPa']:5.0f} | "
                      f"{t['root_stress_gear2_MPa']:5.0f} |")
     unloaded = [t["tooth"] for t in summary["teeth"] if t["load_N"] <= 0]
+    if any(t["peak_on_tip_round"] for t in summary["teeth"]):
+        lines += ["", "e: the peak sits on gear 1's tip-edge round (edge contact); it depends on "
+                  "the round's exact shape and on the penalty (README, \"Edge contact\")"]
     lines += ["",
               f"teeth in contact {summary['teeth_in_contact']} (paired but open: {unloaded}); "
               f"load shares sum to {summary['load_share_sum']:.6f}; torque balance error "
@@ -187,13 +195,14 @@ def cycle_table(rows: list[dict]) -> str:
     """Markdown table of a cycle (the `fegear solve --positions` output)."""
     share_keys = [k for k in rows[0] if k.startswith("share_")]
     shown = [k for k in share_keys if any(r[k] > 0 for r in rows)]
-    head = ("| β [deg] | root1 | root2 | p_max | vM max | TE µrad | k N·m/rad | teeth | "
+    head = ("| β [deg] | root1 | root2 | p_max | p flank | vM max | TE µrad | k N·m/rad | teeth | "
             + " | ".join(f"tooth {k[6:]}" for k in shown) + " |")
-    lines = [head, "|" + "---:|" * (8 + len(shown))]
+    lines = [head, "|" + "---:|" * (9 + len(shown))]
     for r in rows:
         lines.append(
             f"| {r['position_deg']:7.3f} | {r['root_stress_gear1_MPa']:5.1f} | "
             f"{r['root_stress_gear2_MPa']:5.1f} | {r['contact_pressure_MPa']:6.0f} | "
+            f"{r['flank_pressure_MPa']:6.0f} | "
             f"{r['von_mises_max_MPa']:6.0f} | {r['transmission_error_urad']:7.1f} | "
             f"{r['mesh_stiffness_Nm_per_rad']:.4g} | {r['teeth_in_contact']} | "
             + " | ".join(f"{r[k]:.3f}" if abs(r[k]) >= 5e-4 else "0.000"

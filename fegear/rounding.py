@@ -88,6 +88,10 @@ class RoundedProfile:
             which[(local >= f.phi_a) & (local <= f.phi_b)] = k
         return which, local
 
+    def on_round(self, phi: np.ndarray) -> np.ndarray:
+        """Whether each polar angle (rad, any tooth) falls on a tip-edge round."""
+        return self._on_fillet(np.atleast_1d(np.asarray(phi, dtype=float)))[0] >= 0
+
     def radius(self, phi: np.ndarray) -> np.ndarray:
         """Polar radius (mm) of the rounded profile."""
         phi = np.atleast_1d(np.asarray(phi, dtype=float))

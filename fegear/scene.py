@@ -13,8 +13,10 @@ position.
   a gear-2 tooth tip just beyond gear 1's cuts, and the outer rim at ρ2,max + ``rim2``, fixed.
 * Cut faces are traction free. The refined parts are a contact window on every paired flank
   (both gears), long enough to cover the tooth's contact points at every rolling angle of the
-  scene, the root zone (the lower ``ROOT_BAND`` of the tooth height) of every tooth space, and
-  gear 1's tip rounds that a window reaches.
+  scene, the root zone (the lower ``ROOT_BAND`` of the tooth height) of every tooth space,
+  gear 1's tip rounds that a window reaches, and gear 2's flank under each such round wherever
+  the round comes within ``ROUND_GAP`` of it at some β (an edge contact loads both sides over
+  the same few µm, so both get the round's element size).
 """
 
 from __future__ import annotations
@@ -41,6 +43,7 @@ WINDOW_B = 2.5           # gear-1 window half-length, in Hertz half-widths at th
 WINDOW_MIN = 0.1         # … and at least this many modules
 MASTER_FACTOR = 1.4      # gear-2 window half-length relative to gear 1's
 SHARE_GUESS = 3.0        # teeth assumed to share the load when sizing the contact elements
+ROUND_GAP = 0.05         # gear 2 is refined under a round that comes this close (modules)
 SPLINE_CHORD = 1e-3      # mm, polyline handed to gmsh (nodes are snapped to the exact curve)
 
 
@@ -183,9 +186,10 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
               if any(abs(c - p) < h + w for _, p, w in windows1)]
     # the rounds meet the gear-2 flank like a cylinder of radius ρ on a plane: elements sized
     # to that Hertz half-width at the shared load
-    h_round = min([h_contact] + [line_contact(f.radius, math.inf, torque_nmm / params.r0
-                                              / SHARE_GUESS, thickness, E, nu).b / n_b
-                                 for f in shape.fillets])
+    b_round = min([b_shared] + [line_contact(f.radius, math.inf, torque_nmm / params.r0
+                                             / SHARE_GUESS, thickness, E, nu).b
+                                for f in shape.fillets])
+    h_round = min(h_contact, b_round / n_b)
 
     def g1_project(x):
         return shape.point(np.arctan2(x[:, 1], x[:, 0]))
@@ -243,10 +247,13 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
     def g2_project(x):
         return g2_curve(np.arctan2(x[:, 1], x[:, 0]))
 
+    # where a refined round comes near gear 2 at some β, gear 2 under it gets the same size
+    marks2 = _round_strips(params, shape, g2, rounds, betas, b_round / params.r0,
+                           0.5 * (th_a + th_b))
     segs2, names2 = _profile_segments(
         "g2", g2_curve, g2_project, th_a, th_b,
         [("g2_contact", p, w) for _, p, w in windows2],
-        [(f"g2_root_{k}", p, root_half2) for k, p in roots2])
+        [(f"g2_root_{k}", p, root_half2) for k, p in roots2], marks=marks2)
     rim_pts = outer * np.column_stack([np.cos(np.linspace(th_a, th_b, 80)),
                                        np.sin(np.linspace(th_a, th_b, 80))])
 
@@ -263,11 +270,27 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
         Segment("g2_cut_a", np.array([pa2, rim_pts[0]])),
     ), size=global_m * m, refinements=(
         Refinement(("g2_contact",), h_contact),
-        Refinement(tuple(n for n in names2 if n.startswith("g2_root")), root_m * m)))
+        Refinement(tuple(n for n in names2 if n.startswith("g2_root")), root_m * m),
+        *([Refinement(("g2_round",), h_round)] if marks2 else [])))
     band1 = (rho_min, rho_min + ROOT_BAND * (rho_max - rho_min))
     band2 = (R_max - ROOT_BAND * (R_max - R_min), R_max)
     return Scene(params, betas, geo1, geo2, paired, teeth1, names1, names2, band1, band2, b_full,
                  shape, g2)
+
+
+def _round_strips(params, shape, g2, rounds, betas, margin, ref):
+    """Gear-2 polar-angle ranges (lo, hi, "g2_round") that gear 1's refined ``rounds`` (body
+    angle ranges) face within ROUND_GAP modules at some β, widened by ``margin`` (rad)."""
+    out = []
+    for lo, hi in rounds:
+        pts1 = shape.point(np.linspace(lo, hi, 9))
+        for beta in betas:
+            x = rotate(rotate(pts1, params.ratio * beta) + np.array([0.0, params.e]), -beta)
+            if g2.closest(x)[2].min() > ROUND_GAP * params.m:
+                continue
+            th = [_unwrap_near(math.atan2(y, z), ref) for z, y in x]
+            out.append((min(th) - margin, max(th) + margin, "g2_round"))
+    return out
 
 
 def _path_windows(teeth, points) -> list[tuple[int, float, float]]:

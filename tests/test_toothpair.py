@@ -10,7 +10,8 @@ from fegear.errors import ParameterError
 from fegear.params import PairParameters
 from fegear.profile import Gear1Profile
 from fegear.rounding import RoundedProfile
-from fegear.scene import _profile_segments
+from fegear.scene import _profile_segments, build_scene
+from fegear.tca import ToothContact
 from fegear.toothpair import (
     SolveCase,
     choose_teeth,
@@ -97,6 +98,31 @@ def test_tip_round_is_tangent_and_only_removes_material(rho):
     mid = 0.5 * (f.phi_a + f.phi_b)
     assert shape.radius(np.array([mid + shape.pitch]))[0] == pytest.approx(
         shape.radius(np.array([mid]))[0], abs=1e-12)
+    assert shape.on_round(np.array([mid, mid + shape.pitch, f.phi_a + 1e-9])).all()
+    assert not shape.on_round(np.array([f.phi_a - 1e-6, f.phi_b + 1e-6])).any()
+
+
+def test_gear2_is_refined_like_the_rounds_wherever_a_round_comes_close():
+    p = PairParameters(shift=0.016, rotation=0.002)
+    profile = Gear1Profile(p)
+    state = ToothContact(p, profile).state(0.0)
+    teeth = choose_teeth(state, 15.0)
+    scene = build_scene(p, profile, [(0.0, state)], teeth, 200e3, 5.0, 206000.0, 0.29, "fast",
+                        6.0, 6.0, 2, 0.25)
+    size1 = {r.segments[0]: r.size for r in scene.gear1.refinements}
+    size2 = {r.segments[0]: r.size for r in scene.gear2.refinements}
+    assert size2["g2_round"] == size1["g1_round"] < size1[f"g1_contact_{scene.paired[0]}"]
+    strips = [s.points for s in scene.gear2.outer if s.zone == "g2_round"]
+    spans = [np.arctan2(q[:, 1], q[:, 0]) for q in strips]
+    close = 0
+    for seg in (s for s in scene.gear1.outer if s.zone == "g1_round"):  # the refined rounds
+        x = seg.points + np.array([0.0, p.e])  # placed at β = 0
+        if scene.curve2.closest(x)[2].min() > 0.02:
+            continue
+        close += 1  # a round within 20 µm of gear 2: gear 2 under it has the round's size
+        th = np.arctan2(x[:, 1], x[:, 0])
+        assert all(any(a.min() <= t <= a.max() for a in spans) for t in th)
+    assert close >= 2
 
 
 def test_tip_round_too_large_is_refused():
