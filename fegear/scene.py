@@ -280,8 +280,9 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
 
 def _round_strips(params, shape, g2, rounds, betas, margin, ref):
     """Gear-2 polar-angle ranges (lo, hi, "g2_round") that gear 1's refined ``rounds`` (body
-    angle ranges) face within ROUND_GAP modules at some β, widened by ``margin`` (rad)."""
-    out = []
+    angle ranges) face within ROUND_GAP modules at some β, widened by ``margin`` (rad);
+    overlapping ranges are merged (no slivers between their ends)."""
+    spans = []
     for lo, hi in rounds:
         pts1 = shape.point(np.linspace(lo, hi, 9))
         for beta in betas:
@@ -289,8 +290,14 @@ def _round_strips(params, shape, g2, rounds, betas, margin, ref):
             if g2.closest(x)[2].min() > ROUND_GAP * params.m:
                 continue
             th = [_unwrap_near(math.atan2(y, z), ref) for z, y in x]
-            out.append((min(th) - margin, max(th) + margin, "g2_round"))
-    return out
+            spans.append((min(th) - margin, max(th) + margin))
+    merged: list[list[float]] = []
+    for lo, hi in sorted(spans):
+        if merged and lo <= merged[-1][1]:
+            merged[-1][1] = max(merged[-1][1], hi)
+        else:
+            merged.append([lo, hi])
+    return [(lo, hi, "g2_round") for lo, hi in merged]
 
 
 def _path_windows(teeth, points) -> list[tuple[int, float, float]]:
