@@ -19,9 +19,10 @@ from .plot import cycle_png
 from .profile import Gear1Profile
 from .toothpair import PairSolution, solve_pair
 
-#: headline stress → JSON key (MPa)
-HEADLINE = ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa",
-            "flank_pressure_MPa", "von_mises_max_MPa")
+#: headline stresses: JSON key (MPa) → label in the table and the cycle plot
+HEADLINE = {"root_stress_gear1_MPa": "root σ1, gear 1", "root_stress_gear2_MPa": "root σ1, gear 2",
+            "contact_pressure_MPa": "contact pressure",
+            "flank_pressure_MPa": "pressure off tip round", "von_mises_max_MPa": "von Mises max"}
 
 
 def error_estimate(fine: dict[str, float], coarse: dict[str, float]) -> dict[str, float]:
@@ -113,8 +114,7 @@ def pair_table(summary: dict) -> str:
         "| headline [MPa]          |      FE | err est % |",
         "|-------------------------|--------:|----------:|",
     ]
-    for k, label in zip(HEADLINE, ("root σ1, gear 1", "root σ1, gear 2", "contact pressure",
-                                   "… off the tip round", "von Mises max")):
+    for k, label in HEADLINE.items():
         lines.append(f"| {label:23s} | {summary[k]:7.1f} |    {e(k)} |")
     lines += ["",
               "| tooth | clear. µm | load N | share | p_max MPa | b mm  | Hertz p0 | b/R*   "

@@ -62,10 +62,9 @@ def pair_png(path: Path, gear1: np.ndarray, gear2: np.ndarray, e: float, r0: flo
     return _save_png(fig, path, 130)
 
 
-def cycle_png(path: Path, rows: list[dict], title: str, stresses: tuple[str, ...]) -> Path:
-    """Load share per tooth, the ``stresses`` (row keys: root σ1 of gear 1 and 2, contact
-    pressure, pressure off the tip round, von Mises) and gear 1's rotation against position,
-    from the rows of :func:`fegear.pairout.cycle_rows`."""
+def cycle_png(path: Path, rows: list[dict], title: str, stresses: dict[str, str]) -> Path:
+    """Load share per tooth, the ``stresses`` (row key → label) and gear 1's rotation against
+    position, from the rows of :func:`fegear.pairout.cycle_rows`."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -79,8 +78,7 @@ def cycle_png(path: Path, rows: list[dict], title: str, stresses: tuple[str, ...
             ax[0].plot(beta, v, marker="o", ms=3, label=f"tooth {k[6:]}")
     ax[0].set_ylabel("load share")
     ax[0].legend(fontsize=8, ncol=3)
-    for k, label in zip(stresses, ("root σ1 gear 1", "root σ1 gear 2", "contact p_max",
-                                   "p_max off the tip round", "von Mises max")):
+    for k, label in stresses.items():
         ax[1].plot(beta, [r[k] for r in rows], marker="o", ms=3, label=label)
     ax[1].set_yscale("log")
     ax[1].set_ylabel("stress [MPa]")

@@ -112,8 +112,8 @@ class ToothResult:
     b_over_R: float | None
     root1_MPa: float          # max σ1 in the root zone within ± half a pitch of this tooth
     root2_MPa: float          # … and of the gear-2 tooth it meshes with
-    flank_MPa: float = 0.0    # largest traction at a contact point off gear 1's tip round
-    peak_on_round: bool = False  # the largest traction sits on gear 1's tip-edge round
+    flank_MPa: float          # largest traction at a contact point off gear 1's tip round
+    peak_on_round: bool       # the largest traction sits on gear 1's tip-edge round
 
 
 @dataclass(frozen=True)
