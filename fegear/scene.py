@@ -330,21 +330,23 @@ def _root_half_angle(radius, centre: float, pitch: float, r_min: float, r_max: f
 def _profile_segments(prefix, curve, project, a, b, windows, roots, marks=()):
     """Split the profile over polar angles [a, b] into named segments.
 
-    ``windows``/``roots``: (name, centre angle, half-angle). Overlapping windows are split at
-    the middle of their overlap; windows take precedence over roots, and earlier roots over
-    later ones (a root may become two pieces under one name); the rest is
+    ``windows``/``roots``: (name, centre angle, half-angle). Where two windows (in centre
+    order) overlap they are cut halfway between their centres, so every window keeps its centre
+    and one connected piece, also when nested in a longer one; windows take
+    precedence over roots, and earlier roots over later ones (a root may become two pieces
+    under one name); the rest is
     ``{prefix}_flank``. ``marks``: (lo, hi, zone) angle ranges whose pieces get that refinement
     zone (whatever their name). Returns segments in increasing angle and the distinct names.
     """
-    wins = sorted((max(a, c - h), min(b, c + h), name) for name, c, h in windows)
-    for i in range(1, len(wins)):
-        lo, hi, name = wins[i]
-        plo, phi_, pname = wins[i - 1]
-        if lo < phi_:
-            mid = 0.5 * (lo + phi_)
-            wins[i - 1] = (plo, mid, pname)
-            wins[i] = (mid, hi, name)
-    pieces = [(lo, hi, name) for lo, hi, name in wins if hi - lo > 1e-9]
+    wins = sorted((c, max(a, c - h), min(b, c + h), name) for name, c, h in windows)
+    cuts = [None] + [0.5 * (pc + c) if lo < phi_ else None
+                     for (pc, _, phi_, _), (c, lo, _, _) in zip(wins, wins[1:])] + [None]
+    pieces = []
+    for i, (_, lo, hi, name) in enumerate(wins):
+        lo = lo if cuts[i] is None else max(lo, cuts[i])
+        hi = hi if cuts[i + 1] is None else min(hi, cuts[i + 1])
+        if hi - lo > 1e-9:
+            pieces.append((lo, hi, name))
     for name, c, h in roots:  # each root keeps only what no window or earlier root took
         parts = [(max(a, c - h), min(b, c + h))]
         for wlo, whi, _ in list(pieces):
