@@ -100,7 +100,7 @@ def build_parser() -> argparse.ArgumentParser:
                     help="pair this many more teeth on each side than the closure needs "
                          "(default 0; a safety check)")
     sv.add_argument("--penalty-factor", type=float, default=None,
-                    help="penalty κ = factor·E*/h (default 30)")
+                    help="penalty κ = factor·E*/h (default 1000; h the local facet length)")
     sv.add_argument("--no-estimate", action="store_true",
                     help="skip the second mesh level (no discretisation-error estimate)")
     sv.add_argument("--out", required=True, help="output directory (VTU, PNG, summary.json)")

@@ -60,7 +60,7 @@ class SolveCase:
     rim2: float | None = None
     extra_teeth: int = 2
     extra_pairs: int = 0
-    penalty_factor: float = 30.0
+    penalty_factor: float = 1000.0
     tip_round: float | None = None
 
     def __post_init__(self) -> None:

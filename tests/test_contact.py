@@ -54,6 +54,17 @@ def test_convex_pair_matches_hertz(plane, convex):
     assert r.surface_stress == pytest.approx(r.p_max, rel=0.01)
 
 
+def test_weighted_gaps_average_and_integrate_exactly(convex):
+    # every contact node's gap is a weighted mean of the pointwise gaps (rows sum to one, no
+    # negative weights), so a uniform pressure is integrated exactly: Σ D_i = slave length · t
+    m = convex.model
+    A = m.average.toarray()
+    assert np.allclose(A.sum(axis=1), 1.0, rtol=0, atol=1e-14) and A.min() >= 0.0
+    assert len(m.x) < len(m.quad_x) / 5  # one constraint per facet, not per point
+    length = np.ptp(m.arc) * m.bodies[m.pairs[0].slave].material.thickness
+    assert m.weight.sum() == pytest.approx(length, rel=1e-6)
+
+
 def test_penalty_over_three_decades_changes_p0_less_than_one_percent():
     default = DiskCase().penalty_factor
     factors = default * 10.0 ** np.array([-1.5, -0.5, 0.5, 1.5])
