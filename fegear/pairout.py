@@ -21,8 +21,7 @@ from .toothpair import PairSolution, solve_pair
 
 #: headline stresses: JSON key (MPa) → label in the table and the cycle plot
 HEADLINE = {"root_stress_gear1_MPa": "root σ1, gear 1", "root_stress_gear2_MPa": "root σ1, gear 2",
-            "contact_pressure_MPa": "contact pressure",
-            "flank_pressure_MPa": "pressure off tip round", "von_mises_max_MPa": "von Mises max"}
+            "contact_pressure_MPa": "contact pressure", "von_mises_max_MPa": "von Mises max"}
 
 
 def error_estimate(fine: dict[str, float], coarse: dict[str, float]) -> dict[str, float]:
@@ -89,7 +88,7 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
                    "half_width_mm": t.half_width_mm, "hertz_p0_MPa": t.hertz_p0_MPa,
                    "hertz_b_mm": t.hertz_b_mm, "b_over_R": t.b_over_R,
                    "root_stress_gear1_MPa": t.root1_MPa, "root_stress_gear2_MPa": t.root2_MPa,
-                   "flank_pressure_MPa": t.flank_MPa, "peak_on_tip_round": t.peak_on_round}
+                   "peak_on_tip_round": t.peak_on_round}
                   for t in sol.teeth],
         "timings_s": sol.timings_s,
         "wall_s": wall_s,
@@ -135,7 +134,7 @@ def pair_table(summary: dict) -> str:
     unloaded = [t["tooth"] for t in summary["teeth"] if t["load_N"] <= 0]
     if any(t["peak_on_tip_round"] for t in summary["teeth"]):
         lines += ["", "e: the peak sits on gear 1's tip-edge round (edge contact); it depends on "
-                  "the round's exact shape and on the penalty (README, \"Edge contact\")"]
+                  "the round's radius, --tip-round (README, \"Edge contact\")"]
     lines += ["",
               f"teeth in contact {summary['teeth_in_contact']} (paired but open: {unloaded}); "
               f"load shares sum to {summary['load_share_sum']:.6f}; torque balance error "
@@ -195,14 +194,13 @@ def cycle_table(rows: list[dict]) -> str:
     """Markdown table of a cycle (the `fegear solve --positions` output)."""
     share_keys = [k for k in rows[0] if k.startswith("share_")]
     shown = [k for k in share_keys if any(r[k] > 0 for r in rows)]
-    head = ("| β [deg] | root1 | root2 | p_max | p flank | vM max | TE µrad | k N·m/rad | teeth | "
+    head = ("| β [deg] | root1 | root2 | p_max | vM max | TE µrad | k N·m/rad | teeth | "
             + " | ".join(f"tooth {k[6:]}" for k in shown) + " |")
-    lines = [head, "|" + "---:|" * (9 + len(shown))]
+    lines = [head, "|" + "---:|" * (8 + len(shown))]
     for r in rows:
         lines.append(
             f"| {r['position_deg']:7.3f} | {r['root_stress_gear1_MPa']:5.1f} | "
             f"{r['root_stress_gear2_MPa']:5.1f} | {r['contact_pressure_MPa']:6.0f} | "
-            f"{r['flank_pressure_MPa']:6.0f} | "
             f"{r['von_mises_max_MPa']:6.0f} | {r['transmission_error_urad']:7.1f} | "
             f"{r['mesh_stiffness_Nm_per_rad']:.4g} | {r['teeth_in_contact']} | "
             + " | ".join(f"{r[k]:.3f}" if abs(r[k]) >= 5e-4 else "0.000"

@@ -112,7 +112,6 @@ class ToothResult:
     b_over_R: float | None
     root1_MPa: float          # max σ1 in the root zone within ± half a pitch of this tooth
     root2_MPa: float          # … and of the gear-2 tooth it meshes with
-    flank_MPa: float          # largest traction at a contact point off gear 1's tip round
     peak_on_round: bool       # the largest traction sits on gear 1's tip-edge round
 
 
@@ -139,11 +138,6 @@ class PairSolution:
         return max(t.p_max_MPa for t in self.teeth if t.load_N > 0)
 
     @property
-    def flank_pressure(self) -> float:
-        """Largest contact traction off gear 1's tip rounds (MPa)."""
-        return max(t.flank_MPa for t in self.teeth)
-
-    @property
     def mesh_stiffness(self) -> float:
         """Secant mesh stiffness T / (θ − θ_touch), N·m/rad."""
         return self.case.torque / (self.rotation - self.first_touch)
@@ -156,7 +150,6 @@ class PairSolution:
         return {"root_stress_gear1_MPa": self.root_stress[0],
                 "root_stress_gear2_MPa": self.root_stress[1],
                 "contact_pressure_MPa": self.contact_pressure,
-                "flank_pressure_MPa": self.flank_pressure,
                 "von_mises_max_MPa": self.von_mises_max}
 
 
@@ -306,7 +299,7 @@ def solve_position(model: PairModel, beta: float, state) -> PairSolution:
         load = patch.load if patch else 0.0
         hz = _hertz(c, load, case) if load > 0 and c is not None else None
         clearance = c.clearance_um if c is not None else None
-        flank, on_round = _edge_split(scene.shape, contact.x[sel], sol.pressure[sel])
+        on_round = _peak_on_round(scene.shape, contact.x[sel], sol.pressure[sel])
         root2 = (_sector_max(g2, stresses[1], zone2, round(c.theta2 / pitch2) * pitch2, pitch2)
                  if c is not None else 0.0)  # gear-2 tooth tips sit at 2πk/z2
         results.append(ToothResult(
@@ -314,21 +307,19 @@ def solve_position(model: PairModel, beta: float, state) -> PairSolution:
             patch.half_width if patch else 0.0, hz.p0 if hz else None, hz.b if hz else None,
             hz.b_over_R if hz else None,
             _sector_max(g1, stresses[0], zone1, scene.shape.tooth_center + tooth * pitch1,
-                        pitch1), root2, flank, on_round))
+                        pitch1), root2, on_round))
     times["recovery"] = time.perf_counter() - t0
     first = _touch_rotation(contact)
     return PairSolution(case, scene, (g1, g2), contact, sol, stresses, tuple(results), roots, vm,
                         sol.link_value, first, g1.ndofs + g2.ndofs, dict(times))
 
 
-def _edge_split(shape, x: np.ndarray, pressure: np.ndarray) -> tuple[float, bool]:
-    """Largest traction (MPa) at the points ``x`` (gear 1's frame) off the tip round, and
-    whether the largest traction of all sits on the round."""
+def _peak_on_round(shape, x: np.ndarray, pressure: np.ndarray) -> bool:
+    """Whether the largest traction at the points ``x`` (gear 1's frame) sits on a tip round."""
     if not len(pressure) or pressure.max() <= 0:
-        return 0.0, False
-    on = shape.on_round(np.arctan2(x[:, 1], x[:, 0]))
-    flank = float(pressure[~on].max()) if (~on).any() else 0.0
-    return flank, bool(on[int(np.argmax(pressure))])
+        return False
+    i = int(np.argmax(pressure))
+    return bool(shape.on_round(np.arctan2(x[i:i + 1, 1], x[i:i + 1, 0]))[0])
 
 
 def _touch_rotation(model) -> float:
