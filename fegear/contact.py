@@ -17,8 +17,7 @@ point or per node: with quadratic displacements, pointwise penalties (3 per face
 corner and midside nodes (2 per facet) both over-constrain the interface, and on a tip round
 a few elements wide their tractions oscillated from point to point by up to ±40 % and grew
 with the penalty. The hats are non-negative and sum to one, so a uniform pressure is
-integrated exactly (patch test).
-g̃ = C v through sparse rows C_b per body.
+integrated exactly (patch test). Elastically, g̃ = Σ_b C_b v_b through sparse rows C_b.
 
 Each body is factorised once (:mod:`fegear.assembly`); condensing onto the contact nodes gives
 the flexibility G = Σ_b C_b K_b⁻¹ C_bᵀ (mm/N), and the contact problem becomes small and dense:
