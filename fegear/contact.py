@@ -101,8 +101,8 @@ class ContactSettings:
     modulus of the pair, h_i the length of the slave facets around the node (a uniform κ from
     the mean length was soft on a tip round meshed 100× finer than the flank: the edge peak
     moved by 23 % between penalty factors 30 and 3000). ``gauss_points`` per half of a slave
-    facet. Convergence: the active set is stable, the link
-    motion changes by < ``link_tol`` (relative) and the largest penetration
+    facet. Convergence: the active set is stable, the link motion changes by < ``link_tol``
+    (relative) and the largest penetration
     is below ``penetration_tol`` times the contact half-width."""
 
     penalty_factor: float = 300.0
@@ -130,7 +130,6 @@ class ContactModel:
     C: tuple[sp.csr_matrix, ...] = field(repr=False)  # per body, g̃_elastic = Σ C_b v_b
     G: np.ndarray = field(repr=False)            # (n, n) flexibility, mm/N
     kappa: np.ndarray = field(repr=False)        # (n,) penalty, MPa/mm
-    h: float                                      # mean slave facet length, mm
     link_body: int | None
     dropped: int                                  # slave points with no master facet under them
 
@@ -236,7 +235,7 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
     ng = len(gauss)
 
     parts = {k: [] for k in ("pair", "x", "w", "arc", "rows", "avg", "qpair", "qx", "kappa")}
-    lengths, dropped, n_nodes, n_quad = [], 0, 0, 0
+    dropped, n_nodes, n_quad = 0, 0, 0
     for k, pair in enumerate(pairs):
         sb, mb = bodies[pair.slave], bodies[pair.master]
         facets, flipped = _ordered(sb, pair.slave_boundary)
@@ -258,19 +257,19 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
             (pair.master, mnodes, -p2_edge_shape(np.clip(ms[ok], 0, 1)),
              mb.placement.vec_to_body(n_fixed))])
         # linear hats of the corner nodes: M_iq = φ_i(x_q) w_q (midside nodes carry none)
-        hats = np.column_stack([1 - s, s, np.zeros_like(s)])[ok]
+        hats = np.column_stack([1 - s, s])[ok]
         q = np.flatnonzero(ok)
         M = sp.coo_matrix(((hats * w[ok, None]).ravel(),
-                           (nodes[ok].ravel(), np.repeat(np.arange(len(q)), 3))),
+                           (nodes[ok, :2].ravel(), np.repeat(np.arange(len(q)), 2))),
                           shape=(sb.mesh.doflocs.shape[1], len(q))).tocsr()
         D = np.asarray(M.sum(axis=1)).ravel()
         used = np.flatnonzero(D > 0)
         parts["avg"].append(sp.diags(1.0 / D[used]) @ M[used])
         start = np.concatenate([[0.0], np.cumsum(seg)[:-1]])
         corner_arc = np.column_stack([np.where(flipped, start + seg, start),
-                                      np.where(flipped, start, start + seg), start + 0.5 * seg])
+                                      np.where(flipped, start, start + seg)])
         arc = np.zeros(sb.mesh.doflocs.shape[1])
-        arc[fnodes.ravel()] = corner_arc.ravel()
+        arc[fnodes[:, :2].ravel()] = corner_arc.ravel()
         parts["pair"].append(np.full(len(used), k))
         parts["x"].append(sb.mesh.doflocs.T[used])
         parts["w"].append(D[used])
@@ -282,7 +281,6 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
         parts["qx"].append(x[ok])
         n_nodes += len(used)
         n_quad += len(q)
-        lengths.append(seg)
 
     if n_nodes == 0:
         raise ContactError("no slave point has a master facet under it: check the contact pairs")
@@ -320,12 +318,11 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
         dofs = body.node_dofs(window).ravel()  # window columns → the body's dofs
         C.append(sp.csr_matrix((Cs.data, dofs[Cs.indices], Cs.indptr),
                                shape=(n_nodes, body.ndofs)))
-    h = float(np.mean(np.concatenate(lengths)))
     return ContactModel(bodies, tuple(pairs), settings, np.concatenate(parts["pair"]),
                         np.vstack(parts["x"]), np.concatenate(parts["w"]),
                         np.concatenate(parts["arc"]), np.vstack(parts["qx"]),
                         np.concatenate(parts["qpair"]), average, tuple(C), G,
-                        np.concatenate(parts["kappa"]), h, links[0] if links else None, dropped)
+                        np.concatenate(parts["kappa"]), links[0] if links else None, dropped)
 
 
 def _ordered(body: Body, name: str) -> tuple[np.ndarray, np.ndarray]:

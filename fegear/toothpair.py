@@ -98,8 +98,8 @@ class SolveCase:
 class ToothResult:
     """One paired gear-1 tooth: normal load (N), torque share, FE contact pressure peak (MPa)
     and half-width (mm), Hertz p0 and b from the FE load and the analytic curvature radii
-    (None where the curvatures are not a Hertz pair), b/R*, unloaded clearance (µm); the largest
-    traction off gear 1's tip round and whether the peak sits on that round (edge contact)."""
+    (None where the curvatures are not a Hertz pair), b/R*, unloaded clearance (µm); whether
+    the peak sits on gear 1's tip round (edge contact)."""
 
     tooth: int
     clearance_um: float | None    # None: no + contact point on this tooth at this β
