@@ -14,9 +14,11 @@ position.
 * Cut faces are traction free. The refined parts are a contact window on every paired flank
   (both gears), long enough to cover the tooth's contact points at every rolling angle of the
   scene, the root zone (the lower ``ROOT_BAND`` of the tooth height) of every tooth space,
-  gear 1's tip rounds that a window reaches, and gear 2's flank under each such round wherever
-  the round comes within ``ROUND_GAP`` of it at some β (an edge contact loads both sides over
-  the same few µm, so both get the round's element size).
+  gear 1's tip rounds that a window reaches (and ``ROUND_SPILL`` round Hertz widths of flank
+  beyond them), and gear 2's flank under each such round wherever the round comes within
+  ``ROUND_GAP`` of it at some β, one Hertz width wider (an edge contact loads both sides over
+  the same few µm, so both get the round's element size; gear 1, the contact slave, reaches
+  further so that gear 2 never receives its forces as point loads from long slave facets).
 """
 
 from __future__ import annotations
@@ -45,6 +47,8 @@ MASTER_FACTOR = 1.4      # gear-2 window half-length relative to gear 1's
 SHARE_GUESS = 3.0        # teeth assumed to share the load when sizing the contact elements
 ROUND_GAP = 0.05         # gear 2 is refined under a round that comes this close (modules)
 ROUND_DENSITY = 2        # the edge zone is a third of the round's Hertz width: twice as fine
+ROUND_SPILL = 2.0        # gear 1's round size reaches this many round Hertz widths onto the
+                         # flank, gear 2's strip one: the slave is never coarser than the master
 SPLINE_CHORD = 1e-3      # mm, polyline handed to gmsh (nodes are snapped to the exact curve)
 
 
@@ -191,6 +195,7 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
                                              / SHARE_GUESS, thickness, E, nu).b
                                 for f in shape.fillets])
     h_round = min(h_contact, b_round / (ROUND_DENSITY * n_b))
+    spill = ROUND_SPILL * b_round / rho_max
 
     def g1_project(x):
         return shape.point(np.arctan2(x[:, 1], x[:, 0]))
@@ -199,7 +204,7 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
         "g1", shape.point, g1_project, phi_a, phi_b,
         [(f"g1_contact_{t}", p, w) for t, p, w in windows1],
         [(f"g1_root_{k}", p, root_half1) for k, p in roots1],
-        marks=[(a, b, "g1_round") for a, b in rounds])
+        marks=[(a - spill, b + spill, "g1_round") for a, b in rounds])
     a0, b0 = shape.point(np.array([phi_a]))[0], shape.point(np.array([phi_b]))[0]
     bore_pts = bore * np.column_stack([np.cos(np.linspace(phi_b, phi_a, 60)),
                                        np.sin(np.linspace(phi_b, phi_a, 60))])
