@@ -38,6 +38,7 @@ import scipy.sparse as sp
 
 from .assembly import Body, facet_nodes
 from .errors import FegearError
+from .hertz import contact_modulus
 
 log = logging.getLogger(__name__)
 
@@ -273,7 +274,7 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
         parts["pair"].append(np.full(len(used), k))
         parts["x"].append(sb.mesh.doflocs.T[used])
         parts["w"].append(D[used])
-        modulus = 1.0 / (1.0 / sb.material.plane_modulus + 1.0 / mb.material.plane_modulus)
+        modulus = contact_modulus(sb.material.plane_modulus, mb.material.plane_modulus)
         h_node = D[used] / sb.material.thickness  # ∫φ_i ds: the mean of the two facets
         parts["kappa"].append(settings.penalty_factor * modulus / h_node)
         parts["arc"].append(arc[used])

@@ -40,6 +40,11 @@ def plane_modulus(E: float, nu: float, plane: str) -> float:
     return E if plane == "stress" else E / (1.0 - nu * nu)
 
 
+def contact_modulus(E1_plane: float, E2_plane: float) -> float:
+    """E* = 1 / (1/E1' + 1/E2') from the two plane moduli (MPa)."""
+    return 1.0 / (1.0 / E1_plane + 1.0 / E2_plane)
+
+
 def effective_radius(r1: float, r2: float) -> float:
     """R* from two signed curvature radii (mm; negative = concave, inf = flat)."""
     for name, r in (("r1", r1), ("r2", r2)):
@@ -63,7 +68,7 @@ def line_contact(r1: float, r2: float, load: float, thickness: float, E1: float 
         if not v > 0:
             raise ParameterError(name, v, f"{name} > 0")
     R = effective_radius(r1, r2)
-    E_star = 1.0 / (1.0 / plane_modulus(E1, nu1, plane) + 1.0 / plane_modulus(E2, nu2, plane))
+    E_star = contact_modulus(plane_modulus(E1, nu1, plane), plane_modulus(E2, nu2, plane))
     q = load / thickness
     b = math.sqrt(4.0 * q * R / (math.pi * E_star))
     return HertzLine(b=b, p0=2.0 * q / (math.pi * b), R_star=R, E_star=E_star, q=q)

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from fegear.errors import ParameterError
+from fegear.pairout import HEADLINE, error_estimate
 from fegear.params import PairParameters
 from fegear.profile import Gear1Profile
 from fegear.rounding import RoundedProfile
@@ -125,7 +126,7 @@ def test_tip_round_is_tangent_and_only_removes_material(rho):
     assert not shape.on_round(np.array([f.phi_a - 1e-6, f.phi_b + 1e-6])).any()
 
 
-def test_gear2_is_refined_like_the_rounds_wherever_a_round_comes_close():
+def test_gear2_is_refined_like_the_rounds_and_gear1_reaches_beyond():
     p = PairParameters(shift=0.016, rotation=0.002)
     profile = Gear1Profile(p)
     state = ToothContact(p, profile).state(0.0)
@@ -135,17 +136,30 @@ def test_gear2_is_refined_like_the_rounds_wherever_a_round_comes_close():
     size1 = {r.segments[0]: r.size for r in scene.gear1.refinements}
     size2 = {r.segments[0]: r.size for r in scene.gear2.refinements}
     assert size2["g2_round"] == size1["g1_round"] < size1[f"g1_contact_{scene.paired[0]}"]
-    strips = [s.points for s in scene.gear2.outer if s.zone == "g2_round"]
-    spans = [np.arctan2(q[:, 1], q[:, 0]) for q in strips]
+    spans2 = [np.arctan2(s.points[:, 1], s.points[:, 0])
+              for s in scene.gear2.outer if s.zone == "g2_round"]
+    rounds1 = [s.points for s in scene.gear1.outer if s.zone == "g1_round"]
+    spans1 = [np.arctan2(q[:, 1], q[:, 0]) for q in rounds1]
     close = 0
-    for seg in (s for s in scene.gear1.outer if s.zone == "g1_round"):  # the refined rounds
-        x = seg.points + np.array([0.0, p.e])  # placed at β = 0
-        if scene.curve2.closest(x)[2].min() > 0.02:
+    for q in rounds1:  # the refined rounds (with their spill onto the flank)
+        on = scene.shape.on_round(np.arctan2(q[:, 1], q[:, 0]))
+        x = q[on] + np.array([0.0, p.e])  # the round proper, placed at β = 0
+        if not len(x) or scene.curve2.closest(x)[2].min() > 0.02:
             continue
         close += 1  # a round within 20 µm of gear 2: gear 2 under it has the round's size
         th = np.arctan2(x[:, 1], x[:, 0])
-        assert all(any(a.min() <= t <= a.max() for a in spans) for t in th)
+        assert all(any(a.min() <= t <= a.max() for a in spans2) for t in th)
     assert close >= 2
+    # … and wherever gear 2's strip is within 20 µm of gear 1, gear 1 (the contact slave) has
+    # the round's size too: the slave is never coarser than the master
+    checked = 0
+    for s in (s for s in scene.gear2.outer if s.zone == "g2_round"):
+        y = s.points - np.array([0.0, p.e])  # in gear 1's frame at β = 0
+        phi = np.arctan2(y[:, 1], y[:, 0])
+        near = np.abs(np.hypot(y[:, 0], y[:, 1]) - scene.shape.radius(phi)) < 0.02
+        checked += near.sum()
+        assert all(any(a.min() <= t <= a.max() for a in spans1) for t in phi[near])
+    assert checked > 0
 
 
 def test_tip_round_too_large_is_refused():
@@ -216,3 +230,10 @@ def test_two_more_teeth_each_side_change_no_stress_by_1pct(more):
     shares = {t.tooth: t.load_share for t in wider.teeth}
     for t in base.teeth:
         assert shares[t.tooth] == pytest.approx(t.load_share, abs=0.01)
+
+
+def test_error_estimate_is_the_two_grid_convergence_index():
+    fine = dict.fromkeys(HEADLINE, 200.0)
+    coarse = {k: 200.0 + d for k, d in zip(HEADLINE, (2.0, -2.0, 0.0, 20.0))}
+    # Fs = 3, r = 2, p = 2: e = 3 |Δ| / 3 = |Δ|, relative to the finer value
+    assert list(error_estimate(fine, coarse).values()) == pytest.approx([1.0, 1.0, 0.0, 10.0])
