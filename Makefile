@@ -28,7 +28,7 @@ test-all: lint
 	$(BIN)/python -m pytest -q -m ""
 
 bench: $(STAMP)
-	$(BIN)/fegear bench
+	$(BIN)/fegear bench --shift 0.016 --rotation 0.002  # the paper's baseline pair
 
 clean:
 	rm -rf $(VENV) out .pytest_cache
