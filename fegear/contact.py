@@ -236,7 +236,7 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
     ng = len(gauss)
 
     parts = {k: [] for k in ("pair", "x", "w", "arc", "rows", "avg", "qpair", "qx", "kappa")}
-    dropped, n_nodes, n_quad = 0, 0, 0
+    dropped = 0
     for k, pair in enumerate(pairs):
         sb, mb = bodies[pair.slave], bodies[pair.master]
         facets, flipped = _ordered(sb, pair.slave_boundary)
@@ -280,13 +280,13 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
         parts["arc"].append(arc[used])
         parts["qpair"].append(np.full(len(q), k))
         parts["qx"].append(x[ok])
-        n_nodes += len(used)
-        n_quad += len(q)
 
+    n_nodes = sum(len(p) for p in parts["pair"])
     if n_nodes == 0:
         raise ContactError("no slave point has a master facet under it: check the contact pairs")
     average = sp.block_diag(parts["avg"], format="csr")
     q_offsets = np.cumsum([0] + [len(p) for p in parts["qpair"]])
+    n_quad = int(q_offsets[-1])
     C, G = [], np.zeros((n_nodes, n_nodes))
     for b, body in enumerate(bodies):
         names = sorted({p.slave_boundary for p in pairs if p.slave == b}
