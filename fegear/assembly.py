@@ -33,6 +33,10 @@ from .profile import rotate
 
 PLANE_MODES = ("stress", "strain")
 
+#: right-hand sides per SuperLU solve in :meth:`Body.flexibility`: 64 ran 13.3 ms per column
+#: on a 155k-dof gear body, against 17.2 ms for 16 and for 256 (2 cores)
+FLEX_CHUNK = 64
+
 
 @dataclass(frozen=True)
 class Material:
@@ -201,8 +205,8 @@ class Body:
             is_free = self.free[pos] == dofs
             rows = pos[is_free]
             Ff = np.empty((len(rows), len(rows)))
-            for start in range(0, len(rows), 256):  # bounded memory: 256 right-hand sides
-                cols = rows[start:start + 256]
+            for start in range(0, len(rows), FLEX_CHUNK):
+                cols = rows[start:start + FLEX_CHUNK]
                 rhs = np.zeros((len(self.free), len(cols)))
                 rhs[cols, np.arange(len(cols))] = 1.0
                 Ff[:, start:start + len(cols)] = self.factor.solve(rhs)[rows]

@@ -35,12 +35,15 @@ from typing import Protocol
 
 import numpy as np
 import scipy.sparse as sp
+from scipy.spatial import cKDTree
 
 from .assembly import Body, facet_nodes
 from .errors import FegearError
 from .hertz import contact_modulus
 
 log = logging.getLogger(__name__)
+
+LOCATE_CANDIDATES = 16  # chords tried per point before falling back to all of them
 
 
 class ContactError(FegearError):
@@ -178,6 +181,40 @@ class ContactModel:
         return cp, -np.sum(cp.normal * velocity, axis=1)
 
 
+def nearest_chords(a: np.ndarray, ab: np.ndarray, y: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Per point y (n, 2): the chord a + t·ab (t ∈ [0, 1]) nearest to it and the unclipped
+    t of its foot.
+
+    The chord is searched among the ``LOCATE_CANDIDATES`` chords with the nearest midpoints;
+    where that set cannot be shown to hold the nearest chord (its farthest midpoint is closer
+    than the best distance plus half the longest chord), among all chords."""
+    k = min(LOCATE_CANDIDATES, len(a))
+    reach, cand = cKDTree(a + 0.5 * ab).query(y, k=k)
+    reach, cand = reach.reshape(len(y), k), cand.reshape(len(y), k)
+    best, dist = _nearest_chord(a, ab, y, cand)
+    half = 0.5 * np.sqrt(np.max(np.sum(ab * ab, axis=1)))
+    unsure = np.flatnonzero(reach[:, -1] < dist + half) if k < len(a) else []
+    if len(unsure):
+        every = np.broadcast_to(np.arange(len(a)), (len(unsure), len(a)))
+        best[unsure], _ = _nearest_chord(a, ab, y[unsure], every)
+    t = np.einsum("qd,qd->q", y - a[best], ab[best]) / np.sum(ab[best] ** 2, axis=1)
+    return best, t
+
+
+def _nearest_chord(a: np.ndarray, ab: np.ndarray, y: np.ndarray,
+                   cand: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per point y_q, the chord (a + t·ab, t ∈ [0, 1]) among its candidates ``cand[q]``
+    nearest to it, and the distance."""
+    t = np.einsum("qcd,qcd->qc", y[:, None, :] - a[cand], ab[cand]) / np.sum(ab[cand] ** 2,
+                                                                           axis=2)
+    near = a[cand] + np.clip(t, 0, 1)[..., None] * ab[cand]
+    d2 = np.sum((near - y[:, None, :]) ** 2, axis=2)
+    j = np.argmin(d2, axis=1)
+    rows = np.arange(len(y))
+    return cand[rows, j], np.sqrt(d2[rows, j])
+
+
 def p2_edge_shape(s: np.ndarray) -> np.ndarray:
     """Quadratic shape functions on a facet, s ∈ [0, 1]: (n, 3) for corner 0, corner 1, mid."""
     s = np.asarray(s, dtype=float)
@@ -202,13 +239,8 @@ def locate_on_facets(body: Body, facets: np.ndarray,
     the point is not covered by these facets."""
     nodes = facet_nodes(body.mesh, facets)
     a = body.mesh.doflocs.T[nodes[:, 0]]
-    b = body.mesh.doflocs.T[nodes[:, 1]]
-    ab = b - a
-    t = np.einsum("qfd,fd->qf", y[:, None, :] - a[None], ab) / np.sum(ab * ab, axis=1)
-    near = a[None] + np.clip(t, 0, 1)[..., None] * ab[None]
-    best = np.argmin(np.sum((near - y[:, None, :]) ** 2, axis=2), axis=1)
+    best, s = nearest_chords(a, body.mesh.doflocs.T[nodes[:, 1]] - a, np.asarray(y, float))
     f = facets[best]
-    s = t[np.arange(len(y)), best]
     for _ in range(4):  # Newton on the quadratic facet curve
         xs, dx, _ = facet_curve(body, f, s)
         d2 = np.einsum("k,nkd->nd", np.array([4.0, 4.0, -8.0]),
@@ -315,7 +347,10 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
                            shape=(n_quad, 2 * len(window))).tocsr()  # duplicates summed
         Cs = (average @ Cq).tocsr()
         F = body.flexibility(window)
-        G += Cs @ (Cs @ F).T  # C F Cᵀ, F symmetric; C sparse, so no dense product
+        used = np.unique(Cs.indices)  # a position of a mesh cycle touches part of the path
+        Cu = Cs[:, used]
+        Fu = F if len(used) == len(F) else F[np.ix_(used, used)]
+        G += Cu @ (Cu @ Fu).T  # C F Cᵀ, F symmetric; C sparse, so no dense product
         dofs = body.node_dofs(window).ravel()  # window columns → the body's dofs
         C.append(sp.csr_matrix((Cs.data, dofs[Cs.indices], Cs.indptr),
                                shape=(n_nodes, body.ndofs)))

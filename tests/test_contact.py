@@ -65,6 +65,26 @@ def test_weighted_gaps_average_and_integrate_exactly(convex):
     assert m.weight.sum() == pytest.approx(length, rel=1e-6)
 
 
+@pytest.mark.parametrize("candidates", [4, 16, 1000])
+def test_nearest_chord_search_matches_the_search_among_all_chords(candidates, monkeypatch):
+    # one long chord and a cluster of tiny ones: the point near the long chord's end has only
+    # tiny chords among its nearest midpoints, so a search among those alone would miss it
+    import fegear.contact as contact
+
+    rng = np.random.default_rng(2)
+    xs = rng.uniform(-0.1, 0.1, 40)
+    a = np.vstack([[0.0, 0.0], np.column_stack([xs, np.ones(40)])])
+    ab = np.vstack([[10.0, 0.0], np.tile([0.01, 0.0], (40, 1))])
+    y = np.vstack([[0.5, 0.3], rng.uniform(-2.0, 12.0, (300, 2))])
+    monkeypatch.setattr(contact, "LOCATE_CANDIDATES", candidates)
+    best, t = contact.nearest_chords(a, ab, y)
+    foot = a[best] + np.clip(t, 0, 1)[:, None] * ab[best]
+    s = np.clip(np.einsum("qcd,cd->qc", y[:, None] - a, ab) / np.sum(ab * ab, axis=1), 0, 1)
+    every = np.linalg.norm(a + s[..., None] * ab - y[:, None], axis=2).min(axis=1)
+    assert best[0] == 0 and t[0] == pytest.approx(0.05)
+    assert np.allclose(np.linalg.norm(foot - y, axis=1), every, rtol=0, atol=1e-12)
+
+
 def test_penalty_over_three_decades_changes_p0_less_than_one_percent():
     default = DiskCase().penalty_factor
     factors = default * 10.0 ** np.array([-1.5, -0.5, 0.5, 1.5])
