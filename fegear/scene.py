@@ -49,6 +49,8 @@ ROUND_GAP = 0.05         # gear 2 is refined under a round that comes this close
 ROUND_DENSITY = 2        # the edge zone is a third of the round's Hertz width: twice as fine
 ROUND_SPILL = 2.0        # gear 1's round size reaches this many round Hertz widths onto the
                          # flank, gear 2's strip one: the slave is never coarser than the master
+JUNCTION_SPAN = 0.25     # round-to-flank tangent points: refined over ± this many round
+JUNCTION_DENSITY = 4     # Hertz widths, this many times finer than the round
 SPLINE_CHORD = 1e-3      # mm, polyline handed to gmsh (nodes are snapped to the exact curve)
 
 
@@ -196,6 +198,10 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
                                 for f in shape.fillets])
     h_round = min(h_contact, b_round / (ROUND_DENSITY * n_b))
     spill = ROUND_SPILL * b_round / rho_max
+    # where a round meets the flank the curvature jumps (4 → 0.3 /mm on the baseline): the
+    # pressure peaks there over a few µm, so those tangent points get a finer zone of their own
+    span = JUNCTION_SPAN * b_round / rho_max
+    junctions = [(x - span, x + span, "g1_junction") for a, b in rounds for x in (a, b)]
 
     def g1_project(x):
         return shape.point(np.arctan2(x[:, 1], x[:, 0]))
@@ -204,7 +210,7 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
         "g1", shape.point, g1_project, phi_a, phi_b,
         [(f"g1_contact_{t}", p, w) for t, p, w in windows1],
         [(f"g1_root_{k}", p, root_half1) for k, p in roots1],
-        marks=[(a - spill, b + spill, "g1_round") for a, b in rounds])
+        marks=junctions + [(a - spill, b + spill, "g1_round") for a, b in rounds])
     a0, b0 = shape.point(np.array([phi_a]))[0], shape.point(np.array([phi_b]))[0]
     bore_pts = bore * np.column_stack([np.cos(np.linspace(phi_b, phi_a, 60)),
                                        np.sin(np.linspace(phi_b, phi_a, 60))])
@@ -216,6 +222,8 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
                Refinement(tuple(n for n in names1 if n.startswith("g1_root")), root_m * m)]
     if any(s.zone == "g1_round" for s in segs1):
         refine1.append(Refinement(("g1_round",), h_round))
+    if any(s.zone == "g1_junction" for s in segs1):
+        refine1.append(Refinement(("g1_junction",), h_round / JUNCTION_DENSITY))
     geo1 = BodyGeometry("gear1", (
         *segs1,
         Segment("g1_cut_b", np.array([b0, bore_pts[0]])),
