@@ -19,6 +19,8 @@ position.
   ``ROUND_GAP`` of it at some β, one Hertz width wider (an edge contact loads both sides over
   the same few µm, so both get the round's element size; gear 1, the contact slave, reaches
   further so that gear 2 never receives its forces as point loads from long slave facets).
+  On gear 1 the two tangent points of each such round, where the curvature jumps and the
+  edge pressure peaks, are refined again (``JUNCTION_SPAN``, ``JUNCTION_DENSITY``).
 """
 
 from __future__ import annotations
