@@ -140,18 +140,17 @@ def test_gear2_is_refined_like_the_rounds_and_gear1_reaches_beyond():
     spans2 = [np.arctan2(s.points[:, 1], s.points[:, 0])
               for s in scene.gear2.outer if s.zone == "g2_round"]
     rounds1 = [s.points for s in scene.gear1.outer if s.zone in ("g1_round", "g1_junction")]
+    spans1 = [np.arctan2(q[:, 1], q[:, 0]) for q in rounds1]
     # both tangent points of every refined round sit in a junction zone
     junctions = [np.arctan2(s.points[:, 1], s.points[:, 0])
                  for s in scene.gear1.outer if s.zone == "g1_junction"]
     refined = 0
     for c, h, _ in scene.shape.fillet_angles(range(-1, p.z1 + 1)):
-        if any(a.min() <= c <= a.max() for q in rounds1
-               for a in [np.arctan2(q[:, 1], q[:, 0])]):
+        if any(a.min() <= c <= a.max() for a in spans1):
             refined += 1
             for t in (c - h, c + h):
                 assert any(a.min() < t < a.max() for a in junctions)
     assert refined >= 2
-    spans1 = [np.arctan2(q[:, 1], q[:, 0]) for q in rounds1]
     close = 0
     for q in rounds1:  # the refined rounds (with their spill onto the flank)
         on = scene.shape.on_round(np.arctan2(q[:, 1], q[:, 0]))
