@@ -43,7 +43,7 @@ from .hertz import contact_modulus
 
 log = logging.getLogger(__name__)
 
-LOCATE_CANDIDATES = 16  # chords tried per point before falling back to all of them
+LOCATE_CANDIDATES = 16  # chord pieces tried per point first (then 8×, 64×, … up to all)
 
 
 class ContactError(FegearError):
@@ -186,18 +186,29 @@ def nearest_chords(a: np.ndarray, ab: np.ndarray, y: np.ndarray
     """Per point y (n, 2): the chord a + t·ab (t ∈ [0, 1]) nearest to it and the unclipped
     t of its foot.
 
-    The chord is searched among the ``LOCATE_CANDIDATES`` chords with the nearest midpoints;
-    where that set cannot be shown to hold the nearest chord (its farthest midpoint is closer
-    than the best distance plus half the longest chord), among all chords."""
-    k = min(LOCATE_CANDIDATES, len(a))
-    reach, cand = cKDTree(a + 0.5 * ab).query(y, k=k)
-    reach, cand = reach.reshape(len(y), k), cand.reshape(len(y), k)
-    best, dist = _nearest_chord(a, ab, y, cand)
-    half = 0.5 * np.sqrt(np.max(np.sum(ab * ab, axis=1)))
-    unsure = np.flatnonzero(reach[:, -1] < dist + half) if k < len(a) else []
-    if len(unsure):
-        every = np.broadcast_to(np.arange(len(a)), (len(unsure), len(a)))
-        best[unsure], _ = _nearest_chord(a, ab, y[unsure], every)
+    Chords longer than the mean are cut into pieces no longer than it, and the nearest chord is
+    searched among the owners of the ``LOCATE_CANDIDATES`` pieces with the nearest midpoints.
+    The result is sure when the farthest of those midpoints is at least the best distance plus
+    half the longest piece away (the foot on the nearest chord lies on some piece, whose
+    midpoint is then no farther); the other points are searched again among eight times as
+    many pieces, up to all of them."""
+    length = np.sqrt(np.sum(ab * ab, axis=1))
+    count = np.ceil(length / max(length.mean(), 1e-300)).astype(np.int64).clip(1)
+    owner = np.repeat(np.arange(len(a)), count)
+    within = np.arange(len(owner)) - np.repeat(np.cumsum(count) - count, count)
+    mid = a[owner] + ((within + 0.5) / count[owner])[:, None] * ab[owner]
+    half = 0.5 * np.max(length / count)
+    tree = cKDTree(mid)
+    best = np.empty(len(y), dtype=np.int64)
+    todo, k = np.arange(len(y)), LOCATE_CANDIDATES
+    while len(todo):
+        k = min(k, len(owner))
+        reach, cand = tree.query(y[todo], k=k)
+        reach, cand = reach.reshape(len(todo), k), cand.reshape(len(todo), k)
+        best[todo], dist = _nearest_chord(a, ab, y[todo], owner[cand])
+        if k == len(owner):
+            break
+        todo, k = todo[reach[:, -1] < dist + half], 8 * k
     t = np.einsum("qd,qd->q", y - a[best], ab[best]) / np.sum(ab[best] ** 2, axis=1)
     return best, t
 

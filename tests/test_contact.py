@@ -67,21 +67,22 @@ def test_weighted_gaps_average_and_integrate_exactly(convex):
 
 @pytest.mark.parametrize("candidates", [4, 16, 1000])
 def test_nearest_chord_search_matches_the_search_among_all_chords(candidates, monkeypatch):
-    # one long chord and a cluster of tiny ones: the point near the long chord's end has only
-    # tiny chords among its nearest midpoints, so a search among those alone would miss it
+    # a long chord and, just above it, a cluster of tiny ones: the point 0.01 above the long
+    # chord, where two of its pieces meet, has only tiny chords (0.05 away or more) among its
+    # 16 nearest midpoints, so a search among those alone would miss the long chord
     import fegear.contact as contact
 
     rng = np.random.default_rng(2)
-    xs = rng.uniform(-0.1, 0.1, 40)
-    a = np.vstack([[0.0, 0.0], np.column_stack([xs, np.ones(40)])])
+    xs = rng.uniform(0.21, 0.29, 40)
+    a = np.vstack([[0.0, 0.0], np.column_stack([xs, rng.uniform(0.065, 0.09, 40)])])
     ab = np.vstack([[10.0, 0.0], np.tile([0.01, 0.0], (40, 1))])
-    y = np.vstack([[0.5, 0.3], rng.uniform(-2.0, 12.0, (300, 2))])
+    y = np.vstack([[0.25, 0.01], rng.uniform(-2.0, 12.0, (300, 2))])
     monkeypatch.setattr(contact, "LOCATE_CANDIDATES", candidates)
     best, t = contact.nearest_chords(a, ab, y)
     foot = a[best] + np.clip(t, 0, 1)[:, None] * ab[best]
     s = np.clip(np.einsum("qcd,cd->qc", y[:, None] - a, ab) / np.sum(ab * ab, axis=1), 0, 1)
     every = np.linalg.norm(a + s[..., None] * ab - y[:, None], axis=2).min(axis=1)
-    assert best[0] == 0 and t[0] == pytest.approx(0.05)
+    assert best[0] == 0 and t[0] == pytest.approx(0.025)
     assert np.allclose(np.linalg.norm(foot - y, axis=1), every, rtol=0, atol=1e-12)
 
 
