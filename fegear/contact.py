@@ -20,7 +20,8 @@ with the penalty. The hats are non-negative and sum to one, so a uniform pressur
 integrated exactly (patch test). Elastically, g̃ = Σ_b C_b v_b through sparse rows C_b.
 
 Each body is factorised once (:mod:`fegear.assembly`); condensing onto the contact nodes gives
-the flexibility G = Σ_b C_b K_b⁻¹ C_bᵀ (mm/N), and the contact problem becomes small and dense:
+the flexibility G = Σ_b C_b K_b⁻¹ C_bᵀ (mm/N; a column is formed when the active set first
+reaches its point, :class:`PointFlexibility`), and the contact problem becomes small and dense:
 on the active set A, (G_AA + W_A⁻¹/κ) λ_A + a_A θ = −h_A, with the link balance k θ − aᵀλ = F.
 Active-set (semismooth Newton) iterations stop when A is stable; the link motion is then
 re-evaluated exactly until it changes by less than ``link_tol``.
@@ -99,6 +100,44 @@ class ContactPair:
     master_curve: ExactCurve
 
 
+class PointFlexibility:
+    """G = Σ_b C_b F_b C_bᵀ (n × n, mm/N), the flexibility of the contact points, with F_b the
+    body's nodal flexibility on its contact boundaries and C_b the weighted-gap rows over them.
+
+    Only the columns of points that carry a force are ever used (G λ and G_AA on the active
+    set, a few percent of the points), so columns are formed when first asked for and kept:
+    column j costs the nonzeros of row j times the window, instead of the whole product."""
+
+    def __init__(self, parts: Sequence[tuple[sp.csr_matrix, np.ndarray]], n: int):
+        self._parts = tuple(parts)  # (C_b over the window's dofs, F_b)
+        self.shape = (n, n)
+        self._slot = np.full(n, -1, dtype=np.int64)
+        self._columns = np.empty((n, 0))
+
+    def columns(self, idx) -> np.ndarray:
+        """G[:, idx], (n, len(idx))."""
+        idx = np.asarray(idx, dtype=np.int64)
+        new = np.unique(idx[self._slot[idx] < 0])
+        if len(new):
+            block = np.zeros((self.shape[0], len(new)))
+            for C, F in self._parts:
+                block += C @ np.ascontiguousarray((C[new] @ F).T)  # F symmetric
+            self._slot[new] = self._columns.shape[1] + np.arange(len(new))
+            self._columns = np.hstack([self._columns, block])
+        return self._columns[:, self._slot[idx]]
+
+    def block(self, idx) -> np.ndarray:
+        """G[idx][:, idx]."""
+        return self.columns(idx)[idx]
+
+    def toarray(self) -> np.ndarray:
+        return self.columns(np.arange(self.shape[0]))
+
+    def __matmul__(self, v: np.ndarray) -> np.ndarray:
+        nz = np.flatnonzero(v)
+        return self.columns(nz) @ v[nz]
+
+
 @dataclass(frozen=True)
 class ContactSettings:
     """Penalty κ_i = ``penalty_factor`` · E*/h_i (MPa/mm) at slave node i, E* the Hertz contact
@@ -132,7 +171,7 @@ class ContactModel:
     quad_pair: np.ndarray = field(repr=False)    # (nq,) which pair
     average: sp.csr_matrix = field(repr=False)   # (n, nq) g̃ = average @ g_q
     C: tuple[sp.csr_matrix, ...] = field(repr=False)  # per body, g̃_elastic = Σ C_b v_b
-    G: np.ndarray = field(repr=False)            # (n, n) flexibility, mm/N
+    G: PointFlexibility = field(repr=False)      # (n, n) flexibility, mm/N
     kappa: np.ndarray = field(repr=False)        # (n,) penalty, MPa/mm
     link_body: int | None
     dropped: int                                  # slave points with no master facet under them
@@ -330,7 +369,7 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
     average = sp.block_diag(parts["avg"], format="csr")
     q_offsets = np.cumsum([0] + [len(p) for p in parts["qpair"]])
     n_quad = int(q_offsets[-1])
-    C, G = [], np.zeros((n_nodes, n_nodes))
+    C, flex = [], []
     for b, body in enumerate(bodies):
         names = sorted({p.slave_boundary for p in pairs if p.slave == b}
                        | {p.master_boundary for p in pairs if p.master == b})
@@ -357,18 +396,15 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
                                                     np.concatenate(cols_))),
                            shape=(n_quad, 2 * len(window))).tocsr()  # duplicates summed
         Cs = (average @ Cq).tocsr()
-        F = body.flexibility(window)
-        used = np.unique(Cs.indices)  # a position of a mesh cycle touches part of the path
-        Cu = Cs[:, used]
-        Fu = F if len(used) == len(F) else F[np.ix_(used, used)]
-        G += Cu @ (Cu @ Fu).T  # C F Cᵀ, F symmetric; C sparse, so no dense product
+        flex.append((Cs, body.flexibility(window)))
         dofs = body.node_dofs(window).ravel()  # window columns → the body's dofs
         C.append(sp.csr_matrix((Cs.data, dofs[Cs.indices], Cs.indptr),
                                shape=(n_nodes, body.ndofs)))
     return ContactModel(bodies, tuple(pairs), settings, np.concatenate(parts["pair"]),
                         np.vstack(parts["x"]), np.concatenate(parts["w"]),
                         np.concatenate(parts["arc"]), np.vstack(parts["qx"]),
-                        np.concatenate(parts["qpair"]), average, tuple(C), G,
+                        np.concatenate(parts["qpair"]), average, tuple(C),
+                        PointFlexibility(flex, n_nodes),
                         np.concatenate(parts["kappa"]), links[0] if links else None, dropped)
 
 

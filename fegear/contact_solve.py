@@ -147,7 +147,7 @@ def first_touch(g0: np.ndarray, a: np.ndarray, load: float, k_link: float) -> fl
 def _linear_step(G, inv_pen, h, a, active, load, theta, k_link):
     idx = np.flatnonzero(active)
     lam = np.zeros(len(h))
-    M = G[np.ix_(idx, idx)] + np.diag(inv_pen[idx])
+    M = G.block(idx) + np.diag(inv_pen[idx])
     if load is None:  # motion control: θ given
         lam[idx] = np.linalg.solve(M, -(h[idx] + a[idx] * theta))
         return lam, theta

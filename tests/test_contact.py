@@ -6,6 +6,7 @@ import math
 import meshio
 import numpy as np
 import pytest
+import scipy.sparse as sp
 
 from fegear.contact_solve import solve_contact
 from fegear.disks import DiskCase, solve_disks, write_disk_outputs
@@ -63,6 +64,27 @@ def test_weighted_gaps_average_and_integrate_exactly(convex):
     assert len(m.x) < len(m.quad_x) / 5  # one constraint per facet, not per point
     length = np.ptp(m.arc) * m.bodies[m.pairs[0].slave].material.thickness
     assert m.weight.sum() == pytest.approx(length, rel=1e-6)
+
+
+def test_point_flexibility_columns_match_the_dense_product():
+    from fegear.contact import PointFlexibility
+
+    rng = np.random.default_rng(5)
+    parts, dense = [], np.zeros((30, 30))
+    for m in (40, 25):
+        C = sp.random(30, m, density=0.1, random_state=rng, format="csr")
+        A = rng.normal(size=(m, m))
+        F = A @ A.T
+        parts.append((C, F))
+        dense += C @ (C @ F).T
+    G = PointFlexibility(parts, 30)
+    assert np.allclose(G.columns([7, 3]), dense[:, [7, 3]], rtol=1e-12, atol=1e-12)
+    assert np.allclose(G.block([3, 11, 7]), dense[np.ix_([3, 11, 7], [3, 11, 7])],
+                       rtol=1e-12, atol=1e-12)  # 3 and 7 kept, 11 formed
+    v = np.zeros(30)
+    v[[2, 11, 29]] = [1.0, -2.0, 0.5]
+    assert np.allclose(G @ v, dense @ v, rtol=1e-12, atol=1e-12)
+    assert np.allclose(G.toarray(), dense, rtol=1e-12, atol=1e-12)
 
 
 @pytest.mark.parametrize("candidates", [4, 16, 1000])
