@@ -17,6 +17,7 @@ Units: mm, N, MPa. Thickness enters the stiffness and every force per thickness.
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -33,7 +34,7 @@ from .profile import rotate
 
 PLANE_MODES = ("stress", "strain")
 
-#: right-hand sides per SuperLU solve in :meth:`Body.flexibility`: 64 ran 13.3 ms per column
+#: right-hand sides per SuperLU solve in :class:`WindowFlexibility`: 64 ran 13.3 ms per column
 #: on a 155k-dof gear body, against 17.2 ms for 16 and for 256 (2 cores)
 FLEX_CHUNK = 64
 
@@ -193,26 +194,13 @@ class Body:
         v[self.free] = self.factor.solve(np.ascontiguousarray(f[self.free]))
         return v
 
-    def flexibility(self, nodes: np.ndarray) -> np.ndarray:
-        """F = E K⁻¹ Eᵀ (mm/N) for the x, y dofs of ``nodes`` (2n × 2n, node-major), with zero
-        rows for supported dofs. Cached per node set: it depends only on the body frame."""
+    def flexibility(self, nodes: np.ndarray) -> "WindowFlexibility":
+        """The nodal flexibility of ``nodes`` (formed lazily, see :class:`WindowFlexibility`).
+        Cached per node set: it depends only on the body frame, not on the placement."""
         nodes = np.asarray(nodes, dtype=np.int64)
         key = ("flexibility", nodes.tobytes())
         if key not in self.cache:
-            dofs = self.node_dofs(nodes).ravel()
-            pos = np.searchsorted(self.free, dofs)
-            pos = np.minimum(pos, len(self.free) - 1)
-            is_free = self.free[pos] == dofs
-            rows = pos[is_free]
-            Ff = np.empty((len(rows), len(rows)))
-            for start in range(0, len(rows), FLEX_CHUNK):
-                cols = rows[start:start + FLEX_CHUNK]
-                rhs = np.zeros((len(self.free), len(cols)))
-                rhs[cols, np.arange(len(cols))] = 1.0
-                Ff[:, start:start + len(cols)] = self.factor.solve(rhs)[rows]
-            F = np.zeros((len(dofs), len(dofs)))
-            F[np.ix_(is_free, is_free)] = Ff
-            self.cache[key] = F
+            self.cache[key] = WindowFlexibility(self, nodes)
         return self.cache[key]
 
     def displacement(self, v: np.ndarray, link_value: float) -> np.ndarray:
@@ -224,6 +212,53 @@ class Body:
         r = (self.K @ u - f)[self.free]
         scale = max(np.linalg.norm(f[self.free]), 1e-300)
         return float(np.linalg.norm(r) / scale)
+
+
+class WindowFlexibility:
+    """F = E K⁻¹ Eᵀ (mm/N) for the x, y dofs of a node window (2n × 2n, node-major), formed a
+    row at a time: row c (= column c, F is symmetric) is the window's response to a unit load
+    at dof c, one solve with the body's factor. A contact only ever asks for the dofs under
+    its loaded points, so most rows are never formed. Rows of supported dofs are zero."""
+
+    def __init__(self, body: Body, nodes: np.ndarray):
+        self._body = body
+        dofs = node_dofs(nodes).ravel()
+        pos = np.minimum(np.searchsorted(body.free, dofs), len(body.free) - 1)
+        self._is_free = body.free[pos] == dofs
+        self._free_pos = np.where(self._is_free, pos, -1)
+        self._F = np.empty((len(dofs), len(dofs)))  # pages are committed as rows are written
+        self._have = np.zeros(len(dofs), dtype=bool)
+        self.seconds = 0.0  # spent in solves
+
+    @property
+    def size(self) -> int:
+        return len(self._have)
+
+    @property
+    def formed(self) -> int:
+        """Rows formed so far."""
+        return int(self._have.sum())
+
+    def rows(self, c: np.ndarray) -> np.ndarray:
+        """F[c], (len(c), 2n), forming the missing rows with solves of ``FLEX_CHUNK`` loads."""
+        c = np.asarray(c, dtype=np.int64)
+        missing = np.unique(c[~self._have[c]])
+        if len(missing):
+            t0 = time.perf_counter()
+            body, free = self._body, self._is_free
+            self._F[missing[~free[missing]]] = 0.0
+            loaded = missing[free[missing]]
+            for start in range(0, len(loaded), FLEX_CHUNK):
+                cols = loaded[start:start + FLEX_CHUNK]
+                rhs = np.zeros((len(body.free), len(cols)))
+                rhs[self._free_pos[cols], np.arange(len(cols))] = 1.0
+                response = body.factor.solve(rhs)
+                block = np.zeros((len(cols), self.size))
+                block[:, free] = response[self._free_pos[free]].T
+                self._F[cols] = block
+            self._have[missing] = True
+            self.seconds += time.perf_counter() - t0
+        return self._F[c]
 
 
 def node_dofs(nodes: np.ndarray) -> np.ndarray:

@@ -66,16 +66,46 @@ def test_weighted_gaps_average_and_integrate_exactly(convex):
     assert m.weight.sum() == pytest.approx(length, rel=1e-6)
 
 
+def test_window_flexibility_rows_are_the_responses_to_unit_loads(convex):
+    # a window of free contact nodes and supported rim nodes: row c of F is the window's
+    # response to a unit load at dof c (zero for a supported dof), formed only when asked for
+    from fegear.assembly import WindowFlexibility, facet_nodes, node_dofs
+
+    body = convex.model.bodies[1]
+    rim = facet_nodes(body.mesh, body.mesh.boundaries[body.fixed_boundaries[0]][:2]).ravel()
+    flank = facet_nodes(body.mesh, body.mesh.boundaries["contact"][:3]).ravel()
+    nodes = np.unique(np.concatenate([rim, flank]))
+    dofs = node_dofs(nodes).ravel()
+    unit = np.zeros((body.ndofs, len(dofs)))
+    unit[dofs, np.arange(len(dofs))] = 1.0
+    reference = body.solve(unit)[dofs].T  # zero rows and columns at supported dofs
+    F = WindowFlexibility(body, nodes)
+    assert np.allclose(F.rows(np.array([5, 0])), reference[[5, 0]], rtol=0, atol=1e-15)
+    assert F.formed == 2
+    every = F.rows(np.arange(len(dofs)))
+    assert F.formed == len(dofs)
+    assert np.allclose(every, reference, rtol=0, atol=1e-15)
+    assert np.count_nonzero(np.all(every == 0.0, axis=1)) == 2 * len(np.unique(rim))
+    assert np.allclose(every, every.T, rtol=1e-10, atol=0)
+
+
 def test_point_flexibility_columns_match_the_dense_product():
     from fegear.contact import PointFlexibility
 
     rng = np.random.default_rng(5)
+    class Rows:  # a dense flexibility with the interface of WindowFlexibility
+        def __init__(self, F):
+            self.F = F
+
+        def rows(self, c):
+            return self.F[c]
+
     parts, dense = [], np.zeros((30, 30))
     for m in (40, 25):
         C = sp.random(30, m, density=0.1, random_state=rng, format="csr")
         A = rng.normal(size=(m, m))
         F = A @ A.T
-        parts.append((C, F))
+        parts.append((C, Rows(F)))
         dense += C @ (C @ F).T
     G = PointFlexibility(parts, 30)
     assert np.allclose(G.columns([7, 3]), dense[:, [7, 3]], rtol=1e-12, atol=1e-12)
