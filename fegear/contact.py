@@ -135,6 +135,11 @@ class PointFlexibility:
             self.seconds += time.perf_counter() - t0
         return self._columns[:, self._slot[idx]]
 
+    @property
+    def formed(self) -> int:
+        """Columns formed so far."""
+        return int(np.count_nonzero(self._slot >= 0))
+
     def block(self, idx) -> np.ndarray:
         """G[idx][:, idx]."""
         return self.columns(idx)[idx]

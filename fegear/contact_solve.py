@@ -7,7 +7,8 @@ Unknowns are the point forces λ ≥ 0 (N) and θ; with P = diag(κ w) the penal
     link balance:   k θ − a_Aᵀ λ_A = F
 
 where h + a θ is the exact rigid gap linearised at the current θ. A is updated to the points
-with negative gap until it repeats; then the exact gap is re-evaluated at the new θ.
+with negative gap until it repeats; then the exact gap is re-evaluated at the new θ. Under load
+control the load is raised in ``LOAD_STEPS``, each converged step starting the next.
 """
 
 from __future__ import annotations
@@ -21,6 +22,12 @@ from .assembly import facet_nodes
 from .contact import ContactError, ContactModel
 
 log = logging.getLogger(__name__)
+
+#: load control applies the load in these fractions, each step starting from the last one's
+#: active set and link motion: started at the first touch with the full load, one point takes
+#: it all, the link overshoots and the next active set holds half the contact boundary, every
+#: point of which needs its column of G
+LOAD_STEPS = (1 / 16, 1 / 4, 1.0)
 
 
 @dataclass(frozen=True)
@@ -78,41 +85,46 @@ def solve_contact(model: ContactModel, load: float | None = None,
     theta = 0.0 if motion is None else float(motion)
     g0, a = model.gap0(theta)
     if motion is None:
-        theta = first_touch(g0, a, load, k_link)
+        theta = first_touch(g0, a, LOAD_STEPS[0] * load, k_link)
         g0, a = model.gap0(theta)
     active = g0 < 0
     if motion is None and not active.any():
         active = g0 <= g0.min()
-    total_inner = 0
+    total_inner = outer = 0
     lam = np.zeros(model.npoints)
-    outer = 0
-    while outer < st.max_iterations:
-        outer += 1
-        h = g0 - a * theta
-        seen = set()
-        for _ in range(st.max_iterations):
-            total_inner += 1
-            lam, theta_new = _linear_step(model.G, inv_pen, h, a, active, load, theta, k_link)
-            gap = h + a * theta_new + model.G @ lam
-            new = gap < 0
-            if np.array_equal(new, active):
+    for step in tuple(f * load for f in LOAD_STEPS) if motion is None else (None,):
+        step_outer = 0
+        while step_outer < st.max_iterations:
+            step_outer += 1
+            h = g0 - a * theta
+            seen = set()
+            for _ in range(st.max_iterations):
+                total_inner += 1
+                lam, theta_new = _linear_step(model.G, inv_pen, h, a, active, step, theta,
+                                              k_link)
+                gap = h + a * theta_new + model.G @ lam
+                new = gap < 0
+                if np.array_equal(new, active):
+                    break
+                key = new.tobytes()
+                if key in seen:
+                    raise ContactError("active-set iterations cycle (contact ill-posed at "
+                                       "this load)")
+                seen.add(key)
+                active = new
+                if motion is None and not active.any():
+                    active = gap <= gap.min()
+            else:
+                raise ContactError(f"active set not stable after {st.max_iterations} "
+                                   "iterations")
+            change = abs(theta_new - theta)
+            theta = theta_new
+            g0, a = model.gap0(theta)
+            if motion is not None or change <= st.link_tol * max(abs(theta), 1e-300):
                 break
-            key = new.tobytes()
-            if key in seen:
-                raise ContactError("active-set iterations cycle (contact ill-posed at this load)")
-            seen.add(key)
-            active = new
-            if motion is None and not active.any():
-                active = gap <= gap.min()
         else:
-            raise ContactError(f"active set not stable after {st.max_iterations} iterations")
-        change = abs(theta_new - theta)
-        theta = theta_new
-        g0, a = model.gap0(theta)
-        if motion is not None or change <= st.link_tol * max(abs(theta), 1e-300):
-            break
-    else:
-        raise ContactError(f"link motion not converged after {outer} updates")
+            raise ContactError(f"link motion not converged after {step_outer} updates")
+        outer += step_outer
 
     gap = g0 + model.G @ lam
     lam = np.where(gap < 0, -gap / inv_pen, 0.0)

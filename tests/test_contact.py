@@ -155,6 +155,23 @@ def test_disk_in_bore_converges_and_reports_against_hertz():
     assert abs(fine.p_error_pct) < 1.0 and abs(fine.b_error_pct) < 2.0
 
 
+def test_load_steps_reach_the_one_step_solution_through_fewer_columns(convex, monkeypatch):
+    # the penalty problem has one solution; raising the load in steps only changes the path,
+    # and started from below it visits fewer points (each of which costs a column of G)
+    import fegear.contact_solve as contact_solve
+    from fegear.contact import build_contact
+
+    m = convex.model
+    stepped = build_contact(m.bodies, m.pairs, m.settings)
+    sol = solve_contact(stepped, load=convex.case.load)
+    monkeypatch.setattr(contact_solve, "LOAD_STEPS", (1.0,))
+    direct = build_contact(m.bodies, m.pairs, m.settings)
+    one = solve_contact(direct, load=convex.case.load)
+    assert np.allclose(one.force, sol.force, rtol=0, atol=1e-8 * sol.force.max())
+    assert one.link_value == pytest.approx(sol.link_value, rel=1e-9)
+    assert stepped.G.formed < direct.G.formed
+
+
 def test_motion_control_inverts_load_control(convex):
     sol = solve_contact(convex.model, motion=convex.solution.link_value)
     assert sol.link_force == pytest.approx(convex.case.load, rel=1e-8)
