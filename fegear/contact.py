@@ -179,6 +179,7 @@ class ContactModel:
     settings: ContactSettings
     pair_index: np.ndarray = field(repr=False)   # (n,) which pair
     x: np.ndarray = field(repr=False)            # (n, 2) slave nodes, slave body frame, mm
+    node: np.ndarray = field(repr=False)         # (n,) their indices in the slave mesh
     weight: np.ndarray = field(repr=False)       # (n,) D_i = ∫ φ_i t ds, mm²
     arc: np.ndarray = field(repr=False)          # (n,) arc length along the slave boundary, mm
     quad_x: np.ndarray = field(repr=False)       # (nq, 2) slave quadrature points, body frame
@@ -316,12 +317,12 @@ def locate_on_facets(body: Body, facets: np.ndarray,
 
 def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
                   settings: ContactSettings = ContactSettings()) -> ContactModel:
-    """Pair the slave quadrature points, build the weighted-gap rows and condense the
-    flexibility onto the slave nodes.
+    """Pair the slave quadrature points and build the weighted-gap rows; the flexibility of
+    the slave nodes is formed from them as the solve needs it (:class:`PointFlexibility`).
 
     Bodies sit at their ``placement``; slave points and rows are kept in body frames. The
-    flexibility is taken from each body's nodal flexibility on its contact boundaries
-    (computed once per body and boundary set, then reused for every pairing)."""
+    flexibility is taken from each body's nodal flexibility on its contact boundaries (one per
+    body and boundary set, its rows kept for every later pairing)."""
     bodies = tuple(bodies)
     links = [i for i, b in enumerate(bodies) if b.link is not None]
     if len(links) > 1:
@@ -331,7 +332,8 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
     gw = np.concatenate([0.25 * gw, 0.25 * gw])
     ng = len(gauss)
 
-    parts = {k: [] for k in ("pair", "x", "w", "arc", "rows", "avg", "qpair", "qx", "kappa")}
+    parts = {k: [] for k in ("pair", "x", "node", "w", "arc", "rows", "avg", "qpair", "qx",
+                             "kappa")}
     dropped = 0
     for k, pair in enumerate(pairs):
         sb, mb = bodies[pair.slave], bodies[pair.master]
@@ -369,6 +371,7 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
         arc[fnodes[:, :2].ravel()] = corner_arc.ravel()
         parts["pair"].append(np.full(len(used), k))
         parts["x"].append(sb.mesh.doflocs.T[used])
+        parts["node"].append(used)
         parts["w"].append(D[used])
         modulus = contact_modulus(sb.material.plane_modulus, mb.material.plane_modulus)
         h_node = D[used] / sb.material.thickness  # ∫φ_i ds: the mean of the two facets
@@ -415,7 +418,8 @@ def build_contact(bodies: Sequence[Body], pairs: Sequence[ContactPair],
         C.append(sp.csr_matrix((Cs.data, dofs[Cs.indices], Cs.indptr),
                                shape=(n_nodes, body.ndofs)))
     return ContactModel(bodies, tuple(pairs), settings, np.concatenate(parts["pair"]),
-                        np.vstack(parts["x"]), np.concatenate(parts["w"]),
+                        np.vstack(parts["x"]), np.concatenate(parts["node"]),
+                        np.concatenate(parts["w"]),
                         np.concatenate(parts["arc"]), np.vstack(parts["qx"]),
                         np.concatenate(parts["qpair"]), average, tuple(C),
                         PointFlexibility(flex, n_nodes),

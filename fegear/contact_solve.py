@@ -72,8 +72,13 @@ class ContactSolution:
 
 
 def solve_contact(model: ContactModel, load: float | None = None,
-                  motion: float | None = None) -> ContactSolution:
-    """Solve for the contact forces under the link force ``load`` or the link ``motion``."""
+                  motion: float | None = None,
+                  start: tuple[float, np.ndarray] | None = None) -> ContactSolution:
+    """Solve for the contact forces under the link force ``load`` or the link ``motion``.
+
+    ``start`` (load control): a link motion and active set (bool per point) near the answer,
+    such as the last position's of a mesh cycle; the full load is then applied from there,
+    without the first touch and the load steps."""
     if (load is None) == (motion is None):
         raise ValueError("give exactly one of load (link force) and motion (link value)")
     lb = model.link_body
@@ -82,17 +87,25 @@ def solve_contact(model: ContactModel, load: float | None = None,
     k_link = model.bodies[lb].link_stiffness
     inv_pen = 1.0 / (model.kappa * model.weight)
     st = model.settings
-    theta = 0.0 if motion is None else float(motion)
-    g0, a = model.gap0(theta)
-    if motion is None:
-        theta = first_touch(g0, a, LOAD_STEPS[0] * load, k_link)
+    steps = (None,) if motion is not None else tuple(f * load for f in LOAD_STEPS)
+    if motion is not None:
+        theta = float(motion)
         g0, a = model.gap0(theta)
-    active = g0 < 0
+        active = g0 < 0
+    elif start is not None:
+        theta, steps = float(start[0]), (load,)
+        g0, a = model.gap0(theta)
+        active = np.asarray(start[1], dtype=bool).copy()
+    else:
+        g0, a = model.gap0(0.0)
+        theta = first_touch(g0, a, steps[0], k_link)
+        g0, a = model.gap0(theta)
+        active = g0 < 0
     if motion is None and not active.any():
         active = g0 <= g0.min()
     total_inner = outer = 0
     lam = np.zeros(model.npoints)
-    for step in tuple(f * load for f in LOAD_STEPS) if motion is None else (None,):
+    for step in steps:
         step_outer = 0
         while step_outer < st.max_iterations:
             step_outer += 1

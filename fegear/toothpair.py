@@ -6,9 +6,10 @@ from the unloaded clearance table and an estimate of the loaded rotation (:func:
 after the solve every unpaired tooth is checked against the computed rotation, and the scene is
 rebuilt with more teeth if one would have closed.
 
-A set of rolling angles (a mesh cycle) shares one scene, one factorisation and one condensed
-flexibility per body (:class:`PairModel`); each position only places the bodies, pairs the
-contact points against gear 2's exact curve and solves the small contact problem.
+A set of rolling angles (a mesh cycle) shares one scene, one factorisation and one flexibility
+per body (:class:`PairModel`), whose rows are formed as contacts first reach their dofs; each
+position only places the bodies, pairs the contact points against gear 2's exact curve and
+solves the small contact problem.
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .assembly import Body, Material, Placement, RigidLink, assemble_body, facet_nodes
-from .contact import ContactModel, ContactPair, ContactSettings, build_contact
+from .contact import ContactError, ContactModel, ContactPair, ContactSettings, build_contact
 from .contact_solve import ContactSolution, first_touch, solve_contact
 from .errors import FegearError, ParameterError
 from .hertz import line_contact
@@ -218,8 +219,9 @@ def cycle_positions(beta0: float, n: int, z2: int) -> tuple[float, ...]:
 def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None
                     ) -> tuple[PairSolution, ...]:
     """Solve at each rolling angle of ``betas`` on one mesh: the windows cover every paired
-    tooth's contact path over the positions, the bodies are factorised and condensed once,
-    and each position only re-pairs the contact points and solves the small contact problem.
+    tooth's contact path over the positions, the bodies are factorised once (their flexibility
+    rows are formed when a position first needs them, then kept), and each position only
+    re-pairs the contact points and solves the small contact problem.
     If an unpaired tooth would close at some position, the scene is rebuilt with it."""
     p = case.params
     t0 = time.perf_counter()
@@ -235,7 +237,7 @@ def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None
         model = build_model(case, profile, states, teeth)
         sols = []
         for k, (beta, state) in enumerate(states):
-            sol = solve_position(model, beta, state)
+            sol = solve_position(model, beta, state, sols[-1] if sols else None)
             if k == 0:  # the first position carries the one-off stages
                 sol = replace(sol, timings_s={"profile": t_profile, **model.timings_s,
                                               **sol.timings_s})
@@ -258,9 +260,12 @@ def _union(groups) -> tuple[int, ...]:
     return tuple(sorted(set().union(*groups)))
 
 
-def solve_position(model: PairModel, beta: float, state) -> PairSolution:
+def solve_position(model: PairModel, beta: float, state,
+                   near: PairSolution | None = None) -> PairSolution:
     """Place the model's bodies at β, pair the contact points and solve; stresses per tooth.
-    ``state`` is the clearance state at β (for the predicted contact points)."""
+    ``state`` is the clearance state at β (for the predicted contact points); ``near``, a
+    solution on the same model at a nearby β, starts the contact iterations from its rotation
+    and loaded nodes (if that start fails, they start from the first touch)."""
     case = replace(model.case, beta=beta)
     p, scene = case.params, model.scene
     times: dict[str, float] = {}
@@ -277,7 +282,16 @@ def solve_position(model: PairModel, beta: float, state) -> PairSolution:
 
     t0 = time.perf_counter()
     torque = case.torque * 1e3
-    sol = solve_contact(contact, load=torque)
+    sol = None
+    if near is not None:
+        loaded = near.model.node[near.contact.force > 0]
+        try:
+            sol = solve_contact(contact, load=torque,
+                                start=(near.rotation, np.isin(contact.node, loaded)))
+        except ContactError as err:
+            log.info("β %.6f: started from the last position, %s; starting again", beta, err)
+    if sol is None:
+        sol = solve_contact(contact, load=torque)
     # the flexibility columns are condensed as the active set reaches them: book them there
     times["contact"] = time.perf_counter() - t0 - contact.G.seconds
     times["condense"] += contact.G.seconds
