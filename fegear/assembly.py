@@ -194,7 +194,7 @@ class Body:
         v[self.free] = self.factor.solve(np.ascontiguousarray(f[self.free]))
         return v
 
-    def flexibility(self, nodes: np.ndarray) -> "WindowFlexibility":
+    def flexibility(self, nodes: np.ndarray) -> WindowFlexibility:
         """The nodal flexibility of ``nodes`` (formed lazily, see :class:`WindowFlexibility`).
         Cached per node set: it depends only on the body frame, not on the placement."""
         nodes = np.asarray(nodes, dtype=np.int64)

@@ -24,9 +24,9 @@ from .contact import ContactError, ContactModel
 log = logging.getLogger(__name__)
 
 #: load control applies the load in these fractions, each step starting from the last one's
-#: active set and link motion: started at the first touch with the full load, one point takes
-#: it all, the link overshoots and the next active set holds half the contact boundary, every
-#: point of which needs its column of G
+#: active set and link motion. Started at the first touch with the full load, one point took
+#: it all, the link overshot, and the iterations went on to visit 925 of the 1412 contact
+#: nodes of the `fast` baseline (326 in these steps), each needing its column of G.
 LOAD_STEPS = (1 / 16, 1 / 4, 1.0)
 
 

@@ -213,7 +213,7 @@ def solve_disks(case: DiskCase) -> DiskResult:
 
     t0 = time.perf_counter()
     sol = solve_contact(model, load=case.load)
-    # the flexibility columns are condensed as the active set reaches them: book them there
+    # flexibility columns are formed as the active set reaches them: book that as condensing
     times["contact"] = time.perf_counter() - t0 - model.G.seconds
     times["condense"] += model.G.seconds
     if len(sol.patches) != 1:

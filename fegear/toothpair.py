@@ -292,7 +292,7 @@ def solve_position(model: PairModel, beta: float, state,
             log.info("β %.6f: started from the last position, %s; starting again", beta, err)
     if sol is None:
         sol = solve_contact(contact, load=torque)
-    # the flexibility columns are condensed as the active set reaches them: book them there
+    # flexibility columns are formed as the active set reaches them: book that as condensing
     times["contact"] = time.perf_counter() - t0 - contact.G.seconds
     times["condense"] += contact.G.seconds
 
