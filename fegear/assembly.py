@@ -29,7 +29,7 @@ from skfem.models.elasticity import lame_parameters, linear_elasticity, plane_st
 from .errors import FegearError, ParameterError
 from .hertz import plane_modulus
 from .mesh import BodyMesh
-from .params import require_finite
+from .params import require_range
 from .profile import rotate
 
 PLANE_MODES = ("stress", "strain")
@@ -51,15 +51,9 @@ class Material:
     plane: str = "stress"
 
     def __post_init__(self) -> None:
-        require_finite("E", self.E)
-        require_finite("nu", self.nu)
-        require_finite("thickness", self.thickness)
-        if not self.E > 0:
-            raise ParameterError("E", self.E, "E > 0 MPa")
-        if not 0.0 <= self.nu < 0.5:
-            raise ParameterError("nu", self.nu, "0 <= nu < 0.5")
-        if not 0 < self.thickness <= 1e4:
-            raise ParameterError("thickness", self.thickness, "0 < thickness <= 10000 mm")
+        require_range("E", self.E, 0.0, 1e7, lo_open=True, unit="MPa")  # diamond: 1.2e6
+        require_range("nu", self.nu, 0.0, 0.5, hi_open=True)
+        require_range("thickness", self.thickness, 0.0, 1e4, lo_open=True, unit="mm")
         if self.plane not in PLANE_MODES:
             raise ParameterError("plane", self.plane, "'stress' or 'strain'")
 

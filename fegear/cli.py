@@ -45,8 +45,13 @@ def _add_material_args(p: argparse.ArgumentParser, thickness: str) -> None:
 
 
 def _params(a: argparse.Namespace) -> PairParameters:
-    return PairParameters(m=a.m, z2=a.z2, z1=a.z1, h1=a.h1, f1=a.f1, shift=a.shift,
-                          rotation=a.rotation, tip_relief=a.tip_relief)
+    """The pair, checked for an admissible geometry before any work or output starts."""
+    from .admissible import check
+
+    p = PairParameters(m=a.m, z2=a.z2, z1=a.z1, h1=a.h1, f1=a.f1, shift=a.shift,
+                       rotation=a.rotation, tip_relief=a.tip_relief)
+    check(p)
+    return p
 
 
 def build_parser() -> argparse.ArgumentParser:

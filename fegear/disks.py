@@ -30,7 +30,7 @@ from .errors import ParameterError
 from .hertz import HertzLine, line_contact
 from .mesh import BodyGeometry, Refinement, Segment, mesh_bodies
 from .output import vtu_fields, write_json, write_vtu
-from .params import require_finite
+from .params import require_finite, require_range
 from .stress import StressField, recover
 
 #: elements across the Hertz half-width b in the contact windows, per quality level
@@ -57,17 +57,15 @@ class DiskCase:
     penalty_factor: float = ContactSettings.penalty_factor
 
     def __post_init__(self) -> None:
-        r1 = require_finite("r1", self.r1)
-        if not r1 > 0:
-            raise ParameterError("r1", self.r1, "r1 > 0 mm")
-        require_finite("r2", self.r2)
+        require_range("r1", self.r1, 0.0, 1e4, lo_open=True, unit="mm")
+        if not abs(require_finite("r2", self.r2)) <= 1e4:
+            raise ParameterError("r2", self.r2, "0 < |r2| <= 10000 mm (negative: a bore)")
+        Material(self.E, self.nu, self.thickness, self.plane)  # validates them
         if isinstance(self.quality, str) and self.quality not in QUALITY:
             raise ParameterError("quality", self.quality, " / ".join(QUALITY))
         if not isinstance(self.quality, str) and not 1 <= float(self.quality) <= 200:
             raise ParameterError("quality", self.quality, "1 <= elements across b <= 200")
-        require_finite("penalty_factor", self.penalty_factor)
-        if not 0 < self.penalty_factor <= 1e6:
-            raise ParameterError("penalty_factor", self.penalty_factor, "0 < penalty_factor <= 1e6")
+        require_range("penalty_factor", self.penalty_factor, 0.0, 1e6, lo_open=True)
         h = self.hertz  # validates r2, load, thickness, E, plane
         if h.b >= 0.5 * min(self.r1, abs(self.r2)):
             raise ParameterError("load", self.load, f"load giving b < r/2 (b = {h.b:.3g} mm)")

@@ -30,17 +30,25 @@ def prepare_dir(path: str | os.PathLike) -> Path:
 
 
 def write_atomic(path: Path, writer: Callable[[Path], None]) -> Path:
-    """Call ``writer(tmp)`` on a temporary file beside ``path``, then rename it into place."""
+    """Call ``writer(tmp)`` on a temporary file beside ``path``, then rename it into place
+    with the permissions an ordinary file gets (the temporary file is private: 0600)."""
     path = Path(path)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=path.parent)
     os.close(fd)
     try:
         writer(Path(tmp))
+        os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
     return path
+
+
+def _umask() -> int:
+    mask = os.umask(0o022)  # reading the mask means setting it: put it back at once
+    os.umask(mask)
+    return mask
 
 
 def write_points_csv(path: Path, points: np.ndarray) -> Path:

@@ -76,6 +76,7 @@ class SolveCase:
                 require_range(name, v, 0.5 * self.params.m, 20 * self.params.m, unit="mm")
         require_range("extra_teeth", self.extra_teeth, 1, 10)
         require_range("extra_pairs", self.extra_pairs, 0, 5)
+        require_range("penalty_factor", self.penalty_factor, 0.0, 1e6, lo_open=True)
         if self.tip_round is not None:
             require_range("tip_round", self.tip_round, 0.0, 0.5 * self.params.m, unit="mm")
 

@@ -1,0 +1,157 @@
+"""Bad input at every CLI option: NaN, ±infinity, zero, negative and absurd values each give
+exit code 2 and one line naming the parameter, before any work starts and before the output
+directory is made.
+
+The commands run in-process with their work replaced by a function that fails the test, so an
+accepted value shows up as that failure instead of as a long solve."""
+
+import pytest
+
+import fegear.bench
+import fegear.disks
+import fegear.pair
+import fegear.toothpair
+from fegear.cli import main
+
+NOT_FINITE = ["nan", "inf", "-inf"]
+
+# option → values that must be rejected (each also gets NaN and ±inf)
+PAIR = {
+    "--m": ["0", "-2", "1e300"],
+    "--z2": ["0", "-45", "44", "100000"],  # z2 <= z1 = 44 and absurd
+    "--z1": ["0", "-44", "45", "2"],
+    "--h1": ["0", "-0.3", "5"],
+    "--f1": ["-0.15", "1.5"],
+    "--shift": ["-0.016", "5"],
+    "--rotation": ["-5", "5"],
+    "--tip-relief": ["-5", "5"],
+}
+MATERIAL = {"--thickness": ["0", "-5", "1e300"], "--E": ["0", "-206000", "1e300"],
+            "--nu": ["-0.1", "0.5", "3"]}
+OPTIONS = {
+    "profile": {**PAIR, "--chord-error": ["0", "-1e-4", "1"], "--positions": ["0", "-16",
+                                                                              "100000"]},
+    "hertz": {"--r1": ["0", "-10", "1e300"], "--r2": ["0", "-5", "1e300"],
+              "--load": ["0", "-1000", "1e300"], **MATERIAL,
+              "--quality": ["0", "-8", "1e9", "best"],
+              "--penalty-factor": ["0", "-300", "1e300"]},
+    "solve": {**PAIR, "--torque": ["0", "-200", "1e300"], "--position": ["400", "-400"],
+              "--positions": ["1", "0", "-24", "100000"], **MATERIAL,
+              "--quality": ["best"], "--tip-round": ["-0.25", "100"],
+              "--rim1": ["0", "-6", "1e300"], "--rim2": ["0", "-6", "1e300"],
+              "--extra-teeth": ["0", "-2", "1000"], "--extra-pairs": ["-1", "1000"],
+              "--penalty-factor": ["0", "-1000", "1e300"]},
+    "bench": {**PAIR, "--repeat": ["0", "-3", "100000"], "--cycle": ["1", "0", "-24",
+                                                                     "100000"],
+              "--pair-quality": ["best"]},
+}
+INTEGER = {"--z1", "--z2", "--positions", "--extra-teeth", "--extra-pairs", "--repeat",
+           "--cycle"}
+ARGS = {"profile": ["--positions", "4"], "hertz": [], "solve": [], "bench": []}
+
+
+def _cases():
+    for command, options in OPTIONS.items():
+        for option, values in options.items():
+            extra = [] if option in INTEGER or option.endswith("quality") else NOT_FINITE
+            for value in values + extra:
+                yield pytest.param(command, option, value, id=f"{command} {option} {value}")
+
+
+@pytest.fixture
+def no_work(monkeypatch):
+    def accepted(*args, **kwargs):
+        raise AssertionError("the bad value was accepted: the work started")
+
+    for module, name in ((fegear.pair, "build_pair"), (fegear.disks, "solve_disks"),
+                         (fegear.toothpair, "solve_positions"),
+                         (fegear.bench, "geometry_bench"), (fegear.bench, "hertz_bench"),
+                         (fegear.bench, "pair_bench")):
+        monkeypatch.setattr(module, name, accepted)
+
+
+@pytest.mark.parametrize("command,option,value", list(_cases()))
+def test_bad_value_exits_2_with_one_line_naming_the_parameter(command, option, value,
+                                                               tmp_path, capsys, no_work):
+    out = tmp_path / "out"
+    argv = [command, *ARGS[command], f"{option}={value}"]
+    if command != "bench":
+        argv += ["--out", str(out)]
+    try:
+        code = main(argv)
+    except SystemExit as exc:  # argparse: not a number
+        code = exc.code
+    err = capsys.readouterr().err
+    lines = err.strip().splitlines()
+    assert code == 2, err
+    assert len(lines) == 1 and lines[0].startswith("fegear: error:"), err
+    name = option[2:].replace("-", "_")
+    assert name in lines[0] or option in lines[0], lines[0]
+    assert "admissible" in lines[0] or "invalid" in lines[0], lines[0]
+    assert not out.exists()
+
+
+def test_every_numeric_option_is_covered():
+    # a new option must come with its bad values here
+    from fegear.cli import build_parser
+
+    sub = build_parser()._subparsers._group_actions[0].choices
+    for command, parser in sub.items():
+        numeric = {a.option_strings[-1] for a in parser._actions
+                   if a.type in (int, float) or (a.dest.endswith("quality"))}
+        assert numeric <= set(OPTIONS[command]), (command, numeric - set(OPTIONS[command]))
+
+
+
+def test_outputs_are_written_atomically_with_ordinary_permissions(tmp_path):
+    import os
+
+    from fegear.output import write_atomic, write_json
+
+    old = os.umask(0o027)
+    try:
+        path = write_json(tmp_path / "summary.json", {"a": 1})
+    finally:
+        os.umask(old)
+    assert path.stat().st_mode & 0o777 == 0o640  # 0666 under the umask, not mkstemp's 0600
+
+    def fails(tmp):
+        tmp.write_text("half")
+        raise OSError("disk full")
+
+    with pytest.raises(OSError):
+        write_atomic(tmp_path / "result.csv", fails)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["summary.json"]  # nothing left
+
+
+@pytest.mark.parametrize("field,value", [
+    (f, v) for f, values in {
+        "torque": [0.0, -1.0, 1e300], "beta": [7.0, -7.0], "thickness": [0.0, -5.0, 1e300],
+        "E": [0.0, -1.0, 1e300], "nu": [-0.1, 0.5], "quality": ["best", 3],
+        "rim1": [0.0, -1.0, 1e300], "rim2": [0.0, 1e300], "extra_teeth": [0, 1000],
+        "extra_pairs": [-1, 1000], "penalty_factor": [0.0, -1.0, 1e300],
+        "tip_round": [-0.1, 100.0]}.items()
+    for v in values + ([float("nan"), float("inf")] if f not in ("quality",) else [])])
+def test_solve_case_rejects_bad_fields(field, value):
+    from fegear.errors import ParameterError
+    from fegear.params import PairParameters
+    from fegear.toothpair import SolveCase
+
+    with pytest.raises(ParameterError) as err:
+        SolveCase(PairParameters(), **{field: value})
+    assert err.value.name == ("position" if field == "beta" else field)
+
+
+@pytest.mark.parametrize("field,value", [
+    (f, v) for f, values in {
+        "r1": [0.0, -1.0, 1e300], "r2": [0.0, 1e300, -5.0], "load": [0.0, -1.0, 1e300],
+        "thickness": [0.0, 1e300], "E": [0.0, 1e300], "nu": [0.5, -1.0],
+        "quality": ["best", 0, 1e9], "penalty_factor": [0.0, 1e300]}.items()
+    for v in values + ([float("nan"), float("-inf")] if f != "quality" else [])])
+def test_disk_case_rejects_bad_fields(field, value):
+    from fegear.disks import DiskCase
+    from fegear.errors import ParameterError
+
+    with pytest.raises(ParameterError) as err:
+        DiskCase(**{field: value})
+    assert err.value.name == field
