@@ -64,14 +64,19 @@ def test_baseline_pair_balances_torque_and_shares():
 
 
 @pytest.mark.slow
-def test_tip_edge_peak_is_insensitive_to_the_penalty():
+def test_headline_stresses_are_insensitive_to_the_penalty_over_three_decades():
     # the largest pressure sits on gear 1's 0.25 mm tip round, in a zone a few elements wide:
-    # the weighted-gap penalty must not lock or oscillate there as the penalty grows
+    # the weighted-gap penalty must not lock or oscillate there as the penalty grows 1000×
+    # (measured: roots and von Mises move < 0.02 %); the penetration falls with the penalty
     p = PairParameters(shift=0.016, rotation=0.002)
-    runs = [solve_pair(SolveCase(p, quality="fast", penalty_factor=f)) for f in (100, 10000)]
+    runs = [solve_pair(SolveCase(p, quality="fast", penalty_factor=f))
+            for f in (100, 1000, 10000, 100000)]
     assert all(any(t.peak_on_round for t in r.teeth) for r in runs)
-    peaks = [r.contact_pressure for r in runs]
-    assert peaks[1] == pytest.approx(peaks[0], rel=0.01)
+    for key in runs[0].headline():
+        values = [r.headline()[key] for r in runs]
+        assert max(values) - min(values) < 0.01 * min(values), (key, values)
+    penetration = [r.contact.max_penetration for r in runs]
+    assert penetration[-1] < penetration[0] / 500
 
 
 def test_profile_segments_with_many_zones_stay_contiguous():
