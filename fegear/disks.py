@@ -60,7 +60,7 @@ class DiskCase:
         require_range("r1", self.r1, 0.0, 1e4, lo_open=True, unit="mm")
         if not abs(require_finite("r2", self.r2)) <= 1e4:
             raise ParameterError("r2", self.r2, "0 < |r2| <= 10000 mm (negative: a bore)")
-        Material(self.E, self.nu, self.thickness, self.plane)  # validates them
+        Material(self.E, self.nu, self.thickness, self.plane)  # validates E, ν, t, plane
         if isinstance(self.quality, str) and self.quality not in QUALITY:
             raise ParameterError("quality", self.quality, " / ".join(QUALITY))
         if not isinstance(self.quality, str) and not 1 <= float(self.quality) <= 200:
