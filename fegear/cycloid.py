@@ -174,6 +174,11 @@ class Cycloid:
         return self.point(xi)
 
 
+#: a polyline longer than this is refused: the curve has a cusp (random admissible-looking
+#: pairs such as m 6, z 9/8, h1 0.5, f1 0, rotation 0.5 asked for 22 million points)
+MAX_POLYLINE_POINTS = 2_000_000
+
+
 def adaptive_parameters(derivs, a: float, b: float, chord_error: float,
                         n0: int = 64) -> np.ndarray:
     """Parameters on ``[a, b]`` whose chords deviate from the curve by at most ``chord_error``.
@@ -185,7 +190,7 @@ def adaptive_parameters(derivs, a: float, b: float, chord_error: float,
     if not chord_error > 0:
         raise ValueError("chord_error must be > 0")
     s = np.linspace(a, b, n0 + 1)
-    pts = []
+    pts, total = [], 0
     for s0, s1 in zip(s[:-1], s[1:]):
         probe = np.linspace(s0, s1, 9)
         _, d1, d2 = derivs(probe)
@@ -196,6 +201,12 @@ def adaptive_parameters(derivs, a: float, b: float, chord_error: float,
         kmax = 1.5 * kappa.max() + 1e-12
         seg = np.sqrt(8.0 * chord_error / kmax)
         n = max(1, int(np.ceil(speed.max() * (s1 - s0) / seg)))
+        total += n
+        if total > MAX_POLYLINE_POINTS:
+            raise GeometryError(
+                f"a polyline with chord error {chord_error:g} mm needs more than "
+                f"{MAX_POLYLINE_POINTS} points: the curve has a cusp or a near-cusp "
+                f"(curvature {kappa.max():.3g} /mm, speed {speed.min():.3g} mm/rad)")
         pts.append(np.linspace(s0, s1, n, endpoint=False))
     pts.append(np.array([b]))
     return np.concatenate(pts)

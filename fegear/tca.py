@@ -19,12 +19,14 @@ Clearances are reported as µm of arc at the pitch radius r0 (``δ r0``).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
 from .cycloid import Cycloid, gear2_curve
+from .errors import GeometryError
 from .params import PairParameters
 from .profile import Gear1Profile, wrap
 from .profile import rotate as _rotate
@@ -85,6 +87,9 @@ class ContactState:
         """The tooth with the smallest clearance in ``direction`` (+1 or -1)."""
         key = "plus_um" if direction > 0 else "minus_um"
         finite = [t for t in self.teeth if getattr(t, key) is not None]
+        if not finite:  # e.g. m 1.5, z 10/8, h1 0.01, f1 0 (a random case of the tests)
+            raise GeometryError(f"no tooth can touch turning {'+' if direction > 0 else '−'} "
+                                f"at β = {math.degrees(self.beta):.4g}°: the pair does not mesh")
         return min(finite, key=lambda t: getattr(t, key))
 
 

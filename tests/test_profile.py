@@ -5,6 +5,8 @@ import pytest
 from conftest import CONJUGATE, MODIFIED
 from swept_reference import sweep_min_distance
 
+from fegear.params import PairParameters
+
 UM = 1e-3  # mm
 TOL = 0.05 * UM  # the exactness bound, 0.05 µm
 
@@ -92,3 +94,17 @@ def test_curvature_radius_on_flank(modified_profile):
     area2 = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
     r_circ = np.linalg.norm(a - b) * np.linalg.norm(b - c) * np.linalg.norm(c - a) / (2 * area2)
     assert g.evaluate(np.array([phi0])).curvature_radius[0] == pytest.approx(r_circ, rel=1e-4)
+
+
+@pytest.mark.parametrize("params,fragment", [
+    # random cases of a property-based run: a cusp off the working flank (the adaptive
+    # polyline asked for 22 million points), and a pair in which no tooth can touch
+    (PairParameters(m=6.0, z2=9, z1=8, h1=0.5, f1=0.0, rotation=0.5), "cusp"),
+    (PairParameters(m=1.5, z2=10, z1=8, h1=0.01, f1=0.0), "does not mesh"),
+])
+def test_degenerate_pairs_raise_a_named_error(params, fragment):
+    from fegear.errors import GeometryError
+    from fegear.pair import build_pair
+
+    with pytest.raises(GeometryError, match=fragment):
+        build_pair(params, chord_error=1e-3, backlash_positions=4)

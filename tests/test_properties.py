@@ -1,0 +1,65 @@
+"""Property-based checks (hypothesis, derandomised so CI sees the same cases every run): random
+admissible-looking inputs either give finite results that pass the physical checks or raise a
+named fegear error. No NaN or infinity may reach an output.
+
+Covered here: the Hertz disk FE case (coarse). Not yet: random pairs through the geometry stage
+(a 200-case run did not finish in 8 min; the two failures it found are regression tests in
+tests/test_profile.py) and through the FE solve (a `fast` solve takes about 30 s)."""
+
+import math
+
+import pytest
+from hypothesis import HealthCheck, Phase, given, settings
+from hypothesis import strategies as st
+
+from fegear.disks import DiskCase, solve_disks
+from fegear.errors import FegearError
+
+SETTINGS = settings(max_examples=200, deadline=None, derandomize=True,
+                    phases=[Phase.explicit, Phase.reuse, Phase.generate, Phase.shrink],
+                    suppress_health_check=[HealthCheck.too_slow])
+
+
+def _finite(value, path="summary"):
+    """Every number in a JSON-like tree is finite (None allowed); returns the offending path."""
+    if isinstance(value, dict):
+        return next((p for k, v in value.items() if (p := _finite(v, f"{path}.{k}"))), None)
+    if isinstance(value, (list, tuple)):
+        return next((p for i, v in enumerate(value) if (p := _finite(v, f"{path}[{i}]"))), None)
+    if isinstance(value, float) and not math.isfinite(value):
+        return path
+    return None
+
+
+@st.composite
+def disks(draw):
+    r1 = draw(st.floats(1.0, 100.0))
+    bore = draw(st.booleans())
+    r2 = -draw(st.floats(1.05 * r1, 1.05 * r1 + 100.0)) if bore else draw(st.floats(1.0, 100.0))
+    return DiskCase(r1=r1, r2=r2, load=10 ** draw(st.floats(-3.0, 4.0)),
+                    thickness=draw(st.floats(0.5, 50.0)), E=draw(st.floats(5e4, 4e5)),
+                    nu=draw(st.floats(0.0, 0.45)), quality="coarse")
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="known failure, not yet understood: r1 1, r2 48 mm, "
+                   "1 mN, t 12 mm, E 67886 MPa, ν 0 leaves 0.14 % of the load unbalanced")
+@SETTINGS
+@given(data=st.data())
+def test_random_disk_contacts_converge_or_raise_a_named_error(data):
+    try:
+        case = data.draw(disks())
+        r = solve_disks(case)
+    except FegearError:
+        return
+    sol = r.solution
+    assert sol.balance_error < 1e-3
+    assert sol.max_penetration < 0.01 * r.half_width  # the solver's stated bound
+    assert max(sol.residuals) < 1e-8
+    assert _finite(r.summary()) is None, _finite(r.summary())
+
+
+def test_finite_check_finds_a_nan_deep_in_a_summary():
+    assert _finite({"a": [1.0, {"b": float("nan")}]}) == "summary.a[1].b"
+    assert _finite({"a": [1.0, None, "x"], "b": (2, -0.0)}) is None
+    assert _finite([float("-inf")]) == "summary[0]"
