@@ -92,7 +92,7 @@ def build_parser() -> argparse.ArgumentParser:
                     help="solve N rolling angles across one tooth pitch from --position on one "
                          "mesh; writes cycle.csv and cycle.png")
     _add_material_args(sv, "face width")
-    sv.add_argument("--quality", default="standard", help="fast / standard / fine")
+    sv.add_argument("--quality", default="standard", help="coarse / fast / standard / fine")
     sv.add_argument("--tip-round", type=float, default=None,
                     help="gear-1 tip-edge round radius [mm] (default 0.125 m)")
     sv.add_argument("--rim1", type=float, default=None,
@@ -115,7 +115,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_pair_args(bench)
     bench.add_argument("--repeat", type=int, default=3, help="repetitions (best is kept)")
     bench.add_argument("--pair-quality", default="standard",
-                       help="quality of the tooth-pair benchmark (fast / standard / fine)")
+                       help="quality of the tooth-pair benchmark (coarse / fast / standard / fine)")
     bench.add_argument("--cycle", type=int, default=24,
                        help="positions in the benchmarked mesh cycle (default 24)")
     return parser

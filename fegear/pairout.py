@@ -17,6 +17,7 @@ from .contact_solve import nodal_pressure
 from .output import vtu_fields, write_atomic, write_json, write_vtu
 from .plot import cycle_png
 from .profile import Gear1Profile
+from .scene import QUALITY
 from .toothpair import PairSolution, solve_pair
 
 #: headline stresses: JSON key (MPa) → label in the table and the cycle plot
@@ -40,7 +41,7 @@ def second_level_estimate(sol: PairSolution,
     """Solve the same case at the next coarser quality (``standard`` for ``fast``: the next
     finer) and estimate the headline errors (%) of ``sol``. Returns the estimate and the
     other quality."""
-    levels = ("fast", "standard", "fine")
+    levels = tuple(QUALITY)  # coarsest first, each halving the element sizes
     k = levels.index(sol.case.quality)
     other = levels[k - 1] if k > 0 else levels[1]
     second = solve_pair(replace(sol.case, quality=other), profile).headline()

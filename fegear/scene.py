@@ -40,8 +40,8 @@ from .profile import Gear1Profile, rotate, wrap
 from .rounding import RoundedProfile
 
 #: quality → (elements across the Hertz half-width, root size / m, global size / m)
-QUALITY = {"fast": (4, 1 / 10, 1 / 2), "standard": (8, 1 / 20, 1 / 4),
-           "fine": (16, 1 / 40, 1 / 8)}
+QUALITY = {"coarse": (2, 1 / 5, 1.0), "fast": (4, 1 / 10, 1 / 2),
+           "standard": (8, 1 / 20, 1 / 4), "fine": (16, 1 / 40, 1 / 8)}
 ROOT_BAND = 0.3          # root zone: the lower 30 % of the tooth height
 WINDOW_B = 2.5           # gear-1 window half-length, in Hertz half-widths at the shared load
 WINDOW_MIN = 0.1         # … and at least this many modules
@@ -54,6 +54,10 @@ ROUND_SPILL = 2.0        # gear 1's round size reaches this many round Hertz wid
 JUNCTION_SPAN = 0.25     # round-to-flank tangent points: refined over ± this many round
 JUNCTION_DENSITY = 4     # Hertz widths, this many times finer than the round
 SPLINE_CHORD = 1e-3      # mm, polyline handed to gmsh (nodes are snapped to the exact curve)
+SNAP_CHORD = 0.1         # … and at most this fraction of the segment's element size, so that
+                         # snapping moves a boundary node by a small part of its element
+SIZE_FLOOR = 1e-4        # smallest element, in modules (0.2 µm at m = 2): at light load the
+                         # sizes that follow the Hertz widths would shrink to nanometres
 
 
 @dataclass(frozen=True)
@@ -118,11 +122,16 @@ def candidate_data(params: PairParameters, shape: RoundedProfile, state, teeth,
         if c.tooth not in teeth or c.plus_point is None:
             continue
         x = np.array([c.plus_point])
-        body1 = rotate(x - np.array([0.0, params.e]), -alpha)
+        o1 = np.array([0.0, params.e])
+        body1 = rotate(x - o1, -alpha)
         phi1 = float(math.atan2(body1[0, 1], body1[0, 0]))
         r1 = float(1.0 / shape.curvature(np.array([phi1]))[0])
-        body2 = rotate(x, -beta)
-        theta2 = float(math.atan2(body2[0, 1], body2[0, 0]))
+        # the gear-2 point is where that gear-1 point lands once the clearance is closed: on a
+        # nearly conformal flank the relative curvature is a small difference of two large
+        # ones, and gear 2's changes fast (the 6 µm of a baseline clearance doubled 1/R*)
+        x = rotate(x - o1, c.plus_um * 1e-3 / params.r0) + o1
+        foot = g2.closest(rotate(x, -beta))[0]
+        theta2 = float(math.atan2(foot[0, 1], foot[0, 0]))
         xi = g2.xi_at_angle(np.array([theta2]))
         r2 = float(g2.curvature_radius(xi)[0])
         out.append(Candidate(c.tooth, float(c.plus_um), (float(x[0, 0]), float(x[0, 1])), phi1,
@@ -164,7 +173,8 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
     first = [min(cs, key=lambda c: c.clearance_um) for _, cs in at if cs]
     b_full = max(hertz_half_width(params, torque_nmm, c, thickness, E, nu) for c in first)
     b_shared = b_full / math.sqrt(SHARE_GUESS)  # b ∝ sqrt(load)
-    h_contact = b_shared / n_b
+    floor = SIZE_FLOOR * m
+    h_contact = max(b_shared / n_b, floor)
 
     # gear-1 sector: teeth from min - extra to max + extra (indices modulo z1, contiguous)
     pitch1 = shape.pitch
@@ -190,15 +200,19 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
     root_half1 = _root_half_angle(shape.radius, roots1[0][1], pitch1, rho_min, rho_max)
     turn0 = math.floor((phi_a - shape.phi_space) / pitch1)
     # refine the rounds that a contact window reaches (the others never touch)
-    rounds = [(c - h, c + h) for c, h, _ in
-              shape.fillet_angles(range(turn0 - 1, turn0 + hi - lo + 2))
+    fillets = shape.fillet_angles(range(turn0 - 1, turn0 + hi - lo + 2))
+    rounds = [(c - h, c + h) for c, h, _ in fillets
               if any(abs(c - p) < h + w for _, p, w in windows1)]
+    # every round's tangent points cut the polyline: a spline through a curvature jump
+    # overshoots by µm, which snapping onto the exact curve cannot undo in µm elements
+    tangents = [(x, x, None) for c, h, _ in fillets for x in (c - h, c + h)]
     # the rounds meet the gear-2 flank like a cylinder of radius ρ on a plane: elements sized
     # to that Hertz half-width at the shared load
     b_round = min([b_shared] + [line_contact(f.radius, math.inf, torque_nmm / params.r0
                                              / SHARE_GUESS, thickness, E, nu).b
                                 for f in shape.fillets])
-    h_round = min(h_contact, b_round / (ROUND_DENSITY * n_b))
+    h_round = max(min(h_contact, b_round / (ROUND_DENSITY * n_b)), floor)
+    h_junction = max(h_round / JUNCTION_DENSITY, floor)
     spill = ROUND_SPILL * b_round / rho_max
     # where a round meets the flank the curvature jumps (4 → 0.3 /mm on the baseline): the
     # pressure peaks there over a few µm, so those tangent points get a finer zone of their own
@@ -212,7 +226,9 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
         "g1", shape.point, g1_project, phi_a, phi_b,
         [(f"g1_contact_{t}", p, w) for t, p, w in windows1],
         [(f"g1_root_{k}", p, root_half1) for k, p in roots1],
-        marks=junctions + [(a - spill, b + spill, "g1_round") for a, b in rounds])
+        marks=junctions + [(a - spill, b + spill, "g1_round") for a, b in rounds] + tangents,
+        sizes={"g1_round": h_round, "g1_junction": h_junction,
+               **{f"g1_contact_{t}": h_contact for t in paired}})
     a0, b0 = shape.point(np.array([phi_a]))[0], shape.point(np.array([phi_b]))[0]
     bore_pts = bore * np.column_stack([np.cos(np.linspace(phi_b, phi_a, 60)),
                                        np.sin(np.linspace(phi_b, phi_a, 60))])
@@ -225,7 +241,7 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
     if any(s.zone == "g1_round" for s in segs1):
         refine1.append(Refinement(("g1_round",), h_round))
     if any(s.zone == "g1_junction" for s in segs1):
-        refine1.append(Refinement(("g1_junction",), h_round / JUNCTION_DENSITY))
+        refine1.append(Refinement(("g1_junction",), h_junction))
     geo1 = BodyGeometry("gear1", (
         *segs1,
         Segment("g1_cut_b", np.array([b0, bore_pts[0]])),
@@ -269,7 +285,8 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
     segs2, names2 = _profile_segments(
         "g2", g2_curve, g2_project, th_a, th_b,
         [("g2_contact", p, w) for _, p, w in windows2],
-        [(f"g2_root_{k}", p, root_half2) for k, p in roots2], marks=marks2)
+        [(f"g2_root_{k}", p, root_half2) for k, p in roots2], marks=marks2,
+        sizes={"g2_contact": h_contact, "g2_round": h_round})
     rim_pts = outer * np.column_stack([np.cos(np.linspace(th_a, th_b, 80)),
                                        np.sin(np.linspace(th_a, th_b, 80))])
 
@@ -343,7 +360,7 @@ def _root_half_angle(radius, centre: float, pitch: float, r_min: float, r_max: f
     return float(inside.max()) if len(inside) else 0.05 * pitch
 
 
-def _profile_segments(prefix, curve, project, a, b, windows, roots, marks=()):
+def _profile_segments(prefix, curve, project, a, b, windows, roots, marks=(), sizes=None):
     """Split the profile over polar angles [a, b] into named segments.
 
     ``windows``/``roots``: (name, centre angle, half-angle). Where two windows (in centre
@@ -352,7 +369,9 @@ def _profile_segments(prefix, curve, project, a, b, windows, roots, marks=()):
     precedence over roots, and earlier roots over later ones (a root may become two pieces
     under one name); the rest is
     ``{prefix}_flank``. ``marks``: (lo, hi, zone) angle ranges whose pieces get that refinement
-    zone (whatever their name). Returns segments in increasing angle and the distinct names.
+    zone (whatever their name); every mark end cuts a segment (zone None: only the cut).
+    ``sizes``: element size (mm) per name or zone, which sets the
+    sampling (:func:`_sampled`). Returns segments in increasing angle and the distinct names.
     """
     wins = sorted((c, max(a, c - h), min(b, c + h), name) for name, c, h in windows)
     cuts = [None] + [0.5 * (pc + c) if lo < phi_ else None
@@ -386,14 +405,17 @@ def _profile_segments(prefix, curve, project, a, b, windows, roots, marks=()):
         for p0, p1 in zip(cuts, cuts[1:]):
             mid = 0.5 * (p0 + p1)
             zone = next((z for m_lo, m_hi, z in marks if m_lo <= mid <= m_hi), None)
-            segments.append(_sampled(name, curve, project, p0, p1, zone))
+            size = (sizes or {}).get(zone, (sizes or {}).get(name, math.inf))
+            segments.append(_sampled(name, curve, project, p0, p1, zone, size))
         if name not in names:
             names.append(name)
     return tuple(segments), tuple(names)
 
 
-def _sampled(name, curve, project, lo, hi, zone=None) -> Segment:
+def _sampled(name, curve, project, lo, hi, zone=None, size=math.inf) -> Segment:
+    """The curve over polar angles [lo, hi] as a polyline whose chord error at 0.5 mm radius
+    of curvature is SPLINE_CHORD, or SNAP_CHORD of the element ``size`` (mm) if smaller."""
     r = np.hypot(*curve(np.array([0.5 * (lo + hi)]))[0])
-    spacing = math.sqrt(8 * 0.5 * SPLINE_CHORD)  # chord error SPLINE_CHORD at 0.5 mm radius
+    spacing = math.sqrt(8 * 0.5 * min(SPLINE_CHORD, SNAP_CHORD * size))
     n = max(8, int((hi - lo) * r / spacing) + 2)
-    return Segment(name, curve(np.linspace(lo, hi, min(n, 400))), project, zone)
+    return Segment(name, curve(np.linspace(lo, hi, min(n, 2000))), project, zone)

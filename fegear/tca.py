@@ -49,7 +49,8 @@ class ToothClearance:
         plus_um, minus_um: rotation of gear 1 that closes this tooth's clearance, counter-
             clockwise (+) and clockwise (−), as µm of arc at r0; negative if it interferes;
             ``None`` if no contact is possible within one pitch of rotation.
-        plus_point, minus_point: where the contact closes (fixed frame, mm), or ``None``.
+        plus_point, minus_point: the gear-1 point that closes the clearance, where it is at this
+            rolling angle (fixed frame, mm; the rotation moves it on), or ``None``.
     """
 
     tooth: int

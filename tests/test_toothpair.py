@@ -6,12 +6,13 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from fegear.cycloid import gear2_curve
 from fegear.errors import ParameterError
 from fegear.pairout import HEADLINE, error_estimate
 from fegear.params import PairParameters
-from fegear.profile import Gear1Profile
+from fegear.profile import Gear1Profile, rotate
 from fegear.rounding import RoundedProfile
-from fegear.scene import _profile_segments, build_scene
+from fegear.scene import _profile_segments, build_scene, candidate_data
 from fegear.tca import ToothContact
 from fegear.toothpair import (
     SolveCase,
@@ -153,9 +154,20 @@ def test_gear2_is_refined_like_the_rounds_and_gear1_reaches_beyond():
     for c, h, _ in scene.shape.fillet_angles(range(-1, p.z1 + 1)):
         if any(a.min() <= c <= a.max() for a in spans1):
             refined += 1
-            for t in (c - h, c + h):
-                assert any(a.min() < t < a.max() for a in junctions)
+            for t in (c - h, c + h):  # on both sides: the tangent point is also a cut
+                assert any(a.min() < t - 1e-9 < a.max() for a in junctions)
+                assert any(a.min() < t + 1e-9 < a.max() for a in junctions)
     assert refined >= 2
+    # every round's tangent points, refined or not, end a segment: one spline through a
+    # curvature jump overshoots the exact curve by µm (inverted elements at 0.01 N·m)
+    ends = np.concatenate([np.arctan2(s.points[[0, -1], 1], s.points[[0, -1], 0])
+                           for s in scene.gear1.outer])
+    lo, hi = ends.min(), ends.max()
+    for c, h, _ in scene.shape.fillet_angles(range(-1, p.z1 + 1)):
+        for t in (c - h, c + h):
+            t = lo + np.mod(t - lo, 2 * np.pi)
+            if t < hi:
+                assert np.abs(ends - t).min() < 1e-12
     close = 0
     for q in rounds1:  # the refined rounds (with their spill onto the flank)
         on = scene.shape.on_round(np.arctan2(q[:, 1], q[:, 0]))
@@ -253,3 +265,29 @@ def test_error_estimate_is_the_two_grid_convergence_index():
     coarse = {k: 200.0 + d for k, d in zip(HEADLINE, (2.0, -2.0, 0.0, 20.0))}
     # Fs = 3, r = 2, p = 2: e = 3 |Δ| / 3 = |Δ|, relative to the finer value
     assert list(error_estimate(fine, coarse).values()) == pytest.approx([1.0, 1.0, 0.0, 10.0])
+
+
+def test_hertz_radii_are_those_of_the_gap_once_the_clearance_is_closed():
+    # on the baseline's nearly conformal flanks 1/R* is a small difference of two curvatures
+    # near 0.1 /mm, and gear 2's changes fast: taken 6 µm away (where the gear-1 point sits
+    # before the clearance closes) it came out half the true value
+    p = PairParameters(shift=0.016, rotation=0.002)
+    profile = Gear1Profile(p)
+    beta = SolveCase(p).beta
+    state = ToothContact(p, profile).state(beta)
+    shape = RoundedProfile(profile, 0.25)
+    first = sorted((c for c in state.teeth if c.plus_um is not None), key=lambda c: c.plus_um)
+    cands = candidate_data(p, shape, state, tuple(c.tooth for c in first[:3]), beta)
+    assert len(cands) == 3
+    g2 = gear2_curve(p)
+    for c in cands:
+        phi = c.phi1 + np.linspace(-2e-5, 2e-5, 201)
+        pts = shape.point(phi)
+        closed = rotate(pts, p.ratio * beta + c.clearance_um * 1e-3 / p.r0) + np.array([0, p.e])
+        gap = g2.closest(rotate(closed, -beta))[2]
+        s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
+        s -= s[100]
+        assert gap.min() == pytest.approx(0.0, abs=1e-9)
+        assert np.argmin(gap) == 100
+        relative = 2 * np.polyfit(s, gap, 2)[0]
+        assert relative == pytest.approx(1 / c.radius1 + 1 / c.radius2, rel=1e-3)
