@@ -16,7 +16,7 @@ from __future__ import annotations
 import contextlib
 import logging
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from skfem import MeshTri2
@@ -283,6 +283,36 @@ def _build(body: BodyGeometry, xy: np.ndarray, tri: np.ndarray,
                         f"{quality.min_shape:.3f} < {body.min_quality})")
     log.debug("meshed %s: %s", body.name, quality)
     return BodyMesh(body.name, mesh, quality)
+
+
+def jiggle(body: BodyMesh, fraction: float, seed: int = 0) -> BodyMesh:
+    """The same mesh with every interior corner node moved by ``fraction`` of its shortest
+    edge, each in a random direction; boundary nodes stay on the exact curves and interior
+    edges stay straight (their midside nodes follow). For mesh-sensitivity checks."""
+    mesh = body.mesh
+    rng = np.random.default_rng(seed)
+    x = mesh.doflocs.T.copy()
+    t, mid = mesh.t.T, mesh.dofs.element_dofs.T[:, 3:]  # edges 01, 12, 02 (as mesh.t2f)
+    ends = ((0, 1), (1, 2), (0, 2))
+    length = np.full(len(x), np.inf)
+    for a, b in ends:
+        d = np.linalg.norm(x[t[:, a]] - x[t[:, b]], axis=1)
+        np.minimum.at(length, t[:, a], d)
+        np.minimum.at(length, t[:, b], d)
+    on_boundary = np.zeros(mesh.facets.shape[1], dtype=bool)
+    on_boundary[mesh.boundary_facets()] = True
+    moving = np.setdiff1d(np.unique(t), mesh.facets[:, on_boundary])
+    angle = rng.uniform(0.0, 2 * np.pi, len(moving))
+    x[moving] += fraction * length[moving, None] * np.column_stack([np.cos(angle),
+                                                                    np.sin(angle)])
+    for k, (a, b) in enumerate(ends):
+        inner = ~on_boundary[mesh.t2f[k]]
+        x[mid[inner, k]] = 0.5 * (x[t[inner, a]] + x[t[inner, b]])
+    moved = replace(mesh, doflocs=x.T.copy())
+    quality = mesh_quality(moved)
+    if quality.min_jacobian_ratio <= 0.0:
+        raise MeshError(f"body {body.name!r}: jiggling by {fraction:g} inverted an element")
+    return BodyMesh(body.name, moved, quality)
 
 
 def _corner_areas(xy: np.ndarray, tri: np.ndarray) -> np.ndarray:

@@ -10,7 +10,15 @@ from skfem import Basis, ElementTriP2, FacetBasis, LinearForm, asm
 
 from fegear.assembly import facet_nodes
 from fegear.contact import Circle
-from fegear.mesh import BodyGeometry, MeshError, Refinement, Segment, mesh_bodies, mesh_quality
+from fegear.mesh import (
+    BodyGeometry,
+    MeshError,
+    Refinement,
+    Segment,
+    jiggle,
+    mesh_bodies,
+    mesh_quality,
+)
 
 R = 10.0
 C = (0.0, R)
@@ -100,3 +108,29 @@ def test_bad_geometry_is_refused_with_a_named_reason():
         mesh_bodies([BodyGeometry(g.name, g.outer[:3], g.size)])
     with pytest.raises(MeshError, match="finite"):
         Segment("x", np.array([[0.0, np.nan], [1.0, 0.0]]))
+
+
+def test_jiggle_moves_interior_corners_by_the_fraction_and_keeps_the_boundary(disk):
+    moved = jiggle(disk, 0.1, seed=3)
+    m0, m1 = disk.mesh, moved.mesh
+    shift = np.linalg.norm(m1.doflocs - m0.doflocs, axis=0)
+    boundary = np.unique(m0.facets[:, m0.boundary_facets()])
+    assert shift[boundary].max() == 0.0
+    corners = np.setdiff1d(np.unique(m0.t), boundary)
+    t = m0.t.T
+    shortest = np.full(m0.doflocs.shape[1], np.inf)
+    for a, b in ((0, 1), (1, 2), (0, 2)):
+        d = np.linalg.norm(m0.doflocs[:, t[:, a]] - m0.doflocs[:, t[:, b]], axis=0)
+        np.minimum.at(shortest, t[:, a], d)
+        np.minimum.at(shortest, t[:, b], d)
+    assert shift[corners] == pytest.approx(0.1 * shortest[corners], rel=1e-9)
+    # interior edges straight, boundary midside nodes still on the circle, area unchanged
+    x = m1.doflocs[:, m1.dofs.element_dofs]
+    inner = ~np.isin(m1.t2f, m1.boundary_facets())
+    for k, (a, b) in enumerate(((0, 1), (1, 2), (0, 2))):
+        mid = 0.5 * (x[:, a] + x[:, b])
+        assert np.abs(x[:, 3 + k][:, inner[k]] - mid[:, inner[k]]).max() < 1e-12
+    area = [asm(LinearForm(lambda v, w: v), Basis(m, ElementTriP2())).sum() for m in (m0, m1)]
+    assert area[1] == pytest.approx(area[0], rel=1e-12)
+    assert moved.quality.min_jacobian_ratio > 0
+    assert list(m1.boundaries) == list(m0.boundaries)
