@@ -32,7 +32,7 @@ import numpy as np
 
 from .contact import CurvePoints
 from .cycloid import Cycloid, gear2_curve
-from .errors import ParameterError
+from .errors import FegearError, ParameterError
 from .hertz import line_contact
 from .mesh import BodyGeometry, Refinement, Segment
 from .params import PairParameters
@@ -176,13 +176,18 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
     floor = SIZE_FLOOR * m
     h_contact = max(b_shared / n_b, floor)
 
-    # gear-1 sector: teeth from min - extra to max + extra (indices modulo z1, contiguous)
+    # gear-1 sector: the shortest run of consecutive teeth (indices modulo z1) that holds
+    # every paired tooth, widened by ``extra`` teeth on each side
     pitch1 = shape.pitch
-    rel = sorted(round(float(wrap((t - teeth[0]) * pitch1)) / pitch1) for t in teeth)
-    lo, hi = rel[0] - extra, rel[-1] + extra
-    centre0 = shape.tooth_center + teeth[0] * pitch1
+    start, span = tooth_run(teeth, params.z1)
+    lo, hi = -extra, span + extra
+    if hi - lo + 2 > params.z1:
+        raise FegearError(f"the paired teeth {list(teeth)} and {extra} more on each side span "
+                          f"{hi - lo + 1} of gear 1's {params.z1} teeth: a full-ring model is "
+                          "not built (lower the torque or raise the tip relief)")
+    centre0 = shape.tooth_center + start * pitch1
     phi_a, phi_b = centre0 + lo * pitch1, centre0 + hi * pitch1
-    teeth1 = tuple(int((teeth[0] + k) % params.z1) for k in range(lo, hi + 1))
+    teeth1 = tuple(int((start + k) % params.z1) for k in range(lo, hi + 1))
     mid1 = 0.5 * (phi_a + phi_b)
     paired = tuple(sorted({c.tooth for _, c in cands}))
 
@@ -196,7 +201,7 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
     windows1 = _path_windows(
         paired, [(c.tooth, _unwrap_near(c.phi1, mid1),
                   w / math.hypot(*shape.point(np.array([c.phi1]))[0])) for _, c, w in half])
-    roots1 = [(k, shape.phi_space + (teeth[0] + k) * pitch1) for k in range(lo + 1, hi + 1)]
+    roots1 = [(k, shape.phi_space + (start + k) * pitch1) for k in range(lo + 1, hi + 1)]
     root_half1 = _root_half_angle(shape.radius, roots1[0][1], pitch1, rho_min, rho_max)
     turn0 = math.floor((phi_a - shape.phi_space) / pitch1)
     # refine the rounds that a contact window reaches (the others never touch)
@@ -309,6 +314,15 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
     band2 = (R_max - ROOT_BAND * (R_max - R_min), R_max)
     return Scene(params, betas, geo1, geo2, paired, teeth1, names1, names2, band1, band2, b_full,
                  shape, g2)
+
+
+def tooth_run(teeth, z: int) -> tuple[int, int]:
+    """The shortest run of consecutive tooth indices (modulo ``z``) that holds all of
+    ``teeth``: its first tooth and its length minus one. The run leaves out the largest gap
+    between paired teeth, wherever the indices wrap."""
+    t = sorted({int(k) % z for k in teeth})
+    gap, i = max(((t[(i + 1) % len(t)] - t[i]) % z or z, i) for i in range(len(t)))
+    return t[(i + 1) % len(t)], z - gap
 
 
 def _round_strips(params, shape, g2, rounds, betas, margin, ref):

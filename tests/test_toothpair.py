@@ -12,7 +12,7 @@ from fegear.pairout import HEADLINE, error_estimate
 from fegear.params import PairParameters
 from fegear.profile import Gear1Profile, rotate
 from fegear.rounding import RoundedProfile
-from fegear.scene import _profile_segments, build_scene, candidate_data
+from fegear.scene import _profile_segments, build_scene, candidate_data, tooth_run
 from fegear.tca import ToothContact
 from fegear.toothpair import (
     SolveCase,
@@ -291,3 +291,15 @@ def test_hertz_radii_are_those_of_the_gap_once_the_clearance_is_closed():
         assert np.argmin(gap) == 100
         relative = 2 * np.polyfit(s, gap, 2)[0]
         assert relative == pytest.approx(1 / c.radius1 + 1 / c.radius2, rel=1e-3)
+
+
+@pytest.mark.parametrize("teeth, z, run", [
+    ((3,), 10, (3, 0)),
+    ((9, 10, 13, 22, 27), 44, (9, 18)),
+    ((0, 43), 44, (43, 1)),                              # across the index wrap
+    (tuple(range(7, 18)) + tuple(range(19, 31)), 44, (7, 23)),  # more than half the gear
+])
+def test_sector_is_the_shortest_run_of_teeth_holding_every_paired_tooth(teeth, z, run):
+    # at 600 N·m the paired teeth span 230°: taken as the shorter way round from the first
+    # index, the sector came out over 360° and gmsh could not mesh it
+    assert tooth_run(teeth, z) == run
