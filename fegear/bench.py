@@ -1,9 +1,23 @@
-"""Benchmarks: time per pipeline stage, printed as a markdown table (never asserted in tests)."""
+"""Benchmarks: time per pipeline stage, printed as markdown tables (never asserted in tests).
+
+Ladders (:func:`disk_ladder`, :func:`pair_ladder`) solve one case on meshes each twice as fine
+as the last and measure every level's error against the Richardson extrapolation of the three
+finest (:func:`richardson`); where CalculiX is installed, it solves the same meshes beside ours
+(:mod:`fegear.peer`). :func:`ladder_targets` checks the run-time-versus-error targets.
+"""
 
 from __future__ import annotations
 
+import math
+import os
 import platform
+import subprocess
+import tempfile
 import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from importlib import metadata
+from pathlib import Path
 
 import numpy as np
 
@@ -53,26 +67,6 @@ def geometry_bench(params: PairParameters, repeat: int = 3, chord_error: float =
     return "\n".join(lines)
 
 
-def hertz_bench(repeat: int = 3) -> str:
-    """Time the FE stages on the Hertz case (two 10 mm disks, 1000 N, 5 mm) per quality level."""
-    from .disks import QUALITY, DiskCase, solve_disks
-
-    lines = ["fegear FE benchmark: two disks r 10 mm, P 1000 N, t 5 mm, plane stress "
-             f"(best of {repeat} per stage)", "",
-             "| quality | DOFs | contact points | mesh | assemble+factor | condense | contact | "
-             "recovery | total [s] | p_max err % | b err % |",
-             "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
-    for quality in QUALITY:
-        runs = [solve_disks(DiskCase(quality=quality)) for _ in range(repeat)]
-        best = {k: min(r.timings_s[k] for r in runs) for k in runs[0].timings_s}
-        r = runs[0]
-        lines.append(f"| {quality} | {r.dofs} | {r.contact_points} | {best['mesh']:.3f} | "
-                     f"{best['assemble_factor']:.3f} | {best['condense']:.3f} | "
-                     f"{best['contact']:.3f} | {best['recovery']:.3f} | "
-                     f"{sum(best.values()):.3f} | {r.p_error_pct:+.3f} | {r.b_error_pct:+.3f} |")
-    return "\n".join(lines)
-
-
 CYCLE_TARGET = 3.0  # a mesh cycle of N positions costs less than 3× one position
 
 
@@ -111,3 +105,266 @@ def pair_bench(params: PairParameters, torque: float = 200.0, quality: str = "st
     lines.append(f"| **{positions}-position cycle** (target < {CYCLE_TARGET:g}× one position: "
                  f"{status}, {ratio:.2f}×) | | | | | | | | | **{t_cycle:.2f}** |")
     return "\n".join(lines)
+
+
+# --- run time against error ----------------------------------------------------------------
+
+HERTZ_TARGET = (0.5, 0.3)   # the Hertz case within 0.5 % of its reference in 0.3 s
+PAIR_TARGET = (1.0, 1.0)    # the baseline pair within 1 % in 1 s
+PEER_TARGET = 20.0          # at least 20× faster than CalculiX on the same mesh
+DISK_LEVELS = (2, 4, 8, 16, 32)  # elements across the Hertz half-width
+PAIR_LEVELS = ("coarse", "fast", "standard", "fine")
+
+
+def richardson(values: Sequence[float], ratio: float = 2.0) -> tuple[float, float]:
+    """Limit and order of a sequence of results on meshes refined by ``ratio`` each step:
+    the observed order of the last three if their changes shrink by between √ratio and
+    ratio⁶ (same sign), else the nominal order 2 of P2 elements on the last two."""
+    if len(values) < 2:
+        raise ValueError("Richardson extrapolation needs at least two levels")
+    order = 2.0
+    if len(values) >= 3:
+        d1, d2 = values[-2] - values[-3], values[-1] - values[-2]
+        if d1 * d2 > 0 and math.sqrt(ratio) <= d1 / d2 <= ratio**6:
+            order = math.log(d1 / d2) / math.log(ratio)
+    return values[-1] + (values[-1] - values[-2]) / (ratio**order - 1.0), order
+
+
+@dataclass(frozen=True)
+class Rung:
+    """One mesh level: DOFs, best time per stage (s, ``output`` included), the compared values
+    and, where CalculiX solved the same mesh, its wall time (s) and values."""
+
+    level: str
+    dofs: int
+    timings_s: dict[str, float]
+    values: dict[str, float]
+    peer_s: float | None = None
+    peer_values: dict[str, float] | None = None
+
+    @property
+    def total_s(self) -> float:
+        return sum(self.timings_s.values())
+
+    @property
+    def solve_s(self) -> float:
+        """Everything after meshing: what CalculiX does on the same mesh."""
+        return self.total_s - self.timings_s.get("profile", 0.0) - self.timings_s.get("mesh", 0.0)
+
+
+@dataclass(frozen=True)
+class Ladder:
+    """Rungs from coarse to fine, the Richardson reference and order of every value, and the
+    analytic values where there are any (Hertz)."""
+
+    name: str
+    rungs: tuple[Rung, ...]
+    reference: dict[str, float] = field(init=False)
+    order: dict[str, float] = field(init=False)
+    analytic: dict[str, float] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        fits = {k: richardson([r.values[k] for r in self.rungs]) for k in self.rungs[0].values}
+        object.__setattr__(self, "reference", {k: v[0] for k, v in fits.items()})
+        object.__setattr__(self, "order", {k: v[1] for k, v in fits.items()})
+
+    def error_pct(self, values: dict[str, float], keys: Sequence[str] | None = None) -> float:
+        """Largest |value / reference − 1| (%) over ``keys`` (default: all)."""
+        keys = keys if keys is not None else list(self.reference)
+        return max(100.0 * abs(values[k] / self.reference[k] - 1.0) for k in keys)
+
+
+def _best_of(solve, repeat: int):
+    runs = [solve() for _ in range(repeat)]
+    best = {k: min(r.timings_s[k] for r in runs) for k in runs[0].timings_s}
+    return runs[0], best
+
+
+def _timed_output(write, repeat: int = 2) -> float:
+    """Best time of writing the outputs (the first write also starts VTK: seconds)."""
+    best = math.inf
+    for _ in range(max(2, repeat)):
+        with tempfile.TemporaryDirectory() as tmp:
+            t0 = time.perf_counter()
+            write(Path(tmp))
+            best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def disk_ladder(levels: Sequence[float] = DISK_LEVELS, repeat: int = 3,
+                peer: bool = True) -> Ladder:
+    """The Hertz case (two 10 mm disks, 1000 N, 5 mm, plane stress) at each number of
+    elements across b; CalculiX beside it if ``peer`` and installed."""
+    from .disks import DiskCase, solve_disks, write_disk_outputs
+    from .peer import ccx_available, run_ccx, write_deck
+
+    peer = peer and ccx_available()
+    rungs = []
+    for n in levels:
+        case = DiskCase(quality=float(n))
+        r, best = _best_of(lambda case=case: solve_disks(case), repeat)
+        best["output"] = _timed_output(lambda out, r=r: write_disk_outputs(r, out), repeat)
+        peer_s = peer_values = None
+        if peer:
+            with tempfile.TemporaryDirectory() as tmp:
+                write_deck(r.bodies, case.load, tmp, "disks", r.model.pairs, case.penalty_factor)
+                c = run_ccx(tmp, "disks")
+            peer_s, peer_values = c.wall_s, {"p_max_MPa": c.p_max}
+        rungs.append(Rung(f"{n:g} per b", r.dofs, best,
+                          {"p_max_MPa": r.p_max, "half_width_mm": r.half_width},
+                          peer_s, peer_values))
+    h = DiskCase().hertz
+    return Ladder("Hertz disks r 10 mm, P 1000 N, t 5 mm", tuple(rungs),
+                  analytic={"p_max_MPa": h.p0, "half_width_mm": h.b})
+
+
+def pair_ladder(params: PairParameters, torque: float = 200.0,
+                levels: Sequence[str] = PAIR_LEVELS, peer: bool = False) -> Ladder:
+    """The tooth pair at one position at each quality level (headline stresses)."""
+    from .pairout import pair_summary, write_pair_outputs
+    from .toothpair import SolveCase, solve_pair
+
+    rungs = []
+    for quality in levels:
+        case = SolveCase(params, torque=torque, quality=quality)
+        sol = solve_pair(case, Gear1Profile(params))
+        timings = dict(sol.timings_s)
+        timings["output"] = _timed_output(
+            lambda out, sol=sol: write_pair_outputs(sol, out, pair_summary(sol)))
+        peer_s = peer_values = None
+        if peer:
+            peer_s, peer_values = _pair_peer(case)
+        rungs.append(Rung(quality, sol.dofs, timings, sol.headline(), peer_s, peer_values))
+    return Ladder(f"tooth pair {params.describe()}, T {torque:g} N·m, one position",
+                  tuple(rungs))
+
+
+def _pair_peer(case) -> tuple[float | None, dict | None]:
+    from . import peer
+
+    if not (peer.ccx_available() and hasattr(peer, "ccx_pair")):
+        return None, None
+    with tempfile.TemporaryDirectory() as tmp:
+        _, c = peer.ccx_pair(case, tmp)
+    return c.wall_s, {"contact_pressure_MPa": c.p_max}
+
+
+@dataclass(frozen=True)
+class Target:
+    """A run-time-versus-error target: the cheapest rung within ``error_pct`` of the
+    reference and whether it took at most ``seconds``."""
+
+    name: str
+    error_pct: float
+    seconds: float
+    rung: Rung | None
+    met: bool
+
+    def line(self) -> str:
+        if self.rung is None:
+            return f"{self.name}: no level within {self.error_pct:g} %: MISSED"
+        status = "met" if self.met else "MISSED"
+        return (f"{self.name} within {self.error_pct:g} % in {self.seconds:g} s: {status} "
+                f"(`{self.rung.level}`, {self.rung.total_s:.2f} s)")
+
+
+def ladder_targets(disks: Ladder | None, pair: Ladder | None) -> list[Target]:
+    """The targets: the Hertz case, the baseline pair, and the speed-up over CalculiX."""
+    out = []
+    for ladder, name, (err, sec) in ((disks, "Hertz case", HERTZ_TARGET),
+                                     (pair, "baseline pair", PAIR_TARGET)):
+        if ladder is None:
+            continue
+        # the Hertz case is judged on its peak pressure, the pair on every headline stress
+        keys = ["p_max_MPa"] if "p_max_MPa" in ladder.reference else None
+        ok = [r for r in ladder.rungs if ladder.error_pct(r.values, keys) <= err]
+        rung = min(ok, key=lambda r: r.total_s) if ok else None
+        out.append(Target(name, err, sec, rung, rung is not None and rung.total_s <= sec))
+    return out
+
+
+def peer_speedups(ladder: Ladder) -> list[tuple[Rung, float]]:
+    """CalculiX wall time over ours after meshing (both solve the same mesh), per rung."""
+    return [(r, r.peer_s / r.solve_s) for r in ladder.rungs if r.peer_s]
+
+
+def ladder_table(ladder: Ladder) -> str:
+    """Markdown: per rung DOFs, stage times, values and errors against the reference (and
+    the analytic values), CalculiX's time and value beside ours."""
+    stages = list(dict.fromkeys(k for r in ladder.rungs for k in r.timings_s))
+    keys = list(ladder.reference)
+    peer = any(r.peer_s for r in ladder.rungs)
+    head = (["level", "DOFs"] + stages + ["total [s]"] + keys + ["max err %"]
+            + (["ccx [s]", "ccx " + next(iter(ladder.rungs[-1].peer_values or {keys[0]: 0})),
+                "ccx / ours"] if peer else []))
+    lines = [f"{ladder.name}: errors against the Richardson extrapolation of the finest levels",
+             "", "| " + " | ".join(head) + " |", "|---|" + "---:|" * (len(head) - 1)]
+    for r in ladder.rungs:
+        cells = [r.level, str(r.dofs)] + [f"{r.timings_s.get(k, 0.0):.3f}" for k in stages]
+        cells += [f"{r.total_s:.3f}"]
+        cells += [f"{r.values[k]:.5g} ({100 * (r.values[k] / ladder.reference[k] - 1):+.3f} %)"
+                  for k in keys]
+        cells += [f"{ladder.error_pct(r.values):.3f}"]
+        if peer:
+            if r.peer_s:
+                (pk, pv), = list(r.peer_values.items())[:1]
+                cells += [f"{r.peer_s:.2f}",
+                          f"{pv:.5g} ({100 * (pv / ladder.reference[pk] - 1):+.3f} %)",
+                          f"{r.peer_s / r.solve_s:.1f}×"]
+            else:
+                cells += ["–", "–", "–"]
+        lines.append("| " + " | ".join(cells) + " |")
+    ref = ", ".join(f"{k} {v:.6g} (order {ladder.order[k]:.2f})"
+                    for k, v in ladder.reference.items())
+    lines += ["", f"reference: {ref}"]
+    if ladder.analytic:
+        lines.append("analytic: " + ", ".join(
+            f"{k} {v:.6g} (reference {100 * (ladder.reference[k] / v - 1):+.3f} %)"
+            for k, v in ladder.analytic.items()))
+    if peer:
+        lines.append("ccx / ours: CalculiX's wall time over ours after meshing (the same mesh)")
+    return "\n".join(lines)
+
+
+def machine() -> dict:
+    """Machine, Python and library versions for the benchmark JSON."""
+    from . import __version__
+
+    libs = {}
+    for name in ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pyvista", "matplotlib"):
+        try:
+            libs[name] = metadata.version(name)
+        except metadata.PackageNotFoundError:
+            libs[name] = None
+    try:
+        ccx = subprocess.run(["ccx", "-v"], capture_output=True, text=True, timeout=30)
+        libs["ccx"] = " ".join(ccx.stdout.split()) or None
+    except (OSError, subprocess.SubprocessError):
+        libs["ccx"] = None
+    mem = None
+    try:
+        with open("/proc/meminfo") as f:
+            mem = int(f.readline().split()[1]) / 2**20
+    except (OSError, ValueError, IndexError):
+        pass
+    return {"fegear": __version__, "python": platform.python_version(),
+            "platform": platform.platform(), "machine": platform.machine(),
+            "processor": platform.processor() or None, "cpus": os.cpu_count(),
+            "memory_GiB": mem, "libraries": libs}
+
+
+def ladder_json(ladders: Sequence[Ladder], targets: Sequence[Target]) -> dict:
+    """JSON-ready record of the ladders, their targets and the machine."""
+    def rung(r: Rung) -> dict:
+        return {"level": r.level, "dofs": r.dofs, "timings_s": r.timings_s,
+                "total_s": r.total_s, "solve_s": r.solve_s, "values": r.values,
+                "peer_s": r.peer_s, "peer_values": r.peer_values}
+    return {"machine": machine(),
+            "ladders": [{"name": lad.name, "reference": lad.reference, "order": lad.order,
+                         "analytic": lad.analytic,
+                         "rungs": [{**rung(r), "error_pct": lad.error_pct(r.values)}
+                                   for r in lad.rungs]} for lad in ladders],
+            "targets": [{"name": t.name, "error_pct": t.error_pct, "seconds": t.seconds,
+                         "level": t.rung.level if t.rung else None,
+                         "time_s": t.rung.total_s if t.rung else None, "met": t.met}
+                        for t in targets]}

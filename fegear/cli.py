@@ -117,7 +117,17 @@ def build_parser() -> argparse.ArgumentParser:
     bench.add_argument("--pair-quality", default="standard",
                        help="quality of the tooth-pair benchmark (coarse / fast / standard / fine)")
     bench.add_argument("--cycle", type=int, default=24,
-                       help="positions in the benchmarked mesh cycle (default 24)")
+                       help="positions in the benchmarked mesh cycle (default 24; 0: skip)")
+    bench.add_argument("--disk-levels", default="2,4,8,16,32",
+                       help="Hertz-case ladder: elements across b, comma-separated (>= 2)")
+    bench.add_argument("--pair-levels", default="coarse,fast,standard,fine",
+                       help="tooth-pair ladder: quality levels, comma-separated (>= 2)")
+    bench.add_argument("--torque", type=float, default=200.0,
+                       help="tooth-pair torque on gear 1 [N·m] (default 200)")
+    bench.add_argument("--no-peer", action="store_true",
+                       help="do not run CalculiX beside the ladders even if ccx is installed")
+    bench.add_argument("--out", default="out/bench",
+                       help="directory for bench.json and bench.png (default out/bench)")
     return parser
 
 
@@ -299,19 +309,61 @@ def cmd_solve(a: argparse.Namespace) -> int:
 
 
 def cmd_bench(a: argparse.Namespace) -> int:
-    from .bench import geometry_bench, hertz_bench, pair_bench
+    from .bench import (
+        PEER_TARGET,
+        disk_ladder,
+        geometry_bench,
+        ladder_json,
+        ladder_table,
+        ladder_targets,
+        pair_bench,
+        pair_ladder,
+        peer_speedups,
+    )
     from .errors import ParameterError
+    from .output import prepare_dir, write_json
+    from .plot import ladder_png
     from .scene import QUALITY
 
     repeat = int(require_range("repeat", a.repeat, 1, 100))
-    cycle = int(require_range("cycle", a.cycle, 2, 360))
+    cycle = int(a.cycle)
+    if cycle != 0:
+        require_range("cycle", cycle, 2, 360)
+    torque = require_range("torque", a.torque, 0.0, 1e4, lo_open=True, unit="N·m")
     if a.pair_quality not in QUALITY:
         raise ParameterError("pair_quality", a.pair_quality, " / ".join(QUALITY))
-    print(geometry_bench(_params(a), repeat))
+    pair_levels = [q.strip() for q in a.pair_levels.split(",")]
+    if len(pair_levels) < 2 or any(q not in QUALITY for q in pair_levels):
+        raise ParameterError("pair_levels", a.pair_levels,
+                             "two or more of " + " / ".join(QUALITY) + ", comma-separated")
+    disk_levels = [_number("disk_levels", x) for x in a.disk_levels.split(",")]
+    if len(disk_levels) < 2 or not all(1 <= n <= 200 for n in disk_levels):
+        raise ParameterError("disk_levels", a.disk_levels,
+                             "two or more numbers 1 <= elements across b <= 200")
+    params = _params(a)
+    out = prepare_dir(a.out)
+    print(geometry_bench(params, repeat))
     print()
-    print(hertz_bench(repeat))
+    disks = disk_ladder(disk_levels, repeat, peer=not a.no_peer)
+    print(ladder_table(disks))
     print()
-    print(pair_bench(_params(a), quality=a.pair_quality, positions=cycle))
+    pair = pair_ladder(params, torque, pair_levels, peer=not a.no_peer)
+    print(ladder_table(pair))
+    print()
+    targets = ladder_targets(disks, pair)
+    for t in targets:
+        print(f"* {t.line()}")
+    for ladder in (disks, pair):
+        for rung, ratio in peer_speedups(ladder):
+            status = "met" if ratio >= PEER_TARGET else "MISSED"
+            print(f"* {ladder.name.split(':')[0]}, `{rung.level}`: CalculiX / fegear = "
+                  f"{ratio:.1f}× (target >= {PEER_TARGET:g}×: {status})")
+    write_json(out / "bench.json", ladder_json((disks, pair), targets))
+    ladder_png(out / "bench.png", (disks, pair), targets)
+    print(f"\nbench.json, bench.png in {out}")
+    if cycle:
+        print()
+        print(pair_bench(params, torque, quality=a.pair_quality, positions=cycle))
     return 0
 
 

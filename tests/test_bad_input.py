@@ -41,9 +41,11 @@ OPTIONS = {
               "--rim1": ["0", "-6", "1e300"], "--rim2": ["0", "-6", "1e300"],
               "--extra-teeth": ["0", "-2", "1000"], "--extra-pairs": ["-1", "1000"],
               "--penalty-factor": ["0", "-1000", "1e300"]},
-    "bench": {**PAIR, "--repeat": ["0", "-3", "100000"], "--cycle": ["1", "0", "-24",
+    "bench": {**PAIR, "--repeat": ["0", "-3", "100000"], "--cycle": ["1", "-24",
                                                                      "100000"],
-              "--pair-quality": ["best"]},
+              "--pair-quality": ["best"], "--torque": ["0", "-200", "1e300"],
+              "--disk-levels": ["8", "0,4", "4,1e9", "4,x"],
+              "--pair-levels": ["fast", "fast,best", ""]},
 }
 INTEGER = {"--z1", "--z2", "--positions", "--extra-teeth", "--extra-pairs", "--repeat",
            "--cycle"}
@@ -65,7 +67,8 @@ def no_work(monkeypatch):
 
     for module, name in ((fegear.pair, "build_pair"), (fegear.disks, "solve_disks"),
                          (fegear.toothpair, "solve_positions"),
-                         (fegear.bench, "geometry_bench"), (fegear.bench, "hertz_bench"),
+                         (fegear.bench, "geometry_bench"), (fegear.bench, "disk_ladder"),
+                         (fegear.bench, "pair_ladder"),
                          (fegear.bench, "pair_bench")):
         monkeypatch.setattr(module, name, accepted)
 

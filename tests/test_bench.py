@@ -1,0 +1,73 @@
+"""The benchmark's arithmetic: Richardson references, errors, targets; one tiny ladder end to
+end (the benchmark itself times things; no test does)."""
+
+import json
+import math
+
+import pytest
+
+from fegear.bench import (
+    Ladder,
+    Rung,
+    disk_ladder,
+    ladder_json,
+    ladder_table,
+    ladder_targets,
+    richardson,
+)
+from fegear.plot import ladder_png
+
+
+@pytest.mark.parametrize("order", [1.0, 2.0, 3.5])
+def test_richardson_recovers_the_limit_of_a_power_law(order):
+    h = [1.0, 0.5, 0.25, 0.125]
+    limit, p = richardson([7.0 + 3.0 * x**order for x in h])
+    assert p == pytest.approx(order, rel=1e-12)
+    assert limit == pytest.approx(7.0, rel=1e-12)
+
+
+def test_richardson_falls_back_to_order_2_when_changes_do_not_shrink():
+    # oscillating, or stalled: the last two levels with P2's nominal order 2
+    for values in ([1.0, 1.2, 1.1], [1.0, 1.1, 1.2], [1.0, 1.01]):
+        limit, p = richardson(values)
+        assert p == 2.0
+        assert limit == pytest.approx(values[-1] + (values[-1] - values[-2]) / 3.0)
+    with pytest.raises(ValueError):
+        richardson([1.0])
+
+
+def _rung(level, seconds, value):
+    return Rung(level, 10, {"mesh": 0.5 * seconds, "contact": 0.5 * seconds}, {"p": value})
+
+
+def test_targets_take_the_cheapest_level_within_the_error():
+    # p = 100 + 15 h²: reference 100; errors 15, 3.75, 0.94, 0.23 %
+    ladder = Ladder("case", tuple(_rung(f"L{k}", 0.1 * 4**k, 100 + 15 / 4**k)
+                                  for k in range(4)))
+    assert ladder.reference["p"] == pytest.approx(100.0)
+    assert ladder.error_pct(ladder.rungs[2].values) == pytest.approx(0.9375)
+    hertz, pair = ladder_targets(ladder, ladder)
+    assert hertz.rung.level == "L3" and not hertz.met     # 0.5 %: only L3, 6.4 s > 0.3 s
+    assert pair.rung.level == "L2" and not pair.met       # 1 %: L2, 1.6 s > 1 s
+    assert ladder.rungs[2].solve_s == pytest.approx(0.8)  # meshing left out
+    fast = Ladder("case", tuple(_rung(f"L{k}", 0.01 * 2**k, 100 + 16 / 4**k)
+                                for k in range(4)))
+    assert ladder_targets(None, fast)[0].met
+
+
+def test_tiny_disk_ladder_writes_table_json_and_png(tmp_path):
+    ladder = disk_ladder((4, 8), repeat=1, peer=False)
+    assert [r.level for r in ladder.rungs] == ["4 per b", "8 per b"]
+    assert ladder.order["p_max_MPa"] == 2.0
+    # the reference lies near Hertz (the FE converges to it within 0.3 %)
+    assert ladder.reference["p_max_MPa"] == pytest.approx(ladder.analytic["p_max_MPa"],
+                                                           rel=0.01)
+    table = ladder_table(ladder)
+    assert table.count("\n| 4 per b |") == 1 and "reference: p_max_MPa" in table
+    targets = ladder_targets(ladder, None)
+    data = json.loads(json.dumps(ladder_json([ladder], targets)))
+    assert data["machine"]["libraries"]["scikit-fem"]
+    assert data["ladders"][0]["rungs"][1]["error_pct"] >= 0
+    assert all(math.isfinite(v) for v in data["ladders"][0]["rungs"][0]["timings_s"].values())
+    png = ladder_png(tmp_path / "bench.png", [ladder], targets)
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
