@@ -24,7 +24,7 @@ import numpy as np
 from .assembly import Body, Material, Placement, RigidLink, assemble_body, facet_nodes
 from .contact import ContactError, ContactModel, ContactPair, ContactSettings, build_contact
 from .contact_solve import ContactSolution, first_touch, solve_contact
-from .errors import FegearError, ParameterError
+from .errors import FegearError, GeometryError, ParameterError
 from .hertz import line_contact
 from .mesh import mesh_bodies
 from .params import PairParameters, require_range
@@ -40,6 +40,8 @@ MARGIN_UM = 3.0          # pair every tooth whose clearance is below the rigid c
 MARGIN_FACTOR = 1.5      # … or below 1.5 × the closure + 3 µm within NEAR_TEETH of such a tooth
 NEAR_TEETH = 2
 TIP_ROUND = 0.125        # default tip-edge round of gear 1, in modules (0.25 mm at m = 2)
+INTERFERENCE_UM = 1e-3   # a clearance below −1 nm of arc is an interference (touching teeth
+                         # of a conformal pair come out at about −2e-10 µm)
 
 
 @dataclass(frozen=True)
@@ -230,6 +232,7 @@ def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None
     tca = ToothContact(p, profile)
     states = [(b, tca.state(b)) for b in betas]
     t_profile = time.perf_counter() - t0
+    _refuse_interference(states)
     force = case.torque * 1e3 / p.r0
     estimate_um = force / (case.thickness * TOOTH_STIFFNESS) / 3.0
     teeth = _union(choose_teeth(st, _first_clearance(st) + estimate_um, case.extra_pairs)
@@ -250,6 +253,18 @@ def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None
         log.info("teeth %s would close: rebuilding the scene", sorted(set(more) - set(teeth)))
         teeth = _union((teeth, more))
     raise FegearError("the paired teeth did not settle after 4 rebuilds")
+
+
+def _refuse_interference(states) -> None:
+    """A pair whose teeth overlap before any load is an interference fit: not modelled."""
+    worst = min(((c.plus_um, c.tooth, beta) for beta, st in states for c in st.teeth
+                 if c.plus_um is not None), default=None)
+    if worst is not None and worst[0] < -INTERFERENCE_UM:
+        um, tooth, beta = worst
+        raise GeometryError(f"the unloaded pair interferes: gear-1 tooth {tooth} overlaps gear 2 "
+                            f"by {-um:.3g} µm of arc at r0 at β = {math.degrees(beta):.4g}°; "
+                            "an interference fit is not modelled (raise tip_relief, or check "
+                            "shift and rotation)")
 
 
 def _first_clearance(state) -> float:
