@@ -64,11 +64,19 @@ class RoundedProfile:
 
     def _fillet(self, phi_c: float, gamma: float) -> Fillet:
         rho = self.radius_mm
-        r_c = float(self.profile.radius(np.array([phi_c]))[0])
-        half = rho * math.tan(0.5 * gamma) / r_c  # tangent length as an angle
-        sol, info, _, _ = fsolve(lambda x: self._centre(x[0]) - self._centre(x[1]),
-                                 [phi_c - half, phi_c + half], full_output=True, xtol=1e-14)
-        phi_a, phi_b = map(float, sol)
+        # tangent length ρ tan(γ/2) as a polar angle on each side (the flank is steep: arc
+        # length per radian is several times the radius); unknowns log(φc − φa), log(φb − φc)
+        # keep the tangent points on their sides (from r_c alone both fell onto the kink)
+        eps = 1e-7
+        q = self.profile.evaluate(np.array([phi_c - eps, phi_c - 2 * eps, phi_c + eps,
+                                            phi_c + 2 * eps])).q
+        speed = (np.linalg.norm(q[0] - q[1]) / eps, np.linalg.norm(q[3] - q[2]) / eps)
+        tangent = rho * math.tan(0.5 * gamma)
+        sol, info, _, _ = fsolve(
+            lambda x: self._centre(phi_c - math.exp(x[0])) - self._centre(phi_c + math.exp(x[1])),
+            [math.log(tangent / speed[0]), math.log(tangent / speed[1])], full_output=True,
+            xtol=1e-14)
+        phi_a, phi_b = phi_c - math.exp(sol[0]), phi_c + math.exp(sol[1])
         ev = self.profile.evaluate(np.array([phi_a, phi_b]))
         side_ok = phi_a < phi_c < phi_b and phi_b - phi_a < 0.25 * self.pitch
         curv_ok = np.all(ev.kappa * rho > -1.0) and np.all(ev.kappa * rho < 1.0)

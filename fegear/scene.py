@@ -208,9 +208,13 @@ def build_scene(params: PairParameters, profile: Gear1Profile, positions, teeth:
     fillets = shape.fillet_angles(range(turn0 - 1, turn0 + hi - lo + 2))
     rounds = [(c - h, c + h) for c, h, _ in fillets
               if any(abs(c - p) < h + w for _, p, w in windows1)]
-    # every round's tangent points cut the polyline: a spline through a curvature jump
-    # overshoots by µm, which snapping onto the exact curve cannot undo in µm elements
-    tangents = [(x, x, None) for c, h, _ in fillets for x in (c - h, c + h)]
+    # the tangent points of every round within a module of a window cut the polyline: a
+    # spline through a curvature jump overshoots by µm, which snapping onto the exact curve
+    # cannot undo in µm elements (further away the elements are coarse; cut there too, a tip
+    # land 0.1 mm long became two boundary edges of a sliver under 2 mm elements)
+    reach = m / rho_max
+    tangents = [(x, x, None) for c, h, _ in fillets for x in (c - h, c + h)
+                if any(abs(x - p) < w + reach for _, p, w in windows1)]
     # the rounds meet the gear-2 flank like a cylinder of radius ρ on a plane: elements sized
     # to that Hertz half-width at the shared load
     b_round = min([b_shared] + [line_contact(f.radius, math.inf, torque_nmm / params.r0
