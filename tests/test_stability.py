@@ -79,3 +79,31 @@ def test_touching_teeth_of_a_conformal_pair_are_not_an_interference():
     for state in states:
         assert min(c.plus_um for c in state[1].teeth if c.plus_um is not None) < 0
         _refuse_interference([state])
+
+
+SLOW = pytest.mark.slow
+
+
+@pytest.mark.parametrize("params, torque, far_side_only", [
+    pytest.param(dict(shift=0.016, rotation=0.002, tip_relief=0.0), 1.0, True,
+                 marks=SLOW, id="no tip relief, light: only far-side teeth touch"),
+    pytest.param(dict(shift=0.016, rotation=0.002, tip_relief=0.0), 200.0, False,
+                 marks=SLOW, id="no tip relief, baseline torque"),
+    pytest.param(dict(), 50.0, False, marks=SLOW, id="unmodified: zero clearance"),
+    pytest.param(dict(shift=1e-4), 200.0, False, marks=SLOW, id="shift 0.1 µm"),
+    pytest.param(dict(h1=0.6), 50.0, False, marks=SLOW, id="h1 0.6 (limit 0.6047)"),
+    pytest.param(dict(h1=0.3, f1=0.39), 50.0, False, marks=SLOW, id="f1 0.39 (limit 0.3902)"),
+    pytest.param(dict(h1=0.05), 50.0, False, id="h1 0.05"),
+    pytest.param(dict(shift=0.016, rotation=0.002, f1=0.0), 50.0, False, id="f1 0"),
+])
+def test_clearances_and_extreme_shapes_converge(params, torque, far_side_only):
+    p = PairParameters(**params)
+    case = SolveCase(p, torque=torque, quality="coarse")
+    sol = solve_pair(case)
+    _check(sol)
+    where = {c.tooth: c.position_deg for c in ToothContact(p, Gear1Profile(p)).state(
+        case.beta).teeth}
+    far = [abs(where[t.tooth]) > 90 for t in sol.teeth if t.load_N > 0]
+    assert sum(t.load_share for t in sol.teeth) == pytest.approx(1.0, abs=1e-3)
+    if far_side_only:
+        assert all(far) and len(far) >= 3
