@@ -76,13 +76,20 @@ class Circle:
     material: str = "inside"
 
     def closest(self, points: np.ndarray) -> CurvePoints:
-        r = np.asarray(points, dtype=float) - np.asarray(self.center)
+        x = np.asarray(points, dtype=float)
+        c = np.asarray(self.center)
+        r = x - c
         rho = np.linalg.norm(r, axis=1)
         e = r / rho[:, None]
-        foot = np.asarray(self.center) + self.radius * e
+        foot = c + self.radius * e
+        # ρ − R as (|x|² − 2 x·c + |c|² − R²) / (ρ + R): for a circle through the origin (the
+        # Hertz cases touch there) |c|² − R² is exactly 0 and nothing cancels, whereas x − c
+        # rounds a 1e-12 mm penetration against R = 48 mm to 0.4 % (1e-14 mm)
+        excess = (np.einsum("ij,ij->i", x, x) - 2.0 * x @ c + (c @ c - self.radius**2)) / (
+            rho + self.radius)
         if self.material == "inside":
-            return CurvePoints(foot, e, rho - self.radius)
-        return CurvePoints(foot, -e, self.radius - rho)
+            return CurvePoints(foot, e, excess)
+        return CurvePoints(foot, -e, -excess)
 
     def project(self, points: np.ndarray) -> np.ndarray:
         return self.closest(points).foot

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
+from fegear.contact import Circle
 from fegear.contact_solve import solve_contact
 from fegear.disks import DiskCase, solve_disks, write_disk_outputs
 from fegear.errors import ParameterError
@@ -226,3 +227,23 @@ def test_vtu_round_trip(convex, tmp_path):
     pressure = meshio.read(files["disk1"]).point_data["contact_pressure"]
     assert pressure.max() == pytest.approx(convex.p_max, rel=0.01)
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
+
+
+def test_circle_gap_keeps_a_picometre_penetration_against_a_large_radius():
+    # points 1e-12 mm inside a 48 mm disk that touches the origin: forming x − c rounds the gap
+    # to 1e-14 mm steps (0.14 % of a 1 mN load went unbalanced); the expanded form keeps it
+    from decimal import Decimal, getcontext
+
+    getcontext().prec = 50
+    circle = Circle((0.0, -48.0), 48.0)
+    x = np.array([[0.0, -1e-12], [1e-6, -1e-12], [3e-7, 2e-12]])
+    gap = circle.closest(x).distance
+    exact = np.array([float((Decimal(px) ** 2 + (Decimal(py) + 48) ** 2).sqrt() - 48)
+                      for px, py in x])
+    assert np.abs(gap / exact - 1).max() < 1e-9
+    naive = np.linalg.norm(x - np.array([0.0, -48.0]), axis=1) - 48.0
+    assert np.abs(naive / exact - 1).max() > 1e-3  # what the direct form gave
+    bore = Circle((0.0, 48.0), 48.0, "outside")
+    # a bore about (0, 48): the same point lies 1e-12 mm into the ring
+    depth = bore.closest(np.array([[0.0, -1e-12]])).distance[0]
+    assert abs(depth / -1e-12 - 1) < 1e-9

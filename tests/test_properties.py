@@ -46,8 +46,6 @@ def disks(draw):
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="known failure, not yet understood: r1 1, r2 48 mm, "
-                   "1 mN, t 12 mm, E 67886 MPa, ν 0 leaves 0.14 % of the load unbalanced")
 @SETTINGS
 @given(data=st.data())
 def test_random_disk_contacts_converge_or_raise_a_named_error(data):
