@@ -1,9 +1,10 @@
 """CalculiX peer: the same bodies, supports, penalty and load, solved by CalculiX (``ccx``).
 
 :func:`write_deck` writes a CalculiX 2.20 deck from assembled :class:`~fegear.assembly.Body`
-objects (those of a :class:`~fegear.disks.DiskResult`), :func:`run_ccx` runs it and reads it
-back, :func:`ccx_disks` does both beside our own solve of a disk case. Units: mm, N, MPa.
-Choices, each checked on the Hertz disks (r 10 mm, P 1000 N, t 5 mm, steel):
+objects (those of a :class:`~fegear.disks.DiskResult` or of a tooth-pair solution),
+:func:`execute` runs ccx, :func:`run_ccx` reads a disk deck's answer back, :func:`ccx_disks`
+does both beside our own solve of a disk case (the tooth pair: :mod:`fegear.peer_pair`).
+Units: mm, N, MPa. Choices, each checked on the Hertz disks (r 10 mm, P 1000 N, t 5 mm, steel):
 
 * **Mesh.** The very nodes and elements, placed (fixed frame): corners from ``mesh.t``, midside
   nodes from the P2 element dofs, in CalculiX order (1-2-3 corners counter-clockwise, 4 on 1-2,
@@ -17,15 +18,20 @@ Choices, each checked on the Hertz disks (r 10 mm, P 1000 N, t 5 mm, steel):
   εzz differ and are not compared). ``plane_stress_element="CPS6"`` writes the literal element.
 * **Contact.** Face-to-face penalty (``TYPE=SURFACE TO SURFACE``): CalculiX advises against
   node-to-face contact on quadratic elements. Slave and master: each pair's boundaries (disk 1's
-  and disk 2's "contact"). PRESSURE-OVERCLOSURE=LINEAR with K = penalty_factor·E*/h̄ (MPa/mm),
-  h̄ the mean slave facet length: fegear's κ on its uniform window, applied by CalculiX at the
-  slave face integration points.
+  and disk 2's "contact"), or a subset of the slave's facets. PRESSURE-OVERCLOSURE=LINEAR with
+  K = penalty_factor·E*/h̄ (MPa/mm), h̄ the mean slave facet length (fegear's κ on its uniform
+  window) unless the pair brings its own K, applied at the slave face integration points.
+  That pointwise penalty needs matching meshes or a soft K: with disk 2 turned by 0.37 of an
+  element (coarse), ccx's p_max was 102 / 24.5 / 0.6 % above ours at penalty factors 1000 /
+  300 / 30 (matching meshes, 300 to 3000: within 0.05 % of ours).
 * **Supports and load.** Fixed boundaries: u = 0. A translation link along x or y: the other
   component 0, the component along it equal to a reference link node's (``*EQUATION``), which
-  carries the load. The link body floats until it touches (load control is singular there):
-  step 1 prescribes a tiny motion δ0 of the reference (first touch); step 2 releases it
-  (``*BOUNDARY, OP=NEW``) and applies P by ``*CLOAD`` in one increment. Frictionless, elastic
-  and small, the contact ends in the same state whatever step 1 did.
+  carries the load. A rotation link: a free reference node at the placed centre c whose dof 1
+  is θ, and per link node u_x + (y − c_y)θ = 0, u_y − (x − c_x)θ = 0 (a small rotation), the
+  torque (N·mm) on θ. The link body floats until it touches (load control is singular there):
+  step 1 prescribes a motion of the reference, a tiny δ0 or the given θ0 (first touch); step 2
+  releases it (``*BOUNDARY, OP=NEW``) and applies the load by ``*CLOAD`` in one increment.
+  Frictionless, elastic and small, the contact ends in the same state whatever step 1 did.
 * **Convergence.** With a stiff penalty CalculiX's defaults (residual 0.5 %, correction 1 %,
   contact elements changing by 0.1 %) accepted wrong active sets: on the fine disks, springs in
   tension (−8.8e4 MPa) and p_max 7.8 % high. Step 2 demands a residual of 1e-6, a correction of
@@ -33,7 +39,8 @@ Choices, each checked on the Hertz disks (r 10 mm, P 1000 N, t 5 mm, steel):
   K (kscalemax 1), within 200 iterations.
 * **Read-back** (``.dat``): p_max, the largest CSTR pressure at the slave integration points (the
   ``.frd`` nodal values are extrapolated and overshoot at the contact edges); the contact normal
-  force of each pair (``CF``); the total reaction of the fixed supports.
+  force of each pair (``CF``); the total reaction of the fixed supports; θ of a rotation link's
+  reference node. ``stresses=True`` also writes the step-2 stresses to the ``.frd``.
 """
 
 from __future__ import annotations
@@ -75,9 +82,10 @@ class PeerConvergenceError(PeerError):
 
 @dataclass(frozen=True)
 class CcxDeck:
-    """A written deck: ``path`` of ``<jobname>.inp``; ``nodes`` and ``elements`` (2D);
-    ``element_type``; ``penalty`` K per pair (MPa/mm); ``preload`` δ0 of step 1 (mm);
-    ``load`` P (N)."""
+    """A written deck: ``path`` of ``<jobname>.inp``; ``nodes`` and ``elements`` (2D, the
+    reference node of a rotation link not counted); ``element_type``; ``penalty`` K per pair
+    (MPa/mm); ``preload`` δ0 (mm) or θ0 (rad) of step 1; ``load`` P (N) or T (N·mm); ``link``
+    kind; ``equations`` written; ``ref`` the reference node (deck number)."""
 
     path: Path
     jobname: str
@@ -87,6 +95,9 @@ class CcxDeck:
     penalty: tuple[float, ...]
     preload: float
     load: float
+    link: str = "translation"
+    equations: int = 0
+    ref: int = 0
 
     @property
     def dofs(self) -> int:
@@ -149,10 +160,15 @@ def element_nodes(body: Body) -> np.ndarray:
     return conn
 
 
-def _faces(body: Body, name: str) -> tuple[np.ndarray, np.ndarray]:
-    """Elements (0-based) and CalculiX face numbers (1: edge 1-2, 2: 2-3, 3: 3-1) of a boundary."""
+def _faces(body: Body, name: str, facets=None) -> tuple[np.ndarray, np.ndarray]:
+    """Elements (0-based) and CalculiX face numbers (1: edge 1-2, 2: 2-3, 3: 3-1) of a boundary,
+    or of those of its ``facets`` given."""
     mesh = body.mesh
     f = _boundary(body, name)
+    if facets is not None:
+        if not np.all(np.isin(facets, f)):
+            raise PeerError(f"slave facets outside boundary {name!r} of {body.name!r}")
+        f = np.asarray(facets)
     elem = mesh.f2t[0, f]
     if np.any(mesh.f2t[1, f] >= 0):
         raise PeerError(f"boundary {name!r} of {body.name!r} is not on the outside")
@@ -180,17 +196,27 @@ def _nodes(body: Body, names: Sequence[str]) -> np.ndarray:
 def write_deck(bodies: Sequence[Body], load: float, directory: str | os.PathLike,
                jobname: str = "peer", pairs: Sequence | None = None,
                penalty_factor: float = ContactSettings.penalty_factor,
-               plane_stress_element: str = "CPE6", preload: float | None = None) -> CcxDeck:
-    """Write ``<directory>/<jobname>.inp`` for ``bodies`` under the link force ``load`` (N).
+               plane_stress_element: str = "CPE6", preload: float | None = None,
+               stresses: bool = False, increments: int = 1) -> CcxDeck:
+    """Write ``<directory>/<jobname>.inp`` for ``bodies`` under the link's generalised force
+    ``load``: N for a translation link, N·mm (a torque) for a rotation link.
 
     ``pairs``: objects with ``slave``, ``slave_boundary``, ``master``, ``master_boundary``
-    (such as :class:`~fegear.contact.ContactPair`); default: the disk pair, body 0's "contact"
-    against body 1's. ``preload``: step-1 motion δ0 (mm), default 1e-6 × the link body's size.
+    (such as :class:`~fegear.contact.ContactPair`), optionally ``slave_facets`` (a subset of
+    the slave boundary's facets) and ``penalty`` (K, MPa/mm; default penalty_factor·E*/h̄ of
+    the pair's slave facets); default: the disk pair, body 0's "contact" against body 1's.
+    ``preload``: step-1 motion of the link, δ0 (mm; default 1e-6 × the link body's size) or
+    θ0 (rad; required for a rotation link). ``stresses``: write the step-2 stresses to the
+    ``.frd`` (``*EL FILE``). ``increments``: step 2 applies the load in at least this many
+    increments (CalculiX pairs the contact points once per increment).
     """
+    if not (isinstance(increments, int) and increments >= 1):
+        raise PeerError(f"increments must be an integer >= 1: {increments!r}")
     if plane_stress_element not in ("CPE6", "CPS6"):
         raise PeerError(f"plane_stress_element must be 'CPE6' or 'CPS6': {plane_stress_element!r}")
-    if not (math.isfinite(load) and load > 0 and penalty_factor > 0):
-        raise PeerError(f"load ({load!r} N) and penalty_factor ({penalty_factor!r}) must be > 0")
+    if not (math.isfinite(load) and load != 0 and penalty_factor > 0):
+        raise PeerError(f"load ({load!r}) must be nonzero, penalty_factor ({penalty_factor!r})"
+                        " > 0")
     if pairs is None:
         pairs = [SimpleNamespace(slave=0, slave_boundary="contact", master=1,
                                  master_boundary="contact")]
@@ -198,15 +224,14 @@ def write_deck(bodies: Sequence[Body], load: float, directory: str | os.PathLike
     if len(linked) != 1:
         raise PeerError(f"exactly one body must carry the load link, found {len(linked)}")
     lb = bodies[linked[0]]
-    if lb.link.kind != "translation":
-        raise PeerError(f"link kind {lb.link.kind!r} is not exported (translation only)")
-    d = lb.placement.vec_to_fixed(np.asarray([lb.link.direction]))[0]  # bodies are placed
-    axis = int(np.argmax(np.abs(d)))
-    if abs(abs(d[axis]) - 1.0) > 1e-12:
-        raise PeerError(f"link direction {tuple(d)} is not along x or y")
-    sign = float(np.sign(d[axis]))
+    if lb.link.kind not in ("translation", "rotation"):
+        raise PeerError(f"link kind {lb.link.kind!r} is not exported")
+    if lb.link.kind == "rotation" and preload is None:
+        raise PeerError("a rotation link needs the step-1 rotation (preload, rad)")
+    if lb.link.kind == "translation" and load < 0:
+        raise PeerError(f"load ({load!r} N) must be > 0 along the link direction")
 
-    lines = ["*HEADING", f"fegear peer deck: {len(bodies)} bodies, load {_num(load)} N",
+    lines = ["*HEADING", f"fegear peer deck: {len(bodies)} bodies, load {_num(load)}",
              "*NODE, NSET=NALL"]
     node0, elem0, types, conns = [], [], [], []
     n_nodes = n_elems = 0
@@ -236,40 +261,50 @@ def write_deck(bodies: Sequence[Body], load: float, directory: str | os.PathLike
     if len(fixed) == 0:
         raise PeerError("no body has a fixed boundary: nothing reacts the load")
     link = np.setdiff1d(node0[linked[0]] + _nodes(lb, (lb.link.boundary,)) + 1, fixed)
-    ref = int(link[0])
-    lines += [*_nset("FIXED", fixed), *_nset("LINK", link), *_nset("REF", [ref]), "*EQUATION"]
-    for n in link[1:]:
-        lines += ["2", f"{n}, {axis + 1}, 1., {ref}, {axis + 1}, -1."]
+    lines += _nset("FIXED", fixed) + _nset("LINK", link)
+    if lb.link.kind == "rotation":
+        card, ref, dof, sign, supports, equations = _rotation_link(lb, link, node0[linked[0]],
+                                                                   n_nodes + 1)
+        delta = float(preload)
+    else:
+        card, ref, dof, sign, supports, equations = _translation_link(lb, link)
+        size = float(np.ptp(lb.mesh.doflocs, axis=1).max())
+        delta = PRELOAD * size if preload is None else float(preload)
+    lines += card
 
     penalty = []
     for k, pair in enumerate(pairs):
-        for role, b, name in (("SLAVE", pair.slave, pair.slave_boundary),
-                              ("MASTER", pair.master, pair.master_boundary)):
-            elem, face = _faces(bodies[b], name)
+        sb, mb = bodies[pair.slave], bodies[pair.master]
+        sub = getattr(pair, "slave_facets", None)
+        for role, b, name, facets in (("SLAVE", pair.slave, pair.slave_boundary, sub),
+                                      ("MASTER", pair.master, pair.master_boundary, None)):
+            elem, face = _faces(bodies[b], name, facets)
             lines.append(f"*SURFACE, NAME={role}{k + 1}, TYPE=ELEMENT")
             lines += [f"{elem0[b] + e + 1}, S{f}" for e, f in zip(elem, face)]
-        sb, mb = bodies[pair.slave], bodies[pair.master]
-        ends = sb.mesh.doflocs.T[sb.mesh.facets[:, sb.mesh.boundaries[pair.slave_boundary]]]
+        facets = _boundary(sb, pair.slave_boundary) if sub is None else np.asarray(sub)
+        ends = sb.mesh.doflocs.T[sb.mesh.facets[:, facets]]
         h = np.linalg.norm(ends[1] - ends[0], axis=1).mean()  # mean slave facet length, mm
-        penalty.append(penalty_factor * contact_modulus(sb.material.plane_modulus,
-                                                        mb.material.plane_modulus) / h)
+        K = getattr(pair, "penalty", None)
+        penalty.append(float(K) if K is not None else penalty_factor * contact_modulus(
+            sb.material.plane_modulus, mb.material.plane_modulus) / h)
         lines += [f"*SURFACE INTERACTION, NAME=PENALTY{k + 1}",
                   "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", _num(penalty[-1]),
                   f"*CONTACT PAIR, INTERACTION=PENALTY{k + 1}, TYPE=SURFACE TO SURFACE",
                   f"SLAVE{k + 1}, MASTER{k + 1}"]
 
-    perp = 2 - axis  # CalculiX dof (1 or 2) across the link direction
-    supports = ["FIXED, 1, 2", f"LINK, {perp}, {perp}"]
-    size = float(np.ptp(lb.mesh.doflocs, axis=1).max())
-    delta = PRELOAD * size if preload is None else float(preload)
     lines += ["*BOUNDARY", *supports,
               "*STEP", "*STATIC", "1., 1.", "*BOUNDARY",
-              f"REF, {axis + 1}, {axis + 1}, {_num(sign * delta)}", "*END STEP",
-              "*STEP, INC=100", "*STATIC", "1., 1., 1e-5, 1.", *CONTROLS,
-              "*BOUNDARY, OP=NEW", *supports, "*CLOAD", f"REF, {axis + 1}, {_num(sign * load)}",
+              f"REF, {dof}, {dof}, {_num(sign * delta)}", "*END STEP",
+              "*STEP, INC=1000", "*STATIC", f"{_num(1 / increments)}, 1., 1e-5, "
+              f"{_num(1 / increments)}", *CONTROLS,
+              "*BOUNDARY, OP=NEW", *supports, "*CLOAD", f"REF, {dof}, {_num(sign * load)}",
               "*NODE PRINT, NSET=FIXED, TOTALS=ONLY", "RF", "*CONTACT PRINT", "CSTR"]
+    if lb.link.kind == "rotation":
+        lines += ["*NODE PRINT, NSET=REF", "U"]
     for k in range(len(pairs)):
         lines += [f"*CONTACT PRINT, SLAVE=SLAVE{k + 1}, MASTER=MASTER{k + 1}", "CF"]
+    if stresses:
+        lines += ["*EL FILE", "S"]
     lines.append("*END STEP")
     out = Path(directory)
     try:
@@ -279,7 +314,42 @@ def write_deck(bodies: Sequence[Body], load: float, directory: str | os.PathLike
     except OSError as exc:
         raise PeerError(f"cannot write the deck in {str(out)!r}: {exc.strerror}") from None
     return CcxDeck(path, jobname, n_nodes, n_elems, "/".join(sorted(set(types))),
-                   tuple(penalty), delta, float(load))
+                   tuple(penalty), delta, float(load), lb.link.kind, equations, ref)
+
+
+def _translation_link(lb: Body, link: np.ndarray) -> tuple:
+    """Deck lines of a translation link along x or y: the first link node is the reference,
+    the others follow it along the link (``*EQUATION``) and are held across it."""
+    d = lb.placement.vec_to_fixed(np.asarray([lb.link.direction]))[0]  # bodies are placed
+    axis = int(np.argmax(np.abs(d)))
+    if abs(abs(d[axis]) - 1.0) > 1e-12:
+        raise PeerError(f"link direction {tuple(d)} is not along x or y")
+    ref = int(link[0])
+    card = [*_nset("REF", [ref]), "*EQUATION"]
+    for n in link[1:]:
+        card += ["2", f"{n}, {axis + 1}, 1., {ref}, {axis + 1}, -1."]
+    perp = 2 - axis  # CalculiX dof (1 or 2) across the link direction
+    return (card, ref, axis + 1, float(np.sign(d[axis])), ["FIXED, 1, 2", f"LINK, {perp}, {perp}"],
+            len(link) - 1)
+
+
+def _rotation_link(lb: Body, link: np.ndarray, offset: int, ref: int) -> tuple:
+    """Deck lines of a rotation link: a free reference node at the (placed) centre c whose dof 1
+    is θ, and per link node u_x + (y − c_y) θ = 0, u_y − (x − c_x) θ = 0 (small rotation). A
+    dof whose lever is zero is held instead (an equation needs a nonzero second term)."""
+    x = lb.placement.to_fixed(lb.mesh.doflocs.T[link - 1 - offset])  # deck ids are 1-based
+    c = lb.placement.to_fixed(np.asarray([lb.link.center]))[0]
+    card = ["*NODE, NSET=REF", f"{ref}, {_num(c[0])}, {_num(c[1])}, 0", "*EQUATION"]
+    held, count = [], 0
+    tiny = 1e-12 * max(float(np.abs(x - c).max()), 1.0)
+    for n, (dx, dy) in zip(link, x - c):
+        for dof, lever in ((1, dy), (2, -dx)):
+            if abs(lever) <= tiny:
+                held.append(f"{n}, {dof}, {dof}")
+                continue
+            card += ["2", f"{n}, {dof}, 1., {ref}, 1, {_num(lever)}"]
+            count += 1
+    return card, ref, 1, 1.0, ["FIXED, 1, 2", *held], count
 
 
 def _number(token: str) -> float:
@@ -341,15 +411,15 @@ def _deck_counts(inp: str) -> tuple[int, int, float, int]:
     return counts["NODE"], counts["ELEMENT"], load, counts["CONTACT PAIR"]
 
 
-def run_ccx(deck_dir: str | os.PathLike, jobname: str, threads: int = 1,
-            timeout: float | None = None) -> CcxResult:
-    """Run ``ccx -i <jobname>`` in ``deck_dir`` with ``threads`` threads and read the results
-    of a deck from :func:`write_deck`. Raises :class:`PeerError` when ccx is missing, fails,
-    times out or does not complete the load step, and when the forces do not balance."""
+def execute(work: Path, jobname: str, threads: int = 1, timeout: float | None = None
+            ) -> tuple[float, str, list[list[str]], list[str]]:
+    """Run ``ccx -i <jobname>`` in ``work`` with ``threads`` threads: its wall time (s), log,
+    the converged increments of the ``.sta`` (rows: step, increment, attempts, iterations, …)
+    and the ``.dat`` lines. Raises :class:`PeerError` when ccx is missing, fails or times out,
+    :class:`PeerConvergenceError` when it gives up or does not complete step 2."""
     exe = shutil.which("ccx")
     if exe is None:
         raise PeerError("CalculiX (ccx) is not installed or not on the PATH")
-    work = Path(deck_dir)
     inp = work / f"{jobname}.inp"
     if not inp.is_file():
         raise PeerError(f"no deck {str(inp)!r}")
@@ -377,12 +447,24 @@ def run_ccx(deck_dir: str | os.PathLike, jobname: str, threads: int = 1,
         if "cutback" in why:
             raise PeerConvergenceError(f"ccx did not converge: {why} (log: {log})")
         raise PeerError(f"ccx failed: {why} (log: {log})")
-
     steps = [line.split() for line in _read(work / f"{jobname}.sta").splitlines()
              if re.match(r"^\s*\d+\s+\d+\s+\d+\s+\d+\s+\S+\s+\S+\s+\S+\s*$", line)]
     if not steps or int(steps[-1][0]) != 2 or abs(_floats(steps[-1][5])[0] - 1.0) > 1e-9:
         raise PeerConvergenceError(f"ccx did not complete the load step ({work / jobname}.sta)")
-    dat = _read(work / f"{jobname}.dat").splitlines()
+    return wall, text, steps, _read(work / f"{jobname}.dat").splitlines()
+
+
+def run_ccx(deck_dir: str | os.PathLike, jobname: str, threads: int = 1,
+            timeout: float | None = None) -> CcxResult:
+    """Run ``ccx -i <jobname>`` in ``deck_dir`` with ``threads`` threads and read the results
+    of a deck from :func:`write_deck` with a translation link. Raises :class:`PeerError` when
+    ccx is missing, fails, times out or does not complete the load step, and when the forces
+    do not balance."""
+    work = Path(deck_dir)
+    inp = work / f"{jobname}.inp"
+    if inp.is_file() and "*NODE, NSET=REF" in _read(inp):
+        raise PeerError("a rotation-link deck: run it with fegear.peer_pair.ccx_pair")
+    wall, text, steps, dat = execute(work, jobname, threads, timeout)
     pressure, when = _last_block(dat, "contact stress")
     if abs(when - 2.0) > 1e-9:
         raise PeerError(f"ccx's last contact output is at time {when}, not at the full load")
