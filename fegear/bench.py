@@ -233,20 +233,26 @@ def pair_ladder(params: PairParameters, torque: float = 200.0,
             lambda out, sol=sol: write_pair_outputs(sol, out, pair_summary(sol)))
         peer_s = peer_values = None
         if peer:
-            peer_s, peer_values = _pair_peer(case)
+            peer_s, peer_values = _pair_peer(case, sol)
         rungs.append(Rung(quality, sol.dofs, timings, sol.headline(), peer_s, peer_values))
     return Ladder(f"tooth pair {params.describe()}, T {torque:g} N·m, one position",
                   tuple(rungs))
 
 
-def _pair_peer(case) -> tuple[float | None, dict | None]:
-    from . import peer
+PEER_PAIR_LEVELS = ("coarse", "fast")  # CalculiX takes minutes per position beyond these
 
-    if not (peer.ccx_available() and hasattr(peer, "ccx_pair")):
+
+def _pair_peer(case, sol) -> tuple[float | None, dict | None]:
+    from .peer import ccx_available
+    from .peer_pair import ccx_pair
+
+    if not ccx_available() or case.quality not in PEER_PAIR_LEVELS:
         return None, None
     with tempfile.TemporaryDirectory() as tmp:
-        _, c = peer.ccx_pair(case, tmp)
-    return c.wall_s, {"contact_pressure_MPa": c.p_max}
+        _, c = ccx_pair(case, tmp, solution=sol)
+    return c.wall_s, {"root_stress_gear1_MPa": c.root_stress[0],
+                      "root_stress_gear2_MPa": c.root_stress[1],
+                      "contact_pressure_MPa": c.p_max}
 
 
 @dataclass(frozen=True)
@@ -294,9 +300,9 @@ def ladder_table(ladder: Ladder) -> str:
     stages = list(dict.fromkeys(k for r in ladder.rungs for k in r.timings_s))
     keys = list(ladder.reference)
     peer = any(r.peer_s for r in ladder.rungs)
+    peer_keys = list(dict.fromkeys(k for r in ladder.rungs for k in (r.peer_values or {})))
     head = (["level", "DOFs"] + stages + ["total [s]"] + keys + ["max err %"]
-            + (["ccx [s]", "ccx " + next(iter(ladder.rungs[-1].peer_values or {keys[0]: 0})),
-                "ccx / ours"] if peer else []))
+            + (["ccx [s]"] + [f"ccx {k}" for k in peer_keys] + ["ccx / ours"] if peer else []))
     lines = [f"{ladder.name}: errors against the Richardson extrapolation of the finest levels",
              "", "| " + " | ".join(head) + " |", "|---|" + "---:|" * (len(head) - 1)]
     for r in ladder.rungs:
@@ -307,12 +313,13 @@ def ladder_table(ladder: Ladder) -> str:
         cells += [f"{ladder.error_pct(r.values):.3f}"]
         if peer:
             if r.peer_s:
-                (pk, pv), = list(r.peer_values.items())[:1]
-                cells += [f"{r.peer_s:.2f}",
-                          f"{pv:.5g} ({100 * (pv / ladder.reference[pk] - 1):+.3f} %)",
-                          f"{r.peer_s / r.solve_s:.1f}×"]
+                cells += [f"{r.peer_s:.2f}"]
+                cells += [f"{r.peer_values[k]:.5g} "
+                          f"({100 * (r.peer_values[k] / ladder.reference[k] - 1):+.3f} %)"
+                          for k in peer_keys]
+                cells += [f"{r.peer_s / r.solve_s:.1f}×"]
             else:
-                cells += ["–", "–", "–"]
+                cells += ["–"] * (len(peer_keys) + 2)
         lines.append("| " + " | ".join(cells) + " |")
     ref = ", ".join(f"{k} {v:.6g} (order {ladder.order[k]:.2f})"
                     for k, v in ladder.reference.items())

@@ -118,8 +118,8 @@ def ladder_png(path: Path, ladders, targets) -> Path:
         ax.plot(t, e, "o-", color=colour, label=f"fegear: {name}")
         for r, x, y in zip(ladder.rungs, t, e):
             ax.annotate(r.level, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7)
-        peer = [(r.peer_s, max(100 * abs(v / ladder.reference[q] - 1), 1e-4))
-                for r in ladder.rungs if r.peer_s for q, v in r.peer_values.items()]
+        peer = [(r.peer_s, max(ladder.error_pct(r.peer_values, keys or list(r.peer_values)),
+                                1e-4)) for r in ladder.rungs if r.peer_s]
         if peer:
             ax.plot(*zip(*peer), "x--", color=colour, label=f"CalculiX: {name}")
         ax.add_patch(plt.Rectangle((1e-3, 1e-4), target.seconds - 1e-3,
