@@ -75,8 +75,9 @@ class Gear2Master:
 @dataclass(frozen=True)
 class Candidate:
     """A gear-1 tooth paired for contact: unloaded clearance (µm of arc at r0), the predicted
-    contact point (fixed frame at β, mm), its polar angle on gear 1 (body frame, rad) and on
-    gear 2 (body frame, rad), and the analytic curvature radii there (mm, + convex)."""
+    contact point (fixed frame at β once the clearance is closed, mm), its polar angle on gear 1
+    (body frame, rad) and on gear 2 (body frame, rad), and the analytic curvature radii there
+    (mm, + convex)."""
 
     tooth: int
     clearance_um: float
