@@ -12,7 +12,13 @@ from fegear.pairout import HEADLINE, error_estimate
 from fegear.params import PairParameters
 from fegear.profile import Gear1Profile, rotate
 from fegear.rounding import RoundedProfile
-from fegear.scene import _profile_segments, build_scene, candidate_data, tooth_run
+from fegear.scene import (
+    _profile_segments,
+    _sampled,
+    build_scene,
+    candidate_data,
+    tooth_run,
+)
 from fegear.tca import ToothContact
 from fegear.toothpair import (
     SolveCase,
@@ -321,3 +327,20 @@ def test_sector_is_the_shortest_run_of_teeth_holding_every_paired_tooth(teeth, z
     # at 600 N·m the paired teeth span 230°: taken as the shorter way round from the first
     # index, the sector came out over 360° and gmsh could not mesh it
     assert tooth_run(teeth, z) == run
+
+
+def test_a_nearly_radial_curve_is_sampled_evenly_in_arc_length():
+    # r = 10 + 100 θ runs ten times faster than r dθ: points even in θ fell ten spacings apart
+    def spiral(theta):
+        r = 10.0 + 100.0 * theta
+        return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
+
+    spacing = math.sqrt(8 * 0.5 * 1e-3)  # SPLINE_CHORD at 0.5 mm radius
+    seg = _sampled("s", spiral, None, 0.0, 0.02)
+    gaps = np.hypot(*np.diff(seg.points, axis=0).T)
+    assert gaps.max() < 1.05 * spacing and gaps.min() > 0.9 * gaps.max()
+    assert np.allclose(seg.points[[0, -1]], spiral(np.array([0.0, 0.02])))
+    # a circle keeps its points even in polar angle
+    arc = _sampled("c", circle, None, 0.0, 0.5).points
+    angles = np.arctan2(arc[:, 1], arc[:, 0])
+    assert np.allclose(np.diff(angles), angles[1] - angles[0])
