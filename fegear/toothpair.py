@@ -257,19 +257,18 @@ def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None
 
 def _refuse_interference(states) -> None:
     """A pair whose teeth overlap before any load is an interference fit: not modelled."""
-    worst = min(((c.plus_um, c.tooth, beta) for beta, st in states for c in st.teeth
-                 if c.plus_um is not None), default=None)
-    if worst is not None and worst[0] < -INTERFERENCE_UM:
-        um, tooth, beta = worst
-        raise GeometryError(f"the unloaded pair interferes: gear-1 tooth {tooth} overlaps gear 2 "
-                            f"by {-um:.3g} µm of arc at r0 at β = {math.degrees(beta):.4g}°; "
-                            "an interference fit is not modelled (raise tip_relief, or check "
-                            "shift and rotation)")
+    for beta, state in states:
+        c = state.closest(+1)
+        if c.plus_um < -INTERFERENCE_UM:
+            raise GeometryError(f"the unloaded pair interferes: gear-1 tooth {c.tooth} overlaps "
+                                f"gear 2 by {-c.plus_um:.3g} µm of arc at r0 at β = "
+                                f"{math.degrees(beta):.4g}°; an interference fit is not "
+                                "modelled (raise tip_relief, or check shift and rotation)")
 
 
 def _first_clearance(state) -> float:
     """Smallest + clearance at a position (µm): the rigid closure at first touch."""
-    return min(c.plus_um for c in state.teeth if c.plus_um is not None)
+    return state.closest(+1).plus_um
 
 
 def _union(groups) -> tuple[int, ...]:
