@@ -390,6 +390,29 @@ def _last_block(lines: list[str], header: str) -> tuple[list[str], float]:
     return _rows(lines, at[-1]), _floats(lines[at[-1]])[-1]
 
 
+def contact_forces(dat: list[str], npairs: int) -> np.ndarray:
+    """Per deck pair, from the last ``CF`` blocks: fx, fy, fz, mx, my, mz (about the origin)
+    and the normal force (+ = tension)."""
+    stats = [i for i, line in enumerate(dat) if "statistics for slave set" in line]
+    if len(stats) < npairs:
+        raise PeerError(f"ccx wrote {len(stats)} contact force blocks for {npairs} pairs")
+    out = []
+    for i in stats[len(stats) - npairs:]:
+        block = dat[i:i + 20]
+        total = _block_row(block, "total surface force")[:6]
+        area, normal = _block_row(block, "normal force (+ = tension)")[:2]
+        out.append(total + [normal if area > 0 else 0.0])  # ccx: NaN on a pair out of contact
+    return np.array(out)
+
+
+def _block_row(block: list[str], title: str) -> list[float]:
+    """The numbers of the first data line under the line containing ``title``."""
+    j = next((j for j, line in enumerate(block) if title in line), None)
+    if j is None:
+        raise PeerError(f"ccx's contact force block has no {title!r} line")
+    return _floats(_rows(block, j)[0])
+
+
 def _read(path: Path) -> str:
     try:
         return path.read_text(errors="replace")
@@ -472,10 +495,7 @@ def run_ccx(deck_dir: str | os.PathLike, jobname: str, threads: int = 1,
     if not np.any(p > 0):
         raise PeerError("ccx found no contact at the full load")
     nodes, elements, applied, npairs = _deck_counts(_read(inp))
-    stats = [i for i, line in enumerate(dat) if "normal force (+ = tension)" in line]
-    if len(stats) < npairs:
-        raise PeerError(f"ccx wrote {len(stats)} contact force blocks for {npairs} pairs")
-    load = -sum(_floats(_rows(dat, i)[0])[1] for i in stats[len(stats) - npairs:])
+    load = -contact_forces(dat, npairs)[:, 6].sum()
     reaction, _ = _last_block(dat, "total force (fx,fy,fz) for set FIXED")
     m = re.search(r"number of equations\s+(\d+)", text)
     rf = np.array(_floats(reaction[0])[:2])
@@ -489,11 +509,14 @@ def run_ccx(deck_dir: str | os.PathLike, jobname: str, threads: int = 1,
 
 
 def ccx_disks(case: DiskCase, workdir: str | os.PathLike, threads: int = 1,
-              plane_stress_element: str = "CPE6",
-              timeout: float | None = None) -> tuple[DiskResult, CcxResult]:
-    """Solve the disk ``case`` with fegear, export the same bodies and pair, and run CalculiX:
-    ``(DiskResult, CcxResult)``. The deck and ccx's files stay in ``workdir``."""
-    result = solve_disks(case)
+              plane_stress_element: str = "CPE6", timeout: float | None = None,
+              result: DiskResult | None = None) -> tuple[DiskResult, CcxResult]:
+    """Solve the disk ``case`` with fegear (or take its ``result``), export the same bodies and
+    pair, and run CalculiX: ``(DiskResult, CcxResult)``. The deck and ccx's files stay in
+    ``workdir``."""
+    if result is not None and result.case != case:
+        raise PeerError("the result given is not of this case")
+    result = solve_disks(case) if result is None else result
     write_deck(result.bodies, case.load, workdir, "disks", result.model.pairs,
                case.penalty_factor, plane_stress_element)
     return result, run_ccx(workdir, "disks", threads, timeout)

@@ -61,8 +61,9 @@ import numpy as np
 
 from .assembly import Body, Placement
 from .hertz import contact_modulus
-from .peer import PeerError, _floats, _last_block, _read, _rows, execute, write_deck
+from .peer import PeerError, _floats, _last_block, _read, contact_forces, execute, write_deck
 from .profile import rotate
+from .stress import StressField
 from .toothpair import PairSolution, SolveCase, _root_nodes, solve_pair
 
 CCX_PENALTY_FACTOR = 30.0  # CalculiX's K = this · E*/h (penalty_factor=None: the case's)
@@ -171,7 +172,7 @@ def ccx_pair(case: SolveCase, workdir: str | os.PathLike, threads: int = 1,
     ref, _ = _last_block(dat, "displacements (vx,vy,vz) for set REF")
     rotation = turned + _floats(ref[0])[1]
     centre = g1.placement.to_fixed(np.asarray([g1.link.center]))[0]
-    forces = _pair_forces(dat, len(pairs))
+    forces = contact_forces(dat, len(pairs))
     moments = forces[:, 5] - (centre[0] * forces[:, 1] - centre[1] * forces[:, 0])
     n = len(sol.teeth)
     load = np.bincount(owner, -forces[:, 6], minlength=n)
@@ -212,29 +213,6 @@ def _turned(body: Body, theta: float) -> Body:
     return replace(body, placement=Placement(pl.angle + theta, tuple(map(float, offset))))
 
 
-def _pair_forces(dat: list[str], npairs: int) -> np.ndarray:
-    """Per deck pair, from the last ``CF`` blocks: fx, fy, fz, mx, my, mz (about the origin)
-    and the normal force (+ = tension)."""
-    stats = [i for i, line in enumerate(dat) if "statistics for slave set" in line]
-    if len(stats) < npairs:
-        raise PeerError(f"ccx wrote {len(stats)} contact force blocks for {npairs} pairs")
-    out = []
-    for i in stats[len(stats) - npairs:]:
-        block = dat[i:i + 20]
-        total = _block_row(block, "total surface force")[:6]
-        area, normal = _block_row(block, "normal force (+ = tension)")[:2]
-        out.append(total + [normal if area > 0 else 0.0])  # ccx: NaN on a pair out of contact
-    return np.array(out)
-
-
-def _block_row(block: list[str], title: str) -> list[float]:
-    """The numbers of the first data line under the line containing ``title``."""
-    j = next((j for j, line in enumerate(block) if title in line), None)
-    if j is None:
-        raise PeerError(f"ccx's contact force block has no {title!r} line")
-    return _floats(_rows(block, j)[0])
-
-
 def _face_owner(inp: Path, npairs: int) -> dict[tuple[int, int], int]:
     """(element, 2D face) → deck pair, from the deck's SLAVE surfaces."""
     which, k = {}, None
@@ -261,9 +239,8 @@ def _root_stress(frd: Path, sol: PairSolution) -> tuple[float, float]:
         missing = [n for n in nodes if n not in stress]
         if missing:
             raise PeerError(f"ccx wrote no stress at root node {missing[0]}")
-        s = np.array([stress[n] for n in nodes])  # sxx, syy, szz, sxy, …
-        s1 = 0.5 * (s[:, 0] + s[:, 1]) + np.hypot(0.5 * (s[:, 0] - s[:, 1]), s[:, 3])
-        out.append(float(s1.max()))
+        s = np.array([stress[n] for n in nodes]).T  # sxx, syy, szz, sxy, …
+        out.append(float(StressField(s[0], s[1], s[3], s[2], "stress").s1.max()))
     return out[0], out[1]
 
 

@@ -17,13 +17,13 @@ from fegear.peer import (
     PeerError,
     ccx_available,
     ccx_disks,
+    contact_forces,
     run_ccx,
     write_deck,
 )
 from fegear.peer_pair import (
     CCX_PENALTY_FACTOR,
     _frd_stress,
-    _pair_forces,
     _turned,
     ccx_pair,
     pair_surfaces,
@@ -311,9 +311,9 @@ def test_frd_and_force_readers(tmp_path):
              "    0.0E+00  0.0E+00  0.0E+00  0.0E+00  0.0E+00  0.0E+00", "",
              "   area,  normal force (+ = tension) and shear force (size)", "",
              "    0.000000E+00           NaN           NaN", ""]
-    assert _pair_forces(block, 1).tolist() == [[0.0] * 7]  # an empty pair: NaN → 0
+    assert contact_forces(block, 1).tolist() == [[0.0] * 7]  # an empty pair: NaN → 0
     with pytest.raises(PeerError, match="2 pairs"):
-        _pair_forces(block, 2)
+        contact_forces(block, 2)
 
 
 @pytest.mark.slow
