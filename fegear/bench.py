@@ -151,6 +151,11 @@ class Rung:
         """Everything after meshing: what CalculiX does on the same mesh."""
         return self.total_s - self.timings_s.get("profile", 0.0) - self.timings_s.get("mesh", 0.0)
 
+    @property
+    def peer_ratio(self) -> float | None:
+        """CalculiX's wall time over ours after meshing (both solve the same mesh)."""
+        return self.peer_s / self.solve_s if self.peer_s else None
+
 
 @dataclass(frozen=True)
 class Ladder:
@@ -168,10 +173,20 @@ class Ladder:
         object.__setattr__(self, "reference", {k: v[0] for k, v in fits.items()})
         object.__setattr__(self, "order", {k: v[1] for k, v in fits.items()})
 
+    @property
+    def judged(self) -> list[str]:
+        """The values a target is judged on: the Hertz case its peak pressure, the pair every
+        headline stress."""
+        return ["p_max_MPa"] if "p_max_MPa" in self.reference else list(self.reference)
+
+    def deviation_pct(self, key: str, value: float) -> float:
+        """value / reference − 1 (%), signed."""
+        return 100.0 * (value / self.reference[key] - 1.0)
+
     def error_pct(self, values: dict[str, float], keys: Sequence[str] | None = None) -> float:
         """Largest |value / reference − 1| (%) over ``keys`` (default: all)."""
         keys = keys if keys is not None else list(self.reference)
-        return max(100.0 * abs(values[k] / self.reference[k] - 1.0) for k in keys)
+        return max(abs(self.deviation_pct(k, values[k])) for k in keys)
 
 
 def _best_of(solve, repeat: int):
@@ -196,7 +211,7 @@ def disk_ladder(levels: Sequence[float] = DISK_LEVELS, repeat: int = 3,
     """The Hertz case (two 10 mm disks, 1000 N, 5 mm, plane stress) at each number of
     elements across b; CalculiX beside it if ``peer`` and installed."""
     from .disks import DiskCase, solve_disks, write_disk_outputs
-    from .peer import ccx_available, run_ccx, write_deck
+    from .peer import ccx_available, ccx_disks
 
     peer = peer and ccx_available()
     rungs = []
@@ -207,8 +222,7 @@ def disk_ladder(levels: Sequence[float] = DISK_LEVELS, repeat: int = 3,
         peer_s = peer_values = None
         if peer:
             with tempfile.TemporaryDirectory() as tmp:
-                write_deck(r.bodies, case.load, tmp, "disks", r.model.pairs, case.penalty_factor)
-                c = run_ccx(tmp, "disks")
+                _, c = ccx_disks(case, tmp, result=r)
             peer_s, peer_values = c.wall_s, {"p_max_MPa": c.p_max}
         rungs.append(Rung(f"{n:g} per b", r.dofs, best,
                           {"p_max_MPa": r.p_max, "half_width_mm": r.half_width},
@@ -281,9 +295,7 @@ def ladder_targets(disks: Ladder | None, pair: Ladder | None) -> list[Target]:
                                      (pair, "baseline pair", PAIR_TARGET)):
         if ladder is None:
             continue
-        # the Hertz case is judged on its peak pressure, the pair on every headline stress
-        keys = ["p_max_MPa"] if "p_max_MPa" in ladder.reference else None
-        ok = [r for r in ladder.rungs if ladder.error_pct(r.values, keys) <= err]
+        ok = [r for r in ladder.rungs if ladder.error_pct(r.values, ladder.judged) <= err]
         rung = min(ok, key=lambda r: r.total_s) if ok else None
         out.append(Target(name, err, sec, rung, rung is not None and rung.total_s <= sec))
     return out
@@ -291,7 +303,7 @@ def ladder_targets(disks: Ladder | None, pair: Ladder | None) -> list[Target]:
 
 def peer_speedups(ladder: Ladder) -> list[tuple[Rung, float]]:
     """CalculiX wall time over ours after meshing (both solve the same mesh), per rung."""
-    return [(r, r.peer_s / r.solve_s) for r in ladder.rungs if r.peer_s]
+    return [(r, r.peer_ratio) for r in ladder.rungs if r.peer_s]
 
 
 def ladder_table(ladder: Ladder) -> str:
@@ -308,16 +320,16 @@ def ladder_table(ladder: Ladder) -> str:
     for r in ladder.rungs:
         cells = [r.level, str(r.dofs)] + [f"{r.timings_s.get(k, 0.0):.3f}" for k in stages]
         cells += [f"{r.total_s:.3f}"]
-        cells += [f"{r.values[k]:.5g} ({100 * (r.values[k] / ladder.reference[k] - 1):+.3f} %)"
+        cells += [f"{r.values[k]:.5g} ({ladder.deviation_pct(k, r.values[k]):+.3f} %)"
                   for k in keys]
         cells += [f"{ladder.error_pct(r.values):.3f}"]
         if peer:
             if r.peer_s:
                 cells += [f"{r.peer_s:.2f}"]
                 cells += [f"{r.peer_values[k]:.5g} "
-                          f"({100 * (r.peer_values[k] / ladder.reference[k] - 1):+.3f} %)"
+                          f"({ladder.deviation_pct(k, r.peer_values[k]):+.3f} %)"
                           for k in peer_keys]
-                cells += [f"{r.peer_s / r.solve_s:.1f}×"]
+                cells += [f"{r.peer_ratio:.1f}×"]
             else:
                 cells += ["–"] * (len(peer_keys) + 2)
         lines.append("| " + " | ".join(cells) + " |")

@@ -111,15 +111,15 @@ def ladder_png(path: Path, ladders, targets) -> Path:
     fig, ax = plt.subplots(figsize=(8, 5.5))
     for k, (ladder, target) in enumerate(zip(ladders, targets)):
         colour = f"C{k}"
-        keys = ["p_max_MPa"] if "p_max_MPa" in ladder.reference else None
         t = [r.total_s for r in ladder.rungs]
-        e = [max(ladder.error_pct(r.values, keys), 1e-4) for r in ladder.rungs]
+        e = [max(ladder.error_pct(r.values, ladder.judged), 1e-4) for r in ladder.rungs]
         name = ladder.name.split(",")[0]
         ax.plot(t, e, "o-", color=colour, label=f"fegear: {name}")
         for r, x, y in zip(ladder.rungs, t, e):
             ax.annotate(r.level, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7)
-        peer = [(r.peer_s, max(ladder.error_pct(r.peer_values, keys or list(r.peer_values)),
-                                1e-4)) for r in ladder.rungs if r.peer_s]
+        peer = [(r.peer_s, max(ladder.error_pct(
+            r.peer_values, [k for k in ladder.judged if k in r.peer_values]), 1e-4))
+            for r in ladder.rungs if r.peer_s]
         if peer:
             ax.plot(*zip(*peer), "x--", color=colour, label=f"CalculiX: {name}")
         ax.add_patch(plt.Rectangle((1e-3, 1e-4), target.seconds - 1e-3,
