@@ -8,6 +8,7 @@ finest (:func:`richardson`); where CalculiX is installed, it solves the same mes
 
 from __future__ import annotations
 
+import logging
 import math
 import os
 import platform
@@ -109,6 +110,8 @@ def pair_bench(params: PairParameters, torque: float = 200.0, quality: str = "st
 
 # --- run time against error ----------------------------------------------------------------
 
+log = logging.getLogger(__name__)
+
 HERTZ_TARGET = (0.5, 0.3)   # the Hertz case within 0.5 % of its reference in 0.3 s
 PAIR_TARGET = (1.0, 1.0)    # the baseline pair within 1 % in 1 s
 PEER_TARGET = 20.0          # at least 20× faster than CalculiX on the same mesh
@@ -141,6 +144,7 @@ class Rung:
     values: dict[str, float]
     peer_s: float | None = None
     peer_values: dict[str, float] | None = None
+    peer_failure: str | None = None  # why CalculiX gave no answer on this mesh
 
     @property
     def total_s(self) -> float:
@@ -213,20 +217,20 @@ def disk_ladder(levels: Sequence[float] = DISK_LEVELS, repeat: int = 3,
     from .disks import DiskCase, solve_disks, write_disk_outputs
     from .peer import ccx_available, ccx_disks
 
+    def disk_peer(case, r):
+        with tempfile.TemporaryDirectory() as tmp:
+            _, c = ccx_disks(case, tmp, result=r)
+        return c.wall_s, {"p_max_MPa": c.p_max}
+
     peer = peer and ccx_available()
     rungs = []
     for n in levels:
         case = DiskCase(quality=float(n))
         r, best = _best_of(lambda case=case: solve_disks(case), repeat)
         best["output"] = _timed_output(lambda out, r=r: write_disk_outputs(r, out), repeat)
-        peer_s = peer_values = None
-        if peer:
-            with tempfile.TemporaryDirectory() as tmp:
-                _, c = ccx_disks(case, tmp, result=r)
-            peer_s, peer_values = c.wall_s, {"p_max_MPa": c.p_max}
+        beside = _peer(disk_peer, case, r) if peer else (None, None, None)
         rungs.append(Rung(f"{n:g} per b", r.dofs, best,
-                          {"p_max_MPa": r.p_max, "half_width_mm": r.half_width},
-                          peer_s, peer_values))
+                          {"p_max_MPa": r.p_max, "half_width_mm": r.half_width}, *beside))
     h = DiskCase().hertz
     return Ladder("Hertz disks r 10 mm, P 1000 N, t 5 mm", tuple(rungs),
                   analytic={"p_max_MPa": h.p0, "half_width_mm": h.b})
@@ -245,12 +249,22 @@ def pair_ladder(params: PairParameters, torque: float = 200.0,
         timings = dict(sol.timings_s)
         timings["output"] = _timed_output(
             lambda out, sol=sol: write_pair_outputs(sol, out, pair_summary(sol)))
-        peer_s = peer_values = None
-        if peer:
-            peer_s, peer_values = _pair_peer(case, sol)
-        rungs.append(Rung(quality, sol.dofs, timings, sol.headline(), peer_s, peer_values))
+        beside = _peer(_pair_peer, case, sol) if peer else (None, None, None)
+        rungs.append(Rung(quality, sol.dofs, timings, sol.headline(), *beside))
     return Ladder(f"tooth pair {params.describe()}, T {torque:g} N·m, one position",
                   tuple(rungs))
+
+
+def _peer(run, case, ours) -> tuple[float | None, dict | None, str | None]:
+    """CalculiX's wall time and values beside ours, or why it gave none: a failed peer is
+    reported in the table, it does not stop the benchmark."""
+    from .peer import PeerError
+
+    try:
+        return (*run(case, ours), None)
+    except PeerError as err:
+        log.warning("CalculiX at %s: %s", case.quality, err)
+        return None, None, str(err)
 
 
 PEER_PAIR_LEVELS = ("coarse", "fast")  # CalculiX takes minutes per position beyond these
@@ -311,7 +325,7 @@ def ladder_table(ladder: Ladder) -> str:
     the analytic values), CalculiX's time and value beside ours."""
     stages = list(dict.fromkeys(k for r in ladder.rungs for k in r.timings_s))
     keys = list(ladder.reference)
-    peer = any(r.peer_s for r in ladder.rungs)
+    peer = any(r.peer_s or r.peer_failure for r in ladder.rungs)
     peer_keys = list(dict.fromkeys(k for r in ladder.rungs for k in (r.peer_values or {})))
     head = (["level", "DOFs"] + stages + ["total [s]"] + keys + ["max err %"]
             + (["ccx [s]"] + [f"ccx {k}" for k in peer_keys] + ["ccx / ours"] if peer else []))
@@ -342,6 +356,8 @@ def ladder_table(ladder: Ladder) -> str:
             for k, v in ladder.analytic.items()))
     if peer:
         lines.append("ccx / ours: CalculiX's wall time over ours after meshing (the same mesh)")
+    lines += [f"ccx failed at `{r.level}`: {r.peer_failure}" for r in ladder.rungs
+              if r.peer_failure]
     return "\n".join(lines)
 
 
@@ -377,7 +393,8 @@ def ladder_json(ladders: Sequence[Ladder], targets: Sequence[Target]) -> dict:
     def rung(r: Rung) -> dict:
         return {"level": r.level, "dofs": r.dofs, "timings_s": r.timings_s,
                 "total_s": r.total_s, "solve_s": r.solve_s, "values": r.values,
-                "peer_s": r.peer_s, "peer_values": r.peer_values}
+                "peer_s": r.peer_s, "peer_values": r.peer_values,
+                "peer_failure": r.peer_failure}
     return {"machine": machine(),
             "ladders": [{"name": lad.name, "reference": lad.reference, "order": lad.order,
                          "analytic": lad.analytic,

@@ -71,3 +71,23 @@ def test_tiny_disk_ladder_writes_table_json_and_png(tmp_path):
     assert all(math.isfinite(v) for v in data["ladders"][0]["rungs"][0]["timings_s"].values())
     png = ladder_png(tmp_path / "bench.png", [ladder], targets)
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_a_failed_calculix_run_is_reported_and_the_ladder_goes_on(monkeypatch):
+    # `fegear bench --torque 1` stopped at the `fast` pair: ccx refused a mesh, and the
+    # finished disk ladder was never written
+    import fegear.peer as peer
+
+    def refuse(case, workdir, **kwargs):
+        raise peer.PeerError("body 'disk1': node 4 is not on edge 1-2")
+
+    monkeypatch.setattr(peer, "ccx_available", lambda: True)
+    monkeypatch.setattr(peer, "ccx_disks", refuse)
+    ladder = disk_ladder((4, 8), repeat=1, peer=True)
+    assert [r.peer_failure for r in ladder.rungs] == ["body 'disk1': node 4 is not on edge 1-2"] * 2
+    assert all(r.peer_s is None for r in ladder.rungs)
+    table = ladder_table(ladder)
+    assert "ccx failed at `4 per b`: body 'disk1'" in table
+    row = next(line for line in table.splitlines() if line.startswith("| 4 per b |"))
+    assert row.endswith("| – | – |")  # ccx time and ratio: none
+    assert ladder_json([ladder], [])["ladders"][0]["rungs"][0]["peer_failure"]
