@@ -17,7 +17,6 @@ import tempfile
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from importlib import metadata
 from pathlib import Path
 
 import numpy as np
@@ -364,13 +363,9 @@ def ladder_table(ladder: Ladder) -> str:
 def machine() -> dict:
     """Machine, Python and library versions for the benchmark JSON."""
     from . import __version__
+    from .provenance import library_versions
 
-    libs = {}
-    for name in ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pyvista", "matplotlib"):
-        try:
-            libs[name] = metadata.version(name)
-        except metadata.PackageNotFoundError:
-            libs[name] = None
+    libs = library_versions()
     try:
         ccx = subprocess.run(["ccx", "-v"], capture_output=True, text=True, timeout=30)
         libs["ccx"] = " ".join(ccx.stdout.split()) or None

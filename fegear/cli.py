@@ -1,4 +1,4 @@
-"""Command line: ``fegear profile``, ``fegear hertz``, ``fegear solve`` and ``fegear bench``.
+"""Command line: ``fegear profile``, ``hertz``, ``solve``, ``study`` and ``bench``.
 
 User errors (bad parameters, unwritable output) print one line ``fegear: error: …`` on stderr
 and exit with code 2, without a traceback.
@@ -13,7 +13,8 @@ import math
 import sys
 
 from .errors import FegearError
-from .params import PairParameters, require_range
+from .job import add_material_args, add_pair_args, add_solve_args, pair_params, prepare, run
+from .params import require_range
 
 EXIT_USAGE = 2
 
@@ -23,44 +24,13 @@ class _Parser(argparse.ArgumentParser):
         self.exit(EXIT_USAGE, f"fegear: error: {message}\n")
 
 
-def _add_pair_args(p: argparse.ArgumentParser) -> None:
-    g = p.add_argument_group("pair")
-    g.add_argument("--m", type=float, default=2.0, help="module [mm] (default 2)")
-    g.add_argument("--z2", type=int, default=45, help="internal gear teeth (default 45)")
-    g.add_argument("--z1", type=int, default=44, help="external gear teeth (default 44)")
-    g.add_argument("--h1", type=float, default=0.30, help="tooth-height coefficient (0.30)")
-    g.add_argument("--f1", type=float, default=0.15, help="tooth-shape coefficient (0.15)")
-    g.add_argument("--shift", type=float, default=0.0,
-                   help="Δ1 negative shift [mm]: gear 1 generated at e + shift (default 0)")
-    g.add_argument("--rotation", type=float, default=0.0,
-                   help="Δ2 rotation modification of the generating tool [mm] (default 0)")
-    g.add_argument("--tip-relief", type=float, default=None,
-                   help="gear-1 radial tip clearance to the far side [mm] (default: = shift)")
-
-
-def _add_material_args(p: argparse.ArgumentParser, thickness: str) -> None:
-    p.add_argument("--thickness", type=float, default=5.0, help=f"{thickness} [mm] (default 5)")
-    p.add_argument("--E", type=float, default=206000.0, help="Young's modulus [MPa] (206000)")
-    p.add_argument("--nu", type=float, default=0.29, help="Poisson ratio (default 0.29)")
-
-
-def _params(a: argparse.Namespace) -> PairParameters:
-    """The pair, checked for an admissible geometry before any work or output starts."""
-    from .admissible import check
-
-    p = PairParameters(m=a.m, z2=a.z2, z1=a.z1, h1=a.h1, f1=a.f1, shift=a.shift,
-                       rotation=a.rotation, tip_relief=a.tip_relief)
-    check(p)
-    return p
-
-
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="fegear", description=__doc__.splitlines()[0])
     parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     prof = sub.add_parser("profile", help="generate both tooth profiles and the clearance table")
-    _add_pair_args(prof)
+    add_pair_args(prof)
     prof.add_argument("--chord-error", type=float, default=1e-4,
                       help="max chord error of the written polylines [mm] (default 1e-4)")
     prof.add_argument("--positions", type=int, default=16,
@@ -73,7 +43,7 @@ def build_parser() -> argparse.ArgumentParser:
     hz.add_argument("--r2", type=float, default=10.0,
                     help="disk 2 radius [mm]; negative = a bore holding disk 1 (default 10)")
     hz.add_argument("--load", type=float, default=1000.0, help="normal load [N] (default 1000)")
-    _add_material_args(hz, "thickness")
+    add_material_args(hz, "thickness")
     hz.add_argument("--plane", choices=("stress", "strain"), default="stress",
                     help="plane assumption (default stress)")
     hz.add_argument("--quality", default="standard",
@@ -84,35 +54,24 @@ def build_parser() -> argparse.ArgumentParser:
     hz.add_argument("--json", action="store_true", help="print the summary as JSON")
 
     sv = sub.add_parser("solve", help="tooth-pair FE solve: stresses, load sharing, stiffness")
-    _add_pair_args(sv)
-    sv.add_argument("--torque", type=float, default=200.0, help="torque on gear 1 [N·m] (200)")
-    sv.add_argument("--position", type=float, default=0.0,
-                    help="rolling angle β of gear 2 [deg] (default 0)")
-    sv.add_argument("--positions", type=int, default=None,
-                    help="solve N rolling angles across one tooth pitch from --position on one "
-                         "mesh; writes cycle.csv and cycle.png")
-    _add_material_args(sv, "face width")
-    sv.add_argument("--quality", default="standard", help="coarse / fast / standard / fine")
-    sv.add_argument("--tip-round", type=float, default=None,
-                    help="gear-1 tip-edge round radius [mm] (default 0.125 m)")
-    sv.add_argument("--rim1", type=float, default=None,
-                    help="gear-1 rim below the roots, to the bore [mm] (default 3 m)")
-    sv.add_argument("--rim2", type=float, default=None,
-                    help="gear-2 rim beyond the roots, to the fixed rim [mm] (default 3 m)")
-    sv.add_argument("--extra-teeth", type=int, default=2,
-                    help="unloaded teeth meshed beyond the paired ones on each side (default 2)")
-    sv.add_argument("--extra-pairs", type=int, default=0,
-                    help="pair this many more teeth on each side than the closure needs "
-                         "(default 0; a safety check)")
-    sv.add_argument("--penalty-factor", type=float, default=None,
-                    help="penalty κ = factor·E*/h (default 1000; h the local facet length)")
-    sv.add_argument("--no-estimate", action="store_true",
-                    help="skip the second mesh level (no discretisation-error estimate)")
+    add_solve_args(sv)
     sv.add_argument("--out", required=True, help="output directory (VTU, PNG, summary.json)")
     sv.add_argument("--json", action="store_true", help="print the summary as JSON")
 
+    st = sub.add_parser("study", help="run a parameter study (TOML file): table and plots")
+    st.add_argument("file", help="study file (TOML), e.g. studies/paper_trends.toml")
+    st.add_argument("--workers", type=int, default=None,
+                    help="local worker processes (default: all cores)")
+    st.add_argument("--scheduler", default=None,
+                    help="run on this Dask distributed scheduler (e.g. tcp://host:8786) "
+                         "instead of the local pool")
+    st.add_argument("--out", default=None, help="output directory (default out/study/NAME)")
+    st.add_argument("--retry-failed", action="store_true",
+                    help="run the cases that failed before again (default: keep their record)")
+    st.add_argument("--no-progress", action="store_true", help="no progress bar")
+
     bench = sub.add_parser("bench", help="time the pipeline stages and print a table")
-    _add_pair_args(bench)
+    add_pair_args(bench)
     bench.add_argument("--repeat", type=int, default=3, help="repetitions (best is kept)")
     bench.add_argument("--pair-quality", default="standard",
                        help="quality of the tooth-pair benchmark (coarse / fast / standard / fine)")
@@ -126,6 +85,10 @@ def build_parser() -> argparse.ArgumentParser:
                        help="tooth-pair torque on gear 1 [N·m] (default 200)")
     bench.add_argument("--no-peer", action="store_true",
                        help="do not run CalculiX beside the ladders even if ccx is installed")
+    bench.add_argument("--study-cases", type=int, default=6,
+                       help="solves in the study-runner overhead benchmark (default 6; 0: skip)")
+    bench.add_argument("--study-only", action="store_true",
+                       help="run only the study-runner overhead benchmark")
     bench.add_argument("--out", default="out/bench",
                        help="directory for bench.json and bench.png (default out/bench)")
     return parser
@@ -136,7 +99,7 @@ def cmd_profile(a: argparse.Namespace) -> int:
     from .pair import build_pair
     from .plot import pair_png
 
-    params = _params(a)
+    params = pair_params(a)
     chord = require_range("chord_error", a.chord_error, 1e-7, 0.1, unit="mm")
     positions = int(require_range("positions", a.positions, 4, 360))
     out = prepare_dir(a.out)
@@ -251,60 +214,55 @@ def _hertz_table(r) -> str:
 
 
 def cmd_solve(a: argparse.Namespace) -> int:
-    import time
-
     from .output import prepare_dir
-    from .pairout import (
-        cycle_rows,
-        cycle_summary,
-        cycle_table,
-        pair_summary,
-        pair_table,
-        second_level_estimate,
-        write_cycle_outputs,
-        write_pair_outputs,
-    )
-    from .profile import Gear1Profile
-    from .toothpair import SolveCase, cycle_positions, solve_positions
+    from .pairout import cycle_table, pair_table
 
-    t0 = time.perf_counter()
-    kw = {} if a.penalty_factor is None else {"penalty_factor": a.penalty_factor}
-    position = require_range("position", a.position, -180.0, 180.0, unit="deg")
-    n = 1 if a.positions is None else int(require_range("positions", a.positions, 2, 360))
-    case = SolveCase(_params(a), torque=a.torque, beta=math.radians(position),
-                     thickness=a.thickness, E=a.E, nu=a.nu, quality=a.quality,
-                     rim1=a.rim1, rim2=a.rim2, extra_teeth=a.extra_teeth,
-                     extra_pairs=a.extra_pairs, tip_round=a.tip_round, **kw)
-    out = prepare_dir(a.out)
-    profile = Gear1Profile(case.params)
-    betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
-    sols = solve_positions(case, betas, profile)
-    cycle_s = time.perf_counter() - t0
-    # pictures, VTUs and the error estimate at the position of the largest gear-1 root stress
-    sol = max(sols, key=lambda s: s.root_stress[0])
-    estimate, other = (None, None) if a.no_estimate else second_level_estimate(sol, profile)
-    summary = pair_summary(sol, estimate, time.perf_counter() - t0, other)
-    files, rows = {}, None
-    if n > 1:
-        rows = cycle_rows(sols)
-        summary["cycle"] = {"positions": n, "solve_s": cycle_s, **cycle_summary(rows),
-                            "rows": rows}
-        i = summary["inputs"]
-        files.update(write_cycle_outputs(
-            rows, out, f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T {i['torque_Nm']:g} "
-                       f"N·m, {n} positions, quality {i['quality']}"))
-    files.update(write_pair_outputs(sol, out, {**summary, "files": {
-        k: str(v) for k, v in files.items()}}))
+    job = prepare(a)
+    result = run(job, prepare_dir(a.out))
+    files = {k: str(v) for k, v in result.files.items()}
     if a.json:
-        print(json.dumps({**summary, "files": {k: str(v) for k, v in files.items()}}, indent=2))
+        print(json.dumps({**result.summary, "files": files}, indent=2))
     else:
-        if rows:
-            print(cycle_table(rows))
-            print(f"\n{n} positions on one mesh in {cycle_s:.1f} s; the details below are at "
-                  f"the position of the largest gear-1 root stress\n")
-        print(pair_table(summary))
+        if result.rows:
+            print(cycle_table(result.rows))
+            print(f"\n{len(result.rows)} positions on one mesh in "
+                  f"{result.summary['cycle']['solve_s']:.1f} s; the details below are at the "
+                  "position of the largest gear-1 root stress\n")
+        print(pair_table(result.summary))
         for k, v in files.items():
             print(f"{k:10s} {v}")
+    return 0
+
+
+def cmd_study(a: argparse.Namespace) -> int:
+    import os
+
+    from .study import StudyInterrupted, run_study
+    from .studyfile import load_study
+
+    if a.workers is not None:
+        if a.scheduler:
+            raise FegearError("--workers sets the local pool; with --scheduler the cluster's "
+                              "workers run the cases (leave --workers out)")
+        require_range("workers", a.workers, 1, 4 * (os.cpu_count() or 1))
+    study = load_study(a.file)
+    out = a.out or f"out/study/{study.name}"
+    print(f"{study.name}: {len(study.cases)} cases"
+          + (f", varying {', '.join(study.varied)}" if study.varied else "")
+          + f"; results in {out}", file=sys.stderr)
+    try:
+        report = run_study(study, out, workers=a.workers, scheduler=a.scheduler,
+                           retry_failed=a.retry_failed, progress=not a.no_progress)
+    except StudyInterrupted as exc:
+        print(f"fegear: {exc}", file=sys.stderr)
+        return 128 + exc.signum
+    md = report.files.get("md")
+    if md is not None:
+        print(md.read_text(), end="")
+    print(f"\n{report.cases} cases: {report.found} found finished, {report.computed} computed "
+          f"({report.failed} failed) in {report.wall_s:.1f} s")
+    for k, v in report.files.items():
+        print(f"{k:12s} {v}")
     return 0
 
 
@@ -340,7 +298,12 @@ def cmd_bench(a: argparse.Namespace) -> int:
     if len(disk_levels) < 2 or not all(1 <= n <= 200 for n in disk_levels):
         raise ParameterError("disk_levels", a.disk_levels,
                              "two or more numbers 1 <= elements across b <= 200")
-    params = _params(a)
+    study_cases = int(a.study_cases)
+    if study_cases != 0 or a.study_only:
+        require_range("study_cases", study_cases, 2, 1000)
+    params = pair_params(a)
+    if a.study_only:
+        return _study_bench(params, study_cases)
     out = prepare_dir(a.out)
     print(geometry_bench(params, repeat))
     print()
@@ -364,6 +327,16 @@ def cmd_bench(a: argparse.Namespace) -> int:
     if cycle:
         print()
         print(pair_bench(params, torque, quality=a.pair_quality, positions=cycle))
+    if study_cases:
+        print()
+        _study_bench(params, study_cases)
+    return 0
+
+
+def _study_bench(params, cases: int) -> int:
+    from .bench_study import overhead_table, study_overhead
+
+    print(overhead_table(study_overhead(params, cases, workers=1), workers=1))
     return 0
 
 
@@ -374,7 +347,7 @@ def main(argv: list[str] | None = None) -> int:
                         format="%(levelname)s %(name)s: %(message)s")
     try:
         return {"profile": cmd_profile, "hertz": cmd_hertz, "solve": cmd_solve,
-                "bench": cmd_bench}[a.command](a)
+                "study": cmd_study, "bench": cmd_bench}[a.command](a)
     except FegearError as exc:
         print(f"fegear: error: {exc}", file=sys.stderr)
         return EXIT_USAGE

@@ -242,13 +242,18 @@ def fixed_frame_fields(sol: PairSolution, body: int) -> tuple[np.ndarray, dict]:
     return b.placement.to_fixed(b.mesh.doflocs.T), data
 
 
-def write_pair_outputs(sol: PairSolution, out: Path, summary: dict) -> dict[str, Path]:
-    """gear1.vtu, gear2.vtu (fixed frame), von_mises.png and summary.json in ``out``."""
+def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool = True,
+                       pictures: bool = True) -> dict[str, Path]:
+    """gear1.vtu, gear2.vtu (fixed frame; ``fields``), von_mises.png (``pictures``) and
+    summary.json in ``out``."""
     files = {}
-    fields = [fixed_frame_fields(sol, i) for i in range(len(sol.bodies))]
-    for b, (xy, data) in zip(sol.bodies, fields):
-        files[b.name] = write_vtu(out / f"{b.name}.vtu", b.mesh, data, xy)
-    files["png"] = von_mises_png(out / "von_mises.png", sol, fields)
+    data = ([fixed_frame_fields(sol, i) for i in range(len(sol.bodies))]
+            if fields or pictures else [])
+    if fields:
+        for b, (xy, point_data) in zip(sol.bodies, data):
+            files[b.name] = write_vtu(out / f"{b.name}.vtu", b.mesh, point_data, xy)
+    if pictures:
+        files["png"] = von_mises_png(out / "von_mises.png", sol, data)
     summary = {**summary, "files": {**summary.get("files", {}),
                                     **{k: str(v) for k, v in files.items()}}}
     files["summary"] = write_json(out / "summary.json", summary)

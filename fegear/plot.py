@@ -136,6 +136,30 @@ def ladder_png(path: Path, ladders, targets) -> Path:
     return _save_png(fig, path, 120)
 
 
+def study_png(path: Path, x: str, lines, stresses: dict[str, str], title: str) -> Path:
+    """One panel per headline stress (``stresses``: key → label) against study input ``x``;
+    ``lines``: (label, x values, {key: (values, error bars)}) per level of the other inputs."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7.5), sharex=True)
+    for ax, (k, label) in zip(axes.ravel(), stresses.items()):
+        for name, xs, series in lines:
+            ys, err = series[k]
+            ax.errorbar(xs, ys, yerr=err, marker="o", ms=4, capsize=3, label=name)
+        ax.set_ylabel(f"{label} [MPa]")
+        ax.grid(alpha=0.3)
+    for ax in axes[-1]:
+        ax.set_xlabel(x)
+    if len(lines) > 1 or lines[0][0] != "all":
+        axes[0, 0].legend(fontsize=7, title="other inputs", title_fontsize=7)
+    fig.suptitle(f"{title}\n(error bars: the case's discretisation-error estimate)", fontsize=10)
+    fig.tight_layout()
+    return _save_png(fig, path, 100)
+
+
 def _save_png(fig, path: Path, dpi: int) -> Path:
     """Write a matplotlib figure as PNG (atomically) and close it."""
     import matplotlib.pyplot as plt

@@ -5,11 +5,15 @@ directory is made.
 The commands run in-process with their work replaced by a function that fails the test, so an
 accepted value shows up as that failure instead of as a long solve."""
 
+from pathlib import Path
+
 import pytest
 
 import fegear.bench
+import fegear.bench_study
 import fegear.disks
 import fegear.pair
+import fegear.study
 import fegear.toothpair
 from fegear.cli import main
 
@@ -45,11 +49,14 @@ OPTIONS = {
                                                                      "100000"],
               "--pair-quality": ["best"], "--torque": ["0", "-200", "1e300"],
               "--disk-levels": ["8", "0,4", "4,1e9", "4,x"],
-              "--pair-levels": ["fast", "fast,best", ""]},
+              "--pair-levels": ["fast", "fast,best", ""],
+              "--study-cases": ["1", "-6", "100000"]},
+    "study": {"--workers": ["0", "-2", "100000"]},
 }
 INTEGER = {"--z1", "--z2", "--positions", "--extra-teeth", "--extra-pairs", "--repeat",
-           "--cycle"}
-ARGS = {"profile": ["--positions", "4"], "hertz": [], "solve": [], "bench": []}
+           "--cycle", "--study-cases", "--workers"}
+ARGS = {"profile": ["--positions", "4"], "hertz": [], "solve": [], "bench": [],
+        "study": [str(Path(__file__).resolve().parents[1] / "studies" / "paper_trends.toml")]}
 
 
 def _cases():
@@ -69,7 +76,8 @@ def no_work(monkeypatch):
                          (fegear.toothpair, "solve_positions"),
                          (fegear.bench, "geometry_bench"), (fegear.bench, "disk_ladder"),
                          (fegear.bench, "pair_ladder"),
-                         (fegear.bench, "pair_bench")):
+                         (fegear.bench, "pair_bench"), (fegear.study, "run_study"),
+                         (fegear.bench_study, "study_overhead")):
         monkeypatch.setattr(module, name, accepted)
 
 

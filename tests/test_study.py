@@ -1,0 +1,304 @@
+"""Parameter studies: the study file's checks, the runner (kill and restart, a dying worker,
+a failing case) and the same table from a local Dask cluster as from the local pool."""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from fegear.cli import main
+from fegear.studyfile import Outputs, StudyError, build_study, case_key, load_study
+
+ROOT = Path(__file__).resolve().parents[1]
+
+# four cheap real solves (a 25/24 pair, coarse, no second level) and one that fails in the
+# solve (an interfering tip relief), which must not stop the study
+SMALL = """
+[study]
+name = "small"
+[base]
+quality = "coarse"
+z2 = 25
+z1 = 24
+extra-teeth = 1
+shift = 0.016
+rotation = 0.002
+no-estimate = true
+[[sweep]]
+torque = [5, 10, 15, 20]
+[[sweep]]
+torque = 10
+tip-relief = -1e-5
+"""
+N_SMALL = 5
+# columns that say when, where and how fast, not what
+VOLATILE = ("wall_s", "case_wall_s", "solve_s", "host", "pid", "finished_utc", "timings_s.",
+            "cycle.solve_s")
+
+
+def _study(tmp_path: Path, text: str, name: str = "s.toml"):
+    path = tmp_path / name
+    path.write_text(text)
+    return load_study(path)
+
+
+def _records(out: Path) -> dict[str, tuple[bytes, int]]:
+    return {p.name: (p.read_bytes(), p.stat().st_mtime_ns)
+            for p in (out / "cases").glob("*.json") if not p.name.startswith(".")}
+
+
+def _table(out: Path) -> list[dict]:
+    with open(out / "results.csv", newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def _same(a: dict, b: dict) -> None:
+    """Two CSV rows agree in every column but the volatile ones; numbers (and lists of them)
+    to 1e-9 relative, since residuals of 1e-13 differ in the last digit between processes."""
+    assert list(a) == list(b)
+    for k in a:
+        if k.startswith(VOLATILE) or a[k] == b[k]:
+            continue
+        x, y = json.loads(a[k]), json.loads(b[k])  # not equal as text: must be numbers
+        assert x == pytest.approx(y, rel=1e-9, abs=1e-12), k
+
+
+def _wait_for(cond, proc, what: str, timeout: float = 300.0) -> None:
+    t = time.monotonic()
+    while not cond():
+        if proc.poll() is not None:
+            raise AssertionError(f"the study ended (exit {proc.returncode}) before {what}: "
+                                 + proc.stderr.read())
+        if time.monotonic() - t > timeout:
+            proc.kill()
+            raise AssertionError(f"timed out waiting for {what}")
+        time.sleep(0.1)
+
+
+def _start(toml: Path, out: Path) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-m", "fegear", "study", str(toml), "--workers",
+                             "1", "--out", str(out), "--no-progress"], cwd=ROOT,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+# --- the study file ---------------------------------------------------------------------------
+
+def test_sweeps_expand_ranges_products_and_zips(tmp_path):
+    s = _study(tmp_path, """
+[base]
+torque = 50
+[[sweep]]
+h1 = {start = 0.2, stop = 0.4, step = 0.05}
+[[sweep]]
+m = [1.5, 2.5]
+f1 = {start = 0.1, stop = 0.2, num = 3}
+[[sweep]]
+combine = "zip"
+m = [1.0, 3.0]
+torque = [20, 30]
+""")
+    got = [c.swept for c in s.cases]
+    assert got[:5] == [{"h1": v} for v in (0.2, 0.25, 0.3, 0.35, 0.4)]  # stop included, no
+    assert got[5:11] == [{"m": m, "f1": f} for m in (1.5, 2.5) for f in (0.1, 0.15, 0.2)]
+    assert got[11:] == [{"m": 1.0, "torque": 20.0}, {"m": 3.0, "torque": 30.0}]
+    assert all(c.values["torque"] == c.swept.get("torque", 50.0) for c in s.cases)
+    assert s.varied == ("m", "h1", "f1", "torque")
+    assert [c.index for c in s.cases] == list(range(13))
+
+
+def test_a_case_two_sweeps_produce_runs_once(tmp_path):
+    s = _study(tmp_path, """
+[[sweep]]
+m = [1.5, 2.0]
+[[sweep]]
+h1 = [0.3, 0.35]
+""")  # m 2.0 and h1 0.3 are both the default case
+    assert len(s.cases) == 3
+    assert len({c.key for c in s.cases}) == 3
+
+
+def test_key_follows_inputs_outputs_and_code_not_spelling():
+    k = case_key({"m": 2.0}, Outputs(), "v1")
+    assert case_key({}, Outputs(), "v1") == k  # 2.0 is the default module
+    assert case_key({"m": 2.5}, Outputs(), "v1") != k
+    assert case_key({"m": 2.0}, Outputs(vtu=True), "v1") != k
+    assert case_key({"m": 2.0}, Outputs(), "v2") != k
+
+
+@pytest.mark.parametrize("text, words", [
+    ("[base]\ntip_relief = 0.01", ["[base]", "'tip_relief'", "did you mean 'tip-relief'"]),
+    ("[base]\nh1 = 'big'", ["[base] h1", "must be a number"]),
+    ("[base]\nz1 = 44.0", ["[base] z1", "must be an integer"]),
+    ("[base]\nno-estimate = 1", ["[base] no-estimate", "true or false"]),
+    ("[outputs]\nvtk = true", ["[outputs]", "'vtk'", "did you mean 'vtu'"]),
+    ("[sweeps]\nm = [1]", ["unknown section 'sweeps'", "did you mean 'sweep'"]),
+    ("[[sweep]]\nh1 = [0.3, 0.7]", ["[[sweep]] 1", "h1 = 0.7", "h1 = 0.7 is not admissible",
+                                    "admissible: "]),
+    ("[[sweep]]\nm = []", ["[[sweep]] 1 m", "at least one value"]),
+    ("[[sweep]]\nm = {start = 1, stop = 2}", ["[[sweep]] 1 m", "{start, stop, step}"]),
+    ("[[sweep]]\nm = {start = 1, stop = 2, step = -1}", ["[[sweep]] 1 m.step", "non-zero"]),
+    ("[[sweep]]\ncombine = 'zip'\nm = [1, 2]\nh1 = [0.2, 0.3, 0.4]", ["zip", "m 2, h1 3"]),
+    ("[[sweep]]\ncombine = 'all'\nm = [1, 2]", ["combine = 'all'", "\"product\" or \"zip\""]),
+    ("[[sweep]]\ncombine = 'zip'", ["[[sweep]] 1", "sweeps nothing"]),
+    ("[base]\nquality = 'best'", ["[base]", "quality = 'best' is not admissible",
+                                  "coarse / fast / standard / fine"]),
+    ("[base]\ntorque = -5", ["[base]", "torque = -5.0 is not admissible"]),
+    ("[study]\nname = 'a b'", ["[study] name", "letters, digits"]),
+    ("m = [1", ["not valid TOML"]),
+])
+def test_bad_study_file_names_file_key_and_reason(tmp_path, text, words):
+    with pytest.raises(StudyError) as exc:
+        _study(tmp_path, text, "bad.toml")
+    msg = str(exc.value)
+    assert msg.startswith(str(tmp_path / "bad.toml"))
+    assert "\n" not in msg
+    for w in words:
+        assert w in msg
+
+
+def test_cli_bad_study_is_one_line_and_creates_nothing(tmp_path, capsys):
+    (tmp_path / "bad.toml").write_text("[[sweep]]\nf1 = [0.5]\n")
+    out = tmp_path / "out"
+    assert main(["study", str(tmp_path / "bad.toml"), "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith("fegear: error: ") and "f1 = 0.5 is not admissible" in err
+    assert "\n" not in err and not out.exists()
+    assert main(["study", str(tmp_path / "none.toml")]) == 2
+    assert "cannot be read" in capsys.readouterr().err
+    assert main(["study", str(tmp_path / "bad.toml"), "--workers", "0"]) == 2
+    assert "workers = 0 is not admissible" in capsys.readouterr().err
+
+
+def test_shipped_studies_load():
+    for path in sorted((ROOT / "studies").glob("*.toml")):
+        s = load_study(path)
+        assert s.cases and s.varied, path
+
+
+def test_build_study_accepts_a_parsed_document(tmp_path):
+    s = build_study({"base": {"torque": 50}, "sweep": [{"m": [1.5, 2.0]}]}, tmp_path / "x")
+    assert s.name == "x" and [c.values["m"] for c in s.cases] == [1.5, 2.0]
+
+
+# --- the runner, on real solves ---------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def pool_run(tmp_path_factory):
+    """The small study killed twice mid-run by a real signal (SIGTERM, then SIGKILL), then run
+    to the end: the on-disk records after each stage, the outputs of the last run."""
+    tmp = tmp_path_factory.mktemp("pool")
+    toml, out = tmp / "small.toml", tmp / "out"
+    toml.write_text(SMALL)
+    stages = []
+    for sig in (signal.SIGTERM, signal.SIGKILL):
+        before = len(_records(out)) if out.exists() else 0
+        proc = _start(toml, out)
+        _wait_for(lambda b=before: out.exists() and len(_records(out)) > b, proc,
+                  "a case finished")
+        proc.send_signal(sig)
+        proc.wait(timeout=60)
+        stages.append({"signal": sig, "returncode": proc.returncode,
+                       "stderr": proc.stderr.read(), "records": _records(out),
+                       "table": _table(out) if (out / "results.csv").exists() else []})
+    final = subprocess.run([sys.executable, "-m", "fegear", "study", str(toml), "--workers",
+                            "1", "--out", str(out), "--no-progress"], cwd=ROOT,
+                           capture_output=True, text=True, timeout=600)
+    assert final.returncode == 0, final.stderr
+    return {"out": out, "stages": stages, "final": final, "records": _records(out)}
+
+
+def test_killed_study_restarts_without_losing_duplicating_or_recomputing(pool_run):
+    term, kill = pool_run["stages"]
+    assert term["returncode"] == 128 + signal.SIGTERM
+    assert "stopped by SIGTERM" in term["stderr"] and "Traceback" not in term["stderr"]
+    # SIGTERM leaves a table of exactly the finished cases
+    assert {r["key"] + ".json" for r in term["table"]} == set(term["records"])
+    assert kill["returncode"] == -signal.SIGKILL
+    assert len(term["records"]) < len(kill["records"]) < N_SMALL
+    final = pool_run["records"]
+    assert len(final) == N_SMALL
+    # every record written before a kill is still the same file: nothing was recomputed
+    for stage in (term, kill):
+        for name, (data, mtime) in stage["records"].items():
+            assert final[name] == (data, mtime)
+    found = len(kill["records"])
+    assert (f"{N_SMALL} cases: {found} found finished, {N_SMALL - found} computed (1 failed)"
+            in pool_run["final"].stdout)
+    table = _table(pool_run["out"])
+    assert len(table) == N_SMALL and len({r["key"] for r in table}) == N_SMALL
+    assert [int(r["case"]) for r in table] == list(range(N_SMALL))
+    assert not list((pool_run["out"] / "cases" / ".running").iterdir())
+
+
+def test_failed_case_is_recorded_with_its_reason(pool_run):
+    rows = {r["case"]: r for r in _table(pool_run["out"])}
+    bad = rows["4"]
+    assert bad["status"] == "failed" and bad["tip-relief"] == "-1e-05"
+    assert bad["error"].startswith("GeometryError: the unloaded pair interferes")
+    assert bad["root_stress_gear1_MPa"] == ""
+    assert all(rows[str(i)]["status"] == "ok" for i in range(4))
+
+
+def test_study_table_holds_solve_outputs_and_versions(pool_run):
+    import pyarrow.parquet as pq
+
+    rows = _table(pool_run["out"])
+    par = pq.read_table(pool_run["out"] / "results.parquet").to_pylist()
+    assert [r["key"] for r in par] == [r["key"] for r in rows]
+    rec = json.loads((pool_run["out"] / "cases" / f"{rows[1]['key']}.json").read_text())
+    for k, v in rec["summary"].items():  # every value of `fegear solve --json`
+        if not isinstance(v, (dict, list)):
+            assert par[1][k] == v, k
+    tooth, share = next(iter(rec["summary"]["load_share"].items()))
+    assert par[1][f"load_share.{tooth}"] == share
+    assert json.loads(par[1]["teeth"]) == rec["summary"]["teeth"]
+    assert par[1]["versions.scikit-fem"] == "12.0.2" and par[1]["fegear"]
+    assert par[1]["torque"] == 10.0 and par[1]["z1"] == 24 and par[1]["no-estimate"] is True
+    # the trend a coarse run must show: root stresses and contact pressure grow with torque
+    ok = [r for r in par if r["status"] == "ok"]
+    for k in ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa"):
+        assert all(a[k] < b[k] for a, b in zip(ok, ok[1:])), k
+    assert ok[1]["root_stress_gear1_MPa"] == pytest.approx(32.4, abs=0.5)
+    assert (pool_run["out"] / "plots" / "torque.png").stat().st_size > 10_000
+
+
+def test_dask_cluster_gives_the_local_pool_table(pool_run, tmp_path):
+    distributed = pytest.importorskip("distributed")
+    from fegear.study import run_study
+
+    study = load_study(pool_run["out"] / ".." / "small.toml")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        report = run_study(study, tmp_path / "dask", scheduler=cluster.scheduler_address,
+                           progress=False)
+    assert (report.computed, report.failed) == (N_SMALL, 1)
+    dask, pool = _table(tmp_path / "dask"), _table(pool_run["out"])
+    assert len(dask) == len(pool) == N_SMALL
+    for a, b in zip(dask, pool):
+        _same(a, b)
+
+
+def test_worker_that_dies_costs_its_case_a_rerun_not_the_study(tmp_path):
+    import psutil
+
+    toml, out = tmp_path / "small.toml", tmp_path / "out"
+    toml.write_text(SMALL.replace("[5, 10, 15, 20]", "[5, 10]"))
+    proc = _start(toml, out)
+    running = out / "cases" / ".running"
+    _wait_for(lambda: running.exists() and any(running.iterdir()), proc, "a case started")
+    victim = int(next(running.iterdir()).name.split(".")[1])
+    assert victim in {p.pid for p in psutil.Process(proc.pid).children()}
+    os.kill(victim, signal.SIGKILL)
+    stdout, stderr = proc.communicate(timeout=600)
+    assert proc.returncode == 0, stderr
+    assert "a worker process died" in stderr
+    assert "3 cases: 0 found finished, 3 computed (1 failed)" in stdout
+    assert [r["status"] for r in _table(out)] == ["ok", "ok", "failed"]
