@@ -22,13 +22,22 @@ def library_versions(names=LIBRARIES) -> dict[str, str | None]:
     return out
 
 
+#: modules that run, schedule, present or compare results but compute none of a solve's
+#: numbers: editing them keeps a study's finished cases valid
+NOT_IN_RESULTS = ("__main__", "cli", "bench", "bench_study", "peer", "peer_pair", "plot",
+                  "study", "studyfile", "studyout")
+
+
 @functools.cache
 def source_hash() -> str:
-    """SHA-256 (first 12 hex digits) of fegear's own source files: it changes with any edit,
-    installed or not, where the version number only changes on a release."""
+    """SHA-256 (first 12 hex digits) of fegear's source files that compute results: it
+    changes with any edit to them, installed or not, where the version number only changes
+    on a release."""
     h = hashlib.sha256()
     root = Path(__file__).parent
     for path in sorted(root.glob("*.py")):
+        if path.stem in NOT_IN_RESULTS:
+            continue
         h.update(path.name.encode())
         h.update(path.read_bytes())
     return h.hexdigest()[:12]

@@ -28,6 +28,7 @@ from pathlib import Path
 
 from .errors import FegearError
 from .output import prepare_dir, write_atomic, write_json
+from .provenance import code_version
 from .studyfile import Study, StudyCase
 
 log = logging.getLogger(__name__)
@@ -106,6 +107,7 @@ def run_study(study: Study, out: str | Path, workers: int | None = None,
     todo = [c for c in study.cases if c.key not in done]
     log.info("%s: %d cases, %d finished before, %d to compute", study.name, len(study.cases),
              len(done), len(todo))
+    code = code_version()
     stats = {"computed": 0, "failed": 0, "solve_s": 0.0, "first_start": None}
     started = time.time()
     try:
@@ -115,6 +117,11 @@ def run_study(study: Study, out: str | Path, workers: int | None = None,
             bar = _progress(len(study.cases), len(done), study.name, progress)
             with closing(results), bar:
                 for case, record, files in results:
+                    if record.get("code_version") not in (None, code):
+                        record.update(status="failed", error=(
+                            f"the worker ran other code ({record['code_version']}) than this "
+                            f"study ({code}): install the same fegear on every worker"))
+                        files = {}
                     store(out, case, record, files)
                     stats["computed"] += 1
                     stats["failed"] += record["status"] != "ok"
@@ -159,7 +166,7 @@ def run_case(key: str, values: dict, vtu: bool, png: bool,
     where the case is marked while it runs (so that a dead worker's case can be told)."""
     from . import __version__
     from .job import namespace, prepare, run
-    from .provenance import code_version, library_versions
+    from .provenance import library_versions
 
     t0 = time.perf_counter()
     record = {"key": key, "status": "ok", "error": None, "inputs": values,

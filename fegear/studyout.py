@@ -169,7 +169,8 @@ def plot_input(path: Path, study: Study, table: list[dict], x: str) -> Path | No
             series[k] = ([r[k] for r in rs],
                          [0.0 if e is None or not math.isfinite(e) else r[k] * e / 100.0
                           for r, e in zip(rs, err)])
-        lines.append((label, [r[x] for r in rs], series))
+        edge = [bool(r.get("contact_peak_on_tip_round")) for r in rs]
+        lines.append((label, [r[x] for r in rs], series, edge))
     if not lines:
         return None
     title = f"{study.name}: headline stresses against {x}"
