@@ -6,7 +6,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 
-.PHONY: demo test test-all lint bench clean
+.PHONY: demo test test-all lint bench study clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -29,6 +29,9 @@ test-all: lint
 
 bench: $(STAMP)
 	$(BIN)/fegear bench --shift 0.016 --rotation 0.002  # the paper's baseline pair
+
+study: $(STAMP)
+	$(BIN)/fegear study studies/paper_trends.toml  # the paper's Tables 4-6, about 5 min
 
 clean:
 	rm -rf $(VENV) out .pytest_cache

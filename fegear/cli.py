@@ -247,12 +247,16 @@ def cmd_study(a: argparse.Namespace) -> int:
         require_range("workers", a.workers, 1, 4 * (os.cpu_count() or 1))
     study = load_study(a.file)
     out = a.out or f"out/study/{study.name}"
-    print(f"{study.name}: {len(study.cases)} cases"
-          + (f", varying {', '.join(study.varied)}" if study.varied else "")
-          + f"; results in {out}", file=sys.stderr)
+
+    def started(found: int, todo: int) -> None:
+        varied = f", varying {', '.join(study.varied)}" if study.varied else ""
+        print(f"{study.name}: {len(study.cases)} cases{varied} ({found} finished before, "
+              f"{todo} to compute); results in {out}", file=sys.stderr, flush=True)
+
     try:
         report = run_study(study, out, workers=a.workers, scheduler=a.scheduler,
-                           retry_failed=a.retry_failed, progress=not a.no_progress)
+                           retry_failed=a.retry_failed, progress=not a.no_progress,
+                           on_start=started)
     except StudyInterrupted as exc:
         print(f"fegear: {exc}", file=sys.stderr)
         return 128 + exc.signum

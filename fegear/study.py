@@ -10,6 +10,7 @@ reason and does not stop the study (``retry_failed`` runs such cases again).
 
 from __future__ import annotations
 
+import json
 import logging
 import os
 import signal
@@ -29,7 +30,7 @@ from pathlib import Path
 from .errors import FegearError
 from .output import prepare_dir, write_atomic, write_json
 from .provenance import code_version
-from .studyfile import Study, StudyCase
+from .studyfile import Study, StudyCase, StudyError
 
 log = logging.getLogger(__name__)
 
@@ -77,10 +78,8 @@ def record_path(out: Path, key: str) -> Path:
 
 
 def finished(study: Study, out: Path, retry_failed: bool = False) -> dict[str, dict]:
-    """The study's cases already stored in ``out`` (key → record); failed ones only unless
-    ``retry_failed``. A record that cannot be read counts as missing."""
-    import json
-
+    """The study's cases already stored in ``out`` (key → record), the failed ones too
+    unless ``retry_failed``. A record that cannot be read counts as missing."""
     done = {}
     for case in study.cases:
         try:
@@ -94,25 +93,40 @@ def finished(study: Study, out: Path, retry_failed: bool = False) -> dict[str, d
 
 def run_study(study: Study, out: str | Path, workers: int | None = None,
               scheduler: str | None = None, retry_failed: bool = False,
-              progress: bool = True) -> StudyReport:
-    """Run the missing cases of ``study`` into ``out``, then write the table and plots."""
+              progress: bool = True, on_start=None) -> StudyReport:
+    """Run the missing cases of ``study`` into ``out``, then write the table and plots.
+    With ``scheduler``, on that Dask cluster; else on ``workers`` local processes (default:
+    one per core). ``on_start(found, todo)`` is called once the finished cases are known.
+    Raises :class:`StudyInterrupted` on SIGTERM or SIGINT, after writing the table of the
+    finished cases."""
+    t0 = time.perf_counter()
+    client = _connect(scheduler) if scheduler else None  # a bad address creates no output
+    try:
+        out = prepare_dir(out)
+        with _exclusive(out):
+            return _run(study, out, workers, client, retry_failed, progress, on_start, t0)
+    finally:
+        if client is not None:
+            client.close()
+
+
+def _run(study: Study, out: Path, workers: int | None, client, retry_failed: bool,
+         progress: bool, on_start, t0: float) -> StudyReport:
     from .studyout import write_results
 
-    t0 = time.perf_counter()
-    out = prepare_dir(out)
     running = out / "cases" / ".running"
     running.mkdir(parents=True, exist_ok=True)
     write_json(out / "study.json", study_json(study))
     done = finished(study, out, retry_failed)
     todo = [c for c in study.cases if c.key not in done]
-    log.info("%s: %d cases, %d finished before, %d to compute", study.name, len(study.cases),
-             len(done), len(todo))
+    if on_start is not None:
+        on_start(len(done), len(todo))
     code = code_version()
     stats = {"computed": 0, "failed": 0, "solve_s": 0.0, "first_start": None}
     started = time.time()
     try:
         with _signals_raise():
-            results = (_dask_results(todo, study, scheduler) if scheduler
+            results = (_dask_results(todo, study, client) if client is not None
                        else _pool_results(todo, study, workers, running))
             bar = _progress(len(study.cases), len(done), study.name, progress)
             with closing(results), bar:
@@ -137,6 +151,36 @@ def run_study(study: Study, out: str | Path, workers: int | None = None,
     startup = 0.0 if stats["first_start"] is None else max(stats["first_start"] - started, 0.0)
     return StudyReport(len(study.cases), len(done), stats["computed"], stats["failed"],
                        time.perf_counter() - t0, stats["solve_s"], startup, table_s, files)
+
+
+class _exclusive:
+    """Within the block this process alone runs a study in ``out`` (an advisory lock on
+    ``out/.lock``): a second run into the same directory is refused, not interleaved."""
+
+    def __init__(self, out: Path) -> None:
+        self.path = out / ".lock"
+
+    def __enter__(self):
+        import fcntl
+
+        self.f = open(self.path, "a+")
+        try:
+            fcntl.flock(self.f, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            self.f.seek(0)
+            holder = self.f.read().strip() or "?"
+            self.f.close()
+            raise StudyError(f"--out {str(self.path.parent)!r}: another study is running "
+                             f"there (pid {holder}); wait for it or choose another --out"
+                             ) from None
+        self.f.seek(0)
+        self.f.truncate()
+        self.f.write(str(os.getpid()))
+        self.f.flush()
+        return self
+
+    def __exit__(self, *exc):
+        self.f.close()  # closing releases the lock
 
 
 def study_json(study: Study) -> dict:
@@ -180,7 +224,12 @@ def run_case(key: str, values: dict, vtu: bool, png: bool,
             result = run(prepare(namespace(values)), Path(tmp) if vtu or png else None,
                          fields=vtu, pictures=png)
             files = {p.name: p.read_bytes() for k, p in result.files.items() if k != "summary"}
-        record.update(summary=result.summary, solve_s=result.solve_s)
+        try:
+            json.dumps(result.summary, allow_nan=False)
+            record.update(summary=result.summary, solve_s=result.solve_s)
+        except ValueError:
+            record.update(status="failed", error="the solve returned a non-finite value "
+                          "(NaN or infinity) in its summary", solve_s=result.solve_s)
     except FegearError as exc:
         record.update(status="failed", error=f"{type(exc).__name__}: {exc}")
     except Exception as exc:  # a bug, not a user error: keep the traceback with the case
@@ -287,20 +336,27 @@ def _stop_pool(pool: ProcessPoolExecutor, before: set[int]) -> None:
     # whose shutdown then waits forever
 
 
-def _dask_results(todo: list[StudyCase], study: Study, address: str) -> Iterator:
-    """Finished cases from a Dask distributed cluster (its workers need fegear installed)."""
+def _connect(address: str):
+    """A Dask distributed client of the scheduler at ``address``."""
     try:
-        from distributed import Client, as_completed
+        from distributed import Client
     except ImportError as exc:
-        raise FegearError(f"--scheduler needs Dask distributed: {exc}") from None
+        raise StudyError(f"--scheduler needs Dask distributed: {exc}") from None
     try:
-        client = Client(address, timeout="20s")
-    except (OSError, TimeoutError, ValueError) as exc:
-        raise FegearError(f"--scheduler {address!r}: cannot connect: {exc}") from None
+        return Client(address, timeout="10s")
+    except (OSError, TimeoutError, ValueError, TypeError) as exc:
+        raise StudyError(f"--scheduler {address!r}: cannot connect: {exc}") from None
+
+
+def _dask_results(todo: list[StudyCase], study: Study, client) -> Iterator:
+    """Finished cases from a Dask distributed cluster (its workers need fegear installed)."""
+    from distributed import as_completed
+
+    futures = {}
     try:
-        futures = {client.submit(run_case, c.key, c.values, study.outputs.vtu,
-                                 study.outputs.png, key=f"fegear-{c.key}", pure=False): c
-                   for c in todo}
+        for c in todo:
+            futures[client.submit(run_case, c.key, c.values, study.outputs.vtu,
+                                  study.outputs.png, key=f"fegear-{c.key}", pure=False)] = c
         for f in as_completed(futures):
             case = futures[f]
             try:
@@ -311,7 +367,6 @@ def _dask_results(todo: list[StudyCase], study: Study, address: str) -> Iterator
     finally:
         for f in futures:
             f.cancel()
-        client.close()
 
 
 class _signals_raise:

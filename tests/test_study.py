@@ -302,3 +302,49 @@ def test_worker_that_dies_costs_its_case_a_rerun_not_the_study(tmp_path):
     assert "a worker process died" in stderr
     assert "3 cases: 0 found finished, 3 computed (1 failed)" in stdout
     assert [r["status"] for r in _table(out)] == ["ok", "ok", "failed"]
+
+
+def test_unreachable_scheduler_is_one_line_and_creates_nothing(tmp_path, capsys):
+    (tmp_path / "s.toml").write_text("[[sweep]]\nm = [1.5, 2.0]\n")
+    out = tmp_path / "out"
+    code = main(["study", str(tmp_path / "s.toml"), "--scheduler", "tcp://127.0.0.1:9",
+                 "--out", str(out)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1
+    assert err[0].startswith("fegear: error: --scheduler 'tcp://127.0.0.1:9': cannot connect")
+    assert not out.exists()
+
+
+def test_second_run_into_the_same_directory_is_refused(tmp_path):
+    import fcntl
+
+    from fegear.study import run_study
+
+    study = _study(tmp_path, "[[sweep]]\nm = [1.5, 2.0]\n")
+    out = tmp_path / "out"
+    out.mkdir()
+    with open(out / ".lock", "w") as held:
+        fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        held.write("4242")
+        held.flush()
+        with pytest.raises(StudyError, match=r"another study is running there \(pid 4242\)"):
+            run_study(study, out, workers=1, progress=False)
+    assert sorted(p.name for p in out.iterdir()) == [".lock"]  # nothing else touched
+
+
+def test_kept_vtu_files_arrive_beside_the_record(tmp_path):
+    import meshio
+
+    from fegear.study import run_study
+
+    text = SMALL.split("[[sweep]]")[0].replace("[study]", "[outputs]\nvtu = true\n[study]")
+    study = _study(tmp_path, text + "[[sweep]]\ntorque = 10\n")
+    report = run_study(study, tmp_path / "out", workers=1, progress=False)
+    assert (report.computed, report.failed) == (1, 0)
+    key = study.cases[0].key
+    rec = json.loads((tmp_path / "out" / "cases" / f"{key}.json").read_text())
+    assert sorted(rec["files"]) == ["gear1.vtu", "gear2.vtu"]  # no picture: png = false
+    mesh = meshio.read(rec["files"]["gear1.vtu"])
+    assert mesh.points.shape[0] > 1000 and "von_mises" in mesh.point_data
+    again = run_study(study, tmp_path / "out", workers=1, progress=False)
+    assert (again.found, again.computed) == (1, 0)
