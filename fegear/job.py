@@ -178,6 +178,8 @@ def run(job: Job, out: Path | None, fields: bool = True, pictures: bool = True) 
     solve_s = time.perf_counter() - t0
     files: dict[str, Path] = {}
     if out is not None:
+        if rows:
+            files.update(write_mesh_stiffness(out, rows, job.case))
         if rows and pictures:
             i = summary["inputs"]
             files.update(write_cycle_outputs(
@@ -187,3 +189,23 @@ def run(job: Job, out: Path | None, fields: bool = True, pictures: bool = True) 
         files.update(write_pair_outputs(sol, out, {**summary, "files": {
             k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures))
     return JobResult(summary, files, rows, solve_s)
+
+
+def write_mesh_stiffness(out: Path, rows: list[dict], case) -> dict[str, Path]:
+    """mesh_stiffness.json (for ``fegear drive dynamics``) and mesh_stiffness.csv: stiffness
+    and unloaded transmission error over one mesh period, by mesh phase."""
+    from .dynamics import from_cycle
+    from .output import write_atomic, write_json
+
+    p = case.params
+    mesh = from_cycle(rows, p.z1, p.z2, p.m, case.thickness, case.torque)
+
+    def csv(tmp: Path) -> None:
+        lines = ["phase,position_deg,stiffness_Nm_per_rad,error_rad"]
+        beta0 = rows[0]["position_deg"]
+        for ph, k, e in zip(mesh.phase, mesh.stiffness, mesh.error):
+            lines.append(f"{ph!r},{beta0 + ph * 360.0 / p.z2!r},{k!r},{e!r}")
+        tmp.write_text("\n".join(lines) + "\n")
+
+    return {"mesh_stiffness": write_json(out / "mesh_stiffness.json", mesh.to_json()),
+            "mesh_stiffness_csv": write_atomic(out / "mesh_stiffness.csv", csv)}
