@@ -1,4 +1,4 @@
-"""Command line: ``fegear profile``, ``hertz``, ``solve``, ``study`` and ``bench``.
+"""Command line: ``fegear profile``, ``hertz``, ``solve``, ``study``, ``drive`` and ``bench``.
 
 User errors (bad parameters, unwritable output) print one line ``fegear: error: …`` on stderr
 and exit with code 2, without a traceback.
@@ -12,6 +12,8 @@ import logging
 import math
 import sys
 
+from .cli_drive import add_parsers as add_drive_parsers
+from .cli_drive import cmd_drive
 from .errors import FegearError
 from .job import add_material_args, add_pair_args, add_solve_args, pair_params, prepare, run
 from .params import require_range
@@ -69,6 +71,10 @@ def build_parser() -> argparse.ArgumentParser:
     st.add_argument("--retry-failed", action="store_true",
                     help="run the cases that failed before again (default: keep their record)")
     st.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+    dr = sub.add_parser("drive", help="drive level: ratios and efficiencies, bearing forces "
+                                      "(seed 000), torsional dynamics from the mesh stiffness")
+    add_drive_parsers(dr, _Parser)
 
     bench = sub.add_parser("bench", help="time the pipeline stages and print a table")
     add_pair_args(bench)
@@ -351,7 +357,7 @@ def main(argv: list[str] | None = None) -> int:
                         format="%(levelname)s %(name)s: %(message)s")
     try:
         return {"profile": cmd_profile, "hertz": cmd_hertz, "solve": cmd_solve,
-                "study": cmd_study, "bench": cmd_bench}[a.command](a)
+                "study": cmd_study, "drive": cmd_drive, "bench": cmd_bench}[a.command](a)
     except FegearError as exc:
         print(f"fegear: error: {exc}", file=sys.stderr)
         return EXIT_USAGE
