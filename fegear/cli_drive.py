@@ -79,8 +79,13 @@ def _ratio(a: argparse.Namespace) -> int:
     if a.train == "2kh":
         if a.i_ab_h is None:
             raise ParameterError("i_ab_h", None, "a carrier-fixed ratio (--i-ab-h) for 2kh")
+        if a.teeth is not None:
+            raise ParameterError("teeth", a.teeth, "not with --train 2kh (give --i-ab-h)")
         r = drive.two_kh(a.i_ab_h)
     else:
+        if a.i_ab_h is not None:
+            raise ParameterError("i_ab_h", a.i_ab_h, "only with --train 2kh (the other trains "
+                                                     "take --teeth)")
         names = TRAINS[a.train]
         teeth = _teeth(a.teeth, names)
         r = {"ngw": drive.ngw, "nn": drive.nn, "khv": drive.khv,

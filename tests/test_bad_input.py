@@ -52,10 +52,11 @@ OPTIONS = {
               "--pair-levels": ["fast", "fast,best", ""],
               "--study-cases": ["1", "-6", "100000"]},
     "study": {"--workers": ["0", "-2", "100000"]},
+    "drive": {},  # its options sit on its subcommands: tests/test_drive_cli.py
 }
 INTEGER = {"--z1", "--z2", "--positions", "--extra-teeth", "--extra-pairs", "--repeat",
            "--cycle", "--study-cases", "--workers"}
-ARGS = {"profile": ["--positions", "4"], "hertz": [], "solve": [], "bench": [],
+ARGS = {"profile": ["--positions", "4"], "hertz": [], "solve": [], "bench": [], "drive": [],
         "study": [str(Path(__file__).resolve().parents[1] / "studies" / "paper_trends.toml")]}
 
 

@@ -97,3 +97,29 @@ def test_bad_stiffness_file_and_bad_model_input(tmp_path, capsys):
                      *extra]) == 2
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and name in err[0], err
+
+
+def _numeric_options():
+    from fegear.cli import build_parser
+
+    drive = build_parser()._subparsers._group_actions[0].choices["drive"]
+    for name, parser in drive._subparsers._group_actions[0].choices.items():
+        for act in parser._actions:
+            if act.type in (int, float):
+                yield pytest.param(name, act.option_strings[-1], id=f"{name} {act.dest}")
+
+
+@pytest.mark.parametrize("command, option", list(_numeric_options()))
+def test_every_numeric_drive_option_refuses_nan(command, option, tmp_path, capsys):
+    ph = np.arange(4) / 4
+    m = MeshStiffness(ph, np.full(4, 1e5), np.zeros(4), 10.0, 24, 25, 2.0, 5.0)
+    (tmp_path / "k.json").write_text(json.dumps(m.to_json()))
+    need = {"ratio": ["--train", "ngw", "--teeth", "20,70"],
+            "dynamics": ["--stiffness", str(tmp_path / "k.json"), "--speeds", "100"]}
+    argv = ["drive", command, *need.get(command, []), f"{option}=nan"]
+    try:
+        code = main(argv)
+    except SystemExit as exc:  # argparse: an int option does not parse nan
+        code = exc.code
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and err[0].startswith("fegear: error:"), err
