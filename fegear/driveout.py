@@ -134,7 +134,8 @@ def dynamics_summary(pair: TorsionalPair, mesh: MeshStiffness, torque: float,
                      "harmonics": mesh.harmonics(), "z1": mesh.z1, "z2": mesh.z2},
             "speeds": [{"speed_rpm": r.speed * 30 / math.pi,
                         "mesh_frequency_Hz": r.mesh_frequency / (2 * math.pi),
-                        "dynamic_factor": r.dynamic_factor,
+                        "dynamic_factor": r.dynamic_factor, "min_factor": r.min_factor,
+                        "contact_loss": r.min_factor < 0,
                         "dynamic_q_peak_to_peak_urad": 1e6 * r.q_peak_to_peak,
                         "floquet_multiplier": r.multiplier, "stable": r.multiplier < 1}
                        for r in responses]}
@@ -147,11 +148,13 @@ def dynamics_table(s: dict) -> str:
              f"mean mesh stiffness {m['stiffness_Nm_per_rad']:.5g} N·m/rad, ζ {m['zeta']:g}, "
              f"c {m['damping_Nms_per_rad']:.4g} N·m·s/rad",
              f"natural frequencies: 0 (rigid rotation), {s['natural_frequency_Hz']:.1f} Hz",
-             "", "| speed [r/min] | mesh freq [Hz] | dynamic factor | dynamic q p-p [µrad] | "
-                 "Floquet |μ| |", "|---:|---:|---:|---:|---:|"]
+             "", "| speed [r/min] | mesh freq [Hz] | max F / T | min F / T | "
+                 "dynamic q p-p [µrad] | Floquet |μ| |", "|---:|---:|---:|---:|---:|---:|"]
     for r in s["speeds"]:
+        loss = " (teeth separate: linear model invalid)" if r["contact_loss"] else ""
         lines.append(f"| {r['speed_rpm']:.0f} | {r['mesh_frequency_Hz']:.1f} | "
-                     f"{r['dynamic_factor']:.4f} | {r['dynamic_q_peak_to_peak_urad']:.3f} | "
+                     f"{r['dynamic_factor']:.4f} | {r['min_factor']:.4f}{loss} | "
+                     f"{r['dynamic_q_peak_to_peak_urad']:.3f} | "
                      f"{r['floquet_multiplier']:.4f}{'' if r['stable'] else ' UNSTABLE'} |")
     return "\n".join(lines)
 

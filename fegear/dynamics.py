@@ -189,7 +189,8 @@ class TorsionalPair:
 class Response:
     """Steady periodic response at one speed: gear-1 speed (rad/s), mesh frequency (rad/s),
     time over one mesh period (s), q (rad), mesh torque F (N·m), the dynamic factor
-    max F / T1, the dynamic part of q peak to peak (rad) and the Floquet multipliers' largest
+    max F / T1 and min F / T1 (below 0 the teeth would separate: the linear model no longer
+    holds), the dynamic part of q peak to peak (rad) and the Floquet multipliers' largest
     modulus (< 1: stable)."""
 
     speed: float
@@ -198,6 +199,7 @@ class Response:
     q: np.ndarray
     force: np.ndarray
     dynamic_factor: float
+    min_factor: float
     q_peak_to_peak: float
     multiplier: float
 
@@ -244,5 +246,5 @@ def steady_response(pair: TorsionalPair, mesh: MeshStiffness, torque: float, spe
     kk = kk * (pair.stiffness / mesh.mean)
     force = kk * (q - ee) + c * v
     return Response(omega1, wm, t, q, force, float(force.max() / torque),
-                    float(np.ptp(q - (ee + torque / kk))),
+                    float(force.min() / torque), float(np.ptp(q - (ee + torque / kk))),
                     float(np.abs(np.linalg.eigvals(phi)).max()))

@@ -204,7 +204,8 @@ def write_mesh_stiffness(out: Path, rows: list[dict], case) -> dict[str, Path]:
         lines = ["phase,position_deg,stiffness_Nm_per_rad,error_rad"]
         beta0 = rows[0]["position_deg"]
         for ph, k, e in zip(mesh.phase, mesh.stiffness, mesh.error):
-            lines.append(f"{ph!r},{beta0 + ph * 360.0 / p.z2!r},{k!r},{e!r}")
+            row = (ph, beta0 + ph * 360.0 / p.z2, k, e)
+            lines.append(",".join(repr(float(v)) for v in row))
         tmp.write_text("\n".join(lines) + "\n")
 
     return {"mesh_stiffness": write_json(out / "mesh_stiffness.json", mesh.to_json()),

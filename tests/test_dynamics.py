@@ -60,6 +60,7 @@ def test_constant_mesh_gives_the_static_deflection():
     r = steady_response(p, m, 200.0, 3000.0)
     assert np.allclose(r.q, 200.0 / 5e5, rtol=1e-9)
     assert r.dynamic_factor == pytest.approx(1.0, abs=1e-9) and r.multiplier < 1
+    assert r.min_factor == pytest.approx(1.0, abs=1e-9)
 
 
 def test_transmission_error_response_matches_linear_theory():
@@ -143,3 +144,5 @@ def test_fe_cycle_exports_a_stiffness_the_model_reproduces_statically(tmp_path):
     slow = steady_response(p, m, 20.0, 1.0)
     assert slow.dynamic_factor == pytest.approx(1.0, abs=1e-3)
     assert (out / "mesh_stiffness.csv").read_text().startswith("phase,position_deg,")
+    table = np.loadtxt(out / "mesh_stiffness.csv", delimiter=",", skiprows=1)
+    assert np.array_equal(table[:, 2], m.stiffness) and np.array_equal(table[:, 3], m.error)
