@@ -46,7 +46,7 @@ def add_solve_args(p: argparse.ArgumentParser) -> None:
                    help="rolling angle β of gear 2 [deg] (default 0)")
     p.add_argument("--positions", type=int, default=None,
                    help="solve N rolling angles across one tooth pitch from --position on one "
-                        "mesh; writes cycle.csv and cycle.png")
+                        "mesh; writes cycle.csv, cycle.png and mesh_stiffness.json/.csv")
     add_material_args(p, "face width")
     p.add_argument("--quality", default="standard", help="coarse / fast / standard / fine")
     p.add_argument("--tip-round", type=float, default=None,
