@@ -132,8 +132,9 @@ class Gear1Profile:
             pos = sign * f > 0
             hi = np.where(pos, x, hi)
             lo = np.where(pos, lo, x)
-            xn = x - f / pts.polar_rate
-            bad = ~((xn >= lo) & (xn <= hi)) | ~np.isfinite(xn)
+            with np.errstate(divide="ignore", invalid="ignore"):  # a cusp: rate 0
+                xn = x - f / pts.polar_rate
+            bad = ~((xn >= lo) & (xn <= hi)) | ~np.isfinite(xn)  # → bisection
             xn = np.where(bad, 0.5 * (lo + hi), xn)
             # φ is only known to ~1e-16 rad (rounding in q), so |f| <= 1e-15 is converged
             conv |= (np.abs(f) <= 1e-15) | (np.abs(xn - x) <= 1e-16) | (hi - lo <= 1e-16)
