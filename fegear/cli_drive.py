@@ -15,7 +15,8 @@ TRAINS = {"ngw": ("za", "zb"), "nn": ("zb", "zc", "zd", "ze"), "khv": ("zb", "zc
 
 
 def add_parsers(drive: argparse.ArgumentParser, parser_class) -> None:
-    sub = drive.add_subparsers(dest="drive_command", required=True, parser_class=parser_class)
+    sub = drive.add_subparsers(dest="drive_command", required=True, parser_class=parser_class,
+                               metavar="{ratio,bearings,dynamics}")
     r = sub.add_parser("ratio", help="ratio and mesh efficiency of a planetary train")
     r.add_argument("--train", required=True, choices=[*TRAINS, "2kh"],
                    help="ngw (teeth za,zb), nn (zb,zc,zd,ze), khv (zb,zc), internal (z1,z2), "
