@@ -32,19 +32,12 @@ from types import MappingProxyType
 import numpy as np
 
 from .errors import ParameterError
-from .params import require_finite, require_range
+from .params import require_finite, require_int, require_range
 
 #: Load cases of the paper's table, ``case -> (gravity, inertia)``: 1 neglects gravity and
 #: inertia, 2 neglects gravity, 3 includes both.
 LOAD_CASES: Mapping[int, tuple[bool, bool]] = MappingProxyType(
     {1: (False, False), 2: (False, True), 3: (True, True)})
-
-
-def _require_count(name: str, value: object, lo: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) \
-            or not math.isfinite(value) or value != int(value) or int(value) < lo:
-        raise ParameterError(name, value, f"an integer >= {lo}")
-    return int(value)
 
 
 def _require_angle(name: str, value: float) -> float:
@@ -115,12 +108,12 @@ class RingDrive:
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
-        set_(self, "z1", _require_count("z1", self.z1, 1))
-        set_(self, "z2", _require_count("z2", self.z2, 2))
+        set_(self, "z1", require_int("z1", self.z1, 1))
+        set_(self, "z2", require_int("z2", self.z2, 2))
         if self.z2 <= self.z1:
             raise ParameterError("z2", self.z2, f"an integer z2 > z1 = {self.z1}",
                                  "the internal ring needs more teeth than the centre gear")
-        set_(self, "rings", _require_count("rings", self.rings, 1))
+        set_(self, "rings", require_int("rings", self.rings, 1))
         positive = {"m": "mm", "torque": "N·m", "base_radius": "mm", "ring_weight": "N",
                     "load_factor": "", "half_span": "mm", "eccentric_spacing": "mm",
                     "support_span": "mm", "g": "m/s²"}

@@ -48,7 +48,9 @@ def describe_range(name: str, lo: float | None, hi: float | None,
     return f"{left}{name}{right}"
 
 
-def _require_int(name: str, value: object, lo: int) -> int:
+def require_int(name: str, value: object, lo: int) -> int:
+    """Return ``value`` as int (an integral float is accepted) or raise a
+    :class:`ParameterError` naming the bound."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ParameterError(name, value, f"an integer >= {lo}")
     if isinstance(value, float) and (not math.isfinite(value) or value != int(value)):
@@ -91,8 +93,8 @@ class PairParameters:
     def __post_init__(self) -> None:
         set_ = object.__setattr__
         set_(self, "m", require_range("m", self.m, 0.0, 100.0, lo_open=True, unit="mm"))
-        set_(self, "z1", _require_int("z1", self.z1, 3))
-        set_(self, "z2", _require_int("z2", self.z2, 4))
+        set_(self, "z1", require_int("z1", self.z1, 3))
+        set_(self, "z2", require_int("z2", self.z2, 4))
         if self.z2 <= self.z1:
             raise ParameterError("z2", self.z2, f"an integer z2 > z1 = {self.z1}",
                                  "the internal gear needs more teeth than the external gear")
