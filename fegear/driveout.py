@@ -19,7 +19,7 @@ from .bearings import (
     support_reactions,
 )
 from .dynamics import MeshStiffness, Response, TorsionalPair
-from .output import write_atomic, write_json
+from .output import write_csv, write_json
 
 
 def bearings_summary(drive: RingDrive, step_deg: float) -> dict:
@@ -91,15 +91,11 @@ def write_bearings(out: Path, drive: RingDrive, summary: dict, step_deg: float) 
         f = bearing_forces(drive, phi, g, i)
         curves[f"F_A{c}"], curves[f"F_B{c}"] = f.F_A, f.F_B
 
-    def csv(tmp: Path) -> None:
-        names = list(curves)
-        lines = ["phi_deg," + ",".join(f"{n}_N" for n in names)]
-        lines += [",".join([f"{p:g}"] + [repr(float(curves[n][j])) for n in names])
-                  for j, p in enumerate(phi)]
-        tmp.write_text("\n".join(lines) + "\n")
-
+    names = list(curves)
+    table = ([f"{p:g}"] + [curves[n][j] for n in names] for j, p in enumerate(phi))
     return {"json": write_json(out / "bearings.json", summary),
-            "csv": write_atomic(out / "bearings.csv", csv),
+            "csv": write_csv(out / "bearings.csv", ["phi_deg"] + [f"{n}_N" for n in names],
+                             table),
             "png": bearings_png(out / "bearings.png", phi, curves)}
 
 
@@ -165,11 +161,6 @@ def write_dynamics(out: Path, summary: dict) -> dict:
 
     rows = summary["speeds"]
     cols = list(rows[0])
-
-    def csv(tmp: Path) -> None:
-        tmp.write_text("\n".join([",".join(cols)] + [",".join(repr(r[c]) for c in cols)
-                                                     for r in rows]) + "\n")
-
     return {"json": write_json(out / "dynamics.json", summary),
-            "csv": write_atomic(out / "dynamics.csv", csv),
+            "csv": write_csv(out / "dynamics.csv", cols, ([r[c] for c in cols] for r in rows)),
             "png": dynamics_png(out / "dynamics.png", rows, summary["natural_frequency_Hz"])}

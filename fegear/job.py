@@ -195,18 +195,14 @@ def write_mesh_stiffness(out: Path, rows: list[dict], case) -> dict[str, Path]:
     """mesh_stiffness.json (for ``fegear drive dynamics``) and mesh_stiffness.csv: stiffness
     and unloaded transmission error over one mesh period, by mesh phase."""
     from .dynamics import from_cycle
-    from .output import write_atomic, write_json
+    from .output import write_csv, write_json
 
     p = case.params
     mesh = from_cycle(rows, p.z1, p.z2, p.m, case.thickness, case.torque)
-
-    def csv(tmp: Path) -> None:
-        lines = ["phase,position_deg,stiffness_Nm_per_rad,error_rad"]
-        beta0 = rows[0]["position_deg"]
-        for ph, k, e in zip(mesh.phase, mesh.stiffness, mesh.error):
-            row = (ph, beta0 + ph * 360.0 / p.z2, k, e)
-            lines.append(",".join(repr(float(v)) for v in row))
-        tmp.write_text("\n".join(lines) + "\n")
-
+    beta0 = rows[0]["position_deg"]
+    table = ((ph, beta0 + ph * 360.0 / p.z2, k, e)
+             for ph, k, e in zip(mesh.phase, mesh.stiffness, mesh.error))
     return {"mesh_stiffness": write_json(out / "mesh_stiffness.json", mesh.to_json()),
-            "mesh_stiffness_csv": write_atomic(out / "mesh_stiffness.csv", csv)}
+            "mesh_stiffness_csv": write_csv(
+                out / "mesh_stiffness.csv",
+                ("phase", "position_deg", "stiffness_Nm_per_rad", "error_rad"), table)}

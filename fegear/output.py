@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import os
 import tempfile
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -56,6 +56,19 @@ def write_points_csv(path: Path, points: np.ndarray) -> Path:
 
     def w(tmp: Path) -> None:
         np.savetxt(tmp, points, delimiter=",", header="x_mm,y_mm", comments="", fmt="%.17g")
+
+    return write_atomic(path, w)
+
+
+def write_csv(path: Path, header: Sequence[str], rows: Iterable[Sequence]) -> Path:
+    """Write a table as CSV: floats at full precision (``repr``), anything else as ``str``."""
+
+    def cell(v) -> str:
+        return repr(float(v)) if isinstance(v, (float, np.floating)) else str(v)
+
+    def w(tmp: Path) -> None:
+        lines = [",".join(header)] + [",".join(cell(v) for v in row) for row in rows]
+        tmp.write_text("\n".join(lines) + "\n")
 
     return write_atomic(path, w)
 

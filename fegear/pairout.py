@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from .contact_solve import nodal_pressure
-from .output import vtu_fields, write_atomic, write_json, write_vtu
+from .output import vtu_fields, write_atomic, write_csv, write_json, write_vtu
 from .plot import cycle_png
 from .profile import Gear1Profile
 from .scene import QUALITY
@@ -215,13 +215,7 @@ def cycle_table(rows: list[dict]) -> str:
 def write_cycle_outputs(rows: list[dict], out: Path, title: str) -> dict[str, Path]:
     """cycle.csv (one row per position) and cycle.png (load shares, stresses, TE)."""
     cols = list(rows[0])
-
-    def csv(tmp: Path) -> None:
-        lines = [",".join(cols)] + [",".join(repr(float(r[c])) if isinstance(r[c], float)
-                                             else str(r[c]) for c in cols) for r in rows]
-        tmp.write_text("\n".join(lines) + "\n")
-
-    files = {"csv": write_atomic(out / "cycle.csv", csv)}
+    files = {"csv": write_csv(out / "cycle.csv", cols, ([r[c] for c in cols] for r in rows))}
     files["cycle_png"] = cycle_png(out / "cycle.png", rows, title, HEADLINE)
     return files
 
