@@ -133,14 +133,7 @@ def _bearings(a: argparse.Namespace) -> int:
     files = {}
     if a.out is not None:
         files = write_bearings(prepare_dir(a.out), drive, summary, step)
-    if a.json:
-        print(json.dumps({**summary, "files": {k: str(v) for k, v in files.items()}},
-                         indent=2))
-    else:
-        print(bearings_table(summary))
-        for k, v in files.items():
-            print(f"{k:6s} {v}")
-    return 0
+    return _report(summary, bearings_table, files, a.json)
 
 
 def _speeds(text: str) -> list[float]:
@@ -181,11 +174,16 @@ def _dynamics(a: argparse.Namespace) -> int:
     summary = dynamics_summary(pair, mesh, torque,
                                [steady_response(pair, mesh, torque, s) for s in speeds])
     files = write_dynamics(out, summary) if out is not None else {}
-    if a.json:
+    return _report(summary, dynamics_table, files, a.json)
+
+
+def _report(summary: dict, table, files: dict, as_json: bool) -> int:
+    """Print the summary as JSON (with the files written), or its table and the files."""
+    if as_json:
         print(json.dumps({**summary, "files": {k: str(v) for k, v in files.items()}},
                          indent=2))
     else:
-        print(dynamics_table(summary))
+        print(table(summary))
         for k, v in files.items():
             print(f"{k:6s} {v}")
     return 0
