@@ -39,11 +39,11 @@ class Ratio:
     input: str
     output: str
 
-    def efficiency(self, eta_h: float) -> float:
-        """Mesh efficiency input → output by the meshing-power method (see the module)."""
-        if self.input == "H":
-            return meshing_efficiency(1.0 / self.value, eta_h, carrier_drives=True)
-        return meshing_efficiency(self.value, eta_h, carrier_drives=False)
+    def efficiency(self, eta_h: float, reverse: bool = False) -> float:
+        """Mesh efficiency input → output (``reverse``: output → input) by the meshing-power
+        method (see the module)."""
+        ix = 1.0 / self.value if self.input == "H" else self.value  # ω_X/ω_H
+        return meshing_efficiency(ix, eta_h, carrier_drives=(self.input == "H") != reverse)
 
 
 def _teeth(**z: int) -> None:

@@ -101,17 +101,13 @@ def write_bearings(out: Path, drive: RingDrive, summary: dict, step_deg: float) 
 
 def ratio_table(r, eta_h: float | None) -> str:
     """The ratio, the transformed mechanism's, and efficiencies in both directions."""
-    from .drive import meshing_efficiency
-
     lines = [f"{r.train}: {r.fixed} fixed, {r.input} → {r.output}",
              f"ratio ω_{r.input}/ω_{r.output} = {r.value:.6g}"
              + ("  (output turns against the input)" if r.value < 0 else ""),
              f"transformed (carrier-fixed) ratio i^H = {r.transformed:.6g}"]
     if eta_h is not None:
-        ix = 1.0 / r.value if r.input == "H" else r.value  # ω_X/ω_H
-        fwd = meshing_efficiency(ix, eta_h, carrier_drives=r.input == "H")
-        back = meshing_efficiency(ix, eta_h, carrier_drives=r.input != "H")
-        for label, eta in ((f"{r.input} → {r.output}", fwd), (f"{r.output} → {r.input}", back)):
+        for label, eta in ((f"{r.input} → {r.output}", r.efficiency(eta_h)),
+                           (f"{r.output} → {r.input}", r.efficiency(eta_h, reverse=True))):
             note = "  (self-locking)" if eta <= 0 else ""
             lines.append(f"mesh efficiency {label} at η^H = {eta_h:g}: {eta:.6f}{note}")
     return "\n".join(lines)
