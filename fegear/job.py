@@ -8,10 +8,13 @@ the same checks, the same JSON summary.
 from __future__ import annotations
 
 import argparse
+import functools
 import math
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
+from types import MappingProxyType
 
 from .params import PairParameters, require_range
 
@@ -77,8 +80,10 @@ class SolveInput:
     default: object
 
 
-def solve_inputs() -> dict[str, SolveInput]:
-    """Every input of ``fegear solve`` by name, read off the parser so the two never drift."""
+@functools.cache
+def solve_inputs() -> Mapping[str, SolveInput]:
+    """Every input of ``fegear solve`` by name, read off the parser so the two never drift
+    (built once: a study asks for every case)."""
     p = argparse.ArgumentParser(add_help=False)
     add_solve_args(p)
     out = {}
@@ -89,7 +94,7 @@ def solve_inputs() -> dict[str, SolveInput]:
         else:
             kind = {float: "float", int: "int", None: "str"}[act.type]
         out[name] = SolveInput(name, act.dest, kind, act.default)
-    return out
+    return MappingProxyType(out)
 
 
 def namespace(values: dict[str, object]) -> argparse.Namespace:
