@@ -223,27 +223,29 @@ def steady_response(pair: TorsionalPair, mesh: MeshStiffness, torque: float, spe
     period = 2.0 * math.pi / wm
     h = period / steps
     je, c = pair.equivalent_inertia, pair.damping
+    level = pair.stiffness / mesh.mean  # the pair's stiffness level, the mesh's shape
     k, e = mesh.at((np.arange(steps) + 0.5) / steps)
-    k = k * (pair.stiffness / mesh.mean)  # the pair's stiffness level, the mesh's shape
+    k = k * level
     a = np.zeros((steps, 2, 2))
     a[:, 0, 1] = 1.0
     a[:, 1, 0] = -k / je
     a[:, 1, 1] = -c / je
     big = expm(a * h)
-    star = e + torque / k  # static q of each interval
+    star = np.zeros((steps, 2))
+    star[:, 0] = e + torque / k  # static state (q, 0) of each interval
     phi, p = np.eye(2), np.zeros(2)
-    for j in range(steps):  # x_{j+1} = E_j x_j + (I − E_j) x*_j
+    for j in range(steps):  # x_{j+1} = E_j (x_j − x*_j) + x*_j
         phi = big[j] @ phi
-        p = big[j] @ p + (np.array([star[j], 0.0]) - big[j] @ np.array([star[j], 0.0]))
+        p = big[j] @ (p - star[j]) + star[j]
     x = np.linalg.solve(np.eye(2) - phi, p)
     q, v = np.empty(steps + 1), np.empty(steps + 1)
     q[0], v[0] = x
     for j in range(steps):
-        x = big[j] @ (x - [star[j], 0.0]) + [star[j], 0.0]
+        x = big[j] @ (x - star[j]) + star[j]
         q[j + 1], v[j + 1] = x
     t = np.linspace(0.0, period, steps + 1)
     kk, ee = mesh.at(t / period)
-    kk = kk * (pair.stiffness / mesh.mean)
+    kk = kk * level
     force = kk * (q - ee) + c * v
     return Response(omega1, wm, t, q, force, float(force.max() / torque),
                     float(force.min() / torque), float(np.ptp(q - (ee + torque / kk))),
