@@ -1,16 +1,25 @@
 """fegear: finite-element stress solver for compound-cycloid internal gear tooth pairs.
 
-Pipeline stages, one module each: params → cycloid (gear 2) → envelope/profile (gear 1) →
-admissible → tca (unloaded contact) → pair (the geometry stage as one call) → output/plot.
+The pipeline, one subpackage per stage (docs/architecture.md):
+
+* :mod:`fegear.geometry`: exact profiles, admissibility, unloaded contact, tip edges;
+* :mod:`fegear.fe`: meshes, plane elasticity, stresses, Hertz;
+* :mod:`fegear.contact`: frictionless penalty contact between linear bodies;
+* :mod:`fegear.toothpair`: the tooth-pair solve, its error estimate and reports;
+* :mod:`fegear.study`: parameter studies;
+* :mod:`fegear.verify` and :mod:`fegear.drive` beside them: the Hertz case, the benchmark and
+  CalculiX; the drive level;
+* :mod:`fegear.cli`: the ``fegear`` command.
 """
 
-from .errors import FegearError, GeometryError, ParameterError
-from .pair import PairGeometry, build_pair
-from .params import PairParameters
-from .profile import Gear1Profile
-from .tca import ToothContact
+from .exports import lazy
 
 __version__ = "0.1.0"
 
-__all__ = ["FegearError", "GeometryError", "ParameterError", "PairParameters", "Gear1Profile",
-           "ToothContact", "PairGeometry", "build_pair", "__version__"]
+__getattr__, __dir__, __all__ = lazy(__name__, {
+    "geometry": ("PairParameters", "Gear1Profile", "ToothContact", "PairGeometry",
+                 "build_geometry"),
+    "toothpair": ("SolveCase", "solve_pair", "solve_positions"),
+    "errors": ("FegearError", "GeometryError", "ParameterError"),
+})
+__all__ = [*__all__, "__version__"]

@@ -22,24 +22,25 @@ def library_versions(names=LIBRARIES) -> dict[str, str | None]:
     return out
 
 
-#: modules that run, schedule, present or compare results but compute none of a solve's
-#: numbers: editing them keeps a study's finished cases valid
-NOT_IN_RESULTS = ("__main__", "cli", "bench", "bench_study", "peer", "peer_pair", "plot",
-                  "study", "studyfile", "studyout")
+#: the stages that compute a solve's numbers and files, and the shared modules they use;
+#: the others (cli, study, verify, drive) run, schedule, present or compare results, and
+#: editing them keeps a study's finished cases valid
+IN_RESULTS = ("geometry", "fe", "contact", "toothpair", "checks.py", "errors.py", "files.py",
+              "figures.py", "planar.py")
 
 
 @functools.cache
-def source_hash() -> str:
-    """SHA-256 (first 12 hex digits) of fegear's source files that compute results: it
-    changes with any edit to them, installed or not, where the version number only changes
-    on a release."""
+def source_hash(root: Path | None = None) -> str:
+    """SHA-256 (first 12 hex digits) of the source files that compute results
+    (:data:`IN_RESULTS`, under ``root``, default: this fegear): it changes with any edit to
+    them, installed or not, where the version number only changes on a release."""
+    root = Path(__file__).parent if root is None else Path(root)
     h = hashlib.sha256()
-    root = Path(__file__).parent
-    for path in sorted(root.glob("*.py")):
-        if path.stem in NOT_IN_RESULTS:
-            continue
-        h.update(path.name.encode())
-        h.update(path.read_bytes())
+    for part in IN_RESULTS:
+        paths = [root / part] if part.endswith(".py") else sorted((root / part).rglob("*.py"))
+        for path in paths:
+            h.update(path.relative_to(root).as_posix().encode())
+            h.update(path.read_bytes())
     return h.hexdigest()[:12]
 
 

@@ -5,8 +5,8 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))
 
-from fegear.params import PairParameters  # noqa: E402
-from fegear.profile import Gear1Profile  # noqa: E402
+from fegear.geometry.gear1 import Gear1Profile
+from fegear.geometry.parameters import PairParameters
 
 BASE = PairParameters()  # paper baseline m 2, z2 45, z1 44, h1 0.3, f1 0.15, no modification
 CONJUGATE = PairParameters(shift=0.0, rotation=0.0, tip_relief=0.0)

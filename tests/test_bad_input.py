@@ -9,12 +9,10 @@ from pathlib import Path
 
 import pytest
 
-import fegear.bench
-import fegear.bench_study
-import fegear.disks
-import fegear.pair
+import fegear.geometry
 import fegear.study
-import fegear.toothpair
+import fegear.toothpair.solve
+import fegear.verify
 from fegear.cli import main
 
 NOT_FINITE = ["nan", "inf", "-inf"]
@@ -73,12 +71,12 @@ def no_work(monkeypatch):
     def accepted(*args, **kwargs):
         raise AssertionError("the bad value was accepted: the work started")
 
-    for module, name in ((fegear.pair, "build_pair"), (fegear.disks, "solve_disks"),
-                         (fegear.toothpair, "solve_positions"),
-                         (fegear.bench, "geometry_bench"), (fegear.bench, "disk_ladder"),
-                         (fegear.bench, "pair_ladder"),
-                         (fegear.bench, "pair_bench"), (fegear.study, "run_study"),
-                         (fegear.bench_study, "study_overhead")):
+    for module, name in ((fegear.geometry, "build_geometry"), (fegear.verify, "solve_disks"),
+                         (fegear.toothpair.solve, "solve_positions"),
+                         (fegear.verify, "geometry_bench"), (fegear.verify, "disk_ladder"),
+                         (fegear.verify, "pair_ladder"),
+                         (fegear.verify, "pair_bench"), (fegear.study, "run_study"),
+                         (fegear.verify, "study_overhead")):
         monkeypatch.setattr(module, name, accepted)
 
 
@@ -118,7 +116,7 @@ def test_every_numeric_option_is_covered():
 def test_outputs_are_written_atomically_with_ordinary_permissions(tmp_path):
     import os
 
-    from fegear.output import write_atomic, write_json
+    from fegear.files import write_atomic, write_json
 
     old = os.umask(0o027)
     try:
@@ -146,8 +144,8 @@ def test_outputs_are_written_atomically_with_ordinary_permissions(tmp_path):
     for v in values + ([float("nan"), float("inf")] if f not in ("quality",) else [])])
 def test_solve_case_rejects_bad_fields(field, value):
     from fegear.errors import ParameterError
-    from fegear.params import PairParameters
-    from fegear.toothpair import SolveCase
+    from fegear.geometry.parameters import PairParameters
+    from fegear.toothpair.case import SolveCase
 
     with pytest.raises(ParameterError) as err:
         SolveCase(PairParameters(), **{field: value})
@@ -161,8 +159,8 @@ def test_solve_case_rejects_bad_fields(field, value):
         "quality": ["best", 0, 1e9], "penalty_factor": [0.0, 1e300]}.items()
     for v in values + ([float("nan"), float("-inf")] if f != "quality" else [])])
 def test_disk_case_rejects_bad_fields(field, value):
-    from fegear.disks import DiskCase
     from fegear.errors import ParameterError
+    from fegear.verify.disks import DiskCase
 
     with pytest.raises(ParameterError) as err:
         DiskCase(**{field: value})

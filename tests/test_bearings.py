@@ -1,4 +1,4 @@
-"""Seed 000 bearing-force model (fegear.bearings) against the paper's printed numbers.
+"""Seed 000 bearing-force model (fegear.drive.bearings) against the paper's printed numbers.
 
 The printed values are written out here again, independently of ``bearings.PAPER``, so that an
 edit of the module's table cannot make these tests pass.
@@ -10,7 +10,7 @@ import math
 import numpy as np
 import pytest
 
-from fegear.bearings import (
+from fegear.drive.bearings import (
     LOAD_CASES,
     PAPER,
     RingDrive,

@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from fegear.bench import (
+from fegear.verify.bench import (
     Ladder,
     Rung,
     disk_ladder,
@@ -15,7 +15,7 @@ from fegear.bench import (
     ladder_targets,
     richardson,
 )
-from fegear.plot import ladder_png
+from fegear.verify.plot import ladder_png
 
 
 @pytest.mark.parametrize("order", [1.0, 2.0, 3.5])
@@ -76,7 +76,7 @@ def test_tiny_disk_ladder_writes_table_json_and_png(tmp_path):
 def test_a_failed_calculix_run_is_reported_and_the_ladder_goes_on(monkeypatch):
     # `fegear bench --torque 1` stopped at the `fast` pair: ccx refused a mesh, and the
     # finished disk ladder was never written
-    import fegear.peer as peer
+    import fegear.verify.calculix as peer
 
     def refuse(case, workdir, **kwargs):
         raise peer.PeerError("body 'disk1': node 4 is not on edge 1-2")

@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from fegear.contact import Circle
-from fegear.contact_solve import solve_contact
-from fegear.disks import DiskCase, solve_disks, write_disk_outputs
+from fegear.contact.model import Circle
+from fegear.contact.solve import solve_contact
 from fegear.errors import ParameterError
-from fegear.hertz import line_contact
+from fegear.fe.hertz import line_contact
+from fegear.verify.disks import DiskCase, solve_disks, write_disk_outputs
 
 
 def test_hertz_formulas_by_hand():
@@ -70,7 +70,8 @@ def test_weighted_gaps_average_and_integrate_exactly(convex):
 def test_window_flexibility_rows_are_the_responses_to_unit_loads(convex):
     # a window of free contact nodes and supported rim nodes: row c of F is the window's
     # response to a unit load at dof c (zero for a supported dof), formed only when asked for
-    from fegear.assembly import WindowFlexibility, facet_nodes, node_dofs
+    from fegear.fe.assembly import facet_nodes, node_dofs
+    from fegear.fe.flexibility import WindowFlexibility
 
     body = convex.model.bodies[1]
     rim = facet_nodes(body.mesh, body.mesh.boundaries[body.fixed_boundaries[0]][:2]).ravel()
@@ -91,7 +92,7 @@ def test_window_flexibility_rows_are_the_responses_to_unit_loads(convex):
 
 
 def test_point_flexibility_columns_match_the_dense_product():
-    from fegear.contact import PointFlexibility
+    from fegear.contact.flexibility import PointFlexibility
 
     rng = np.random.default_rng(5)
     class Rows:  # a dense flexibility with the interface of WindowFlexibility
@@ -123,7 +124,7 @@ def test_nearest_chord_search_matches_the_search_among_all_chords(candidates, mo
     # a long chord and, just above it, a cluster of tiny ones: the point 0.01 above the long
     # chord, where two of its pieces meet, has only tiny chords (0.05 away or more) among its
     # 16 nearest midpoints, so a search among those alone would miss the long chord
-    import fegear.contact as contact
+    import fegear.contact.search as contact
 
     rng = np.random.default_rng(2)
     xs = rng.uniform(0.21, 0.29, 40)
@@ -159,8 +160,8 @@ def test_disk_in_bore_converges_and_reports_against_hertz():
 def test_load_steps_reach_the_one_step_solution_through_fewer_columns(convex, monkeypatch):
     # the penalty problem has one solution; raising the load in steps only changes the path,
     # and started from below it visits fewer points (each of which costs a column of G)
-    import fegear.contact_solve as contact_solve
-    from fegear.contact import build_contact
+    import fegear.contact.solve as contact_solve
+    from fegear.contact.build import build_contact
 
     m = convex.model
     stepped = build_contact(m.bodies, m.pairs, m.settings)
@@ -176,7 +177,7 @@ def test_load_steps_reach_the_one_step_solution_through_fewer_columns(convex, mo
 def test_a_start_near_the_answer_reaches_the_same_solution(convex):
     # a mesh cycle starts each position from the last one's rotation and loaded nodes: here a
     # start with the rotation 10 % short and only every other loaded node active
-    from fegear.contact import build_contact
+    from fegear.contact.build import build_contact
 
     m, sol = convex.model, convex.solution
     fresh = build_contact(m.bodies, m.pairs, m.settings)

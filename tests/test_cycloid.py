@@ -4,8 +4,8 @@ import numpy as np
 import pytest
 from swept_reference import eq11
 
-from fegear.cycloid import Cycloid, gear2_curve
-from fegear.params import PairParameters
+from fegear.geometry.gear2 import Cycloid, gear2_curve
+from fegear.geometry.parameters import PairParameters
 
 XI = np.linspace(-np.pi, np.pi, 4001)
 

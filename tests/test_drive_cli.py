@@ -6,9 +6,10 @@ import json
 import numpy as np
 import pytest
 
-from fegear.bearings import PAPER
 from fegear.cli import main
-from fegear.dynamics import MeshStiffness
+from fegear.drive.bearings import PAPER
+from fegear.drive.dynamics import default_inertias
+from fegear.toothpair.stiffness import MeshStiffness
 
 
 def test_bearings_reproduce_the_paper_table_from_the_command_line(tmp_path, capsys):
@@ -51,7 +52,7 @@ def test_dynamics_command_on_a_stiffness_file(tmp_path, capsys):
     assert main(["drive", "dynamics", "--stiffness", str(tmp_path / "k.json"), "--speeds",
                  "100:3000:5", "--json", "--out", str(tmp_path / "dyn")]) == 0
     s = json.loads(capsys.readouterr().out)
-    j1, j2 = m.default_inertias()
+    j1, j2 = default_inertias(m)
     assert s["model"]["J1_kgm2"] == pytest.approx(j1)
     assert s["natural_frequencies_rad_s"][1] == pytest.approx(
         np.sqrt(m.mean * (1 / j1 + (45 / 44) ** 2 / j2)), rel=1e-12)

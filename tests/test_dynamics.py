@@ -7,14 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from fegear.dynamics import (
-    MeshStiffness,
-    TorsionalPair,
-    from_cycle,
-    read_mesh_stiffness,
-    steady_response,
-)
+from fegear.drive.dynamics import TorsionalPair, default_inertias, steady_response
 from fegear.errors import ParameterError
+from fegear.toothpair.stiffness import MeshStiffness, mesh_stiffness_of_cycle, read_mesh_stiffness
 
 N = 512  # samples per mesh period of the synthetic stiffness (linear interpolation between)
 
@@ -133,13 +128,13 @@ def test_fe_cycle_exports_a_stiffness_the_model_reproduces_statically(tmp_path):
     m = read_mesh_stiffness(out / "mesh_stiffness.json")
     rows = json.loads((out / "summary.json").read_text())["cycle"]["rows"]
     assert m.phase.tolist() == pytest.approx([0, 0.25, 0.5, 0.75])
-    again = from_cycle(rows, 24, 25, 2.0, 5.0, 20.0)
+    again = mesh_stiffness_of_cycle(rows, 24, 25, 2.0, 5.0, 20.0)
     assert np.array_equal(again.stiffness, m.stiffness)
     # secant mapping: static rotation = e + T/k, the FE rotation at every position
     rot = np.array([r["rotation_urad"] for r in rows]) * 1e-6
     assert m.error + 20.0 / m.stiffness == pytest.approx(rot, rel=1e-9)
     # quasi-static speed: the dynamic mesh torque stays at the static one
-    j1, j2 = m.default_inertias()
+    j1, j2 = default_inertias(m)
     p = TorsionalPair(j1, j2, 25 / 24, m.mean)
     slow = steady_response(p, m, 20.0, 1.0)
     assert slow.dynamic_factor == pytest.approx(1.0, abs=1e-3)

@@ -8,10 +8,11 @@ import pytest
 from skfem import ElementTriP2, ElementVector, FacetBasis, LinearForm, asm, condense, solve
 from skfem.helpers import dot
 
-from fegear.assembly import Material, RigidLink, assemble_body, facet_nodes
-from fegear.contact import Circle
-from fegear.mesh import BodyGeometry, Segment, mesh_bodies
-from fegear.stress import quadrature_stress, recover
+from fegear.contact.model import Circle
+from fegear.fe.assembly import RigidLink, assemble_body, facet_nodes
+from fegear.fe.material import Material
+from fegear.fe.mesh import BodyGeometry, Segment, mesh_bodies
+from fegear.fe.stress import quadrature_stress, recover
 
 E, NU, T = 206000.0, 0.29, 5.0
 

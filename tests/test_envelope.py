@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from fegear.envelope import FAR, NEAR
-from fegear.params import PairParameters
-from fegear.profile import generating_branches
+from fegear.geometry.envelope import FAR, NEAR
+from fegear.geometry.gear1 import generating_branches
+from fegear.geometry.parameters import PairParameters
 
 CASES = [PairParameters(), PairParameters(shift=0.016, rotation=0.002),
          PairParameters(m=1.5, z2=31, z1=29, h1=0.25, f1=0.1)]

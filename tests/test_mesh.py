@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTriP2, FacetBasis, LinearForm, asm
 
-from fegear.assembly import facet_nodes
-from fegear.contact import Circle
-from fegear.mesh import (
+from fegear.contact.model import Circle
+from fegear.fe.assembly import facet_nodes
+from fegear.fe.mesh import (
     BodyGeometry,
     MeshError,
     Refinement,

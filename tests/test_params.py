@@ -5,8 +5,8 @@ import math
 import pytest
 
 from fegear.errors import ParameterError
-from fegear.params import PairParameters
-from fegear.profile import Gear1Profile
+from fegear.geometry.gear1 import Gear1Profile
+from fegear.geometry.parameters import PairParameters
 
 
 @pytest.mark.parametrize("kw,name,fragment", [
@@ -60,7 +60,7 @@ def test_refusal_limit_is_sharp():
 
 
 def test_undercut_detected_for_cusp_on_working_flank():
-    from fegear.admissible import defect
+    from fegear.geometry.admissible import defect
     # just past the f1 limit at h1 = 0.3 the near branch folds (cusp) or loses conjugacy
     assert defect(PairParameters(f1=0.39)) is None
     assert defect(PairParameters(f1=0.40)) is not None

@@ -1,5 +1,5 @@
-"""CalculiX peer (fegear.peer, fegear.peer_pair): the decks written from the coarse Hertz disks
-and from a light tooth pair, and ccx's answers."""
+"""CalculiX peer (fegear.verify.calculix, fegear.verify.calculix_pair): the decks written from
+the coarse Hertz disks and from a light tooth pair, and ccx's answers."""
 
 from pathlib import Path
 
@@ -7,11 +7,12 @@ import numpy as np
 import pytest
 from conftest import MODIFIED
 
-from fegear.assembly import RigidLink, assemble_body, facet_nodes
-from fegear.contact import ContactPair
-from fegear.disks import DiskCase, solve_disks
-from fegear.hertz import contact_modulus
-from fegear.peer import (
+from fegear.contact.model import ContactPair
+from fegear.fe.assembly import RigidLink, assemble_body, facet_nodes
+from fegear.fe.material import contact_modulus
+from fegear.toothpair.case import SolveCase
+from fegear.toothpair.solve import solve_pair
+from fegear.verify.calculix import (
     CONTROLS,
     PeerConvergenceError,
     PeerError,
@@ -21,7 +22,7 @@ from fegear.peer import (
     run_ccx,
     write_deck,
 )
-from fegear.peer_pair import (
+from fegear.verify.calculix_pair import (
     CCX_PENALTY_FACTOR,
     _frd_stress,
     _turned,
@@ -29,7 +30,7 @@ from fegear.peer_pair import (
     pair_surfaces,
     size_bands,
 )
-from fegear.toothpair import SolveCase, solve_pair
+from fegear.verify.disks import DiskCase, solve_disks
 
 needs_ccx = pytest.mark.skipif(not ccx_available(), reason="CalculiX (ccx) is not installed")
 
@@ -139,10 +140,10 @@ def test_unsupported_models_are_refused(coarse, tmp_path):
 
 
 def test_run_reports_missing_ccx_and_deck(tmp_path, monkeypatch):
-    monkeypatch.setattr("fegear.peer.shutil.which", lambda name: "/nowhere/ccx")
+    monkeypatch.setattr("fegear.verify.calculix.shutil.which", lambda name: "/nowhere/ccx")
     with pytest.raises(PeerError, match="no deck"):
         run_ccx(tmp_path, "absent")
-    monkeypatch.setattr("fegear.peer.shutil.which", lambda name: None)
+    monkeypatch.setattr("fegear.verify.calculix.shutil.which", lambda name: None)
     assert not ccx_available()
     with pytest.raises(PeerError, match="not installed"):
         run_ccx(tmp_path, "absent")
@@ -323,7 +324,7 @@ def test_ccx_matches_ours_on_the_light_pair(light, tmp_path):
     agree with ours (measured: elastic rotation −0.08 %, shares ±0.0007, loads ±0.4 %, root σ1
     −1.2 % / −0.7 %); its p_max sits 45–55 % above ours: CalculiX's pointwise penalty on
     non-matching quadratic faces resolves the sub-facet misfit of the two P2 flanks (see
-    fegear.peer_pair), which our weighted gaps on gear 2's exact curve do not see."""
+    fegear.verify.calculix_pair), which our weighted gaps on gear 2's exact curve do not see."""
     ours, ccx = ccx_pair(LIGHT, tmp_path, solution=light, timeout=600)
     elastic = (ccx.rotation - ours.first_touch) / (ours.rotation - ours.first_touch)
     assert abs(elastic - 1.0) < 0.01

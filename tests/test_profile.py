@@ -5,7 +5,7 @@ import pytest
 from conftest import CONJUGATE, MODIFIED
 from swept_reference import sweep_min_distance
 
-from fegear.params import PairParameters
+from fegear.geometry.parameters import PairParameters
 
 UM = 1e-3  # mm
 TOL = 0.05 * UM  # the exactness bound, 0.05 µm
@@ -104,7 +104,7 @@ def test_curvature_radius_on_flank(modified_profile):
 ])
 def test_degenerate_pairs_raise_a_named_error(params, fragment):
     from fegear.errors import GeometryError
-    from fegear.pair import build_pair
+    from fegear.geometry.build import build_geometry
 
     with pytest.raises(GeometryError, match=fragment):
-        build_pair(params, chord_error=1e-3, backlash_positions=4)
+        build_geometry(params, chord_error=1e-3, backlash_positions=4)

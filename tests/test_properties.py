@@ -12,12 +12,13 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, reject, settings
 from hypothesis import strategies as st
 
-from fegear.admissible import check
-from fegear.disks import DiskCase, solve_disks
 from fegear.errors import FegearError, ParameterError
-from fegear.pairout import pair_summary
-from fegear.params import PairParameters
-from fegear.toothpair import SolveCase, solve_pair
+from fegear.geometry.admissible import check_admissible
+from fegear.geometry.parameters import PairParameters
+from fegear.toothpair.case import SolveCase
+from fegear.toothpair.report import pair_summary
+from fegear.toothpair.solve import solve_pair
+from fegear.verify.disks import DiskCase, solve_disks
 
 SETTINGS = settings(max_examples=200, deadline=None, derandomize=True,
                     phases=[Phase.explicit, Phase.reuse, Phase.generate, Phase.shrink],
@@ -78,7 +79,7 @@ def pairs(draw):
                            h1=draw(st.floats(0.05, 0.6)), f1=draw(st.floats(0.0, 0.4)),
                            shift=draw(st.floats(0.0, 0.01 * m)),
                            rotation=draw(st.floats(0.0, 0.002 * m)))
-        check(p)
+        check_admissible(p)
     except ParameterError:
         reject()
     torque = 10 ** draw(st.floats(0.0, math.log10(300.0))) * (m / 2.0) ** 2 * z1 / 44

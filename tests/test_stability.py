@@ -7,14 +7,14 @@ import math
 
 import pytest
 
-import fegear.toothpair as toothpair
+import fegear.toothpair.solve as toothpair
 from fegear.errors import GeometryError
-from fegear.mesh import jiggle, mesh_bodies
-from fegear.pairout import HEADLINE
-from fegear.params import PairParameters
-from fegear.profile import Gear1Profile
-from fegear.tca import ToothContact
-from fegear.toothpair import SolveCase, _refuse_interference, solve_pair
+from fegear.fe.mesh import jiggle, mesh_bodies
+from fegear.geometry.clearance import ToothContact
+from fegear.geometry.gear1 import Gear1Profile
+from fegear.geometry.parameters import PairParameters
+from fegear.toothpair.case import HEADLINE, SolveCase
+from fegear.toothpair.solve import _refuse_interference, solve_pair
 
 BASELINE = PairParameters(shift=0.016, rotation=0.002)
 ALLOWABLE_CONTACT = 745.0  # MPa, 42CrMo (the paper)

@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 from fegear.cli import main
-from fegear.studyfile import Outputs, StudyError, build_study, case_key, load_study
+from fegear.study.file import Outputs, StudyError, build_study, case_key, load_study
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -272,7 +272,7 @@ def test_study_table_holds_solve_outputs_and_versions(pool_run):
 
 def test_dask_cluster_gives_the_local_pool_table(pool_run, tmp_path):
     distributed = pytest.importorskip("distributed")
-    from fegear.study import run_study
+    from fegear.study.runner import run_study
 
     study = load_study(pool_run["out"] / ".." / "small.toml")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
@@ -318,7 +318,7 @@ def test_unreachable_scheduler_is_one_line_and_creates_nothing(tmp_path, capsys)
 def test_second_run_into_the_same_directory_is_refused(tmp_path):
     import fcntl
 
-    from fegear.study import run_study
+    from fegear.study.runner import run_study
 
     study = _study(tmp_path, "[[sweep]]\nm = [1.5, 2.0]\n")
     out = tmp_path / "out"
@@ -335,7 +335,7 @@ def test_second_run_into_the_same_directory_is_refused(tmp_path):
 def test_kept_vtu_files_arrive_beside_the_record(tmp_path):
     import meshio
 
-    from fegear.study import run_study
+    from fegear.study.runner import run_study
 
     text = SMALL.split("[[sweep]]")[0].replace("[study]", "[outputs]\nvtu = true\n[study]")
     study = _study(tmp_path, text + "[[sweep]]\ntorque = 10\n")

@@ -5,8 +5,8 @@ import pytest
 from conftest import CONJUGATE, MODIFIED
 from swept_reference import signed_distance
 
-from fegear.params import PairParameters
-from fegear.tca import ToothContact
+from fegear.geometry.clearance import ToothContact
+from fegear.geometry.parameters import PairParameters
 
 UM = 1e-3
 

@@ -6,27 +6,23 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from fegear.cycloid import gear2_curve
 from fegear.errors import ParameterError
-from fegear.pairout import HEADLINE, error_estimate
-from fegear.params import PairParameters
-from fegear.profile import Gear1Profile, rotate
-from fegear.rounding import RoundedProfile
-from fegear.scene import (
+from fegear.geometry.clearance import ToothContact
+from fegear.geometry.gear1 import Gear1Profile
+from fegear.geometry.gear2 import gear2_curve
+from fegear.geometry.parameters import PairParameters
+from fegear.geometry.tip_edge import RoundedProfile
+from fegear.planar import rotate
+from fegear.toothpair.case import HEADLINE, SolveCase
+from fegear.toothpair.estimate import error_estimate
+from fegear.toothpair.scene import (
     _profile_segments,
     _sampled,
     build_scene,
     candidate_data,
     tooth_run,
 )
-from fegear.tca import ToothContact
-from fegear.toothpair import (
-    SolveCase,
-    choose_teeth,
-    cycle_positions,
-    solve_pair,
-    solve_positions,
-)
+from fegear.toothpair.solve import choose_teeth, cycle_positions, solve_pair, solve_positions
 
 BASELINE_MODS = dict(shift=0.016, rotation=0.002)
 

@@ -1,0 +1,152 @@
+"""Checks of input values: finite numbers, ranges, integers.
+
+Every check raises :class:`~fegear.errors.ParameterError`, whose message names the parameter,
+the offending value and the admissible range, so that a user sees one line saying what to change.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Iterator, Mapping
+from dataclasses import dataclass
+
+from .errors import ParameterError
+
+
+def require_finite(name: str, value: float) -> float:
+    """Return ``value`` as float or raise :class:`ParameterError` if it is not a finite number."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(name, value, "a finite number") from None
+    if not math.isfinite(x):
+        raise ParameterError(name, value, "a finite number")
+    return x
+
+
+def require_range(name: str, value: float, lo: float | None, hi: float | None,
+                  lo_open: bool = False, hi_open: bool = False, unit: str = "") -> float:
+    """Check ``lo (<|<=) value (<|<=) hi``; raise a :class:`ParameterError` naming the range."""
+    x = require_finite(name, value)
+    ok_lo = lo is None or (x > lo if lo_open else x >= lo)
+    ok_hi = hi is None or (x < hi if hi_open else x <= hi)
+    if not (ok_lo and ok_hi):
+        raise ParameterError(name, value, describe_range(name, lo, hi, lo_open, hi_open, unit))
+    return x
+
+
+def describe_range(name: str, lo: float | None, hi: float | None,
+                   lo_open: bool = False, hi_open: bool = False, unit: str = "") -> str:
+    """Human-readable interval such as ``0 < h1 <= 0.412``."""
+    u = f" {unit}" if unit else ""
+    left = "" if lo is None else f"{lo:.6g} {'<' if lo_open else '<='} "
+    right = "" if hi is None else f" {'<' if hi_open else '<='} {hi:.6g}{u}"
+    return f"{left}{name}{right}"
+
+
+def require_int(name: str, value: object, lo: int) -> int:
+    """Return ``value`` as int (an integral float is accepted) or raise a
+    :class:`ParameterError` naming the bound."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ParameterError(name, value, f"an integer >= {lo}")
+    if isinstance(value, float) and (not math.isfinite(value) or value != int(value)):
+        raise ParameterError(name, value, f"an integer >= {lo}")
+    if int(value) < lo:
+        raise ParameterError(name, value, f"an integer >= {lo}")
+    return int(value)
+
+
+@dataclass(frozen=True)
+class Input:
+    """One user input of a command: a row of its schema.
+
+    ``name`` as on the command line without ``--`` (``dest`` is the Python name), ``kind``
+    (``float``, ``int``, ``str``, or ``bool`` for an on/off flag), ``default`` (``None``: derived
+    from other inputs, as ``help`` says), ``unit``, ``help``, and the admissible range where it
+    does not depend on other inputs: ``low``/``high`` (open or closed) for numbers, ``choices``
+    for strings. Ranges that depend on other inputs (a shift against the tooth height, say) are
+    checked by the object the inputs build, with a message naming the range at those values.
+    """
+
+    name: str
+    kind: type
+    default: object
+    help: str
+    unit: str = ""
+    low: float | None = None
+    high: float | None = None
+    low_open: bool = False
+    high_open: bool = False
+    choices: tuple[str, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.kind not in (float, int, str, bool):
+            raise TypeError(f"input {self.name!r}: kind must be float, int, str or bool")
+
+    @property
+    def dest(self) -> str:
+        """The Python name: ``tip-relief`` → ``tip_relief``."""
+        return self.name.replace("-", "_")
+
+    @property
+    def range_text(self) -> str:
+        """The static admissible range, e.g. ``0 < torque <= 100000 N·m`` ('' if none)."""
+        if self.choices:
+            return " / ".join(self.choices)
+        if self.low is None and self.high is None:
+            return ""
+        return describe_range(self.dest, self.low, self.high, self.low_open, self.high_open,
+                              self.unit)
+
+    def check(self, value: object, name: str | None = None) -> object:
+        """``value`` checked against the static range (``None`` passes where the default is
+        derived); raises :class:`ParameterError` naming ``name`` (default: ``dest``)."""
+        name = name or self.dest
+        if value is None and self.default is None:
+            return None
+        if self.kind is bool:
+            if not isinstance(value, bool):
+                raise ParameterError(name, value, "true or false")
+            return value
+        if self.kind is str:
+            if self.choices and value not in self.choices:
+                raise ParameterError(name, value, " / ".join(self.choices))
+            return value
+        if self.kind is int and self.low is not None and self.high is None:
+            return require_int(name, value, int(self.low))
+        x = require_range(name, value, self.low, self.high, self.low_open, self.high_open,
+                          self.unit)
+        return int(x) if self.kind is int else x
+
+
+class InputTable(Mapping[str, Input]):
+    """An ordered, read-only schema of inputs by name, from which a command line, a study
+    file's keys and a cache key are all built."""
+
+    def __init__(self, *groups: Iterable[Input]) -> None:
+        rows = [row for group in groups for row in group]
+        self._rows = {row.name: row for row in rows}
+        if len(self._rows) != len(rows):
+            raise ValueError("two inputs share a name")
+
+    def __getitem__(self, name: str) -> Input:
+        return self._rows[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._rows)
+
+    def __len__(self) -> int:
+        return len(self._rows)
+
+    def defaults(self) -> dict[str, object]:
+        """Every input's default, by name."""
+        return {name: row.default for name, row in self._rows.items()}
+
+    def complete(self, values: Mapping[str, object]) -> dict[str, object]:
+        """``values`` by name with every missing input at its default; an unknown name is a
+        :class:`ParameterError` that lists the known ones."""
+        unknown = [k for k in values if k not in self._rows]
+        if unknown:
+            raise ParameterError(unknown[0], values[unknown[0]], "one of "
+                                 + ", ".join(self._rows), "unknown input")
+        return {**self.defaults(), **values}

@@ -1,0 +1,46 @@
+"""Command line: ``fegear profile``, ``hertz``, ``solve``, ``study``, ``drive`` and ``bench``.
+
+One module per command, each with ``add_parser`` (its options) and ``run`` (the command). User
+errors (bad parameters, unwritable output) print one line ``fegear: error: …`` on stderr and exit
+with code 2, without a traceback. Options are built from the input schemas, and heavy libraries
+are imported by the commands that use them, so ``fegear --help`` answers at once.
+
+TODO walkthrough
+"""
+
+from __future__ import annotations
+
+import logging
+import sys
+
+from ..errors import FegearError
+from . import bench, drive, hertz, profile, solve, study
+from .args import EXIT_USAGE, Parser
+
+#: the commands in the order of ``fegear --help``
+COMMANDS = {"profile": profile, "hertz": hertz, "solve": solve, "study": study, "drive": drive,
+            "bench": bench}
+
+
+def build_parser() -> Parser:
+    parser = Parser(prog="fegear", description=__doc__.splitlines()[0])
+    parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
+    for module in COMMANDS.values():
+        module.add_parser(sub)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Run ``fegear`` with ``argv`` (default: the process's arguments); the exit code."""
+    a = build_parser().parse_args(argv)
+    logging.basicConfig(level=logging.INFO if a.verbose else logging.WARNING,
+                        format="%(levelname)s %(name)s: %(message)s")
+    try:
+        return COMMANDS[a.command].run(a)
+    except FegearError as exc:
+        print(f"fegear: error: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+
+
+__all__ = ["main", "build_parser", "COMMANDS", "EXIT_USAGE"]

@@ -1,0 +1,58 @@
+"""``fegear study``: a parameter study from a TOML file, on a local pool or a Dask cluster."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..checks import require_range
+from ..errors import FegearError
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("study", help="run a parameter study (TOML file): table and plots")
+    p.add_argument("file", help="study file (TOML), e.g. studies/paper_trends.toml")
+    p.add_argument("--workers", type=int, default=None,
+                   help="local worker processes (default: all cores)")
+    p.add_argument("--scheduler", default=None,
+                   help="run on this Dask distributed scheduler (e.g. tcp://host:8786) "
+                        "instead of the local pool")
+    p.add_argument("--out", default=None, help="output directory (default out/study/NAME)")
+    p.add_argument("--retry-failed", action="store_true",
+                   help="run the cases that failed before again (default: keep their record)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+def run(a: argparse.Namespace) -> int:
+    import os
+
+    from ..study import StudyInterrupted, load_study, run_study
+
+    if a.workers is not None:
+        if a.scheduler:
+            raise FegearError("--workers sets the local pool; with --scheduler the cluster's "
+                              "workers run the cases (leave --workers out)")
+        require_range("workers", a.workers, 1, 4 * (os.cpu_count() or 1))
+    study = load_study(a.file)
+    out = a.out or f"out/study/{study.name}"
+
+    def started(found: int, todo: int) -> None:
+        varied = f", varying {', '.join(study.varied)}" if study.varied else ""
+        print(f"{study.name}: {len(study.cases)} cases{varied} ({found} finished before, "
+              f"{todo} to compute); results in {out}", file=sys.stderr, flush=True)
+
+    try:
+        report = run_study(study, out, workers=a.workers, scheduler=a.scheduler,
+                           retry_failed=a.retry_failed, progress=not a.no_progress,
+                           on_start=started)
+    except StudyInterrupted as exc:
+        print(f"fegear: {exc}", file=sys.stderr)
+        return 128 + exc.signum
+    md = report.files.get("md")
+    if md is not None:
+        print(md.read_text(), end="")
+    print(f"\n{report.cases} cases: {report.found} found finished, {report.computed} computed "
+          f"({report.failed} failed) in {report.wall_s:.1f} s")
+    for k, v in report.files.items():
+        print(f"{k:12s} {v}")
+    return 0

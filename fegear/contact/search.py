@@ -1,0 +1,118 @@
+"""Contact search: which master facet lies under a point, where on it, and the slave
+boundary chained end to end.
+
+scikit-fem's ``MeshTri2`` has no element finder, so the closest point on a chain of quadratic
+facets is found here: the nearest chord first (a k-d tree over chord pieces), then Newton on
+the quadratic facet curve.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+from ..fe import Body, facet_nodes
+from .model import ContactError
+
+LOCATE_CANDIDATES = 16  # chord pieces tried per point first (then 8×, 64×, … up to all)
+
+
+def nearest_chords(a: np.ndarray, ab: np.ndarray, y: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Per point y (n, 2): the chord a + t·ab (t ∈ [0, 1]) nearest to it and the unclipped
+    t of its foot.
+
+    Chords longer than the mean are cut into pieces no longer than it, and the nearest chord is
+    searched among the owners of the ``LOCATE_CANDIDATES`` pieces with the nearest midpoints.
+    The result is sure when the farthest of those midpoints is at least the best distance plus
+    half the longest piece away (the foot on the nearest chord lies on some piece, whose
+    midpoint is then no farther); the other points are searched again among eight times as
+    many pieces, up to all of them."""
+    length = np.sqrt(np.sum(ab * ab, axis=1))
+    count = np.ceil(length / max(length.mean(), 1e-300)).astype(np.int64).clip(1)
+    owner = np.repeat(np.arange(len(a)), count)
+    within = np.arange(len(owner)) - np.repeat(np.cumsum(count) - count, count)
+    mid = a[owner] + ((within + 0.5) / count[owner])[:, None] * ab[owner]
+    half = 0.5 * np.max(length / count)
+    tree = cKDTree(mid)
+    best = np.empty(len(y), dtype=np.int64)
+    todo, k = np.arange(len(y)), LOCATE_CANDIDATES
+    while len(todo):
+        k = min(k, len(owner))
+        reach, cand = tree.query(y[todo], k=k)
+        reach, cand = reach.reshape(len(todo), k), cand.reshape(len(todo), k)
+        best[todo], dist = _nearest_chord(a, ab, y[todo], owner[cand])
+        if k == len(owner):
+            break
+        todo, k = todo[reach[:, -1] < dist + half], 8 * k
+    t = np.einsum("qd,qd->q", y - a[best], ab[best]) / np.sum(ab[best] ** 2, axis=1)
+    return best, t
+
+
+def _nearest_chord(a: np.ndarray, ab: np.ndarray, y: np.ndarray,
+                   cand: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per point y_q, the chord (a + t·ab, t ∈ [0, 1]) among its candidates ``cand[q]``
+    nearest to it, and the distance."""
+    t = np.einsum("qcd,qcd->qc", y[:, None, :] - a[cand], ab[cand]) / np.sum(ab[cand] ** 2,
+                                                                           axis=2)
+    near = a[cand] + np.clip(t, 0, 1)[..., None] * ab[cand]
+    d2 = np.sum((near - y[:, None, :]) ** 2, axis=2)
+    j = np.argmin(d2, axis=1)
+    rows = np.arange(len(y))
+    return cand[rows, j], np.sqrt(d2[rows, j])
+
+
+def p2_edge_shape(s: np.ndarray) -> np.ndarray:
+    """Quadratic shape functions on a facet, s ∈ [0, 1]: (n, 3) for corner 0, corner 1, mid."""
+    s = np.asarray(s, dtype=float)
+    return np.column_stack([(1 - s) * (1 - 2 * s), s * (2 * s - 1), 4 * s * (1 - s)])
+
+
+def _p2_edge_dshape(s: np.ndarray) -> np.ndarray:
+    return np.column_stack([4 * s - 3, 4 * s - 1, 4 - 8 * s])
+
+
+def facet_curve(body: Body, facets: np.ndarray, s: np.ndarray):
+    """Points, tangents (d/ds) and nodes of quadratic facets at local coordinates s."""
+    nodes = facet_nodes(body.mesh, facets)
+    X = body.mesh.doflocs.T[nodes]  # (n, 3, 2)
+    return (np.einsum("nk,nkd->nd", p2_edge_shape(s), X),
+            np.einsum("nk,nkd->nd", _p2_edge_dshape(s), X), nodes)
+
+
+def locate_on_facets(body: Body, facets: np.ndarray,
+                     y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Facet (from ``facets``) and local coordinate under each point y; s outside [0, 1] means
+    the point is not covered by these facets."""
+    nodes = facet_nodes(body.mesh, facets)
+    a = body.mesh.doflocs.T[nodes[:, 0]]
+    best, s = nearest_chords(a, body.mesh.doflocs.T[nodes[:, 1]] - a, np.asarray(y, float))
+    f = facets[best]
+    for _ in range(4):  # Newton on the quadratic facet curve
+        xs, dx, _ = facet_curve(body, f, s)
+        d2 = np.einsum("k,nkd->nd", np.array([4.0, 4.0, -8.0]),
+                       body.mesh.doflocs.T[facet_nodes(body.mesh, f)])
+        r = xs - y
+        s = s - np.sum(r * dx, axis=1) / (np.sum(dx * dx, axis=1) + np.sum(r * d2, axis=1))
+    return f, s
+
+
+def ordered_boundary(body: Body, name: str) -> tuple[np.ndarray, np.ndarray]:
+    """Facets of a boundary chained end to end (so that arc length is meaningful), and whether
+    each runs against the chain (its second corner comes first)."""
+    facets = np.asarray(body.mesh.boundaries[name])
+    ends = body.mesh.facets[:, facets].T
+    count = np.bincount(ends.ravel(), minlength=body.mesh.nvertices)
+    start = [n for n in ends.ravel() if count[n] == 1]
+    node = start[0] if start else ends[0, 0]
+    order, flipped, used = [], [], np.zeros(len(facets), bool)
+    for _ in range(len(facets)):
+        hit = np.flatnonzero(~used & ((ends[:, 0] == node) | (ends[:, 1] == node)))
+        if len(hit) == 0:
+            raise ContactError(f"boundary {name!r} of {body.name!r} is not one connected curve")
+        i = hit[0]
+        used[i] = True
+        order.append(i)
+        flipped.append(bool(ends[i, 0] != node))
+        node = ends[i, 1] if ends[i, 0] == node else ends[i, 0]
+    return facets[np.array(order)], np.array(flipped)

@@ -1,0 +1,75 @@
+"""Materials of plane bodies: elastic constants, the plane assumption, and the moduli that
+Hertz theory and the contact penalty use.
+
+scikit-fem 12.0.2's ``plane_stress(E, nu)`` returns the plane-stress Lamé pair (λ*, μ) to feed
+``linear_elasticity`` directly; the older idiom ``lame_parameters(*plane_stress(E, nu))``
+silently gives λ < 0 (docs/model.md, "Library notes"). Units MPa, mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..checks import Input
+from ..errors import ParameterError
+
+
+def plane_modulus(E: float, nu: float, plane: str) -> float:
+    """E' = E in plane stress, E/(1 − ν²) in plane strain (MPa)."""
+    if plane not in ("stress", "strain"):
+        raise ParameterError("plane", plane, "'stress' or 'strain'")
+    return E if plane == "stress" else E / (1.0 - nu * nu)
+
+
+def contact_modulus(E1_plane: float, E2_plane: float) -> float:
+    """E* = 1 / (1/E1' + 1/E2') from the two plane moduli (MPa)."""
+    return 1.0 / (1.0 / E1_plane + 1.0 / E2_plane)
+
+
+PLANE_MODES = ("stress", "strain")
+
+#: one isotropic material, and the thickness (face width) of a plane body
+MATERIAL_INPUTS = (
+    Input("thickness", float, 5.0, "thickness (face width) of the plane bodies", "mm",
+          low=0.0, high=1e4, low_open=True),
+    Input("E", float, 206000.0, "Young's modulus", "MPa", low=0.0, high=1e7,
+          low_open=True),  # diamond: 1.2e6
+    Input("nu", float, 0.29, "Poisson ratio", low=0.0, high=0.5, high_open=True),
+)
+_ROW = {row.name: row for row in MATERIAL_INPUTS}
+
+
+@dataclass(frozen=True)
+class Material:
+    """Isotropic linear-elastic plane body: Young's modulus ``E`` (MPa), Poisson ratio ``nu``,
+    ``thickness`` (mm) and the plane assumption: ``"stress"`` (σzz = 0, thin gear) or
+    ``"strain"`` (εzz = 0)."""
+
+    E: float = 206000.0
+    nu: float = 0.29
+    thickness: float = 5.0
+    plane: str = "stress"
+
+    def __post_init__(self) -> None:
+        for name in ("E", "nu", "thickness"):
+            _ROW[name].check(getattr(self, name))
+        if self.plane not in PLANE_MODES:
+            raise ParameterError("plane", self.plane, "'stress' or 'strain'")
+
+    @property
+    def lame(self) -> tuple[float, float]:
+        """In-plane Lamé parameters (λ, μ) of the chosen plane assumption, MPa."""
+        from skfem.models.elasticity import lame_parameters, plane_stress
+
+        if self.plane == "stress":
+            return plane_stress(self.E, self.nu)
+        return lame_parameters(self.E, self.nu)
+
+    @property
+    def plane_modulus(self) -> float:
+        """E' of Hertz theory: E in plane stress, E/(1 − ν²) in plane strain (MPa)."""
+        return plane_modulus(self.E, self.nu, self.plane)
+
+    @property
+    def shear_modulus(self) -> float:
+        return self.E / (2.0 * (1.0 + self.nu))

@@ -1,0 +1,357 @@
+"""Meshing: second-order triangle meshes of plane bodies with named boundary parts.
+
+The only module that imports gmsh. A body is a closed outer loop (plus optional hole loops) of
+named :class:`Segment` s; each segment is a dense polyline along an exact curve and may carry a
+``project`` callable that maps points onto that curve, so that every boundary node, midside
+nodes included, is snapped onto the exact geometry after meshing. Local refinement is a gmsh
+Distance + Threshold field per refined segment, combined by Min as the background size.
+
+The quadratic mesh is built into :class:`skfem.MeshTri2` here, corner nodes first, with the
+boundary facets taken from the first two nodes of each ``line3`` (``from_meshio`` would drop the
+named boundaries, docs/model.md, "Library notes"). Coordinates are mm.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+from skfem import MeshTri2
+
+from ..errors import FegearError
+
+log = logging.getLogger(__name__)
+
+_TRIANGLE6 = 9
+_LINE3 = 8
+
+
+class MeshError(FegearError):
+    """A body could not be meshed, or its mesh failed the quality check."""
+
+
+@dataclass(frozen=True)
+class Segment:
+    """A named piece of boundary.
+
+    ``points`` is an (n, 2) polyline in mm, ordered along the loop (outer loops counter-clockwise,
+    holes clockwise are both accepted: gmsh orients them). Two points make a straight line; more
+    make a spline through them. ``project`` maps an (k, 2) array of points onto the exact curve.
+    ``zone`` is an extra name a :class:`Refinement` can refer to (the boundary keeps ``name``).
+    """
+
+    name: str
+    points: np.ndarray
+    project: Callable[[np.ndarray], np.ndarray] | None = None
+    zone: str | None = None
+
+    def __post_init__(self) -> None:
+        pts = np.asarray(self.points, dtype=float)
+        if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2 or not np.all(np.isfinite(pts)):
+            raise MeshError(f"segment {self.name!r}: points must be a finite (n>=2, 2) array")
+        object.__setattr__(self, "points", pts)
+
+    @classmethod
+    def from_curve(cls, name: str, curve: Callable[[np.ndarray], np.ndarray], t0: float,
+                   t1: float, samples: int = 64,
+                   project: Callable[[np.ndarray], np.ndarray] | None = None) -> Segment:
+        """Sample an exact parametric curve ``curve(t) -> (n, 2)`` on [t0, t1]."""
+        return cls(name, curve(np.linspace(t0, t1, max(int(samples), 2))), project)
+
+
+@dataclass(frozen=True)
+class Refinement:
+    """Element size ``size`` (mm) on the segments named (or zoned) ``segments``, growing by
+    ``growth`` mm per mm away."""
+
+    segments: tuple[str, ...]
+    size: float
+    growth: float = 0.25
+
+
+@dataclass(frozen=True)
+class BodyGeometry:
+    """A plane body: outer loop, holes, global element size ``size`` (mm) and refinements."""
+
+    name: str
+    outer: tuple[Segment, ...]
+    size: float
+    holes: tuple[tuple[Segment, ...], ...] = ()
+    refinements: tuple[Refinement, ...] = ()
+    min_quality: float = 0.15
+
+    def segments(self) -> Iterator[Segment]:
+        yield from self.outer
+        for hole in self.holes:
+            yield from hole
+
+
+@dataclass(frozen=True)
+class MeshQuality:
+    """Quality of a quadratic triangle mesh.
+
+    ``min_shape``: smallest 4√3·A/Σl² of the corner triangles (1 = equilateral).
+    ``min_jacobian_ratio``: smallest min/max of the quadratic map's Jacobian determinant over
+    each element's nodes (≤ 0 means inverted).
+    """
+
+    elements: int
+    nodes: int
+    min_shape: float
+    min_jacobian_ratio: float
+    h_min: float
+    h_max: float
+
+
+@dataclass(frozen=True)
+class BodyMesh:
+    """A meshed body: the scikit-fem mesh (with ``mesh.boundaries`` by segment name)."""
+
+    name: str
+    mesh: MeshTri2
+    quality: MeshQuality
+
+
+@contextlib.contextmanager
+def gmsh_session() -> Iterator[object]:
+    """Initialise gmsh quietly and always finalise it, whatever happens inside."""
+    import gmsh
+
+    gmsh.initialize(readConfigFiles=False, interruptible=False)
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.option.setNumber("General.Verbosity", 1)
+        yield gmsh
+    finally:
+        gmsh.finalize()
+
+
+def mesh_bodies(bodies: Sequence[BodyGeometry]) -> tuple[BodyMesh, ...]:
+    """Mesh each body with second-order triangles and check the quality of every mesh."""
+    with gmsh_session() as gmsh:
+        return tuple(_mesh_one(gmsh, body) for body in bodies)
+
+
+def _loop(gmsh, segments: Sequence[Segment], tags: dict[str, list[int]],
+          zones: dict[str, list[int]], start_pts: dict) -> int:
+    geo = gmsh.model.geo
+    curves = []
+    n = len(segments)
+    for k, seg in enumerate(segments):
+        ends = (seg.points[0], seg.points[-1])
+        nxt = segments[(k + 1) % n].points[0]
+        if np.linalg.norm(ends[1] - nxt) > 1e-9 * (1 + np.abs(nxt).max()):
+            raise MeshError(f"segment {seg.name!r} does not end where the next segment starts")
+        pt = [_point(geo, p, start_pts) for p in ends]
+        inner = [geo.addPoint(x, y, 0.0) for x, y in seg.points[1:-1]]
+        if inner:
+            c = geo.addSpline([pt[0], *inner, pt[1]])
+        else:
+            c = geo.addLine(pt[0], pt[1])
+        curves.append(c)
+        tags.setdefault(seg.name, []).append(c)
+        if seg.zone is not None:
+            zones.setdefault(seg.zone, []).append(c)
+    return geo.addCurveLoop(curves)
+
+
+def _point(geo, p: np.ndarray, known: dict) -> int:
+    key = (round(float(p[0]), 9), round(float(p[1]), 9))
+    if key not in known:
+        known[key] = geo.addPoint(float(p[0]), float(p[1]), 0.0)
+    return known[key]
+
+
+def _mesh_one(gmsh, body: BodyGeometry) -> BodyMesh:
+    if not (np.isfinite(body.size) and body.size > 0):
+        raise MeshError(f"body {body.name!r}: global element size must be > 0")
+    gmsh.model.add(body.name)
+    geo = gmsh.model.geo
+    curve_tags: dict[str, list[int]] = {}
+    zone_tags: dict[str, list[int]] = {}
+    corner_pts: dict = {}
+    loops = [_loop(gmsh, body.outer, curve_tags, zone_tags, corner_pts)]
+    loops += [_loop(gmsh, hole, curve_tags, zone_tags, corner_pts) for hole in body.holes]
+    surface = geo.addPlaneSurface(loops)
+    geo.synchronize()
+
+    fields = []
+    known = {**curve_tags, **zone_tags}
+    for ref in body.refinements:
+        missing = [s for s in ref.segments if s not in known]
+        if missing or not (ref.size > 0 and ref.growth > 0):
+            raise MeshError(f"body {body.name!r}: bad refinement {ref} (unknown {missing})")
+        tags = sorted({t for s in ref.segments for t in known[s]})
+        length = sum(_polyline_length(seg.points) for seg in body.segments()
+                     if seg.name in ref.segments or seg.zone in ref.segments)
+        dist = gmsh.model.mesh.field.add("Distance")
+        gmsh.model.mesh.field.setNumbers(dist, "CurvesList", tags)
+        gmsh.model.mesh.field.setNumber(dist, "Sampling", int(min(2e4, 4 * length / ref.size + 20)))
+        thr = gmsh.model.mesh.field.add("Threshold")
+        gmsh.model.mesh.field.setNumber(thr, "InField", dist)
+        gmsh.model.mesh.field.setNumber(thr, "SizeMin", ref.size)
+        gmsh.model.mesh.field.setNumber(thr, "SizeMax", body.size)
+        gmsh.model.mesh.field.setNumber(thr, "DistMin", 0.5 * ref.size)
+        gmsh.model.mesh.field.setNumber(thr, "DistMax",
+                                        0.5 * ref.size + (body.size - ref.size) / ref.growth)
+        fields.append(thr)
+    if fields:
+        fmin = gmsh.model.mesh.field.add("Min")
+        gmsh.model.mesh.field.setNumbers(fmin, "FieldsList", fields)
+        gmsh.model.mesh.field.setAsBackgroundMesh(fmin)
+    opt = gmsh.option.setNumber
+    opt("Mesh.MeshSizeExtendFromBoundary", 0)
+    opt("Mesh.MeshSizeFromPoints", 0)
+    opt("Mesh.MeshSizeFromCurvature", 0)
+    opt("Mesh.MeshSizeMax", body.size)
+    opt("Mesh.Algorithm", 6)
+    opt("Mesh.ElementOrder", 2)
+    opt("Mesh.SecondOrderLinear", 0)
+    try:
+        gmsh.model.mesh.generate(2)
+    except Exception as exc:  # gmsh raises plain Exception with its log message
+        raise MeshError(f"body {body.name!r}: gmsh failed: {exc}") from None
+
+    node_tags, coords, _ = gmsh.model.mesh.getNodes()
+    xy = np.asarray(coords).reshape(-1, 3)[:, :2]
+    index = np.full(int(node_tags.max()) + 1, -1, dtype=np.int64)
+    index[node_tags] = np.arange(len(node_tags))
+    etypes, _, enodes = gmsh.model.mesh.getElements(2, surface)
+    if list(etypes) != [_TRIANGLE6]:
+        raise MeshError(f"body {body.name!r}: gmsh returned element types {list(etypes)}")
+    tri = index[np.asarray(enodes[0]).reshape(-1, 6)]
+
+    lines: dict[str, np.ndarray] = {}
+    for name, tags in curve_tags.items():
+        rows = []
+        for tag in tags:
+            ltypes, _, lnodes = gmsh.model.mesh.getElements(1, tag)
+            rows.append(index[np.asarray(lnodes[0]).reshape(-1, 3)])
+        lines[name] = np.vstack(rows)
+    gmsh.model.remove()
+    return _build(body, xy, tri, lines)
+
+
+def _polyline_length(points: np.ndarray) -> float:
+    return float(np.sum(np.linalg.norm(np.diff(points, axis=0), axis=1)))
+
+
+def _build(body: BodyGeometry, xy: np.ndarray, tri: np.ndarray,
+           lines: dict[str, np.ndarray]) -> BodyMesh:
+    """Snap boundary nodes onto exact curves, orient elements, build MeshTri2 with boundaries."""
+    xy = xy.copy()
+    segs = {s.name: s for s in body.segments()}
+    for name, l3 in lines.items():
+        if segs[name].project is not None:
+            nodes = np.unique(l3)
+            xy[nodes] = segs[name].project(xy[nodes])
+
+    used = np.unique(tri)
+    renum = np.full(len(xy), -1, dtype=np.int64)
+    renum[used] = np.arange(len(used))
+    xy, tri = xy[used], renum[tri]
+    lines = {k: renum[v] for k, v in lines.items()}
+
+    # counter-clockwise corners (gmsh's are, but the snapped geometry decides)
+    a = _corner_areas(xy, tri)
+    flip = a < 0
+    tri[flip] = tri[flip][:, [0, 2, 1, 5, 4, 3]]
+
+    mesh = MeshTri2(xy.T.copy(), tri.T.copy())
+    # MeshTri2 renumbers corners first, preserving their relative order
+    corners = np.unique(tri[:, :3])
+    new_of_old = np.full(len(xy), -1, dtype=np.int64)
+    new_of_old[corners] = np.arange(len(corners))
+    facet_of = {tuple(f): i for i, f in enumerate(np.sort(mesh.facets, axis=0).T)}
+    boundaries = {}
+    for name, l3 in lines.items():
+        ends = np.sort(new_of_old[l3[:, :2]], axis=1)
+        try:
+            boundaries[name] = np.array([facet_of[tuple(e)] for e in ends], dtype=np.int64)
+        except KeyError:
+            raise MeshError(f"body {body.name!r}: boundary {name!r} lost its facets") from None
+    mesh = mesh.with_boundaries(boundaries)
+    quality = mesh_quality(mesh)
+    if quality.min_jacobian_ratio <= 0.0:
+        raise MeshError(f"body {body.name!r}: inverted element "
+                        f"(Jacobian ratio {quality.min_jacobian_ratio:.3g})")
+    if quality.min_shape < body.min_quality:
+        raise MeshError(f"body {body.name!r}: badly shaped element (quality "
+                        f"{quality.min_shape:.3f} < {body.min_quality})")
+    log.debug("meshed %s: %s", body.name, quality)
+    return BodyMesh(body.name, mesh, quality)
+
+
+def jiggle(body: BodyMesh, fraction: float, seed: int = 0) -> BodyMesh:
+    """The same mesh with every interior corner node moved by ``fraction`` of its shortest
+    edge, each in a random direction; boundary nodes stay on the exact curves and interior
+    edges stay straight (their midside nodes follow). For mesh-sensitivity checks."""
+    mesh = body.mesh
+    rng = np.random.default_rng(seed)
+    x = mesh.doflocs.T.copy()
+    t, mid = mesh.t.T, mesh.dofs.element_dofs.T[:, 3:]  # edges 01, 12, 02 (as mesh.t2f)
+    ends = ((0, 1), (1, 2), (0, 2))
+    length = np.full(len(x), np.inf)
+    for a, b in ends:
+        d = np.linalg.norm(x[t[:, a]] - x[t[:, b]], axis=1)
+        np.minimum.at(length, t[:, a], d)
+        np.minimum.at(length, t[:, b], d)
+    on_boundary = np.zeros(mesh.facets.shape[1], dtype=bool)
+    on_boundary[mesh.boundary_facets()] = True
+    moving = np.setdiff1d(np.unique(t), mesh.facets[:, on_boundary])
+    angle = rng.uniform(0.0, 2 * np.pi, len(moving))
+    x[moving] += fraction * length[moving, None] * np.column_stack([np.cos(angle),
+                                                                    np.sin(angle)])
+    for k, (a, b) in enumerate(ends):
+        inner = ~on_boundary[mesh.t2f[k]]
+        x[mid[inner, k]] = 0.5 * (x[t[inner, a]] + x[t[inner, b]])
+    moved = replace(mesh, doflocs=x.T.copy())
+    quality = mesh_quality(moved)
+    if quality.min_jacobian_ratio <= 0.0:
+        raise MeshError(f"body {body.name!r}: jiggling by {fraction:g} inverted an element")
+    return BodyMesh(body.name, moved, quality)
+
+
+def _corner_areas(xy: np.ndarray, tri: np.ndarray) -> np.ndarray:
+    p0, p1, p2 = xy[tri[:, 0]], xy[tri[:, 1]], xy[tri[:, 2]]
+    d1, d2 = p1 - p0, p2 - p0
+    return 0.5 * (d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
+
+
+def mesh_quality(mesh: MeshTri2) -> MeshQuality:
+    """Shape and Jacobian quality of every element of a quadratic triangle mesh."""
+    p = mesh.p.T
+    t = mesh.t.T
+    e = np.stack([p[t[:, 1]] - p[t[:, 0]], p[t[:, 2]] - p[t[:, 1]], p[t[:, 0]] - p[t[:, 2]]])
+    lsq = np.sum(e**2, axis=2)
+    area = _corner_areas(p, t)
+    shape = 4.0 * np.sqrt(3.0) * area / lsq.sum(axis=0)
+    # Jacobian determinant of the quadratic map at the 6 nodes and the centroid
+    x = mesh.doflocs[:, mesh.dofs.element_dofs]  # (2, 6, nelem): corners, then edges 01, 12, 02
+    ref = np.array([[0, 0], [1, 0], [0, 1], [0.5, 0], [0.5, 0.5], [0, 0.5], [1 / 3, 1 / 3]])
+    dets = []
+    for xi, eta in ref:
+        dn = _p2_grad(xi, eta)  # (6, 2)
+        jac = np.einsum("din,ij->ndj", x, dn)
+        dets.append(jac[:, 0, 0] * jac[:, 1, 1] - jac[:, 0, 1] * jac[:, 1, 0])
+    dets = np.array(dets)
+    ratio = dets.min(axis=0) / np.abs(dets).max(axis=0)
+    h = np.sqrt(lsq)
+    return MeshQuality(mesh.t.shape[1], mesh.doflocs.shape[1], float(shape.min()),
+                       float(ratio.min()), float(h.min()), float(h.max()))
+
+
+def _p2_grad(xi: float, eta: float) -> np.ndarray:
+    """Gradients of the P2 shape functions, ordered corners 0,1,2 then edges 01, 12, 02."""
+    l0 = 1.0 - xi - eta
+    return np.array([
+        [-(4 * l0 - 1), -(4 * l0 - 1)],
+        [4 * xi - 1, 0.0],
+        [0.0, 4 * eta - 1],
+        [4 * (l0 - xi), -4 * xi],
+        [4 * eta, 4 * xi],
+        [-4 * eta, 4 * (l0 - eta)],
+    ])

@@ -1,0 +1,80 @@
+"""Writing results: atomic files (nothing half-written is ever left behind), CSV, JSON."""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from collections.abc import Callable, Iterable, Sequence
+from pathlib import Path
+
+import numpy as np
+
+from .errors import FegearError
+
+
+class OutputError(FegearError):
+    """An output path cannot be created or written."""
+
+
+def prepare_dir(path: str | os.PathLike) -> Path:
+    """Create ``path`` (and parents) and check it is writable; raise :class:`OutputError`."""
+    out = Path(path)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise OutputError(f"--out {str(out)!r} cannot be created: {exc.strerror}") from None
+    if not os.access(out, os.W_OK | os.X_OK):
+        raise OutputError(f"--out {str(out)!r} is not writable")
+    return out
+
+
+def write_atomic(path: Path, writer: Callable[[Path], None]) -> Path:
+    """Call ``writer(tmp)`` on a temporary file beside ``path``, then rename it into place
+    with the permissions an ordinary file gets (the temporary file is private: 0600)."""
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix, dir=path.parent)
+    os.close(fd)
+    try:
+        writer(Path(tmp))
+        os.chmod(tmp, 0o666 & ~_umask())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+def _umask() -> int:
+    mask = os.umask(0o022)  # reading the mask means setting it: put it back at once
+    os.umask(mask)
+    return mask
+
+
+def write_points_csv(path: Path, points: np.ndarray) -> Path:
+    """Write an (n, 2) point array as CSV with header ``x_mm,y_mm`` (full float precision)."""
+
+    def w(tmp: Path) -> None:
+        np.savetxt(tmp, points, delimiter=",", header="x_mm,y_mm", comments="", fmt="%.17g")
+
+    return write_atomic(path, w)
+
+
+def write_csv(path: Path, header: Sequence[str], rows: Iterable[Sequence]) -> Path:
+    """Write a table as CSV: floats at full precision (``repr``), anything else as ``str``."""
+
+    def cell(v) -> str:
+        return repr(float(v)) if isinstance(v, (float, np.floating)) else str(v)
+
+    def w(tmp: Path) -> None:
+        lines = [",".join(header)] + [",".join(cell(v) for v in row) for row in rows]
+        tmp.write_text("\n".join(lines) + "\n")
+
+    return write_atomic(path, w)
+
+
+def write_json(path: Path, data: dict) -> Path:
+    def w(tmp: Path) -> None:
+        tmp.write_text(json.dumps(data, indent=2, allow_nan=False) + "\n")
+
+    return write_atomic(path, w)

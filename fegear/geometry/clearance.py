@@ -1,0 +1,428 @@
+"""Unloaded tooth contact analysis: rotational clearance of every gear-1 tooth.
+
+Frame (used everywhere in fegear): gear-2 centre at the origin, gear-1 centre ``O1 = (0, e)``,
+the pitch point on +y. At rolling angle β gear 2 is turned by β and gear 1 by ``α = z2/z1 β``
+(both counter-clockwise); at β = 0 gear 2's point ξ = 0 lies on +x and gear 1 is in its
+generating orientation. The pair is assembled at the nominal centre distance ``e`` with the
+nominal gear 2.
+
+Clearance of gear-1 tooth j in direction ``+`` (gear 1 turning counter-clockwise about O1): the
+extra rigid rotation of gear 1 that makes that tooth touch gear 2. A gear-1 point at radius ρ
+about O1 moves on the circle of radius ρ, so its rotation to contact is the angle to the next
+crossing of gear 2's boundary with that circle. Crossings are computed exactly: gear 2's
+distance from O1 is split into monotone stretches (exact extrema) and inverted by Newton's
+method. The minimum over the tooth's leading flank is refined by golden-section search on the
+exact geometry. Negative clearance: the tooth interferes (the rotation needed to clear it).
+
+Clearances are reported as µm of arc at the pitch radius r0 (``δ r0``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from ..errors import GeometryError
+from ..planar import rotate as _rotate
+from ..planar import wrap
+from .gear1 import Gear1Profile
+from .gear2 import Cycloid, gear2_curve
+from .parameters import PairParameters
+
+POINTS_PER_FLANK = 160
+GEAR2_SAMPLES_PER_TOOTH = 48
+GOLDEN = (np.sqrt(5.0) - 1.0) / 2.0
+ANGLE_TOL = 1e-12  # rad: a crossing this close counts as the point itself
+
+
+@dataclass(frozen=True)
+class ToothClearance:
+    """Clearance of one gear-1 tooth at one rolling angle.
+
+    Attributes:
+        tooth: gear-1 tooth index (tooth j is centred at ``tooth_center + j 2π/z1`` in gear 1's
+            own frame).
+        position_deg: angle of the tooth centre from the pitch line (+y) about O1 [deg], counter-
+            clockwise positive, at this rolling angle.
+        plus_um, minus_um: rotation of gear 1 that closes this tooth's clearance, counter-
+            clockwise (+) and clockwise (−), as µm of arc at r0; negative if it interferes;
+            ``None`` if no contact is possible within one pitch of rotation.
+        plus_point, minus_point: the gear-1 point that closes the clearance, where it is at this
+            rolling angle (fixed frame, mm; the rotation moves it on), or ``None``.
+    """
+
+    tooth: int
+    position_deg: float
+    plus_um: float | None
+    minus_um: float | None
+    plus_point: tuple[float, float] | None
+    minus_point: tuple[float, float] | None
+
+
+@dataclass(frozen=True)
+class Interference:
+    """Overlap of a gear-1 tooth with the nominal gear 2 at zero rotation.
+
+    Attributes:
+        tooth: gear-1 tooth index.
+        depth_um: largest normal penetration depth [µm].
+        point: deepest gear-1 point (fixed frame, mm).
+    """
+
+    tooth: int
+    depth_um: float
+    point: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class ContactState:
+    """Unloaded contact state at one rolling angle β [rad]."""
+
+    beta: float
+    teeth: tuple[ToothClearance, ...]
+    interference: tuple[Interference, ...]
+
+    def closest(self, direction: int) -> ToothClearance:
+        """The tooth with the smallest clearance in ``direction`` (+1 or -1)."""
+        key = "plus_um" if direction > 0 else "minus_um"
+        finite = [t for t in self.teeth if getattr(t, key) is not None]
+        if not finite:  # e.g. m 1.5, z 10/8, h1 0.01, f1 0 (a random case of the tests)
+            raise GeometryError(f"no tooth can touch turning {'+' if direction > 0 else '−'} "
+                                f"at β = {math.degrees(self.beta):.4g}°: the pair does not mesh")
+        return min(finite, key=lambda t: getattr(t, key))
+
+
+@dataclass(frozen=True)
+class Backlash:
+    """Smallest clearance over one mesh cycle, per direction [µm of arc at r0].
+
+    ``beta_plus``/``beta_minus`` are the rolling angles where the minimum occurs.
+    """
+
+    plus_um: float
+    minus_um: float
+    beta_plus: float
+    beta_minus: float
+
+
+class ToothContact:
+    """Unloaded TCA of an assembled pair (gear 1 from ``profile``, nominal gear 2)."""
+
+    def __init__(self, params: PairParameters, profile: Gear1Profile | None = None) -> None:
+        self.params = params
+        self.gear1 = profile if profile is not None else Gear1Profile(params)
+        self.gear2: Cycloid = gear2_curve(params)
+        self.k = params.ratio
+        self._seg_cache = None
+
+    # --- gear-1 tooth flanks (body frame, tooth 0) -----------------------------------------
+    @cached_property
+    def _flanks(self) -> dict[int, tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """Leading boundary of tooth 0 for each direction: (piece ids, params, points).
+
+        ``+``: from the tip peak down to the next tooth-space centre; ``−``: from the previous
+        tooth-space centre up to the tip peak. Samples are spaced evenly in each piece's
+        parameter and include the exact junctions.
+        """
+        g = self.gear1
+        ids, pars = [], []
+        for i, pc in enumerate(g.pieces):
+            n = max(8, int(POINTS_PER_FLANK * (pc.phi1 - pc.phi0) / (0.5 * g.pitch)))
+            t = np.linspace(pc.xi0, pc.xi1, n)
+            ids.append(np.full(n, i))
+            pars.append(t)
+        ids, pars = np.concatenate(ids), np.concatenate(pars)
+        pts = self._points(ids, pars)
+        phi = g.phi_space + wrap(np.arctan2(pts[:, 1], pts[:, 0]) - g.phi_space)
+        phi = np.where(phi < g.phi_space, phi + 2 * np.pi, phi)
+        rho = np.hypot(pts[:, 0], pts[:, 1])
+        peak = phi[np.argmax(rho)]
+        out = {}
+        for direction, sel in ((+1, phi >= peak), (-1, phi <= peak)):
+            out[direction] = (ids[sel], pars[sel], pts[sel])
+        return out
+
+    def _points(self, ids: np.ndarray, pars: np.ndarray) -> np.ndarray:
+        """Exact gear-1 points (tooth 0, body frame) of pieces ``ids`` at parameters ``pars``."""
+        g = self.gear1
+        out = np.empty((len(ids), 2))
+        for i in np.unique(ids):
+            pc = g.pieces[i]
+            sel = ids == i
+            q = g.branches[pc.run.branch].evaluate(pars[sel]).q
+            out[sel] = _rotate(q, pc.turn * g.pitch)
+        return out
+
+    # --- gear-2 crossings with circles about O1 ---------------------------------------------
+    def _gear2_segments(self, beta: float):
+        """Monotone stretches of d(ξ) = |P(ξ) − O1'| on the whole gear-2 curve (gear-2 frame).
+
+        Cached per rolling angle (the last one), as every tooth and refinement step reuses it.
+        """
+        if self._seg_cache is not None and self._seg_cache[0] == beta:
+            return self._seg_cache[1]
+        seg = self._compute_segments(beta)
+        self._seg_cache = (beta, seg)
+        return seg
+
+    def _compute_segments(self, beta: float):
+        o1 = _rotate(np.array([[0.0, self.params.e]]), -beta)[0]
+        n = self.params.z2 * GEAR2_SAMPLES_PER_TOOTH
+        xi = np.linspace(0.0, 2 * np.pi, n + 1)
+
+        def dd(x):
+            p, d1 = self.gear2.derivatives(x, 1)
+            r = p - o1
+            return np.einsum("ij,ij->i", r, d1)
+
+        f = dd(xi)
+        idx = np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) < 0)[0]
+        lo, hi = xi[idx], xi[idx + 1]
+        flo = f[idx]
+        for _ in range(60):  # vectorized bisection on d'(ξ) = 0
+            mid = 0.5 * (lo + hi)
+            fm = dd(mid)
+            left = np.sign(fm) == np.sign(flo)
+            lo = np.where(left, mid, lo)
+            flo = np.where(left, fm, flo)
+            hi = np.where(left, hi, mid)
+        ext = 0.5 * (lo + hi)
+        cuts = np.concatenate([ext, [ext[0] + 2 * np.pi]]) if len(ext) else np.array([0, 2 * np.pi])
+        a, b = cuts[:-1], cuts[1:]
+        da = np.hypot(*(self.gear2.point(a) - o1).T)
+        db = np.hypot(*(self.gear2.point(b) - o1).T)
+        return o1, a, b, da, db
+
+    def _crossings(self, beta: float, rho: np.ndarray):
+        """Angles (gear-1 body frame) where gear 2 crosses the circles of radii ``rho`` about O1.
+
+        Returns (angles, valid) of shape (len(rho), n_segments) and the segment data.
+        """
+        o1, a, b, da, db = seg = self._gear2_segments(beta)
+        lo_d, hi_d = np.minimum(da, db), np.maximum(da, db)
+        valid = (rho[:, None] >= lo_d[None, :]) & (rho[:, None] <= hi_d[None, :])
+        qi, si = np.nonzero(valid)
+        xi = self._invert_segment(o1, a[si], b[si], da[si], db[si], rho[qi])
+        p = self.gear2.point(xi) - o1
+        ang = np.full(valid.shape, np.nan)
+        ang[qi, si] = np.arctan2(p[:, 1], p[:, 0]) + beta - self.k * beta
+        return ang, valid, seg
+
+    def _invert_segment(self, o1, a, b, da, db, rho):
+        """ξ in [a, b] with |P(ξ) − O1'| = ρ (d monotone on [a, b]); safeguarded Newton."""
+        lo, hi = a.copy(), b.copy()
+        inc = db > da
+        frac = np.clip((rho - da) / np.where(db != da, db - da, 1.0), 0.0, 1.0)
+        x = a + frac * (b - a)
+        for _ in range(60):
+            p, d1 = self.gear2.derivatives(x, 1)
+            r = p - o1
+            d = np.hypot(r[:, 0], r[:, 1])
+            f = d - rho
+            up = (f > 0) == inc
+            hi = np.where(up, x, hi)
+            lo = np.where(up, lo, x)
+            xn = x - f / (np.einsum("ij,ij->i", r, d1) / d)
+            bad = ~((xn >= lo) & (xn <= hi)) | ~np.isfinite(xn)
+            xn = np.where(bad, 0.5 * (lo + hi), xn)
+            # d is known to ~1e-14 mm (rounding), so |f| <= 1e-13 is converged
+            conv = (np.abs(f) <= 1e-13) | (np.abs(xn - x) <= 1e-16) | (hi - lo <= 1e-16)
+            x = np.where(conv, x, xn)
+            if conv.all():
+                return x
+        return x
+
+    # --- clearance --------------------------------------------------------------------------
+    def inside_gear2(self, x_fixed: np.ndarray, beta: float) -> np.ndarray:
+        """True where fixed-frame points lie strictly inside gear-2 material."""
+        y = _rotate(x_fixed, -beta)
+        theta = np.arctan2(y[:, 1], y[:, 0])
+        return np.hypot(y[:, 0], y[:, 1]) > self.gear2.radius_at_angle(theta)
+
+    def _signed_angles(self, beta, rho, phi_body, ang, valid, direction):
+        """Signed rotation to contact of points (ρ, φ) against crossing angles ``ang``.
+
+        Outside gear 2: the angle to the next crossing ahead in ``direction``; inside: minus
+        the angle back to the nearest crossing behind. Points on the boundary (within
+        ``ANGLE_TOL``) give 0 either way. Returns (value, crossing index) per point.
+        """
+        x_fixed = self._to_fixed(np.stack([rho * np.cos(phi_body), rho * np.sin(phi_body)], -1),
+                                 beta)
+        inside = self.inside_gear2(x_fixed, beta)
+        d = np.where(valid, wrap(direction * (ang - phi_body[:, None])), np.nan)
+        ahead = np.where(d >= -ANGLE_TOL, d, np.inf)
+        behind = np.where(d <= ANGLE_TOL, -d, np.inf)
+        ahead_i = np.argmin(ahead, axis=1)
+        behind_i = np.argmin(behind, axis=1)
+        rows = np.arange(len(rho))
+        val = np.where(inside, -behind[rows, behind_i], ahead[rows, ahead_i])
+        idx = np.where(inside, behind_i, ahead_i)
+        return val, idx
+
+    def _to_fixed(self, q_body: np.ndarray, beta: float) -> np.ndarray:
+        x = _rotate(q_body, self.k * beta)
+        x[:, 1] += self.params.e
+        return x
+
+    def state(self, beta: float = 0.0, teeth=None, refine: bool = True) -> ContactState:
+        """Clearance of gear-1 teeth (default: all) in both directions, and any interference.
+
+        With ``refine=False`` the clearances are the minima over the flank samples (an upper
+        bound within a fraction of a µm), for scans.
+        """
+        g, p = self.gear1, self.params
+        teeth = np.arange(p.z1) if teeth is None else np.asarray(teeth, dtype=int)
+        result = {}
+        for direction in (+1, -1):
+            ids, pars, pts = self._flanks[direction]
+            rho = np.hypot(pts[:, 0], pts[:, 1])
+            phi0 = np.arctan2(pts[:, 1], pts[:, 0])
+            ang, valid, seg = self._crossings(beta, rho)
+            # all teeth at once: (tooth, point)
+            nt = len(teeth)
+            phi = (phi0[None, :] + teeth[:, None] * g.pitch).ravel()
+            rr = np.tile(rho, nt)
+            vals, cross = self._signed_angles(beta, rr, phi, np.tile(ang, (nt, 1)),
+                                              np.tile(valid, (nt, 1)), direction)
+            vals = vals.reshape(nt, len(rho))
+            cross = cross.reshape(nt, len(rho))
+            result[direction] = self._refine(beta, direction, teeth, ids, pars, vals, cross,
+                                             refine)
+        interference = self._interference(beta, teeth)
+        out = []
+        for j in teeth:
+            centre = g.tooth_center + j * g.pitch + self.k * beta
+            pos = np.degrees(wrap(centre - np.pi / 2))
+            (vp, pp), (vm, pm) = result[+1][j], result[-1][j]
+            out.append(ToothClearance(int(j), float(pos), vp, vm, pp, pm))
+        return ContactState(float(beta), tuple(out), interference)
+
+    def _refine(self, beta, direction, teeth, ids, pars, vals, cross, refine=True):
+        """Golden-section refinement of every tooth's minimum along its flank parameter.
+
+        The coarse minimum of each tooth is bracketed by its neighbouring samples (on the same
+        piece) and searched with the crossing on the same gear-2 stretch, for all teeth at once.
+        """
+        g, p = self.gear1, self.params
+        n, nt = len(pars), len(teeth)
+        best = np.argmin(vals, axis=1)
+        v0 = vals[np.arange(nt), best]
+        ok = np.isfinite(v0) & (v0 <= g.pitch)
+        tooth, piece, seg, lo, hi = [], [], [], [], []
+        for j in np.nonzero(ok & refine)[0]:
+            i = best[j]
+            for a_i, b_i in ((max(i - 1, 0), i), (i, min(i + 1, n - 1))):
+                if a_i != b_i and ids[a_i] == ids[b_i]:
+                    tooth.append(j)
+                    piece.append(ids[i])
+                    seg.append(cross[j, i])
+                    lo.append(pars[a_i])
+                    hi.append(pars[b_i])
+        value, par = v0.copy(), pars[best].copy()
+        if tooth:
+            tooth, piece, seg = np.array(tooth), np.array(piece), np.array(seg)
+            fv, fx = self._golden(beta, direction, teeth[tooth], piece, seg, np.array(lo),
+                                  np.array(hi))
+            for k in range(len(tooth)):
+                if fv[k] < value[tooth[k]]:
+                    value[tooth[k]], par[tooth[k]] = fv[k], fx[k]
+        out = {}
+        for j, tooth_j in enumerate(teeth):
+            if not ok[j]:
+                out[tooth_j] = (None, None)
+                continue
+            q = self._points(np.array([ids[best[j]]]), np.array([par[j]]))
+            x = self._to_fixed(_rotate(q, tooth_j * g.pitch), beta)[0]
+            out[tooth_j] = (float(value[j] * p.r0 * 1e3), (float(x[0]), float(x[1])))
+        return out
+
+    def _golden(self, beta, direction, tooth, piece, segment, a, b, iters=30):
+        """Vectorized golden-section minimisation of the rotation to the crossing on a fixed
+        gear-2 stretch, over flank parameters ``[a, b]`` (one search per entry)."""
+        g = self.gear1
+        o1, sa, sb, da, db = self._gear2_segments(beta)
+        lo_d = np.minimum(da, db)[segment]
+        hi_d = np.maximum(da, db)[segment]
+
+        def f(t):
+            q = _rotate(self._points(piece, t), tooth * g.pitch)
+            rho = np.hypot(q[:, 0], q[:, 1])
+            out = np.full(len(t), np.inf)
+            ok = (rho >= lo_d) & (rho <= hi_d)
+            if ok.any():
+                s = segment[ok]
+                xi = self._invert_segment(o1, sa[s], sb[s], da[s], db[s], rho[ok])
+                c = self.gear2.point(xi) - o1
+                ang = np.arctan2(c[:, 1], c[:, 0]) + beta - self.k * beta
+                out[ok] = wrap(direction * (ang - np.arctan2(q[ok, 1], q[ok, 0])))
+            return out
+
+        return golden_min(f, a, b, iters)
+
+    @cached_property
+    def _period_points(self) -> np.ndarray:
+        return self.gear1.period_polyline(1e-4)
+
+    def _interference(self, beta: float, teeth) -> tuple[Interference, ...]:
+        g = self.gear1
+        one = self._period_points
+        found = []
+        for j in teeth:
+            x = self._to_fixed(_rotate(one, j * g.pitch), beta)
+            inside = self.inside_gear2(x, beta)
+            if not inside.any():
+                continue
+            depth = -self.gear2.signed_distance(_rotate(x[inside], -beta))
+            k = int(np.argmax(depth))
+            found.append(Interference(int(j), float(depth[k] * 1e3),
+                                      (float(x[inside][k, 0]), float(x[inside][k, 1]))))
+        return tuple(found)
+
+    def backlash(self, positions: int = 16) -> Backlash:
+        """Smallest clearance per direction over one mesh cycle (β over one gear-2 pitch).
+
+        A coarse scan over ``positions`` rolling angles (unrefined, all teeth) finds the
+        closest teeth; the minimum is then refined by golden-section search in β between the
+        neighbours of the best position, with refined clearances of the three closest teeth.
+        """
+        pitch2 = 2 * np.pi / self.params.z2
+        betas = np.linspace(0.0, pitch2, positions, endpoint=False)
+        h = betas[1] - betas[0]
+        states = [self.state(b, refine=False) for b in betas]
+        out = {}
+        for direction, key in ((+1, "plus_um"), (-1, "minus_um")):
+            vals = np.array([getattr(s.closest(direction), key) for s in states])
+            i = int(np.argmin(vals))
+            ranked = sorted((t for t in states[i].teeth if getattr(t, key) is not None),
+                            key=lambda t: getattr(t, key))
+            near = [t.tooth for t in ranked[:3]]
+
+            def f(b, key=key, direction=direction, near=near):
+                return getattr(self.state(b, teeth=near).closest(direction), key)
+
+            fb, xb = golden_min(f, betas[i] - h, betas[i] + h, 16)
+            out[direction] = min((float(fb), float(xb)), (float(f(betas[i])), float(betas[i])))
+        return Backlash(float(out[1][0]), float(out[-1][0]), float(out[1][1]), float(out[-1][1]))
+
+
+def golden_min(f, a, b, iters: int):
+    """Golden-section minimisation of ``f`` on ``[a, b]``, elementwise over arrays.
+
+    Returns (smallest value found, its argument), with the shapes of ``a`` and ``b``.
+    """
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    x1, x2 = b - GOLDEN * (b - a), a + GOLDEN * (b - a)
+    f1, f2 = f(x1), f(x2)
+    for _ in range(iters):
+        left = f1 < f2
+        b = np.where(left, x2, b)
+        a = np.where(left, a, x1)
+        xn = np.where(left, b - GOLDEN * (b - a), a + GOLDEN * (b - a))
+        fn = f(xn)
+        x1, x2 = np.where(left, xn, x2), np.where(left, x1, xn)
+        f1, f2 = np.where(left, fn, f2), np.where(left, f1, fn)
+    take1 = f1 < f2
+    return np.where(take1, f1, f2), np.where(take1, x1, x2)

@@ -1,0 +1,317 @@
+"""Gear 1: the exact lower envelope of gear 2's generating motion.
+
+Gear 1 is made of *pieces*: cusp-free stretches of envelope branches, each monotone in the
+polar angle φ about gear 1's centre. The pieces are chosen by comparing the exact radius of
+every branch on a fine φ grid and joined at exact crossings (Brent's method to 1e-15 rad), so
+the profile is exact to floating-point precision everywhere, including at the tip corners where
+the far-side branch trims the working flank.
+
+Branches that shape gear 1 (docs/model.md, "Gear 1"):
+
+* near side of the Δ2 tool at ``e + shift`` (working flanks, negative shift);
+* far side of the same tool at ``e + shift`` (what the generating tool itself cuts);
+* far side of the nominal gear 2 at ``e - tip_relief`` (tip relief: the assembled pair keeps at
+  least ``tip_relief`` of radial clearance on the far side).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..errors import GeometryError
+from ..planar import rotate, wrap
+from .admissible import check_admissible
+from .envelope import FAR, NEAR, Branch, BranchPoints
+from .gear2 import adaptive_parameters, gear2_curve
+from .parameters import PairParameters
+
+SAMPLES_PER_RUN = 1024
+ENVELOPE_GRID = 2048
+
+
+@dataclass(frozen=True)
+class Run:
+    """Cusp-free stretch ``[xi0, xi1]`` of a branch; φ is monotone on it."""
+
+    branch: int
+    xi0: float
+    xi1: float
+    increasing: bool  # φ increases with ξ
+
+
+@dataclass(frozen=True)
+class Piece:
+    """Part of gear 1's profile: a run restricted to ``[xi0, xi1]``, turned by ``turn`` pitches.
+
+    ``phi0 < phi1`` are its polar angles (continuous, in the period frame).
+    """
+
+    run: Run
+    xi0: float
+    xi1: float
+    phi0: float
+    phi1: float
+    turn: int
+
+
+def generating_branches(p: PairParameters) -> tuple[Branch, ...]:
+    """The three branches whose lower envelope is gear 1 (see module docstring)."""
+    tool, nominal = gear2_curve(p, tool=True), gear2_curve(p)
+    a_gen = p.e + p.shift
+    return (
+        Branch(tool, a_gen, p.z2, p.z1, NEAR),
+        Branch(tool, a_gen, p.z2, p.z1, FAR),
+        Branch(nominal, p.e - p.tip_clearance, p.z2, p.z1, FAR),
+    )
+
+
+class Gear1Profile:
+    """Exact profile of the external gear 1, in its own frame (β = 0 orientation).
+
+    Gear-1 material lies inside the curve. One pitch period of pieces starts at the middle of a
+    tooth space (``phi_space``); the other teeth are copies turned by ``2π/z1``.
+    """
+
+    def __init__(self, params: PairParameters) -> None:
+        check_admissible(params)
+        self.params = params
+        self.branches = generating_branches(params)
+        self.pitch = 2 * np.pi / params.z1
+        near = self.branches[0].evaluate(np.array([0.0]))
+        self.phi_space = float(np.arctan2(near.q[0, 1], near.q[0, 0]))
+        self.runs = tuple(r for i, b in enumerate(self.branches) for r in _split_runs(b, i))
+        self.pieces = self._lower_envelope()
+
+    # --- construction --------------------------------------------------------------------
+    def _run_polar(self, run: Run, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """ξ and radius of ``run`` at polar angles ``phi``; NaN where the run does not reach."""
+        b = self.branches[run.branch]
+        ends = b.evaluate(np.array([run.xi0, run.xi1]))
+        phi_ends = np.arctan2(ends.q[:, 1], ends.q[:, 0])
+        span = wrap(phi_ends[1] - phi_ends[0])
+        lo, hi = (phi_ends[0], phi_ends[0] + span) if span > 0 else (phi_ends[0] + span,
+                                                                      phi_ends[0])
+        # bring targets into [lo, lo + 2π)
+        rel = np.mod(phi - lo, 2 * np.pi)
+        inside = rel <= hi - lo
+        xi = np.full(phi.shape, np.nan)
+        if inside.any():
+            xi[inside] = self._invert(run, lo + rel[inside])
+        rad = np.full(phi.shape, np.nan)
+        ok = ~np.isnan(xi)
+        rad[ok] = b.evaluate(xi[ok]).radius
+        return xi, rad
+
+    def _invert(self, run: Run, phi: np.ndarray) -> np.ndarray:
+        """Solve φ(ξ) = phi on a run: Newton steps kept inside a shrinking bracket."""
+        b = self.branches[run.branch]
+        lo = np.full(phi.shape, run.xi0)
+        hi = np.full(phi.shape, run.xi1)
+        ends = b.evaluate(np.array([run.xi0]))
+        phi0 = np.arctan2(ends.q[0, 1], ends.q[0, 0])
+        sign = 1.0 if run.increasing else -1.0
+        # linear first guess
+        span = max(abs(run.xi1 - run.xi0), 1e-300)
+        bp = b.evaluate(np.array([run.xi1]))
+        phi1 = phi0 + wrap(np.arctan2(bp.q[0, 1], bp.q[0, 0]) - phi0)
+        frac = np.clip((phi - phi0) / (phi1 - phi0) if phi1 != phi0 else 0.5, 0.0, 1.0)
+        x = run.xi0 + frac * span
+        conv = np.zeros(phi.shape, dtype=bool)
+        for _ in range(100):
+            pts = b.evaluate(x)
+            f = wrap(np.arctan2(pts.q[:, 1], pts.q[:, 0]) - phi)
+            pos = sign * f > 0
+            hi = np.where(pos, x, hi)
+            lo = np.where(pos, lo, x)
+            with np.errstate(divide="ignore", invalid="ignore"):  # a cusp: rate 0
+                xn = x - f / pts.polar_rate
+            bad = ~((xn >= lo) & (xn <= hi)) | ~np.isfinite(xn)  # → bisection
+            xn = np.where(bad, 0.5 * (lo + hi), xn)
+            # φ is only known to ~1e-16 rad (rounding in q), so |f| <= 1e-15 is converged
+            conv |= (np.abs(f) <= 1e-15) | (np.abs(xn - x) <= 1e-16) | (hi - lo <= 1e-16)
+            x = np.where(conv, x, xn)
+            if conv.all():
+                return x
+        raise GeometryError("gear-1 polar inversion did not converge")
+
+    def _lower_envelope(self) -> tuple[Piece, ...]:
+        n = ENVELOPE_GRID
+        phi = self.phi_space + self.pitch * (np.arange(n) + 0.5) / n
+        # radius of every run (and its copies turned by whole pitches) at every grid angle
+        radii, xis, labels = [], [], []
+        for r_i, run in enumerate(self.runs):
+            for turn in self._turns(run):
+                xi, rad = self._run_polar(run, phi - turn * self.pitch)
+                if np.all(np.isnan(rad)):
+                    continue
+                radii.append(rad)
+                xis.append(xi)
+                labels.append((r_i, turn))
+        radii = np.array(radii)
+        if np.isnan(radii).all(axis=0).any():
+            raise GeometryError("gear-1 envelope does not cover a full pitch")
+        best = np.nanargmin(np.where(np.isnan(radii), np.inf, radii), axis=0)
+        # group consecutive grid points with the same label, join at exact crossings
+        bounds = [self.phi_space]
+        owners = [best[0]]
+        for i in range(1, n):
+            if best[i] != owners[-1]:
+                bounds.append(self._junction(labels[owners[-1]], labels[best[i]],
+                                             phi[i - 1], phi[i]))
+                owners.append(best[i])
+        bounds.append(self.phi_space + self.pitch)
+        pieces = []
+        for j, owner in enumerate(owners):
+            r_i, turn = labels[owner]
+            run = self.runs[r_i]
+            a, b = bounds[j], bounds[j + 1]
+            xa = self._invert(run, np.array([a - turn * self.pitch]))[0]
+            xb = self._invert(run, np.array([b - turn * self.pitch]))[0]
+            pieces.append(Piece(run, min(xa, xb), max(xa, xb), a, b, turn))
+        return tuple(pieces)
+
+    def _turns(self, run: Run) -> range:
+        """Whole-pitch turns that bring some of ``run`` into the period frame."""
+        ends = self.branches[run.branch].evaluate(np.array([run.xi0, run.xi1]))
+        phi = np.arctan2(ends.q[:, 1], ends.q[:, 0])
+        step = wrap(phi[1] - phi[0])
+        lo = self.phi_space + wrap(min(phi[0], phi[0] + step) - self.phi_space)
+        first = int(np.floor((self.phi_space - lo - abs(step)) / self.pitch))
+        last = int(np.ceil((self.phi_space + self.pitch - lo) / self.pitch))
+        return range(first, last + 1)
+
+    def _junction(self, la, lb, p0: float, p1: float) -> float:
+        """Exact polar angle in ``[p0, p1]`` where two labelled runs have equal radius."""
+        ra, rb = self.runs[la[0]], self.runs[lb[0]]
+
+        def diff(x: float) -> float:
+            _, r1 = self._run_polar(ra, np.array([x - la[1] * self.pitch]))
+            _, r2 = self._run_polar(rb, np.array([x - lb[1] * self.pitch]))
+            return float(r1[0] - r2[0])
+
+        f0, f1 = diff(p0), diff(p1)
+        if np.isfinite(f0) and np.isfinite(f1) and f0 * f1 < 0:
+            return brentq(diff, p0, p1, xtol=1e-15, rtol=1e-15)
+        # a run ends inside the cell: the junction is at its end (found by bisection)
+        a, b = p0, p1
+        for _ in range(60):
+            mid = 0.5 * (a + b)
+            if np.isfinite(diff(mid)) and (not np.isfinite(f1) or diff(mid) * f0 > 0):
+                a = mid
+            else:
+                b = mid
+        return 0.5 * (a + b)
+
+    # --- evaluation ----------------------------------------------------------------------
+    def _locate(self, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Piece index, tooth turn and local angle of every polar angle."""
+        rel = np.mod(phi - self.phi_space, 2 * np.pi)
+        tooth = np.floor(rel / self.pitch).astype(int)
+        local = self.phi_space + rel - tooth * self.pitch
+        starts = np.array([pc.phi0 for pc in self.pieces])
+        idx = np.clip(np.searchsorted(starts, local, side="right") - 1, 0, len(self.pieces) - 1)
+        return idx, tooth, local
+
+    def evaluate(self, phi: np.ndarray) -> BranchPoints:
+        """Exact profile at polar angles ``phi`` (point, normal, curvature in gear 1's frame)."""
+        phi = np.atleast_1d(np.asarray(phi, dtype=float))
+        idx, tooth, local = self._locate(phi)
+        xi = np.empty_like(phi)
+        branch = np.empty(phi.shape, dtype=int)
+        turn = np.empty(phi.shape)
+        for k, pc in enumerate(self.pieces):
+            sel = idx == k
+            if sel.any():
+                xi[sel] = self._invert(pc.run, local[sel] - pc.turn * self.pitch)
+                branch[sel] = pc.run.branch
+                turn[sel] = pc.turn + tooth[sel]
+        parts = {}
+        for bi in np.unique(branch):
+            sel = branch == bi
+            parts[bi] = (sel, self.branches[bi].evaluate(xi[sel]))
+        fields = {f: np.empty((len(phi), 2)) for f in ("q", "tangent", "normal")}
+        scal = {f: np.empty(len(phi)) for f in ("xi", "beta", "kappa", "speed", "disc")}
+        for _, (sel, pts) in parts.items():
+            ang = turn[sel] * self.pitch
+            for f in fields:
+                fields[f][sel] = rotate(getattr(pts, f), ang)
+            for f in scal:
+                scal[f][sel] = getattr(pts, f)
+        return BranchPoints(**fields, **scal)
+
+    def radius(self, phi: np.ndarray) -> np.ndarray:
+        """Exact polar radius ρ1(φ) [mm]."""
+        return self.evaluate(phi).radius
+
+    @cached_property
+    def tooth_center(self) -> float:
+        """Polar angle of the middle of tooth 0's tip [rad]."""
+        return self.phi_space + 0.5 * self.pitch
+
+    def period_polyline(self, chord_error: float) -> np.ndarray:
+        """One pitch of the profile (tooth space centre to next), chord error ≤ ``chord_error``."""
+        pts = []
+        for pc in self.pieces:
+            b = self.branches[pc.run.branch]
+
+            def derivs(s, b=b):
+                e = b.evaluate(s)
+                # dq/dξ = σ t ; d²q/dξ² normal part = κ σ² n_left  (enough for curvature bound)
+                d1 = e.speed[:, None] * e.tangent
+                d2 = (e.kappa * e.speed**2)[:, None] * (-e.normal)
+                return e.q, d1, d2
+
+            xi = adaptive_parameters(derivs, pc.xi0, pc.xi1, chord_error, n0=16)
+            q = rotate(b.evaluate(xi).q, pc.turn * self.pitch)
+            ang = np.unwrap(np.arctan2(q[:, 1], q[:, 0]))
+            if ang[-1] < ang[0]:
+                q = q[::-1]
+            pts.append(q[:-1])
+        return np.concatenate(pts)
+
+    def polyline(self, chord_error: float) -> np.ndarray:
+        """Closed gear-1 profile (all teeth, counter-clockwise, last point not repeated)."""
+        one = self.period_polyline(chord_error)
+        return np.concatenate([rotate(one, j * self.pitch) for j in range(self.params.z1)])
+
+
+def _split_runs(b: Branch, index: int, n: int = SAMPLES_PER_RUN) -> list[Run]:
+    """Cut one gear-2 pitch of a branch into φ-monotone runs without jumps.
+
+    Cuts are placed exactly at cusps (dφ/dξ = 0) and where β leaves its 2π window (a jump of
+    whole gear-1 pitches, harmless since gear 1 is periodic, but not continuous).
+    """
+    half = np.pi / b.z2
+    xi = np.linspace(-half, half, n + 1)
+    pts = b.evaluate(xi)
+    if np.any(pts.disc < 0):
+        raise GeometryError("the gear-2 normal misses the pitch circle")
+    rate = pts.polar_rate
+
+    def g(x: float) -> float:
+        return float(b.evaluate(np.array([x])).polar_rate[0])
+
+    def beta(x: float) -> float:
+        return float(b.evaluate(np.array([x])).beta[0])
+
+    cuts = [xi[0], xi[-1]]
+    for i in np.nonzero(np.sign(rate[:-1]) * np.sign(rate[1:]) < 0)[0]:
+        cuts.append(brentq(g, xi[i], xi[i + 1], xtol=1e-15))
+    for i in np.nonzero(np.abs(np.diff(pts.beta)) > np.pi)[0]:
+        lo, hi = xi[i], xi[i + 1]
+        b_lo = beta(lo)
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if abs(beta(mid) - b_lo) < np.pi else (lo, mid)
+        cuts.extend([lo, hi])
+    cuts = np.sort(np.array(cuts))
+    runs = []
+    for a, c in zip(cuts[:-1], cuts[1:]):
+        if c - a <= 1e-14:
+            continue
+        runs.append(Run(index, float(a), float(c), bool(g(0.5 * (a + c)) > 0)))
+    return runs

@@ -1,0 +1,128 @@
+"""Design parameters of a compound-cycloid internal tooth pair.
+
+Conventions (docs/model.md, "Parameters", which corrects the seed paper's eq. 15):
+
+* ``r0 = m z2 / 2`` (gear-2 pitch radius), ``e1 = m h1``, ``e2 = f1 e1``,
+  ``e = m (z2 - z1) / 2`` (centre distance).
+* Gear 2 is the internal gear, gear 1 the external gear, ``z2 - z1 >= 1``.
+
+Units: lengths in mm, angles in rad.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ..checks import Input, require_range
+from ..errors import ParameterError
+
+#: the pair's inputs (``fegear profile``, ``solve`` and ``bench``, study files); the ranges of
+#: h1, shift, rotation and tip-relief depend on the other inputs and are checked by
+#: :class:`PairParameters` and :func:`~fegear.geometry.admissible.check_admissible`
+PAIR_INPUTS = (
+    Input("m", float, 2.0, "module", "mm", low=0.0, high=100.0, low_open=True),
+    Input("z2", int, 45, "teeth of the internal gear (gear 2), z1 < z2 <= 2000", low=4),
+    Input("z1", int, 44, "teeth of the external gear (gear 1)", low=3),
+    Input("h1", float, 0.30, "tooth-height coefficient (e1 = m h1), 0 < h1 < z2/4 and "
+          "admissible"),
+    Input("f1", float, 0.15, "tooth-shape coefficient (e2 = f1 e1)", low=0.0, high=1.0),
+    Input("shift", float, 0.0, "Δ1 negative shift: gear 1 generated at centre distance "
+          "e + shift, 0 <= shift <= m h1/4", "mm"),
+    Input("rotation", float, 0.0, "Δ2 rotation modification of the generating tool, "
+          "|rotation| <= m h1/4", "mm"),
+    Input("tip-relief", float, None, "radial clearance of gear 1's tip to the far side of "
+          "gear 2, -shift <= tip-relief <= m h1 (default: = shift)", "mm"),
+)
+_ROW = {row.name: row for row in PAIR_INPUTS}
+
+
+@dataclass(frozen=True)
+class PairParameters:
+    """Compound-cycloid internal gear pair.
+
+    Attributes:
+        m: module [mm], > 0.
+        z2: teeth of the internal gear (gear 2).
+        z1: teeth of the external gear (gear 1), ``3 <= z1 < z2``.
+        h1: tooth-height coefficient, ``e1 = m h1``.
+        f1: tooth-shape coefficient, ``e2 = f1 e1``.
+        shift: Δ1 [mm], "negative shift": gear 1 is generated at centre distance ``e + shift``.
+        rotation: Δ2 [mm], "rotation" modification: the generating gear-2 tool uses
+            ``e1 ∓ rotation`` (paper eq. 11); the gear 2 of the pair stays nominal.
+        tip_relief: radial clearance [mm] between gear 1's tip and the far side of the nominal
+            gear 2 in the assembled pair. ``None`` means the default, equal to ``shift``: the
+            negative shift already gives about ``shift`` of radial clearance on the near side,
+            so the default makes the tip clearance the same on both sides and keeps the
+            assembled pair free of interference. ``tip_relief = -shift`` is the gear exactly as
+            generated, without relief: it interferes by ≈ shift on the far side.
+    """
+
+    m: float = 2.0
+    z2: int = 45
+    z1: int = 44
+    h1: float = 0.30
+    f1: float = 0.15
+    shift: float = 0.0
+    rotation: float = 0.0
+    tip_relief: float | None = None
+
+    def __post_init__(self) -> None:
+        set_ = object.__setattr__
+        set_(self, "m", _ROW["m"].check(self.m))
+        set_(self, "z1", _ROW["z1"].check(self.z1))
+        set_(self, "z2", _ROW["z2"].check(self.z2))
+        if self.z2 <= self.z1:
+            raise ParameterError("z2", self.z2, f"an integer z2 > z1 = {self.z1}",
+                                 "the internal gear needs more teeth than the external gear")
+        if self.z2 > 2000:
+            raise ParameterError("z2", self.z2, f"an integer with {self.z1} < z2 <= 2000")
+        set_(self, "h1", require_range("h1", self.h1, 0.0, self.z2 / 4.0,
+                                       lo_open=True, hi_open=True))
+        set_(self, "f1", _ROW["f1"].check(self.f1))
+        e1 = self.m * self.h1
+        set_(self, "shift", require_range("shift", self.shift, 0.0, 0.25 * e1, unit="mm"))
+        set_(self, "rotation", require_range("rotation", self.rotation, -0.25 * e1, 0.25 * e1,
+                                             unit="mm"))
+        if self.tip_relief is not None:
+            set_(self, "tip_relief", require_range("tip_relief", self.tip_relief, -self.shift,
+                                                   e1, unit="mm"))
+
+    @property
+    def r0(self) -> float:
+        """Gear-2 pitch radius [mm] (``m z2 / 2``)."""
+        return self.m * self.z2 / 2.0
+
+    @property
+    def r1(self) -> float:
+        """Gear-1 pitch radius [mm] (``m z1 / 2``)."""
+        return self.m * self.z1 / 2.0
+
+    @property
+    def e1(self) -> float:
+        """First crank length [mm] (``m h1``)."""
+        return self.m * self.h1
+
+    @property
+    def e2(self) -> float:
+        """Second crank length [mm] (``f1 e1``)."""
+        return self.f1 * self.e1
+
+    @property
+    def e(self) -> float:
+        """Nominal (assembled) centre distance [mm] (``m (z2 - z1) / 2``)."""
+        return self.m * (self.z2 - self.z1) / 2.0
+
+    @property
+    def ratio(self) -> float:
+        """Rolling-angle ratio α/β = z2/z1 (gear-1 angle per gear-2 angle)."""
+        return self.z2 / self.z1
+
+    @property
+    def tip_clearance(self) -> float:
+        """Effective gear-1 tip relief [mm] (``tip_relief`` or its default, ``shift``)."""
+        return self.shift if self.tip_relief is None else self.tip_relief
+
+    def describe(self) -> str:
+        """Short text naming the parameters, for messages."""
+        return (f"m={self.m:g}, z2={self.z2}, z1={self.z1}, h1={self.h1:g}, f1={self.f1:g}, "
+                f"shift={self.shift:g}, rotation={self.rotation:g}")

@@ -1,0 +1,59 @@
+"""Picture of the assembled pair (``fegear profile``'s pair.png)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..figures import pyplot, save_png
+
+
+def pair_png(path: Path, gear1: np.ndarray, gear2: np.ndarray, e: float, r0: float,
+             title: str, zoom_half_width: float) -> Path:
+    """Draw the assembled pair at β = 0 (fixed frame) with a zoom on the pitch-point teeth.
+
+    ``gear1``, ``gear2``: closed profiles in their own frames (mm); gear 1 is drawn about
+    ``(0, e)``.
+    """
+    plt = pyplot()
+    from matplotlib.patches import PathPatch
+    from matplotlib.path import Path as MplPath
+
+    g1 = gear1 + np.array([0.0, e])
+    # gear-2 material lies outside its curve: draw it as a ring up to a rim circle
+    rim = 1.08 * np.hypot(gear2[:, 0], gear2[:, 1]).max()
+    t = np.linspace(0, 2 * np.pi, 361)
+    outer = np.stack([rim * np.cos(t), rim * np.sin(t)], -1)
+    inner = np.vstack([gear2, gear2[:1]])[::-1]
+    verts = np.vstack([outer, inner])
+    codes = np.full(len(verts), MplPath.LINETO)
+    codes[0] = codes[len(outer)] = MplPath.MOVETO
+    fig, (ax, az) = plt.subplots(1, 2, figsize=(13, 6.2))
+    for a in (ax, az):
+        a.add_patch(PathPatch(MplPath(verts, codes), facecolor="#c9d6e8", edgecolor="none",
+                              zorder=0))
+        a.plot(*np.vstack([gear2, gear2[:1]]).T, color="#1f4e8c", lw=0.8, label="gear 2 (internal)")
+        a.fill(*np.vstack([g1, g1[:1]]).T, color="#f3d9c4", zorder=1)
+        a.plot(*np.vstack([g1, g1[:1]]).T, color="#a34a16", lw=0.8, label="gear 1 (external)",
+               zorder=2)
+        a.set_aspect("equal")
+        a.set_xlabel("x [mm]")
+        a.set_ylabel("y [mm]")
+    lim = r0 * 1.12
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-lim, lim)
+    ax.plot([0, 0], [0, e], "k+", ms=8)
+    ax.set_title(title, fontsize=9)
+    ax.legend(loc="lower right", fontsize=8)
+    ax.add_patch(plt.Rectangle((-zoom_half_width, r0 - 0.6 * zoom_half_width),
+                               2 * zoom_half_width, 1.2 * zoom_half_width, fill=False,
+                               ls="--", color="k", lw=0.7))
+    az.set_xlim(-zoom_half_width, zoom_half_width)
+    az.set_ylim(r0 - 0.6 * zoom_half_width, r0 + 0.6 * zoom_half_width)
+    az.plot([0], [r0], "k.", ms=5)
+    az.annotate("pitch point", (0, r0), textcoords="offset points", xytext=(6, 6), fontsize=8)
+    az.set_title("zoom on the pitch-point teeth (β = 0)", fontsize=9)
+    fig.tight_layout()
+
+    return save_png(fig, path, 130)

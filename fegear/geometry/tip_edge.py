@@ -1,0 +1,137 @@
+"""Rounded tip edges of gear 1 for the stress model.
+
+Gear 1's exact profile has a convex kink on each side of every tooth tip, where the far-side
+branch (the tip trim) meets the working flank: 21° at r = 44.37 mm on the exact conjugate
+baseline. Contact reaches that edge during the mesh cycle, and a kink inside a contact zone
+makes the pressure logarithmically singular (p ~ E*γ/π · ln(1/x) for a slope change γ), so no
+mesh converges to a peak value. Real teeth have an edge break; here every kink larger than
+``KINK_DEG`` is replaced by a circular arc of radius ρ tangent to both sides. Material is only
+removed, so clearances can only grow against the sharp profile's clearance table.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import fsolve
+
+from ..errors import ParameterError
+from .gear1 import Gear1Profile
+
+KINK_DEG = 1.0  # tangent changes below this are left sharp (the root junction turns 0.015°)
+
+
+@dataclass(frozen=True)
+class Fillet:
+    """An edge round: tangent at polar angles ``phi_a`` < ``phi_b`` (period frame, rad), centre
+    (mm, gear 1's frame, tooth 0), radius (mm) and the kink angle it replaces (rad)."""
+
+    phi_a: float
+    phi_b: float
+    centre: tuple[float, float]
+    radius: float
+    kink: float
+
+
+class RoundedProfile:
+    """Gear 1's profile with its tip edges rounded to radius ``radius`` (0: the exact profile).
+
+    Offers the parts of :class:`Gear1Profile` the FE scene uses: ``radius``, ``curvature``,
+    ``pitch``, ``phi_space``, ``tooth_center`` and ``pieces``.
+    """
+
+    def __init__(self, profile: Gear1Profile, radius: float) -> None:
+        self.profile = profile
+        self.radius_mm = float(radius)
+        self.pitch = profile.pitch
+        self.phi_space = profile.phi_space
+        self.tooth_center = profile.tooth_center
+        self.kinks = tuple(k for k in (self._kink(pc.phi0) for pc in profile.pieces[1:]) if k)
+        self.fillets = tuple(self._fillet(phi, gamma) for phi, gamma in self.kinks
+                             ) if self.radius_mm > 0 else ()
+
+    def _kink(self, phi: float) -> tuple[float, float] | None:
+        ev = self.profile.evaluate(np.array([phi - 1e-10, phi + 1e-10]))
+        t0, t1 = ev.tangent
+        gamma = math.atan2(t0[0] * t1[1] - t0[1] * t1[0], t0 @ t1)
+        return (phi, abs(gamma)) if math.degrees(abs(gamma)) > KINK_DEG else None
+
+    def _centre(self, phi: float) -> np.ndarray:
+        ev = self.profile.evaluate(np.array([phi]))
+        return ev.q[0] - self.radius_mm * ev.normal[0]
+
+    def _fillet(self, phi_c: float, gamma: float) -> Fillet:
+        rho = self.radius_mm
+        # tangent length ρ tan(γ/2) as a polar angle on each side (the flank is steep: arc
+        # length per radian is several times the radius); unknowns log(φc − φa), log(φb − φc)
+        # keep the tangent points on their sides (from r_c alone both fell onto the kink)
+        eps = 1e-7
+        q = self.profile.evaluate(np.array([phi_c - eps, phi_c - 2 * eps, phi_c + eps,
+                                            phi_c + 2 * eps])).q
+        speed = (np.linalg.norm(q[0] - q[1]) / eps, np.linalg.norm(q[3] - q[2]) / eps)
+        tangent = rho * math.tan(0.5 * gamma)
+        sol, info, _, _ = fsolve(
+            lambda x: self._centre(phi_c - math.exp(x[0])) - self._centre(phi_c + math.exp(x[1])),
+            [math.log(tangent / speed[0]), math.log(tangent / speed[1])], full_output=True,
+            xtol=1e-14)
+        phi_a, phi_b = phi_c - math.exp(sol[0]), phi_c + math.exp(sol[1])
+        ev = self.profile.evaluate(np.array([phi_a, phi_b]))
+        side_ok = phi_a < phi_c < phi_b and phi_b - phi_a < 0.25 * self.pitch
+        curv_ok = np.all(ev.kappa * rho > -1.0) and np.all(ev.kappa * rho < 1.0)
+        if np.abs(info["fvec"]).max() > 1e-9 or not side_ok or not curv_ok:
+            raise ParameterError("tip_round", rho, "a radius that fits the tip edge "
+                                 f"(smaller than {0.5 / max(np.abs(ev.kappa).max(), 1e-9):.3g} "
+                                 "mm here)")
+        c = self._centre(phi_a)
+        return Fillet(phi_a, phi_b, (float(c[0]), float(c[1])), rho, gamma)
+
+    def _on_fillet(self, phi: np.ndarray):
+        """Per angle: index of the fillet it falls on (−1: none) and the local angle."""
+        rel = np.mod(phi - self.phi_space, 2 * np.pi)
+        local = self.phi_space + np.mod(rel, self.pitch)
+        which = np.full(phi.shape, -1)
+        for k, f in enumerate(self.fillets):
+            which[(local >= f.phi_a) & (local <= f.phi_b)] = k
+        return which, local
+
+    def on_round(self, phi: np.ndarray) -> np.ndarray:
+        """Whether each polar angle (rad, any tooth) falls on a tip-edge round."""
+        return self._on_fillet(np.atleast_1d(np.asarray(phi, dtype=float)))[0] >= 0
+
+    def radius(self, phi: np.ndarray) -> np.ndarray:
+        """Polar radius (mm) of the rounded profile."""
+        phi = np.atleast_1d(np.asarray(phi, dtype=float))
+        r = self.profile.radius(phi)
+        which, local = self._on_fillet(phi)
+        for k, f in enumerate(self.fillets):
+            sel = which == k
+            if sel.any():
+                e = np.column_stack([np.cos(local[sel]), np.sin(local[sel])])
+                ec = e @ np.asarray(f.centre)
+                r[sel] = ec + np.sqrt(ec**2 - np.dot(f.centre, f.centre) + f.radius**2)
+        return r
+
+    def curvature(self, phi: np.ndarray) -> np.ndarray:
+        """Curvature (1/mm, > 0 convex) of the rounded profile."""
+        phi = np.atleast_1d(np.asarray(phi, dtype=float))
+        kappa = self.profile.evaluate(phi).kappa
+        which, _ = self._on_fillet(phi)
+        for k, f in enumerate(self.fillets):
+            kappa[which == k] = 1.0 / f.radius
+        return kappa
+
+    def point(self, phi: np.ndarray) -> np.ndarray:
+        phi = np.atleast_1d(np.asarray(phi, dtype=float))
+        r = self.radius(phi)
+        return np.column_stack([r * np.cos(phi), r * np.sin(phi)])
+
+    def fillet_angles(self, tooth_turns: range) -> list[tuple[float, float, float]]:
+        """(centre angle, half-angle, kink) of every fillet of the given tooth turns (rad)."""
+        out = []
+        for t in tooth_turns:
+            for f in self.fillets:
+                out.append((0.5 * (f.phi_a + f.phi_b) + t * self.pitch,
+                            0.5 * (f.phi_b - f.phi_a), f.kink))
+        return out

@@ -1,0 +1,273 @@
+"""Study files: a base case plus sweeps over any ``fegear solve`` input, read from TOML.
+
+A study file is data, never code::
+
+    [study]                       # optional
+    name = "paper_trends"         # default: the file name without .toml
+    description = "…"
+
+    [outputs]                     # optional: files kept per case (default: none, only numbers)
+    vtu = false                   # gear1.vtu, gear2.vtu
+    png = false                   # von_mises.png (and cycle.png with `positions`)
+
+    [base]                        # any `fegear solve` input by its option name; the others
+    torque = 50                   # keep `fegear solve`'s defaults
+    quality = "fast"
+
+    [[sweep]]                     # every [[sweep]] block adds its cases to the study
+    m = [1.0, 1.5, 2.0, 2.5]      # a list …
+    h1 = {start = 0.2, stop = 0.4, step = 0.05}   # … or a range: step or num, stop included
+    combine = "product"           # "product" (default): every combination; "zip": in step
+
+A scalar in a block sets that input for the block's cases only. A case that two blocks both
+produce is run once. Every case is checked as ``fegear solve`` would check it before anything
+runs; an error names the file, the block, the key and the reason.
+"""
+
+from __future__ import annotations
+
+import difflib
+import hashlib
+import itertools
+import json
+import math
+import tomllib
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import FegearError
+from ..provenance import code_version
+from ..toothpair import SOLVE_INPUTS, prepare_job
+
+MAX_CASES = 100_000
+_SECTIONS = ("study", "outputs", "base", "sweep")
+_STUDY_KEYS = ("name", "description")
+_OUTPUT_KEYS = ("vtu", "png")
+_BLOCK_KEYS = ("combine",)
+
+
+class StudyError(FegearError):
+    """A study file that cannot be run as written: the message names the file and the key."""
+
+
+@dataclass(frozen=True)
+class Outputs:
+    """Files kept per case besides the numbers: the VTU fields, the pictures."""
+
+    vtu: bool = False
+    png: bool = False
+
+
+@dataclass(frozen=True)
+class StudyCase:
+    """One solve of a study: its position in the study, its key (hash of the inputs, the kept
+    outputs and the code version), every ``fegear solve`` input by name, and the values its
+    sweep block set (what tells it apart in tables and plots)."""
+
+    index: int
+    key: str
+    values: dict
+    swept: dict
+
+
+@dataclass(frozen=True)
+class Study:
+    """A checked study: name, source file, kept outputs, the base inputs, the cases in the
+    order of the file, and the inputs that differ between cases (the plots' axes)."""
+
+    name: str
+    path: Path
+    description: str
+    outputs: Outputs
+    base: dict
+    cases: tuple[StudyCase, ...]
+    varied: tuple[str, ...]
+
+
+def load_study(path: str | Path) -> Study:
+    """Read, check and expand a study file; raise :class:`StudyError` naming file and key."""
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise StudyError(f"{path}: cannot be read: {exc.strerror}") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise StudyError(f"{path}: not valid TOML: {exc}") from None
+    except UnicodeDecodeError:
+        raise StudyError(f"{path}: not a text file (UTF-8)") from None
+    return build_study(data, path)
+
+
+def build_study(data: dict, path: Path) -> Study:
+    """The study of an already parsed TOML document (``path`` names it in errors)."""
+    where = str(path)
+    _known(data, _SECTIONS, where, "section")
+    head = _table(data, "study", where)
+    _known(head, _STUDY_KEYS, f"{where}: [study]", "key")
+    name = _string(head.get("name", path.stem), f"{where}: [study] name")
+    if not name or not all(ch.isalnum() or ch in "-_." for ch in name):
+        raise StudyError(f"{where}: [study] name = {name!r}: use letters, digits, - _ . only")
+    description = _string(head.get("description", ""), f"{where}: [study] description")
+    out = _table(data, "outputs", where)
+    _known(out, _OUTPUT_KEYS, f"{where}: [outputs]", "key")
+    outputs = Outputs(**{k: _bool(out[k], f"{where}: [outputs] {k}") for k in out})
+    inputs = SOLVE_INPUTS
+    base = {k: _value(v, inputs[k].kind.__name__, f"{where}: [base] {k}")
+            for k, v in _known(_table(data, "base", where), inputs, f"{where}: [base]",
+                               "fegear solve input").items()}
+    blocks = data.get("sweep", [])
+    if not isinstance(blocks, list) or not all(isinstance(b, dict) for b in blocks):
+        raise StudyError(f"{where}: sweep must be an array of tables, written [[sweep]]")
+    combos = []
+    for i, block in enumerate(blocks, start=1):
+        combos.extend(_expand(block, inputs, f"{where}: [[sweep]] {i}"))
+        if len(combos) > MAX_CASES:
+            raise StudyError(f"{where}: more than {MAX_CASES} cases")
+    if not combos:
+        combos = [("", {})]
+    code = code_version()
+    cases, seen = [], set()
+    for label, swept in combos:
+        values = {**base, **swept}
+        key = case_key(values, outputs, code)
+        if key in seen:
+            continue
+        seen.add(key)
+        _check_case(values, f"{label or where + ': [base]'} ({_describe(swept) or 'base'})")
+        cases.append(StudyCase(len(cases), key, values, swept))
+    full = [SOLVE_INPUTS.complete(c.values) for c in cases]
+    varied = tuple(n for n in inputs if len({json.dumps(f[n]) for f in full}) > 1)
+    return Study(name, path, description, outputs, base, tuple(cases), varied)
+
+
+def case_key(values: dict, outputs: Outputs, code: str) -> str:
+    """Hash (first 16 hex digits of SHA-256) of every input, the kept outputs and the code
+    version: equal keys are equal results."""
+    full = SOLVE_INPUTS.complete(values)
+    text = json.dumps({"inputs": full, "outputs": [outputs.vtu, outputs.png], "code": code},
+                      sort_keys=True)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _expand(block: dict, inputs, where: str) -> list[tuple[str, dict]]:
+    """The cases of one [[sweep]] block: (its label, the values it sets)."""
+    combine = _string(block.get("combine", "product"), f"{where} combine")
+    if combine not in ("product", "zip"):
+        raise StudyError(f"{where} combine = {combine!r}: admissible: \"product\" or \"zip\"")
+    swept = {}
+    for k, v in _known({k: v for k, v in block.items() if k not in _BLOCK_KEYS}, inputs,
+                       where, "fegear solve input").items():
+        kind = inputs[k].kind.__name__
+        if isinstance(v, dict):
+            values = _range(v, kind, f"{where} {k}")
+        elif isinstance(v, list):
+            if not v:
+                raise StudyError(f"{where} {k} = []: give at least one value")
+            values = [_value(x, kind, f"{where} {k}[{j}]") for j, x in enumerate(v)]
+        else:
+            values = [_value(v, kind, f"{where} {k}")]
+        swept[k] = values
+    if not swept:
+        raise StudyError(f"{where}: sweeps nothing (give at least one input)")
+    names = list(swept)
+    if combine == "zip":
+        lengths = {k: len(v) for k, v in swept.items() if len(v) > 1}
+        if len(set(lengths.values())) > 1:
+            raise StudyError(f"{where}: combine = \"zip\" needs equally long lists; got "
+                             + ", ".join(f"{k} {n}" for k, n in lengths.items()))
+        n = max(len(v) for v in swept.values())
+        rows = [[v[j] if len(v) > 1 else v[0] for v in swept.values()] for j in range(n)]
+    else:
+        rows = itertools.product(*swept.values())
+    return [(where, dict(zip(names, row))) for row in rows]
+
+
+def _range(spec: dict, kind: str, where: str) -> list:
+    """``{start, stop, step}`` or ``{start, stop, num}``, stop included."""
+    if kind not in ("float", "int"):
+        raise StudyError(f"{where}: a range needs a numeric input; give a list")
+    keys = set(spec)
+    if keys not in ({"start", "stop", "step"}, {"start", "stop", "num"}):
+        raise StudyError(f"{where} = {spec}: a range is {{start, stop, step}} or "
+                         "{start, stop, num}")
+    start = _value(spec["start"], kind, f"{where}.start")
+    stop = _value(spec["stop"], kind, f"{where}.stop")
+    if "num" in spec:
+        num = _value(spec["num"], "int", f"{where}.num")
+        if not 1 <= num <= MAX_CASES:
+            raise StudyError(f"{where}.num = {num}: admissible 1 <= num <= {MAX_CASES}")
+        if num == 1:
+            return [start]
+        step = (stop - start) / (num - 1)
+    else:
+        step = _value(spec["step"], kind, f"{where}.step")
+        if step == 0 or (stop - start) / step < 0:
+            raise StudyError(f"{where}.step = {step}: must be non-zero and lead from start "
+                             "to stop")
+        num = math.floor((stop - start) / step * (1 + 1e-9) + 1e-9) + 1
+        if num > MAX_CASES:
+            raise StudyError(f"{where}: {num} values, more than {MAX_CASES}")
+    values = [start + j * step for j in range(num)]
+    if kind == "int":
+        if any(v != int(v) for v in values):
+            raise StudyError(f"{where}: an integer input needs integer steps")
+        return [int(v) for v in values]
+    return [round(v, 12) for v in values]  # 0.2 + 2 × 0.05 is 0.30000000000000004
+
+
+def _value(v, kind: str, where: str):
+    if kind == "bool":
+        return _bool(v, where)
+    if kind == "str":
+        return _string(v, where)
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        what = "an integer" if kind == "int" else "a number"
+        raise StudyError(f"{where} = {v!r}: must be {what}")
+    if kind == "int":
+        if isinstance(v, float):
+            raise StudyError(f"{where} = {v!r}: must be an integer")
+        return v
+    if not math.isfinite(v):
+        raise StudyError(f"{where} = {v!r}: must be a finite number")
+    return float(v)
+
+
+def _bool(v, where: str) -> bool:
+    if not isinstance(v, bool):
+        raise StudyError(f"{where} = {v!r}: must be true or false")
+    return v
+
+
+def _string(v, where: str) -> str:
+    if not isinstance(v, str):
+        raise StudyError(f"{where} = {v!r}: must be a string")
+    return v
+
+
+def _table(data: dict, name: str, where: str) -> dict:
+    t = data.get(name, {})
+    if not isinstance(t, dict):
+        raise StudyError(f"{where}: {name} must be a table, written [{name}]")
+    return t
+
+
+def _known(table: dict, known, where: str, what: str) -> dict:
+    for k in table:
+        if k not in known:
+            close = difflib.get_close_matches(k, list(known), n=1)
+            hint = f" (did you mean {close[0]!r}?)" if close else ""
+            raise StudyError(f"{where}: unknown {what} {k!r}{hint}; known: "
+                             + ", ".join(known))
+    return table
+
+
+def _describe(values: dict) -> str:
+    return ", ".join(f"{k} = {v!r}" for k, v in values.items())
+
+
+def _check_case(values: dict, where: str) -> None:
+    """Check a case as ``fegear solve`` would (parameters, geometry); no meshing."""
+    try:
+        prepare_job(values)
+    except FegearError as exc:
+        raise StudyError(f"{where}: {exc}") from None

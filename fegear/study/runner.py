@@ -1,0 +1,357 @@
+"""Run a study: every case a ``fegear solve``, on a local process pool or a Dask cluster.
+
+Resumable by construction. Each case is stored as ``cases/<key>.json`` (the key hashes the
+inputs, the kept outputs and the code version) and written atomically by this process once the
+case has finished, after its kept files (``cases/<key>/``). A study that is killed and started
+again finds the finished cases on disk and computes only the missing ones; a case that was
+running when the study died left nothing and runs again. A case that fails is stored with its
+reason and does not stop the study (``retry_failed`` runs such cases again).
+"""
+
+from __future__ import annotations
+
+import json
+import logging
+import os
+import signal
+import socket
+import tempfile
+import threading
+import time
+import traceback
+from collections.abc import Iterator
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
+from contextlib import closing
+from dataclasses import dataclass
+from datetime import UTC, datetime
+from pathlib import Path
+
+from ..errors import FegearError
+from ..files import prepare_dir, write_json
+from ..provenance import code_version
+from .file import Study, StudyCase, StudyError
+from .records import finished, store, study_json
+
+log = logging.getLogger(__name__)
+
+#: a case that was running when its worker process died this often is recorded as failed
+WORKER_DEATHS = 2
+_SOLVE_LOCK = threading.Lock()  # gmsh keeps one global session per process
+
+
+class StudyInterrupted(FegearError):
+    """SIGTERM or SIGINT stopped the study; the finished cases are on disk."""
+
+    def __init__(self, signum: int) -> None:
+        self.signum = signum
+        super().__init__(f"stopped by {signal.Signals(signum).name}; the finished cases are "
+                         "kept: run the same command again to compute the rest")
+
+
+@dataclass(frozen=True)
+class StudyReport:
+    """What a run did: cases in the study, found finished on disk, computed now (ok and
+    failed), and times (s): the whole run, the solves summed, the workers' start-up (from the
+    first submission to the first case starting) and writing the table and plots."""
+
+    cases: int
+    found: int
+    computed: int
+    failed: int
+    wall_s: float
+    solve_s: float
+    startup_s: float
+    table_s: float
+    files: dict
+
+    @property
+    def overhead_per_case_s(self) -> float:
+        """Runner time per computed case that is not a solve, the one-off start-up and the
+        table excluded (with one worker: the runner's whole per-case cost)."""
+        if not self.computed:
+            return 0.0
+        return (self.wall_s - self.table_s - self.startup_s - self.solve_s) / self.computed
+
+
+def run_study(study: Study, out: str | Path, workers: int | None = None,
+              scheduler: str | None = None, retry_failed: bool = False,
+              progress: bool = True, on_start=None) -> StudyReport:
+    """Run the missing cases of ``study`` into ``out``, then write the table and plots.
+    With ``scheduler``, on that Dask cluster; else on ``workers`` local processes (default:
+    one per core). ``on_start(found, todo)`` is called once the finished cases are known.
+    Raises :class:`StudyInterrupted` on SIGTERM or SIGINT, after writing the table of the
+    finished cases."""
+    t0 = time.perf_counter()
+    client = _connect(scheduler) if scheduler else None  # a bad address creates no output
+    try:
+        out = prepare_dir(out)
+        with _exclusive(out):
+            return _run(study, out, workers, client, retry_failed, progress, on_start, t0)
+    finally:
+        if client is not None:
+            client.close()
+
+
+def _run(study: Study, out: Path, workers: int | None, client, retry_failed: bool,
+         progress: bool, on_start, t0: float) -> StudyReport:
+    from .results import write_results
+
+    running = out / "cases" / ".running"
+    running.mkdir(parents=True, exist_ok=True)
+    write_json(out / "study.json", study_json(study))
+    done = finished(study, out, retry_failed)
+    todo = [c for c in study.cases if c.key not in done]
+    if on_start is not None:
+        on_start(len(done), len(todo))
+    code = code_version()
+    stats = {"computed": 0, "failed": 0, "solve_s": 0.0, "first_start": None}
+    started = time.time()
+    try:
+        with _signals_raise():
+            results = (_dask_results(todo, study, client) if client is not None
+                       else _pool_results(todo, study, workers, running))
+            bar = _progress(len(study.cases), len(done), study.name, progress)
+            with closing(results), bar:
+                for case, record, files in results:
+                    if record.get("code_version") not in (None, code):
+                        record.update(status="failed", error=(
+                            f"the worker ran other code ({record['code_version']}) than this "
+                            f"study ({code}): install the same fegear on every worker"))
+                        files = {}
+                    store(out, case, record, files)
+                    stats["computed"] += 1
+                    stats["failed"] += record["status"] != "ok"
+                    stats["solve_s"] += record.get("solve_s") or 0.0
+                    if stats["first_start"] is None:
+                        stats["first_start"] = record["started_unix"]
+                    bar.update(1)
+                    bar.set_postfix(failed=stats["failed"], refresh=False)
+    finally:  # the table always shows what is on disk, also after an interruption
+        t1 = time.perf_counter()
+        files = write_results(study, out)
+        table_s = time.perf_counter() - t1
+    startup = 0.0 if stats["first_start"] is None else max(stats["first_start"] - started, 0.0)
+    return StudyReport(len(study.cases), len(done), stats["computed"], stats["failed"],
+                       time.perf_counter() - t0, stats["solve_s"], startup, table_s, files)
+
+
+class _exclusive:
+    """Within the block this process alone runs a study in ``out`` (an advisory lock on
+    ``out/.lock``): a second run into the same directory is refused, not interleaved."""
+
+    def __init__(self, out: Path) -> None:
+        self.path = out / ".lock"
+
+    def __enter__(self):
+        import fcntl
+
+        self.f = open(self.path, "a+")
+        try:
+            fcntl.flock(self.f, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            self.f.seek(0)
+            holder = self.f.read().strip() or "?"
+            self.f.close()
+            raise StudyError(f"--out {str(self.path.parent)!r}: another study is running "
+                             f"there (pid {holder}); wait for it or choose another --out"
+                             ) from None
+        self.f.seek(0)
+        self.f.truncate()
+        self.f.write(str(os.getpid()))
+        self.f.flush()
+        return self
+
+    def __exit__(self, *exc):
+        self.f.close()  # closing releases the lock
+
+
+def run_case(key: str, values: dict, vtu: bool, png: bool,
+             running: str | None = None) -> tuple[dict, dict[str, bytes]]:
+    """Solve one case (in a worker): its record and the bytes of its kept files. Never
+    raises for a failing case: the record says ``failed`` and why. ``running``: a directory
+    where the case is marked while it runs (so that a dead worker's case can be told)."""
+    from .. import __version__
+    from ..provenance import library_versions
+    from ..toothpair import prepare_job, run_job
+
+    t0 = time.perf_counter()
+    record = {"key": key, "status": "ok", "error": None, "inputs": values,
+              "started_unix": time.time(), "host": socket.gethostname(), "pid": os.getpid()}
+    files: dict[str, bytes] = {}
+    mark = Path(running) / f"{key}.{os.getpid()}" if running else None
+    if mark:
+        mark.touch()
+    try:
+        with _SOLVE_LOCK, tempfile.TemporaryDirectory(prefix="fegear-case-") as tmp:
+            result = run_job(prepare_job(values), Path(tmp) if vtu or png else None,
+                         fields=vtu, pictures=png)
+            files = {p.name: p.read_bytes() for k, p in result.files.items() if k != "summary"}
+        try:
+            json.dumps(result.summary, allow_nan=False)
+            record.update(summary=result.summary, solve_s=result.solve_s)
+        except ValueError:
+            record.update(status="failed", error="the solve returned a non-finite value "
+                          "(NaN or infinity) in its summary", solve_s=result.solve_s)
+    except FegearError as exc:
+        record.update(status="failed", error=f"{type(exc).__name__}: {exc}")
+    except Exception as exc:  # a bug, not a user error: keep the traceback with the case
+        record.update(status="failed", error=f"{type(exc).__name__}: {exc}",
+                      traceback=traceback.format_exc())
+    finally:
+        if mark:
+            mark.unlink(missing_ok=True)
+    record.update(case_wall_s=time.perf_counter() - t0, fegear=__version__,
+                  code_version=code_version(), versions=library_versions(),
+                  finished_utc=datetime.now(UTC).isoformat(timespec="seconds"))
+    return record, files
+
+
+def _pool_results(todo: list[StudyCase], study: Study, workers: int | None,
+                  running: Path) -> Iterator:
+    """Finished cases from a local process pool. A worker process that dies breaks the pool:
+    the unfinished cases go to a fresh pool, and a case that was running (marked in
+    ``running``) at WORKER_DEATHS such deaths is recorded as failed."""
+    import multiprocessing
+
+    n = workers or os.cpu_count() or 1
+    deaths: dict[str, int] = {}
+    pending = list(todo)
+    while pending:
+        for stale in running.glob("*"):
+            stale.unlink()
+        before = _children()
+        ctx = multiprocessing.get_context("spawn")  # no fork of a process holding threads
+        pool = ProcessPoolExecutor(min(n, len(pending)), mp_context=ctx,
+                                   initializer=_worker_init)
+        futures = {pool.submit(run_case, c.key, c.values, study.outputs.vtu,
+                               study.outputs.png, str(running)): c for c in pending}
+        try:
+            while futures:
+                finished_now, _ = wait(futures, return_when=FIRST_COMPLETED)
+                for f in finished_now:
+                    record, files = f.result()  # raises BrokenProcessPool if a worker died
+                    case = futures.pop(f)
+                    pending.remove(case)
+                    yield case, record, files
+        except BrokenProcessPool:
+            culprits = {p.name.split(".")[0] for p in running.glob("*")}
+            for key in culprits:
+                deaths[key] = deaths.get(key, 0) + 1
+            log.warning("a worker process died running %s; %d unfinished cases go to a new "
+                        "pool", ", ".join(sorted(culprits)) or "?", len(pending))
+            for case in [c for c in pending if deaths.get(c.key, 0) >= WORKER_DEATHS]:
+                pending.remove(case)
+                yield case, _died(case), {}
+        finally:
+            _stop_pool(pool, before)
+
+
+def _died(case: StudyCase) -> dict:
+    from .. import __version__
+
+    return {"key": case.key, "status": "failed", "inputs": case.values,
+            "error": f"the worker process died {WORKER_DEATHS} times while solving this case "
+                     "(out of memory? a crash in gmsh?)", "started_unix": time.time(),
+            "case_wall_s": None, "fegear": __version__,
+            "finished_utc": datetime.now(UTC).isoformat(timespec="seconds")}
+
+
+def _worker_init() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the study's to handle
+    threading.Thread(target=_exit_with_parent, args=(os.getppid(),), daemon=True).start()
+
+
+def _exit_with_parent(parent: int) -> None:
+    """A pool worker whose study process died (SIGKILL leaves no time to stop it) would
+    finish its case for nobody and then wait forever for the next: end it at once."""
+    while os.getppid() == parent:
+        time.sleep(0.5)
+    os._exit(1)
+
+
+def _children() -> set[int]:
+    import psutil
+
+    return {p.pid for p in psutil.Process().children()}
+
+
+def _stop_pool(pool: ProcessPoolExecutor, before: set[int]) -> None:
+    """Shut the pool down without waiting for running cases: terminate its processes (the
+    children of this process that multiprocessing's spawn started since ``before``)."""
+    import psutil
+
+    procs = []
+    for p in psutil.Process().children():
+        try:
+            if p.pid not in before and any("spawn_main" in part for part in p.cmdline()):
+                procs.append(p)
+        except psutil.Error:
+            continue
+    pool.shutdown(wait=False, cancel_futures=True)
+    for p in procs:
+        try:
+            p.terminate()
+        except psutil.NoSuchProcess:
+            continue
+    # no psutil.wait_procs: reaping them here would hide their exit from multiprocessing,
+    # whose shutdown then waits forever
+
+
+def _connect(address: str):
+    """A Dask distributed client of the scheduler at ``address``."""
+    try:
+        from distributed import Client
+    except ImportError as exc:
+        raise StudyError(f"--scheduler needs Dask distributed: {exc}") from None
+    try:
+        return Client(address, timeout="10s")
+    except (OSError, TimeoutError, ValueError, TypeError) as exc:
+        raise StudyError(f"--scheduler {address!r}: cannot connect: {exc}") from None
+
+
+def _dask_results(todo: list[StudyCase], study: Study, client) -> Iterator:
+    """Finished cases from a Dask distributed cluster (its workers need fegear installed)."""
+    from distributed import as_completed
+
+    futures = {}
+    try:
+        for c in todo:
+            futures[client.submit(run_case, c.key, c.values, study.outputs.vtu,
+                                  study.outputs.png, key=f"fegear-{c.key}", pure=False)] = c
+        for f in as_completed(futures):
+            case = futures[f]
+            try:
+                record, files = f.result()
+            except Exception as exc:  # the cluster lost it (KilledWorker …): record, go on
+                record, files = {**_died(case), "error": f"{type(exc).__name__}: {exc}"}, {}
+            yield case, record, files
+    finally:
+        for f in futures:
+            f.cancel()
+
+
+class _signals_raise:
+    """Within the block, SIGTERM and SIGINT raise :class:`StudyInterrupted`."""
+
+    def __enter__(self):
+        self.old = {}
+        if threading.current_thread() is threading.main_thread():
+            for sig in (signal.SIGTERM, signal.SIGINT):
+                self.old[sig] = signal.signal(sig, self._raise)
+        return self
+
+    def __exit__(self, *exc):
+        for sig, handler in self.old.items():
+            signal.signal(sig, handler)
+
+    @staticmethod
+    def _raise(signum, frame):
+        raise StudyInterrupted(signum)
+
+
+def _progress(total: int, initial: int, name: str, enabled: bool):
+    from tqdm import tqdm
+
+    return tqdm(total=total, initial=initial, desc=name, unit="case", disable=not enabled,
+                mininterval=1.0, dynamic_ncols=True)

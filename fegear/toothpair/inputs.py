@@ -1,0 +1,50 @@
+"""The inputs of a tooth-pair solve: one schema for the command line, study files and keys.
+
+``fegear solve`` builds its options from :data:`SOLVE_INPUTS`, a study file's keys are its
+names, and a study case's cache key hashes every input at its value or default, so the three
+cannot drift apart. Each row carries its kind, default, unit, static range and help; ranges
+that depend on other inputs are checked by the objects the inputs build
+(:class:`~fegear.geometry.PairParameters`, :class:`~fegear.toothpair.SolveCase`).
+"""
+
+from __future__ import annotations
+
+from ..checks import Input, InputTable
+from ..fe.material import MATERIAL_INPUTS
+from ..geometry.parameters import PAIR_INPUTS
+
+#: mesh quality → (elements across the Hertz half-width, root size / m, global size / m);
+#: each level halves the element sizes of the one before
+QUALITY = {"coarse": (2, 1 / 5, 1.0), "fast": (4, 1 / 10, 1 / 2),
+           "standard": (8, 1 / 20, 1 / 4), "fine": (16, 1 / 40, 1 / 8)}
+TIP_ROUND = 0.125        # default tip-edge round of gear 1, in modules (0.25 mm at m = 2)
+
+LOAD_INPUTS = (
+    Input("torque", float, 200.0, "torque on gear 1", "N·m", low=0.0, high=1e5, low_open=True),
+    Input("position", float, 0.0, "rolling angle β of gear 2", "deg", low=-180.0, high=180.0),
+    Input("positions", int, None, "solve N rolling angles across one tooth pitch from "
+          "--position on one mesh; writes cycle.csv, cycle.png and mesh_stiffness.json/.csv",
+          low=2, high=360),
+)
+
+MODEL_INPUTS = (
+    Input("quality", str, "standard", "mesh quality", choices=tuple(QUALITY)),
+    Input("tip-round", float, None, f"gear-1 tip-edge round radius, 0 <= tip-round <= m/2 "
+          f"(default {TIP_ROUND:g} m)", "mm"),
+    Input("rim1", float, None, "gear-1 rim below the roots, to the bore, m/2 ... 20 m "
+          "(default 3 m)", "mm"),
+    Input("rim2", float, None, "gear-2 rim beyond the roots, to the fixed rim, m/2 ... 20 m "
+          "(default 3 m)", "mm"),
+    Input("extra-teeth", int, 2, "unloaded teeth meshed beyond the paired ones on each side",
+          low=1, high=10),
+    Input("extra-pairs", int, 0, "pair this many more teeth on each side than the closure "
+          "needs (a safety check)", low=0, high=5),
+    Input("penalty-factor", float, None, "contact penalty κ = factor·E*/h, h the local facet "
+          "length (default 1000)", low=0.0, high=1e6, low_open=True),
+    Input("no-estimate", bool, False, "skip the second mesh level (no discretisation-error "
+          "estimate)"),
+)
+
+#: every input of ``fegear solve`` (and of a study case), in the order of ``--help``
+SOLVE_INPUTS = InputTable(PAIR_INPUTS, LOAD_INPUTS[:2], LOAD_INPUTS[2:], MATERIAL_INPUTS,
+                          MODEL_INPUTS)

@@ -1,0 +1,98 @@
+"""One ``fegear solve`` job: its inputs checked, the solve, the estimate and the files.
+
+The command line and the study runner share this module, so a study case is exactly a
+``fegear solve`` call: the same inputs under the same names (:data:`~.inputs.SOLVE_INPUTS`),
+the same checks, the same JSON summary.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..geometry import admissible_pair
+from .case import SolveCase
+from .inputs import SOLVE_INPUTS
+
+
+@dataclass(frozen=True)
+class Job:
+    """A checked solve: the case, the rolling angles (rad) to solve it at, and whether to
+    estimate the discretisation error with a second mesh level."""
+
+    case: SolveCase
+    betas: tuple[float, ...]
+    estimate: bool
+
+
+def prepare_job(values: Mapping[str, object]) -> Job:
+    """Check every input of a solve, given by name (missing ones at their defaults); raises
+    :class:`~fegear.errors.ParameterError` or :class:`~fegear.errors.GeometryError`. No
+    meshing, no output."""
+    from .solve import cycle_positions
+
+    v = SOLVE_INPUTS.complete(values)
+    kw = {} if v["penalty-factor"] is None else {"penalty_factor": v["penalty-factor"]}
+    position = SOLVE_INPUTS["position"].check(v["position"])
+    positions = SOLVE_INPUTS["positions"].check(v["positions"])
+    n = 1 if positions is None else positions
+    case = SolveCase(admissible_pair(v), torque=v["torque"], beta=math.radians(position),
+                     thickness=v["thickness"], E=v["E"], nu=v["nu"], quality=v["quality"],
+                     rim1=v["rim1"], rim2=v["rim2"], extra_teeth=v["extra-teeth"],
+                     extra_pairs=v["extra-pairs"], tip_round=v["tip-round"], **kw)
+    betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
+    return Job(case, tuple(betas), not v["no-estimate"])
+
+
+@dataclass(frozen=True)
+class JobResult:
+    """What a solve produced: the JSON summary (``fegear solve --json``), the files written
+    (name → path), the cycle rows (``--positions``; else None) and the time of the solve
+    itself (s, without writing files)."""
+
+    summary: dict
+    files: dict[str, Path]
+    rows: list[dict] | None
+    solve_s: float
+
+
+def run_job(job: Job, out: Path | None, fields: bool = True,
+            pictures: bool = True) -> JobResult:
+    """Solve ``job``; write summary.json, and the VTUs (``fields``) and pictures
+    (``pictures``) into ``out`` unless it is None."""
+    from ..geometry import Gear1Profile
+    from .estimate import second_level_estimate
+    from .output import write_cycle_outputs, write_mesh_stiffness, write_pair_outputs
+    from .report import cycle_rows, cycle_summary, pair_summary
+    from .solve import solve_positions
+
+    t0 = time.perf_counter()
+    profile = Gear1Profile(job.case.params)
+    sols = solve_positions(job.case, job.betas, profile)
+    cycle_s = time.perf_counter() - t0
+    # pictures, VTUs and the error estimate at the position of the largest gear-1 root stress
+    sol = max(sols, key=lambda s: s.root_stress[0])
+    estimate, other = second_level_estimate(sol, profile) if job.estimate else (None, None)
+    summary = pair_summary(sol, estimate, time.perf_counter() - t0, other)
+    rows = None
+    if len(sols) > 1:
+        rows = cycle_rows(sols)
+        summary["cycle"] = {"positions": len(sols), "solve_s": cycle_s,
+                            **cycle_summary(rows), "rows": rows}
+    solve_s = time.perf_counter() - t0
+    files: dict[str, Path] = {}
+    if out is not None:
+        if rows:
+            files.update(write_mesh_stiffness(out, rows, job.case))
+        if rows and pictures:
+            i = summary["inputs"]
+            files.update(write_cycle_outputs(
+                rows, out, f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T "
+                           f"{i['torque_Nm']:g} N·m, {len(rows)} positions, quality "
+                           f"{i['quality']}"))
+        files.update(write_pair_outputs(sol, out, {**summary, "files": {
+            k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures))
+    return JobResult(summary, files, rows, solve_s)

@@ -1,0 +1,96 @@
+"""What a designer reads off a solved position: root stresses per gear and per tooth, the
+contact of each paired tooth beside Hertz, and whether its peak sits on the tip-edge round.
+
+Root stress is the largest first principal stress on profile nodes in the lower ``ROOT_BAND``
+of the tooth height (by radius), whichever mesh zone they are in; per tooth, within half a pitch
+of the tooth (gear 2: the tooth it meshes with). Hertz p0 and b use gear 1's curvature at the
+tooth's contact point and gear 2's where that point lands once the clearance is closed.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..contact import ContactModel, ContactSolution
+from ..errors import ParameterError
+from ..fe import Body, StressField, facet_nodes, line_contact
+from ..planar import wrap
+from .case import SolveCase, ToothResult
+from .scene import Candidate, Scene
+
+
+def root_nodes(body: Body, names: tuple[str, ...], band: tuple[float, float]) -> np.ndarray:
+    """Profile nodes (on boundaries ``names``) whose radius lies in ``band`` (mm, body frame):
+    the root zone, whichever segment (root, flank or contact window) the nodes belong to."""
+    nodes = np.unique(np.concatenate([facet_nodes(body.mesh, body.mesh.boundaries[n]).ravel()
+                                      for n in names]))
+    r = np.linalg.norm(body.mesh.doflocs[:, nodes], axis=0)
+    return nodes[(r >= band[0] - 1e-9) & (r <= band[1] + 1e-9)]
+
+
+def root_stresses(stresses: tuple[StressField, ...],
+                  zones: tuple[np.ndarray, np.ndarray]) -> tuple[float, float]:
+    """Largest σ1 (MPa) on each gear's root zone."""
+    return (float(stresses[0].max_principal[zones[0]].max()),
+            float(stresses[1].max_principal[zones[1]].max()))
+
+
+def tooth_results(case: SolveCase, scene: Scene, bodies: tuple[Body, Body],
+                  contact: ContactModel, sol: ContactSolution,
+                  stresses: tuple[StressField, ...], zones: tuple[np.ndarray, np.ndarray],
+                  cands: tuple[Candidate, ...]) -> tuple[ToothResult, ...]:
+    """One :class:`ToothResult` per paired tooth (in ``scene.paired`` order)."""
+    p = case.params
+    g1, g2 = bodies
+    pitch1, pitch2 = scene.shape.pitch, 2 * math.pi / p.z2
+    torque = case.torque * 1e3
+    patches = {pt.pair: pt for pt in sol.patches}
+    a = contact.gap0(sol.link_value)[1]
+    by_tooth = {c.tooth: c for c in cands}
+    results = []
+    for k, tooth in enumerate(scene.paired):
+        c = by_tooth.get(tooth)
+        sel = contact.pair_index == k
+        patch = patches.get(contact.pairs[k].name)
+        load = patch.load if patch else 0.0
+        hz = _hertz(c, load, case) if load > 0 and c is not None else None
+        root2 = (_sector_max(g2, stresses[1], zones[1], round(c.theta2 / pitch2) * pitch2,
+                             pitch2)
+                 if c is not None else 0.0)  # gear-2 tooth tips sit at 2πk/z2
+        results.append(ToothResult(
+            tooth=tooth, clearance_um=c.clearance_um if c is not None else None, load_N=load,
+            load_share=float(-(a[sel] @ sol.force[sel]) / torque),
+            p_max_MPa=patch.p_max if patch else 0.0,
+            half_width_mm=patch.half_width if patch else 0.0,
+            hertz_p0_MPa=hz.p0 if hz else None, hertz_b_mm=hz.b if hz else None,
+            b_over_R=hz.b_over_R if hz else None,
+            root1_MPa=_sector_max(g1, stresses[0], zones[0],
+                                  scene.shape.tooth_center + tooth * pitch1, pitch1),
+            root2_MPa=root2,
+            peak_on_round=_peak_on_round(scene.shape, contact.x[sel], sol.pressure[sel])))
+    return tuple(results)
+
+
+def _peak_on_round(shape, x: np.ndarray, pressure: np.ndarray) -> bool:
+    """Whether the largest traction at the points ``x`` (gear 1's frame) sits on a tip round."""
+    if not len(pressure) or pressure.max() <= 0:
+        return False
+    i = int(np.argmax(pressure))
+    return bool(shape.on_round(np.arctan2(x[i:i + 1, 1], x[i:i + 1, 0]))[0])
+
+
+def _hertz(c, load: float, case: SolveCase):
+    try:
+        return line_contact(c.radius1, c.radius2, load, case.thickness, case.E, case.nu)
+    except ParameterError:
+        return None
+
+
+def _sector_max(body: Body, stress: StressField, nodes: np.ndarray, centre: float,
+                pitch: float) -> float:
+    """Largest σ1 among ``nodes`` within half a pitch of the polar angle ``centre``."""
+    x = body.mesh.doflocs[:, nodes]
+    near = np.abs(wrap(np.arctan2(x[1], x[0]) - centre)) <= 0.5 * pitch
+    return float(stress.max_principal[nodes[near]].max()) if near.any() else 0.0

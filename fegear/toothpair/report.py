@@ -1,0 +1,167 @@
+"""Reports of a tooth-pair solve: the JSON summary (``fegear solve --json``), the short table
+``fegear solve`` prints, and the rows, extremes and table of a mesh cycle."""
+
+from __future__ import annotations
+
+import math
+
+from .case import HEADLINE, PairSolution
+
+
+def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float | None = None,
+                 coarse_quality: str | None = None) -> dict:
+    """The JSON summary: inputs, headline stresses, per-tooth results and checks."""
+    c, p = sol.case, sol.case.params
+    loaded = [t for t in sol.teeth if t.load_N > 0]
+    peak = max(loaded, key=lambda t: t.p_max_MPa)
+    out = {
+        "inputs": {"m": p.m, "z1": p.z1, "z2": p.z2, "h1": p.h1, "f1": p.f1, "shift": p.shift,
+                   "rotation": p.rotation, "tip_relief": p.tip_relief, "torque_Nm": c.torque,
+                   "position_deg": math.degrees(c.beta), "thickness_mm": c.thickness,
+                   "E_MPa": c.E, "nu": c.nu, "quality": c.quality, "tip_round_mm": c.edge_radius,
+                   "rim1_mm": c.rims[0], "rim2_mm": c.rims[1], "extra_teeth": c.extra_teeth,
+                   "extra_pairs": c.extra_pairs,
+                   "penalty_factor": c.penalty_factor},
+        **sol.headline(),
+        "contact_peak_on_tip_round": peak.peak_on_round,
+        "hertz_p0_MPa": peak.hertz_p0_MPa,
+        "hertz_b_over_R": peak.b_over_R,
+        "teeth_in_contact": sol.teeth_in_contact,
+        "load_share": {str(t.tooth): t.load_share for t in loaded},
+        "transmission_error_urad": 1e6 * (sol.rotation - sol.first_touch),
+        "rotation_urad": 1e6 * sol.rotation,
+        "first_touch_urad": 1e6 * sol.first_touch,
+        "mesh_stiffness_Nm_per_rad": sol.mesh_stiffness,
+        "error_estimate_pct": max(estimate.values()) if estimate else None,
+        "error_estimate_by_stress_pct": estimate,
+        "error_estimate_from": coarse_quality,
+        "torque_balance_error": sol.contact.balance_error,
+        "load_share_sum": sum(t.load_share for t in sol.teeth),
+        "max_penetration_um": 1e3 * sol.contact.max_penetration,
+        "iterations": sol.contact.iterations,
+        "body_residuals": list(sol.contact.residuals),
+        "dofs": sol.dofs,
+        "contact_points": int(sol.model.npoints),
+        "teeth": [{"tooth": t.tooth, "clearance_um": t.clearance_um, "load_N": t.load_N,
+                   "load_share": t.load_share, "p_max_MPa": t.p_max_MPa,
+                   "half_width_mm": t.half_width_mm, "hertz_p0_MPa": t.hertz_p0_MPa,
+                   "hertz_b_mm": t.hertz_b_mm, "b_over_R": t.b_over_R,
+                   "root_stress_gear1_MPa": t.root1_MPa, "root_stress_gear2_MPa": t.root2_MPa,
+                   "peak_on_tip_round": t.peak_on_round}
+                  for t in sol.teeth],
+        "timings_s": sol.timings_s,
+        "wall_s": wall_s,
+    }
+    return out
+
+
+def pair_table(summary: dict) -> str:
+    """Short plain-text report of a summary (the `fegear solve` output)."""
+    i = summary["inputs"]
+    est = summary["error_estimate_by_stress_pct"] or {}
+
+    def e(k):
+        return f"{est[k]:6.2f}" if k in est else "     -"
+
+    lines = [
+        f"pair m {i['m']:g}, z {i['z2']}/{i['z1']}, h1 {i['h1']:g}, f1 {i['f1']:g}, "
+        f"shift {i['shift']:g}, rotation {i['rotation']:g} mm; T {i['torque_Nm']:g} N·m at "
+        f"β {i['position_deg']:g}°, t {i['thickness_mm']:g} mm, quality {i['quality']}, "
+        f"tip round {i['tip_round_mm']:g} mm",
+        "",
+        "| headline [MPa]          |      FE | err est % |",
+        "|-------------------------|--------:|----------:|",
+    ]
+    for k, label in HEADLINE.items():
+        lines.append(f"| {label:23s} | {summary[k]:7.1f} |    {e(k)} |")
+    lines += ["",
+              "| tooth | clear. µm | load N | share | p_max MPa | b mm  | Hertz p0 | b/R*   "
+              "| root1 | root2 |",
+              "|------:|---------:|-------:|------:|----------:|------:|---------:|-------:"
+              "|------:|------:|"]
+    for t in summary["teeth"]:
+        if t["load_N"] <= 0:
+            continue
+        hz = f"{t['hertz_p0_MPa']:8.1f}" if t["hertz_p0_MPa"] else "       -"
+        br = f"{t['b_over_R']:.4f}" if t["b_over_R"] else "     -"
+        edge = "e" if t["peak_on_tip_round"] else " "
+        lines.append(f"| {t['tooth']:5d} | {t['clearance_um']:8.2f} | {t['load_N']:6.0f} | "
+                     f"{t['load_share']:.3f} | {t['p_max_MPa']:8.1f}{edge} | "
+                     f"{t['half_width_mm']:.3f} "
+                     f"| {hz} | {br} | {t['root_stress_gear1_MPa']:5.0f} | "
+                     f"{t['root_stress_gear2_MPa']:5.0f} |")
+    unloaded = [t["tooth"] for t in summary["teeth"] if t["load_N"] <= 0]
+    if any(t["peak_on_tip_round"] for t in summary["teeth"]):
+        lines += ["", "e: the peak sits on gear 1's tip-edge round (edge contact); it depends on "
+                  "the round's radius, --tip-round (README, \"Edge contact\")"]
+    lines += ["",
+              f"teeth in contact {summary['teeth_in_contact']} (paired but open: {unloaded}); "
+              f"load shares sum to {summary['load_share_sum']:.6f}; torque balance error "
+              f"{summary['torque_balance_error']:.1e}",
+              f"transmission error {summary['transmission_error_urad']:.1f} µrad (rotation "
+              f"{summary['rotation_urad']:.1f}, first touch {summary['first_touch_urad']:.1f}); "
+              f"mesh stiffness {summary['mesh_stiffness_Nm_per_rad']:.4g} N·m/rad",
+              f"DOFs {summary['dofs']}, contact points {summary['contact_points']}, "
+              f"iterations {summary['iterations']}, max penetration "
+              f"{summary['max_penetration_um']:.3g} µm",
+              "time [s]: " + ", ".join(f"{k} {v:.2f}" for k, v in summary["timings_s"].items())
+              + (f"; wall {summary['wall_s']:.1f}" if summary["wall_s"] else "")]
+    return "\n".join(lines)
+
+
+#: cycle CSV columns besides the headline stresses and the per-tooth shares
+CYCLE_COLUMNS = ("position_deg", *HEADLINE, "transmission_error_urad", "rotation_urad",
+                 "first_touch_urad", "mesh_stiffness_Nm_per_rad", "teeth_in_contact",
+                 "torque_balance_error")
+
+
+def cycle_rows(sols) -> list[dict]:
+    """One row per position of a :func:`fegear.toothpair.solve_positions` run: headline
+    stresses, transmission error, stiffness, teeth in contact and ``share_<tooth>`` for every
+    paired tooth."""
+    teeth = sorted({t.tooth for s in sols for t in s.teeth})
+    rows = []
+    for s in sols:
+        share = {t.tooth: t.load_share for t in s.teeth}
+        rows.append({"position_deg": math.degrees(s.case.beta), **s.headline(),
+                     "transmission_error_urad": 1e6 * (s.rotation - s.first_touch),
+                     "rotation_urad": 1e6 * s.rotation, "first_touch_urad": 1e6 * s.first_touch,
+                     "mesh_stiffness_Nm_per_rad": s.mesh_stiffness,
+                     "teeth_in_contact": s.teeth_in_contact,
+                     "torque_balance_error": s.contact.balance_error,
+                     **{f"share_{t}": share.get(t, 0.0) for t in teeth}})
+    return rows
+
+
+def cycle_summary(rows: list[dict]) -> dict:
+    """Extremes over the cycle: the largest of each headline stress and where it occurs,
+    transmission-error and stiffness range, teeth in contact."""
+    out = {}
+    for k in HEADLINE:
+        worst = max(rows, key=lambda r: r[k])
+        out[k] = {"max": worst[k], "at_position_deg": worst["position_deg"]}
+    for k in ("transmission_error_urad", "mesh_stiffness_Nm_per_rad"):
+        v = [r[k] for r in rows]
+        out[k] = {"min": min(v), "max": max(v), "mean": sum(v) / len(v),
+                  "peak_to_peak": max(v) - min(v)}
+    n = [r["teeth_in_contact"] for r in rows]
+    out["teeth_in_contact"] = {"min": min(n), "max": max(n)}
+    return out
+
+
+def cycle_table(rows: list[dict]) -> str:
+    """Markdown table of a cycle (the `fegear solve --positions` output)."""
+    share_keys = [k for k in rows[0] if k.startswith("share_")]
+    shown = [k for k in share_keys if any(r[k] > 0 for r in rows)]
+    head = ("| β [deg] | root1 | root2 | p_max | vM max | TE µrad | k N·m/rad | teeth | "
+            + " | ".join(f"tooth {k[6:]}" for k in shown) + " |")
+    lines = [head, "|" + "---:|" * (8 + len(shown))]
+    for r in rows:
+        lines.append(
+            f"| {r['position_deg']:7.3f} | {r['root_stress_gear1_MPa']:5.1f} | "
+            f"{r['root_stress_gear2_MPa']:5.1f} | {r['contact_pressure_MPa']:6.0f} | "
+            f"{r['von_mises_max_MPa']:6.0f} | {r['transmission_error_urad']:7.1f} | "
+            f"{r['mesh_stiffness_Nm_per_rad']:.4g} | {r['teeth_in_contact']} | "
+            + " | ".join(f"{r[k]:.3f}" if abs(r[k]) >= 5e-4 else "0.000"
+                         for k in shown) + " |")
+    return "\n".join(lines)

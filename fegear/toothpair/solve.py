@@ -1,0 +1,252 @@
+"""The tooth-pair stress solve: scene → meshes → bodies → contact → stresses, per position.
+
+Torque T (N·m) acts on gear 1 counter-clockwise (the ``+`` direction of the clearance table),
+through a rigid rotation θ of its bore about O1; gear 2's outer rim is fixed. Teeth are paired
+from the unloaded clearance table and an estimate of the loaded rotation (:func:`choose_teeth`);
+after the solve every unpaired tooth is checked against the computed rotation, and the scene is
+rebuilt with more teeth if one would have closed.
+
+A set of rolling angles (a mesh cycle) shares one scene, one factorisation and one flexibility
+per body (:class:`PairModel`), whose rows are formed as contacts first reach their dofs; each
+position only places the bodies, pairs the contact points against gear 2's exact curve and
+solves the small contact problem.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from ..contact import (
+    ContactError,
+    ContactModel,
+    ContactPair,
+    ContactSettings,
+    ContactSolution,
+    build_contact,
+    first_touch,
+    solve_contact,
+)
+from ..errors import FegearError, GeometryError
+from ..fe import (
+    Body,
+    Placement,
+    RigidLink,
+    assemble_body,
+    mesh_bodies,
+    recover,
+)
+from ..geometry import Gear1Profile, ToothContact
+from ..planar import wrap
+from .case import PairSolution, SolveCase
+from .recovery import root_nodes, root_stresses, tooth_results
+from .scene import Scene, build_scene, candidate_data
+
+log = logging.getLogger(__name__)
+
+TOOTH_STIFFNESS = 14.0   # N/(mm·µm): ISO 6336 single-pair stiffness c', for the load estimate
+MARGIN_UM = 3.0          # pair every tooth whose clearance is below the rigid closure + 3 µm,
+MARGIN_FACTOR = 1.5      # … or below 1.5 × the closure + 3 µm within NEAR_TEETH of such a tooth
+NEAR_TEETH = 2
+INTERFERENCE_UM = 1e-3   # a clearance below −1 nm of arc is an interference (touching teeth
+                         # of a conformal pair come out at about −2e-10 µm)
+
+
+def choose_teeth(state, closure_um: float, widen: int = 0) -> tuple[int, ...]:
+    """Gear-1 teeth to pair at one position, for a rigid closure ``closure_um`` (µm of arc at
+    r0) of gear 1 against its kinematic position.
+
+    A tooth is paired if its + clearance is below the closure plus MARGIN_UM, or, within
+    NEAR_TEETH of such a tooth, below MARGIN_FACTOR × the closure plus MARGIN_UM (the loaded
+    teeth's neighbours also move elastically); at least the closest tooth. ``widen`` adds that
+    many teeth on each side of every paired tooth (to show the choice is safe)."""
+    open_ = {c.tooth: c.plus_um for c in state.teeth if c.plus_um is not None}
+    z1 = len(state.teeth)
+    rigid = {t for t, c in open_.items() if c < closure_um + MARGIN_UM}
+    rigid = rigid or {min(open_, key=open_.get)}
+    near = {(t + k) % z1 for t in rigid for k in range(-NEAR_TEETH, NEAR_TEETH + 1)}
+    chosen = rigid | {t for t in near if t in open_
+                      and open_[t] < MARGIN_FACTOR * closure_um + MARGIN_UM}
+    chosen |= {(t + k) % z1 for t in chosen for k in range(-widen, widen + 1)}
+    return tuple(sorted(t for t in chosen if t in open_))
+
+
+@dataclass(frozen=True)
+class PairModel:
+    """The meshed and factorised sector bodies (in their own frames) for a set of rolling
+    angles; :func:`solve_position` places them at one β and solves the contact there."""
+
+    case: SolveCase
+    scene: Scene = field(repr=False)
+    bodies: tuple[Body, Body] = field(repr=False)
+    root_zones: tuple[np.ndarray, np.ndarray] = field(repr=False)
+    timings_s: dict
+
+
+def build_model(case: SolveCase, profile: Gear1Profile, positions, teeth) -> PairModel:
+    """Mesh and factorise the sector for the paired ``teeth`` over ``positions`` (β, state)."""
+    p = case.params
+    times = {}
+    t0 = time.perf_counter()
+    rim1, rim2 = case.rims
+    scene = build_scene(p, profile, positions, teeth, case.torque * 1e3, case.thickness, case.E,
+                        case.nu, case.quality, rim1, rim2, case.extra_teeth, case.edge_radius)
+    m1, m2 = mesh_bodies([scene.gear1, scene.gear2])
+    times["mesh"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    mat = case.material
+    g1 = assemble_body(m1, mat, link=RigidLink("g1_bore", "rotation", (0.0, 0.0)))
+    g2 = assemble_body(m2, mat, fixed=("g2_rim",))
+    times["assemble_factor"] = time.perf_counter() - t0
+    zones = (root_nodes(g1, scene.profile1, scene.root_band1),
+             root_nodes(g2, scene.profile2, scene.root_band2))
+    return PairModel(case, scene, (g1, g2), zones, times)
+
+
+def solve_pair(case: SolveCase, profile: Gear1Profile | None = None) -> PairSolution:
+    """Solve one position; pairs more teeth until no unpaired tooth would close."""
+    profile = profile if profile is not None else Gear1Profile(case.params)
+    return solve_positions(case, (case.beta,), profile)[0]
+
+
+def cycle_positions(beta0: float, n: int, z2: int) -> tuple[float, ...]:
+    """``n`` rolling angles evenly across one tooth pitch 2π/z2 of gear 2, from β0."""
+    return tuple(float(wrap(beta0 + k * 2 * math.pi / z2 / n)) for k in range(n))
+
+
+def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None
+                    ) -> tuple[PairSolution, ...]:
+    """Solve at each rolling angle of ``betas`` on one mesh: the windows cover every paired
+    tooth's contact path over the positions, the bodies are factorised once (their flexibility
+    rows are formed when a position first needs them, then kept), and each position only
+    re-pairs the contact points and solves the small contact problem.
+    If an unpaired tooth would close at some position, the scene is rebuilt with it."""
+    p = case.params
+    t0 = time.perf_counter()
+    profile = profile if profile is not None else Gear1Profile(p)
+    tca = ToothContact(p, profile)
+    states = [(b, tca.state(b)) for b in betas]
+    t_profile = time.perf_counter() - t0
+    _refuse_interference(states)
+    force = case.torque * 1e3 / p.r0
+    estimate_um = force / (case.thickness * TOOTH_STIFFNESS) / 3.0
+    teeth = _union(choose_teeth(st, _first_clearance(st) + estimate_um, case.extra_pairs)
+                   for _, st in states)
+    for _ in range(4):
+        model = build_model(case, profile, states, teeth)
+        sols = []
+        for k, (beta, state) in enumerate(states):
+            sol = solve_position(model, beta, state, sols[-1] if sols else None)
+            if k == 0:  # the first position carries the one-off stages
+                sol = replace(sol, timings_s={"profile": t_profile, **model.timings_s,
+                                              **sol.timings_s})
+            sols.append(sol)
+        more = _union(choose_teeth(st, s.rotation * p.r0 * 1e3, case.extra_pairs)
+                      for (_, st), s in zip(states, sols))
+        if set(more) <= set(model.scene.paired):
+            return tuple(sols)
+        log.info("teeth %s would close: rebuilding the scene", sorted(set(more) - set(teeth)))
+        teeth = _union((teeth, more))
+    raise FegearError("the paired teeth did not settle after 4 rebuilds")
+
+
+def _refuse_interference(states) -> None:
+    """A pair whose teeth overlap before any load is an interference fit: not modelled."""
+    for beta, state in states:
+        c = state.closest(+1)
+        if c.plus_um < -INTERFERENCE_UM:
+            raise GeometryError(f"the unloaded pair interferes: gear-1 tooth {c.tooth} overlaps "
+                                f"gear 2 by {-c.plus_um:.3g} µm of arc at r0 at β = "
+                                f"{math.degrees(beta):.4g}°; an interference fit is not "
+                                "modelled (raise tip_relief, or check shift and rotation)")
+
+
+def _first_clearance(state) -> float:
+    """Smallest + clearance at a position (µm): the rigid closure at first touch."""
+    return state.closest(+1).plus_um
+
+
+def _union(groups) -> tuple[int, ...]:
+    return tuple(sorted(set().union(*groups)))
+
+
+def solve_position(model: PairModel, beta: float, state,
+                   near: PairSolution | None = None) -> PairSolution:
+    """Place the model's bodies at β, pair the contact points and solve; stresses per tooth.
+    ``state`` is the clearance state at β (for the predicted contact points); ``near``, a
+    solution on the same model at a nearby β, starts the contact iterations from its rotation
+    and loaded nodes (if that start fails, they start from the first touch)."""
+    case = replace(model.case, beta=beta)
+    times: dict[str, float] = {}
+    t0 = time.perf_counter()
+    bodies = place(model, beta)
+    contact = pair_contact(model.scene, bodies, beta, case.penalty_factor)
+    times["condense"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    sol = _solve_loaded(contact, case.torque * 1e3, near, beta)
+    # flexibility columns are formed as the active set reaches them: book that as condensing
+    times["contact"] = time.perf_counter() - t0 - contact.G.seconds
+    times["condense"] += contact.G.seconds
+
+    t0 = time.perf_counter()
+    stresses = tuple(recover(b, u) for b, u in zip(bodies, sol.displacements))
+    cands = candidate_data(case.params, model.scene.shape, state, model.scene.paired, beta)
+    teeth = tooth_results(case, model.scene, bodies, contact, sol, stresses, model.root_zones,
+                          cands)
+    roots = root_stresses(stresses, model.root_zones)
+    vm = float(max(s.von_mises.max() for s in stresses))
+    times["recovery"] = time.perf_counter() - t0
+    return PairSolution(
+        case=case, scene=model.scene, bodies=bodies, model=contact, contact=sol,
+        stresses=stresses, root_zones=model.root_zones, teeth=teeth, root_stress=roots,
+        von_mises_max=vm, rotation=sol.link_value, first_touch=_touch_rotation(contact),
+        dofs=sum(b.ndofs for b in bodies), timings_s=times)
+
+
+def place(model: PairModel, beta: float) -> tuple[Body, Body]:
+    """The model's bodies placed at rolling angle β: gear 2 turned by β, gear 1 by
+    α = (z2/z1) β about its centre (0, e). The factors and caches are shared."""
+    p = model.case.params
+    return (replace(model.bodies[0], placement=Placement(p.ratio * beta, (0.0, p.e))),
+            replace(model.bodies[1], placement=Placement(beta)))
+
+
+def pair_contact(scene: Scene, bodies: tuple[Body, Body], beta: float,
+                 penalty_factor: float) -> ContactModel:
+    """The contact model at β: each paired tooth's window on gear 1 against gear 2's exact
+    curve, its facets for the elastic part."""
+    master = scene.master(beta)
+    pairs = [ContactPair(f"tooth {t}", 0, f"g1_contact_{t}", 1, "g2_contact", master)
+             for t in scene.paired]
+    return build_contact(bodies, pairs, ContactSettings(penalty_factor=penalty_factor))
+
+
+def _solve_loaded(contact: ContactModel, torque_nmm: float, near: PairSolution | None,
+                  beta: float) -> ContactSolution:
+    """The contact under the torque, started from ``near``'s rotation and loaded nodes if
+    given (and from the first touch if that start fails)."""
+    if near is not None:
+        loaded = near.model.node[near.contact.force > 0]
+        try:
+            return solve_contact(contact, load=torque_nmm,
+                                 start=(near.rotation, np.isin(contact.node, loaded)))
+        except ContactError as err:
+            log.info("β %.6f: started from the last position, %s; starting again", beta, err)
+    return solve_contact(contact, load=torque_nmm)
+
+
+def _touch_rotation(model) -> float:
+    """Rotation θ (rad) of the rigid gear 1 at which the first slave point touches (the meshed,
+    tip-rounded teeth): the linearised first touch, repeated on the exact rigid gaps."""
+    theta = 0.0
+    for _ in range(6):
+        step = first_touch(*model.gap0(theta), load=1.0, k_link=0.0)
+        theta += step
+        if abs(step) < 1e-13:
+            break
+    return theta

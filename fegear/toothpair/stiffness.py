@@ -1,0 +1,107 @@
+"""Mesh stiffness over a mesh cycle: what ``fegear solve --positions N`` hands the drive level.
+
+At each mesh phase the cycle gives gear 1's static rotation under the torque T with gear 2
+held: the unloaded part e (rotation to first touch, the kinematic transmission error) and the
+elastic part T/k, k the secant mesh stiffness in N·m/rad of gear-1 rotation. They are written to
+``mesh_stiffness.json`` (and ``.csv``), which ``fegear drive dynamics`` reads.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import FegearError, ParameterError
+
+
+@dataclass(frozen=True)
+class MeshStiffness:
+    """Mesh stiffness and transmission error over one mesh period at one torque: phase in
+    [0, 1) (one gear-1 tooth pitch), stiffness k (N·m/rad of gear-1 rotation, gear 2 held,
+    secant: T/elastic rotation), unloaded error e (rad of gear-1 rotation to first touch),
+    torque (N·m), teeth z1, z2, module (mm) and face width (mm)."""
+
+    phase: np.ndarray
+    stiffness: np.ndarray
+    error: np.ndarray
+    torque: float
+    z1: int
+    z2: int
+    module: float
+    thickness: float
+
+    def __post_init__(self) -> None:
+        n = len(self.phase)
+        if n < 2 or len(self.stiffness) != n or len(self.error) != n:
+            raise ParameterError("mesh stiffness", n, "two or more phases, one k and e each")
+        if np.any(np.diff(self.phase) <= 0) or self.phase[0] < 0 or self.phase[-1] >= 1:
+            raise ParameterError("phase", list(self.phase), "increasing, within [0, 1)")
+        if not np.all(np.isfinite(self.stiffness)) or np.any(self.stiffness <= 0):
+            raise ParameterError("stiffness", list(self.stiffness), "finite and > 0")
+
+    @property
+    def mean(self) -> float:
+        """Mean stiffness over the period (N·m/rad), trapezoidal on the periodic samples."""
+        return float(_periodic_mean(self.phase, self.stiffness))
+
+    def at(self, phase) -> tuple[np.ndarray, np.ndarray]:
+        """k and e at ``phase`` (any real; periodic), linear between the samples."""
+        x = np.mod(phase, 1.0)
+        xp = np.concatenate([self.phase, [self.phase[0] + 1.0]])
+        k = np.interp(x, xp, np.concatenate([self.stiffness, self.stiffness[:1]]),
+                      period=1.0)
+        e = np.interp(x, xp, np.concatenate([self.error, self.error[:1]]), period=1.0)
+        return k, e
+
+    def harmonics(self, n: int = 5) -> dict[str, list[float]]:
+        """Amplitudes of the first ``n`` harmonics of k and e (mesh orders 1..n), from the
+        samples taken as evenly spaced."""
+        out = {}
+        for name, v in (("stiffness", self.stiffness), ("error", self.error)):
+            c = np.fft.rfft(v) / len(v)
+            out[name] = [float(2 * abs(c[j])) for j in range(1, min(n, len(c) - 1) + 1)]
+        return out
+
+    def to_json(self) -> dict:
+        return {"z1": self.z1, "z2": self.z2, "module_mm": self.module,
+                "thickness_mm": self.thickness, "torque_Nm": self.torque,
+                "mean_stiffness_Nm_per_rad": self.mean, "harmonics": self.harmonics(),
+                "phase": self.phase.tolist(), "stiffness_Nm_per_rad": self.stiffness.tolist(),
+                "error_rad": self.error.tolist()}
+
+
+def _periodic_mean(x: np.ndarray, v: np.ndarray) -> float:
+    xp = np.concatenate([x, [x[0] + 1.0]])
+    vp = np.concatenate([v, v[:1]])
+    return float(np.sum(0.5 * (vp[1:] + vp[:-1]) * np.diff(xp)) / (xp[-1] - xp[0]))
+
+
+def mesh_stiffness_of_cycle(rows: list[dict], z1: int, z2: int, module: float, thickness: float,
+               torque: float) -> MeshStiffness:
+    """The mesh stiffness of a ``fegear solve --positions`` cycle (rows of
+    :func:`fegear.toothpair.report.cycle_rows`): phase = (β − β0)·z2/360°."""
+    beta = np.array([r["position_deg"] for r in rows])
+    phase = np.mod((beta - beta[0]) * z2 / 360.0, 1.0)
+    order = np.argsort(phase)
+    k = np.array([r["mesh_stiffness_Nm_per_rad"] for r in rows])
+    e = 1e-6 * np.array([r["first_touch_urad"] for r in rows])
+    return MeshStiffness(phase[order], k[order], e[order], torque, z1, z2, module, thickness)
+
+
+def read_mesh_stiffness(path: str | Path) -> MeshStiffness:
+    """A ``mesh_stiffness.json`` written by ``fegear solve --positions N``."""
+    try:
+        d = json.loads(Path(path).read_text())
+        return MeshStiffness(np.array(d["phase"], float),
+                             np.array(d["stiffness_Nm_per_rad"], float),
+                             np.array(d["error_rad"], float), float(d["torque_Nm"]),
+                             int(d["z1"]), int(d["z2"]), float(d["module_mm"]),
+                             float(d["thickness_mm"]))
+    except OSError as exc:
+        raise FegearError(f"--stiffness {str(path)!r}: cannot be read: {exc.strerror}") from None
+    except (ValueError, KeyError, TypeError) as exc:
+        raise FegearError(f"--stiffness {str(path)!r}: not a mesh_stiffness.json "
+                          f"({type(exc).__name__}: {exc})") from None

@@ -1,0 +1,397 @@
+"""Benchmarks: time per pipeline stage, printed as markdown tables (never asserted in tests).
+
+Ladders (:func:`disk_ladder`, :func:`pair_ladder`) solve one case on meshes each twice as fine
+as the last and measure every level's error against the Richardson extrapolation of the three
+finest (:func:`richardson`); where CalculiX is installed, it solves the same meshes beside ours
+(:mod:`fegear.verify.calculix`). :func:`ladder_targets` checks the run-time-versus-error targets.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import os
+import platform
+import subprocess
+import tempfile
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..geometry import Gear1Profile, PairParameters, ToothContact, gear2_curve
+
+GEOMETRY_TARGET_S = 1.0
+
+
+def _best(fn, repeat: int):
+    best, value = np.inf, None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        value = fn()
+        best = min(best, time.perf_counter() - t0)
+    return best, value
+
+
+def geometry_bench(params: PairParameters, repeat: int = 3, chord_error: float = 1e-4) -> str:
+    """Time the geometry stage: profiles plus clearance table (target < 1 s), and backlash."""
+    rows = []
+    t_env, g1 = _best(lambda: Gear1Profile(params), repeat)
+    rows.append(("gear-1 envelope (exact pieces)", t_env))
+    t_poly, _ = _best(lambda: (g1.polyline(chord_error),
+                               gear2_curve(params).polyline(chord_error)), repeat)
+    rows.append((f"polylines, both gears (chord error {chord_error * 1e3:g} µm)", t_poly))
+    t_tca, _ = _best(lambda: ToothContact(params, g1).state(0.0), repeat)
+    rows.append((f"clearance table at β = 0 ({params.z1} teeth × 2 directions)", t_tca))
+    total = t_env + t_poly + t_tca
+    t_bl, bl = _best(lambda: ToothContact(params, g1).backlash(), 1)
+    lines = [
+        f"fegear geometry benchmark: {params.describe()}",
+        f"python {platform.python_version()}, numpy {np.__version__}, "
+        f"{platform.machine()}, best of {repeat}",
+        "",
+        "| stage | time [s] |",
+        "|---|---:|",
+    ]
+    lines += [f"| {name} | {t:.3f} |" for name, t in rows]
+    status = "met" if total < GEOMETRY_TARGET_S else "MISSED"
+    lines.append(f"| **profiles + clearance table** (target < {GEOMETRY_TARGET_S:g} s: {status})"
+                 f" | **{total:.3f}** |")
+    lines.append(f"| backlash over one mesh cycle (+ {bl.plus_um:.3f} µm, − {bl.minus_um:.3f} µm)"
+                 f" | {t_bl:.3f} |")
+    return "\n".join(lines)
+
+
+CYCLE_TARGET = 3.0  # a mesh cycle of N positions costs less than 3× one position
+
+
+def pair_bench(params: PairParameters, torque: float = 200.0, quality: str = "standard",
+               positions: int = 24) -> str:
+    """Time the baseline tooth-pair solve at one position against a mesh cycle of
+    ``positions`` rolling angles on one mesh (target: the cycle < 3× one position)."""
+    from ..toothpair import SolveCase, cycle_positions, solve_positions
+
+    case = SolveCase(params, torque=torque, quality=quality)
+    profile = Gear1Profile(params)
+    t0 = time.perf_counter()
+    one = solve_positions(case, (case.beta,), profile)[0]
+    t_one = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    cycle = solve_positions(case, cycle_positions(case.beta, positions, params.z2), profile)
+    t_cycle = time.perf_counter() - t0
+    stages = ("profile", "mesh", "assemble_factor", "condense", "contact", "recovery")
+    later = cycle[1:]
+
+    def per_position(k):
+        return sum(s.timings_s[k] for s in later) / len(later) if later else 0.0
+
+    lines = [f"fegear tooth-pair benchmark: {params.describe()}, T {torque:g} N·m, quality "
+             f"{quality}", "",
+             "| run | DOFs | contact points | " + " | ".join(stages) + " | total [s] |",
+             "|---|---:|---:|" + "---:|" * (len(stages) + 1)]
+    for name, s, total in (("one position", one, f"{t_one:.2f}"),
+                           (f"cycle, first of {positions}", cycle[0], "")):
+        times = " | ".join(f"{s.timings_s.get(k, 0.0):.2f}" for k in stages)
+        lines.append(f"| {name} | {s.dofs} | {s.model.npoints} | {times} | {total} |")
+    lines.append(f"| cycle, each later position (mean) | | | | | | {per_position('condense'):.2f}"
+                 f" | {per_position('contact'):.2f} | {per_position('recovery'):.2f} | |")
+    ratio = t_cycle / t_one
+    status = "met" if ratio < CYCLE_TARGET else "MISSED"
+    lines.append(f"| **{positions}-position cycle** (target < {CYCLE_TARGET:g}× one position: "
+                 f"{status}, {ratio:.2f}×) | | | | | | | | | **{t_cycle:.2f}** |")
+    return "\n".join(lines)
+
+
+# --- run time against error ----------------------------------------------------------------
+
+log = logging.getLogger(__name__)
+
+HERTZ_TARGET = (0.5, 0.3)   # the Hertz case within 0.5 % of its reference in 0.3 s
+PAIR_TARGET = (1.0, 1.0)    # the baseline pair within 1 % in 1 s
+PEER_TARGET = 20.0          # at least 20× faster than CalculiX on the same mesh
+DISK_LEVELS = (2, 4, 8, 16, 32)  # elements across the Hertz half-width
+PAIR_LEVELS = ("coarse", "fast", "standard", "fine")
+
+
+def richardson(values: Sequence[float], ratio: float = 2.0) -> tuple[float, float]:
+    """Limit and order of a sequence of results on meshes refined by ``ratio`` each step:
+    the observed order of the last three if their changes shrink by between √ratio and
+    ratio⁶ (same sign), else the nominal order 2 of P2 elements on the last two."""
+    if len(values) < 2:
+        raise ValueError("Richardson extrapolation needs at least two levels")
+    order = 2.0
+    if len(values) >= 3:
+        d1, d2 = values[-2] - values[-3], values[-1] - values[-2]
+        if d1 * d2 > 0 and math.sqrt(ratio) <= d1 / d2 <= ratio**6:
+            order = math.log(d1 / d2) / math.log(ratio)
+    return values[-1] + (values[-1] - values[-2]) / (ratio**order - 1.0), order
+
+
+@dataclass(frozen=True)
+class Rung:
+    """One mesh level: DOFs, best time per stage (s, ``output`` included), the compared values
+    and, where CalculiX solved the same mesh, its wall time (s) and values."""
+
+    level: str
+    dofs: int
+    timings_s: dict[str, float]
+    values: dict[str, float]
+    peer_s: float | None = None
+    peer_values: dict[str, float] | None = None
+    peer_failure: str | None = None  # why CalculiX gave no answer on this mesh
+
+    @property
+    def total_s(self) -> float:
+        return sum(self.timings_s.values())
+
+    @property
+    def solve_s(self) -> float:
+        """Everything after meshing: what CalculiX does on the same mesh."""
+        return self.total_s - self.timings_s.get("profile", 0.0) - self.timings_s.get("mesh", 0.0)
+
+    @property
+    def peer_ratio(self) -> float | None:
+        """CalculiX's wall time over ours after meshing (both solve the same mesh)."""
+        return self.peer_s / self.solve_s if self.peer_s else None
+
+
+@dataclass(frozen=True)
+class Ladder:
+    """Rungs from coarse to fine, the Richardson reference and order of every value, and the
+    analytic values where there are any (Hertz)."""
+
+    name: str
+    rungs: tuple[Rung, ...]
+    reference: dict[str, float] = field(init=False)
+    order: dict[str, float] = field(init=False)
+    analytic: dict[str, float] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        fits = {k: richardson([r.values[k] for r in self.rungs]) for k in self.rungs[0].values}
+        object.__setattr__(self, "reference", {k: v[0] for k, v in fits.items()})
+        object.__setattr__(self, "order", {k: v[1] for k, v in fits.items()})
+
+    @property
+    def judged(self) -> list[str]:
+        """The values a target is judged on: the Hertz case its peak pressure, the pair every
+        headline stress."""
+        return ["p_max_MPa"] if "p_max_MPa" in self.reference else list(self.reference)
+
+    def deviation_pct(self, key: str, value: float) -> float:
+        """value / reference − 1 (%), signed."""
+        return 100.0 * (value / self.reference[key] - 1.0)
+
+    def error_pct(self, values: dict[str, float], keys: Sequence[str] | None = None) -> float:
+        """Largest |value / reference − 1| (%) over ``keys`` (default: all)."""
+        keys = keys if keys is not None else list(self.reference)
+        return max(abs(self.deviation_pct(k, values[k])) for k in keys)
+
+
+def _best_of(solve, repeat: int):
+    runs = [solve() for _ in range(repeat)]
+    best = {k: min(r.timings_s[k] for r in runs) for k in runs[0].timings_s}
+    return runs[0], best
+
+
+def _timed_output(write, repeat: int = 2) -> float:
+    """Best time of writing the outputs (the first write also starts VTK: seconds)."""
+    best = math.inf
+    for _ in range(max(2, repeat)):
+        with tempfile.TemporaryDirectory() as tmp:
+            t0 = time.perf_counter()
+            write(Path(tmp))
+            best = min(best, time.perf_counter() - t0)
+    return best
+
+
+def disk_ladder(levels: Sequence[float] = DISK_LEVELS, repeat: int = 3,
+                peer: bool = True) -> Ladder:
+    """The Hertz case (two 10 mm disks, 1000 N, 5 mm, plane stress) at each number of
+    elements across b; CalculiX beside it if ``peer`` and installed."""
+    from .calculix import ccx_available, ccx_disks
+    from .disks import DiskCase, solve_disks, write_disk_outputs
+
+    def disk_peer(case, r):
+        with tempfile.TemporaryDirectory() as tmp:
+            _, c = ccx_disks(case, tmp, result=r)
+        return c.wall_s, {"p_max_MPa": c.p_max}
+
+    peer = peer and ccx_available()
+    rungs = []
+    for n in levels:
+        case = DiskCase(quality=float(n))
+        r, best = _best_of(lambda case=case: solve_disks(case), repeat)
+        best["output"] = _timed_output(lambda out, r=r: write_disk_outputs(r, out), repeat)
+        beside = _peer(disk_peer, case, r) if peer else (None, None, None)
+        rungs.append(Rung(f"{n:g} per b", r.dofs, best,
+                          {"p_max_MPa": r.p_max, "half_width_mm": r.half_width}, *beside))
+    h = DiskCase().hertz
+    return Ladder("Hertz disks r 10 mm, P 1000 N, t 5 mm", tuple(rungs),
+                  analytic={"p_max_MPa": h.p0, "half_width_mm": h.b})
+
+
+def pair_ladder(params: PairParameters, torque: float = 200.0,
+                levels: Sequence[str] = PAIR_LEVELS, peer: bool = False) -> Ladder:
+    """The tooth pair at one position at each quality level (headline stresses)."""
+    from ..toothpair import SolveCase, pair_summary, solve_pair, write_pair_outputs
+
+    rungs = []
+    for quality in levels:
+        case = SolveCase(params, torque=torque, quality=quality)
+        sol = solve_pair(case, Gear1Profile(params))
+        timings = dict(sol.timings_s)
+        timings["output"] = _timed_output(
+            lambda out, sol=sol: write_pair_outputs(sol, out, pair_summary(sol)))
+        beside = _peer(_pair_peer, case, sol) if peer else (None, None, None)
+        rungs.append(Rung(quality, sol.dofs, timings, sol.headline(), *beside))
+    return Ladder(f"tooth pair {params.describe()}, T {torque:g} N·m, one position",
+                  tuple(rungs))
+
+
+def _peer(run, case, ours) -> tuple[float | None, dict | None, str | None]:
+    """CalculiX's wall time and values beside ours, or why it gave none: a failed peer is
+    reported in the table, it does not stop the benchmark."""
+    from .calculix import PeerError
+
+    try:
+        return (*run(case, ours), None)
+    except PeerError as err:
+        log.warning("CalculiX at %s: %s", case.quality, err)
+        return None, None, str(err)
+
+
+PEER_PAIR_LEVELS = ("coarse", "fast")  # CalculiX takes minutes per position beyond these
+
+
+def _pair_peer(case, sol) -> tuple[float | None, dict | None]:
+    from .calculix import ccx_available
+    from .calculix_pair import ccx_pair
+
+    if not ccx_available() or case.quality not in PEER_PAIR_LEVELS:
+        return None, None
+    with tempfile.TemporaryDirectory() as tmp:
+        _, c = ccx_pair(case, tmp, solution=sol)
+    return c.wall_s, {"root_stress_gear1_MPa": c.root_stress[0],
+                      "root_stress_gear2_MPa": c.root_stress[1],
+                      "contact_pressure_MPa": c.p_max}
+
+
+@dataclass(frozen=True)
+class Target:
+    """A run-time-versus-error target: the cheapest rung within ``error_pct`` of the
+    reference and whether it took at most ``seconds``."""
+
+    name: str
+    error_pct: float
+    seconds: float
+    rung: Rung | None
+    met: bool
+
+    def line(self) -> str:
+        if self.rung is None:
+            return f"{self.name}: no level within {self.error_pct:g} %: MISSED"
+        status = "met" if self.met else "MISSED"
+        return (f"{self.name} within {self.error_pct:g} % in {self.seconds:g} s: {status} "
+                f"(`{self.rung.level}`, {self.rung.total_s:.2f} s)")
+
+
+def ladder_targets(disks: Ladder | None, pair: Ladder | None) -> list[Target]:
+    """The targets: the Hertz case, the baseline pair, and the speed-up over CalculiX."""
+    out = []
+    for ladder, name, (err, sec) in ((disks, "Hertz case", HERTZ_TARGET),
+                                     (pair, "baseline pair", PAIR_TARGET)):
+        if ladder is None:
+            continue
+        ok = [r for r in ladder.rungs if ladder.error_pct(r.values, ladder.judged) <= err]
+        rung = min(ok, key=lambda r: r.total_s) if ok else None
+        out.append(Target(name, err, sec, rung, rung is not None and rung.total_s <= sec))
+    return out
+
+
+def peer_speedups(ladder: Ladder) -> list[tuple[Rung, float]]:
+    """CalculiX wall time over ours after meshing (both solve the same mesh), per rung."""
+    return [(r, r.peer_ratio) for r in ladder.rungs if r.peer_s]
+
+
+def ladder_table(ladder: Ladder) -> str:
+    """Markdown: per rung DOFs, stage times, values and errors against the reference (and
+    the analytic values), CalculiX's time and value beside ours."""
+    stages = list(dict.fromkeys(k for r in ladder.rungs for k in r.timings_s))
+    keys = list(ladder.reference)
+    peer = any(r.peer_s or r.peer_failure for r in ladder.rungs)
+    peer_keys = list(dict.fromkeys(k for r in ladder.rungs for k in (r.peer_values or {})))
+    head = (["level", "DOFs"] + stages + ["total [s]"] + keys + ["max err %"]
+            + (["ccx [s]"] + [f"ccx {k}" for k in peer_keys] + ["ccx / ours"] if peer else []))
+    lines = [f"{ladder.name}: errors against the Richardson extrapolation of the finest levels",
+             "", "| " + " | ".join(head) + " |", "|---|" + "---:|" * (len(head) - 1)]
+    for r in ladder.rungs:
+        cells = [r.level, str(r.dofs)] + [f"{r.timings_s.get(k, 0.0):.3f}" for k in stages]
+        cells += [f"{r.total_s:.3f}"]
+        cells += [f"{r.values[k]:.5g} ({ladder.deviation_pct(k, r.values[k]):+.3f} %)"
+                  for k in keys]
+        cells += [f"{ladder.error_pct(r.values):.3f}"]
+        if peer:
+            if r.peer_s:
+                cells += [f"{r.peer_s:.2f}"]
+                cells += [f"{r.peer_values[k]:.5g} "
+                          f"({ladder.deviation_pct(k, r.peer_values[k]):+.3f} %)"
+                          for k in peer_keys]
+                cells += [f"{r.peer_ratio:.1f}×"]
+            else:
+                cells += ["–"] * (len(peer_keys) + 2)
+        lines.append("| " + " | ".join(cells) + " |")
+    ref = ", ".join(f"{k} {v:.6g} (order {ladder.order[k]:.2f})"
+                    for k, v in ladder.reference.items())
+    lines += ["", f"reference: {ref}"]
+    if ladder.analytic:
+        lines.append("analytic: " + ", ".join(
+            f"{k} {v:.6g} (reference {100 * (ladder.reference[k] / v - 1):+.3f} %)"
+            for k, v in ladder.analytic.items()))
+    if peer:
+        lines.append("ccx / ours: CalculiX's wall time over ours after meshing (the same mesh)")
+    lines += [f"ccx failed at `{r.level}`: {r.peer_failure}" for r in ladder.rungs
+              if r.peer_failure]
+    return "\n".join(lines)
+
+
+def machine() -> dict:
+    """Machine, Python and library versions for the benchmark JSON."""
+    from .. import __version__
+    from ..provenance import library_versions
+
+    libs = library_versions()
+    try:
+        ccx = subprocess.run(["ccx", "-v"], capture_output=True, text=True, timeout=30)
+        libs["ccx"] = " ".join(ccx.stdout.split()) or None
+    except (OSError, subprocess.SubprocessError):
+        libs["ccx"] = None
+    mem = None
+    try:
+        with open("/proc/meminfo") as f:
+            mem = int(f.readline().split()[1]) / 2**20
+    except (OSError, ValueError, IndexError):
+        pass
+    return {"fegear": __version__, "python": platform.python_version(),
+            "platform": platform.platform(), "machine": platform.machine(),
+            "processor": platform.processor() or None, "cpus": os.cpu_count(),
+            "memory_GiB": mem, "libraries": libs}
+
+
+def ladder_json(ladders: Sequence[Ladder], targets: Sequence[Target]) -> dict:
+    """JSON-ready record of the ladders, their targets and the machine."""
+    def rung(r: Rung) -> dict:
+        return {"level": r.level, "dofs": r.dofs, "timings_s": r.timings_s,
+                "total_s": r.total_s, "solve_s": r.solve_s, "values": r.values,
+                "peer_s": r.peer_s, "peer_values": r.peer_values,
+                "peer_failure": r.peer_failure}
+    return {"machine": machine(),
+            "ladders": [{"name": lad.name, "reference": lad.reference, "order": lad.order,
+                         "analytic": lad.analytic,
+                         "rungs": [{**rung(r), "error_pct": lad.error_pct(r.values)}
+                                   for r in lad.rungs]} for lad in ladders],
+            "targets": [{"name": t.name, "error_pct": t.error_pct, "seconds": t.seconds,
+                         "level": t.rung.level if t.rung else None,
+                         "time_s": t.rung.total_s if t.rung else None, "met": t.met}
+                        for t in targets]}

@@ -1,0 +1,521 @@
+"""CalculiX peer: the same bodies, supports, penalty and load, solved by CalculiX (``ccx``).
+
+:func:`write_deck` writes a CalculiX 2.20 deck from assembled :class:`~fegear.fe.assembly.Body`
+objects (those of a :class:`~fegear.verify.disks.DiskResult` or of a tooth-pair solution),
+:func:`execute` runs ccx, :func:`run_ccx` reads a disk deck's answer back, :func:`ccx_disks`
+does both beside our own solve of a disk case (the tooth pair: :mod:`fegear.verify.calculix_pair`).
+Units: mm, N, MPa. Choices, each checked on the Hertz disks (r 10 mm, P 1000 N, t 5 mm, steel):
+
+* **Mesh.** The very nodes and elements, placed (fixed frame): corners from ``mesh.t``, midside
+  nodes from the P2 element dofs, in CalculiX order (1-2-3 corners counter-clockwise, 4 on 1-2,
+  5 on 2-3, 6 on 3-1), both checked. Numbers get 13 digits: CalculiX reads at most 20
+  characters, and ``-5.47622743141823e-08`` (21) was read as −5.48 ("nonpositive jacobian").
+* **Plane stress as CPE6.** CalculiX expands a CPS6 into one layer of C3D15 wedges through the
+  thickness; with a contact 2b = 0.22 mm wide in a 5 mm disk that layer is a plate, stiffer than
+  plane stress: p_max 5.4 / 19.6 / 4.4 % above Hertz (coarse / standard / fine; the 19.6 % on
+  two slave faces), yet 0.35 % above it at t = 0.05 mm. A plane-stress body is written as plane
+  strain with E' = E(1 + 2ν)/(1 + ν)², ν' = ν/(1 + ν): exactly plane stress in the plane (σzz,
+  εzz differ and are not compared). ``plane_stress_element="CPS6"`` writes the literal element.
+* **Contact.** Face-to-face penalty (``TYPE=SURFACE TO SURFACE``): CalculiX advises against
+  node-to-face contact on quadratic elements. Slave and master: each pair's boundaries (disk 1's
+  and disk 2's "contact"), or a subset of the slave's facets. PRESSURE-OVERCLOSURE=LINEAR with
+  K = penalty_factor·E*/h̄ (MPa/mm), h̄ the mean slave facet length (fegear's κ on its uniform
+  window) unless the pair brings its own K, applied at the slave face integration points.
+  That pointwise penalty needs matching meshes or a soft K: with disk 2 turned by 0.37 of an
+  element (coarse), ccx's p_max was 102 / 24.5 / 0.6 % above ours at penalty factors 1000 /
+  300 / 30 (matching meshes, 300 to 3000: within 0.05 % of ours).
+* **Supports and load.** Fixed boundaries: u = 0. A translation link along x or y: the other
+  component 0, the component along it equal to a reference link node's (``*EQUATION``), which
+  carries the load. A rotation link: a free reference node at the placed centre c whose dof 1
+  is θ, and per link node u_x + (y − c_y)θ = 0, u_y − (x − c_x)θ = 0 (a small rotation), the
+  torque (N·mm) on θ. The link body floats until it touches (load control is singular there):
+  step 1 prescribes a motion of the reference, a tiny δ0 or the given θ0 (first touch); step 2
+  releases it (``*BOUNDARY, OP=NEW``) and applies the load by ``*CLOAD`` in one increment.
+  Frictionless, elastic and small, the contact ends in the same state whatever step 1 did.
+* **Convergence.** With a stiff penalty CalculiX's defaults (residual 0.5 %, correction 1 %,
+  contact elements changing by 0.1 %) accepted wrong active sets: on the fine disks, springs in
+  tension (−8.8e4 MPa) and p_max 7.8 % high. Step 2 demands a residual of 1e-6, a correction of
+  1e-8 and an unchanged set of contact elements, and forbids CalculiX's automatic softening of
+  K (kscalemax 1), within 200 iterations.
+* **Read-back** (``.dat``): p_max, the largest CSTR pressure at the slave integration points (the
+  ``.frd`` nodal values are extrapolated and overshoot at the contact edges); the contact normal
+  force of each pair (``CF``); the total reaction of the fixed supports; θ of a rotation link's
+  reference node. ``stresses=True`` also writes the step-2 stresses to the ``.frd``.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import shutil
+import subprocess
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+
+from ..contact import ContactSettings
+from ..errors import FegearError
+from ..fe import Body, contact_modulus, facet_nodes
+from .disks import DiskCase, DiskResult, solve_disks
+
+#: step-2 convergence controls (see the module docstring)
+CONTROLS = ("*CONTROLS, PARAMETERS=FIELD", "1e-6, 1e-8, , , 1e-6, 1e-5, 1e-3, 1e-8",
+            "*CONTROLS, PARAMETERS=TIME INCREMENTATION", "4, 8, 200, 200, 10, 4, 0, 5",
+            "*CONTROLS, PARAMETERS=CONTACT", "0, 0.1, 1, 200")
+PRELOAD = 1e-6  # step-1 motion δ0, as a fraction of the link body's size
+FIELD = 20      # CalculiX reads a number from at most this many characters
+
+
+class PeerError(FegearError):
+    """CalculiX is missing or failed, or the model cannot be exported."""
+
+
+class PeerConvergenceError(PeerError):
+    """CalculiX gave up on the load step (too many cutbacks) or did not complete it."""
+
+
+@dataclass(frozen=True)
+class CcxDeck:
+    """A written deck: ``path`` of ``<jobname>.inp``; ``nodes`` and ``elements`` (2D, the
+    reference node of a rotation link not counted); ``element_type``; ``penalty`` K per pair
+    (MPa/mm); ``preload`` δ0 (mm) or θ0 (rad) of step 1; ``load`` P (N) or T (N·mm); ``link``
+    kind; ``equations`` written; ``ref`` the reference node (deck number)."""
+
+    path: Path
+    jobname: str
+    nodes: int
+    elements: int
+    element_type: str
+    penalty: tuple[float, ...]
+    preload: float
+    load: float
+    link: str = "translation"
+    equations: int = 0
+    ref: int = 0
+
+    @property
+    def dofs(self) -> int:
+        return 2 * self.nodes
+
+
+@dataclass(frozen=True)
+class CcxResult:
+    """CalculiX's answer. ``p_max`` (MPa) largest contact pressure; ``load`` (N) contact normal
+    force, summed over the pairs; ``reaction`` (N) magnitude of the fixed supports' total
+    reaction; ``wall_s`` (s) ccx's wall clock; ``dofs`` = 2 × ``nodes`` of the 2D deck,
+    ``equations`` CalculiX's count after its 2D → 3D expansion; converged ``increments`` and
+    their ``iterations`` over both steps; ``contact_points``: slave integration points in
+    contact (of the expanded faces)."""
+
+    p_max: float
+    load: float
+    reaction: float
+    wall_s: float
+    dofs: int
+    equations: int
+    nodes: int
+    elements: int
+    increments: int
+    iterations: int
+    contact_points: int
+
+
+def ccx_available() -> bool:
+    """True when a ``ccx`` executable is on the PATH."""
+    return shutil.which("ccx") is not None
+
+
+def _num(x: float) -> str:
+    s = f"{float(x):.13g}"
+    if len(s) > FIELD or not math.isfinite(float(x)):
+        raise PeerError(f"number {x!r} does not fit CalculiX's {FIELD}-character field")
+    return s
+
+
+def _nset(name: str, nodes: np.ndarray) -> list[str]:
+    items = [str(int(n)) for n in nodes]
+    return [f"*NSET, NSET={name}"] + [", ".join(items[k:k + 8]) + ","
+                                      for k in range(0, len(items), 8)]
+
+
+def element_nodes(body: Body) -> np.ndarray:
+    """(nelem, 6) node indices in CalculiX's CPS6/CPE6 order, checked: positive corner area,
+    each midside node near the middle of its edge (1-2, 2-3, 3-1)."""
+    mesh = body.mesh
+    conn = np.asarray(mesh.dofs.element_dofs).T  # corners, then the edges of t2f: 01, 12, 02
+    x = mesh.doflocs.T[conn]
+    d1, d2 = x[:, 1] - x[:, 0], x[:, 2] - x[:, 0]
+    if np.any(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0] <= 0):
+        raise PeerError(f"body {body.name!r}: element with non-positive corner area")
+    for mid, (a, b) in zip((3, 4, 5), ((0, 1), (1, 2), (2, 0))):
+        off = np.linalg.norm(x[:, mid] - 0.5 * (x[:, a] + x[:, b]), axis=1)
+        if np.any(off > 0.25 * np.linalg.norm(x[:, b] - x[:, a], axis=1)):
+            raise PeerError(f"body {body.name!r}: node {mid + 1} is not on edge {a + 1}-{b + 1}")
+    return conn
+
+
+def _faces(body: Body, name: str, facets=None) -> tuple[np.ndarray, np.ndarray]:
+    """Elements (0-based) and CalculiX face numbers (1: edge 1-2, 2: 2-3, 3: 3-1) of a boundary,
+    or of those of its ``facets`` given."""
+    mesh = body.mesh
+    f = _boundary(body, name)
+    if facets is not None:
+        if not np.all(np.isin(facets, f)):
+            raise PeerError(f"slave facets outside boundary {name!r} of {body.name!r}")
+        f = np.asarray(facets)
+    elem = mesh.f2t[0, f]
+    if np.any(mesh.f2t[1, f] >= 0):
+        raise PeerError(f"boundary {name!r} of {body.name!r} is not on the outside")
+    local = np.argmax(mesh.t2f[:, elem] == f, axis=0)
+    corners = mesh.t[:, elem].T
+    pairs = np.array([[0, 1], [1, 2], [2, 0]])[local]
+    ends = np.sort(np.take_along_axis(corners, pairs, axis=1), axis=1)
+    if not np.array_equal(ends, np.sort(mesh.facets[:, f].T, axis=1)):
+        raise PeerError(f"boundary {name!r} of {body.name!r}: face numbering mismatch")
+    return elem, local + 1
+
+
+def _boundary(body: Body, name: str) -> np.ndarray:
+    if name not in body.mesh.boundaries:
+        raise PeerError(f"body {body.name!r} has no boundary {name!r}")
+    return np.asarray(body.mesh.boundaries[name])
+
+
+def _nodes(body: Body, names: Sequence[str]) -> np.ndarray:
+    """Mesh nodes (0-based) on the named boundaries."""
+    return np.unique(np.concatenate([np.zeros(0, dtype=np.int64)] + [
+        facet_nodes(body.mesh, _boundary(body, n)).ravel() for n in names]))
+
+
+def write_deck(bodies: Sequence[Body], load: float, directory: str | os.PathLike,
+               jobname: str = "peer", pairs: Sequence | None = None,
+               penalty_factor: float = ContactSettings.penalty_factor,
+               plane_stress_element: str = "CPE6", preload: float | None = None,
+               stresses: bool = False, increments: int = 1) -> CcxDeck:
+    """Write ``<directory>/<jobname>.inp`` for ``bodies`` under the link's generalised force
+    ``load``: N for a translation link, N·mm (a torque) for a rotation link.
+
+    ``pairs``: objects with ``slave``, ``slave_boundary``, ``master``, ``master_boundary``
+    (such as :class:`~fegear.contact.ContactPair`), optionally ``slave_facets`` (a subset of
+    the slave boundary's facets) and ``penalty`` (K, MPa/mm; default penalty_factor·E*/h̄ of
+    the pair's slave facets); default: the disk pair, body 0's "contact" against body 1's.
+    ``preload``: step-1 motion of the link, δ0 (mm; default 1e-6 × the link body's size) or
+    θ0 (rad; required for a rotation link). ``stresses``: write the step-2 stresses to the
+    ``.frd`` (``*EL FILE``). ``increments``: step 2 applies the load in at least this many
+    increments (CalculiX pairs the contact points once per increment).
+    """
+    if not (isinstance(increments, int) and increments >= 1):
+        raise PeerError(f"increments must be an integer >= 1: {increments!r}")
+    if plane_stress_element not in ("CPE6", "CPS6"):
+        raise PeerError(f"plane_stress_element must be 'CPE6' or 'CPS6': {plane_stress_element!r}")
+    if not (math.isfinite(load) and load != 0 and penalty_factor > 0):
+        raise PeerError(f"load ({load!r}) must be nonzero, penalty_factor ({penalty_factor!r})"
+                        " > 0")
+    if pairs is None:
+        pairs = [SimpleNamespace(slave=0, slave_boundary="contact", master=1,
+                                 master_boundary="contact")]
+    linked = [i for i, b in enumerate(bodies) if b.link is not None]
+    if len(linked) != 1:
+        raise PeerError(f"exactly one body must carry the load link, found {len(linked)}")
+    lb = bodies[linked[0]]
+    if lb.link.kind not in ("translation", "rotation"):
+        raise PeerError(f"link kind {lb.link.kind!r} is not exported")
+    if lb.link.kind == "rotation" and preload is None:
+        raise PeerError("a rotation link needs the step-1 rotation (preload, rad)")
+    if lb.link.kind == "translation" and load < 0:
+        raise PeerError(f"load ({load!r} N) must be > 0 along the link direction")
+
+    lines = ["*HEADING", f"fegear peer deck: {len(bodies)} bodies, load {_num(load)}",
+             "*NODE, NSET=NALL"]
+    node0, elem0, types, conns = [], [], [], []
+    n_nodes = n_elems = 0
+    for body in bodies:
+        conns.append(element_nodes(body))
+        node0.append(n_nodes)
+        elem0.append(n_elems)
+        for k, (x, y) in enumerate(body.placement.to_fixed(body.mesh.doflocs.T)):
+            lines.append(f"{n_nodes + k + 1}, {_num(x)}, {_num(y)}, 0")
+        n_nodes += body.mesh.doflocs.shape[1]
+        n_elems += len(conns[-1])
+    for i, (body, conn) in enumerate(zip(bodies, conns)):
+        mat = body.material
+        literal = mat.plane == "strain" or plane_stress_element == "CPS6"
+        types.append("CPS6" if mat.plane == "stress" and literal else "CPE6")
+        E, nu = (mat.E, mat.nu) if literal else (mat.E * (1 + 2 * mat.nu) / (1 + mat.nu) ** 2,
+                                                 mat.nu / (1 + mat.nu))
+        lines.append(f"*ELEMENT, TYPE={types[-1]}, ELSET=BODY{i + 1}")
+        lines += [f"{elem0[i] + e + 1}, " + ", ".join(str(node0[i] + n + 1) for n in row)
+                  for e, row in enumerate(conn)]
+        lines += [f"*MATERIAL, NAME=MAT{i + 1}", "*ELASTIC", f"{_num(E)}, {_num(nu)}",
+                  f"*SOLID SECTION, ELSET=BODY{i + 1}, MATERIAL=MAT{i + 1}",
+                  _num(mat.thickness)]
+
+    fixed = np.concatenate([node0[i] + _nodes(b, b.fixed_boundaries) + 1
+                            for i, b in enumerate(bodies)])
+    if len(fixed) == 0:
+        raise PeerError("no body has a fixed boundary: nothing reacts the load")
+    link = np.setdiff1d(node0[linked[0]] + _nodes(lb, (lb.link.boundary,)) + 1, fixed)
+    lines += _nset("FIXED", fixed) + _nset("LINK", link)
+    if lb.link.kind == "rotation":
+        card, ref, dof, sign, supports, equations = _rotation_link(lb, link, node0[linked[0]],
+                                                                   n_nodes + 1)
+        delta = float(preload)
+    else:
+        card, ref, dof, sign, supports, equations = _translation_link(lb, link)
+        size = float(np.ptp(lb.mesh.doflocs, axis=1).max())
+        delta = PRELOAD * size if preload is None else float(preload)
+    lines += card
+
+    penalty = []
+    for k, pair in enumerate(pairs):
+        sb, mb = bodies[pair.slave], bodies[pair.master]
+        sub = getattr(pair, "slave_facets", None)
+        for role, b, name, facets in (("SLAVE", pair.slave, pair.slave_boundary, sub),
+                                      ("MASTER", pair.master, pair.master_boundary, None)):
+            elem, face = _faces(bodies[b], name, facets)
+            lines.append(f"*SURFACE, NAME={role}{k + 1}, TYPE=ELEMENT")
+            lines += [f"{elem0[b] + e + 1}, S{f}" for e, f in zip(elem, face)]
+        facets = _boundary(sb, pair.slave_boundary) if sub is None else np.asarray(sub)
+        ends = sb.mesh.doflocs.T[sb.mesh.facets[:, facets]]
+        h = np.linalg.norm(ends[1] - ends[0], axis=1).mean()  # mean slave facet length, mm
+        K = getattr(pair, "penalty", None)
+        penalty.append(float(K) if K is not None else penalty_factor * contact_modulus(
+            sb.material.plane_modulus, mb.material.plane_modulus) / h)
+        lines += [f"*SURFACE INTERACTION, NAME=PENALTY{k + 1}",
+                  "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", _num(penalty[-1]),
+                  f"*CONTACT PAIR, INTERACTION=PENALTY{k + 1}, TYPE=SURFACE TO SURFACE",
+                  f"SLAVE{k + 1}, MASTER{k + 1}"]
+
+    lines += ["*BOUNDARY", *supports,
+              "*STEP", "*STATIC", "1., 1.", "*BOUNDARY",
+              f"REF, {dof}, {dof}, {_num(sign * delta)}", "*END STEP",
+              "*STEP, INC=1000", "*STATIC", f"{_num(1 / increments)}, 1., 1e-5, "
+              f"{_num(1 / increments)}", *CONTROLS,
+              "*BOUNDARY, OP=NEW", *supports, "*CLOAD", f"REF, {dof}, {_num(sign * load)}",
+              "*NODE PRINT, NSET=FIXED, TOTALS=ONLY", "RF", "*CONTACT PRINT", "CSTR"]
+    if lb.link.kind == "rotation":
+        lines += ["*NODE PRINT, NSET=REF", "U"]
+    for k in range(len(pairs)):
+        lines += [f"*CONTACT PRINT, SLAVE=SLAVE{k + 1}, MASTER=MASTER{k + 1}", "CF"]
+    if stresses:
+        lines += ["*EL FILE", "S"]
+    lines.append("*END STEP")
+    out = Path(directory)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        path = out / f"{jobname}.inp"
+        path.write_text("\n".join(lines) + "\n")
+    except OSError as exc:
+        raise PeerError(f"cannot write the deck in {str(out)!r}: {exc.strerror}") from None
+    return CcxDeck(path, jobname, n_nodes, n_elems, "/".join(sorted(set(types))),
+                   tuple(penalty), delta, float(load), lb.link.kind, equations, ref)
+
+
+def _translation_link(lb: Body, link: np.ndarray) -> tuple:
+    """Deck lines of a translation link along x or y: the first link node is the reference,
+    the others follow it along the link (``*EQUATION``) and are held across it."""
+    d = lb.placement.vec_to_fixed(np.asarray([lb.link.direction]))[0]  # bodies are placed
+    axis = int(np.argmax(np.abs(d)))
+    if abs(abs(d[axis]) - 1.0) > 1e-12:
+        raise PeerError(f"link direction {tuple(d)} is not along x or y")
+    ref = int(link[0])
+    card = [*_nset("REF", [ref]), "*EQUATION"]
+    for n in link[1:]:
+        card += ["2", f"{n}, {axis + 1}, 1., {ref}, {axis + 1}, -1."]
+    perp = 2 - axis  # CalculiX dof (1 or 2) across the link direction
+    return (card, ref, axis + 1, float(np.sign(d[axis])), ["FIXED, 1, 2", f"LINK, {perp}, {perp}"],
+            len(link) - 1)
+
+
+def _rotation_link(lb: Body, link: np.ndarray, offset: int, ref: int) -> tuple:
+    """Deck lines of a rotation link: a free reference node at the (placed) centre c whose dof 1
+    is θ, and per link node u_x + (y − c_y) θ = 0, u_y − (x − c_x) θ = 0 (small rotation). A
+    dof whose lever is zero is held instead (an equation needs a nonzero second term)."""
+    x = lb.placement.to_fixed(lb.mesh.doflocs.T[link - 1 - offset])  # deck ids are 1-based
+    c = lb.placement.to_fixed(np.asarray([lb.link.center]))[0]
+    card = ["*NODE, NSET=REF", f"{ref}, {_num(c[0])}, {_num(c[1])}, 0", "*EQUATION"]
+    held, count = [], 0
+    tiny = 1e-12 * max(float(np.abs(x - c).max()), 1.0)
+    for n, (dx, dy) in zip(link, x - c):
+        for dof, lever in ((1, dy), (2, -dx)):
+            if abs(lever) <= tiny:
+                held.append(f"{n}, {dof}, {dof}")
+                continue
+            card += ["2", f"{n}, {dof}, 1., {ref}, 1, {_num(lever)}"]
+            count += 1
+    return card, ref, 1, 1.0, ["FIXED, 1, 2", *held], count
+
+
+def _number(token: str) -> float:
+    """A Fortran number, including the E-less ``1.0-100`` of three-digit exponents."""
+    t = token.upper().replace("D", "E")
+    if "E" not in t:
+        t = re.sub(r"(\d)([-+]\d+)$", r"\1E\2", t)
+    return float(t)
+
+
+def _floats(line: str) -> list[float]:
+    out = []
+    for token in line.replace(",", " ").split():
+        try:
+            out.append(_number(token))
+        except ValueError:
+            pass
+    return out
+
+
+def _rows(lines: list[str], header: int) -> list[str]:
+    """The data lines after line ``header``: blank lines skipped, up to the next blank one."""
+    i = header + 1
+    while i < len(lines) and not lines[i].strip():
+        i += 1
+    rows = []
+    while i < len(lines) and lines[i].strip():
+        rows.append(lines[i])
+        i += 1
+    return rows
+
+
+def _last_block(lines: list[str], header: str) -> tuple[list[str], float]:
+    """Data lines of the last block titled ``header``, and the time in its title."""
+    at = [i for i, line in enumerate(lines) if header in line]
+    if not at:
+        raise PeerError(f"ccx wrote no {header!r} output")
+    return _rows(lines, at[-1]), _floats(lines[at[-1]])[-1]
+
+
+def contact_forces(dat: list[str], npairs: int) -> np.ndarray:
+    """Per deck pair, from the last ``CF`` blocks: fx, fy, fz, mx, my, mz (about the origin)
+    and the normal force (+ = tension)."""
+    stats = [i for i, line in enumerate(dat) if "statistics for slave set" in line]
+    if len(stats) < npairs:
+        raise PeerError(f"ccx wrote {len(stats)} contact force blocks for {npairs} pairs")
+    out = []
+    for i in stats[len(stats) - npairs:]:
+        block = dat[i:i + 20]
+        total = _block_row(block, "total surface force")[:6]
+        area, normal = _block_row(block, "normal force (+ = tension)")[:2]
+        out.append(total + [normal if area > 0 else 0.0])  # ccx: NaN on a pair out of contact
+    return np.array(out)
+
+
+def _block_row(block: list[str], title: str) -> list[float]:
+    """The numbers of the first data line under the line containing ``title``."""
+    j = next((j for j, line in enumerate(block) if title in line), None)
+    if j is None:
+        raise PeerError(f"ccx's contact force block has no {title!r} line")
+    return _floats(_rows(block, j)[0])
+
+
+def _read(path: Path) -> str:
+    try:
+        return path.read_text(errors="replace")
+    except OSError as exc:
+        raise PeerError(f"cannot read ccx output {str(path)!r}: {exc.strerror}") from None
+
+
+def _deck_counts(inp: str) -> tuple[int, int, float, int]:
+    """Nodes, elements, applied load (N, the ``*CLOAD``) and contact pairs of a deck."""
+    counts, block, load = {"NODE": 0, "ELEMENT": 0, "CONTACT PAIR": 0}, None, float("nan")
+    for line in inp.splitlines():
+        if line.startswith("*"):
+            block = line[1:].split(",")[0].strip().upper()
+            continue
+        if block in counts and line.strip():
+            counts[block] += 1
+        elif block == "CLOAD":
+            load = abs(float(line.split(",")[2]))
+    return counts["NODE"], counts["ELEMENT"], load, counts["CONTACT PAIR"]
+
+
+def execute(work: Path, jobname: str, threads: int = 1, timeout: float | None = None
+            ) -> tuple[float, str, list[list[str]], list[str]]:
+    """Run ``ccx -i <jobname>`` in ``work`` with ``threads`` threads: its wall time (s), log,
+    the converged increments of the ``.sta`` (rows: step, increment, attempts, iterations, …)
+    and the ``.dat`` lines. Raises :class:`PeerError` when ccx is missing, fails or times out,
+    :class:`PeerConvergenceError` when it gives up or does not complete step 2."""
+    exe = shutil.which("ccx")
+    if exe is None:
+        raise PeerError("CalculiX (ccx) is not installed or not on the PATH")
+    inp = work / f"{jobname}.inp"
+    if not inp.is_file():
+        raise PeerError(f"no deck {str(inp)!r}")
+    if not (isinstance(threads, int) and threads >= 1):
+        raise PeerError(f"threads must be an integer >= 1: {threads!r}")
+    env = dict(os.environ)
+    for var in ("OMP_NUM_THREADS", "CCX_NPROC_EQUATION_SOLVER", "CCX_NPROC_STIFFNESS",
+                "CCX_NPROC_RESULTS"):
+        env[var] = str(threads)
+    log = work / f"{jobname}.log"
+    t0 = time.perf_counter()
+    try:
+        with open(log, "w") as out:
+            proc = subprocess.run([exe, "-i", jobname], cwd=work, env=env, stdout=out,
+                                  stderr=subprocess.STDOUT, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        raise PeerError(f"ccx did not finish within {timeout} s (log: {log})") from None
+    wall = time.perf_counter() - t0
+    text = _read(log)
+    out = text.splitlines() + [""]
+    errors = [" ".join(f"{out[i]} {out[i + 1] if '*' not in out[i + 1] else ''}".split())
+              for i in range(len(out) - 1) if "*ERROR" in out[i]]
+    if proc.returncode != 0 or errors:
+        why = "; ".join(dict.fromkeys(errors[:2])) or f"exit code {proc.returncode}"
+        if "cutback" in why:
+            raise PeerConvergenceError(f"ccx did not converge: {why} (log: {log})")
+        raise PeerError(f"ccx failed: {why} (log: {log})")
+    steps = [line.split() for line in _read(work / f"{jobname}.sta").splitlines()
+             if re.match(r"^\s*\d+\s+\d+\s+\d+\s+\d+\s+\S+\s+\S+\s+\S+\s*$", line)]
+    if not steps or int(steps[-1][0]) != 2 or abs(_floats(steps[-1][5])[0] - 1.0) > 1e-9:
+        raise PeerConvergenceError(f"ccx did not complete the load step ({work / jobname}.sta)")
+    return wall, text, steps, _read(work / f"{jobname}.dat").splitlines()
+
+
+def run_ccx(deck_dir: str | os.PathLike, jobname: str, threads: int = 1,
+            timeout: float | None = None) -> CcxResult:
+    """Run ``ccx -i <jobname>`` in ``deck_dir`` with ``threads`` threads and read the results
+    of a deck from :func:`write_deck` with a translation link. Raises :class:`PeerError` when
+    ccx is missing, fails, times out or does not complete the load step, and when the forces
+    do not balance."""
+    work = Path(deck_dir)
+    inp = work / f"{jobname}.inp"
+    if inp.is_file() and "*NODE, NSET=REF" in _read(inp):
+        raise PeerError("a rotation-link deck: run it with fegear.verify.calculix_pair.ccx_pair")
+    wall, text, steps, dat = execute(work, jobname, threads, timeout)
+    pressure, when = _last_block(dat, "contact stress")
+    if abs(when - 2.0) > 1e-9:
+        raise PeerError(f"ccx's last contact output is at time {when}, not at the full load")
+    p = np.array([_floats(r)[2] for r in pressure])
+    if not np.any(p > 0):
+        raise PeerError("ccx found no contact at the full load")
+    nodes, elements, applied, npairs = _deck_counts(_read(inp))
+    load = -contact_forces(dat, npairs)[:, 6].sum()
+    reaction, _ = _last_block(dat, "total force (fx,fy,fz) for set FIXED")
+    m = re.search(r"number of equations\s+(\d+)", text)
+    rf = np.array(_floats(reaction[0])[:2])
+    result = CcxResult(float(p.max()), float(load), float(np.linalg.norm(rf)), wall,
+                       2 * nodes, int(m.group(1)) if m else 0, nodes, elements, len(steps),
+                       sum(int(s[3]) for s in steps), int(np.count_nonzero(p > 0)))
+    if not abs(result.load - applied) <= 0.01 * applied:
+        raise PeerError(f"contact force {result.load:.6g} N does not balance the load "
+                        f"{applied:.6g} N")
+    return result
+
+
+def ccx_disks(case: DiskCase, workdir: str | os.PathLike, threads: int = 1,
+              plane_stress_element: str = "CPE6", timeout: float | None = None,
+              result: DiskResult | None = None) -> tuple[DiskResult, CcxResult]:
+    """Solve the disk ``case`` with fegear (or take its ``result``), export the same bodies and
+    pair, and run CalculiX: ``(DiskResult, CcxResult)``. The deck and ccx's files stay in
+    ``workdir``."""
+    if result is not None and result.case != case:
+        raise PeerError("the result given is not of this case")
+    result = solve_disks(case) if result is None else result
+    write_deck(result.bodies, case.load, workdir, "disks", result.model.pairs,
+               case.penalty_factor, plane_stress_element)
+    return result, run_ccx(workdir, "disks", threads, timeout)

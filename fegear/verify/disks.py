@@ -1,0 +1,262 @@
+"""The Hertz validation case: two disks pressed together, or a disk inside a bore.
+
+Body 1 is the lower half of a disk of radius r1 about (0, r1); its flat cut is tied to a rigid
+translation δ that carries the load P downwards. Body 2 is, for r2 > 0, the upper half of a disk
+of radius r2 about (0, −r2) with its flat cut fixed; for r2 < 0, a ring whose bore of radius |r2|
+about (0, |r2|) holds disk 1, with the outer rim (radius 2|r2|) fixed. First touch is at the
+origin. Contact windows of a few Hertz half-widths are refined to b / ``elements_per_b``.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..checks import require_finite, require_range
+from ..contact import (
+    Circle,
+    ContactError,
+    ContactModel,
+    ContactPair,
+    ContactSettings,
+    ContactSolution,
+    build_contact,
+    nodal_pressure,
+    solve_contact,
+)
+from ..errors import ParameterError
+from ..fe import (
+    Body,
+    BodyGeometry,
+    HertzLine,
+    Material,
+    Refinement,
+    RigidLink,
+    Segment,
+    StressField,
+    assemble_body,
+    facet_nodes,
+    line_contact,
+    mesh_bodies,
+    recover,
+    vtu_fields,
+    write_vtu,
+)
+from ..files import write_json
+
+#: elements across the Hertz half-width b in the contact windows, per quality level
+QUALITY = {"coarse": 4, "standard": 8, "fine": 16}
+
+SLAVE_WINDOW = 3.0   # slave contact window half-length, in Hertz half-widths
+MASTER_WINDOW = 4.0  # master window: wider, so that every slave point has a facet under it
+
+
+@dataclass(frozen=True)
+class DiskCase:
+    """Inputs: radii r1 > 0 and r2 (mm; r2 < −r1 for a bore), normal ``load`` P (N),
+    ``thickness`` (mm), one material for both bodies, the plane assumption and the mesh quality
+    (a name from :data:`QUALITY` or a number of elements across b)."""
+
+    r1: float = 10.0
+    r2: float = 10.0
+    load: float = 1000.0
+    thickness: float = 5.0
+    E: float = 206000.0
+    nu: float = 0.29
+    plane: str = "stress"
+    quality: str | float = "standard"
+    penalty_factor: float = ContactSettings.penalty_factor
+
+    def __post_init__(self) -> None:
+        require_range("r1", self.r1, 0.0, 1e4, lo_open=True, unit="mm")
+        if not abs(require_finite("r2", self.r2)) <= 1e4:
+            raise ParameterError("r2", self.r2, "0 < |r2| <= 10000 mm (negative: a bore)")
+        Material(self.E, self.nu, self.thickness, self.plane)  # validates E, ν, t, plane
+        if isinstance(self.quality, str) and self.quality not in QUALITY:
+            raise ParameterError("quality", self.quality, " / ".join(QUALITY))
+        if not isinstance(self.quality, str) and not 1 <= float(self.quality) <= 200:
+            raise ParameterError("quality", self.quality, "1 <= elements across b <= 200")
+        require_range("penalty_factor", self.penalty_factor, 0.0, 1e6, lo_open=True)
+        h = self.hertz  # validates r2, load, thickness, E, plane
+        if h.b >= 0.5 * min(self.r1, abs(self.r2)):
+            raise ParameterError("load", self.load, f"load giving b < r/2 (b = {h.b:.3g} mm)")
+
+    @property
+    def material(self) -> Material:
+        return Material(self.E, self.nu, self.thickness, self.plane)
+
+    @property
+    def hertz(self) -> HertzLine:
+        return line_contact(self.r1, self.r2, self.load, self.thickness, self.E, self.nu,
+                            plane=self.plane)
+
+    @property
+    def elements_per_b(self) -> float:
+        return float(QUALITY[self.quality] if isinstance(self.quality, str) else self.quality)
+
+
+@dataclass(frozen=True)
+class DiskResult:
+    """FE against Hertz. ``p_max`` (MPa) and ``half_width`` (mm) from the FE traction;
+    ``*_error_pct`` relative to Hertz; ``timings_s`` per stage; ``dofs`` of both bodies."""
+
+    case: DiskCase
+    hertz: HertzLine
+    p_max: float
+    half_width: float
+    load_fe: float
+    dofs: int
+    contact_points: int
+    iterations: int
+    max_penetration: float
+    surface_stress: float
+    timings_s: dict[str, float]
+    bodies: tuple[Body, ...] = field(repr=False)
+    model: ContactModel = field(repr=False)
+    solution: ContactSolution = field(repr=False)
+    stresses: tuple[StressField, ...] = field(repr=False)
+
+    @property
+    def p_error_pct(self) -> float:
+        return 100.0 * (self.p_max / self.hertz.p0 - 1.0)
+
+    @property
+    def b_error_pct(self) -> float:
+        return 100.0 * (self.half_width / self.hertz.b - 1.0)
+
+    def summary(self) -> dict:
+        """JSON-ready summary: inputs, FE and Hertz values, errors, sizes, timings."""
+        c, h = self.case, self.hertz
+        return {
+            "inputs": {"r1_mm": c.r1, "r2_mm": c.r2, "load_N": c.load,
+                       "thickness_mm": c.thickness, "E_MPa": c.E, "nu": c.nu, "plane": c.plane,
+                       "quality": c.quality, "elements_per_b": c.elements_per_b,
+                       "penalty_factor": c.penalty_factor},
+            "fe": {"p_max_MPa": self.p_max, "half_width_mm": self.half_width,
+                   "surface_normal_stress_MPa": self.surface_stress,
+                   "normal_load_N": self.load_fe},
+            "hertz": {"p0_MPa": h.p0, "b_mm": h.b, "R_star_mm": h.R_star, "E_star_MPa": h.E_star,
+                      "b_over_R": h.b_over_R,
+                      "half_angle_deg": math.degrees(self.half_width / c.r1)},
+            "error_pct": {"p_max": self.p_error_pct, "half_width": self.b_error_pct},
+            "dofs": self.dofs, "contact_points": self.contact_points,
+            "contact_iterations": self.iterations,
+            "max_penetration_mm": self.max_penetration,
+            "timings_s": self.timings_s,
+        }
+
+
+def _arc(center, radius, a0, a1, chord=None) -> np.ndarray:
+    n = max(8, int(abs(a1 - a0) * radius / (chord or radius / 40)) + 2)
+    a = np.linspace(a0, a1, n)
+    return np.asarray(center) + radius * np.column_stack([np.cos(a), np.sin(a)])
+
+
+def disk_geometries(case: DiskCase) -> tuple[BodyGeometry, BodyGeometry, Circle, Circle]:
+    """Both bodies' boundaries (with named windows) and their exact curves."""
+    h = case.hertz
+    size_c = h.b / case.elements_per_b
+    r1 = case.r1
+    c1 = (0.0, r1)
+    circle1 = Circle(c1, r1, "inside")
+    w1 = min(SLAVE_WINDOW * h.b / r1, 0.45 * math.pi)
+    down = 1.5 * math.pi
+    body1 = BodyGeometry("disk1", (
+        Segment("rim_left", _arc(c1, r1, math.pi, down - w1), circle1.project),
+        Segment("contact", _arc(c1, r1, down - w1, down + w1, size_c), circle1.project),
+        Segment("rim_right", _arc(c1, r1, down + w1, 2 * math.pi), circle1.project),
+        Segment("cut", np.array([[r1, r1], [-r1, r1]])),
+    ), size=r1 / 5, refinements=(Refinement(("contact",), size_c),))
+
+    if case.r2 > 0:
+        r2 = case.r2
+        c2 = (0.0, -r2)
+        circle2 = Circle(c2, r2, "inside")
+        w2 = min(MASTER_WINDOW * h.b / r2, 0.45 * math.pi)
+        up = 0.5 * math.pi
+        body2 = BodyGeometry("disk2", (
+            Segment("rim_right", _arc(c2, r2, 0.0, up - w2), circle2.project),
+            Segment("contact", _arc(c2, r2, up - w2, up + w2, size_c), circle2.project),
+            Segment("rim_left", _arc(c2, r2, up + w2, math.pi), circle2.project),
+            Segment("cut", np.array([[-r2, -r2], [r2, -r2]])),
+        ), size=r2 / 5, refinements=(Refinement(("contact",), size_c),))
+    else:
+        R = -case.r2
+        c2 = (0.0, R)
+        circle2 = Circle(c2, R, "outside")
+        rim = Circle(c2, 2 * R, "inside")
+        w2 = min(MASTER_WINDOW * h.b / R, 0.45 * math.pi)
+        down = 1.5 * math.pi
+        body2 = BodyGeometry("bore", (
+            Segment("rim", _arc(c2, 2 * R, 0.0, math.pi), rim.project),
+            Segment("rim", _arc(c2, 2 * R, math.pi, 2 * math.pi), rim.project),
+        ), size=R / 5, holes=((
+            Segment("bore_right", _arc(c2, R, down + w2, 2 * math.pi + down - w2),
+                    circle2.project),
+            Segment("contact", _arc(c2, R, down - w2, down + w2, size_c), circle2.project),
+        ),), refinements=(Refinement(("contact",), size_c),))
+    return body1, body2, circle1, circle2
+
+
+def solve_disks(case: DiskCase) -> DiskResult:
+    """Mesh, assemble, condense and solve the disk case; compare with Hertz."""
+    times = {}
+    t0 = time.perf_counter()
+    g1, g2, _, circle2 = disk_geometries(case)
+    m1, m2 = mesh_bodies([g1, g2])
+    times["mesh"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    mat = case.material
+    link = RigidLink("cut", "translation", direction=(0.0, -1.0))
+    b1 = assemble_body(m1, mat, link=link)
+    fixed = ("cut",) if case.r2 > 0 else ("rim",)
+    b2 = assemble_body(m2, mat, fixed=fixed)
+    times["assemble_factor"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    settings = ContactSettings(penalty_factor=case.penalty_factor)
+    pair = ContactPair("disk1/disk2", 0, "contact", 1, "contact", circle2)
+    model = build_contact([b1, b2], [pair], settings)
+    times["condense"] = time.perf_counter() - t0
+
+    t0 = time.perf_counter()
+    sol = solve_contact(model, load=case.load)
+    # flexibility columns are formed as the active set reaches them: book that as condensing
+    times["contact"] = time.perf_counter() - t0 - model.G.seconds
+    times["condense"] += model.G.seconds
+    if len(sol.patches) != 1:
+        raise ContactError(f"expected one contact zone, found {len(sol.patches)}")
+    patch = sol.patches[0]
+
+    t0 = time.perf_counter()
+    stresses = tuple(recover(b, u) for b, u in zip((b1, b2), sol.displacements))
+    times["recovery"] = time.perf_counter() - t0
+    surface = _surface_peak(b1, stresses[0], case.r1)
+    return DiskResult(case, case.hertz, patch.p_max, patch.half_width, sol.total_load,
+                      b1.ndofs + b2.ndofs, model.npoints, sol.iterations, sol.max_penetration,
+                      surface, times, (b1, b2), model, sol, stresses)
+
+
+def write_disk_outputs(result: DiskResult, out: Path) -> dict[str, Path]:
+    """VTU per body (displacement, stresses, von Mises, σ1, contact pressure) and summary.json."""
+    files = {}
+    for i, (body, u, stress) in enumerate(zip(result.bodies, result.solution.displacements,
+                                               result.stresses)):
+        pressure = nodal_pressure(result.model, result.solution, i)
+        data = vtu_fields(body.mesh, u, stress, {"contact_pressure": pressure})
+        files[body.name] = write_vtu(out / f"{body.name}.vtu", body.mesh, data)
+    files["summary"] = write_json(out / "summary.json", result.summary())
+    return files
+
+
+def _surface_peak(body: Body, stress: StressField, r1: float) -> float:
+    """Largest compressive recovered normal stress −n·σ·n on disk 1's contact window (MPa)."""
+    nodes = np.unique(facet_nodes(body.mesh, body.mesh.boundaries["contact"]))
+    r = body.mesh.doflocs.T[nodes] - np.array([0.0, r1])
+    n = r / np.linalg.norm(r, axis=1)[:, None]
+    return float(-stress.normal_stress(nodes, n).min())
