@@ -24,11 +24,11 @@ from fegear.verify.calculix import (
 )
 from fegear.verify.calculix_pair import (
     CCX_PENALTY_FACTOR,
-    _frd_stress,
-    _turned,
     ccx_pair,
+    frd_stress,
     pair_surfaces,
     size_bands,
+    turned_body,
 )
 from fegear.verify.disks import DiskCase, solve_disks
 
@@ -289,7 +289,7 @@ def test_gear_1_is_written_turned_about_o1(light, tmp_path):
     g1 = light.bodies[0]
     theta = light.first_touch
     x0 = g1.placement.to_fixed(g1.mesh.doflocs.T)
-    x1 = _turned(g1, theta).placement.to_fixed(g1.mesh.doflocs.T)
+    x1 = turned_body(g1, theta).placement.to_fixed(g1.mesh.doflocs.T)
     o1 = np.array([0.0, MODIFIED.e])
     r0, r1 = x0 - o1, x1 - o1
     assert np.allclose(np.linalg.norm(r1, axis=1), np.linalg.norm(r0, axis=1), atol=1e-12)
@@ -306,7 +306,7 @@ def test_frd_and_force_readers(tmp_path):
     frd.write_text(" -4  STRESS      6    1\n"
                    " -1         7 1.00000E+02-2.50000E+01 0.00000E+00 3.00000E+01"
                    " 0.00000E+00 0.00000E+00\n -3\n")
-    assert _frd_stress(frd) == {7: [100.0, -25.0, 0.0, 30.0, 0.0, 0.0]}
+    assert frd_stress(frd) == {7: [100.0, -25.0, 0.0, 30.0, 0.0, 0.0]}
     block = ["", " statistics for slave set SLAVE1, master set MASTER1 and time  0.2E+01", "",
              "   total surface force (fx,fy,fz) and moment about the origin (mx,my,mz)", "",
              "    0.0E+00  0.0E+00  0.0E+00  0.0E+00  0.0E+00  0.0E+00", "",

@@ -14,7 +14,7 @@ from fegear.geometry.clearance import ToothContact
 from fegear.geometry.gear1 import Gear1Profile
 from fegear.geometry.parameters import PairParameters
 from fegear.toothpair.case import HEADLINE, SolveCase
-from fegear.toothpair.solve import _refuse_interference, solve_pair
+from fegear.toothpair.solve import refuse_interference, solve_pair
 
 BASELINE = PairParameters(shift=0.016, rotation=0.002)
 ALLOWABLE_CONTACT = 745.0  # MPa, 42CrMo (the paper)
@@ -78,7 +78,7 @@ def test_touching_teeth_of_a_conformal_pair_are_not_an_interference():
               for p in (PairParameters(), PairParameters(shift=0.016, tip_relief=0.0))]
     for state in states:
         assert min(c.plus_um for c in state[1].teeth if c.plus_um is not None) < 0
-        _refuse_interference([state])
+        refuse_interference([state])
 
 
 SLOW = pytest.mark.slow

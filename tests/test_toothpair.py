@@ -16,12 +16,11 @@ from fegear.planar import rotate
 from fegear.toothpair.case import HEADLINE, SolveCase
 from fegear.toothpair.estimate import error_estimate
 from fegear.toothpair.scene import (
-    _profile_segments,
-    _sampled,
     build_scene,
     candidate_data,
     tooth_run,
 )
+from fegear.toothpair.segments import profile_segments, sampled
 from fegear.toothpair.solve import choose_teeth, cycle_positions, solve_pair, solve_positions
 
 BASELINE_MODS = dict(shift=0.016, rotation=0.002)
@@ -35,7 +34,7 @@ def test_profile_segments_are_contiguous_with_windows_over_roots():
     windows = [("w1", 0.30, 0.10), ("w2", 0.45, 0.10)]       # overlapping windows
     roots = [("r1", 0.20, 0.05), ("r2", 0.50, 0.02), ("r3", 0.40, 0.3)]  # r3 around all
     marks = [(0.05, 0.1, "edge")]
-    segs, names = _profile_segments("p", circle, None, 0.0, 1.0, windows, roots, marks)
+    segs, names = profile_segments("p", circle, None, 0.0, 1.0, windows, roots, marks)
     for s0, s1 in zip(segs, segs[1:]):
         assert np.allclose(s0.points[-1], s1.points[0], atol=1e-12)
     assert np.allclose(segs[0].points[0], circle(np.array([0.0]))[0])
@@ -88,7 +87,7 @@ def test_profile_segments_with_many_zones_stay_contiguous():
     # a sector of 20 tooth spaces: every root is cut against every piece placed before it
     roots = [(f"r{k}", 0.05 * k + 0.025, 0.01) for k in range(20)]
     windows = [(f"w{k}", 0.05 * k + 0.04, 0.012) for k in range(0, 20, 2)]
-    segs, names = _profile_segments("p", circle, None, 0.0, 1.0, windows, roots)
+    segs, names = profile_segments("p", circle, None, 0.0, 1.0, windows, roots)
     for s0, s1 in zip(segs, segs[1:]):
         assert np.allclose(s0.points[-1], s1.points[0], atol=1e-12)
     assert len([n for n in names if n.startswith("r")]) == 20
@@ -97,7 +96,7 @@ def test_profile_segments_with_many_zones_stay_contiguous():
 def test_profile_segments_with_nested_windows_stay_contiguous():
     # a long contact path (w8) around shorter ones, as for a conformal, unmodified pair
     windows = [("w8", 0.30, 0.28), ("w9", 0.32, 0.05), ("w10", 0.40, 0.15), ("w11", 0.45, 0.01)]
-    segs, names = _profile_segments("p", circle, None, 0.0, 1.0, windows, [])
+    segs, names = profile_segments("p", circle, None, 0.0, 1.0, windows, [])
     for s0, s1 in zip(segs, segs[1:]):
         assert np.allclose(s0.points[-1], s1.points[0], atol=1e-12)
     seg_names = [s.name for s in segs]
@@ -145,8 +144,9 @@ def test_gear2_is_refined_like_the_rounds_and_gear1_reaches_beyond():
     profile = Gear1Profile(p)
     state = ToothContact(p, profile).state(0.0)
     teeth = choose_teeth(state, 15.0)
-    scene = build_scene(p, profile, [(0.0, state)], teeth, 200e3, 5.0, 206000.0, 0.29, "fast",
-                        6.0, 6.0, 2, 0.25)
+    case = SolveCase(p, torque=200.0, quality="fast", rim1=6.0, rim2=6.0, extra_teeth=2,
+                     tip_round=0.25)
+    scene = build_scene(case, profile, [(0.0, state)], teeth)
     size1 = {r.segments[0]: r.size for r in scene.gear1.refinements}
     size2 = {r.segments[0]: r.size for r in scene.gear2.refinements}
     assert size2["g2_round"] == size1["g1_round"] < size1[f"g1_contact_{scene.paired[0]}"]
@@ -332,11 +332,11 @@ def test_a_nearly_radial_curve_is_sampled_evenly_in_arc_length():
         return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
 
     spacing = math.sqrt(8 * 0.5 * 1e-3)  # SPLINE_CHORD at 0.5 mm radius
-    seg = _sampled("s", spiral, None, 0.0, 0.02)
+    seg = sampled("s", spiral, None, 0.0, 0.02)
     gaps = np.hypot(*np.diff(seg.points, axis=0).T)
     assert gaps.max() < 1.05 * spacing and gaps.min() > 0.9 * gaps.max()
     assert np.allclose(seg.points[[0, -1]], spiral(np.array([0.0, 0.02])))
     # a circle keeps its points even in polar angle
-    arc = _sampled("c", circle, None, 0.0, 0.5).points
+    arc = sampled("c", circle, None, 0.0, 0.5).points
     angles = np.arctan2(arc[:, 1], arc[:, 0])
     assert np.allclose(np.diff(angles), angles[1] - angles[0])

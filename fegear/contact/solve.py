@@ -160,8 +160,10 @@ def solve_contact(model: ContactModel, load: float | None = None,
         raise ContactError(f"penalty too soft: penetration {max_pen * 1e3:.3g} µm exceeds "
                            f"{st.penetration_tol:.0%} of the contact half-width "
                            f"{widest * 1e3:.3g} µm; raise the penalty factor")
-    return ContactSolution(theta, link_force, lam, pressure, gap, total_inner, outer, max_pen,
-                           balance, displacements, residuals, patches)
+    return ContactSolution(link_value=theta, link_force=link_force, force=lam, pressure=pressure,
+                           gap=gap, iterations=total_inner, outer_iterations=outer,
+                           max_penetration=max_pen, balance_error=balance,
+                           displacements=displacements, residuals=residuals, patches=patches)
 
 
 def first_touch(g0: np.ndarray, a: np.ndarray, load: float, k_link: float) -> float:
@@ -224,8 +226,10 @@ def _patches(model: ContactModel, lam: np.ndarray) -> tuple[ContactPatch, ...]:
         placed = model.bodies[pair.slave].placement.to_fixed(model.x[sel])
         centre = np.sum(w[:, None] * placed, axis=0) / w.sum()
         p_max = float(np.max(lam[sel] / model.weight[sel]))
-        out.append(ContactPatch(pair.name, float(w.sum()), p_max, float(half),
-                                (float(centre[0]), float(centre[1])), int(sel.sum())))
+        out.append(ContactPatch(pair=pair.name, load=float(w.sum()), p_max=p_max,
+                                half_width=float(half),
+                                center=(float(centre[0]), float(centre[1])),
+                                points=int(sel.sum())))
     return tuple(out)
 
 

@@ -89,4 +89,6 @@ def build_geometry(params: PairParameters, chord_error: float = 1e-4,
         t["backlash"] = time.perf_counter() - t0
     tip = float(g1.radius(np.array([g1.tooth_center]))[0])
     root = float(g1.radius(np.array([g1.phi_space]))[0])
-    return PairGeometry(params, poly1, poly2, chord_error, tip, root, contact, backlash, t)
+    return PairGeometry(params=params, gear1=poly1, gear2=poly2, chord_error=chord_error,
+                        tip_radius=tip, root_radius=root, contact=contact, backlash=backlash,
+                        timings=t)

@@ -132,8 +132,10 @@ def _run(study: Study, out: Path, workers: int | None, client, retry_failed: boo
         files = write_results(study, out)
         table_s = time.perf_counter() - t1
     startup = 0.0 if stats["first_start"] is None else max(stats["first_start"] - started, 0.0)
-    return StudyReport(len(study.cases), len(done), stats["computed"], stats["failed"],
-                       time.perf_counter() - t0, stats["solve_s"], startup, table_s, files)
+    return StudyReport(cases=len(study.cases), found=len(done), computed=stats["computed"],
+                       failed=stats["failed"], wall_s=time.perf_counter() - t0,
+                       solve_s=stats["solve_s"], startup_s=startup, table_s=table_s,
+                       files=files)
 
 
 class _exclusive:

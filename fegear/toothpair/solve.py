@@ -89,12 +89,9 @@ class PairModel:
 
 def build_model(case: SolveCase, profile: Gear1Profile, positions, teeth) -> PairModel:
     """Mesh and factorise the sector for the paired ``teeth`` over ``positions`` (β, state)."""
-    p = case.params
     times = {}
     t0 = time.perf_counter()
-    rim1, rim2 = case.rims
-    scene = build_scene(p, profile, positions, teeth, case.torque * 1e3, case.thickness, case.E,
-                        case.nu, case.quality, rim1, rim2, case.extra_teeth, case.edge_radius)
+    scene = build_scene(case, profile, positions, teeth)
     m1, m2 = mesh_bodies([scene.gear1, scene.gear2])
     times["mesh"] = time.perf_counter() - t0
     t0 = time.perf_counter()
@@ -131,7 +128,7 @@ def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None
     tca = ToothContact(p, profile)
     states = [(b, tca.state(b)) for b in betas]
     t_profile = time.perf_counter() - t0
-    _refuse_interference(states)
+    refuse_interference(states)
     force = case.torque * 1e3 / p.r0
     estimate_um = force / (case.thickness * TOOTH_STIFFNESS) / 3.0
     teeth = _union(choose_teeth(st, _first_clearance(st) + estimate_um, case.extra_pairs)
@@ -154,7 +151,7 @@ def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None
     raise FegearError("the paired teeth did not settle after 4 rebuilds")
 
 
-def _refuse_interference(states) -> None:
+def refuse_interference(states) -> None:
     """A pair whose teeth overlap before any load is an interference fit: not modelled."""
     for beta, state in states:
         c = state.closest(+1)

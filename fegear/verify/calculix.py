@@ -209,6 +209,37 @@ def write_deck(bodies: Sequence[Body], load: float, directory: str | os.PathLike
     ``.frd`` (``*EL FILE``). ``increments``: step 2 applies the load in at least this many
     increments (CalculiX pairs the contact points once per increment).
     """
+    linked = _check_deck(bodies, load, penalty_factor, plane_stress_element, preload,
+                         increments)
+    if pairs is None:
+        pairs = [SimpleNamespace(slave=0, slave_boundary="contact", master=1,
+                                 master_boundary="contact")]
+    lb = bodies[linked]
+    numbering = _Numbering.of(bodies)
+    lines = ["*HEADING", f"fegear peer deck: {len(bodies)} bodies, load {_num(load)}"]
+    lines += _mesh_cards(bodies, numbering, plane_stress_element)
+    link = _link_cards(bodies, linked, numbering, preload)
+    lines += link.cards
+    contact, penalty = _contact_cards(bodies, pairs, numbering, penalty_factor)
+    lines += contact
+    lines += _step_cards(link, load, increments, len(pairs), stresses)
+    out = Path(directory)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        path = out / f"{jobname}.inp"
+        path.write_text("\n".join(lines) + "\n")
+    except OSError as exc:
+        raise PeerError(f"cannot write the deck in {str(out)!r}: {exc.strerror}") from None
+    types = {_element_type(b.material, plane_stress_element) for b in bodies}
+    return CcxDeck(path=path, jobname=jobname, nodes=numbering.nodes,
+                   elements=numbering.elements, element_type="/".join(sorted(types)),
+                   penalty=tuple(penalty), preload=link.delta, load=float(load),
+                   link=lb.link.kind, equations=link.equations, ref=link.ref)
+
+
+def _check_deck(bodies, load, penalty_factor, plane_stress_element, preload,
+                increments) -> int:
+    """Refuse what cannot be exported; the index of the body that carries the load link."""
     if not (isinstance(increments, int) and increments >= 1):
         raise PeerError(f"increments must be an integer >= 1: {increments!r}")
     if plane_stress_element not in ("CPE6", "CPS6"):
@@ -216,9 +247,6 @@ def write_deck(bodies: Sequence[Body], load: float, directory: str | os.PathLike
     if not (math.isfinite(load) and load != 0 and penalty_factor > 0):
         raise PeerError(f"load ({load!r}) must be nonzero, penalty_factor ({penalty_factor!r})"
                         " > 0")
-    if pairs is None:
-        pairs = [SimpleNamespace(slave=0, slave_boundary="contact", master=1,
-                                 master_boundary="contact")]
     linked = [i for i, b in enumerate(bodies) if b.link is not None]
     if len(linked) != 1:
         raise PeerError(f"exactly one body must carry the load link, found {len(linked)}")
@@ -229,49 +257,96 @@ def write_deck(bodies: Sequence[Body], load: float, directory: str | os.PathLike
         raise PeerError("a rotation link needs the step-1 rotation (preload, rad)")
     if lb.link.kind == "translation" and load < 0:
         raise PeerError(f"load ({load!r} N) must be > 0 along the link direction")
+    return linked[0]
 
-    lines = ["*HEADING", f"fegear peer deck: {len(bodies)} bodies, load {_num(load)}",
-             "*NODE, NSET=NALL"]
-    node0, elem0, types, conns = [], [], [], []
-    n_nodes = n_elems = 0
-    for body in bodies:
-        conns.append(element_nodes(body))
-        node0.append(n_nodes)
-        elem0.append(n_elems)
+
+@dataclass(frozen=True)
+class _Numbering:
+    """Deck numbering: each body's first node and element (0-based offsets), and the totals."""
+
+    node0: tuple[int, ...]
+    elem0: tuple[int, ...]
+    nodes: int
+    elements: int
+
+    @classmethod
+    def of(cls, bodies: Sequence[Body]) -> _Numbering:
+        nodes = [b.mesh.doflocs.shape[1] for b in bodies]
+        elems = [b.mesh.t.shape[1] for b in bodies]
+        return cls(tuple(np.cumsum([0] + nodes[:-1]).tolist()),
+                   tuple(np.cumsum([0] + elems[:-1]).tolist()), sum(nodes), sum(elems))
+
+
+def _element_type(mat, plane_stress_element: str) -> str:
+    literal = mat.plane == "strain" or plane_stress_element == "CPS6"
+    return "CPS6" if mat.plane == "stress" and literal else "CPE6"
+
+
+def _mesh_cards(bodies, numbering: _Numbering, plane_stress_element: str) -> list[str]:
+    """Nodes (placed, fixed frame), elements, materials and sections of every body. A plane
+    stress body is written as plane strain with E', ν' unless ``plane_stress_element`` is
+    CPS6 (see the module docstring)."""
+    lines = ["*NODE, NSET=NALL"]
+    for body, n0 in zip(bodies, numbering.node0):
         for k, (x, y) in enumerate(body.placement.to_fixed(body.mesh.doflocs.T)):
-            lines.append(f"{n_nodes + k + 1}, {_num(x)}, {_num(y)}, 0")
-        n_nodes += body.mesh.doflocs.shape[1]
-        n_elems += len(conns[-1])
-    for i, (body, conn) in enumerate(zip(bodies, conns)):
+            lines.append(f"{n0 + k + 1}, {_num(x)}, {_num(y)}, 0")
+    for i, body in enumerate(bodies):
+        conn = element_nodes(body)
         mat = body.material
         literal = mat.plane == "strain" or plane_stress_element == "CPS6"
-        types.append("CPS6" if mat.plane == "stress" and literal else "CPE6")
         E, nu = (mat.E, mat.nu) if literal else (mat.E * (1 + 2 * mat.nu) / (1 + mat.nu) ** 2,
                                                  mat.nu / (1 + mat.nu))
-        lines.append(f"*ELEMENT, TYPE={types[-1]}, ELSET=BODY{i + 1}")
-        lines += [f"{elem0[i] + e + 1}, " + ", ".join(str(node0[i] + n + 1) for n in row)
+        lines.append(f"*ELEMENT, TYPE={_element_type(mat, plane_stress_element)}, "
+                     f"ELSET=BODY{i + 1}")
+        lines += [f"{numbering.elem0[i] + e + 1}, "
+                  + ", ".join(str(numbering.node0[i] + n + 1) for n in row)
                   for e, row in enumerate(conn)]
         lines += [f"*MATERIAL, NAME=MAT{i + 1}", "*ELASTIC", f"{_num(E)}, {_num(nu)}",
                   f"*SOLID SECTION, ELSET=BODY{i + 1}, MATERIAL=MAT{i + 1}",
                   _num(mat.thickness)]
+    return lines
 
-    fixed = np.concatenate([node0[i] + _nodes(b, b.fixed_boundaries) + 1
+
+@dataclass(frozen=True)
+class _Link:
+    """The supports and the load link as deck cards: the reference node and its dof that
+    carries the load (with its sign), the support lines, the equations written and the step-1
+    motion ``delta``."""
+
+    cards: list[str]
+    ref: int
+    dof: int
+    sign: float
+    supports: list[str]
+    equations: int
+    kind: str
+    delta: float
+
+
+def _link_cards(bodies, linked: int, numbering: _Numbering, preload: float | None) -> _Link:
+    lb = bodies[linked]
+    fixed = np.concatenate([numbering.node0[i] + _nodes(b, b.fixed_boundaries) + 1
                             for i, b in enumerate(bodies)])
     if len(fixed) == 0:
         raise PeerError("no body has a fixed boundary: nothing reacts the load")
-    link = np.setdiff1d(node0[linked[0]] + _nodes(lb, (lb.link.boundary,)) + 1, fixed)
-    lines += _nset("FIXED", fixed) + _nset("LINK", link)
+    link = np.setdiff1d(numbering.node0[linked] + _nodes(lb, (lb.link.boundary,)) + 1, fixed)
+    cards = _nset("FIXED", fixed) + _nset("LINK", link)
     if lb.link.kind == "rotation":
-        card, ref, dof, sign, supports, equations = _rotation_link(lb, link, node0[linked[0]],
-                                                                   n_nodes + 1)
+        card, ref, dof, sign, supports, equations = _rotation_link(
+            lb, link, numbering.node0[linked], numbering.nodes + 1)
         delta = float(preload)
     else:
         card, ref, dof, sign, supports, equations = _translation_link(lb, link)
         size = float(np.ptp(lb.mesh.doflocs, axis=1).max())
         delta = PRELOAD * size if preload is None else float(preload)
-    lines += card
+    return _Link(cards + card, ref, dof, sign, supports, equations, lb.link.kind, delta)
 
-    penalty = []
+
+def _contact_cards(bodies, pairs, numbering: _Numbering,
+                   penalty_factor: float) -> tuple[list[str], list[float]]:
+    """Slave and master surfaces, a linear penalty interaction and a contact pair per pair;
+    the penalty K (MPa/mm) of each."""
+    lines, penalty = [], []
     for k, pair in enumerate(pairs):
         sb, mb = bodies[pair.slave], bodies[pair.master]
         sub = getattr(pair, "slave_facets", None)
@@ -279,7 +354,7 @@ def write_deck(bodies: Sequence[Body], load: float, directory: str | os.PathLike
                                       ("MASTER", pair.master, pair.master_boundary, None)):
             elem, face = _faces(bodies[b], name, facets)
             lines.append(f"*SURFACE, NAME={role}{k + 1}, TYPE=ELEMENT")
-            lines += [f"{elem0[b] + e + 1}, S{f}" for e, f in zip(elem, face)]
+            lines += [f"{numbering.elem0[b] + e + 1}, S{f}" for e, f in zip(elem, face)]
         facets = _boundary(sb, pair.slave_boundary) if sub is None else np.asarray(sub)
         ends = sb.mesh.doflocs.T[sb.mesh.facets[:, facets]]
         h = np.linalg.norm(ends[1] - ends[0], axis=1).mean()  # mean slave facet length, mm
@@ -290,30 +365,29 @@ def write_deck(bodies: Sequence[Body], load: float, directory: str | os.PathLike
                   "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", _num(penalty[-1]),
                   f"*CONTACT PAIR, INTERACTION=PENALTY{k + 1}, TYPE=SURFACE TO SURFACE",
                   f"SLAVE{k + 1}, MASTER{k + 1}"]
+    return lines, penalty
 
-    lines += ["*BOUNDARY", *supports,
-              "*STEP", "*STATIC", "1., 1.", "*BOUNDARY",
-              f"REF, {dof}, {dof}, {_num(sign * delta)}", "*END STEP",
-              "*STEP, INC=1000", "*STATIC", f"{_num(1 / increments)}, 1., 1e-5, "
-              f"{_num(1 / increments)}", *CONTROLS,
-              "*BOUNDARY, OP=NEW", *supports, "*CLOAD", f"REF, {dof}, {_num(sign * load)}",
-              "*NODE PRINT, NSET=FIXED, TOTALS=ONLY", "RF", "*CONTACT PRINT", "CSTR"]
-    if lb.link.kind == "rotation":
+
+def _step_cards(link: _Link, load: float, increments: int, npairs: int,
+                stresses: bool) -> list[str]:
+    """Step 1 moves the link's reference by δ0 (or θ0); step 2 releases it and applies the
+    load with tight controls; the outputs read back."""
+    lines = ["*BOUNDARY", *link.supports,
+             "*STEP", "*STATIC", "1., 1.", "*BOUNDARY",
+             f"REF, {link.dof}, {link.dof}, {_num(link.sign * link.delta)}", "*END STEP",
+             "*STEP, INC=1000", "*STATIC", f"{_num(1 / increments)}, 1., 1e-5, "
+             f"{_num(1 / increments)}", *CONTROLS,
+             "*BOUNDARY, OP=NEW", *link.supports, "*CLOAD",
+             f"REF, {link.dof}, {_num(link.sign * load)}",
+             "*NODE PRINT, NSET=FIXED, TOTALS=ONLY", "RF", "*CONTACT PRINT", "CSTR"]
+    if link.kind == "rotation":
         lines += ["*NODE PRINT, NSET=REF", "U"]
-    for k in range(len(pairs)):
+    for k in range(npairs):
         lines += [f"*CONTACT PRINT, SLAVE=SLAVE{k + 1}, MASTER=MASTER{k + 1}", "CF"]
     if stresses:
         lines += ["*EL FILE", "S"]
     lines.append("*END STEP")
-    out = Path(directory)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-        path = out / f"{jobname}.inp"
-        path.write_text("\n".join(lines) + "\n")
-    except OSError as exc:
-        raise PeerError(f"cannot write the deck in {str(out)!r}: {exc.strerror}") from None
-    return CcxDeck(path, jobname, n_nodes, n_elems, "/".join(sorted(set(types))),
-                   tuple(penalty), delta, float(load), lb.link.kind, equations, ref)
+    return lines
 
 
 def _translation_link(lb: Body, link: np.ndarray) -> tuple:
@@ -498,9 +572,11 @@ def run_ccx(deck_dir: str | os.PathLike, jobname: str, threads: int = 1,
     reaction, _ = _last_block(dat, "total force (fx,fy,fz) for set FIXED")
     m = re.search(r"number of equations\s+(\d+)", text)
     rf = np.array(_floats(reaction[0])[:2])
-    result = CcxResult(float(p.max()), float(load), float(np.linalg.norm(rf)), wall,
-                       2 * nodes, int(m.group(1)) if m else 0, nodes, elements, len(steps),
-                       sum(int(s[3]) for s in steps), int(np.count_nonzero(p > 0)))
+    result = CcxResult(p_max=float(p.max()), load=float(load),
+                       reaction=float(np.linalg.norm(rf)), wall_s=wall, dofs=2 * nodes,
+                       equations=int(m.group(1)) if m else 0, nodes=nodes, elements=elements,
+                       increments=len(steps), iterations=sum(int(s[3]) for s in steps),
+                       contact_points=int(np.count_nonzero(p > 0)))
     if not abs(result.load - applied) <= 0.01 * applied:
         raise PeerError(f"contact force {result.load:.6g} N does not balance the load "
                         f"{applied:.6g} N")

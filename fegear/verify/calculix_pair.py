@@ -161,7 +161,7 @@ def ccx_pair(case: SolveCase, workdir: str | os.PathLike, threads: int = 1,
     else:
         raise PeerError(f"start must be 'solution' or 'touch': {start!r}")
     g1, g2 = sol.bodies
-    deck = write_deck((_turned(g1, turned), g2), torque, workdir, JOB, pairs,
+    deck = write_deck((turned_body(g1, turned), g2), torque, workdir, JOB, pairs,
                       sol.case.penalty_factor, preload=theta0, stresses=True,
                       increments=increments)
     work = Path(workdir)
@@ -195,15 +195,18 @@ def ccx_pair(case: SolveCase, workdir: str | os.PathLike, threads: int = 1,
     roots = _root_stress(work / f"{JOB}.frd", sol)
     m = re.search(r"number of equations\s+(\d+)", text)
     return sol, CcxPairResult(
-        float(rotation), float(rows[:, 2].max()) if len(rows) else 0.0,
-        tuple(t.tooth for t in sol.teeth), tuple(map(float, load)), tuple(map(float, share)),
-        tuple(map(float, p_tooth)), roots, total, wall, deck.dofs,
-        int(m.group(1)) if m else 0, len(steps), sum(int(s[3]) for s in steps),
-        int(np.count_nonzero(rows[:, 2] > 0)), deck.penalty,
-        tuple(int(c) for c in np.bincount(owner, minlength=n)), turned + theta0)
+        rotation=float(rotation), p_max=float(rows[:, 2].max()) if len(rows) else 0.0,
+        teeth=tuple(t.tooth for t in sol.teeth), tooth_load=tuple(map(float, load)),
+        tooth_share=tuple(map(float, share)), tooth_p_max=tuple(map(float, p_tooth)),
+        root_stress=roots, torque=total, wall_s=wall, dofs=deck.dofs,
+        equations=int(m.group(1)) if m else 0, increments=len(steps),
+        iterations=sum(int(s[3]) for s in steps),
+        contact_points=int(np.count_nonzero(rows[:, 2] > 0)), penalty=deck.penalty,
+        pairs=tuple(int(c) for c in np.bincount(owner, minlength=n)),
+        start_rotation=turned + theta0)
 
 
-def _turned(body: Body, theta: float) -> Body:
+def turned_body(body: Body, theta: float) -> Body:
     """``body`` placed turned by its rotation link's exact rotation θ (about the link centre)."""
     c = np.asarray([body.link.center], dtype=float)
     pl = body.placement
@@ -228,7 +231,7 @@ def _face_owner(inp: Path, npairs: int) -> dict[tuple[int, int], int]:
 
 def _root_stress(frd: Path, sol: PairSolution) -> tuple[float, float]:
     """Largest in-plane σ1 (MPa) of ccx's last nodal stresses on each gear's root-zone nodes."""
-    stress = _frd_stress(frd)
+    stress = frd_stress(frd)
     out, offset = [], 0
     for body, zone in zip(sol.bodies, sol.root_zones):
         nodes = offset + zone + 1
@@ -241,7 +244,7 @@ def _root_stress(frd: Path, sol: PairSolution) -> tuple[float, float]:
     return out[0], out[1]
 
 
-def _frd_stress(frd: Path) -> dict[int, list[float]]:
+def frd_stress(frd: Path) -> dict[int, list[float]]:
     """Node → (sxx, syy, szz, sxy, syz, szx) of the last STRESS block of an ASCII ``.frd``
     (fixed format: ``-1``, the node in 10 columns, values in 12)."""
     lines = _read(frd).splitlines()

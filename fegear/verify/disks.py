@@ -237,9 +237,12 @@ def solve_disks(case: DiskCase) -> DiskResult:
     stresses = tuple(recover(b, u) for b, u in zip((b1, b2), sol.displacements))
     times["recovery"] = time.perf_counter() - t0
     surface = _surface_peak(b1, stresses[0], case.r1)
-    return DiskResult(case, case.hertz, patch.p_max, patch.half_width, sol.total_load,
-                      b1.ndofs + b2.ndofs, model.npoints, sol.iterations, sol.max_penetration,
-                      surface, times, (b1, b2), model, sol, stresses)
+    return DiskResult(case=case, hertz=case.hertz, p_max=patch.p_max,
+                      half_width=patch.half_width, load_fe=sol.total_load,
+                      dofs=b1.ndofs + b2.ndofs, contact_points=model.npoints,
+                      iterations=sol.iterations, max_penetration=sol.max_penetration,
+                      surface_stress=surface, timings_s=times, bodies=(b1, b2), model=model,
+                      solution=sol, stresses=stresses)
 
 
 def write_disk_outputs(result: DiskResult, out: Path) -> dict[str, Path]:

@@ -1,0 +1,142 @@
+"""The tooth profiles cut into named boundary segments for meshing: contact windows along each
+paired tooth's contact path, root zones, refinement zones (tip rounds, their tangent points,
+gear 2 under the rounds) and the plain flank between them, each a polyline of exact points.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..fe import Segment
+from ..planar import rotate, wrap
+
+ROOT_BAND = 0.3          # root zone: the lower 30 % of the tooth height
+ROUND_GAP = 0.05         # gear 2 is refined under a round that comes this close (modules)
+SPLINE_CHORD = 1e-3      # mm, polyline handed to gmsh (nodes are snapped to the exact curve)
+SNAP_CHORD = 0.1         # … and at most this fraction of the segment's element size, so that
+                         # snapping moves a boundary node by a small part of its element
+STEEP = 4.0              # … sampled evenly in arc length where it runs this many times faster
+                         # than r dθ (the baseline flanks reach 2.9)
+
+
+def round_strips(params, shape, g2, rounds, betas, margin, ref):
+    """Gear-2 polar-angle ranges (lo, hi, "g2_round") that gear 1's refined ``rounds`` (body
+    angle ranges) face within ROUND_GAP modules at some β, widened by ``margin`` (rad);
+    overlapping ranges are merged (no slivers between their ends)."""
+    spans = []
+    for lo, hi in rounds:
+        pts1 = shape.point(np.linspace(lo, hi, 9))
+        for beta in betas:
+            x = rotate(rotate(pts1, params.ratio * beta) + np.array([0.0, params.e]), -beta)
+            if g2.closest(x)[2].min() > ROUND_GAP * params.m:
+                continue
+            th = [unwrap_near(math.atan2(y, z), ref) for z, y in x]
+            spans.append((min(th) - margin, max(th) + margin))
+    merged: list[list[float]] = []
+    for lo, hi in sorted(spans):
+        if merged and lo <= merged[-1][1]:
+            merged[-1][1] = max(merged[-1][1], hi)
+        else:
+            merged.append([lo, hi])
+    return [(lo, hi, "g2_round") for lo, hi in merged]
+
+
+def path_windows(teeth, points) -> list[tuple[int, float, float]]:
+    """One window (tooth, centre angle, half-angle) per tooth covering all of its
+    (tooth, angle, half-angle) contact windows: the contact path over the positions."""
+    out = []
+    for t in teeth:
+        spans = [(p - h, p + h) for tooth, p, h in points if tooth == t]
+        lo, hi = min(s[0] for s in spans), max(s[1] for s in spans)
+        out.append((t, 0.5 * (lo + hi), 0.5 * (hi - lo)))
+    return out
+
+
+def unwrap_near(angle: float, ref: float) -> float:
+    return ref + float(wrap(angle - ref))
+
+
+def root_half_angle(radius, centre: float, pitch: float, r_min: float, r_max: float,
+                     inverted: bool = False) -> float:
+    """Half-angle about a tooth-space centre covering the lower ROOT_BAND of the tooth height."""
+    t = np.linspace(0.0, 0.5 * pitch, 400)
+    r = radius(centre + t)
+    height = (r - r_min) / (r_max - r_min)
+    if inverted:  # gear 2: the root is the outermost radius
+        height = 1.0 - height
+    inside = t[height <= ROOT_BAND]
+    return float(inside.max()) if len(inside) else 0.05 * pitch
+
+
+def profile_segments(prefix, curve, project, a, b, windows, roots, marks=(), sizes=None):
+    """Split the profile over polar angles [a, b] into named segments.
+
+    ``windows``/``roots``: (name, centre angle, half-angle). Where two windows (in centre
+    order) overlap they are cut halfway between their centres, so every window keeps its centre
+    and one connected piece, also when nested in a longer one; windows take
+    precedence over roots, and earlier roots over later ones (a root may become two pieces
+    under one name); the rest is
+    ``{prefix}_flank``. ``marks``: (lo, hi, zone) angle ranges whose pieces get that refinement
+    zone (whatever their name); every mark end cuts a segment (zone None: only the cut).
+    ``sizes``: element size (mm) per name or zone, which sets the
+    sampling (:func:`_sampled`). Returns segments in increasing angle and the distinct names.
+    """
+    wins = sorted((c, max(a, c - h), min(b, c + h), name) for name, c, h in windows)
+    cuts = [None] + [0.5 * (pc + c) if lo < phi_ else None
+                     for (pc, _, phi_, _), (c, lo, _, _) in zip(wins, wins[1:])] + [None]
+    pieces = []
+    for i, (_, lo, hi, name) in enumerate(wins):
+        lo = lo if cuts[i] is None else max(lo, cuts[i])
+        hi = hi if cuts[i + 1] is None else min(hi, cuts[i + 1])
+        if hi - lo > 1e-9:
+            pieces.append((lo, hi, name))
+    for name, c, h in roots:  # each root keeps only what no window or earlier root took
+        parts = [(max(a, c - h), min(b, c + h))]
+        for wlo, whi, _ in list(pieces):
+            parts = [(lo, hi) for p_lo, p_hi in parts
+                     for lo, hi in ((p_lo, min(p_hi, wlo)), (max(p_lo, whi), p_hi))
+                     if hi - lo > 1e-9]
+        pieces += [(lo, hi, name) for lo, hi in parts]
+    pieces.sort()
+    filled, pos = [], a
+    for lo, hi, name in pieces:
+        if lo - pos > 1e-9:
+            filled.append((pos, lo, f"{prefix}_flank"))
+        filled.append((lo, hi, name))
+        pos = hi
+    if b - pos > 1e-9:
+        filled.append((pos, b, f"{prefix}_flank"))
+    segments, names = [], []
+    for lo, hi, name in filled:
+        cuts = sorted({lo, hi} | {x for m_lo, m_hi, _ in marks for x in (m_lo, m_hi)
+                                  if lo + 1e-9 < x < hi - 1e-9})
+        for p0, p1 in zip(cuts, cuts[1:]):
+            mid = 0.5 * (p0 + p1)
+            zone = next((z for m_lo, m_hi, z in marks if m_lo <= mid <= m_hi), None)
+            size = (sizes or {}).get(zone, (sizes or {}).get(name, math.inf))
+            segments.append(sampled(name, curve, project, p0, p1, zone, size))
+        if name not in names:
+            names.append(name)
+    return tuple(segments), tuple(names)
+
+
+def sampled(name, curve, project, lo, hi, zone=None, size=math.inf) -> Segment:
+    """The curve over polar angles [lo, hi] as a polyline whose chord error at 0.5 mm radius
+    of curvature is SPLINE_CHORD, or SNAP_CHORD of the element ``size`` (mm) if smaller;
+    points even in polar angle, or in arc length where the curve runs nearly radially."""
+    r = np.hypot(*curve(np.array([0.5 * (lo + hi)]))[0])
+    spacing = math.sqrt(8 * 0.5 * min(SPLINE_CHORD, SNAP_CHORD * size))
+    n = min(max(8, int((hi - lo) * r / spacing) + 2), 2000)
+    theta = np.linspace(lo, hi, n)
+    points = curve(theta)
+    gaps = np.hypot(*np.diff(points, axis=0).T)
+    if gaps.max() > STEEP * r * (hi - lo) / (n - 1):
+        # a nearly radial stretch (gear 2 near its looping limit): points even in polar angle
+        # fall far apart there, and the spline between them overshoots by tens of µm
+        dense = np.linspace(lo, hi, 16 * n)
+        s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(curve(dense), axis=0).T))])
+        n = min(max(8, int(s[-1] / spacing) + 2), 4000)
+        points = curve(np.interp(np.linspace(0.0, s[-1], n), s, dense))
+    return Segment(name, points, project, zone)
