@@ -1,23 +1,65 @@
+"""Shared cases, built once per test session: the seed paper's baseline pair and its variants,
+their exact gear 1, and the small solved cases that several test modules read."""
+
 import sys
 from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).parent))
-
-from fegear.geometry.gear1 import Gear1Profile
-from fegear.geometry.parameters import PairParameters
-
-BASE = PairParameters()  # paper baseline m 2, z2 45, z1 44, h1 0.3, f1 0.15, no modification
-CONJUGATE = PairParameters(shift=0.0, rotation=0.0, tip_relief=0.0)
-MODIFIED = PairParameters(shift=0.016, rotation=0.002)  # paper §2, default tip relief
+sys.path.insert(0, str(Path(__file__).parent))  # draws: a test helper
+sys.path.insert(0, str(Path(__file__).parent / "geometry"))  # swept_reference, a test helper
 
 
 @pytest.fixture(scope="session")
-def conjugate_profile():
-    return Gear1Profile(CONJUGATE)
+def nominal():
+    """The seed paper's baseline design (m 2, z 45/44, h1 0.3, f1 0.15), unmodified."""
+    from fegear.geometry import PairParameters
+
+    return PairParameters()
 
 
 @pytest.fixture(scope="session")
-def modified_profile():
-    return Gear1Profile(MODIFIED)
+def conjugate():
+    """The exact conjugate pair: no shift, no rotation, no tip relief (zero clearance)."""
+    from fegear.geometry import PairParameters
+
+    return PairParameters(shift=0.0, rotation=0.0, tip_relief=0.0)
+
+
+@pytest.fixture(scope="session")
+def baseline():
+    """The baseline pair as the seed paper builds it (§2): shift Δ1 0.016 mm, rotation
+    Δ2 0.002 mm, the default tip relief."""
+    from fegear.geometry import PairParameters
+
+    return PairParameters(shift=0.016, rotation=0.002)
+
+
+@pytest.fixture(scope="session")
+def conjugate_profile(conjugate):
+    from fegear.geometry import Gear1Profile
+
+    return Gear1Profile(conjugate)
+
+
+@pytest.fixture(scope="session")
+def baseline_profile(baseline):
+    from fegear.geometry import Gear1Profile
+
+    return Gear1Profile(baseline)
+
+
+@pytest.fixture(scope="session")
+def coarse_disks():
+    """The Hertz case (two 10 mm disks, 1000 N over 5 mm) at 4 elements across b."""
+    from fegear.verify import DiskCase, solve_disks
+
+    return solve_disks(DiskCase(quality="coarse"))
+
+
+@pytest.fixture(scope="session")
+def light_touch(baseline):
+    """The baseline pair at 1 N·m, coarse: one or two teeth carry it (3 s)."""
+    from fegear.toothpair import SolveCase, solve_pair
+
+    return solve_pair(SolveCase(baseline, torque=1.0, quality="coarse"))

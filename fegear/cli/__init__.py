@@ -5,7 +5,14 @@ errors (bad parameters, unwritable output) print one line ``fegear: error: …``
 with code 2, without a traceback. Options are built from the input schemas, and heavy libraries
 are imported by the commands that use them, so ``fegear --help`` answers at once.
 
-TODO walkthrough
+>>> from fegear.cli import main
+>>> main(["drive", "ratio", "--train", "internal", "--teeth", "44,45"])
+internal-teeth: 2 fixed, H → 1
+ratio ω_H/ω_1 = -44  (output turns against the input)
+transformed (carrier-fixed) ratio i^H = 1.02273
+0
+>>> main(["solve", "--h1", "0.9", "--out", "never-made"])  # one line on stderr, exit code 2
+2
 """
 
 from __future__ import annotations

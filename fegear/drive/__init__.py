@@ -1,7 +1,19 @@
 """Drive level: ratios and mesh efficiencies of planetary trains, the bearing forces of the
 three-ring reducer (seed 000), and a torsional lumped model driven by the FE mesh stiffness.
 
-TODO walkthrough
+It stands beside the FE pipeline and uses only its output, the mesh stiffness of a solve cycle
+(:class:`~fegear.toothpair.MeshStiffness`). :mod:`.ratios`: the carrier-fixed method and the
+meshing-power efficiencies (seed 002); :mod:`.bearings`: seed 000's eccentric-bearing forces and
+support reactions; :mod:`.dynamics`: a two-inertia torsional model over speed.
+
+>>> from fegear.drive import internal_teeth, ngw
+>>> drive = internal_teeth(44, 45)          # crank H in, gear 1 out, ring 2 translating
+>>> round(drive.value, 6), drive.input, drive.output
+(-44.0, 'H', '1')
+>>> round(drive.efficiency(0.99), 4)        # mesh efficiency at η^H = 0.99
+0.6875
+>>> ngw(20, 70).value
+4.5
 """
 
 from ..exports import lazy

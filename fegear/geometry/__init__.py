@@ -1,13 +1,35 @@
 """Geometry stage: the exact tooth profiles of a compound-cycloid internal pair, and their
 unloaded contact.
 
-TODO walkthrough
+Gear 2, the internal gear, is the 4th-order compound cycloid of the seed paper's eq. (11)
+(:mod:`.gear2`); gear 1 is its exact envelope in relative rolling, the lower envelope of the two
+solution branches of the meshing equation (:mod:`.envelope`, :mod:`.gear1`). Designs whose
+curves loop or whose gear 1 is undercut are refused by :mod:`.admissible` with the admissible
+range of the parameter to change. :mod:`.clearance` turns gear 1 until each tooth touches
+(the clearance table, backlash, interference); :mod:`.tip_edge` rounds gear 1's tip edges for
+the stress model; :func:`build_geometry` runs the stage in one call (``fegear profile``).
+Conventions and the seed paper's corrected parameters: docs/model.md.
+
+>>> import math
+>>> from fegear.geometry import Gear1Profile, PairParameters, RoundedProfile, ToothContact
+>>> p = PairParameters(m=2, h1=0.3, f1=0.15, shift=0.016, rotation=0.002)
+>>> p.r0, p.e1, p.e2, p.e                    # pitch radius, cranks, centre distance (mm)
+(45.0, 0.6, 0.09, 1.0)
+>>> g1 = Gear1Profile(p)                     # exact at any polar angle: point, normal, curvature
+>>> round(float(g1.radius(g1.tooth_center)[0]), 4), round(float(g1.radius(g1.phi_space)[0]), 4)
+(44.784, 42.784)
+>>> first = ToothContact(p, g1).state(0.0).closest(+1)  # the tooth that touches first at β = 0
+>>> first.tooth, round(first.plus_um, 3)     # and its clearance, µm of arc at r0
+(11, 6.082)
+>>> edges = RoundedProfile(g1, 0.25)         # the tip edges rounded for the stress model
+>>> [round(math.degrees(kink), 1) for _, kink in edges.kinks]
+[20.8, 20.8]
 """
 
 from ..exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
-    "parameters": ("PairParameters",),
+    "parameters": ("PairParameters", "PAIR_INPUTS"),
     "gear2": ("Cycloid", "gear2_curve"),
     "envelope": ("Branch", "BranchPoints", "NEAR", "FAR"),
     "gear1": ("Gear1Profile",),

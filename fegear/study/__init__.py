@@ -1,7 +1,21 @@
 """Study stage: parameter studies from TOML files, run resumably on a local pool or a Dask
 cluster, with tables and plots.
 
-TODO walkthrough
+A study file (:mod:`.file`) is a base case and sweeps over any ``fegear solve`` input; every
+case is checked as ``fegear solve`` checks it before anything runs, and a case that two sweeps
+produce runs once. :func:`run_study` (:mod:`.runner`) solves the missing cases, each stored as
+an atomic record keyed by its inputs and the code version (:mod:`.records`), so a killed study
+resumes where it stopped; :mod:`.results` writes the Parquet/CSV/markdown table and the plots.
+
+>>> from pathlib import Path
+>>> from fegear.study import build_study
+>>> doc = {"study": {"name": "demo"}, "base": {"quality": "coarse", "torque": 50.0},
+...        "sweep": [{"m": [1.5, 2.0]}, {"h1": {"start": 0.2, "stop": 0.3, "step": 0.05}}]}
+>>> study = build_study(doc, Path("demo.toml"))
+>>> len(study.cases), study.varied      # h1 0.3 is the m 2.0 case (both at the defaults)
+(4, ('m', 'h1'))
+>>> [case.swept for case in study.cases]
+[{'m': 1.5}, {'m': 2.0}, {'h1': 0.2}, {'h1': 0.25}]
 """
 
 from ..exports import lazy

@@ -13,8 +13,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..checks import require_range
-from ..fe.material import Material
+from ..fe import Material
 from ..geometry import PairParameters
+from ..planar import wrap
 from .inputs import SOLVE_INPUTS, TIP_ROUND
 
 if TYPE_CHECKING:  # the FE stack is imported where it runs, not by the input checks
@@ -137,3 +138,8 @@ class PairSolution:
                 "root_stress_gear2_MPa": self.root_stress[1],
                 "contact_pressure_MPa": self.contact_pressure,
                 "von_mises_max_MPa": self.von_mises_max}
+
+
+def cycle_positions(beta0: float, n: int, z2: int) -> tuple[float, ...]:
+    """``n`` rolling angles evenly across one tooth pitch 2π/z2 of gear 2, from β0."""
+    return tuple(float(wrap(beta0 + k * 2 * math.pi / z2 / n)) for k in range(n))

@@ -10,8 +10,8 @@ that depend on other inputs are checked by the objects the inputs build
 from __future__ import annotations
 
 from ..checks import Input, InputTable
-from ..fe.material import MATERIAL_INPUTS
-from ..geometry.parameters import PAIR_INPUTS
+from ..fe import MATERIAL_INPUTS
+from ..geometry import PAIR_INPUTS
 
 #: mesh quality → (elements across the Hertz half-width, root size / m, global size / m);
 #: each level halves the element sizes of the one before

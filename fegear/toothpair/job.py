@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..geometry import admissible_pair
-from .case import SolveCase
+from .case import SolveCase, cycle_positions
 from .inputs import SOLVE_INPUTS
 
 
@@ -32,8 +32,6 @@ def prepare_job(values: Mapping[str, object]) -> Job:
     """Check every input of a solve, given by name (missing ones at their defaults); raises
     :class:`~fegear.errors.ParameterError` or :class:`~fegear.errors.GeometryError`. No
     meshing, no output."""
-    from .solve import cycle_positions
-
     v = SOLVE_INPUTS.complete(values)
     kw = {} if v["penalty-factor"] is None else {"penalty_factor": v["penalty-factor"]}
     position = SOLVE_INPUTS["position"].check(v["position"])

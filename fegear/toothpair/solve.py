@@ -41,7 +41,6 @@ from ..fe import (
     recover,
 )
 from ..geometry import Gear1Profile, ToothContact
-from ..planar import wrap
 from .case import PairSolution, SolveCase
 from .recovery import root_nodes, root_stresses, tooth_results
 from .scene import Scene, build_scene, candidate_data
@@ -108,11 +107,6 @@ def solve_pair(case: SolveCase, profile: Gear1Profile | None = None) -> PairSolu
     """Solve one position; pairs more teeth until no unpaired tooth would close."""
     profile = profile if profile is not None else Gear1Profile(case.params)
     return solve_positions(case, (case.beta,), profile)[0]
-
-
-def cycle_positions(beta0: float, n: int, z2: int) -> tuple[float, ...]:
-    """``n`` rolling angles evenly across one tooth pitch 2π/z2 of gear 2, from β0."""
-    return tuple(float(wrap(beta0 + k * 2 * math.pi / z2 / n)) for k in range(n))
 
 
 def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None

@@ -1,7 +1,19 @@
 """Verification stage, beside the pipeline: the Hertz disk case, the benchmark (run time
 against error), and CalculiX solving the same meshes.
 
-TODO walkthrough
+:mod:`.disks` is the FE core's analytic reference (``fegear hertz``); :mod:`.bench` times every
+stage on meshes each twice as fine as the last and measures each level's error against the
+Richardson extrapolation of the finest (``fegear bench``); :mod:`.calculix` and
+:mod:`.calculix_pair` write the very same bodies, supports, penalty and load as CalculiX decks
+and read its answers back; :mod:`.study_overhead` times the study runner.
+
+>>> from fegear.verify import DiskCase, richardson, solve_disks
+>>> result = solve_disks(DiskCase(quality=4))   # 4 elements across the Hertz half-width
+>>> round(result.p_error_pct, 2), round(result.b_error_pct, 2)  # % against Hertz
+(0.18, -1.56)
+>>> limit, order = richardson([1.04, 1.01, 1.0025])  # values on meshes each twice as fine
+>>> round(limit, 6), round(order, 3)
+(1.0, 2.0)
 """
 
 from ..exports import lazy
@@ -13,8 +25,8 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
               "disk_ladder", "pair_ladder", "ladder_targets", "ladder_table", "ladder_json",
               "peer_speedups", "PEER_TARGET", "machine"),
     "study_overhead": ("study_overhead", "overhead_table"),
-    "calculix": ("PeerError", "PeerConvergenceError", "CcxDeck", "CcxResult", "ccx_available",
-                 "write_deck", "run_ccx", "ccx_disks"),
+    "calculix": ("CcxDeck", "CcxResult", "ccx_available", "write_deck", "run_ccx", "ccx_disks"),
+    "ccx_files": ("PeerError", "PeerConvergenceError"),
     "calculix_pair": ("CcxPairResult", "ccx_pair"),
     "plot": ("ladder_png",),
 })

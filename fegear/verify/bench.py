@@ -253,7 +253,7 @@ def pair_ladder(params: PairParameters, torque: float = 200.0,
 def _peer(run, case, ours) -> tuple[float | None, dict | None, str | None]:
     """CalculiX's wall time and values beside ours, or why it gave none: a failed peer is
     reported in the table, it does not stop the benchmark."""
-    from .calculix import PeerError
+    from .ccx_files import PeerError
 
     try:
         return (*run(case, ours), None)

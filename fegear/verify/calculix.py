@@ -49,8 +49,6 @@ import math
 import os
 import re
 import shutil
-import subprocess
-import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -59,8 +57,16 @@ from types import SimpleNamespace
 import numpy as np
 
 from ..contact import ContactSettings
-from ..errors import FegearError
 from ..fe import Body, contact_modulus, facet_nodes
+from .ccx_files import (
+    PeerError,
+    contact_forces,
+    deck_counts,
+    execute,
+    floats,
+    last_block,
+    read_text,
+)
 from .disks import DiskCase, DiskResult, solve_disks
 
 #: step-2 convergence controls (see the module docstring)
@@ -69,14 +75,6 @@ CONTROLS = ("*CONTROLS, PARAMETERS=FIELD", "1e-6, 1e-8, , , 1e-6, 1e-5, 1e-3, 1e
             "*CONTROLS, PARAMETERS=CONTACT", "0, 0.1, 1, 200")
 PRELOAD = 1e-6  # step-1 motion δ0, as a fraction of the link body's size
 FIELD = 20      # CalculiX reads a number from at most this many characters
-
-
-class PeerError(FegearError):
-    """CalculiX is missing or failed, or the model cannot be exported."""
-
-
-class PeerConvergenceError(PeerError):
-    """CalculiX gave up on the load step (too many cutbacks) or did not complete it."""
 
 
 @dataclass(frozen=True)
@@ -425,131 +423,6 @@ def _rotation_link(lb: Body, link: np.ndarray, offset: int, ref: int) -> tuple:
     return card, ref, 1, 1.0, ["FIXED, 1, 2", *held], count
 
 
-def _number(token: str) -> float:
-    """A Fortran number, including the E-less ``1.0-100`` of three-digit exponents."""
-    t = token.upper().replace("D", "E")
-    if "E" not in t:
-        t = re.sub(r"(\d)([-+]\d+)$", r"\1E\2", t)
-    return float(t)
-
-
-def _floats(line: str) -> list[float]:
-    out = []
-    for token in line.replace(",", " ").split():
-        try:
-            out.append(_number(token))
-        except ValueError:
-            pass
-    return out
-
-
-def _rows(lines: list[str], header: int) -> list[str]:
-    """The data lines after line ``header``: blank lines skipped, up to the next blank one."""
-    i = header + 1
-    while i < len(lines) and not lines[i].strip():
-        i += 1
-    rows = []
-    while i < len(lines) and lines[i].strip():
-        rows.append(lines[i])
-        i += 1
-    return rows
-
-
-def _last_block(lines: list[str], header: str) -> tuple[list[str], float]:
-    """Data lines of the last block titled ``header``, and the time in its title."""
-    at = [i for i, line in enumerate(lines) if header in line]
-    if not at:
-        raise PeerError(f"ccx wrote no {header!r} output")
-    return _rows(lines, at[-1]), _floats(lines[at[-1]])[-1]
-
-
-def contact_forces(dat: list[str], npairs: int) -> np.ndarray:
-    """Per deck pair, from the last ``CF`` blocks: fx, fy, fz, mx, my, mz (about the origin)
-    and the normal force (+ = tension)."""
-    stats = [i for i, line in enumerate(dat) if "statistics for slave set" in line]
-    if len(stats) < npairs:
-        raise PeerError(f"ccx wrote {len(stats)} contact force blocks for {npairs} pairs")
-    out = []
-    for i in stats[len(stats) - npairs:]:
-        block = dat[i:i + 20]
-        total = _block_row(block, "total surface force")[:6]
-        area, normal = _block_row(block, "normal force (+ = tension)")[:2]
-        out.append(total + [normal if area > 0 else 0.0])  # ccx: NaN on a pair out of contact
-    return np.array(out)
-
-
-def _block_row(block: list[str], title: str) -> list[float]:
-    """The numbers of the first data line under the line containing ``title``."""
-    j = next((j for j, line in enumerate(block) if title in line), None)
-    if j is None:
-        raise PeerError(f"ccx's contact force block has no {title!r} line")
-    return _floats(_rows(block, j)[0])
-
-
-def _read(path: Path) -> str:
-    try:
-        return path.read_text(errors="replace")
-    except OSError as exc:
-        raise PeerError(f"cannot read ccx output {str(path)!r}: {exc.strerror}") from None
-
-
-def _deck_counts(inp: str) -> tuple[int, int, float, int]:
-    """Nodes, elements, applied load (N, the ``*CLOAD``) and contact pairs of a deck."""
-    counts, block, load = {"NODE": 0, "ELEMENT": 0, "CONTACT PAIR": 0}, None, float("nan")
-    for line in inp.splitlines():
-        if line.startswith("*"):
-            block = line[1:].split(",")[0].strip().upper()
-            continue
-        if block in counts and line.strip():
-            counts[block] += 1
-        elif block == "CLOAD":
-            load = abs(float(line.split(",")[2]))
-    return counts["NODE"], counts["ELEMENT"], load, counts["CONTACT PAIR"]
-
-
-def execute(work: Path, jobname: str, threads: int = 1, timeout: float | None = None
-            ) -> tuple[float, str, list[list[str]], list[str]]:
-    """Run ``ccx -i <jobname>`` in ``work`` with ``threads`` threads: its wall time (s), log,
-    the converged increments of the ``.sta`` (rows: step, increment, attempts, iterations, …)
-    and the ``.dat`` lines. Raises :class:`PeerError` when ccx is missing, fails or times out,
-    :class:`PeerConvergenceError` when it gives up or does not complete step 2."""
-    exe = shutil.which("ccx")
-    if exe is None:
-        raise PeerError("CalculiX (ccx) is not installed or not on the PATH")
-    inp = work / f"{jobname}.inp"
-    if not inp.is_file():
-        raise PeerError(f"no deck {str(inp)!r}")
-    if not (isinstance(threads, int) and threads >= 1):
-        raise PeerError(f"threads must be an integer >= 1: {threads!r}")
-    env = dict(os.environ)
-    for var in ("OMP_NUM_THREADS", "CCX_NPROC_EQUATION_SOLVER", "CCX_NPROC_STIFFNESS",
-                "CCX_NPROC_RESULTS"):
-        env[var] = str(threads)
-    log = work / f"{jobname}.log"
-    t0 = time.perf_counter()
-    try:
-        with open(log, "w") as out:
-            proc = subprocess.run([exe, "-i", jobname], cwd=work, env=env, stdout=out,
-                                  stderr=subprocess.STDOUT, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        raise PeerError(f"ccx did not finish within {timeout} s (log: {log})") from None
-    wall = time.perf_counter() - t0
-    text = _read(log)
-    out = text.splitlines() + [""]
-    errors = [" ".join(f"{out[i]} {out[i + 1] if '*' not in out[i + 1] else ''}".split())
-              for i in range(len(out) - 1) if "*ERROR" in out[i]]
-    if proc.returncode != 0 or errors:
-        why = "; ".join(dict.fromkeys(errors[:2])) or f"exit code {proc.returncode}"
-        if "cutback" in why:
-            raise PeerConvergenceError(f"ccx did not converge: {why} (log: {log})")
-        raise PeerError(f"ccx failed: {why} (log: {log})")
-    steps = [line.split() for line in _read(work / f"{jobname}.sta").splitlines()
-             if re.match(r"^\s*\d+\s+\d+\s+\d+\s+\d+\s+\S+\s+\S+\s+\S+\s*$", line)]
-    if not steps or int(steps[-1][0]) != 2 or abs(_floats(steps[-1][5])[0] - 1.0) > 1e-9:
-        raise PeerConvergenceError(f"ccx did not complete the load step ({work / jobname}.sta)")
-    return wall, text, steps, _read(work / f"{jobname}.dat").splitlines()
-
-
 def run_ccx(deck_dir: str | os.PathLike, jobname: str, threads: int = 1,
             timeout: float | None = None) -> CcxResult:
     """Run ``ccx -i <jobname>`` in ``deck_dir`` with ``threads`` threads and read the results
@@ -558,20 +431,20 @@ def run_ccx(deck_dir: str | os.PathLike, jobname: str, threads: int = 1,
     do not balance."""
     work = Path(deck_dir)
     inp = work / f"{jobname}.inp"
-    if inp.is_file() and "*NODE, NSET=REF" in _read(inp):
+    if inp.is_file() and "*NODE, NSET=REF" in read_text(inp):
         raise PeerError("a rotation-link deck: run it with fegear.verify.calculix_pair.ccx_pair")
     wall, text, steps, dat = execute(work, jobname, threads, timeout)
-    pressure, when = _last_block(dat, "contact stress")
+    pressure, when = last_block(dat, "contact stress")
     if abs(when - 2.0) > 1e-9:
         raise PeerError(f"ccx's last contact output is at time {when}, not at the full load")
-    p = np.array([_floats(r)[2] for r in pressure])
+    p = np.array([floats(r)[2] for r in pressure])
     if not np.any(p > 0):
         raise PeerError("ccx found no contact at the full load")
-    nodes, elements, applied, npairs = _deck_counts(_read(inp))
+    nodes, elements, applied, npairs = deck_counts(read_text(inp))
     load = -contact_forces(dat, npairs)[:, 6].sum()
-    reaction, _ = _last_block(dat, "total force (fx,fy,fz) for set FIXED")
+    reaction, _ = last_block(dat, "total force (fx,fy,fz) for set FIXED")
     m = re.search(r"number of equations\s+(\d+)", text)
-    rf = np.array(_floats(reaction[0])[:2])
+    rf = np.array(floats(reaction[0])[:2])
     result = CcxResult(p_max=float(p.max()), load=float(load),
                        reaction=float(np.linalg.norm(rf)), wall_s=wall, dofs=2 * nodes,
                        equations=int(m.group(1)) if m else 0, nodes=nodes, elements=elements,

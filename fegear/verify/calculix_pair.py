@@ -62,7 +62,8 @@ import numpy as np
 from ..fe import Body, Placement, StressField, contact_modulus
 from ..planar import rotate
 from ..toothpair import PairSolution, SolveCase, solve_pair
-from .calculix import PeerError, _floats, _last_block, _read, contact_forces, execute, write_deck
+from .calculix import write_deck
+from .ccx_files import PeerError, contact_forces, execute, floats, last_block, read_text
 
 CCX_PENALTY_FACTOR = 30.0  # CalculiX's K = this · E*/h (penalty_factor=None: the case's)
 PRELOAD_FRACTION = 0.01    # step-1 rotation beyond our first touch, of our elastic rotation
@@ -167,8 +168,8 @@ def ccx_pair(case: SolveCase, workdir: str | os.PathLike, threads: int = 1,
     work = Path(workdir)
     wall, text, steps, dat = execute(work, JOB, threads, timeout)
 
-    ref, _ = _last_block(dat, "displacements (vx,vy,vz) for set REF")
-    rotation = turned + _floats(ref[0])[1]
+    ref, _ = last_block(dat, "displacements (vx,vy,vz) for set REF")
+    rotation = turned + floats(ref[0])[1]
     centre = g1.placement.to_fixed(np.asarray([g1.link.center]))[0]
     forces = contact_forces(dat, len(pairs))
     moments = forces[:, 5] - (centre[0] * forces[:, 1] - centre[1] * forces[:, 0])
@@ -180,10 +181,10 @@ def ccx_pair(case: SolveCase, workdir: str | os.PathLike, threads: int = 1,
         raise PeerError(f"ccx's contact moment {total:.6g} N·mm does not balance the torque "
                         f"{torque:.6g} N·mm")
 
-    press, when = _last_block(dat, "contact stress")
+    press, when = last_block(dat, "contact stress")
     if abs(when - 2.0) > 1e-9:
         raise PeerError(f"ccx's last contact output is at time {when}, not at the full load")
-    rows = np.array([_floats(r)[:3] for r in press]).reshape(-1, 3)
+    rows = np.array([floats(r)[:3] for r in press]).reshape(-1, 3)
     which = _face_owner(deck.path, len(pairs))
     p_tooth = np.zeros(n)
     for e, f, p in rows:
@@ -217,7 +218,7 @@ def turned_body(body: Body, theta: float) -> Body:
 def _face_owner(inp: Path, npairs: int) -> dict[tuple[int, int], int]:
     """(element, 2D face) → deck pair, from the deck's SLAVE surfaces."""
     which, k = {}, None
-    for line in _read(inp).splitlines():
+    for line in read_text(inp).splitlines():
         if line.startswith("*"):
             m = re.match(r"\*SURFACE, NAME=SLAVE(\d+)", line)
             k = int(m.group(1)) - 1 if m else None
@@ -247,7 +248,7 @@ def _root_stress(frd: Path, sol: PairSolution) -> tuple[float, float]:
 def frd_stress(frd: Path) -> dict[int, list[float]]:
     """Node → (sxx, syy, szz, sxy, syz, szx) of the last STRESS block of an ASCII ``.frd``
     (fixed format: ``-1``, the node in 10 columns, values in 12)."""
-    lines = _read(frd).splitlines()
+    lines = read_text(frd).splitlines()
     at = [i for i, line in enumerate(lines) if line.startswith(" -4  STRESS")]
     if not at:
         raise PeerError(f"ccx wrote no stresses in {str(frd)!r}")

@@ -2,7 +2,6 @@
 
 import numpy as np
 import pytest
-from conftest import CONJUGATE, MODIFIED
 from swept_reference import sweep_min_distance
 
 from fegear.geometry.parameters import PairParameters
@@ -11,18 +10,18 @@ UM = 1e-3  # mm
 TOL = 0.05 * UM  # the issue's exactness bound, 0.05 µm
 
 
-def test_exact_conjugate_touches_everywhere_without_penetration(conjugate_profile):
+def test_exact_conjugate_touches_everywhere_without_penetration(conjugate, conjugate_profile):
     """Every point of gear 1 touches the swept gear 2 (gap < 0.05 µm), none penetrates."""
-    p = CONJUGATE
+    p = conjugate
     q = conjugate_profile.period_polyline(4e-4)
     d = sweep_min_distance(q, p.e, p.z1, p.r0, p.e1, p.e2, p.z2, 0.0, steps_per_pitch=60)
     assert d.min() > -TOL
     assert d.max() < TOL
 
 
-def test_modified_gear1_against_its_generating_tool_and_assembled(modified_profile):
-    p = MODIFIED
-    g = modified_profile
+def test_modified_gear1_against_its_generating_tool_and_assembled(baseline, baseline_profile):
+    p = baseline
+    g = baseline_profile
     q = g.period_polyline(4e-4)
     # against the Δ2 tool at the generating centre distance e + Δ1: no penetration, and the
     # working flanks (near-side pieces) touch
@@ -48,9 +47,9 @@ def _owner_branch(g, phi):
     return np.array([g.pieces[i].run.branch for i in idx])
 
 
-def test_tip_and_root_radii_are_exact(conjugate_profile, modified_profile):
+def test_tip_and_root_radii_are_exact(conjugate_profile, baseline_profile):
     """Far-side trimming: the tip stops at r0 − 2e1 + e − tip relief (44.8 mm at baseline)."""
-    for g in (conjugate_profile, modified_profile):
+    for g in (conjugate_profile, baseline_profile):
         p = g.params
         tip = g.radius(np.array([g.tooth_center]))[0]
         assert tip == pytest.approx(p.r0 - 2 * p.e1 + p.e - p.tip_clearance, abs=1e-12)
@@ -60,8 +59,8 @@ def test_tip_and_root_radii_are_exact(conjugate_profile, modified_profile):
         pytest.approx(44.8, abs=1e-12)
 
 
-def test_profile_is_periodic_symmetric_and_continuous(modified_profile):
-    g = modified_profile
+def test_profile_is_periodic_symmetric_and_continuous(baseline_profile):
+    g = baseline_profile
     phi = np.linspace(0, 2 * np.pi, 5001)
     r = g.radius(phi)
     assert np.abs(g.radius(phi + g.pitch) - r).max() < 1e-11
@@ -74,8 +73,8 @@ def test_profile_is_periodic_symmetric_and_continuous(modified_profile):
                    - g.radius(np.array([pc.phi1 + 1e-13]))[0]) < 1e-9
 
 
-def test_polyline_points_lie_on_the_exact_profile(modified_profile):
-    g = modified_profile
+def test_polyline_points_lie_on_the_exact_profile(baseline_profile):
+    g = baseline_profile
     pts = g.polyline(1e-4)
     assert len(pts) % g.params.z1 == 0
     phi = np.arctan2(pts[:, 1], pts[:, 0])
@@ -84,9 +83,9 @@ def test_polyline_points_lie_on_the_exact_profile(modified_profile):
     assert np.all(np.diff(np.unwrap(phi)) > 0)
 
 
-def test_curvature_radius_on_flank(modified_profile):
+def test_curvature_radius_on_flank(baseline_profile):
     """Exact curvature radius agrees with the circle through three close exact points."""
-    g = modified_profile
+    g = baseline_profile
     phi0 = g.phi_space + 0.25 * g.pitch
     h = 1e-5
     pts = g.evaluate(np.array([phi0 - h, phi0, phi0 + h])).q

@@ -17,7 +17,7 @@ import pytest
 from fegear.cli import main
 from fegear.study.file import Outputs, StudyError, build_study, case_key, load_study
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 # four cheap real solves (a 25/24 pair, coarse, no second level) and one that fails in the
 # solve (an interfering tip relief), which must not stop the study

@@ -5,23 +5,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import MODIFIED
 
 from fegear.contact.model import ContactPair
 from fegear.fe.assembly import RigidLink, assemble_body, facet_nodes
 from fegear.fe.material import contact_modulus
 from fegear.toothpair.case import SolveCase
-from fegear.toothpair.solve import solve_pair
-from fegear.verify.calculix import (
-    CONTROLS,
-    PeerConvergenceError,
-    PeerError,
-    ccx_available,
-    ccx_disks,
-    contact_forces,
-    run_ccx,
-    write_deck,
-)
+from fegear.verify.calculix import CONTROLS, ccx_available, ccx_disks, run_ccx, write_deck
 from fegear.verify.calculix_pair import (
     CCX_PENALTY_FACTOR,
     ccx_pair,
@@ -30,7 +19,8 @@ from fegear.verify.calculix_pair import (
     size_bands,
     turned_body,
 )
-from fegear.verify.disks import DiskCase, solve_disks
+from fegear.verify.ccx_files import PeerConvergenceError, PeerError, contact_forces
+from fegear.verify.disks import DiskCase
 
 needs_ccx = pytest.mark.skipif(not ccx_available(), reason="CalculiX (ccx) is not installed")
 
@@ -39,8 +29,8 @@ P_TOL = 0.01
 
 
 @pytest.fixture(scope="module")
-def coarse():
-    return solve_disks(DiskCase(quality="coarse"))
+def coarse(coarse_disks):
+    return coarse_disks
 
 
 def parse_deck(path: Path) -> dict:
@@ -140,10 +130,10 @@ def test_unsupported_models_are_refused(coarse, tmp_path):
 
 
 def test_run_reports_missing_ccx_and_deck(tmp_path, monkeypatch):
-    monkeypatch.setattr("fegear.verify.calculix.shutil.which", lambda name: "/nowhere/ccx")
+    monkeypatch.setattr("fegear.verify.ccx_files.shutil.which", lambda name: "/nowhere/ccx")
     with pytest.raises(PeerError, match="no deck"):
         run_ccx(tmp_path, "absent")
-    monkeypatch.setattr("fegear.verify.calculix.shutil.which", lambda name: None)
+    monkeypatch.setattr("fegear.verify.ccx_files.shutil.which", lambda name: None)
     assert not ccx_available()
     with pytest.raises(PeerError, match="not installed"):
         run_ccx(tmp_path, "absent")
@@ -193,13 +183,10 @@ def test_literal_cps6_is_stiffer_than_plane_stress(tmp_path):
 
 # --- tooth pair -------------------------------------------------------------------------------
 
-#: the light pair: coarse, 1 N·m, two teeth paired (our solve ~9 s; ccx ~40 s)
-LIGHT = SolveCase(MODIFIED, torque=1.0, quality="coarse")
-
-
 @pytest.fixture(scope="module")
-def light():
-    return solve_pair(LIGHT)
+def light(light_touch):
+    """The baseline pair at 1 N·m, coarse: two teeth paired (ccx ~40 s)."""
+    return light_touch
 
 
 def deck_blocks(path: Path) -> dict[str, list[list[str]]]:
@@ -225,7 +212,7 @@ def test_pair_deck_ties_the_bore_to_a_rotation(light, tmp_path):
     assert d["equations"] == deck.equations == 2 * len(bore)  # u_x and u_y of every bore node
     centre = g1.placement.to_fixed(np.array([g1.link.center]))[0]
     assert d["nodes"][deck.ref] == pytest.approx(tuple(centre), abs=1e-12)  # O1, placed
-    assert centre[1] == pytest.approx(MODIFIED.e)
+    assert centre[1] == pytest.approx(light.case.params.e)
     # u_x + (y − c_y) θ = 0 and u_y − (x − c_x) θ = 0: θ is dof 1 of the reference node
     x = d["nodes"]
     lever = {}
@@ -290,15 +277,16 @@ def test_gear_1_is_written_turned_about_o1(light, tmp_path):
     theta = light.first_touch
     x0 = g1.placement.to_fixed(g1.mesh.doflocs.T)
     x1 = turned_body(g1, theta).placement.to_fixed(g1.mesh.doflocs.T)
-    o1 = np.array([0.0, MODIFIED.e])
+    o1 = np.array([0.0, light.case.params.e])
     r0, r1 = x0 - o1, x1 - o1
     assert np.allclose(np.linalg.norm(r1, axis=1), np.linalg.norm(r0, axis=1), atol=1e-12)
     turn = np.arctan2(r1[:, 1], r1[:, 0]) - np.arctan2(r0[:, 1], r0[:, 0])
     assert np.allclose(turn, theta, atol=1e-12)  # exactly, not θ ẑ × r
     with pytest.raises(PeerError, match="start"):
-        ccx_pair(LIGHT, tmp_path, solution=light, start="kinematic")
+        ccx_pair(light.case, tmp_path, solution=light, start="kinematic")
     with pytest.raises(PeerError, match="not of this case"):
-        ccx_pair(SolveCase(MODIFIED, torque=2.0, quality="coarse"), tmp_path, solution=light)
+        ccx_pair(SolveCase(light.case.params, torque=2.0, quality="coarse"), tmp_path,
+                 solution=light)
 
 
 def test_frd_and_force_readers(tmp_path):
@@ -325,7 +313,7 @@ def test_ccx_matches_ours_on_the_light_pair(light, tmp_path):
     −1.2 % / −0.7 %); its p_max sits 45–55 % above ours: CalculiX's pointwise penalty on
     non-matching quadratic faces resolves the sub-facet misfit of the two P2 flanks (see
     fegear.verify.calculix_pair), which our weighted gaps on gear 2's exact curve do not see."""
-    ours, ccx = ccx_pair(LIGHT, tmp_path, solution=light, timeout=600)
+    ours, ccx = ccx_pair(light.case, tmp_path, solution=light, timeout=600)
     elastic = (ccx.rotation - ours.first_touch) / (ours.rotation - ours.first_touch)
     assert abs(elastic - 1.0) < 0.01
     assert ccx.teeth == tuple(t.tooth for t in ours.teeth)

@@ -55,7 +55,7 @@ OPTIONS = {
 INTEGER = {"--z1", "--z2", "--positions", "--extra-teeth", "--extra-pairs", "--repeat",
            "--cycle", "--study-cases", "--workers"}
 ARGS = {"profile": ["--positions", "4"], "hertz": [], "solve": [], "bench": [], "drive": [],
-        "study": [str(Path(__file__).resolve().parents[1] / "studies" / "paper_trends.toml")]}
+        "study": [str(Path(__file__).resolve().parents[2] / "studies" / "paper_trends.toml")]}
 
 
 def _cases():

@@ -77,9 +77,10 @@ def test_a_failed_calculix_run_is_reported_and_the_ladder_goes_on(monkeypatch):
     # `fegear bench --torque 1` stopped at the `fast` pair: ccx refused a mesh, and the
     # finished disk ladder was never written
     import fegear.verify.calculix as peer
+    from fegear.verify.ccx_files import PeerError
 
     def refuse(case, workdir, **kwargs):
-        raise peer.PeerError("body 'disk1': node 4 is not on edge 1-2")
+        raise PeerError("body 'disk1': node 4 is not on edge 1-2")
 
     monkeypatch.setattr(peer, "ccx_available", lambda: True)
     monkeypatch.setattr(peer, "ccx_disks", refuse)

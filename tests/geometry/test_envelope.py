@@ -7,13 +7,13 @@ from fegear.geometry.envelope import FAR, NEAR
 from fegear.geometry.gear1 import generating_branches
 from fegear.geometry.parameters import PairParameters
 
-CASES = [PairParameters(), PairParameters(shift=0.016, rotation=0.002),
-         PairParameters(m=1.5, z2=31, z1=29, h1=0.25, f1=0.1)]
+OTHER = PairParameters(m=1.5, z2=31, z1=29, h1=0.25, f1=0.1)
 
 
-@pytest.mark.parametrize("p", CASES)
-def test_law_of_gearing(p):
+@pytest.mark.parametrize("case", ["nominal", "baseline", "other"])
+def test_law_of_gearing(case, request):
     """At 1000+ sampled contact points the common normal passes through the pitch point."""
+    p = OTHER if case == "other" else request.getfixturevalue(case)
     for b in generating_branches(p):
         xi = np.linspace(-np.pi / p.z2, np.pi / p.z2, 1201)[1:-1]
         e = b.evaluate(xi)
@@ -35,8 +35,8 @@ def test_law_of_gearing(p):
 
 
 @pytest.mark.parametrize("side", [NEAR, FAR])
-def test_tangent_speed_and_curvature_are_exact(side):
-    p = PairParameters(shift=0.016, rotation=0.002)
+def test_tangent_speed_and_curvature_are_exact(side, baseline):
+    p = baseline
     b = [br for br in generating_branches(p) if br.side == side][0]
     xi = np.linspace(-0.9 * np.pi / p.z2, 0.9 * np.pi / p.z2, 37)
     h = 1e-6
@@ -52,7 +52,7 @@ def test_tangent_speed_and_curvature_are_exact(side):
 
 
 def test_near_branch_reaches_45_2_alone():
-    """DOMAIN.md §1: the near branch alone reaches 45.2 mm; the far branch trims it."""
+    """docs/model.md, "Gear 1": the near branch alone reaches 45.2 mm; the far branch trims it."""
     b = generating_branches(PairParameters(tip_relief=0.0))[0]
     xi = np.linspace(-np.pi / 45, np.pi / 45, 4001)
     assert b.evaluate(xi).radius.max() == pytest.approx(45.2, abs=1e-9)

@@ -1,4 +1,5 @@
-"""Tooth-pair scene, tip rounding, tooth choice and solve, one position and a mesh cycle."""
+"""The tooth-pair scene: profile segments, the gear-1 sector, refinement zones, tooth choice and
+the Hertz radii at the contact points."""
 
 import math
 from types import SimpleNamespace
@@ -6,24 +7,19 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from fegear.errors import ParameterError
 from fegear.geometry.clearance import ToothContact
 from fegear.geometry.gear1 import Gear1Profile
 from fegear.geometry.gear2 import gear2_curve
-from fegear.geometry.parameters import PairParameters
 from fegear.geometry.tip_edge import RoundedProfile
 from fegear.planar import rotate
-from fegear.toothpair.case import HEADLINE, SolveCase
-from fegear.toothpair.estimate import error_estimate
+from fegear.toothpair.case import SolveCase
 from fegear.toothpair.scene import (
     build_scene,
     candidate_data,
     tooth_run,
 )
 from fegear.toothpair.segments import profile_segments, sampled
-from fegear.toothpair.solve import choose_teeth, cycle_positions, solve_pair, solve_positions
-
-BASELINE_MODS = dict(shift=0.016, rotation=0.002)
+from fegear.toothpair.solve import choose_teeth
 
 
 def circle(phi):
@@ -54,35 +50,6 @@ def test_profile_segments_are_contiguous_with_windows_over_roots():
     assert sum(s.zone is None for s in segs) == len(segs) - len(zoned)
 
 
-@pytest.mark.slow
-def test_baseline_pair_balances_torque_and_shares():
-    p = PairParameters(shift=0.016, rotation=0.002)
-    r = solve_pair(SolveCase(p, torque=200.0, quality="fast"))
-    assert r.contact.balance_error < 1e-6
-    assert sum(t.load_share for t in r.teeth) == pytest.approx(1.0, abs=1e-3)
-    assert max(r.contact.residuals) < 1e-9
-    assert r.teeth_in_contact >= 2
-    assert r.rotation > r.first_touch > 0
-    # root zone found by radius, also where a contact window covers the fillet
-    assert all(s > 100.0 for s in r.root_stress)
-
-
-@pytest.mark.slow
-def test_headline_stresses_are_insensitive_to_the_penalty_over_three_decades():
-    # the largest pressure sits on gear 1's 0.25 mm tip round, in a zone a few elements wide:
-    # the weighted-gap penalty must not lock or oscillate there as the penalty grows 1000×
-    # (measured: roots and von Mises move < 0.02 %); the penetration falls with the penalty
-    p = PairParameters(shift=0.016, rotation=0.002)
-    runs = [solve_pair(SolveCase(p, quality="fast", penalty_factor=f))
-            for f in (100, 1000, 10000, 100000)]
-    assert all(any(t.peak_on_round for t in r.teeth) for r in runs)
-    for key in runs[0].headline():
-        values = [r.headline()[key] for r in runs]
-        assert max(values) - min(values) < 0.01 * min(values), (key, values)
-    penetration = [r.contact.max_penetration for r in runs]
-    assert penetration[-1] < penetration[0] / 500
-
-
 def test_profile_segments_with_many_zones_stay_contiguous():
     # a sector of 20 tooth spaces: every root is cut against every piece placed before it
     roots = [(f"r{k}", 0.05 * k + 0.025, 0.01) for k in range(20)]
@@ -105,42 +72,8 @@ def test_profile_segments_with_nested_windows_stay_contiguous():
     assert np.all(np.diff(ang) >= -1e-12)
 
 
-@pytest.mark.parametrize("rho, params, kink_deg", [
-    (0.1, BASELINE_MODS, 15), (0.25, BASELINE_MODS, 15), (0.5, BASELINE_MODS, 15),
-    # f1 at its admissible limit: a 14° kink on a steep flank, where the tangent points
-    # guessed from the polar radius collapsed onto the kink and every radius was refused
-    (0.05, dict(f1=0.39), 10), (0.25, dict(f1=0.39), 10)])
-def test_tip_round_is_tangent_and_only_removes_material(rho, params, kink_deg):
-    p = PairParameters(**params)
-    sharp = Gear1Profile(p)
-    shape = RoundedProfile(sharp, rho)
-    assert len(shape.kinks) == 2 and all(math.degrees(g) > kink_deg for _, g in shape.kinks)
-    for f in shape.fillets:
-        c = np.asarray(f.centre)
-        for phi in (f.phi_a, f.phi_b):
-            # the arc meets the flank at the tangent point: same point, same normal
-            q = shape.point(np.array([phi]))[0]
-            ev = sharp.evaluate(np.array([phi]))
-            assert np.linalg.norm(q - ev.q[0]) < 1e-9
-            assert np.allclose((q - c) / rho, ev.normal[0], atol=1e-7)
-        inside = np.linspace(f.phi_a, f.phi_b, 50)
-        assert np.allclose(np.linalg.norm(shape.point(inside) - c, axis=1), rho, atol=1e-9)
-        assert np.allclose(shape.curvature(inside[1:-1]), 1.0 / rho)
-    phi = np.linspace(shape.phi_space, shape.phi_space + 3 * shape.pitch, 20001)
-    removed = sharp.radius(phi) - shape.radius(phi)
-    assert removed.min() > -1e-12            # material is only removed
-    assert 0.0 < removed.max() < 0.2 * rho   # and only near the edge
-    # a second tooth turn carries the same round
-    f = shape.fillets[0]
-    mid = 0.5 * (f.phi_a + f.phi_b)
-    assert shape.radius(np.array([mid + shape.pitch]))[0] == pytest.approx(
-        shape.radius(np.array([mid]))[0], abs=1e-12)
-    assert shape.on_round(np.array([mid, mid + shape.pitch, f.phi_a + 1e-9])).all()
-    assert not shape.on_round(np.array([f.phi_a - 1e-6, f.phi_b + 1e-6])).any()
-
-
-def test_gear2_is_refined_like_the_rounds_and_gear1_reaches_beyond():
-    p = PairParameters(shift=0.016, rotation=0.002)
+def test_gear2_is_refined_like_the_rounds_and_gear1_reaches_beyond(baseline):
+    p = baseline
     profile = Gear1Profile(p)
     state = ToothContact(p, profile).state(0.0)
     teeth = choose_teeth(state, 15.0)
@@ -210,11 +143,6 @@ def test_gear2_is_refined_like_the_rounds_and_gear1_reaches_beyond():
     assert checked > 0
 
 
-def test_tip_round_too_large_is_refused():
-    with pytest.raises(ParameterError, match="tip_round"):
-        RoundedProfile(Gear1Profile(PairParameters()), 5.0)
-
-
 def clearance_state(plus_um):
     return SimpleNamespace(teeth=[SimpleNamespace(tooth=k, plus_um=c)
                                   for k, c in enumerate(plus_um)])
@@ -231,67 +159,11 @@ def test_choose_teeth_pairs_rigid_closures_and_elastic_neighbours():
     assert choose_teeth(clearance_state([30, 20, 40]), 1.0) == (1,)
 
 
-def test_mesh_cycle_repeats_after_one_pitch_with_the_next_tooth():
-    """β and β + 2π/z2 are the same state with every tooth index moved by one: one mesh and
-    one factorisation serve both; the two meshes around the loaded teeth differ, so the match
-    is to discretisation accuracy."""
-    p = PairParameters(shift=0.016, rotation=0.002)
-    b0, b1 = 0.0, 2 * math.pi / p.z2
-    s0, s1 = solve_positions(SolveCase(p, torque=200.0, quality="fast"), (b0, b1))
-    for b0_, b1_ in zip(s0.bodies, s1.bodies):   # one factorisation and one flexibility
-        assert b0_.factor is b1_.factor and b0_.cache is b1_.cache
-        assert sum(1 for k in b0_.cache if k[0] == "flexibility") == 1
-    share0 = {t.tooth: t.load_share for t in s0.teeth}
-    share1 = {t.tooth: t.load_share for t in s1.teeth}
-    # gear 2 turns by one of its pitches: tooth t then stands where tooth t + 1 stood
-    assert sum(share0.values()) == pytest.approx(1.0, abs=1e-6)
-    for tooth, share in share0.items():
-        assert share1.get(tooth - 1, 0.0) == pytest.approx(share, abs=0.01)
-    assert s1.rotation == pytest.approx(s0.rotation, rel=0.01)
-    assert s1.first_touch == pytest.approx(s0.first_touch, rel=0.01)
-    for a, b in zip(s0.root_stress, s1.root_stress):
-        assert b == pytest.approx(a, rel=0.03)
-    for s in (s0, s1):
-        assert s.contact.balance_error < 1e-6
-        assert sum(t.load_share for t in s.teeth) == pytest.approx(1.0, abs=1e-6)
-
-
-def test_cycle_positions_span_one_pitch():
-    b = cycle_positions(0.1, 4, 45)
-    assert np.allclose(np.diff(b), 2 * math.pi / 45 / 4)
-    assert b[0] == 0.1
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("more", [{"extra_pairs": 2}, {"extra_teeth": 4}])
-def test_two_more_teeth_each_side_change_no_stress_by_1pct(more):
-    """The scene's choice is safe: pairing two more teeth on each side, or moving the
-    traction-free cut faces two teeth further out, changes no headline stress, the
-    transmission error or a load share by more than 1 % (measured: ≤ 0.45 %)."""
-    p = PairParameters(shift=0.016, rotation=0.002)
-    base = solve_pair(SolveCase(p, torque=200.0, quality="fast"))
-    wider = solve_pair(SolveCase(p, torque=200.0, quality="fast", **more))
-    for key, value in base.headline().items():
-        assert wider.headline()[key] == pytest.approx(value, rel=0.01), key
-    assert wider.rotation - wider.first_touch == pytest.approx(
-        base.rotation - base.first_touch, rel=0.01)
-    shares = {t.tooth: t.load_share for t in wider.teeth}
-    for t in base.teeth:
-        assert shares[t.tooth] == pytest.approx(t.load_share, abs=0.01)
-
-
-def test_error_estimate_is_the_two_grid_convergence_index():
-    fine = dict.fromkeys(HEADLINE, 200.0)
-    coarse = {k: 200.0 + d for k, d in zip(HEADLINE, (2.0, -2.0, 0.0, 20.0))}
-    # Fs = 3, r = 2, p = 2: e = 3 |Δ| / 3 = |Δ|, relative to the finer value
-    assert list(error_estimate(fine, coarse).values()) == pytest.approx([1.0, 1.0, 0.0, 10.0])
-
-
-def test_hertz_radii_are_those_of_the_gap_once_the_clearance_is_closed():
+def test_hertz_radii_are_those_of_the_gap_once_the_clearance_is_closed(baseline):
     # on the baseline's nearly conformal flanks 1/R* is a small difference of two curvatures
     # near 0.1 /mm, and gear 2's changes fast: taken 6 µm away (where the gear-1 point sits
     # before the clearance closes) it came out half the true value
-    p = PairParameters(shift=0.016, rotation=0.002)
+    p = baseline
     profile = Gear1Profile(p)
     beta = SolveCase(p).beta
     state = ToothContact(p, profile).state(beta)
@@ -340,3 +212,5 @@ def test_a_nearly_radial_curve_is_sampled_evenly_in_arc_length():
     arc = sampled("c", circle, None, 0.0, 0.5).points
     angles = np.arctan2(arc[:, 1], arc[:, 0])
     assert np.allclose(np.diff(angles), angles[1] - angles[0])
+
+

@@ -2,7 +2,6 @@
 
 import numpy as np
 import pytest
-from conftest import CONJUGATE, MODIFIED
 from swept_reference import signed_distance
 
 from fegear.geometry.clearance import ToothContact
@@ -12,8 +11,8 @@ UM = 1e-3
 
 
 @pytest.fixture(scope="module")
-def tca_modified(modified_profile):
-    return ToothContact(MODIFIED, modified_profile)
+def tca_modified(baseline, baseline_profile):
+    return ToothContact(baseline, baseline_profile)
 
 
 def _min_gap_after_rotation(tca, tooth, delta, beta=0.0):
@@ -37,22 +36,22 @@ def test_reported_clearance_closes_exactly(tca_modified, direction):
     key = "plus_um" if direction > 0 else "minus_um"
     for t in sorted(st.teeth, key=lambda t: getattr(t, key) or np.inf)[:3]:
         c = getattr(t, key)
-        delta = direction * c * UM / MODIFIED.r0
+        delta = direction * c * UM / tca_modified.params.r0
         assert abs(_min_gap_after_rotation(tca_modified, t.tooth, delta)) < 0.05 * UM
-        less = direction * (c - 0.1) * UM / MODIFIED.r0
+        less = direction * (c - 0.1) * UM / tca_modified.params.r0
         assert _min_gap_after_rotation(tca_modified, t.tooth, less) > 0
 
 
-def test_conjugate_pair_has_zero_backlash(conjugate_profile):
-    b = ToothContact(CONJUGATE, conjugate_profile).backlash(8)
+def test_conjugate_pair_has_zero_backlash(conjugate, conjugate_profile):
+    b = ToothContact(conjugate, conjugate_profile).backlash(8)
     assert abs(b.plus_um) < 1e-3 and abs(b.minus_um) < 1e-3
 
 
-def test_paper_section2_backlash():
+def test_paper_section2_backlash(baseline):
     """Paper §2: Δ1 = 0.016 mm gives ≈ 8 µm single-side backlash; Δ2 = 0.002 mm changes it by
     2Δ2 = 4 µm. Definition: smallest rotation of gear 1 (µm of arc at r0) over one mesh cycle."""
     shift_only = ToothContact(PairParameters(shift=0.016)).backlash(8)
-    both = ToothContact(PairParameters(shift=0.016, rotation=0.002)).backlash(8)
+    both = ToothContact(baseline).backlash(8)
     # measured: 8.959 µm each side (the paper reads ≈ 8 µm off its Fig. 6)
     assert shift_only.plus_um == pytest.approx(8.959, abs=0.01)
     assert shift_only.minus_um == pytest.approx(shift_only.plus_um, abs=0.01)
@@ -63,7 +62,7 @@ def test_paper_section2_backlash():
 
 def test_unrelieved_gear_interferes_by_about_shift_on_far_side():
     """Without tip relief (tip_relief = −shift: gear 1 exactly as generated at e + Δ1) the
-    assembled pair interferes on the far side by ≈ Δ1 (DOMAIN.md §1)."""
+    assembled pair interferes on the far side by ≈ Δ1 (docs/model.md, "Modifications")."""
     p = PairParameters(shift=0.016, tip_relief=-0.016)
     st = ToothContact(p).state(0.0)
     assert st.interference
@@ -76,8 +75,8 @@ def test_unrelieved_gear_interferes_by_about_shift_on_far_side():
 
 def test_tooth_positions_and_counts(tca_modified):
     st = tca_modified.state(0.1)
-    assert len(st.teeth) == MODIFIED.z1
+    assert len(st.teeth) == tca_modified.params.z1
     pos = sorted(t.position_deg for t in st.teeth)
-    assert np.allclose(np.diff(pos), 360 / MODIFIED.z1, atol=1e-9)
+    assert np.allclose(np.diff(pos), 360 / tca_modified.params.z1, atol=1e-9)
     # the closest teeth are near the pitch point
     assert abs(st.closest(+1).position_deg) < 30 and abs(st.closest(-1).position_deg) < 30

@@ -16,7 +16,6 @@ from fegear.geometry.parameters import PairParameters
 from fegear.toothpair.case import HEADLINE, SolveCase
 from fegear.toothpair.solve import refuse_interference, solve_pair
 
-BASELINE = PairParameters(shift=0.016, rotation=0.002)
 ALLOWABLE_CONTACT = 745.0  # MPa, 42CrMo (the paper)
 
 
@@ -29,9 +28,10 @@ def _check(sol):
     assert all(math.isfinite(v) for v in sol.headline().values())
 
 
-def test_jiggled_interior_nodes_move_headline_stresses_by_less_than_2pct(monkeypatch):
-    case = SolveCase(BASELINE, torque=1.0, quality="coarse")
-    base = solve_pair(case).headline()
+def test_jiggled_interior_nodes_move_headline_stresses_by_less_than_2pct(monkeypatch,
+                                                                        light_touch):
+    case = light_touch.case  # the baseline pair at 1 N·m, coarse
+    base = light_touch.headline()
     for seed in (1, 2):
         def jiggled(geometries, seed=seed):
             return tuple(jiggle(b, 0.1, seed + 10 * k)
@@ -46,18 +46,18 @@ def test_jiggled_interior_nodes_move_headline_stresses_by_less_than_2pct(monkeyp
 
 
 @pytest.mark.slow
-def test_light_touch_follows_hertz_and_three_times_the_allowable_converges():
+def test_light_touch_follows_hertz_and_three_times_the_allowable_converges(baseline):
     # one tooth carries the light loads: FE p_max against Hertz at the same point, and p ∝ √T
     light = {}
     for torque in (1e-3, 1e-2, 1e-1):
-        sol = solve_pair(SolveCase(BASELINE, torque=torque, quality="fast"))
+        sol = solve_pair(SolveCase(baseline, torque=torque, quality="fast"))
         _check(sol)
         (tooth,) = [t for t in sol.teeth if t.load_N > 0]
         assert tooth.p_max_MPa == pytest.approx(tooth.hertz_p0_MPa, rel=0.005)
         assert tooth.half_width_mm == pytest.approx(tooth.hertz_b_mm, rel=0.01)
         light[torque] = tooth.p_max_MPa / math.sqrt(torque)
     assert max(light.values()) / min(light.values()) - 1 < 0.005
-    heavy = solve_pair(SolveCase(BASELINE, torque=290.0, quality="fast"))
+    heavy = solve_pair(SolveCase(baseline, torque=290.0, quality="fast"))
     _check(heavy)
     assert heavy.contact_pressure >= 3 * ALLOWABLE_CONTACT
     assert heavy.teeth_in_contact >= 4

@@ -1,0 +1,202 @@
+"""The house rules, checked on the source (docs/architecture.md): one subpackage per stage, data
+flowing one way with no import cycle, other stages reached only through a stage's public face,
+heavy libraries imported only where they are used, and a study's cache key that covers every
+module that computes results."""
+
+import ast
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from fegear import provenance
+
+PACKAGE = Path(__file__).parents[1] / "fegear"
+#: modules allowed beside the stages: entry points and shared helpers
+SHARED = {"__init__", "__main__", "checks", "errors", "exports", "figures", "files", "planar",
+          "provenance"}
+#: which stages each stage may import (the shared helpers are open to all)
+ALLOWED = {
+    "geometry": set(),
+    "fe": set(),
+    "contact": {"fe"},
+    "toothpair": {"geometry", "fe", "contact"},
+    "study": {"toothpair"},
+    "drive": {"toothpair"},
+    "verify": {"geometry", "fe", "contact", "toothpair", "study"},
+    "cli": {"geometry", "fe", "contact", "toothpair", "study", "drive", "verify"},
+}
+
+
+def _modules() -> dict[str, Path]:
+    out = {}
+    for path in PACKAGE.rglob("*.py"):
+        parts = list(path.relative_to(PACKAGE.parent).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        out[".".join(parts)] = path
+    return out
+
+
+MODULES = _modules()
+
+
+def _imports(name: str) -> list[tuple[str, str, int]]:
+    """(imported module, imported name or '', line) of every import of fegear code in module
+    ``name``, relative ones resolved; imports under ``if TYPE_CHECKING`` are left out."""
+    path = MODULES[name]
+    tree = ast.parse(path.read_text())
+    typing_only = {id(n) for node in ast.walk(tree)
+                   if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test)
+                   for n in ast.walk(node)}
+    package = name if path.name == "__init__.py" else name.rsplit(".", 1)[0]
+    out = []
+    for node in ast.walk(tree):
+        if id(node) in typing_only or not isinstance(node, ast.ImportFrom):
+            continue
+        if node.level:
+            base = package.split(".")[:len(package.split(".")) - node.level + 1]
+            target = ".".join(base + ([node.module] if node.module else []))
+        elif (node.module or "").startswith("fegear"):
+            target = node.module
+        else:
+            continue
+        for alias in node.names:
+            submodule = f"{target}.{alias.name}"
+            if submodule in MODULES:
+                out.append((submodule, "", node.lineno))
+            else:
+                out.append((target, alias.name, node.lineno))
+    return out
+
+
+def _stage(name: str) -> str:
+    parts = name.split(".")
+    return parts[1] if len(parts) > 1 and parts[1] not in SHARED else ""
+
+
+def test_top_level_holds_only_the_stages_entry_points_and_shared_helpers():
+    top = {p.stem for p in PACKAGE.glob("*.py")}
+    assert top <= SHARED, top - SHARED
+    stages = {p.name for p in PACKAGE.iterdir() if (p / "__init__.py").exists()}
+    assert stages == set(ALLOWED)
+
+
+def test_no_import_cycle():
+    graph = {m: {t for t, _, _ in _imports(m) if t in MODULES and t != m} for m in MODULES}
+    state: dict[str, int] = {}
+
+    def visit(m, trail):
+        state[m] = 1
+        for t in graph[m]:
+            if state.get(t) == 1:
+                pytest.fail("import cycle: " + " → ".join(trail[trail.index(t):] + [m, t])
+                            if t in trail else f"import cycle through {m} → {t}")
+            if t not in state:
+                visit(t, trail + [m])
+        state[m] = 2
+
+    for m in sorted(graph):
+        if m not in state:
+            visit(m, [])
+
+
+def test_stages_import_only_the_stages_before_them_and_through_their_public_face():
+    faces = {s: set(__import__(f"fegear.{s}", fromlist=["_"]).__all__) for s in ALLOWED}
+    for name in MODULES:
+        here = _stage(name)
+        for target, imported, line in _imports(name):
+            there = _stage(target)
+            where = f"{MODULES[name].relative_to(PACKAGE.parent)}:{line}"
+            private = imported.startswith("_") and not imported.endswith("__")
+            if private and there != here:
+                pytest.fail(f"{where}: private name {imported} of {target}")
+            if not here or not there or here == there:
+                continue
+            assert there in ALLOWED[here], f"{where}: stage {here} imports stage {there}"
+            if here != "cli":
+                assert target == f"fegear.{there}", f"{where}: reaches into {target}"
+                assert imported in faces[there], f"{where}: {imported} is not in {there}'s face"
+
+
+def test_the_fe_core_knows_no_gears():
+    for name in MODULES:
+        if _stage(name) in ("fe", "contact"):
+            assert all(_stage(t) not in ("geometry", "toothpair") for t, _, _ in _imports(name))
+
+
+def _imported_libraries(path: Path) -> dict[str, bool]:
+    """Top-level names of the third-party modules a file imports → imported at module level?"""
+    tree = ast.parse(path.read_text())
+    top = {id(n) for n in tree.body}
+    out: dict[str, bool] = {}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom) and not node.level:
+            names = [node.module]
+        else:
+            continue
+        for n in names:
+            lib = n.split(".")[0]
+            out[lib] = out.get(lib, False) or id(node) in top
+    return out
+
+
+def test_heavy_libraries_are_imported_only_where_they_are_used():
+    for path in PACKAGE.rglob("*.py"):
+        libs = _imported_libraries(path)
+        rel = path.relative_to(PACKAGE).as_posix()
+        if "argparse" in libs:
+            assert rel.startswith("cli/"), f"{rel} imports argparse"
+        if "gmsh" in libs:
+            assert rel == "fe/mesh.py", f"{rel} imports gmsh"
+        for lib in ("matplotlib", "pyvista"):
+            if lib in libs:
+                assert path.stem in ("plot", "figures"), f"{rel} imports {lib}"
+                assert not libs[lib], f"{rel} imports {lib} at module level"
+
+
+def _loaded_after(code: str) -> list[str]:
+    heavy = ("numpy", "scipy", "skfem", "gmsh", "meshio", "matplotlib", "pyvista", "pyarrow",
+             "distributed")
+    probe = (f"import sys\n{code}\n"
+             f"print(' '.join(m for m in {heavy!r} if m in sys.modules))")
+    r = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                       timeout=120)
+    return r.stdout.split()
+
+
+def test_help_imports_no_heavy_library():
+    # `fegear --help` answers in a tenth of a second: it builds every option from the input
+    # schemas and imports nothing numerical
+    assert _loaded_after("from fegear.cli import build_parser\nbuild_parser().format_help()") == []
+
+
+def test_a_user_error_needs_numpy_at_most():
+    # an inadmissible design is refused after numpy and the closed-form curves, before any of
+    # scipy, scikit-fem or gmsh is imported
+    loaded = _loaded_after("from fegear.cli import main\n"
+                           "main(['solve', '--h1', '0.9', '--out', '/nonexistent/never'])")
+    assert loaded == ["numpy"]
+
+
+def test_the_code_version_covers_every_module_that_computes_results(tmp_path):
+    copy = tmp_path / "fegear"
+    shutil.copytree(PACKAGE, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    before = provenance.source_hash(copy)
+    assert before == provenance.source_hash(PACKAGE)
+    for rel, changes in (("contact/solve.py", True), ("toothpair/scene.py", True),
+                         ("fe/assembly.py", True), ("geometry/gear1.py", True),
+                         ("toothpair/report.py", True), ("files.py", True),
+                         ("cli/solve.py", False), ("study/runner.py", False),
+                         ("verify/bench.py", False), ("drive/dynamics.py", False)):
+        path = copy / rel
+        original = path.read_text()
+        path.write_text(original + "\n# an edit\n")
+        provenance.source_hash.cache_clear()
+        assert (provenance.source_hash(copy) != before) is changes, rel
+        path.write_text(original)
+    provenance.source_hash.cache_clear()

@@ -1,0 +1,45 @@
+"""The examples are pinned by their values, as scikit-fem's tests/test_examples.py pins its
+examples: every stage's walkthrough (the docstring of its ``__init__``) and every Python example
+of the README run as doctests."""
+
+import doctest
+import importlib
+import re
+from pathlib import Path
+
+import pytest
+
+README = Path(__file__).parents[1] / "README.md"
+STAGES = ("geometry", "fe", "contact", "toothpair", "study", "verify", "drive", "cli")
+FLAGS = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
+
+
+def _run(test: doctest.DocTest) -> doctest.TestResults:
+    runner = doctest.DocTestRunner(optionflags=FLAGS)
+    runner.run(test)  # prints each failure: pytest shows it
+    return runner.summarize(verbose=False)
+
+
+@pytest.mark.parametrize("stage", STAGES)
+def test_stage_walkthrough(stage):
+    module = importlib.import_module(f"fegear.{stage}")
+    tests = [t for t in doctest.DocTestFinder(recurse=False).find(module) if t.examples]
+    assert tests, f"fegear.{stage} has no walkthrough"
+    result = _run(tests[0])
+    assert result.failed == 0
+    assert result.attempted >= 3
+
+
+BLOCKS = re.findall(r"```python\n(.*?)```", README.read_text(), flags=re.S)
+
+
+def test_every_readme_python_example_is_pinned():
+    assert BLOCKS
+    for block in BLOCKS:
+        assert block.lstrip().startswith(">>> "), block[:80]
+
+
+@pytest.mark.parametrize("block", BLOCKS, ids=[f"block{i}" for i in range(len(BLOCKS))])
+def test_readme_example(block):
+    test = doctest.DocTestParser().get_doctest(block, {}, "README", str(README), 0)
+    assert _run(test).failed == 0
