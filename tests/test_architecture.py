@@ -175,12 +175,20 @@ def test_help_imports_no_heavy_library():
     assert _loaded_after("from fegear.cli import build_parser\nbuild_parser().format_help()") == []
 
 
-def test_a_user_error_needs_numpy_at_most():
-    # an inadmissible design is refused after numpy and the closed-form curves, before any of
-    # scipy, scikit-fem or gmsh is imported
-    loaded = _loaded_after("from fegear.cli import main\n"
-                           "main(['solve', '--h1', '0.9', '--out', '/nonexistent/never'])")
-    assert loaded == ["numpy"]
+@pytest.mark.parametrize("argv", [
+    ["solve", "--h1", "0.9", "--out", "/nonexistent/never"],  # the admissibility check
+    ["solve", "--torque", "-5", "--out", "/nonexistent/never"],
+    ["profile", "--m", "-2", "--out", "/nonexistent/never"],
+    ["hertz", "--load", "-1"],
+    ["bench", "--repeat", "0"],
+    ["study", "/nonexistent/study.toml"],
+    ["drive", "ratio", "--train", "ngw", "--teeth", "20"],
+])
+def test_a_user_error_needs_numpy_at_most(argv):
+    # a bad input is refused before any of scipy, scikit-fem or gmsh is imported (numpy for
+    # the closed-form curves of the admissibility check): a user error answers at once
+    loaded = _loaded_after(f"from fegear.cli import main\nassert main({argv!r}) == 2")
+    assert set(loaded) <= {"numpy"}, loaded
 
 
 def test_the_code_version_covers_every_module_that_computes_results(tmp_path):

@@ -23,12 +23,13 @@ def add_parser(sub) -> None:
 
 def run(a: argparse.Namespace) -> int:
     from ..files import prepare_dir, write_json, write_points_csv
-    from ..geometry import admissible_pair, build_geometry, pair_png
+    from ..geometry import admissible_pair
 
     params = admissible_pair(input_values(a, PAIR_INPUTS))
     chord = require_range("chord_error", a.chord_error, 1e-7, 0.1, unit="mm")
     positions = int(require_range("positions", a.positions, 4, 360))
     out = prepare_dir(a.out)
+    from ..geometry import build_geometry, pair_png  # the envelope needs scipy
     geo = build_geometry(params, chord, positions)
     summary = geo.summary()
     files = {

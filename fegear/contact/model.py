@@ -7,14 +7,17 @@ The formulation is in the package docstring (:mod:`fegear.contact`).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
-import scipy.sparse as sp
 
 from ..errors import FegearError
-from ..fe import Body
-from .flexibility import PointFlexibility
+
+if TYPE_CHECKING:  # the settings and curves are light; the model's parts come with the solve
+    import scipy.sparse as sp
+
+    from ..fe import Body
+    from .flexibility import PointFlexibility
 
 
 class ContactError(FegearError):

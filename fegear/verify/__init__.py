@@ -19,8 +19,8 @@ and read its answers back; :mod:`.study_overhead` times the study runner.
 from ..exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
-    "disks": ("DiskCase", "DiskResult", "QUALITY", "solve_disks", "disk_geometries",
-              "write_disk_outputs"),
+    "disk_case": ("DiskCase", "QUALITY"),
+    "disks": ("DiskResult", "solve_disks", "disk_geometries", "write_disk_outputs"),
     "bench": ("Ladder", "Rung", "Target", "richardson", "geometry_bench", "pair_bench",
               "disk_ladder", "pair_ladder", "ladder_targets", "ladder_table", "ladder_json",
               "peer_speedups", "PEER_TARGET", "machine"),

@@ -160,7 +160,7 @@ def test_solve_case_rejects_bad_fields(field, value):
     for v in values + ([float("nan"), float("-inf")] if f != "quality" else [])])
 def test_disk_case_rejects_bad_fields(field, value):
     from fegear.errors import ParameterError
-    from fegear.verify.disks import DiskCase
+    from fegear.verify import DiskCase
 
     with pytest.raises(ParameterError) as err:
         DiskCase(**{field: value})

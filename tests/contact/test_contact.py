@@ -9,7 +9,7 @@ import scipy.sparse as sp
 
 from fegear.contact.model import Circle
 from fegear.contact.solve import solve_contact
-from fegear.verify.disks import DiskCase, solve_disks, write_disk_outputs
+from fegear.verify import DiskCase, solve_disks, write_disk_outputs
 
 
 @pytest.fixture(scope="module")

@@ -9,7 +9,7 @@ from hypothesis import HealthCheck, Phase, given, reject, settings
 from hypothesis import strategies as st
 
 from fegear.errors import FegearError, ParameterError
-from fegear.verify.disks import DiskCase, solve_disks
+from fegear.verify import DiskCase, solve_disks
 
 SETTINGS = settings(max_examples=200, deadline=None, derandomize=True,
                     phases=[Phase.explicit, Phase.reuse, Phase.generate, Phase.shrink],

@@ -10,6 +10,7 @@ from fegear.contact.model import ContactPair
 from fegear.fe.assembly import RigidLink, assemble_body, facet_nodes
 from fegear.fe.material import contact_modulus
 from fegear.toothpair.case import SolveCase
+from fegear.verify import DiskCase
 from fegear.verify.calculix import CONTROLS, ccx_available, ccx_disks, run_ccx, write_deck
 from fegear.verify.calculix_pair import (
     CCX_PENALTY_FACTOR,
@@ -20,7 +21,6 @@ from fegear.verify.calculix_pair import (
     turned_body,
 )
 from fegear.verify.ccx_files import PeerConvergenceError, PeerError, contact_forces
-from fegear.verify.disks import DiskCase
 
 needs_ccx = pytest.mark.skipif(not ccx_available(), reason="CalculiX (ccx) is not installed")
 
