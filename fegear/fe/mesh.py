@@ -136,16 +136,21 @@ def mesh_bodies(bodies: Sequence[BodyGeometry]) -> tuple[BodyMesh, ...]:
 
 
 def _loop(gmsh, segments: Sequence[Segment], tags: dict[str, list[int]],
-          zones: dict[str, list[int]], start_pts: dict) -> int:
+          zones: dict[str, list[int]]) -> int:
+    """A closed curve loop: each segment starts at the point where the one before ended (by
+    tag, not by rounded coordinates: two ends 1e-13 mm apart once rounded apart and broke the
+    loop), the last ends where the first started."""
     geo = gmsh.model.geo
     curves = []
     n = len(segments)
+    first = start = geo.addPoint(*map(float, segments[0].points[0]), 0.0)
     for k, seg in enumerate(segments):
-        ends = (seg.points[0], seg.points[-1])
         nxt = segments[(k + 1) % n].points[0]
-        if np.linalg.norm(ends[1] - nxt) > 1e-9 * (1 + np.abs(nxt).max()):
+        if np.linalg.norm(seg.points[-1] - nxt) > 1e-9 * (1 + np.abs(nxt).max()):
             raise MeshError(f"segment {seg.name!r} does not end where the next segment starts")
-        pt = [_point(geo, p, start_pts) for p in ends]
+        end = first if k == n - 1 else geo.addPoint(*map(float, seg.points[-1]), 0.0)
+        pt = [start, end]
+        start = end
         inner = [geo.addPoint(x, y, 0.0) for x, y in seg.points[1:-1]]
         if inner:
             c = geo.addSpline([pt[0], *inner, pt[1]])
@@ -158,13 +163,6 @@ def _loop(gmsh, segments: Sequence[Segment], tags: dict[str, list[int]],
     return geo.addCurveLoop(curves)
 
 
-def _point(geo, p: np.ndarray, known: dict) -> int:
-    key = (round(float(p[0]), 9), round(float(p[1]), 9))
-    if key not in known:
-        known[key] = geo.addPoint(float(p[0]), float(p[1]), 0.0)
-    return known[key]
-
-
 def _mesh_one(gmsh, body: BodyGeometry) -> BodyMesh:
     if not (np.isfinite(body.size) and body.size > 0):
         raise MeshError(f"body {body.name!r}: global element size must be > 0")
@@ -172,11 +170,15 @@ def _mesh_one(gmsh, body: BodyGeometry) -> BodyMesh:
     geo = gmsh.model.geo
     curve_tags: dict[str, list[int]] = {}
     zone_tags: dict[str, list[int]] = {}
-    corner_pts: dict = {}
-    loops = [_loop(gmsh, body.outer, curve_tags, zone_tags, corner_pts)]
-    loops += [_loop(gmsh, hole, curve_tags, zone_tags, corner_pts) for hole in body.holes]
-    surface = geo.addPlaneSurface(loops)
-    geo.synchronize()
+    try:
+        loops = [_loop(gmsh, body.outer, curve_tags, zone_tags)]
+        loops += [_loop(gmsh, hole, curve_tags, zone_tags) for hole in body.holes]
+        surface = geo.addPlaneSurface(loops)
+        geo.synchronize()
+    except Exception as exc:  # gmsh raises plain Exception with its log message
+        if isinstance(exc, MeshError):
+            raise
+        raise MeshError(f"body {body.name!r}: gmsh refused the boundary: {exc}") from None
 
     fields = []
     known = {**curve_tags, **zone_tags}

@@ -134,3 +134,18 @@ def test_jiggle_moves_interior_corners_by_the_fraction_and_keeps_the_boundary(di
     assert area[1] == pytest.approx(area[0], rel=1e-12)
     assert moved.quality.min_jacobian_ratio > 0
     assert list(m1.boundaries) == list(m0.boundaries)
+
+
+def test_loop_closes_where_two_ends_round_apart():
+    # a random tooth pair (m 3.6, z 74/73, shift 0.1 µm) had two segment ends 1e-13 mm apart
+    # on either side of a rounding boundary: joined by rounded coordinates, the loop broke
+    # ("Curve loop 1 is wrong", a bare gmsh exception)
+    y = 0.5e-9
+    body = BodyGeometry("square", (
+        Segment("bottom", np.array([[0.0, 0.0], [1.0, y + 1e-13]])),
+        Segment("right", np.array([[1.0, y - 1e-13], [1.0, 1.0]])),
+        Segment("top", np.array([[1.0, 1.0], [0.0, 1.0]])),
+        Segment("left", np.array([[0.0, 1.0], [0.0, 0.0]]))), size=0.25)
+    (mesh,) = mesh_bodies([body])
+    assert mesh.quality.min_jacobian_ratio > 0
+    assert sorted(mesh.mesh.boundaries) == ["bottom", "left", "right", "top"]
