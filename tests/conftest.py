@@ -58,8 +58,19 @@ def coarse_disks():
 
 
 @pytest.fixture(scope="session")
-def light_touch(baseline):
-    """The baseline pair at 1 N·m, coarse: one or two teeth carry it (3 s)."""
+def sector_light_touch(baseline):
+    """The baseline pair at 1 N·m, coarse, by the sector model: one or two teeth carry it
+    (3 s)."""
     from fegear.toothpair import SolveCase, solve_pair
 
-    return solve_pair(SolveCase(baseline, torque=1.0, quality="coarse"))
+    return solve_pair(SolveCase(baseline, torque=1.0, quality="coarse", model="sector"))
+
+
+@pytest.fixture(scope="session")
+def baseline_ring():
+    """The ring model of the baseline pair at ``coarse`` (any torque, any position)."""
+    from fegear.geometry import PairParameters
+    from fegear.toothpair import SolveCase
+    from fegear.toothpair.ring import build_ring
+
+    return build_ring(SolveCase(PairParameters(shift=0.016, rotation=0.002), quality="coarse"))

@@ -60,4 +60,6 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "build": ("build_contact",),
     "solve": ("ContactSolution", "ContactPatch", "solve_contact", "first_touch",
               "nodal_pressure"),
+    "search": ("locate_on_facets", "p2_edge_shape"),
+    "halfplane": ("approach_matrix", "strain_matrix"),
 })

@@ -34,8 +34,8 @@ A bar 20 × 2 mm, its left end held, its right end pulled along x by one transla
 from ..exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
-    "mesh": ("Segment", "Refinement", "BodyGeometry", "BodyMesh", "MeshQuality", "MeshError",
-             "mesh_bodies", "mesh_quality", "jiggle"),
+    "mesh": ("Segment", "Refinement", "Periodic", "BodyGeometry", "BodyMesh", "MeshQuality",
+             "MeshError", "mesh_bodies", "mesh_quality", "jiggle"),
     "material": ("Material", "MATERIAL_INPUTS", "plane_modulus", "contact_modulus"),
     "assembly": ("Body", "RigidLink", "Placement", "SupportError", "assemble_body"),
     "dofs": ("node_dofs", "facet_nodes"),
@@ -43,4 +43,8 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "stress": ("StressField", "recover"),
     "hertz": ("HertzLine", "line_contact"),
     "vtu": ("vtu_fields", "write_vtu"),
+    "solvers": ("Factor", "SingularError"),
+    "cyclic": ("CyclicBody", "assemble_cyclic"),
+    "probe": ("Probe",),
+    "submodel": ("StarCurve", "Submodel", "SubmodelProblem", "solve_submodels"),
 })

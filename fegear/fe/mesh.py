@@ -15,13 +15,15 @@ from __future__ import annotations
 
 import contextlib
 import logging
+import math
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from skfem import MeshTri2
 
 from ..errors import FegearError
+from .dofs import facet_nodes
 
 log = logging.getLogger(__name__)
 
@@ -73,8 +75,19 @@ class Refinement:
 
 
 @dataclass(frozen=True)
+class Periodic:
+    """Segment ``slave`` meshed as segment ``master`` turned by ``angle`` (rad) about the origin:
+    the two cut faces of a sector of a cyclic body carry matching nodes."""
+
+    slave: str
+    master: str
+    angle: float
+
+
+@dataclass(frozen=True)
 class BodyGeometry:
-    """A plane body: outer loop, holes, global element size ``size`` (mm) and refinements."""
+    """A plane body: outer loop, holes, global element size ``size`` (mm), refinements and
+    periodic segment pairs."""
 
     name: str
     outer: tuple[Segment, ...]
@@ -82,6 +95,7 @@ class BodyGeometry:
     holes: tuple[tuple[Segment, ...], ...] = ()
     refinements: tuple[Refinement, ...] = ()
     min_quality: float = 0.15
+    periodic: tuple[Periodic, ...] = ()
 
     def segments(self) -> Iterator[Segment]:
         yield from self.outer
@@ -108,11 +122,15 @@ class MeshQuality:
 
 @dataclass(frozen=True)
 class BodyMesh:
-    """A meshed body: the scikit-fem mesh (with ``mesh.boundaries`` by segment name)."""
+    """A meshed body: the scikit-fem mesh (with ``mesh.boundaries`` by segment name), its
+    quality and, per :class:`Periodic` pair (by slave name), the matching nodes: an (n, 2) array
+    of (slave node, master node) indices into ``mesh.doflocs``, midside nodes included, in the
+    master segment's node order."""
 
     name: str
     mesh: MeshTri2
     quality: MeshQuality
+    periodic: dict = field(default_factory=dict)
 
 
 @contextlib.contextmanager
@@ -179,6 +197,14 @@ def _mesh_one(gmsh, body: BodyGeometry) -> BodyMesh:
         if isinstance(exc, MeshError):
             raise
         raise MeshError(f"body {body.name!r}: gmsh refused the boundary: {exc}") from None
+    for pair in body.periodic:
+        tags = [curve_tags.get(pair.slave, []), curve_tags.get(pair.master, [])]
+        if any(len(t) != 1 for t in tags):
+            raise MeshError(f"body {body.name!r}: periodic segments {pair.slave!r} and "
+                            f"{pair.master!r} must be one segment each")
+        c, s = math.cos(pair.angle), math.sin(pair.angle)
+        gmsh.model.mesh.setPeriodic(1, tags[0], tags[1],
+                                    [c, -s, 0, 0, s, c, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])
 
     fields = []
     known = {**curve_tags, **zone_tags}
@@ -276,6 +302,7 @@ def _build(body: BodyGeometry, xy: np.ndarray, tri: np.ndarray,
         except KeyError:
             raise MeshError(f"body {body.name!r}: boundary {name!r} lost its facets") from None
     mesh = mesh.with_boundaries(boundaries)
+    periodic = {pair.slave: _matching_nodes(body.name, mesh, pair) for pair in body.periodic}
     quality = mesh_quality(mesh)
     if quality.min_jacobian_ratio <= 0.0:
         raise MeshError(f"body {body.name!r}: inverted element "
@@ -284,7 +311,23 @@ def _build(body: BodyGeometry, xy: np.ndarray, tri: np.ndarray,
         raise MeshError(f"body {body.name!r}: badly shaped element (quality "
                         f"{quality.min_shape:.3f} < {body.min_quality})")
     log.debug("meshed %s: %s", body.name, quality)
-    return BodyMesh(body.name, mesh, quality)
+    return BodyMesh(body.name, mesh, quality, periodic)
+
+
+def _matching_nodes(name: str, mesh: MeshTri2, pair: Periodic) -> np.ndarray:
+    """(slave node, master node) pairs of a periodic segment pair, matched by position."""
+    from scipy.spatial import cKDTree
+
+    nodes = [np.unique(facet_nodes(mesh, mesh.boundaries[n])) for n in (pair.slave, pair.master)]
+    x = mesh.doflocs.T
+    c, s = math.cos(pair.angle), math.sin(pair.angle)
+    turned = x[nodes[1]] @ np.array([[c, s], [-s, c]])
+    dist, k = cKDTree(x[nodes[0]]).query(turned)
+    scale = 1.0 + np.abs(x[nodes[1]]).max()
+    if len(nodes[0]) != len(nodes[1]) or dist.max() > 1e-8 * scale or len(set(k)) != len(k):
+        raise MeshError(f"body {name!r}: the nodes of {pair.slave!r} do not match those of "
+                        f"{pair.master!r} turned by {pair.angle:g} rad")
+    return np.column_stack([nodes[0][k], nodes[1]])
 
 
 def jiggle(body: BodyMesh, fraction: float, seed: int = 0) -> BodyMesh:
@@ -314,7 +357,7 @@ def jiggle(body: BodyMesh, fraction: float, seed: int = 0) -> BodyMesh:
     quality = mesh_quality(moved)
     if quality.min_jacobian_ratio <= 0.0:
         raise MeshError(f"body {body.name!r}: jiggling by {fraction:g} inverted an element")
-    return BodyMesh(body.name, moved, quality)
+    return BodyMesh(body.name, moved, quality, body.periodic)
 
 
 def _corner_areas(xy: np.ndarray, tri: np.ndarray) -> np.ndarray:

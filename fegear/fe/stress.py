@@ -49,6 +49,14 @@ class StressField:
     def _radius(self) -> np.ndarray:
         return np.hypot(0.5 * (self.sxx - self.syy), self.sxy)
 
+    def turned(self, angle: float) -> dict[str, np.ndarray]:
+        """The in-plane components once the body is turned by ``angle`` (rad), R σ Rᵀ:
+        ``sxx``, ``syy``, ``sxy`` (a body's stresses in the fixed frame)."""
+        c, s = np.cos(angle), np.sin(angle)
+        return {"sxx": c * c * self.sxx + s * s * self.syy - 2 * c * s * self.sxy,
+                "syy": s * s * self.sxx + c * c * self.syy + 2 * c * s * self.sxy,
+                "sxy": c * s * (self.sxx - self.syy) + (c * c - s * s) * self.sxy}
+
     def normal_stress(self, nodes: np.ndarray, normal: np.ndarray) -> np.ndarray:
         """n·σ·n at nodes for unit normals (n, 2)."""
         nx, ny = normal[:, 0], normal[:, 1]

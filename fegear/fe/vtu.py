@@ -12,10 +12,10 @@ from ..files import (
 )
 
 
-def vtu_fields(mesh, u: np.ndarray, stress, extra: dict[str, np.ndarray] | None = None) -> dict:
+def vtu_fields(u: np.ndarray, stress, extra: dict[str, np.ndarray] | None = None) -> dict:
     """Point data for a quadratic-triangle VTU: displacement (mm, 3 components), stress
     components, σzz, von Mises, σ1 and σ2 (MPa), plus ``extra`` nodal fields."""
-    n = mesh.doflocs.shape[1]
+    n = len(stress.sxx)
     disp = np.zeros((n, 3))
     disp[:, :2] = np.asarray(u).reshape(-1, 2)
     data = {"displacement": disp, "sxx": stress.sxx, "syy": stress.syy, "sxy": stress.sxy,
@@ -25,19 +25,17 @@ def vtu_fields(mesh, u: np.ndarray, stress, extra: dict[str, np.ndarray] | None 
     return data
 
 
-def write_vtu(path: Path, mesh, point_data: dict[str, np.ndarray],
-              xy: np.ndarray | None = None) -> Path:
-    """Write a MeshTri2 with nodal fields as a ParaView-readable ``triangle6`` VTU (atomic).
-
-    Node order: the mesh's corner nodes, then one midside node per facet; each cell lists its
-    corners and then the midside nodes of edges 01, 12, 20 (VTK's quadratic triangle).
-    ``xy`` (n, 2) replaces the node coordinates (e.g. a body placed in the fixed frame)."""
+def write_vtu(path: Path, points: np.ndarray, cells: np.ndarray,
+              point_data: dict[str, np.ndarray]) -> Path:
+    """Write quadratic triangles with nodal fields as a ParaView-readable ``triangle6`` VTU
+    (atomic): ``points`` (n, 2, mm), ``cells`` (m, 6) listing each triangle's corners and then
+    the midside nodes of edges 01, 12, 20 (scikit-fem's ``element_dofs`` order, VTK's too)."""
     import meshio
 
-    points = np.zeros((mesh.doflocs.shape[1], 3))
-    points[:, :2] = mesh.doflocs.T if xy is None else xy
-    cells = [("triangle6", mesh.dofs.element_dofs.T.astype(np.int64))]
-    out = meshio.Mesh(points, cells, point_data=point_data)
+    xyz = np.zeros((len(points), 3))
+    xyz[:, :2] = points
+    out = meshio.Mesh(xyz, [("triangle6", np.asarray(cells, dtype=np.int64))],
+                      point_data=point_data)
 
     def w(tmp: Path) -> None:
         meshio.write(tmp, out, file_format="vtu", binary=True)

@@ -127,6 +127,26 @@ class RoundedProfile:
         r = self.radius(phi)
         return np.column_stack([r * np.cos(phi), r * np.sin(phi)])
 
+    def frame(self, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Points (n, 2), unit normals out of gear 1's material and curvature (1/mm, > 0
+        convex) at polar angles ``phi``, exact on the flanks and on the rounds."""
+        phi = np.atleast_1d(np.asarray(phi, dtype=float))
+        ev = self.profile.evaluate(phi)
+        points, normal, kappa = ev.q.copy(), ev.normal.copy(), ev.kappa.copy()
+        which, local = self._on_fillet(phi)
+        for k, f in enumerate(self.fillets):
+            sel = which == k
+            if sel.any():
+                turn = phi[sel] - local[sel]  # whole pitches back to the period frame
+                q = self.point(phi[sel])
+                c = np.asarray(f.centre)
+                centre = np.column_stack([np.cos(turn) * c[0] - np.sin(turn) * c[1],
+                                          np.sin(turn) * c[0] + np.cos(turn) * c[1]])
+                points[sel] = q
+                normal[sel] = (q - centre) / f.radius
+                kappa[sel] = 1.0 / f.radius
+        return points, normal, kappa
+
     def fillet_angles(self, tooth_turns: range) -> list[tuple[float, float, float]]:
         """(centre angle, half-angle, kink) of every fillet of the given tooth turns (rad)."""
         out = []

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 
@@ -17,11 +17,6 @@ from ..fe import Material
 from ..geometry import PairParameters
 from ..planar import wrap
 from .inputs import SOLVE_INPUTS, TIP_ROUND
-
-if TYPE_CHECKING:  # the FE stack is imported where it runs, not by the input checks
-    from ..contact import ContactModel, ContactSolution
-    from ..fe import Body, StressField
-    from .scene import Scene
 
 #: headline stresses: JSON key (MPa) → label in the table and the cycle plot
 HEADLINE = {"root_stress_gear1_MPa": "root σ1, gear 1", "root_stress_gear2_MPa": "root σ1, gear 2",
@@ -32,9 +27,11 @@ HEADLINE = {"root_stress_gear1_MPa": "root σ1, gear 1", "root_stress_gear2_MPa"
 class SolveCase:
     """Inputs: the pair, torque (N·m) on gear 1, rolling angle β (rad), face width (mm), one
     material (E MPa, ν), quality, rim thicknesses below the roots (mm; default 3 m), unloaded
-    extra teeth meshed on each side, extra teeth paired on each side of the chosen ones
-    (beyond what the closure needs: the safety check), penalty factor, gear 1's tip-edge
-    round (mm)."""
+    extra teeth meshed on each side (sector model), extra teeth paired on each side of the
+    chosen ones (beyond what the closure needs: the safety check), penalty factor (sector
+    model), gear 1's tip-edge round (mm) and the model: "ring" (both gears whole, the
+    contact's near field from the half-plane) or "sector" (a sector of each gear, penalty
+    contact resolved by the mesh)."""
 
     params: PairParameters
     torque: float = 200.0
@@ -49,12 +46,14 @@ class SolveCase:
     extra_pairs: int = 0
     penalty_factor: float = 1000.0
     tip_round: float | None = None
+    model: str = "ring"
 
     def __post_init__(self) -> None:
         SOLVE_INPUTS["torque"].check(self.torque)
         require_range("position", self.beta, -math.pi, math.pi, unit="rad")
         Material(self.E, self.nu, self.thickness)  # validates E, nu, thickness
         SOLVE_INPUTS["quality"].check(self.quality)
+        SOLVE_INPUTS["model"].check(self.model)
         for name in ("rim1", "rim2"):
             v = getattr(self, name)
             if v is not None:
@@ -102,23 +101,65 @@ class ToothResult:
 
 
 @dataclass(frozen=True)
+class ContactChecks:
+    """How a position's contact solve converged: torque-balance error (relative), the largest
+    overlap left where pressure acts (mm), iterations, each body's equilibrium residual
+    (relative) and the number of contact unknowns."""
+
+    balance_error: float
+    max_penetration: float
+    iterations: int
+    residuals: tuple[float, ...]
+    points: int
+
+
+@dataclass(frozen=True)
+class BodyField:
+    """What the output stage draws of one body: its name, node coordinates in the fixed frame
+    (n, 2, mm), quadratic triangles (m, 6: corners, then the midside nodes of edges 01, 12,
+    20) and point data by name (fixed-frame components)."""
+
+    name: str
+    points: np.ndarray
+    cells: np.ndarray
+    data: dict
+
+
+@dataclass(frozen=True)
+class ContactZone:
+    """Where the most loaded contact sits (fixed frame, mm), its half-width (mm) and a label."""
+
+    centre: tuple[float, float]
+    half_width: float
+    label: str
+
+
+class SolutionDetail(Protocol):
+    """A model's own record of a solved position (its meshes, fields, contact state), which
+    the output stage turns into pictures and VTU files."""
+
+    def body_fields(self) -> tuple[BodyField, ...]: ...
+
+    def contact_zone(self) -> ContactZone: ...
+
+
+@dataclass(frozen=True)
 class PairSolution:
-    """One position of the tooth-pair solve (see module docstring). Stresses in MPa."""
+    """One solved position of a tooth pair, whichever model solved it (``model``: "ring" or
+    "sector"). Stresses in MPa, rotations in rad: θ of gear 1 from its kinematic position under
+    the load, and at the first touch."""
 
     case: SolveCase
-    scene: Scene = field(repr=False)
-    bodies: tuple[Body, ...] = field(repr=False)
-    model: ContactModel = field(repr=False)
-    contact: ContactSolution = field(repr=False)
-    stresses: tuple[StressField, ...] = field(repr=False)
-    root_zones: tuple[np.ndarray, np.ndarray] = field(repr=False)  # nodes per gear
+    model: str
     teeth: tuple[ToothResult, ...]
     root_stress: tuple[float, float]          # max σ1 on the root zones of gear 1, gear 2
     von_mises_max: float
-    rotation: float                           # θ of gear 1 (rad), from its kinematic position
-    first_touch: float                        # θ at which the first tooth touches (rad)
+    rotation: float
+    first_touch: float
     dofs: int
+    checks: ContactChecks
     timings_s: dict
+    detail: SolutionDetail = field(repr=False)
 
     @property
     def contact_pressure(self) -> float:

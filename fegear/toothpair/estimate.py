@@ -8,7 +8,7 @@ from dataclasses import replace
 from ..geometry import Gear1Profile
 from .case import HEADLINE, PairSolution
 from .inputs import QUALITY
-from .solve import solve_pair
+from .pair import solve_pair
 
 GCI_FS = 3.0  # safety factor of the grid convergence index from two mesh levels (Roache)
 

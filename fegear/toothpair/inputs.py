@@ -13,10 +13,8 @@ from ..checks import Input, InputTable
 from ..fe import MATERIAL_INPUTS
 from ..geometry import PAIR_INPUTS
 
-#: mesh quality → (elements across the Hertz half-width, root size / m, global size / m);
-#: each level halves the element sizes of the one before
-QUALITY = {"coarse": (2, 1 / 5, 1.0), "fast": (4, 1 / 10, 1 / 2),
-           "standard": (8, 1 / 20, 1 / 4), "fine": (16, 1 / 40, 1 / 8)}
+#: mesh quality levels, coarsest first; each halves the element sizes of the one before
+QUALITY = ("coarse", "fast", "standard", "fine")
 TIP_ROUND = 0.125        # default tip-edge round of gear 1, in modules (0.25 mm at m = 2)
 
 LOAD_INPUTS = (
@@ -28,6 +26,10 @@ LOAD_INPUTS = (
 )
 
 MODEL_INPUTS = (
+    Input("model", str, "ring", "tooth-pair model: ring (both gears whole from one condensed "
+          "tooth sector each, the contact's near field from the half-plane) or sector (the "
+          "earlier model: a meshed sector of each gear, penalty contact)",
+          choices=("ring", "sector")),
     Input("quality", str, "standard", "mesh quality", choices=tuple(QUALITY)),
     Input("tip-round", float, None, f"gear-1 tip-edge round radius, 0 <= tip-round <= m/2 "
           f"(default {TIP_ROUND:g} m)", "mm"),
@@ -35,12 +37,13 @@ MODEL_INPUTS = (
           "(default 3 m)", "mm"),
     Input("rim2", float, None, "gear-2 rim beyond the roots, to the fixed rim, m/2 ... 20 m "
           "(default 3 m)", "mm"),
-    Input("extra-teeth", int, 2, "unloaded teeth meshed beyond the paired ones on each side",
+    Input("extra-teeth", int, 2, "sector model: unloaded teeth meshed beyond the paired ones "
+          "on each side",
           low=1, high=10),
     Input("extra-pairs", int, 0, "pair this many more teeth on each side than the closure "
           "needs (a safety check)", low=0, high=5),
-    Input("penalty-factor", float, None, "contact penalty κ = factor·E*/h, h the local facet "
-          "length (default 1000)", low=0.0, high=1e6, low_open=True),
+    Input("penalty-factor", float, None, "sector model: contact penalty κ = factor·E*/h, h the "
+          "local facet length (default 1000)", low=0.0, high=1e6, low_open=True),
     Input("no-estimate", bool, False, "skip the second mesh level (no discretisation-error "
           "estimate)"),
 )

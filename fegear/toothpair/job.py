@@ -64,8 +64,8 @@ def run_job(job: Job, out: Path | None, fields: bool = True,
     from ..geometry import Gear1Profile
     from .estimate import second_level_estimate
     from .output import write_cycle_outputs, write_mesh_stiffness, write_pair_outputs
+    from .pair import solve_positions
     from .report import cycle_rows, cycle_summary, pair_summary
-    from .solve import solve_positions
 
     t0 = time.perf_counter()
     profile = Gear1Profile(job.case.params)

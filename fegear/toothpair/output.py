@@ -7,13 +7,9 @@ into that frame; invariants (von Mises, σ1, σ2) need no rotation.
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
-import numpy as np
-
-from ..contact import nodal_pressure
-from ..fe import vtu_fields, write_vtu
+from ..fe import write_vtu
 from ..files import write_csv, write_json
 from .case import HEADLINE, PairSolution
 from .plot import cycle_png, von_mises_png
@@ -27,34 +23,17 @@ def write_cycle_outputs(rows: list[dict], out: Path, title: str) -> dict[str, Pa
     return files
 
 
-def fixed_frame_fields(sol: PairSolution, body: int) -> tuple[np.ndarray, dict]:
-    """Node coordinates (fixed frame) and VTU point data of one body."""
-    b, u, s = sol.bodies[body], sol.contact.displacements[body], sol.stresses[body]
-    ang = b.placement.angle
-    c, si = math.cos(ang), math.sin(ang)
-    data = vtu_fields(b.mesh, u, s, {"contact_pressure": nodal_pressure(sol.model, sol.contact,
-                                                                         body)})
-    disp = data["displacement"]
-    disp[:, :2] = b.placement.vec_to_fixed(disp[:, :2])
-    sxx, syy, sxy = s.sxx, s.syy, s.sxy
-    data["sxx"] = c * c * sxx + si * si * syy - 2 * c * si * sxy
-    data["syy"] = si * si * sxx + c * c * syy + 2 * c * si * sxy
-    data["sxy"] = c * si * (sxx - syy) + (c * c - si * si) * sxy
-    return b.placement.to_fixed(b.mesh.doflocs.T), data
-
-
 def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool = True,
                        pictures: bool = True) -> dict[str, Path]:
     """gear1.vtu, gear2.vtu (fixed frame; ``fields``), von_mises.png (``pictures``) and
     summary.json in ``out``."""
     files = {}
-    data = ([fixed_frame_fields(sol, i) for i in range(len(sol.bodies))]
-            if fields or pictures else [])
+    bodies = sol.detail.body_fields() if fields or pictures else ()
     if fields:
-        for b, (xy, point_data) in zip(sol.bodies, data):
-            files[b.name] = write_vtu(out / f"{b.name}.vtu", b.mesh, point_data, xy)
+        for b in bodies:
+            files[b.name] = write_vtu(out / f"{b.name}.vtu", b.points, b.cells, b.data)
     if pictures:
-        files["png"] = von_mises_png(out / "von_mises.png", sol, data)
+        files["png"] = von_mises_png(out / "von_mises.png", sol, bodies)
     summary = {**summary, "files": {**summary.get("files", {}),
                                     **{k: str(v) for k, v in files.items()}}}
     files["summary"] = write_json(out / "summary.json", summary)

@@ -46,28 +46,27 @@ def cycle_png(path: Path, rows: list[dict], title: str, stresses: dict[str, str]
     return save_png(fig, path, 110)
 
 
-def von_mises_png(path: Path, sol: PairSolution,
-                  fields: list[tuple[np.ndarray, dict]]) -> Path:
+def von_mises_png(path: Path, sol: PairSolution, bodies) -> Path:
     """Von Mises on both bodies (pyvista, off-screen) with a zoomed inset on the most loaded
-    contact zone; ``fields``: each body's :func:`fixed_frame_fields`."""
+    contact zone; ``bodies``: the solution's :class:`~.case.BodyField` s."""
     import pyvista as pv
 
     pv.OFF_SCREEN = True
     grids = []
-    for b, (xy, data) in zip(sol.bodies, fields):
-        pts = np.column_stack([xy, np.zeros(len(xy))])
-        tri = b.mesh.dofs.element_dofs.T[:, :3]  # corner nodes: a linear picture is enough
+    for b in bodies:
+        pts = np.column_stack([b.points, np.zeros(len(b.points))])
+        tri = b.cells[:, :3]  # corner nodes: a linear picture is enough
         cells = np.column_stack([np.full(len(tri), 3), tri]).ravel()
         g = pv.PolyData(pts, faces=cells)
-        g.point_data["von Mises [MPa]"] = data["von_mises"]
+        g.point_data["von Mises [MPa]"] = b.data["von_mises"]
         grids.append(g)
     # colour scale: up to twice the larger root stress, so that the tooth bending shows beside
     # the (much higher, very local) contact peak, which saturates
     vmax = min(max(float(g.point_data["von Mises [MPa]"].max()) for g in grids),
                2.0 * max(sol.root_stress))
-    loaded = max(sol.contact.patches, key=lambda pt: pt.load)
-    cx, cy = loaded.center
-    zoom = max(8.0 * loaded.half_width, 1.5 * sol.case.params.m)
+    zone = sol.detail.contact_zone()
+    cx, cy = zone.centre
+    zoom = max(8.0 * zone.half_width, 1.5 * sol.case.params.m)
 
     def scene(plotter, focus, half, bar):
         for g in grids:
@@ -90,7 +89,7 @@ def von_mises_png(path: Path, sol: PairSolution,
     p.add_text(f"von Mises, T {sol.case.torque:g} N·m", font_size=10)
     p.subplot(0, 1)
     scene(p, (cx, cy), zoom, True)
-    p.add_text(f"contact zone ({loaded.pair}), ±{zoom:.2g} mm", font_size=10)
+    p.add_text(f"contact zone ({zone.label}), ±{zoom:.2g} mm", font_size=10)
 
     def w(tmp: Path) -> None:
         p.screenshot(str(tmp))

@@ -117,10 +117,10 @@ def pair_surfaces(sol: PairSolution, penalty: str = "size",
     pf = sol.case.penalty_factor if penalty_factor is None else float(penalty_factor)
     if not (math.isfinite(pf) and pf > 0):
         raise PeerError(f"penalty_factor must be > 0: {penalty_factor!r}")
-    g1, g2 = sol.bodies
+    g1, g2 = sol.detail.bodies
     modulus = contact_modulus(g1.material.plane_modulus, g2.material.plane_modulus)
     pairs, owner = [], []
-    for k, pair in enumerate(sol.model.pairs):
+    for k, pair in enumerate(sol.detail.model.pairs):
         facets = np.asarray(g1.mesh.boundaries[pair.slave_boundary])
         ends = g1.mesh.doflocs.T[g1.mesh.facets[:, facets]]
         h = np.linalg.norm(ends[1] - ends[0], axis=1)
@@ -150,6 +150,9 @@ def ccx_pair(case: SolveCase, workdir: str | os.PathLike, threads: int = 1,
     held in step 1); ``increments``: at least this many increments in step 2 (see the module
     docstring). Raises :class:`~fegear.verify.calculix.PeerError` when ccx is missing or
     fails, or when its contact moments do not balance the torque (1 %)."""
+    if case.model != "sector":
+        raise PeerError("CalculiX solves the sector model's meshes: the case's model must be "
+                        "'sector'")
     if solution is not None and solution.case != case:
         raise PeerError("the solution given is not of this case")
     sol = solve_pair(case) if solution is None else solution
@@ -161,7 +164,7 @@ def ccx_pair(case: SolveCase, workdir: str | os.PathLike, threads: int = 1,
         turned, theta0 = sol.first_touch, PRELOAD_FRACTION * (sol.rotation - sol.first_touch)
     else:
         raise PeerError(f"start must be 'solution' or 'touch': {start!r}")
-    g1, g2 = sol.bodies
+    g1, g2 = sol.detail.bodies
     deck = write_deck((turned_body(g1, turned), g2), torque, workdir, JOB, pairs,
                       sol.case.penalty_factor, preload=theta0, stresses=True,
                       increments=increments)
@@ -234,7 +237,7 @@ def _root_stress(frd: Path, sol: PairSolution) -> tuple[float, float]:
     """Largest in-plane σ1 (MPa) of ccx's last nodal stresses on each gear's root-zone nodes."""
     stress = frd_stress(frd)
     out, offset = [], 0
-    for body, zone in zip(sol.bodies, sol.root_zones):
+    for body, zone in zip(sol.detail.bodies, sol.detail.root_zones):
         nodes = offset + zone + 1
         offset += body.mesh.doflocs.shape[1]
         missing = [n for n in nodes if n not in stress]

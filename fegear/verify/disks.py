@@ -201,8 +201,9 @@ def write_disk_outputs(result: DiskResult, out: Path) -> dict[str, Path]:
     for i, (body, u, stress) in enumerate(zip(result.bodies, result.solution.displacements,
                                                result.stresses)):
         pressure = nodal_pressure(result.model, result.solution, i)
-        data = vtu_fields(body.mesh, u, stress, {"contact_pressure": pressure})
-        files[body.name] = write_vtu(out / f"{body.name}.vtu", body.mesh, data)
+        data = vtu_fields(u, stress, {"contact_pressure": pressure})
+        files[body.name] = write_vtu(out / f"{body.name}.vtu", body.mesh.doflocs.T,
+                                     body.mesh.dofs.element_dofs.T, data)
     files["summary"] = write_json(out / "summary.json", result.summary())
     return files
 

@@ -11,7 +11,7 @@ import pytest
 
 import fegear.geometry
 import fegear.study
-import fegear.toothpair.solve
+import fegear.toothpair.pair
 import fegear.verify
 from fegear.cli import main
 
@@ -72,7 +72,7 @@ def no_work(monkeypatch):
         raise AssertionError("the bad value was accepted: the work started")
 
     for module, name in ((fegear.geometry, "build_geometry"), (fegear.verify, "solve_disks"),
-                         (fegear.toothpair.solve, "solve_positions"),
+                         (fegear.toothpair.pair, "solve_positions"),
                          (fegear.verify, "geometry_bench"), (fegear.verify, "disk_ladder"),
                          (fegear.verify, "pair_ladder"),
                          (fegear.verify, "pair_bench"), (fegear.study, "run_study"),

@@ -149,3 +149,44 @@ def test_loop_closes_where_two_ends_round_apart():
     (mesh,) = mesh_bodies([body])
     assert mesh.quality.min_jacobian_ratio > 0
     assert sorted(mesh.mesh.boundaries) == ["bottom", "left", "right", "top"]
+
+
+def annular_sector(a0=0.3, sectors=8, r_in=6.0, r_out=10.0, size=0.8, window=None):
+    """One sector of a ring, its two radial cuts periodic (the cut ``cut_b`` is ``cut_a``
+    turned by one pitch)."""
+    from fegear.fe.mesh import Periodic
+
+    pitch = 2 * math.pi / sectors
+    a1 = a0 + pitch
+
+    def ring(r, lo, hi, n=30):
+        t = np.linspace(lo, hi, n)
+        return r * np.column_stack([np.cos(t), np.sin(t)])
+
+    def snap(r):
+        return lambda x: r * x / np.linalg.norm(x, axis=1)[:, None]
+
+    outer = ring(r_out, a0, a1)
+    inner = ring(r_in, a1, a0)
+    segs = (Segment("cut_a", np.array([inner[-1], outer[0]])),
+            Segment("outside", outer, snap(r_out)),
+            Segment("cut_b", np.array([outer[-1], inner[0]])),
+            Segment("inside", inner, snap(r_in)))
+    refine = (Refinement(("outside",), window),) if window else ()
+    return BodyGeometry("sector", segs, size=size, refinements=refine,
+                        periodic=(Periodic("cut_b", "cut_a", pitch),))
+
+
+def test_periodic_cuts_carry_the_same_nodes_turned_by_one_pitch():
+    (mesh,) = mesh_bodies([annular_sector(window=0.1)])
+    pairs = mesh.periodic["cut_b"]
+    x = mesh.mesh.doflocs.T
+    pitch = 2 * math.pi / 8
+    c, s = math.cos(pitch), math.sin(pitch)
+    turned = x[pairs[:, 1]] @ np.array([[c, s], [-s, c]])
+    assert np.abs(turned - x[pairs[:, 0]]).max() < 1e-9
+    # every node of each cut, midside nodes included, is paired once
+    for name, col in (("cut_b", 0), ("cut_a", 1)):
+        nodes = np.unique(facet_nodes(mesh.mesh, mesh.mesh.boundaries[name]))
+        assert sorted(pairs[:, col]) == sorted(nodes)
+    assert len(pairs) % 2 == 1  # P2 on a line: corners and midside nodes alternate

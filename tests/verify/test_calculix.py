@@ -184,9 +184,9 @@ def test_literal_cps6_is_stiffer_than_plane_stress(tmp_path):
 # --- tooth pair -------------------------------------------------------------------------------
 
 @pytest.fixture(scope="module")
-def light(light_touch):
-    """The baseline pair at 1 N·m, coarse: two teeth paired (ccx ~40 s)."""
-    return light_touch
+def light(sector_light_touch):
+    """The baseline pair at 1 N·m, coarse, sector model: two teeth paired (ccx ~40 s)."""
+    return sector_light_touch
 
 
 def deck_blocks(path: Path) -> dict[str, list[list[str]]]:
@@ -204,9 +204,9 @@ def deck_blocks(path: Path) -> dict[str, list[list[str]]]:
 def test_pair_deck_ties_the_bore_to_a_rotation(light, tmp_path):
     pairs, _ = pair_surfaces(light, "pair")
     theta0 = light.first_touch
-    deck = write_deck(light.bodies, 1000.0, tmp_path, "pair", pairs, preload=theta0)
+    deck = write_deck(light.detail.bodies, 1000.0, tmp_path, "pair", pairs, preload=theta0)
     d = parse_deck(deck.path)
-    g1 = light.bodies[0]
+    g1 = light.detail.bodies[0]
     bore = np.unique(facet_nodes(g1.mesh, g1.mesh.boundaries["g1_bore"])) + 1  # gear 1 first
     assert deck.link == "rotation" and deck.ref == deck.nodes + 1 and deck.dofs == light.dofs
     assert d["equations"] == deck.equations == 2 * len(bore)  # u_x and u_y of every bore node
@@ -233,9 +233,10 @@ def test_pair_deck_ties_the_bore_to_a_rotation(light, tmp_path):
 
 def test_pair_deck_has_a_contact_pair_per_tooth(light, tmp_path):
     pairs, owner = pair_surfaces(light, "pair")
-    deck = write_deck(light.bodies, 1000.0, tmp_path, "pair", pairs, preload=light.first_touch)
+    deck = write_deck(light.detail.bodies, 1000.0, tmp_path, "pair", pairs,
+                      preload=light.first_touch)
     d = parse_deck(deck.path)
-    g1, g2 = light.bodies
+    g1, g2 = light.detail.bodies
     n1 = g1.mesh.doflocs.shape[1]
     assert len(light.teeth) == 2 and owner == [0, 1]  # two teeth paired at 1 N·m
     assert sum(line.startswith("*CONTACT PAIR") for line in d["lines"]) == len(light.teeth)
@@ -255,7 +256,7 @@ def test_pair_deck_has_a_contact_pair_per_tooth(light, tmp_path):
 def test_pair_penalty_follows_the_facet_size(light):
     """penalty="size": each window split into factor-2 bands of facet length, K from the
     band's mean length, so within a factor 2 of our κ = penalty_factor·E*/h at every facet."""
-    g1, g2 = light.bodies
+    g1, g2 = light.detail.bodies
     modulus = contact_modulus(g1.material.plane_modulus, g2.material.plane_modulus)
     pairs, owner = pair_surfaces(light, "size", CCX_PENALTY_FACTOR)
     for k, tooth in enumerate(light.teeth):
@@ -273,7 +274,7 @@ def test_pair_penalty_follows_the_facet_size(light):
 
 
 def test_gear_1_is_written_turned_about_o1(light, tmp_path):
-    g1 = light.bodies[0]
+    g1 = light.detail.bodies[0]
     theta = light.first_touch
     x0 = g1.placement.to_fixed(g1.mesh.doflocs.T)
     x1 = turned_body(g1, theta).placement.to_fixed(g1.mesh.doflocs.T)
@@ -285,7 +286,8 @@ def test_gear_1_is_written_turned_about_o1(light, tmp_path):
     with pytest.raises(PeerError, match="start"):
         ccx_pair(light.case, tmp_path, solution=light, start="kinematic")
     with pytest.raises(PeerError, match="not of this case"):
-        ccx_pair(SolveCase(light.case.params, torque=2.0, quality="coarse"), tmp_path,
+        ccx_pair(SolveCase(light.case.params, torque=2.0, quality="coarse", model="sector"),
+                 tmp_path,
                  solution=light)
 
 

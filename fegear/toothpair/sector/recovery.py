@@ -13,12 +13,13 @@ import math
 
 import numpy as np
 
-from ..contact import ContactModel, ContactSolution
-from ..errors import ParameterError
-from ..fe import Body, StressField, facet_nodes, line_contact
-from ..planar import wrap
-from .case import SolveCase, ToothResult
-from .scene import Candidate, Scene
+from ...contact import ContactModel, ContactSolution
+from ...errors import ParameterError
+from ...fe import Body, StressField, facet_nodes, line_contact
+from ...planar import wrap
+from ..case import SolveCase, ToothResult
+from ..teeth import Candidate
+from .scene import Scene
 
 
 def root_nodes(body: Body, names: tuple[str, ...], band: tuple[float, float]) -> np.ndarray:

@@ -1,4 +1,4 @@
-"""The tooth-pair scene: profile segments, the gear-1 sector, refinement zones, tooth choice and
+"""The sector model's scene: profile segments, the gear-1 sector, refinement zones, tooth choice and
 the Hertz radii at the contact points."""
 
 import math
@@ -13,13 +13,9 @@ from fegear.geometry.gear2 import gear2_curve
 from fegear.geometry.tip_edge import RoundedProfile
 from fegear.planar import rotate
 from fegear.toothpair.case import SolveCase
-from fegear.toothpair.scene import (
-    build_scene,
-    candidate_data,
-    tooth_run,
-)
+from fegear.toothpair.sector.scene import build_scene, tooth_run
 from fegear.toothpair.segments import profile_segments, sampled
-from fegear.toothpair.solve import choose_teeth
+from fegear.toothpair.teeth import candidate_data, choose_teeth
 
 
 def circle(phi):

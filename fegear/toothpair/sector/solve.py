@@ -1,4 +1,4 @@
-"""The tooth-pair stress solve: scene → meshes → bodies → contact → stresses, per position.
+"""The sector model's solve: scene → meshes → bodies → contact → stresses, per position.
 
 Torque T (N·m) acts on gear 1 counter-clockwise (the ``+`` direction of the clearance table),
 through a rigid rotation θ of its bore about O1; gear 2's outer rim is fixed. Teeth are paired
@@ -15,13 +15,12 @@ solves the small contact problem.
 from __future__ import annotations
 
 import logging
-import math
 import time
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ..contact import (
+from ...contact import (
     ContactError,
     ContactModel,
     ContactPair,
@@ -31,8 +30,8 @@ from ..contact import (
     first_touch,
     solve_contact,
 )
-from ..errors import FegearError, GeometryError
-from ..fe import (
+from ...errors import FegearError
+from ...fe import (
     Body,
     Placement,
     RigidLink,
@@ -40,39 +39,13 @@ from ..fe import (
     mesh_bodies,
     recover,
 )
-from ..geometry import Gear1Profile, ToothContact
-from .case import PairSolution, SolveCase
+from ...geometry import Gear1Profile, ToothContact
+from ..case import BodyField, ContactChecks, ContactZone, PairSolution, SolveCase
+from ..teeth import TOOTH_STIFFNESS, candidate_data, choose_teeth, refuse_interference
 from .recovery import root_nodes, root_stresses, tooth_results
-from .scene import Scene, build_scene, candidate_data
+from .scene import Scene, build_scene
 
 log = logging.getLogger(__name__)
-
-TOOTH_STIFFNESS = 14.0   # N/(mm·µm): ISO 6336 single-pair stiffness c', for the load estimate
-MARGIN_UM = 3.0          # pair every tooth whose clearance is below the rigid closure + 3 µm,
-MARGIN_FACTOR = 1.5      # … or below 1.5 × the closure + 3 µm within NEAR_TEETH of such a tooth
-NEAR_TEETH = 2
-INTERFERENCE_UM = 1e-3   # a clearance below −1 nm of arc is an interference (touching teeth
-                         # of a conformal pair come out at about −2e-10 µm)
-
-
-def choose_teeth(state, closure_um: float, widen: int = 0) -> tuple[int, ...]:
-    """Gear-1 teeth to pair at one position, for a rigid closure ``closure_um`` (µm of arc at
-    r0) of gear 1 against its kinematic position.
-
-    A tooth is paired if its + clearance is below the closure plus MARGIN_UM, or, within
-    NEAR_TEETH of such a tooth, below MARGIN_FACTOR × the closure plus MARGIN_UM (the loaded
-    teeth's neighbours also move elastically); at least the closest tooth. ``widen`` adds that
-    many teeth on each side of every paired tooth (to show the choice is safe)."""
-    open_ = {c.tooth: c.plus_um for c in state.teeth if c.plus_um is not None}
-    z1 = len(state.teeth)
-    rigid = {t for t, c in open_.items() if c < closure_um + MARGIN_UM}
-    rigid = rigid or {min(open_, key=open_.get)}
-    near = {(t + k) % z1 for t in rigid for k in range(-NEAR_TEETH, NEAR_TEETH + 1)}
-    chosen = rigid | {t for t in near if t in open_
-                      and open_[t] < MARGIN_FACTOR * closure_um + MARGIN_UM}
-    chosen |= {(t + k) % z1 for t in chosen for k in range(-widen, widen + 1)}
-    return tuple(sorted(t for t in chosen if t in open_))
-
 
 @dataclass(frozen=True)
 class PairModel:
@@ -145,17 +118,6 @@ def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None
     raise FegearError("the paired teeth did not settle after 4 rebuilds")
 
 
-def refuse_interference(states) -> None:
-    """A pair whose teeth overlap before any load is an interference fit: not modelled."""
-    for beta, state in states:
-        c = state.closest(+1)
-        if c.plus_um < -INTERFERENCE_UM:
-            raise GeometryError(f"the unloaded pair interferes: gear-1 tooth {c.tooth} overlaps "
-                                f"gear 2 by {-c.plus_um:.3g} µm of arc at r0 at β = "
-                                f"{math.degrees(beta):.4g}°; an interference fit is not "
-                                "modelled (raise tip_relief, or check shift and rotation)")
-
-
 def _first_clearance(state) -> float:
     """Smallest + clearance at a position (µm): the rigid closure at first touch."""
     return state.closest(+1).plus_um
@@ -192,11 +154,48 @@ def solve_position(model: PairModel, beta: float, state,
     roots = root_stresses(stresses, model.root_zones)
     vm = float(max(s.von_mises.max() for s in stresses))
     times["recovery"] = time.perf_counter() - t0
+    checks = ContactChecks(sol.balance_error, sol.max_penetration, sol.iterations,
+                           tuple(sol.residuals), int(contact.npoints))
     return PairSolution(
-        case=case, scene=model.scene, bodies=bodies, model=contact, contact=sol,
-        stresses=stresses, root_zones=model.root_zones, teeth=teeth, root_stress=roots,
-        von_mises_max=vm, rotation=sol.link_value, first_touch=_touch_rotation(contact),
-        dofs=sum(b.ndofs for b in bodies), timings_s=times)
+        case=case, model="sector", teeth=teeth, root_stress=roots, von_mises_max=vm,
+        rotation=sol.link_value, first_touch=_touch_rotation(contact),
+        dofs=sum(b.ndofs for b in bodies), checks=checks, timings_s=times,
+        detail=SectorDetail(model.scene, bodies, contact, sol, stresses, model.root_zones))
+
+
+@dataclass(frozen=True)
+class SectorDetail:
+    """The sector model's record of a solved position: scene, placed bodies, contact model and
+    solution, nodal stresses and root-zone nodes per body."""
+
+    scene: Scene
+    bodies: tuple[Body, Body]
+    model: ContactModel
+    contact: ContactSolution
+    stresses: tuple
+    root_zones: tuple[np.ndarray, np.ndarray]
+
+    def body_fields(self) -> tuple[BodyField, ...]:
+        """Both sectors in the fixed frame with displacement, stresses (components turned into
+        the fixed frame) and contact pressure."""
+        from ...contact import nodal_pressure
+        from ...fe import vtu_fields
+
+        out = []
+        for i, (b, u, s) in enumerate(zip(self.bodies, self.contact.displacements,
+                                          self.stresses)):
+            data = vtu_fields(u, s, {"contact_pressure": nodal_pressure(
+                self.model, self.contact, i)})
+            data["displacement"][:, :2] = b.placement.vec_to_fixed(data["displacement"][:, :2])
+            data.update(s.turned(b.placement.angle))
+            out.append(BodyField(b.name, b.placement.to_fixed(b.mesh.doflocs.T),
+                                 b.mesh.dofs.element_dofs.T, data))
+        return tuple(out)
+
+    def contact_zone(self) -> ContactZone:
+        loaded = max(self.contact.patches, key=lambda pt: pt.load)
+        return ContactZone(tuple(loaded.center), loaded.half_width, loaded.pair)
+
 
 
 def place(model: PairModel, beta: float) -> tuple[Body, Body]:
@@ -222,7 +221,7 @@ def _solve_loaded(contact: ContactModel, torque_nmm: float, near: PairSolution |
     """The contact under the torque, started from ``near``'s rotation and loaded nodes if
     given (and from the first touch if that start fails)."""
     if near is not None:
-        loaded = near.model.node[near.contact.force > 0]
+        loaded = near.detail.model.node[near.detail.contact.force > 0]
         try:
             return solve_contact(contact, load=torque_nmm,
                                  start=(near.rotation, np.isin(contact.node, loaded)))

@@ -30,13 +30,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..contact import CurvePoints
-from ..errors import FegearError, ParameterError
-from ..fe import BodyGeometry, Refinement, Segment, line_contact
-from ..geometry import Cycloid, Gear1Profile, PairParameters, RoundedProfile, gear2_curve
-from ..planar import rotate
-from .inputs import QUALITY
-from .segments import (
+from ...errors import FegearError, ParameterError
+from ...fe import BodyGeometry, Refinement, Segment, line_contact
+from ...geometry import Cycloid, Gear1Profile, PairParameters, RoundedProfile, gear2_curve
+from ...planar import rotate
+from ..segments import (
     ROOT_BAND,
     path_windows,
     profile_segments,
@@ -44,10 +42,15 @@ from .segments import (
     round_strips,
     unwrap_near,
 )
+from ..teeth import Candidate, Gear2Master, candidate_data
 
 if TYPE_CHECKING:
-    from .case import SolveCase
+    from ..case import SolveCase
 
+#: mesh quality → (elements across the Hertz half-width, root size / m, global size / m);
+#: each level halves the element sizes of the one before
+QUALITY = {"coarse": (2, 1 / 5, 1.0), "fast": (4, 1 / 10, 1 / 2),
+           "standard": (8, 1 / 20, 1 / 4), "fine": (16, 1 / 40, 1 / 8)}
 WINDOW_B = 2.5           # gear-1 window half-length, in Hertz half-widths at the shared load
 WINDOW_MIN = 0.1         # … and at least this many modules
 MASTER_FACTOR = 1.4      # gear-2 window half-length relative to gear 1's
@@ -59,34 +62,6 @@ JUNCTION_SPAN = 0.25     # round-to-flank tangent points: refined over ± this m
 JUNCTION_DENSITY = 4     # Hertz widths, this many times finer than the round
 SIZE_FLOOR = 1e-4        # smallest element, in modules (0.2 µm at m = 2): at light load the
                          # sizes that follow the Hertz widths would shrink to nanometres
-
-
-@dataclass(frozen=True)
-class Gear2Master:
-    """Gear 2's exact curve at rolling angle β, as an exact master curve (fixed frame)."""
-
-    curve: Cycloid
-    beta: float
-
-    def closest(self, points: np.ndarray) -> CurvePoints:
-        foot, normal, dist = self.curve.closest(rotate(np.asarray(points, float), -self.beta))
-        return CurvePoints(rotate(foot, self.beta), rotate(normal, self.beta), dist)
-
-
-@dataclass(frozen=True)
-class Candidate:
-    """A gear-1 tooth paired for contact: unloaded clearance (µm of arc at r0), the predicted
-    contact point (fixed frame at β once the clearance is closed, mm), its polar angle on gear 1
-    (body frame, rad) and on gear 2 (body frame, rad), and the analytic curvature radii there
-    (mm, + convex)."""
-
-    tooth: int
-    clearance_um: float
-    point: tuple[float, float]
-    phi1: float
-    theta2: float
-    radius1: float
-    radius2: float
 
 
 @dataclass(frozen=True)
@@ -111,34 +86,6 @@ class Scene:
     def master(self, beta: float) -> Gear2Master:
         """Gear 2's exact curve placed at rolling angle β."""
         return Gear2Master(self.curve2, beta)
-
-
-def candidate_data(params: PairParameters, shape: RoundedProfile, state, teeth,
-                   beta: float) -> tuple[Candidate, ...]:
-    """Contact point, polar angles and curvature radii of each paired tooth's + flank at β
-    (teeth whose + flank has no contact point at β are left out)."""
-    g2 = gear2_curve(params)
-    alpha = params.ratio * beta
-    out = []
-    for c in state.teeth:
-        if c.tooth not in teeth or c.plus_point is None:
-            continue
-        x = np.array([c.plus_point])
-        o1 = np.array([0.0, params.e])
-        body1 = rotate(x - o1, -alpha)
-        phi1 = float(math.atan2(body1[0, 1], body1[0, 0]))
-        r1 = float(1.0 / shape.curvature(np.array([phi1]))[0])
-        # the gear-2 point is where that gear-1 point lands once the clearance is closed: on a
-        # nearly conformal flank the relative curvature is a small difference of two large
-        # ones, and gear 2's changes fast (the 6 µm of a baseline clearance doubled 1/R*)
-        x = rotate(x - o1, c.plus_um * 1e-3 / params.r0) + o1
-        foot = g2.closest(rotate(x, -beta))[0]
-        theta2 = float(math.atan2(foot[0, 1], foot[0, 0]))
-        xi = g2.xi_at_angle(np.array([theta2]))
-        r2 = float(g2.curvature_radius(xi)[0])
-        out.append(Candidate(c.tooth, float(c.plus_um), (float(x[0, 0]), float(x[0, 1])), phi1,
-                             theta2, r1, r2))
-    return tuple(out)
 
 
 def hertz_half_width(params: PairParameters, torque_nmm: float, c: Candidate, thickness: float,

@@ -1,4 +1,4 @@
-"""The tooth-pair solve at one position and over a mesh cycle; the error estimate."""
+"""The sector model's solve at one position and over a mesh cycle; the error estimate."""
 
 import math
 
@@ -7,16 +7,16 @@ import pytest
 
 from fegear.toothpair.case import HEADLINE, SolveCase, cycle_positions
 from fegear.toothpair.estimate import error_estimate
-from fegear.toothpair.solve import solve_pair, solve_positions
+from fegear.toothpair.sector.solve import solve_pair, solve_positions
 
 
 @pytest.mark.slow
 def test_baseline_pair_balances_torque_and_shares(baseline):
     p = baseline
-    r = solve_pair(SolveCase(p, torque=200.0, quality="fast"))
-    assert r.contact.balance_error < 1e-6
+    r = solve_pair(SolveCase(p, torque=200.0, quality="fast", model="sector"))
+    assert r.checks.balance_error < 1e-6
     assert sum(t.load_share for t in r.teeth) == pytest.approx(1.0, abs=1e-3)
-    assert max(r.contact.residuals) < 1e-9
+    assert max(r.checks.residuals) < 1e-9
     assert r.teeth_in_contact >= 2
     assert r.rotation > r.first_touch > 0
     # root zone found by radius, also where a contact window covers the fillet
@@ -29,13 +29,13 @@ def test_headline_stresses_are_insensitive_to_the_penalty_over_three_decades(bas
     # the weighted-gap penalty must not lock or oscillate there as the penalty grows 1000×
     # (measured: roots and von Mises move < 0.02 %); the penetration falls with the penalty
     p = baseline
-    runs = [solve_pair(SolveCase(p, quality="fast", penalty_factor=f))
+    runs = [solve_pair(SolveCase(p, quality="fast", penalty_factor=f, model="sector"))
             for f in (100, 1000, 10000, 100000)]
     assert all(any(t.peak_on_round for t in r.teeth) for r in runs)
     for key in runs[0].headline():
         values = [r.headline()[key] for r in runs]
         assert max(values) - min(values) < 0.01 * min(values), (key, values)
-    penetration = [r.contact.max_penetration for r in runs]
+    penetration = [r.checks.max_penetration for r in runs]
     assert penetration[-1] < penetration[0] / 500
 
 
@@ -46,8 +46,9 @@ def test_mesh_cycle_repeats_after_one_pitch_with_the_next_tooth(baseline):
     is to discretisation accuracy."""
     p = baseline
     b0, b1 = 0.0, 2 * math.pi / p.z2
-    s0, s1 = solve_positions(SolveCase(p, torque=200.0, quality="fast"), (b0, b1))
-    for b0_, b1_ in zip(s0.bodies, s1.bodies):   # one factorisation and one flexibility
+    s0, s1 = solve_positions(SolveCase(p, torque=200.0, quality="fast", model="sector"), (b0, b1))
+    # one factorisation and one flexibility
+    for b0_, b1_ in zip(s0.detail.bodies, s1.detail.bodies):
         assert b0_.factor is b1_.factor and b0_.cache is b1_.cache
         assert sum(1 for k in b0_.cache if k[0] == "flexibility") == 1
     share0 = {t.tooth: t.load_share for t in s0.teeth}
@@ -61,7 +62,7 @@ def test_mesh_cycle_repeats_after_one_pitch_with_the_next_tooth(baseline):
     for a, b in zip(s0.root_stress, s1.root_stress):
         assert b == pytest.approx(a, rel=0.03)
     for s in (s0, s1):
-        assert s.contact.balance_error < 1e-6
+        assert s.checks.balance_error < 1e-6
         assert sum(t.load_share for t in s.teeth) == pytest.approx(1.0, abs=1e-6)
 
 
@@ -78,8 +79,8 @@ def test_two_more_teeth_each_side_change_no_stress_by_1pct(more, baseline):
     traction-free cut faces two teeth further out, changes no headline stress, the
     transmission error or a load share by more than 1 % (measured: ≤ 0.45 %)."""
     p = baseline
-    base = solve_pair(SolveCase(p, torque=200.0, quality="fast"))
-    wider = solve_pair(SolveCase(p, torque=200.0, quality="fast", **more))
+    base = solve_pair(SolveCase(p, torque=200.0, quality="fast", model="sector"))
+    wider = solve_pair(SolveCase(p, torque=200.0, quality="fast", model="sector", **more))
     for key, value in base.headline().items():
         assert wider.headline()[key] == pytest.approx(value, rel=0.01), key
     assert wider.rotation - wider.first_touch == pytest.approx(

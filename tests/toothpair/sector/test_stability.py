@@ -1,4 +1,4 @@
-"""Stability of the tooth-pair solve: jiggled meshes, torque from a light touch to three times
+"""Stability of the sector model's solve: jiggled meshes, torque from a light touch to three times
 the allowable contact stress, clearances from none to interference, extreme admissible h1/f1.
 Each case converges with the torque balanced and the penetration within the solver's bound, or
 fails with a named fegear error."""
@@ -7,14 +7,15 @@ import math
 
 import pytest
 
-import fegear.toothpair.solve as toothpair
+import fegear.toothpair.sector.solve as toothpair
 from fegear.errors import GeometryError
 from fegear.fe.mesh import jiggle, mesh_bodies
 from fegear.geometry.clearance import ToothContact
 from fegear.geometry.gear1 import Gear1Profile
 from fegear.geometry.parameters import PairParameters
 from fegear.toothpair.case import HEADLINE, SolveCase
-from fegear.toothpair.solve import refuse_interference, solve_pair
+from fegear.toothpair.sector.solve import solve_pair
+from fegear.toothpair.teeth import refuse_interference
 
 ALLOWABLE_CONTACT = 745.0  # MPa, 42CrMo (the paper)
 
@@ -22,16 +23,16 @@ ALLOWABLE_CONTACT = 745.0  # MPa, 42CrMo (the paper)
 def _check(sol):
     """Converged: torque balanced to 0.1 %, penetration within 1 % of the contact half-width
     (the solver's own bound), every headline stress finite."""
-    widest = max(p.half_width for p in sol.contact.patches)
-    assert sol.contact.balance_error < 1e-3
-    assert sol.contact.max_penetration < 0.01 * widest
+    widest = max(p.half_width for p in sol.detail.contact.patches)
+    assert sol.checks.balance_error < 1e-3
+    assert sol.checks.max_penetration < 0.01 * widest
     assert all(math.isfinite(v) for v in sol.headline().values())
 
 
 def test_jiggled_interior_nodes_move_headline_stresses_by_less_than_2pct(monkeypatch,
-                                                                        light_touch):
-    case = light_touch.case  # the baseline pair at 1 N·m, coarse
-    base = light_touch.headline()
+                                                                        sector_light_touch):
+    case = sector_light_touch.case  # the baseline pair at 1 N·m, coarse
+    base = sector_light_touch.headline()
     for seed in (1, 2):
         def jiggled(geometries, seed=seed):
             return tuple(jiggle(b, 0.1, seed + 10 * k)
@@ -46,18 +47,18 @@ def test_jiggled_interior_nodes_move_headline_stresses_by_less_than_2pct(monkeyp
 
 
 @pytest.mark.slow
-def test_light_touch_follows_hertz_and_three_times_the_allowable_converges(baseline):
+def test_sector_light_touch_follows_hertz_and_three_times_the_allowable_converges(baseline):
     # one tooth carries the light loads: FE p_max against Hertz at the same point, and p ∝ √T
     light = {}
     for torque in (1e-3, 1e-2, 1e-1):
-        sol = solve_pair(SolveCase(baseline, torque=torque, quality="fast"))
+        sol = solve_pair(SolveCase(baseline, torque=torque, quality="fast", model="sector"))
         _check(sol)
         (tooth,) = [t for t in sol.teeth if t.load_N > 0]
         assert tooth.p_max_MPa == pytest.approx(tooth.hertz_p0_MPa, rel=0.005)
         assert tooth.half_width_mm == pytest.approx(tooth.hertz_b_mm, rel=0.01)
         light[torque] = tooth.p_max_MPa / math.sqrt(torque)
     assert max(light.values()) / min(light.values()) - 1 < 0.005
-    heavy = solve_pair(SolveCase(baseline, torque=290.0, quality="fast"))
+    heavy = solve_pair(SolveCase(baseline, torque=290.0, quality="fast", model="sector"))
     _check(heavy)
     assert heavy.contact_pressure >= 3 * ALLOWABLE_CONTACT
     assert heavy.teeth_in_contact >= 4
@@ -67,7 +68,7 @@ def test_an_interfering_pair_is_refused_by_name_before_meshing():
     # 10 nm less than no tip relief: the far-side tips overlap gear 2 by 0.19 µm of arc. The
     # contact iterations used to cycle on it ("ill-posed at this load")
     case = SolveCase(PairParameters(shift=0.016, rotation=0.002, tip_relief=-1e-5),
-                     torque=200.0, quality="coarse")
+                     torque=200.0, quality="coarse", model="sector")
     with pytest.raises(GeometryError, match="interferes: gear-1 tooth 32 overlaps gear 2 by 0.194"):
         solve_pair(case)
 
@@ -101,7 +102,7 @@ SLOW = pytest.mark.slow
 ])
 def test_clearances_and_extreme_shapes_converge(params, torque, far_side_only):
     p = PairParameters(**params)
-    case = SolveCase(p, torque=torque, quality="coarse")
+    case = SolveCase(p, torque=torque, quality="coarse", model="sector")
     sol = solve_pair(case)
     _check(sol)
     where = {c.tooth: c.position_deg for c in ToothContact(p, Gear1Profile(p)).state(

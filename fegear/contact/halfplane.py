@@ -1,0 +1,85 @@
+"""The elastic half-plane under a normal pressure (Flamant), plane stress: the near field of a
+contact that the finite elements need not resolve.
+
+A line load P (N per mm of thickness) pressing on the surface z = 0 of the half-plane z > 0 at
+the origin moves the point (t, z) into the body by
+
+    u_z(t, z) = (2P / (π E)) [ −ln r + ((1 − ν)/2) cos²θ − ν sin²θ ],   r² = t² + z², cos θ = z/r
+
+up to a rigid motion, and stresses it by σ_zz = −(2P/π) z³/r⁴, σ_tt = −(2P/π) z t²/r⁴ (σ_rr is
+the only stress of the solution). The arbitrary constant drops out of what fegear uses: the
+approach of a surface point relative to the point at depth d below it,
+
+    Δ(t, d) = u_z(t, 0) − u_z(t, d) = (P / (π E)) [ ln(1 + d²/t²) − (1 + ν) d²/(t² + d²) ],
+
+which decays like 1/t² away from the load. Pressures are piecewise linear on a grid along the
+surface (one hat per grid point); every integral over a hat is in closed form, the logarithmic
+singularity under the load included. Units: mm, N, MPa.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+def _antiderivatives(u: np.ndarray, d: np.ndarray, nu: float) -> tuple[np.ndarray, np.ndarray]:
+    """F0 = ∫ K du and F1 = ∫ u K du for K(u) = ln(1 + d²/u²) − (1 + ν) d²/(u² + d²)."""
+    uu, dd = u * u, d * d
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log_ratio = np.where(u == 0.0, 0.0, u * np.log1p(dd / np.where(u == 0.0, 1.0, uu)))
+        u_log = np.where(u == 0.0, 0.0, uu * np.log(np.where(u == 0.0, 1.0, uu)))
+    atan = np.arctan2(u, d)
+    F0 = log_ratio + 2.0 * d * atan - (1.0 + nu) * d * atan
+    F1 = 0.5 * ((uu + dd) * np.log(uu + dd) - u_log - dd) - 0.5 * (1.0 + nu) * dd * np.log(uu + dd)
+    return F0, F1
+
+
+def _strain_antiderivatives(u: np.ndarray, d: np.ndarray, nu: float
+                            ) -> tuple[np.ndarray, np.ndarray]:
+    """∫ k du and ∫ u k du for k(u) = d (u² − ν d²) / (u² + d²)², the tangential strain
+    kernel (σ_tt − ν σ_zz) up to the factor −2P/(π E)."""
+    s = u * u + d * d
+    atan = np.arctan2(u, d)
+    # ∫ u²/s² = (atan/d − u/s)/2 ; ∫ 1/s² = (u/(d² s) + atan/d³)/2
+    i_a = 0.5 * (atan / d - u / s)
+    i_b = 0.5 * (u / (d * d * s) + atan / d ** 3)
+    # ∫ u³/s² = (ln s + d²/s)/2 ; ∫ u/s² = −1/(2 s)
+    i_c = 0.5 * (np.log(s) + d * d / s)
+    i_d = -0.5 / s
+    return d * (i_a - nu * d * d * i_b), d * (i_c - nu * d * d * i_d)
+
+
+def _hat_matrix(t: np.ndarray, d: np.ndarray, s: np.ndarray, antiderivatives,
+                nu: float) -> np.ndarray:
+    """∫ φ_j(σ) K(t_i − σ; d_i) dσ for the hats φ_j of the grid ``s`` (sorted): (n, m)."""
+    t = np.asarray(t, float)[:, None]
+    d = np.broadcast_to(np.asarray(d, float), t.shape[:1])[:, None]
+    s = np.asarray(s, float)
+    out = np.zeros((t.shape[0], len(s)))
+    a, b = s[:-1][None, :], s[1:][None, :]   # interval k: [s_k, s_k+1]
+    # over an interval σ ∈ [a, b]: u = t − σ ∈ [t − b, t − a]
+    F0b, F1b = antiderivatives(t - a, d, nu)
+    F0a, F1a = antiderivatives(t - b, d, nu)
+    I0, I1 = F0b - F0a, F1b - F1a            # ∫ K du, ∫ u K du
+    width = b - a
+    # falling part of hat k on [a, b]: (b − σ)/(b − a) = (b − t + u)/(b − a)
+    falling = ((b - t) * I0 + I1) / width
+    # rising part of hat k + 1: (σ − a)/(b − a) = (t − u − a)/(b − a)
+    rising = ((t - a) * I0 - I1) / width
+    out[:, :-1] += falling
+    out[:, 1:] += rising
+    return out
+
+
+def approach_matrix(t, d, s, E: float, nu: float) -> np.ndarray:
+    """Δ_ij: how far surface point i (arc position ``t_i``) approaches the point at depth
+    ``d_i`` below it, per unit pressure (MPa) of hat j on the grid ``s``: mm/MPa."""
+    return _hat_matrix(t, d, s, _antiderivatives, nu) / (math.pi * E)
+
+
+def strain_matrix(t, d, s, E: float, nu: float) -> np.ndarray:
+    """ε_tt at depth ``d_i`` below surface point ``t_i`` (tangential strain, + stretching) per
+    unit pressure of hat j on the grid ``s``: 1/MPa."""
+    return -2.0 / (math.pi * E) * _hat_matrix(t, d, s, _strain_antiderivatives, nu)

@@ -1,0 +1,189 @@
+"""A cyclic body: ``count`` identical sectors of one template mesh, condensed onto the cut faces.
+
+Every tooth of a gear has the same shape, so one sector one pitch wide, meshed once with
+matching nodes on its two cut faces (:class:`~fegear.fe.mesh.Periodic`), gives the whole ring
+by rotation. The template's interior is factorised once; its static modes Ψ = −K_ii⁻¹ K_iI map
+the cut-face displacements into it and S = K_II + K_Ii Ψ is its stiffness condensed onto them.
+The ring of condensed sectors is block-circulant in the cut faces, so its flexibility comes
+from ``count`` small complex inversions (a discrete Fourier transform over the sectors), not
+from a ring-sized system.
+
+Sector k is the template turned by k·pitch. Displacements of sector k are written in its own
+frame (the template's), so that every sector has the same matrices. The face between sectors
+k − 1 and k is unknown U_k, in sector k's frame at its ``a`` cut; sector k's ``b`` cut then
+moves by R U_{k+1}, R the rotation by one pitch. A load f on sector t (template dofs) gives the
+displacement of sector s
+
+    u_s = δ_st K⁻¹_clamped f + Ψ_full W(t − s) ρ(f),   ρ = f_I + Ψᵀ f_i
+
+with W the ring's flexibility between the two sectors' cut faces. Fixed dofs (a held rim, or a
+bore whose elastic part vanishes) stay zero. Units: mm, N.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..errors import FegearError
+from .dofs import facet_nodes, node_dofs
+from .material import Material
+from .mesh import BodyMesh
+from .solvers import Factor
+
+
+@dataclass(eq=False)
+class CyclicBody:
+    """The ring of ``count`` sectors of the template ``mesh`` (see the module docstring).
+
+    ``interior``, ``face_a``, ``face_b`` are template dof indices (the a and b cut faces in
+    matching order); ``fixed`` the held dofs. ``ring`` holds W(Δ) for Δ = 0 … count − 1, each
+    (2 n_f × 2 n_f), mapping the equivalent cut loads ρ of a sector to the cut displacements of
+    the sector Δ before it."""
+
+    name: str
+    mesh_data: BodyMesh
+    material: Material
+    basis: object = field(repr=False)
+    count: int
+    pitch: float
+    K: sp.csr_matrix = field(repr=False)
+    interior: np.ndarray = field(repr=False)
+    face_a: np.ndarray = field(repr=False)
+    face_b: np.ndarray = field(repr=False)
+    fixed: np.ndarray = field(repr=False)
+    factor: Factor = field(repr=False)
+    psi: np.ndarray = field(repr=False)       # (n_interior, 2 n_f): interior per unit cut motion
+    ring: np.ndarray = field(repr=False)      # (count, 2 n_f, 2 n_f)
+    cache: dict = field(default_factory=dict, repr=False)
+
+    @property
+    def mesh(self):
+        """The template's scikit-fem mesh."""
+        return self.mesh_data.mesh
+
+    @property
+    def ndofs(self) -> int:
+        return self.K.shape[0]
+
+    @property
+    def interface(self) -> np.ndarray:
+        return np.concatenate([self.face_a, self.face_b])
+
+    def clamped(self, f: np.ndarray) -> np.ndarray:
+        """Template field (ndofs, k) of loads ``f`` (ndofs, k) with both cuts held."""
+        f = np.asarray(f, dtype=float)
+        u = np.zeros(f.shape)
+        u[self.interior] = self.factor.solve(f[self.interior])
+        return u
+
+    def cut_loads(self, f: np.ndarray) -> np.ndarray:
+        """ρ = f_I + Ψᵀ f_i (2 n_f, k): the loads ``f`` carried to the sector's cut faces."""
+        f = np.asarray(f, dtype=float)
+        return f[self.interface] + self.psi.T @ f[self.interior]
+
+    def from_cuts(self, u_cut: np.ndarray) -> np.ndarray:
+        """Template field (ndofs, k) of cut-face displacements (2 n_f, k), interior by Ψ."""
+        u = np.zeros((self.ndofs,) + u_cut.shape[1:])
+        u[self.interior] = self.psi @ u_cut
+        u[self.interface] = u_cut
+        return u
+
+    def coupling(self, delta: int) -> np.ndarray:
+        """W(Δ): cut displacements of sector s per unit cut loads ρ of sector s + Δ."""
+        return self.ring[delta % self.count]
+
+    def displacement(self, loads: dict[int, np.ndarray], sectors) -> dict[int, np.ndarray]:
+        """Template-frame fields (ndofs,) of the ``sectors`` under ``loads`` (sector → template
+        load vector)."""
+        rho = {t: self.cut_loads(f) for t, f in loads.items()}
+        out = {}
+        for s in sectors:
+            cut = sum((self.coupling(t - s) @ r for t, r in rho.items()),
+                      np.zeros(len(self.interface)))
+            u = self.from_cuts(cut)
+            if s in loads:
+                u = u + self.clamped(loads[s])
+            out[s] = u
+        return out
+
+    def residual(self, loads: dict[int, np.ndarray], fields: dict[int, np.ndarray]) -> float:
+        """Largest equilibrium residual of the sectors in ``fields`` at their interior dofs (the
+        cut faces balance through the ring), relative to the largest load."""
+        scale = max((float(np.linalg.norm(f)) for f in loads.values()), default=0.0)
+        worst = 0.0
+        for s, u in fields.items():
+            f = loads.get(s, np.zeros(self.ndofs))
+            worst = max(worst, float(np.linalg.norm((self.K @ u - f)[self.interior])))
+        return worst / max(scale, 1e-300)
+
+
+def assemble_cyclic(mesh: BodyMesh, material: Material, count: int, cut: str,
+                    fixed: tuple[str, ...]) -> CyclicBody:
+    """Assemble the template ``mesh`` (one sector; its periodic pair named by the slave segment
+    ``cut``), hold the ``fixed`` boundaries, factorise the interior once, condense onto the
+    cuts and form the ring's flexibility between cut faces for ``count`` sectors."""
+    from skfem import Basis, ElementTriP2, ElementVector, asm
+    from skfem.models.elasticity import linear_elasticity
+
+    if cut not in mesh.periodic:
+        raise FegearError(f"body {mesh.name!r} has no periodic segment {cut!r}")
+    m = mesh.mesh
+    basis = Basis(m, ElementVector(ElementTriP2()))
+    if basis.N != 2 * m.doflocs.shape[1]:
+        raise FegearError("unexpected scikit-fem dof numbering")
+    K = (material.thickness * asm(linear_elasticity(*material.lame), basis)).tocsr()
+    held = np.unique(np.concatenate([facet_nodes(m, m.boundaries[n]).ravel() for n in fixed]))
+    pairs = mesh.periodic[cut]
+    keep = ~(np.isin(pairs[:, 0], held) | np.isin(pairs[:, 1], held))
+    b_nodes, a_nodes = pairs[keep, 0], pairs[keep, 1]
+    face_a, face_b = node_dofs(a_nodes).ravel(), node_dofs(b_nodes).ravel()
+    fixed_dofs = node_dofs(held).ravel()
+    interior = np.setdiff1d(np.arange(K.shape[0]), np.concatenate([fixed_dofs, face_a, face_b]))
+    interface = np.concatenate([face_a, face_b])
+    factor = Factor(K[interior][:, interior])
+    K_iI = K[interior][:, interface].toarray()
+    psi = -factor.solve(K_iI)
+    S = K[interface][:, interface].toarray() + K_iI.T @ psi
+    S = 0.5 * (S + S.T)
+    # the b cut moves by R U_{k+1}: rotate its dofs into the next sector's frame
+    pitch = _pitch(mesh, cut)
+    c, s = math.cos(pitch), math.sin(pitch)
+    R = np.kron(np.eye(len(b_nodes)), np.array([[c, -s], [s, c]]))
+    nf = len(face_a)
+    T = np.block([[np.eye(nf), np.zeros((nf, nf))], [np.zeros((nf, nf)), R]])
+    St = T.T @ S @ T
+    saa, sab, sba, sbb = St[:nf, :nf], St[:nf, nf:], St[nf:, :nf], St[nf:, nf:]
+    ring = _ring_flexibility(saa + sbb, sab, sba, count)
+    # W(Δ) between a sector's cut dofs [u_a; u_b] and the cut loads [ρ_a; ρ_b] of sector s + Δ
+    W = np.empty((count, 2 * nf, 2 * nf))
+    for d in range(count):
+        g0, gp, gm = ring[d % count], ring[(d + 1) % count], ring[(d - 1) % count]
+        W[d] = np.block([[g0, gp @ R.T], [R @ gm, R @ g0 @ R.T]])
+    return CyclicBody(mesh.name, mesh, material, basis, count, pitch, K, interior, face_a, face_b,
+                      fixed_dofs, factor, psi, W)
+
+
+def _pitch(mesh: BodyMesh, cut: str) -> float:
+    """The angle that turns the master cut onto the slave cut (from the matched nodes)."""
+    pairs = mesh.periodic[cut]
+    x = mesh.mesh.doflocs.T
+    far = np.argmax(np.linalg.norm(x[pairs[:, 1]], axis=1))
+    a, b = x[pairs[far, 1]], x[pairs[far, 0]]
+    return math.atan2(a[0] * b[1] - a[1] * b[0], a @ b)
+
+
+def _ring_flexibility(D: np.ndarray, B: np.ndarray, Bt: np.ndarray, count: int) -> np.ndarray:
+    """G(Δ) = (K_ring⁻¹)[s, s + Δ] for the block-circulant ring K[s, s] = D, K[s, s + 1] = B,
+    K[s + 1, s] = Bᵀ: the inverse of each Fourier block D + B ωᵏ + Bᵀ ω⁻ᵏ, transformed back."""
+    k = np.arange(count)
+    omega = np.exp(2j * np.pi * k / count)
+    blocks = D[None] + B[None] * omega[:, None, None] + Bt[None] * np.conj(omega)[:, None, None]
+    inv = np.linalg.inv(blocks)
+    # G(Δ) = (1/n) Σ_k inv_k ω^(−kΔ)
+    phase = np.exp(-2j * np.pi * np.outer(np.arange(count), k) / count)
+    G = np.einsum("dk,kij->dij", phase, inv) / count
+    return G.real

@@ -1,0 +1,216 @@
+"""Submodels: a small disk of a body around a boundary point, meshed finely and solved again
+with the displacement of a coarser solution held on its cut and a pressure on its boundary.
+
+A coarse model carries the load paths; the stress where it peaks (a root fillet, a contact only
+µm wide) needs elements far smaller than that model can afford everywhere. The submodel is the
+body inside a circle of ``radius`` about a point of its boundary: the exact boundary curve
+between the two points where the circle cuts it, and the circular arc through the material. The
+arc is held at the coarse model's displacement (rigid motions included: they strain nothing);
+the boundary carries the pressure. Away from the arc, by a fraction of the radius, the
+submodel's stress is the fine solution of the same problem; ``core`` is where it is read.
+
+Units: mm, N, MPa. The boundary curve is star-shaped about the body frame's origin: points by
+polar angle, with the material below it (an external gear) or beyond it (an internal gear).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import FegearError
+from .dofs import facet_nodes, node_dofs
+from .material import Material
+from .mesh import BodyGeometry, BodyMesh, Refinement, Segment, mesh_bodies
+from .stress import StressField, recover
+
+CORE = 0.6          # stresses are read within this fraction of the radius of the centre
+ARC_POINTS = 48     # polyline points of the cut arc
+QUADRATURE = 6      # Gauss points per boundary facet for the pressure
+GROWTH = 0.3        # element growth away from the boundary (mm per mm)
+
+
+@dataclass(frozen=True)
+class StarCurve:
+    """A body's boundary as points by polar angle (rad) about its frame's origin, and on which
+    side the material lies: at smaller radii (``inside``) or at larger ones."""
+
+    point: Callable[[np.ndarray], np.ndarray]
+    inside: bool
+
+    def project(self, x: np.ndarray) -> np.ndarray:
+        return self.point(np.arctan2(x[:, 1], x[:, 0]))
+
+
+@dataclass(eq=False)
+class Submodel:
+    """A solved submodel: its mesh (body frame), displacement, nodal stresses, centre (mm),
+    radius (mm) and the boundary's polar-angle range (rad)."""
+
+    mesh: BodyMesh
+    u: np.ndarray = field(repr=False)
+    stress: StressField = field(repr=False)
+    centre: np.ndarray
+    radius: float
+    angles: tuple[float, float]
+
+    @property
+    def core(self) -> np.ndarray:
+        """Nodes within CORE radii of the centre: where the arc's held displacement no longer
+        matters."""
+        d = np.linalg.norm(self.mesh.mesh.doflocs.T - self.centre, axis=1)
+        return d < CORE * self.radius
+
+    def peak(self, values: np.ndarray) -> tuple[float, np.ndarray]:
+        """Largest of nodal ``values`` in the core, and where (mm, body frame)."""
+        core = np.flatnonzero(self.core)
+        i = core[int(np.argmax(values[core]))]
+        return float(values[i]), self.mesh.mesh.doflocs[:, i].copy()
+
+
+@dataclass(frozen=True)
+class _Piece:
+    """What :func:`~fegear.fe.stress.recover` needs of a body."""
+
+    mesh: object
+    basis: object
+    material: Material
+    cache: dict
+
+
+@dataclass(frozen=True)
+class SubmodelProblem:
+    """A submodel to solve: the disk of ``radius`` (mm) about the boundary point at polar angle
+    ``angle`` of ``curve``; elements of ``size`` (mm) on the boundary within ``focus`` (mm)
+    of that point, growing away from it; ``pressure(x)`` (MPa) on the boundary and
+    ``held(x)``, the displacement (n, 2) imposed on the cut arc."""
+
+    curve: StarCurve
+    angle: float
+    radius: float
+    size: float
+    focus: float
+    pressure: Callable[[np.ndarray], np.ndarray]
+    held: Callable[[np.ndarray], np.ndarray]
+    name: str = "submodel"
+
+
+def solve_submodels(problems: list[SubmodelProblem], material: Material) -> list[Submodel]:
+    """Solve each submodel (meshed together: one gmsh session)."""
+    from skfem import Basis, ElementTriP2, ElementVector, asm
+    from skfem.models.elasticity import linear_elasticity
+
+    from .solvers import Factor
+
+    shapes = [_geometry(pb) for pb in problems]
+    meshes = mesh_bodies([geo for geo, _, _ in shapes]) if shapes else ()
+    out = []
+    for pb, (_, centre, angles), mesh in zip(problems, shapes, meshes):
+        m = mesh.mesh
+        basis = Basis(m, ElementVector(ElementTriP2()))
+        K = (material.thickness * asm(linear_elasticity(*material.lame), basis)).tocsr()
+        f = _pressure_loads(m, m.boundaries["boundary"], pb.pressure, material.thickness)
+        cut = np.unique(facet_nodes(m, m.boundaries["cut"]))
+        fixed = node_dofs(cut).ravel()
+        u = np.zeros(basis.N)
+        u[fixed] = pb.held(m.doflocs.T[cut]).ravel()
+        free = np.setdiff1d(np.arange(basis.N), fixed)
+        u[free] = Factor(K[free][:, free]).solve(f[free] - K[free][:, fixed] @ u[fixed])
+        stress = recover(_Piece(m, basis, material, {}), u)
+        out.append(Submodel(mesh, u, stress, centre, float(pb.radius), angles))
+    return out
+
+
+def _geometry(pb: SubmodelProblem):
+    """The submodel's body (boundary curve and cut arc), centre (mm) and boundary angles."""
+    curve, radius, size = pb.curve, pb.radius, pb.size
+    centre = curve.point(np.array([pb.angle]))[0]
+    focus = min(pb.focus, 0.5 * radius)
+    (a, b), (lo, hi) = _cut_angles(curve, pb.angle, centre, (focus, radius))
+    pieces = []
+    for t0, t1, zone in ((lo, a, None), (a, b, "focus"), (b, hi, None)):
+        span = np.linalg.norm(np.diff(curve.point(np.array([t0, t1])), axis=0))
+        # a spline point every few elements: nodes are snapped onto the curve anyway, and
+        # gmsh's cost grows with the spline's points
+        samples = int(min(200, max(8, 0.5 * span / (size if zone else radius / 8))))
+        pieces.append(Segment("boundary", curve.point(np.linspace(t0, t1, samples)),
+                              curve.project, zone))
+    arc = _arc(curve, centre, radius, pieces[-1].points[-1], pieces[0].points[0])
+    geo = BodyGeometry(pb.name, (
+        *pieces,
+        Segment("cut", arc, lambda x: centre + radius * (x - centre)
+                / np.linalg.norm(x - centre, axis=1)[:, None]),
+    ), size=max(radius / 4, size), refinements=(Refinement(("focus",), size, GROWTH),))
+    return geo, centre, (lo, hi)
+
+
+def _cut_angles(curve: StarCurve, angle: float, centre: np.ndarray, radii
+                ) -> list[tuple[float, float]]:
+    """Per radius of ``radii`` (ascending), the polar angles on each side of ``angle`` where
+    the boundary crosses the circle of that radius: the first sign change of
+    |x(a) − centre| − radius along each side, its bracket then narrowed twice 160-fold."""
+    r = float(np.linalg.norm(centre))
+    out = {radius: [] for radius in radii}
+    for side in (-1.0, 1.0):
+        span = 0.5 * radii[-1] / r
+        for _ in range(12):
+            a = angle + side * np.linspace(0.0, span, 161)
+            d = np.linalg.norm(curve.point(a) - centre, axis=1)
+            if d[-1] > radii[-1]:
+                break
+            span *= 4.0
+        else:
+            raise FegearError("the submodel's circle does not cut the boundary twice")
+        for radius in radii:
+            k = int(np.flatnonzero(d > radius)[0])
+            lo, hi = a[k - 1], a[k]
+            for _ in range(2):
+                t = np.linspace(lo, hi, 161)
+                dt = np.linalg.norm(curve.point(t) - centre, axis=1)
+                j = int(np.flatnonzero(dt > radius)[0]) if np.any(dt > radius) else len(t) - 1
+                lo, hi = t[max(j - 1, 0)], t[j]
+            out[radius].append(0.5 * (lo + hi))
+    return [tuple(sorted(out[radius])) for radius in radii]
+
+
+def _arc(curve: StarCurve, centre: np.ndarray, radius: float, start: np.ndarray,
+         end: np.ndarray) -> np.ndarray:
+    """Points of the circle from ``start`` to ``end`` through the material."""
+    a = math.atan2(*(start - centre)[::-1])
+    span = (math.atan2(*(end - centre)[::-1]) - a) % (2 * math.pi)
+    for sweep in (span, span - 2 * math.pi):
+        mid = centre + radius * np.array([math.cos(a + 0.5 * sweep), math.sin(a + 0.5 * sweep)])
+        edge = np.linalg.norm(curve.project(mid[None])[0])
+        if (np.linalg.norm(mid) < edge) == curve.inside:
+            t = a + np.linspace(0.0, sweep, ARC_POINTS)
+            pts = centre + radius * np.column_stack([np.cos(t), np.sin(t)])
+            pts[0], pts[-1] = start, end
+            return pts
+    raise FegearError("the submodel's arc does not pass through the material")
+
+
+def _pressure_loads(m, facets: np.ndarray, pressure, thickness: float) -> np.ndarray:
+    """Consistent nodal loads of the pressure on boundary ``facets`` (traction −p n, n out of
+    the material), Gauss quadrature on each quadratic facet."""
+    nodes = facet_nodes(m, facets)
+    gq, gw = np.polynomial.legendre.leggauss(QUADRATURE)
+    s, w = 0.5 * (gq + 1.0), 0.5 * gw
+    N = np.column_stack([(1 - s) * (1 - 2 * s), s * (2 * s - 1), 4 * s * (1 - s)])
+    dN = np.column_stack([4 * s - 3, 4 * s - 1, 4 - 8 * s])
+    X = m.doflocs.T[nodes]                                       # (nf, 3, 2)
+    xq = np.einsum("qk,fkd->fqd", N, X)
+    tq = np.einsum("qk,fkd->fqd", dN, X)
+    jac = np.linalg.norm(tq, axis=2)
+    normal = np.stack([tq[..., 1], -tq[..., 0]], axis=-1) / jac[..., None]
+    centroid = m.p[:, m.t[:, m.f2t[0, facets]]].mean(axis=1).T    # orient out of the element
+    normal *= np.sign(np.einsum("fd,fd->f", X[:, 2] - centroid, normal[:, 2]))[:, None, None]
+    p = pressure(xq.reshape(-1, 2)).reshape(jac.shape)
+    f = np.zeros(2 * m.doflocs.shape[1])
+    for k in range(3):
+        for d in range(2):
+            np.add.at(f, 2 * nodes[:, k] + d,
+                      -thickness * np.sum(p * normal[..., d] * N[None, :, k] * jac * w, axis=1))
+    return f

@@ -1,0 +1,164 @@
+"""Contact grids: where on each gear-1 tooth the pressure is sought, and how finely.
+
+The pressure on a tooth is piecewise linear on a grid along gear 1's exact (tip-rounded) profile,
+independent of any mesh. The grid covers the stretch of the tooth that a positive rotation
+closes and whose rigid gap is within reach of the expected elastic approach (``window``); its
+spacing follows the local Hertz half-width of the relative curvature of the two profiles at the
+expected tooth load, a ``per_b``-th of it, and is finer again around the points where a tip
+round meets the flank (the curvature jumps there and the edge pressure peaks within µm of it).
+
+Every tooth of gear 1 is tooth 0 turned by whole pitches, so tooth 0 is sampled once per
+geometry (:class:`ToothSamples`) and the windows and spacings of any tooth come from turned
+copies; only the grid points themselves are evaluated exactly.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...geometry import RoundedProfile
+from ...planar import rotate
+
+SAMPLES = 4001        # samples of one tooth pitch to find windows and spacings on
+COARSE = 10           # the windows are found on every COARSE-th sample first
+MIN_POINTS = 24       # a window gets at least this many points
+JUNCTION = 0.5        # refined zone around a round's tangent points, in round Hertz widths
+JUNCTION_FACTOR = 4.0  # … this many times finer than the round
+
+
+@dataclass(frozen=True)
+class ToothGrid:
+    """The pressure grid on one gear-1 tooth: arc length ``s`` (mm, increasing with the polar
+    angle), polar angles ``phi`` (gear 1's frame), points, unit normals out of gear 1 and
+    curvature (1/mm) there, and whether each lies on a tip round."""
+
+    tooth: int
+    s: np.ndarray
+    phi: np.ndarray
+    x: np.ndarray
+    normal: np.ndarray
+    curvature: np.ndarray
+    on_round: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self.s)
+
+    @property
+    def weights(self) -> np.ndarray:
+        """∫ φ_j ds of each hat (mm): a uniform pressure p gives the force p·w·thickness."""
+        w = np.zeros(len(self.s))
+        d = np.diff(self.s)
+        w[:-1] += 0.5 * d
+        w[1:] += 0.5 * d
+        return w
+
+
+@dataclass(frozen=True)
+class ToothSamples:
+    """Tooth 0 of the rounded gear 1 sampled over one pitch, from the middle of the tooth
+    space before it to the middle of the one after: polar angles (rad), points, normals,
+    curvature (1/mm, > 0 convex), arc length (mm) and whether each sample is on a round."""
+
+    shape: RoundedProfile
+    phi: np.ndarray
+    x: np.ndarray
+    normal: np.ndarray
+    kappa: np.ndarray
+    s: np.ndarray
+    on_round: np.ndarray
+
+    def turned(self, tooth: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Polar angles, points and normals of tooth ``tooth``'s samples."""
+        turn = tooth * self.shape.pitch
+        return self.phi + turn, rotate(self.x, turn), rotate(self.normal, turn)
+
+
+def sample_tooth(shape: RoundedProfile, count: int = SAMPLES) -> ToothSamples:
+    """Sample tooth 0 of ``shape`` (see :class:`ToothSamples`)."""
+    centre = shape.tooth_center
+    phi = np.linspace(centre - 0.5 * shape.pitch, centre + 0.5 * shape.pitch, count)
+    x, n, kappa = shape.frame(phi)
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(x, axis=0).T))])
+    return ToothSamples(shape, phi, x, n, kappa, s, shape.on_round(phi))
+
+
+@dataclass(frozen=True)
+class Window:
+    """The sample range [lo, hi] (indices into :class:`ToothSamples`) of a tooth that a
+    positive rotation closes to within the reach, and the samples' gear-2 curvature (1/mm,
+    > 0 convex) where they face gear 2."""
+
+    tooth: int
+    lo: int
+    hi: int
+    kappa2: np.ndarray
+
+
+def window(samples: ToothSamples, curve2, tooth: int, turn: float, beta: float, e: float,
+           reach: float) -> Window | None:
+    """The stretch of ``tooth`` whose rigid gap to gear 2 (gear 1 turned by ``turn``, its
+    kinematic angle included; gear 2 by ``beta``) is below ``reach`` (mm) and closes under a
+    positive turn; None if there is none. Every COARSE-th sample first, then every sample
+    where that found the gap within reach of the threshold."""
+    _, x, _ = samples.turned(tooth)
+    coarse = np.arange(0, len(x), COARSE)
+    gap, closing, _ = _gaps(x[coarse], curve2, turn, beta, e)
+    slack = np.abs(np.diff(gap, prepend=gap[0], append=gap[-1]))
+    slack = np.maximum(slack[:-1], slack[1:])              # how far the gap moves to a neighbour
+    near = np.flatnonzero((gap < reach + slack) & closing)
+    if len(near) == 0:
+        return None
+    lo = coarse[max(int(near.min()) - 1, 0)]
+    hi = coarse[min(int(near.max()) + 1, len(coarse) - 1)]
+    gap, closing, foot = _gaps(x[lo:hi + 1], curve2, turn, beta, e)
+    near = np.flatnonzero((gap < reach) & closing)
+    if len(near) == 0:
+        return None
+    a, b = max(int(near.min()) - 1, 0), min(int(near.max()) + 1, len(gap) - 1)
+    xi = curve2.xi_at_angle(np.arctan2(foot[a:b + 1, 1], foot[a:b + 1, 0]))
+    return Window(tooth, lo + a, lo + b, 1.0 / curve2.curvature_radius(xi))
+
+
+def _gaps(x: np.ndarray, curve2, turn: float, beta: float, e: float):
+    """Rigid gap (mm) of gear-1 points ``x`` to gear 2, whether a positive turn closes it, and
+    the feet on gear 2 (its frame)."""
+    o1 = np.array([0.0, e])
+    fixed = rotate(x, turn) + o1
+    foot, normal, gap = curve2.closest(rotate(fixed, -beta))
+    r = rotate(fixed - o1, -beta)
+    closing = np.einsum("ij,ij->i", normal, np.column_stack([-r[:, 1], r[:, 0]])) < 0
+    return gap, closing, foot
+
+
+def tooth_grid(samples: ToothSamples, win: Window, load: float, E_star: float, per_b: float,
+               floor: float) -> ToothGrid:
+    """The grid over the window ``win``: spacing a ``per_b``-th of the local Hertz half-width
+    under the line load ``load`` (N/mm) for the relative curvature of the two profiles, at
+    least ``floor`` (mm), at most a ``MIN_POINTS``-th of the window; ``JUNCTION_FACTOR`` times
+    finer again within ``JUNCTION`` round widths of the rounds' tangent points."""
+    k = slice(win.lo, win.hi + 1)
+    s = samples.s[k] - samples.s[win.lo]
+    relative = np.maximum(samples.kappa[k] + win.kappa2, 1e-9)
+    b = np.sqrt(4.0 * load / (math.pi * E_star * relative))
+    spacing = np.clip(b / per_b, floor, max(s[-1] / MIN_POINTS, floor))
+    on_round = samples.on_round[k]
+    edges = np.flatnonzero(np.diff(on_round.astype(int)) != 0)
+    if len(edges):
+        b_round = float(np.min(b[on_round])) if on_round.any() else float(b.min())
+        for j in edges:
+            near = np.abs(s - s[j]) < JUNCTION * b_round
+            spacing[near] = np.minimum(spacing[near],
+                                       max(b_round / (per_b * JUNCTION_FACTOR), floor))
+    count = np.concatenate([[0.0], np.cumsum(np.diff(s) / (0.5 * (spacing[1:] + spacing[:-1])))])
+    m = max(int(math.ceil(count[-1])), MIN_POINTS)
+    sg = np.interp(np.linspace(0.0, count[-1], m + 1), count, s)
+    phi0 = np.interp(sg, s, samples.phi[k])            # tooth 0's angles
+    shape = samples.shape
+    x, n, kappa = shape.frame(phi0)
+    turn = win.tooth * shape.pitch
+    xg, ng = rotate(x, turn), rotate(n, turn)
+    sg = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xg, axis=0).T))])  # exact chords
+    return ToothGrid(win.tooth, sg, phi0 + turn, xg, ng, kappa, shape.on_round(phi0))

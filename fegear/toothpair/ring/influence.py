@@ -1,0 +1,168 @@
+"""The contact at one rolling position: the pressure grids' points, their loads on both gears and
+the influence matrix A, how far each grid point approaches gear 2 per unit pressure of each
+pressure hat.
+
+For each gear, A_ij = n · u_FE(y_i; hat j) + Δ(x_i − y_i; hat j): the finite-element
+displacement at the point y_i a few local elements below the surface point x_i (the coarse
+template is accurate there under loads spread on its facets) plus the half-plane's approach of
+the surface relative to that depth (:mod:`fegear.contact.halfplane`), so the mesh need not
+resolve the contact width at any load. The finite-element part is the clamped field of the
+loaded sector plus the ring's response through the cut faces (:class:`~fegear.fe.cyclic
+.CyclicBody`); every sector's loads reach only its own few hats and template dofs, and the
+products are formed on those alone.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...contact import approach_matrix
+from ...planar import rotate
+from ..teeth import Gear2Master
+from .grid import ToothGrid
+from .model import RingModel
+from .side import GearSide, LoadBlock, Located
+
+GAUSS = 2   # Gauss points per grid interval for the hats' loads on the templates: exact for
+            # the hat (linear) times a quadratic facet's shape (to cubic) within one facet
+
+
+@dataclass(frozen=True)
+class Matching:
+    """Where one gear's finite elements are read for each grid point: the point at depth
+    (located in the template), the direction of the approach there (template frame) and the
+    depth (mm)."""
+
+    at: Located
+    direction: np.ndarray
+    depth: np.ndarray
+
+
+@dataclass(eq=False)
+class RingContact:
+    """The assembled contact at one rolling angle β: the grids and their points (gear 1's
+    frame), outward normals, arc positions (mm) and hat weights ∫φ ds (mm); each gear's loads
+    per unit hat pressure (sector → :class:`LoadBlock`) and matching points; gear 2's points
+    facing the grid and its outward normals there (its own frame); A (mm/MPa)."""
+
+    beta: float
+    grids: tuple[ToothGrid, ...]
+    offsets: np.ndarray
+    x: np.ndarray
+    normal: np.ndarray
+    weight: np.ndarray
+    loads: tuple[dict[int, LoadBlock], dict[int, LoadBlock]] = field(repr=False)
+    matching: tuple[Matching, Matching] = field(repr=False)
+    facing: tuple[np.ndarray, np.ndarray] = field(repr=False)
+    A: np.ndarray = field(repr=False)
+
+    @property
+    def npoints(self) -> int:
+        return len(self.x)
+
+    def block(self, k: int) -> slice:
+        """The points of grid ``k``."""
+        return slice(int(self.offsets[k]), int(self.offsets[k + 1]))
+
+    @property
+    def grid_index(self) -> np.ndarray:
+        """The grid each point belongs to."""
+        return np.repeat(np.arange(len(self.grids)), np.diff(self.offsets))
+
+
+def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float,
+                     turn: float) -> RingContact:
+    """The contact of the ``grids`` with gear 2 turned by β and gear 1 by ``turn`` (rad, its
+    kinematic angle included, about its centre)."""
+    p, case = model.case.params, model.case
+    g1, g2 = model.gears
+    offsets = np.cumsum([0] + [len(g) for g in grids])
+    x = np.vstack([g.x for g in grids])
+    n1 = np.vstack([g.normal for g in grids])
+    weight = np.concatenate([g.weights for g in grids])
+    o1 = np.array([0.0, p.e])
+    master = Gear2Master(model.curve2, beta)
+
+    xq, nq, size, col = _hat_loads(model, grids, offsets, case.thickness)
+    loads1 = g1.nodal_loads(xq, -nq, col, size)
+    cq = master.closest(rotate(xq, turn) + o1)
+    loads2 = g2.nodal_loads(rotate(cq.foot, -beta), rotate(rotate(nq, turn), -beta), col, size)
+
+    cp = master.closest(rotate(x, turn) + o1)
+    x2, n2 = rotate(cp.foot, -beta), rotate(cp.normal, -beta)   # n2 out of gear 2's material
+    match = (_matching(g1, x, n1, model.level.depth), _matching(g2, x2, n2, model.level.depth))
+    nh = int(offsets[-1])
+    A = np.zeros((nh, nh))
+    for side, loads, m in zip((g1, g2), (loads1, loads2), match):
+        A += _fe_part(side, loads, m, nh)
+    for k, g in enumerate(grids):
+        blk = slice(int(offsets[k]), int(offsets[k + 1]))
+        for m in match:
+            A[blk, blk] += approach_matrix(g.s, m.depth[blk], g.s, case.E, case.nu)
+    return RingContact(beta, tuple(grids), offsets, x, n1, weight, (loads1, loads2), match,
+                       (x2, n2), A)
+
+
+def _hat_loads(model: RingModel, grids, offsets, thickness: float):
+    """Gauss points of every grid interval (gear 1's frame), outward normals there, and per
+    point the two hats it loads (the falling one of the interval's start, the rising one of
+    its end) with the force (N) per unit pressure of each: (n, 2) columns and sizes."""
+    gq, gw = np.polynomial.legendre.leggauss(GAUSS)
+    samples = model.samples
+    xs, ns, sizes, cols = [], [], [], []
+    for k, g in enumerate(grids):
+        a, b = g.s[:-1], g.s[1:]
+        sq = 0.5 * (a + b)[:, None] + 0.5 * (b - a)[:, None] * gq[None, :]
+        wq = 0.5 * (b - a)[:, None] * gw[None, :]
+        phi = np.interp(sq.ravel(), g.s, g.phi) - g.tooth * samples.shape.pitch
+        # load points need no exactness: tooth 0's dense samples (nm off) turned to the tooth
+        xq = np.column_stack([np.interp(phi, samples.phi, samples.x[:, d]) for d in (0, 1)])
+        nq = np.column_stack([np.interp(phi, samples.phi, samples.normal[:, d])
+                              for d in (0, 1)])
+        nq /= np.linalg.norm(nq, axis=1)[:, None]
+        turn = g.tooth * samples.shape.pitch
+        xs.append(rotate(xq, turn))
+        ns.append(rotate(nq, turn))
+        fall = ((b[:, None] - sq) / (b - a)[:, None] * wq).ravel()
+        rise = ((sq - a[:, None]) / (b - a)[:, None] * wq).ravel()
+        j = np.repeat(offsets[k] + np.arange(len(g) - 1), GAUSS)
+        sizes.append(np.column_stack([fall, rise]) * thickness)
+        cols.append(np.column_stack([j, j + 1]))
+    return np.vstack(xs), np.vstack(ns), np.vstack(sizes), np.vstack(cols)
+
+
+def _matching(side: GearSide, x: np.ndarray, normal: np.ndarray, depth: float) -> Matching:
+    """Matching points ``depth`` local facets below the gear's surface points ``x`` (its frame,
+    outward ``normal``), and the approach direction (into the material) in the template."""
+    d = depth * side.facet_size(side.locate(x).local)
+    at = side.locate(x - d[:, None] * normal)
+    return Matching(at, rotate(-normal, -at.turn), d)
+
+
+def _fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
+             nh: int) -> np.ndarray:
+    """n · u_FE at the matching points per unit pressure of each hat (see module docstring).
+    Accumulated hats-first (transposed), so that every scatter is over rows."""
+    at = match.at
+    N = side.rows(at.local, match.direction)
+    NQ = np.asarray(N @ side.cut_field)
+    rows = {int(k): np.flatnonzero(at.sector == k) for k in np.unique(at.sector)}
+    sectors = sorted(rows)
+    nf = len(side.body.interface)
+    dofs = np.unique(np.concatenate([b.dofs for b in loads.values()]))
+    clamped = side.clamped_rows(N, dofs)                     # (points, loaded dofs)
+    cuts = np.zeros((nh, len(sectors) * nf))   # per hat: cut motion of every row sector
+    out = np.zeros((nh, len(at.sector)))                      # transposed
+    for t, blk in loads.items():
+        W = np.concatenate([side.body.coupling(t - k) for k in sectors])
+        cuts[blk.columns] += (W @ (side.cut_loads(blk.dofs) @ blk.matrix)).T
+        if t in rows:
+            r = rows[t]
+            out[np.ix_(blk.columns, r)] += (clamped[np.ix_(r, np.searchsorted(dofs, blk.dofs))]
+                                            @ blk.matrix).T
+    for i, k in enumerate(sectors):
+        r = rows[k]
+        out[:, r] += cuts[:, i * nf:(i + 1) * nf] @ NQ[r].T
+    return out.T

@@ -1,0 +1,127 @@
+"""The ring model of a pair for one geometry, material and quality: both gears whole, each from
+one template sector meshed, assembled, factorised and condensed once; reused for every torque
+and rolling position.
+
+Quality levels set the template's element sizes (fractions of the module for the root zones,
+flanks and body; of the tip round for the round and its tangent points), the contact grid's
+density (points per local Hertz half-width), the matching depth of the contact's finite-element
+part (in local profile facets) and the submodel's element size at a contact peak (per local
+Hertz half-width). Each level halves the sizes of the one before.
+"""
+
+from __future__ import annotations
+
+import time
+from collections import OrderedDict
+from dataclasses import dataclass
+
+from ...fe import Material, assemble_cyclic, mesh_bodies
+from ...geometry import Gear1Profile, RoundedProfile, gear2_curve
+from ..case import SolveCase
+from .grid import ToothSamples, sample_tooth
+from .side import GearSide
+from .template import TemplateSizes, gear1_template, gear2_template
+
+
+@dataclass(frozen=True)
+class RingLevel:
+    """A quality level: template sizes as fractions of the module (root, flank, body) and of
+    the tip round (round, junction); contact grid points per local Hertz half-width; matching
+    depth in local profile facets; submodel elements per local Hertz half-width at a contact
+    peak."""
+
+    root: float
+    flank: float
+    round: float
+    junction: float
+    body: float
+    per_b: float
+    depth: float
+    sub_per_b: float
+
+
+# the submodels need about 12 elements per half-width at an edge contact whatever the level
+# (6 left the baseline's von Mises 0.5 % noisy, docs/model.md, "The ring model")
+LEVELS = {"coarse": RingLevel(1 / 10, 1 / 20, 1 / 8, 1 / 32, 1 / 2, 8, 3.0, 12),
+          "fast": RingLevel(1 / 14, 1 / 28, 1 / 12, 1 / 48, 1 / 3, 12, 3.0, 12),
+          "standard": RingLevel(1 / 20, 1 / 40, 1 / 16, 1 / 64, 1 / 4, 16, 3.0, 16),
+          "fine": RingLevel(1 / 40, 1 / 80, 1 / 32, 1 / 128, 1 / 8, 32, 3.0, 32)}
+ROUND_FLOOR = 0.05       # template sizes at the tip use a round of at least this many modules
+#: the case fields a ring model depends on (not torque, position or the sector model's inputs)
+GEOMETRY_KEYS = ("params", "thickness", "E", "nu", "quality", "rim1", "rim2", "tip_round")
+
+
+@dataclass(eq=False)
+class RingModel:
+    """Both gears of a pair as rings of template sectors (any torque, any rolling position):
+    the case it was built for, gear 1's exact and rounded profiles, tooth 0 sampled, gear 2's
+    curve, the two :class:`GearSide` s, the level and the time (s) each stage took."""
+
+    case: SolveCase
+    profile: Gear1Profile
+    shape: RoundedProfile
+    samples: ToothSamples
+    gears: tuple[GearSide, GearSide]
+    level: RingLevel
+    timings_s: dict
+
+    @property
+    def curve2(self):
+        return gear2_curve(self.case.params)
+
+    @property
+    def dofs(self) -> int:
+        """Degrees of freedom of the two templates (each ring has count × about as many)."""
+        return sum(g.body.ndofs for g in self.gears)
+
+    def fits(self, case: SolveCase) -> bool:
+        """Whether this model serves ``case``: same pair, material, rims, round and quality
+        (torque and position are free)."""
+        return all(getattr(case, k) == getattr(self.case, k) for k in GEOMETRY_KEYS)
+
+
+#: ring models kept per process, most recent last: a study's cases that differ only in torque
+#: or position, and the error estimate's second level, find theirs here
+_KEPT: OrderedDict = OrderedDict()
+KEEP = 4
+
+
+def ring_model(case: SolveCase, profile: Gear1Profile | None = None) -> RingModel:
+    """The ring model for ``case``: one kept from an earlier case of the same geometry,
+    material and quality, or a new one (then kept)."""
+    key = tuple(getattr(case, k) for k in GEOMETRY_KEYS)
+    model = _KEPT.pop(key, None)
+    if model is None:
+        model = build_ring(case, profile)
+        while len(_KEPT) >= KEEP:
+            _KEPT.popitem(last=False)
+    _KEPT[key] = model
+    return model
+
+
+def build_ring(case: SolveCase, profile: Gear1Profile | None = None) -> RingModel:
+    """Mesh both templates, assemble, factorise and condense them: once per geometry."""
+    p = case.params
+    level = LEVELS[case.quality]
+    times = {}
+    t0 = time.perf_counter()
+    profile = profile if profile is not None else Gear1Profile(p)
+    shape = RoundedProfile(profile, case.edge_radius)
+    samples = sample_tooth(shape)
+    times["profile"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    rho = max(case.edge_radius, ROUND_FLOOR * p.m)
+    sizes = TemplateSizes(root=level.root * p.m, flank=level.flank * p.m,
+                          round=level.round * rho, junction=level.junction * rho,
+                          body=level.body * p.m)
+    rim1, rim2 = case.rims
+    t1 = gear1_template(p, shape, sizes, rim1)
+    t2 = gear2_template(p, gear2_curve(p), sizes, rim2)
+    m1, m2 = mesh_bodies([t1.geometry, t2.geometry])
+    times["mesh"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    mat = Material(case.E, case.nu, case.thickness, "stress")
+    sides = (GearSide(assemble_cyclic(m1, mat, p.z1, t1.cut, (t1.held,)), t1),
+             GearSide(assemble_cyclic(m2, mat, p.z2, t2.cut, (t2.held,)), t2))
+    times["assemble_factor"] = time.perf_counter() - t0
+    return RingModel(case, profile, shape, samples, sides, level, times)

@@ -1,0 +1,154 @@
+"""What a designer reads off a solved position of the ring model: per tooth its load, share,
+peak pressure and half-width beside Hertz, its root stresses and whether its peak sits on the
+tip round; and the whole rings' fields for the pictures and VTU files.
+
+A gear-1 tooth's root stress is the largest σ1 in the root zone within half a pitch of the
+tooth; gear 2's is that of the gear-2 tooth nearest to where the gear-1 tooth touches it (its
+pressure peak, or the predicted contact point if it carries none). Hertz p0 and b use the
+curvature radii at the predicted contact point of the sharp profiles, as the sector model does
+(docs/model.md, "Hertz").
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...errors import ParameterError
+from ...fe import line_contact, recover, vtu_fields
+from ...planar import rotate
+from ..case import BodyField, ContactZone, SolveCase, ToothResult
+from .contact import RingContactSolution, rigid_gap
+from .influence import RingContact
+from .model import RingModel
+from .stresses import RingStresses, local_half_width
+
+
+def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
+                  sol: RingContactSolution, stresses: RingStresses, state,
+                  cands) -> tuple[ToothResult, ...]:
+    """One :class:`~fegear.toothpair.case.ToothResult` per gridded tooth."""
+    p = case.params
+    pitch1, pitch2 = model.shape.pitch, 2 * math.pi / p.z2
+    w = contact.weight * case.thickness
+    _, rate = rigid_gap(model, contact.x, case.beta, p.ratio * case.beta + sol.rotation)
+    clearance = {c.tooth: c.plus_um for c in state.teeth}
+    by_tooth = {c.tooth: c for c in cands}
+    out = []
+    for k, grid in enumerate(contact.grids):
+        blk = contact.block(k)
+        pk = sol.pressure[blk]
+        load = float(w[blk] @ pk)
+        i = blk.start + int(np.argmax(pk))
+        c = by_tooth.get(grid.tooth)
+        if load > 0:
+            x2 = contact.facing[0][i]
+            theta2 = math.atan2(x2[1], x2[0])
+        else:
+            theta2 = c.theta2 if c is not None else math.nan
+        hz = _hertz(c, load, case) if load > 0 and c is not None else None
+        out.append(ToothResult(
+            tooth=grid.tooth, clearance_um=clearance.get(grid.tooth), load_N=load,
+            load_share=float(-(w[blk] * pk) @ rate[blk] / (case.torque * 1e3)),
+            p_max_MPa=float(pk.max()),
+            half_width_mm=local_half_width(contact, sol.pressure, i) if load > 0 else 0.0,
+            hertz_p0_MPa=hz.p0 if hz else None, hertz_b_mm=hz.b if hz else None,
+            b_over_R=hz.b_over_R if hz else None,
+            root1_MPa=stresses.roots[0].near(model.shape.tooth_center + grid.tooth * pitch1,
+                                             pitch1),
+            root2_MPa=(stresses.roots[1].near(round(theta2 / pitch2) * pitch2, pitch2)
+                       if math.isfinite(theta2) else 0.0),
+            peak_on_round=bool(load > 0 and grid.on_round[i - blk.start])))
+    return tuple(out)
+
+
+def _hertz(c, load: float, case: SolveCase):
+    try:
+        return line_contact(c.radius1, c.radius2, load, case.thickness, case.E, case.nu)
+    except ParameterError:
+        return None
+
+
+@dataclass(eq=False)
+class RingDetail:
+    """The ring model's record of a solved position: the model, case, contact, its solution and
+    the stresses."""
+
+    model: RingModel = field(repr=False)
+    case: SolveCase
+    contact: RingContact = field(repr=False)
+    solution: RingContactSolution = field(repr=False)
+    stresses: RingStresses = field(repr=False)
+
+    def body_fields(self) -> tuple[BodyField, ...]:
+        """Both gears whole, in the fixed frame at the solved position: every sector's field
+        and nodal stresses, and the contact pressure on the profile nodes."""
+        p = self.case.params
+        turns = (p.ratio * self.case.beta + self.solution.rotation, self.case.beta)
+        offsets = (np.array([0.0, p.e]), np.zeros(2))
+        out = []
+        for g, side in enumerate(self.model.gears):
+            loads = self.contact.loads[g]
+            fields = side.fields(loads, self.solution.pressure, range(side.count))
+            m = side.body.mesh
+            n = m.doflocs.shape[1]
+            points, cells, parts = [], [], []
+            pressure = self._nodal_pressure(g)
+            for k in range(side.count):
+                u = fields[k]
+                s = recover(side.body, u)
+                data = vtu_fields(u, s, {"contact_pressure": pressure.get(k, np.zeros(n))})
+                angle = k * side.pitch + turns[g]
+                data["displacement"][:, :2] = rotate(data["displacement"][:, :2], angle)
+                data.update(s.turned(angle))
+                points.append(rotate(m.doflocs.T, angle) + offsets[g])
+                cells.append(m.dofs.element_dofs.T + k * n)
+                parts.append(data)
+            data = {key: np.concatenate([d[key] for d in parts]) for key in parts[0]}
+            out.append(BodyField(side.body.name, np.vstack(points), np.vstack(cells), data))
+        return tuple(out)
+
+    def _nodal_pressure(self, gear: int) -> dict[int, np.ndarray]:
+        """Per sector, the grid pressure at the template's profile nodes (MPa), by polar
+        angle along each grid's points on that gear."""
+        side = self.model.gears[gear]
+        m = side.body.mesh
+        nodes = np.unique(m.facets[:, side.facets].ravel())
+        nodes = np.unique(np.concatenate([nodes, m.nvertices + side.facets]))
+        local = m.doflocs[:, nodes].T
+        pts = self.contact.x if gear == 0 else self.contact.facing[0]
+        out = {}
+        for k in range(len(self.contact.grids)):
+            blk = self.contact.block(k)
+            pk = self.solution.pressure[blk]
+            if pk.max() <= 0:
+                continue
+            ang = np.arctan2(pts[blk, 1], pts[blk, 0])
+            ref = ang[len(ang) // 2]
+            ang = ref + (ang - ref + np.pi) % (2 * np.pi) - np.pi
+            order = np.argsort(ang)
+            centre = int(side.locate(pts[blk][[len(ang) // 2]]).sector[0])
+            for sector in ((centre + d) % side.count for d in (-1, 0, 1)):
+                a = np.arctan2(local[:, 1], local[:, 0]) + sector * side.pitch
+                a = ref + (a - ref + np.pi) % (2 * np.pi) - np.pi
+                on = np.interp(a, ang[order], pk[order], left=0.0, right=0.0)
+                v = out.setdefault(sector, np.zeros(m.doflocs.shape[1]))
+                v[nodes] = np.maximum(v[nodes], on)
+        return out
+
+    def contact_zone(self) -> ContactZone:
+        """The peak of the most loaded tooth, fixed frame."""
+        p = self.case.params
+        pressure = self.solution.pressure
+        loads = [float(self.contact.weight[self.contact.block(k)] @ pressure[self.contact.block(k)])
+                 for k in range(len(self.contact.grids))]
+        k = int(np.argmax(loads))
+        blk = self.contact.block(k)
+        i = blk.start + int(np.argmax(pressure[blk]))
+        x = rotate(self.contact.x[i:i + 1], p.ratio * self.case.beta + self.solution.rotation)[0]
+        x = x + np.array([0.0, p.e])
+        return ContactZone((float(x[0]), float(x[1])), local_half_width(self.contact, pressure, i),
+                           f"tooth {self.contact.grids[k].tooth}")
+

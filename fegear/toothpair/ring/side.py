@@ -1,0 +1,193 @@
+"""One gear of the ring model: its template sector as a cyclic body, where a point of the gear
+lies in which sector, loads on its profile, and what its finite elements say at a point.
+
+Sector k of a gear is its template turned by k pitches about the gear's centre; a point of the
+gear (its own frame) is carried into the template by turning it back. The template's unit-load
+responses (a clamped field and the loads carried to the cuts) are formed once per template dof
+when a load first reaches it, and kept for every later position, torque and tooth: every tooth
+loads the same template dofs.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from ...contact import locate_on_facets, p2_edge_shape
+from ...fe import CyclicBody, Probe, facet_nodes
+from ...planar import rotate
+from .template import Template
+
+
+@dataclass(frozen=True)
+class Located:
+    """Points carried into the template: sector index, template-frame positions and the
+    rotation (rad) that takes template vectors to the gear's frame."""
+
+    sector: np.ndarray
+    local: np.ndarray
+    turn: np.ndarray
+
+
+@dataclass(frozen=True)
+class LoadBlock:
+    """The loads that a set of unknowns (columns) puts on one sector: template ``dofs``, the
+    ``columns`` they come from and the dense (dofs × columns) map, N per unit unknown."""
+
+    dofs: np.ndarray
+    columns: np.ndarray
+    matrix: np.ndarray
+
+    def vector(self, values: np.ndarray, ndofs: int) -> np.ndarray:
+        """The sector's load vector (ndofs,) for the unknowns' ``values`` (all columns)."""
+        f = np.zeros(ndofs)
+        f[self.dofs] = self.matrix @ values[self.columns]
+        return f
+
+
+@dataclass(frozen=True)
+class _Mesh:
+    """What :func:`~fegear.contact.search.locate_on_facets` needs of a body: its mesh."""
+
+    mesh: object
+
+
+@dataclass(eq=False)
+class GearSide:
+    """A gear of the ring: ``body`` (the cyclic template) and its ``template``; ``count``
+    sectors of ``pitch`` from polar angle ``template.start``."""
+
+    body: CyclicBody
+    template: Template
+    facets: np.ndarray = field(init=False, repr=False)      # the template's profile facets
+    probe: Probe = field(init=False, repr=False)
+    response_s: float = 0.0                                 # time spent forming responses
+    _column: np.ndarray = field(init=False, repr=False)     # template dof → response column
+    _X: np.ndarray = field(init=False, repr=False)          # clamped fields, by column
+    _rho: np.ndarray = field(init=False, repr=False)        # cut loads, by column
+    _used: int = 0
+    _cut_field: np.ndarray | None = field(default=None, repr=False)
+
+    def __post_init__(self) -> None:
+        m = self.body.mesh
+        self.facets = np.concatenate([m.boundaries[n] for n in self.template.profile])
+        self.probe = Probe(m)
+        self._column = np.full(self.body.ndofs, -1, dtype=np.int64)
+        self._X = np.zeros((self.body.ndofs, 0))
+        self._rho = np.zeros((len(self.body.interface), 0))
+
+    @property
+    def count(self) -> int:
+        return self.body.count
+
+    @property
+    def pitch(self) -> float:
+        return self.template.pitch
+
+    def locate(self, x: np.ndarray) -> Located:
+        """Sector and template-frame position of points ``x`` (n, 2) of the gear."""
+        phi = np.arctan2(x[:, 1], x[:, 0])
+        k = np.floor((phi - self.template.start) / self.pitch).astype(int)
+        turn = k * self.pitch
+        return Located(np.mod(k, self.count), rotate(x, -turn), turn)
+
+    def facet_size(self, local: np.ndarray) -> np.ndarray:
+        """Length (mm) of the template profile facet under each template-frame point."""
+        fac, _ = locate_on_facets(_Mesh(self.body.mesh), self.facets, local)
+        ends = self.body.mesh.p[:, self.body.mesh.facets[:, fac]]
+        return np.linalg.norm(ends[:, 1] - ends[:, 0], axis=0)
+
+    def nodal_loads(self, x: np.ndarray, direction: np.ndarray, column: np.ndarray,
+                    size: np.ndarray) -> dict[int, LoadBlock]:
+        """Consistent nodal loads of point forces at profile points ``x`` (n, 2, gear frame)
+        along unit ``direction`` s (n, 2): point i loads unknown ``column[i, j]`` with
+        ``size[i, j]`` N per unit value (both (n, c))."""
+        where = self.locate(x)
+        d_local = rotate(direction, -where.turn)
+        fac, s = locate_on_facets(_Mesh(self.body.mesh), self.facets, where.local)
+        shape = p2_edge_shape(np.clip(s, 0.0, 1.0))
+        nodes = facet_nodes(self.body.mesh, fac)
+        out = {}
+        for k in np.unique(where.sector):
+            sel = where.sector == k
+            parts = [(2 * nodes[sel, c] + d, shape[sel, c] * d_local[sel, d] * size[sel, j],
+                      column[sel, j])
+                     for c in range(3) for d in range(2) for j in range(column.shape[1])]
+            rows, vals, cols = (np.concatenate(v) for v in zip(*parts))
+            dofs, r = np.unique(rows, return_inverse=True)
+            columns, c = np.unique(cols, return_inverse=True)
+            matrix = np.zeros((len(dofs), len(columns)))
+            np.add.at(matrix, (r, c), vals)
+            out[int(k)] = LoadBlock(dofs, columns, matrix)
+        return out
+
+    def rows(self, local: np.ndarray, direction: np.ndarray,
+             strain: bool = False) -> sp.csr_matrix:
+        """Rows over template dofs giving, at template-frame points ``local``, the displacement
+        along ``direction`` (n, 2), or (``strain``) the strain along it."""
+        return self.probe.rows(local, direction, strain=strain)
+
+    # --- responses to unit loads ------------------------------------------------------------
+    def _form(self, dofs: np.ndarray) -> np.ndarray:
+        """Response columns of template ``dofs``, forming those not formed yet."""
+        new = np.unique(dofs[self._column[dofs] < 0])
+        if len(new):
+            t0 = time.perf_counter()
+            need = self._used + len(new)
+            if need > self._X.shape[1]:
+                cap = max(need, 2 * self._X.shape[1], 256)
+                self._X = np.hstack([self._X, np.zeros((self._X.shape[0],
+                                                        cap - self._X.shape[1]))])
+                self._rho = np.hstack([self._rho, np.zeros((self._rho.shape[0],
+                                                            cap - self._rho.shape[1]))])
+            E = np.zeros((self.body.ndofs, len(new)))
+            E[new, np.arange(len(new))] = 1.0
+            cols = slice(self._used, need)
+            self._X[:, cols] = self.body.clamped(E)
+            self._rho[:, cols] = self.body.cut_loads(E)
+            self._column[new] = np.arange(self._used, need)
+            self._used = need
+            self.response_s += time.perf_counter() - t0
+        return self._column[dofs]
+
+    def clamped_rows(self, rows: sp.csr_matrix, dofs: np.ndarray) -> np.ndarray:
+        """``rows`` applied to the clamped fields of unit loads at template ``dofs``:
+        (rows, dofs)."""
+        cols = self._form(dofs)
+        rows = sp.csr_matrix(rows)
+        used = np.unique(rows.indices)
+        return np.asarray(rows[:, used] @ self._X[np.ix_(used, cols)])
+
+    def cut_loads(self, dofs: np.ndarray) -> np.ndarray:
+        """Cut loads (2 n_f, dofs) of unit loads at template ``dofs``."""
+        cols = self._form(dofs)   # before reading _rho: forming may grow it
+        return self._rho[:, cols]
+
+    @property
+    def cut_field(self) -> np.ndarray:
+        """Template field (ndofs, 2 n_f) per unit cut displacement: interior by Ψ."""
+        if self._cut_field is None:
+            self._cut_field = self.body.from_cuts(np.eye(len(self.body.interface)))
+        return self._cut_field
+
+    # --- fields ------------------------------------------------------------------------------
+    def fields(self, loads: dict[int, LoadBlock], values: np.ndarray,
+               sectors) -> dict[int, np.ndarray]:
+        """Template-frame displacement (ndofs,) of each of ``sectors`` under the ``loads`` at
+        the unknowns' ``values``."""
+        f = {t: b.vector(values, self.body.ndofs) for t, b in loads.items()}
+        return self.body.displacement({t: v for t, v in f.items() if np.any(v)}, sectors)
+
+    def displacement_at(self, x: np.ndarray, fields: dict[int, np.ndarray]) -> np.ndarray:
+        """Displacement (n, 2, gear frame) at points ``x`` of the gear from per-sector
+        ``fields``; every sector the points fall in must be there."""
+        where = self.locate(x)
+        out = np.zeros_like(x)
+        for k in np.unique(where.sector):
+            sel = where.sector == k
+            u = self.probe.displacement(where.local[sel], fields[int(k)])
+            out[sel] = rotate(u, where.turn[sel])
+        return out

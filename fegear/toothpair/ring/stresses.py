@@ -1,0 +1,240 @@
+"""Stresses of a solved position of the ring model: the fields of the loaded sectors, the root
+stresses, and the contact stresses from a submodel at each contact peak.
+
+Root stress is the largest first principal stress on profile nodes in the lower ``ROOT_BAND``
+of the tooth height, from the loaded sectors' template fields (nodal stresses by L2 projection,
+as the sector model reads them). At a contact, σ_nn = −p on the surface and the tangential
+stress is E (ε_tt,FE(y) − ε_tt,half-plane(y)) − p at the matching depth: the template's strain
+with the half-plane's part replaced by its exact surface value. That estimate picks the peak;
+the von Mises stress there is read from a submodel (:mod:`fegear.fe.submodel`), a disk about the
+peak meshed at a fraction of the local contact width, held at the template field on its cut and
+loaded by the grid pressure: it resolves the stress under and beside a contact µm wide
+(the L2-projected template stress cannot), subsurface included.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...contact import strain_matrix
+from ...fe import (
+    StarCurve,
+    Submodel,
+    SubmodelProblem,
+    facet_nodes,
+    recover,
+    solve_submodels,
+)
+from ...planar import rotate, wrap
+from .influence import RingContact
+from .model import RingModel
+from .side import GearSide
+
+SUB_FACETS = 6.0       # a submodel reaches this many template facets from the peak …
+SUB_WIDTHS = 4.0       # … and this many local contact half-widths
+SUB_FLOOR = 1e-4       # its smallest element, in modules (0.2 µm at m = 2)
+SUB_FOCUS = 3.0        # its elements are finest within this many half-widths of the peak
+SUB_CANDIDATES = 0.97  # peaks whose estimate comes within this fraction of the highest get one
+
+
+@dataclass(frozen=True)
+class RootZone:
+    """One gear's root-zone nodes over the computed sectors: polar angle (rad, gear frame),
+    σ1 (MPa)."""
+
+    angle: np.ndarray
+    s1: np.ndarray
+
+    @property
+    def max(self) -> float:
+        return float(self.s1.max()) if len(self.s1) else 0.0
+
+    def near(self, centre: float, pitch: float) -> float:
+        """Largest σ1 within half a ``pitch`` of the polar angle ``centre``."""
+        sel = np.abs(wrap(self.angle - centre)) <= 0.5 * pitch
+        return float(self.s1[sel].max()) if sel.any() else 0.0
+
+
+@dataclass(eq=False)
+class RingStresses:
+    """The fields (sector → template-frame displacement, per gear), their nodal stresses, the
+    root zones, the surface von Mises estimate per grid point (2, n) and the submodels."""
+
+    fields: tuple[dict, dict] = field(repr=False)
+    stresses: tuple[dict, dict] = field(repr=False)
+    roots: tuple[RootZone, RootZone]
+    surface: np.ndarray = field(repr=False)
+    submodels: tuple[tuple[int, Submodel], ...] = field(repr=False)
+    bulk_von_mises: float       # the templates' largest, away from the contacts
+
+    @property
+    def von_mises_max(self) -> float:
+        """Largest von Mises stress: the submodels' at the contacts, the templates' elsewhere."""
+        sub = [sm.peak(sm.stress.von_mises)[0] for _, sm in self.submodels]
+        return max(sub + [self.bulk_von_mises])
+
+
+def ring_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray
+                  ) -> RingStresses:
+    """Fields of the loaded sectors and one on each side, their stresses, root zones, the
+    surface estimate and the submodels at the contact peaks."""
+    fields = tuple(_fields(side, loads, pressure)
+                   for side, loads in zip(model.gears, contact.loads))
+    stresses = tuple({k: recover(side.body, u) for k, u in f.items()}
+                     for side, f in zip(model.gears, fields))
+    roots = tuple(_root_zone(side, s) for side, s in zip(model.gears, stresses))
+    surface = surface_von_mises(model, contact, pressure, fields)
+    peaks = _peaks(contact, pressure, surface)
+    problems = [contact_submodel(model, contact, pressure, fields, g, i) for g, i in peaks]
+    subs = tuple(zip((g for g, _ in peaks), solve_submodels(problems, model.case.material)))
+    bulk = max(_bulk_von_mises(side, s, pts[pressure > 0])
+               for side, s, pts in zip(model.gears, stresses, (contact.x, contact.facing[0])))
+    return RingStresses(fields, stresses, roots, surface, subs, bulk)
+
+
+def _bulk_von_mises(side: GearSide, stresses: dict, loaded: np.ndarray) -> float:
+    """The template's largest von Mises stress farther than SUB_FACETS of its largest facet
+    under the ``loaded`` points (gear frame) from them: nearer, the contact is not resolved
+    (the submodels cover it)."""
+    from scipy.spatial import cKDTree
+
+    x = side.body.mesh.doflocs.T
+    reach = SUB_FACETS * float(side.facet_size(side.locate(loaded).local).max()) \
+        if len(loaded) else 0.0
+    tree = cKDTree(loaded) if len(loaded) else None
+    out = 0.0
+    for k, s in stresses.items():
+        far = np.ones(len(x), bool) if tree is None else \
+            tree.query(rotate(x, k * side.pitch))[0] > reach
+        if far.any():
+            out = max(out, float(s.von_mises[far].max()))
+    return out
+
+
+def _fields(side: GearSide, loads, pressure: np.ndarray) -> dict[int, np.ndarray]:
+    loaded = [t for t, b in loads.items() if np.any(pressure[b.columns] > 0)]
+    sectors = sorted({(t + k) % side.count for t in loaded for k in (-1, 0, 1)})
+    return side.fields(loads, pressure, sectors)
+
+
+def _root_zone(side: GearSide, stresses: dict) -> RootZone:
+    nodes = side_root_nodes(side)
+    x = side.body.mesh.doflocs[:, nodes].T
+    angle, s1 = [], []
+    for k, s in stresses.items():
+        angle.append(np.arctan2(x[:, 1], x[:, 0]) + k * side.pitch)
+        s1.append(s.max_principal[nodes])
+    return RootZone(np.concatenate(angle) if angle else np.zeros(0),
+                    np.concatenate(s1) if s1 else np.zeros(0))
+
+
+def side_root_nodes(side: GearSide) -> np.ndarray:
+    """Template profile nodes whose radius lies in the template's root band."""
+    m = side.body.mesh
+    nodes = np.unique(np.concatenate([facet_nodes(m, m.boundaries[n]).ravel()
+                                      for n in side.template.profile]))
+    r = np.linalg.norm(m.doflocs[:, nodes], axis=0)
+    lo, hi = side.template.root_band
+    return nodes[(r >= lo - 1e-9) & (r <= hi + 1e-9)]
+
+
+def surface_von_mises(model: RingModel, contact: RingContact, pressure: np.ndarray,
+                      fields: tuple[dict, dict]) -> np.ndarray:
+    """Von Mises (MPa) at the contact surface of each gear per grid point, (2, n): plane
+    stress, σ_nn = −p, σ_nt = 0, σ_tt from the template strain at depth with the half-plane's
+    part replaced by its surface value (zero where no pressure acts)."""
+    E, nu = model.case.E, model.case.nu
+    out = np.zeros((2, contact.npoints))
+    loaded = pressure > 0
+    for g, side in enumerate(model.gears):
+        m = contact.matching[g]
+        tangent = np.column_stack([-m.direction[:, 1], m.direction[:, 0]])
+        eps_fe = np.zeros(contact.npoints)
+        for k in np.unique(m.at.sector[loaded]):
+            rows = np.flatnonzero((m.at.sector == k) & loaded)
+            u = fields[g].get(int(k))
+            if u is not None:
+                eps_fe[rows] = side.rows(m.at.local[rows], tangent[rows], strain=True) @ u
+        eps_hp = np.zeros(contact.npoints)
+        for k, grid in enumerate(contact.grids):
+            blk = contact.block(k)
+            eps_hp[blk] = strain_matrix(grid.s, m.depth[blk], grid.s, E, nu) @ pressure[blk]
+        sig_t = E * (eps_fe - eps_hp) - pressure
+        out[g] = np.where(loaded, np.sqrt(pressure ** 2 + sig_t ** 2 + pressure * sig_t), 0.0)
+    return out
+
+
+def _peaks(contact: RingContact, pressure: np.ndarray, surface: np.ndarray):
+    """(gear, grid point) of the peaks that get a submodel: per gear, each tooth's highest
+    surface estimate if it comes within SUB_CANDIDATES of that gear's highest."""
+    out = []
+    for g in (0, 1):
+        top = surface[g].max()
+        if top <= 0:
+            continue
+        for k in range(len(contact.grids)):
+            blk = contact.block(k)
+            i = blk.start + int(np.argmax(surface[g, blk]))
+            if surface[g, i] >= SUB_CANDIDATES * top:
+                out.append((g, i))
+    return out
+
+
+def local_half_width(contact: RingContact, pressure: np.ndarray, i: int) -> float:
+    """Contact half-width (mm) about grid point ``i`` from the width where the pressure stays
+    above half its value there (√3/2 of b for Hertz), within the point's grid."""
+    k = int(contact.grid_index[i])
+    blk = contact.block(k)
+    s, p = contact.grids[k].s, pressure[blk]
+    j = i - blk.start
+    lo = hi = j
+    while lo > 0 and p[lo - 1] >= 0.5 * p[j]:
+        lo -= 1
+    while hi < len(p) - 1 and p[hi + 1] >= 0.5 * p[j]:
+        hi += 1
+    lo_s = s[lo] - (s[lo] - s[lo - 1]) * (p[lo] - 0.5 * p[j]) / max(p[lo] - p[lo - 1], 1e-300) \
+        if lo > 0 else s[lo]
+    hi_s = s[hi] + (s[hi + 1] - s[hi]) * (p[hi] - 0.5 * p[j]) / max(p[hi] - p[hi + 1], 1e-300) \
+        if hi < len(p) - 1 else s[hi]
+    return max(hi_s - lo_s, s[min(j + 1, len(s) - 1)] - s[max(j - 1, 0)]) / np.sqrt(3.0)
+
+
+def contact_submodel(model: RingModel, contact: RingContact, pressure: np.ndarray,
+                     fields: tuple[dict, dict], gear: int, i: int) -> SubmodelProblem:
+    """The submodel of ``gear`` about grid point ``i``'s contact (see module docstring)."""
+    side = model.gears[gear]
+    k = int(contact.grid_index[i])
+    blk = contact.block(k)
+    grid, p = contact.grids[k], pressure[blk]
+    b = local_half_width(contact, pressure, i)
+    if gear == 0:
+        curve = StarCurve(model.shape.point, inside=True)
+        x = contact.x[i]
+        angles = grid.phi
+    else:
+        curve2 = model.curve2
+
+        def point(theta):
+            r = curve2.radius_at_angle(theta)
+            return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
+
+        curve = StarCurve(point, inside=False)
+        x = contact.facing[0][i]
+        angles = np.unwrap(np.arctan2(contact.facing[0][blk, 1], contact.facing[0][blk, 0]))
+    centre = float(np.arctan2(x[1], x[0]))
+    order = np.argsort(angles)
+    ang, pr = angles[order], p[order]
+
+    def pressure_at(y):
+        a = ang[0] + wrap(np.arctan2(y[:, 1], y[:, 0]) - ang[0])
+        return np.interp(a, ang, pr, left=0.0, right=0.0)
+
+    facet = float(side.facet_size(side.locate(x[None]).local)[0])
+    radius = max(SUB_FACETS * facet, SUB_WIDTHS * b)
+    size = max(b / model.level.sub_per_b, SUB_FLOOR * model.case.params.m)
+    return SubmodelProblem(curve, centre, radius, size, SUB_FOCUS * b, pressure_at,
+                           lambda y: side.displacement_at(y, fields[gear]),
+                           name=f"gear{gear + 1}_contact")
+

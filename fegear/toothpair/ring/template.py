@@ -1,0 +1,145 @@
+"""One tooth pitch of each gear, meshed once per geometry: the template sectors of the ring model.
+
+Every tooth of a gear has the same shape, so gear k's sector n is its template turned by n
+pitches. Gear 1's template runs from the middle of tooth 0's tip (polar angle
+``tooth_center``) one pitch counter-clockwise: tooth 0's leading flank (the one a positive
+torque loads), the tooth space and its root, tooth 1's trailing flank. Gear 2's runs from a
+tooth tip (ξ = 0) to the next. Both are cut radially down to gear 1's bore (held: its elastic
+part vanishes there, the rigid rotation carries the torque) and out to gear 2's rim (held);
+the two cuts of a template carry matching nodes (:class:`~fegear.fe.Periodic`).
+
+The contact is not resolved by these meshes: its near field is the half-plane's
+(:mod:`fegear.contact.halfplane`), so the flanks need only be fine enough to carry a load a few
+elements deep, and the sizes follow the module and the tip round, not the load. Refined: the
+root zones (the lower ``ROOT_BAND`` of the tooth height, for the root stress), both flanks,
+gear 1's tip rounds and the tangent points where a round meets the flank.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ...fe import BodyGeometry, Periodic, Refinement, Segment
+from ...geometry import Cycloid, PairParameters, RoundedProfile
+from ..segments import ROOT_BAND, profile_segments, root_half_angle
+
+
+@dataclass(frozen=True)
+class TemplateSizes:
+    """Element sizes of the templates (mm): root zones, flanks, gear 1's rounds and their
+    tangent points, and the rest of the body; the growth away from them (mm per mm)."""
+
+    root: float
+    flank: float
+    round: float
+    junction: float
+    body: float
+    growth: float = 0.3
+
+
+@dataclass(frozen=True)
+class Template:
+    """A gear's template sector: its geometry, the boundary names along its tooth profile, the
+    polar angle where it starts (rad, the gear's own frame), its pitch (rad), the name of its
+    held boundary and of its periodic cut, and the radii of its root zone (mm)."""
+
+    geometry: BodyGeometry
+    profile: tuple[str, ...]
+    start: float
+    pitch: float
+    held: str
+    cut: str
+    root_band: tuple[float, float]
+
+
+def gear1_template(p: PairParameters, shape: RoundedProfile, sizes: TemplateSizes,
+                   rim: float) -> Template:
+    """Gear 1's template: its profile from the middle of tooth 0's tip one pitch on, two radial
+    cuts and the bore ``rim`` below the root."""
+    pitch = shape.pitch
+    a, b = shape.tooth_center, shape.tooth_center + pitch
+    rho = shape.radius(np.linspace(0, pitch, 400) + shape.phi_space)
+    r_min, r_max = float(rho.min()), float(rho.max())
+    bore = r_min - rim
+    space = shape.phi_space + pitch  # the tooth space between tooth 0 and tooth 1
+    root_half = root_half_angle(shape.radius, space, pitch, r_min, r_max)
+    rounds = [(c - h, c + h) for c, h, _ in shape.fillet_angles(range(-1, 3))
+              if a < c < b]
+    span = 2.0 * sizes.round / r_max  # the tangent points: finer over ± two round elements
+    marks = [(x - span, x + span, "g1_junction") for lo, hi in rounds for x in (lo, hi)]
+    marks += [(lo - 4 * span, hi + 4 * span, "g1_round") for lo, hi in rounds]
+    marks += [(x, x, None) for lo, hi in rounds for x in (lo, hi)]  # cut at the curvature jump
+
+    def project(x):
+        return shape.point(np.arctan2(x[:, 1], x[:, 0]))
+
+    segs, names = profile_segments(
+        "g1", shape.point, project, a, b, [], [("g1_root", space, root_half)], marks=marks,
+        sizes={"g1_root": sizes.root, "g1_flank": sizes.flank, "g1_round": sizes.round,
+               "g1_junction": sizes.junction})
+    pa, pb = shape.point(np.array([a]))[0], shape.point(np.array([b]))[0]
+    t = np.linspace(b, a, 40)
+    bore_pts = bore * np.column_stack([np.cos(t), np.sin(t)])
+
+    def bore_project(x):
+        return bore * x / np.linalg.norm(x, axis=1)[:, None]
+
+    geo = BodyGeometry("gear1", (
+        *segs,
+        Segment("g1_cut_b", np.array([pb, bore_pts[0]])),
+        Segment("g1_bore", bore_pts, bore_project),
+        Segment("g1_cut_a", np.array([bore_pts[-1], pa])),
+    ), size=sizes.body, refinements=(
+        Refinement(("g1_root",), sizes.root, sizes.growth),
+        Refinement(("g1_flank",), sizes.flank, sizes.growth),
+        *([Refinement(("g1_round",), sizes.round, sizes.growth),
+           Refinement(("g1_junction",), sizes.junction, sizes.growth)] if rounds else [])),
+        periodic=(Periodic("g1_cut_b", "g1_cut_a", pitch),))
+    band = (r_min, r_min + ROOT_BAND * (r_max - r_min))
+    return Template(geo, names, a, pitch, "g1_bore", "g1_cut_b", band)
+
+
+def gear2_template(p: PairParameters, curve: Cycloid, sizes: TemplateSizes,
+                   rim: float) -> Template:
+    """Gear 2's template: its profile from a tooth tip (ξ = 0) to the next, two radial cuts and
+    the fixed rim ``rim`` beyond the root."""
+    pitch = 2 * math.pi / p.z2
+    a, b = 0.0, pitch
+    r_min, r_max = p.r0 - 2 * p.e1, p.r0 + 2 * p.e1
+    outer = r_max + rim
+
+    def g2_curve(theta):
+        r = curve.radius_at_angle(theta)
+        return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
+
+    def project(x):
+        return g2_curve(np.arctan2(x[:, 1], x[:, 0]))
+
+    root_half = root_half_angle(lambda t: curve.radius_at_angle(t), 0.5 * pitch, pitch, r_min,
+                                r_max, inverted=True)
+    segs, names = profile_segments(
+        "g2", g2_curve, project, a, b, [], [("g2_root", 0.5 * pitch, root_half)],
+        sizes={"g2_root": sizes.root, "g2_flank": sizes.flank})
+    t = np.linspace(a, b, 40)
+    rim_pts = outer * np.column_stack([np.cos(t), np.sin(t)])
+
+    def rim_project(x):
+        return outer * x / np.linalg.norm(x, axis=1)[:, None]
+
+    pa, pb = g2_curve(np.array([a]))[0], g2_curve(np.array([b]))[0]
+    reversed_segs = tuple(Segment(s.name, s.points[::-1], s.project, s.zone)
+                          for s in reversed(segs))
+    geo = BodyGeometry("gear2", (
+        Segment("g2_rim", rim_pts, rim_project),
+        Segment("g2_cut_b", np.array([rim_pts[-1], pb])),
+        *reversed_segs,
+        Segment("g2_cut_a", np.array([pa, rim_pts[0]])),
+    ), size=sizes.body, refinements=(
+        Refinement(("g2_root",), sizes.root, sizes.growth),
+        Refinement(("g2_flank",), sizes.flank, sizes.growth)),
+        periodic=(Periodic("g2_cut_b", "g2_cut_a", pitch),))
+    band = (r_max - ROOT_BAND * (r_max - r_min), r_max)
+    return Template(geo, names, a, pitch, "g2_rim", "g2_cut_b", band)

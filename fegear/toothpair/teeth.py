@@ -1,0 +1,114 @@
+"""Which teeth of a pair can touch at a rolling position, and what the unloaded contact
+analysis says of them: shared by both tooth-pair models.
+
+:func:`choose_teeth` picks the gear-1 teeth to give contact unknowns from the clearance table
+and an estimate of the loaded rotation; after a solve the same rule, at the solved rotation,
+tells whether a tooth left out would have closed. :func:`candidate_data` gives each chosen
+tooth's predicted contact point and the curvature radii there (for Hertz beside the FE
+values). :class:`Gear2Master` is gear 2's exact curve placed at a rolling angle.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..contact import CurvePoints
+from ..errors import GeometryError
+from ..geometry import Cycloid, PairParameters, RoundedProfile, gear2_curve
+from ..planar import rotate
+
+TOOTH_STIFFNESS = 14.0   # N/(mm·µm): ISO 6336 single-pair stiffness c', for the load estimate
+MARGIN_UM = 3.0          # pair every tooth whose clearance is below the rigid closure + 3 µm,
+MARGIN_FACTOR = 1.5      # … or below 1.5 × the closure + 3 µm within NEAR_TEETH of such a tooth
+NEAR_TEETH = 2
+INTERFERENCE_UM = 1e-3   # a clearance below −1 nm of arc is an interference (touching teeth
+                         # of a conformal pair come out at about −2e-10 µm)
+
+
+@dataclass(frozen=True)
+class Gear2Master:
+    """Gear 2's exact curve at rolling angle β, as an exact master curve (fixed frame)."""
+
+    curve: Cycloid
+    beta: float
+
+    def closest(self, points: np.ndarray) -> CurvePoints:
+        foot, normal, dist = self.curve.closest(rotate(np.asarray(points, float), -self.beta))
+        return CurvePoints(rotate(foot, self.beta), rotate(normal, self.beta), dist)
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """A gear-1 tooth paired for contact: unloaded clearance (µm of arc at r0), the predicted
+    contact point (fixed frame at β once the clearance is closed, mm), its polar angle on gear 1
+    (body frame, rad) and on gear 2 (body frame, rad), and the analytic curvature radii there
+    (mm, + convex)."""
+
+    tooth: int
+    clearance_um: float
+    point: tuple[float, float]
+    phi1: float
+    theta2: float
+    radius1: float
+    radius2: float
+
+
+def candidate_data(params: PairParameters, shape: RoundedProfile, state, teeth,
+                   beta: float) -> tuple[Candidate, ...]:
+    """Contact point, polar angles and curvature radii of each paired tooth's + flank at β
+    (teeth whose + flank has no contact point at β are left out)."""
+    g2 = gear2_curve(params)
+    alpha = params.ratio * beta
+    out = []
+    for c in state.teeth:
+        if c.tooth not in teeth or c.plus_point is None:
+            continue
+        x = np.array([c.plus_point])
+        o1 = np.array([0.0, params.e])
+        body1 = rotate(x - o1, -alpha)
+        phi1 = float(math.atan2(body1[0, 1], body1[0, 0]))
+        r1 = float(1.0 / shape.curvature(np.array([phi1]))[0])
+        # the gear-2 point is where that gear-1 point lands once the clearance is closed: on a
+        # nearly conformal flank the relative curvature is a small difference of two large
+        # ones, and gear 2's changes fast (the 6 µm of a baseline clearance doubled 1/R*)
+        x = rotate(x - o1, c.plus_um * 1e-3 / params.r0) + o1
+        foot = g2.closest(rotate(x, -beta))[0]
+        theta2 = float(math.atan2(foot[0, 1], foot[0, 0]))
+        xi = g2.xi_at_angle(np.array([theta2]))
+        r2 = float(g2.curvature_radius(xi)[0])
+        out.append(Candidate(c.tooth, float(c.plus_um), (float(x[0, 0]), float(x[0, 1])), phi1,
+                             theta2, r1, r2))
+    return tuple(out)
+
+
+def choose_teeth(state, closure_um: float, widen: int = 0) -> tuple[int, ...]:
+    """Gear-1 teeth to pair at one position, for a rigid closure ``closure_um`` (µm of arc at
+    r0) of gear 1 against its kinematic position.
+
+    A tooth is paired if its + clearance is below the closure plus MARGIN_UM, or, within
+    NEAR_TEETH of such a tooth, below MARGIN_FACTOR × the closure plus MARGIN_UM (the loaded
+    teeth's neighbours also move elastically); at least the closest tooth. ``widen`` adds that
+    many teeth on each side of every paired tooth (to show the choice is safe)."""
+    open_ = {c.tooth: c.plus_um for c in state.teeth if c.plus_um is not None}
+    z1 = len(state.teeth)
+    rigid = {t for t, c in open_.items() if c < closure_um + MARGIN_UM}
+    rigid = rigid or {min(open_, key=open_.get)}
+    near = {(t + k) % z1 for t in rigid for k in range(-NEAR_TEETH, NEAR_TEETH + 1)}
+    chosen = rigid | {t for t in near if t in open_
+                      and open_[t] < MARGIN_FACTOR * closure_um + MARGIN_UM}
+    chosen |= {(t + k) % z1 for t in chosen for k in range(-widen, widen + 1)}
+    return tuple(sorted(t for t in chosen if t in open_))
+
+
+def refuse_interference(states) -> None:
+    """A pair whose teeth overlap before any load is an interference fit: not modelled."""
+    for beta, state in states:
+        c = state.closest(+1)
+        if c.plus_um < -INTERFERENCE_UM:
+            raise GeometryError(f"the unloaded pair interferes: gear-1 tooth {c.tooth} overlaps "
+                                f"gear 2 by {-c.plus_um:.3g} µm of arc at r0 at β = "
+                                f"{math.degrees(beta):.4g}°; an interference fit is not "
+                                "modelled (raise tip_relief, or check shift and rotation)")
