@@ -127,7 +127,8 @@ class BodyField:
 
 @dataclass(frozen=True)
 class ContactZone:
-    """Where the most loaded contact sits (fixed frame, mm), its half-width (mm) and a label."""
+    """Where the highest contact stress sits (fixed frame, mm), the contact's half-width there
+    (mm) and a label."""
 
     centre: tuple[float, float]
     half_width: float
@@ -139,6 +140,8 @@ class SolutionDetail(Protocol):
     the output stage turns into pictures and VTU files."""
 
     def body_fields(self) -> tuple[BodyField, ...]: ...
+
+    def peak_fields(self) -> tuple[BodyField, ...]: ...
 
     def contact_zone(self) -> ContactZone: ...
 

@@ -25,15 +25,16 @@ def write_cycle_outputs(rows: list[dict], out: Path, title: str) -> dict[str, Pa
 
 def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool = True,
                        pictures: bool = True) -> dict[str, Path]:
-    """gear1.vtu, gear2.vtu (fixed frame; ``fields``), von_mises.png (``pictures``) and
-    summary.json in ``out``."""
+    """gear1.vtu, gear2.vtu and the ring model's contact submodels (gear1_contact.vtu, …;
+    fixed frame; ``fields``), von_mises.png (``pictures``) and summary.json in ``out``."""
     files = {}
     bodies = sol.detail.body_fields() if fields or pictures else ()
+    peaks = sol.detail.peak_fields() if fields or pictures else ()
     if fields:
-        for b in bodies:
+        for b in (*bodies, *peaks):
             files[b.name] = write_vtu(out / f"{b.name}.vtu", b.points, b.cells, b.data)
     if pictures:
-        files["png"] = von_mises_png(out / "von_mises.png", sol, bodies)
+        files["png"] = von_mises_png(out / "von_mises.png", sol, bodies, peaks)
     summary = {**summary, "files": {**summary.get("files", {}),
                                     **{k: str(v) for k, v in files.items()}}}
     files["summary"] = write_json(out / "summary.json", summary)

@@ -46,55 +46,64 @@ def cycle_png(path: Path, rows: list[dict], title: str, stresses: dict[str, str]
     return save_png(fig, path, 110)
 
 
-def von_mises_png(path: Path, sol: PairSolution, bodies) -> Path:
-    """Von Mises on both bodies (pyvista, off-screen) with a zoomed inset on the most loaded
-    contact zone; ``bodies``: the solution's :class:`~.case.BodyField` s."""
+def von_mises_png(path: Path, sol: PairSolution, bodies, peaks=()) -> Path:
+    """Von Mises (pyvista, off-screen): the loaded teeth, clipped at twice the larger root
+    stress so that the bending shows beside the contact; and the most loaded contact, with the
+    submodels that resolve its peak (``peaks``; the ring model) drawn over the bodies, on their
+    own scale. ``bodies`` and ``peaks``: :class:`~.case.BodyField` s."""
     import pyvista as pv
 
     pv.OFF_SCREEN = True
-    grids = []
-    for b in bodies:
-        pts = np.column_stack([b.points, np.zeros(len(b.points))])
-        tri = b.cells[:, :3]  # corner nodes: a linear picture is enough
-        cells = np.column_stack([np.full(len(tri), 3), tri]).ravel()
-        g = pv.PolyData(pts, faces=cells)
-        g.point_data["von Mises [MPa]"] = b.data["von_mises"]
-        grids.append(g)
-    # colour scale: up to twice the larger root stress, so that the tooth bending shows beside
-    # the (much higher, very local) contact peak, which saturates
-    vmax = min(max(float(g.point_data["von Mises [MPa]"].max()) for g in grids),
-               2.0 * max(sol.root_stress))
+    grids = [_polydata(pv, b) for b in bodies]
+    fine = [_polydata(pv, b) for b in peaks]
     zone = sol.detail.contact_zone()
-    cx, cy = zone.centre
-    zoom = max(8.0 * zone.half_width, 1.5 * sol.case.params.m)
+    p = sol.case.params
+    teeth_half = 2.5 * 2 * np.pi / p.z1 * p.r0          # two and a half gear-1 pitches
+    clip = 2.0 * max(sol.root_stress)
+    peak = max([sol.von_mises_max] + [float(g.point_data["vm"].max()) for g in fine])
+    if fine:
+        near = max(np.ptp(g.points[:, :2], axis=0).max() for g in fine)
+        zoom = min(0.6 * near, max(12.0 * zone.half_width, 0.02 * p.m))
+    else:
+        zoom = max(8.0 * zone.half_width, 0.05 * p.m)
 
-    def scene(plotter, focus, half, bar):
-        for g in grids:
-            plotter.add_mesh(g, scalars="von Mises [MPa]", cmap="turbo", clim=(0.0, vmax),
-                             show_scalar_bar=bar,
-                             scalar_bar_args={"vertical": True, "position_x": 0.82,
-                                              "title": "von Mises [MPa] (clipped)"})
+    def view(plotter, meshes, half, clim, title):
+        for g in meshes:
+            plotter.add_mesh(g, scalars="vm", cmap="turbo", clim=clim, show_scalar_bar=True,
+                             scalar_bar_args={"vertical": True, "position_x": 0.87,
+                                              "position_y": 0.1, "width": 0.08,
+                                              "title": title, "fmt": "%.0f",
+                                              "title_font_size": 14, "label_font_size": 12})
         plotter.camera_position = "xy"
-        plotter.camera.focal_point = (focus[0], focus[1], 0.0)
-        plotter.camera.position = (focus[0], focus[1], 10.0 * half + 100.0)
+        plotter.camera.focal_point = (zone.centre[0], zone.centre[1], 0.0)
+        plotter.camera.position = (zone.centre[0], zone.centre[1], 10.0 * half + 100.0)
         plotter.camera.parallel_projection = True
         plotter.camera.parallel_scale = half
 
-    bounds = np.vstack([g.points[:, :2] for g in grids])
-    centre = 0.5 * (bounds.min(axis=0) + bounds.max(axis=0))
-    half = 0.55 * float(np.ptp(bounds[:, 1]) + 0.5 * np.ptp(bounds[:, 0]))
-    p = pv.Plotter(off_screen=True, shape=(1, 2), window_size=(1600, 800))
-    p.subplot(0, 0)
-    scene(p, centre, half, False)
-    p.add_text(f"von Mises, T {sol.case.torque:g} N·m", font_size=10)
-    p.subplot(0, 1)
-    scene(p, (cx, cy), zoom, True)
-    p.add_text(f"contact zone ({zone.label}), ±{zoom:.2g} mm", font_size=10)
+    plot = pv.Plotter(off_screen=True, shape=(1, 2), window_size=(1600, 800))
+    plot.subplot(0, 0)
+    view(plot, grids, teeth_half, (0.0, clip), "vM [MPa]")
+    plot.add_text(f"von Mises, T {sol.case.torque:g} N·m: the loaded teeth\n"
+                  f"(colours clipped at {clip:.0f} MPa, twice the root stress)", font_size=11)
+    plot.subplot(0, 1)
+    view(plot, grids + fine, zoom, (0.0, peak), "vM [MPa]")
+    what = "submodels resolve the peak" if fine else "the mesh resolves the contact"
+    plot.add_text(f"contact peak ({zone.label}), ±{zoom * 1e3:.3g} µm: {what}\n"
+                  f"max {peak:.0f} MPa", font_size=11)
 
     def w(tmp: Path) -> None:
-        p.screenshot(str(tmp))
+        plot.screenshot(str(tmp))
 
     try:
         return write_atomic(path, w)
     finally:
-        p.close()
+        plot.close()
+
+
+def _polydata(pv, b):
+    """A body's corner triangles (a linear picture is enough) with its von Mises."""
+    pts = np.column_stack([b.points, np.zeros(len(b.points))])
+    tri = b.cells[:, :3]
+    g = pv.PolyData(pts, faces=np.column_stack([np.full(len(tri), 3), tri]).ravel())
+    g.point_data["vm"] = b.data["von_mises"]
+    return g

@@ -75,7 +75,8 @@ def solve_contact(model: RingModel, contact: RingContact, torque_nmm: float, the
         turns += 1
         theta += step
         g0, a = rigid_gap(model, contact.x, contact.beta, alpha + theta)
-        if abs(step) <= 1e-12 * max(abs(theta), 1e-9):
+        # settled to rounding: 1e-12 of the rotation, or a 1e-13 mm turn at the pitch circle
+        if abs(step) <= max(1e-12 * abs(theta), 1e-13 / model.case.params.r0):
             break
         if turns == MAX_TURNS:
             raise RingContactError(f"the rotation did not settle in {MAX_TURNS} "

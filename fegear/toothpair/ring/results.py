@@ -85,11 +85,9 @@ class RingDetail:
     def body_fields(self) -> tuple[BodyField, ...]:
         """Both gears whole, in the fixed frame at the solved position: every sector's field
         and nodal stresses, and the contact pressure on the profile nodes."""
-        p = self.case.params
-        turns = (p.ratio * self.case.beta + self.solution.rotation, self.case.beta)
-        offsets = (np.array([0.0, p.e]), np.zeros(2))
         out = []
         for g, side in enumerate(self.model.gears):
+            turn, offset = self._placement(g)
             loads = self.contact.loads[g]
             fields = side.fields(loads, self.solution.pressure, range(side.count))
             m = side.body.mesh
@@ -100,10 +98,10 @@ class RingDetail:
                 u = fields[k]
                 s = recover(side.body, u)
                 data = vtu_fields(u, s, {"contact_pressure": pressure.get(k, np.zeros(n))})
-                angle = k * side.pitch + turns[g]
+                angle = k * side.pitch + turn
                 data["displacement"][:, :2] = rotate(data["displacement"][:, :2], angle)
                 data.update(s.turned(angle))
-                points.append(rotate(m.doflocs.T, angle) + offsets[g])
+                points.append(rotate(m.doflocs.T, angle) + offset)
                 cells.append(m.dofs.element_dofs.T + k * n)
                 parts.append(data)
             data = {key: np.concatenate([d[key] for d in parts]) for key in parts[0]}
@@ -138,17 +136,34 @@ class RingDetail:
                 v[nodes] = np.maximum(v[nodes], on)
         return out
 
-    def contact_zone(self) -> ContactZone:
-        """The peak of the most loaded tooth, fixed frame."""
+    def peak_fields(self) -> tuple[BodyField, ...]:
+        """The contact submodels in the fixed frame: displacement, stresses."""
+        out = []
+        for gear, sm in self.stresses.submodels:
+            angle, offset = self._placement(gear)
+            m = sm.mesh.mesh
+            data = vtu_fields(sm.u, sm.stress)
+            data["displacement"][:, :2] = rotate(data["displacement"][:, :2], angle)
+            data.update(sm.stress.turned(angle))
+            name = f"gear{gear + 1}_contact"
+            name += "" if name not in {b.name for b in out} else f"_{len(out)}"
+            out.append(BodyField(name, rotate(m.doflocs.T, angle) + offset,
+                                 m.dofs.element_dofs.T, data))
+        return tuple(out)
+
+    def _placement(self, gear: int) -> tuple[float, np.ndarray]:
+        """The turn (rad) and offset (mm) that place ``gear``'s frame in the fixed one."""
         p = self.case.params
+        if gear == 0:
+            return p.ratio * self.case.beta + self.solution.rotation, np.array([0.0, p.e])
+        return self.case.beta, np.zeros(2)
+
+    def contact_zone(self) -> ContactZone:
+        """The highest grid pressure, fixed frame."""
         pressure = self.solution.pressure
-        loads = [float(self.contact.weight[self.contact.block(k)] @ pressure[self.contact.block(k)])
-                 for k in range(len(self.contact.grids))]
-        k = int(np.argmax(loads))
-        blk = self.contact.block(k)
-        i = blk.start + int(np.argmax(pressure[blk]))
-        x = rotate(self.contact.x[i:i + 1], p.ratio * self.case.beta + self.solution.rotation)[0]
-        x = x + np.array([0.0, p.e])
+        i = int(np.argmax(pressure))
+        k = int(self.contact.grid_index[i])
+        angle, offset = self._placement(0)
+        x = rotate(self.contact.x[i:i + 1], angle)[0] + offset
         return ContactZone((float(x[0]), float(x[1])), local_half_width(self.contact, pressure, i),
                            f"tooth {self.contact.grids[k].tooth}")
-

@@ -192,6 +192,10 @@ class SectorDetail:
                                  b.mesh.dofs.element_dofs.T, data))
         return tuple(out)
 
+    def peak_fields(self) -> tuple[BodyField, ...]:
+        """None: the sector meshes resolve the contacts themselves."""
+        return ()
+
     def contact_zone(self) -> ContactZone:
         loaded = max(self.contact.patches, key=lambda pt: pt.load)
         return ContactZone(tuple(loaded.center), loaded.half_width, loaded.pair)

@@ -1,0 +1,101 @@
+"""The ring model's pieces: the template sectors (one tooth pitch of each gear, periodic cut
+faces), a gear's sectors and loads, the contact grids."""
+
+import math
+
+import numpy as np
+import pytest
+from skfem import Basis, ElementTriP2, Functional
+
+from fegear.planar import rotate
+
+
+@pytest.fixture(scope="module")
+def model(baseline_ring):
+    return baseline_ring
+
+
+def _area(side):
+    m = side.body.mesh
+    return float(Functional(lambda w: 1.0 + 0.0 * w.x[0]).assemble(Basis(m, ElementTriP2())))
+
+
+def test_templates_tile_each_gear_exactly(model):
+    """z1 (z2) copies of a template cover gear 1 (gear 2): the template's area is one pitch of
+    the area between the exact rounded profile and the bore (rim), to the mesh's accuracy."""
+    p = model.case.params
+    shape = model.shape
+    g1, g2 = model.gears
+    phi = np.linspace(shape.tooth_center, shape.tooth_center + shape.pitch, 20001)
+    r1 = shape.radius(phi)
+    bore = float(np.min(np.linalg.norm(g1.body.mesh.doflocs, axis=0)))
+    expected1 = 0.5 * np.trapezoid(r1 ** 2, phi) - 0.5 * bore ** 2 * shape.pitch
+    assert _area(g1) == pytest.approx(expected1, rel=1e-6)
+    theta = np.linspace(0.0, 2 * math.pi / p.z2, 20001)
+    r2 = model.curve2.radius_at_angle(theta)
+    rim = float(np.max(np.linalg.norm(g2.body.mesh.doflocs, axis=0)))
+    expected2 = 0.5 * rim ** 2 * 2 * math.pi / p.z2 - 0.5 * np.trapezoid(r2 ** 2, theta)
+    assert _area(g2) == pytest.approx(expected2, rel=1e-6)
+
+
+def test_cut_faces_match_and_the_rings_close(model):
+    p = model.case.params
+    for side, z in zip(model.gears, (p.z1, p.z2)):
+        body = side.body
+        x = body.mesh.doflocs.T
+        a, b = body.face_a[0::2] // 2, body.face_b[0::2] // 2
+        assert np.abs(rotate(x[a], side.pitch) - x[b]).max() < 1e-9
+        assert side.count == z and side.pitch * z == pytest.approx(2 * math.pi)
+
+
+def test_a_point_turned_by_k_pitches_lands_in_sector_k_at_the_same_place(model):
+    side = model.gears[0]
+    rng = np.random.default_rng(1)
+    x = model.samples.x[rng.integers(0, len(model.samples.x), 50)]
+    here = side.locate(x)
+    for k in (1, 7, side.count - 1):
+        there = side.locate(rotate(x, k * side.pitch))
+        assert np.array_equal(there.sector, (here.sector + k) % side.count)
+        assert np.abs(there.local - here.local).max() < 1e-9
+
+
+def test_nodal_loads_carry_the_force_and_its_moment(model):
+    """The consistent nodal loads of point forces on gear 1's profile sum to the forces and to
+    their moment about the gear's centre, in every sector they fall in."""
+    side = model.gears[0]
+    rng = np.random.default_rng(2)
+    i = rng.integers(0, len(model.samples.x), 40)
+    x = rotate(model.samples.x[i], rng.integers(0, 44, 40) * side.pitch)
+    n = -rotate(model.samples.normal[i], np.arctan2(x[:, 1], x[:, 0])
+                - np.arctan2(model.samples.x[i, 1], model.samples.x[i, 0]))
+    size = rng.uniform(1.0, 5.0, (40, 1))
+    loads = side.nodal_loads(x, n, np.zeros((40, 1), dtype=int), size)
+    where = side.locate(x)
+    nodes = side.body.mesh.doflocs.T
+    for k, block in loads.items():
+        f = np.zeros(side.body.ndofs)
+        f[block.dofs] = block.matrix[:, 0]
+        sel = where.sector == k
+        local_force = rotate(n[sel], -where.turn[sel]) * size[sel]
+        assert f.reshape(-1, 2).sum(axis=0) == pytest.approx(local_force.sum(axis=0), abs=1e-9)
+        moment = np.sum(nodes[:, 0] * f[1::2] - nodes[:, 1] * f[0::2])
+        arm = where.local[sel]
+        expected = np.sum(arm[:, 0] * local_force[:, 1] - arm[:, 1] * local_force[:, 0])
+        assert moment == pytest.approx(expected, rel=1e-6, abs=1e-9)
+
+
+def test_grids_follow_the_local_hertz_width_and_refine_at_the_tip_round(model):
+    from fegear.fe import contact_modulus
+    from fegear.toothpair.ring.grid import tooth_grid, window
+
+    p = model.case.params
+    win = window(model.samples, model.curve2, 11, 135e-6, 0.0, p.e, 0.02)
+    grid = tooth_grid(model.samples, win, 300.0, contact_modulus(2.06e5, 2.06e5), 8, 2e-5)
+    step = np.diff(grid.s)
+    assert grid.on_round.any() and not grid.on_round.all()
+    # on the round (radius 0.25 mm) the Hertz width is far smaller than on the flank
+    assert step[grid.on_round[:-1]].max() < 0.2 * step[~grid.on_round[:-1]].max()
+    assert np.all(step > 0) and grid.weights.sum() == pytest.approx(grid.s[-1])
+    # the grid points lie on the exact rounded profile, normals outward and unit
+    assert np.abs(np.linalg.norm(grid.x, axis=1) - model.shape.radius(grid.phi)).max() < 1e-9
+    assert np.abs(np.linalg.norm(grid.normal, axis=1) - 1).max() < 1e-10

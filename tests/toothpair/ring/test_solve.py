@@ -1,0 +1,173 @@
+"""The ring model's solve: equilibrium and complementarity, Hertz at light load, insensitivity
+to its one modelling parameter (the matching depth), jiggled meshes, the mesh cycle's period,
+far-side contact, extreme shapes, and the sector model beside it."""
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+import fegear.toothpair.ring.model as ring_model
+from fegear.errors import GeometryError
+from fegear.fe.mesh import jiggle, mesh_bodies
+from fegear.geometry import Gear1Profile, PairParameters, ToothContact
+from fegear.toothpair.case import HEADLINE, SolveCase
+from fegear.toothpair.ring import build_ring, solve_pair, solve_positions
+from fegear.toothpair.ring.contact import rigid_gap
+
+SLOW = pytest.mark.slow
+
+
+@pytest.fixture(scope="module")
+def baseline_200(baseline_ring):
+    return solve_pair(replace(baseline_ring.case, torque=200.0), model=baseline_ring)
+
+
+def _check(sol):
+    """Converged: the torque carried by the pressure, pressures and gaps complementary, both
+    rings in equilibrium, every headline stress finite."""
+    d = sol.detail
+    p, gap = d.solution.pressure, d.solution.gap
+    assert sol.checks.balance_error < 1e-9
+    assert np.all(p >= 0) and gap.min() > -1e-12
+    assert np.abs(p * gap).max() < 1e-9 * p.max()
+    assert max(sol.checks.residuals) < 1e-9
+    assert sum(t.load_share for t in sol.teeth) == pytest.approx(1.0, abs=1e-9)
+    assert all(math.isfinite(v) for v in sol.headline().values())
+
+
+def test_baseline_pair_carries_the_torque_on_four_teeth(baseline_200):
+    sol = baseline_200
+    _check(sol)
+    shares = {t.tooth: round(t.load_share, 2) for t in sol.teeth if t.load_N > 0}
+    assert shares == {9: 0.03, 10: 0.43, 11: 0.42, 12: 0.12}
+    assert sol.rotation > sol.first_touch > 0
+    # the two middle teeth touch on gear 1's tip round (edge contact), far above flank Hertz
+    edge = [t for t in sol.teeth if t.peak_on_round]
+    assert {t.tooth for t in edge} == {10, 11}
+    assert all(t.p_max_MPa > 2 * t.hertz_p0_MPa for t in edge)
+    # the submodel's surface von Mises at the edge peak is the pressure less a little
+    assert 0.97 * sol.contact_pressure < sol.von_mises_max < sol.contact_pressure
+
+
+def test_the_rigid_gap_of_the_solved_rotation_is_closed_by_the_elastic_approach(baseline_200):
+    d = baseline_200.detail
+    p = d.case.params
+    g0, _ = rigid_gap(d.model, d.contact.x, 0.0, p.ratio * 0.0 + baseline_200.rotation)
+    loaded = d.solution.pressure > 0
+    approach = d.contact.A @ d.solution.pressure
+    assert np.abs(g0[loaded] + approach[loaded]).max() < 1e-12
+
+
+def test_light_touch_follows_hertz_on_the_flank(baseline_ring):
+    """1e-3 … 1e-1 N·m: one tooth carries the load on its flank; the peak pressure follows
+    Hertz at the contact point within 0.5 % and grows as √T."""
+    scaled = {}
+    for torque in (1e-3, 1e-2, 1e-1):
+        sol = solve_pair(replace(baseline_ring.case, torque=torque), model=baseline_ring)
+        _check(sol)
+        (tooth,) = [t for t in sol.teeth if t.load_N > 0]
+        assert not tooth.peak_on_round
+        assert tooth.p_max_MPa == pytest.approx(tooth.hertz_p0_MPa, rel=0.005)
+        assert tooth.half_width_mm == pytest.approx(tooth.hertz_b_mm, rel=0.02)
+        scaled[torque] = tooth.p_max_MPa / math.sqrt(torque)
+    assert max(scaled.values()) / min(scaled.values()) - 1 < 0.005
+
+
+def test_headline_stresses_are_insensitive_to_the_matching_depth(baseline_ring):
+    """The one parameter of the half-plane near field: reading the templates 2, 3 or 5 local
+    facets below the surface moves no headline stress by 1 % (the penalty's role in the
+    sector model)."""
+    runs = []
+    for depth in (2.0, 3.0, 5.0):
+        model = replace(baseline_ring, level=replace(baseline_ring.level, depth=depth))
+        runs.append(solve_pair(replace(model.case, torque=200.0), model=model).headline())
+    for key in HEADLINE:
+        values = [r[key] for r in runs]
+        assert max(values) - min(values) < 0.01 * min(values), (key, values)
+
+
+def test_one_gear_2_pitch_later_every_tooth_stands_where_the_next_one_stood(baseline_ring):
+    p = baseline_ring.case.params
+    case = replace(baseline_ring.case, torque=200.0)
+    s0, s1 = solve_positions(case, (0.0, 2 * math.pi / p.z2), model=baseline_ring)
+    share0 = {t.tooth: t.load_share for t in s0.teeth}
+    share1 = {t.tooth: t.load_share for t in s1.teeth}
+    for tooth, share in share0.items():
+        assert share1.get(tooth - 1, 0.0) == pytest.approx(share, abs=0.002)
+    assert s1.rotation - s1.first_touch == pytest.approx(s0.rotation - s0.first_touch,
+                                                         rel=1e-3)
+    for key in HEADLINE:
+        assert s1.headline()[key] == pytest.approx(s0.headline()[key], rel=0.01), key
+
+
+def test_more_teeth_with_grids_change_nothing(baseline_200, baseline_ring):
+    wider = solve_pair(replace(baseline_ring.case, torque=200.0, extra_pairs=2),
+                       model=baseline_ring)
+    assert len(wider.teeth) > len(baseline_200.teeth)
+    for key, value in baseline_200.headline().items():
+        assert wider.headline()[key] == pytest.approx(value, rel=1e-3), key
+    shares = {t.tooth: t.load_share for t in wider.teeth}
+    for t in baseline_200.teeth:
+        assert shares[t.tooth] == pytest.approx(t.load_share, abs=1e-4)
+
+
+def test_jiggled_templates_move_headline_stresses_by_less_than_2pct(monkeypatch, baseline_200):
+    case = baseline_200.case
+    for seed in (1, 2):
+        def jiggled(geometries, seed=seed):
+            return tuple(jiggle(b, 0.1, seed + 10 * k)
+                         for k, b in enumerate(mesh_bodies(geometries)))
+        monkeypatch.setattr(ring_model, "mesh_bodies", jiggled)
+        sol = solve_pair(case, model=build_ring(case))
+        _check(sol)
+        assert sol.headline() != baseline_200.headline()  # the meshes did move
+        for key in HEADLINE:
+            assert sol.headline()[key] == pytest.approx(baseline_200.headline()[key],
+                                                        rel=0.02), key
+
+
+def test_an_interfering_pair_is_refused_by_name():
+    case = SolveCase(PairParameters(shift=0.016, rotation=0.002, tip_relief=-1e-5),
+                     torque=200.0, quality="coarse")
+    with pytest.raises(GeometryError, match="interferes: gear-1 tooth 32 overlaps gear 2 by 0.194"):
+        solve_pair(case)
+
+
+@pytest.mark.parametrize("params, torque, far_side_only", [
+    pytest.param(dict(shift=0.016, rotation=0.002, tip_relief=0.0), 1.0, True,
+                 id="no tip relief, light: only far-side teeth touch"),
+    pytest.param(dict(shift=0.016, rotation=0.002, tip_relief=0.0), 200.0, False,
+                 marks=SLOW, id="no tip relief, baseline torque"),
+    pytest.param(dict(), 50.0, False, marks=SLOW, id="unmodified: zero clearance"),
+    pytest.param(dict(shift=1e-4), 200.0, False, marks=SLOW, id="shift 0.1 µm"),
+    pytest.param(dict(h1=0.6), 50.0, False, marks=SLOW, id="h1 0.6 (limit 0.6047)"),
+    pytest.param(dict(h1=0.3, f1=0.39), 50.0, False, marks=SLOW, id="f1 0.39 (limit 0.3902)"),
+    pytest.param(dict(h1=0.05), 50.0, False, id="h1 0.05"),
+    pytest.param(dict(shift=0.016, rotation=0.002, f1=0.0), 50.0, False, id="f1 0"),
+])
+def test_clearances_and_extreme_shapes_converge(params, torque, far_side_only):
+    p = PairParameters(**params)
+    case = SolveCase(p, torque=torque, quality="coarse")
+    sol = solve_pair(case)
+    _check(sol)
+    where = {c.tooth: c.position_deg for c in ToothContact(p, Gear1Profile(p)).state(
+        case.beta).teeth}
+    far = [abs(where[t.tooth]) > 90 for t in sol.teeth if t.load_N > 0]
+    if far_side_only:
+        assert all(far) and len(far) >= 3
+
+
+@SLOW
+def test_the_ring_agrees_with_the_sector_model_once_its_cut_faces_are_far_enough():
+    """A 25/24 pair at 10 N·m, fast: the sector model's free cut faces two teeth beyond the
+    paired ones cost 3 % of the gear-1 root stress; four teeth out it agrees with the ring."""
+    p = PairParameters(m=2, z2=25, z1=24, shift=0.016, rotation=0.002)
+    ring = solve_pair(SolveCase(p, torque=10.0, quality="fast"))
+    sector = solve_pair(SolveCase(p, torque=10.0, quality="fast", model="sector",
+                                  extra_teeth=4))
+    for key, tol in zip(HEADLINE, (0.005, 0.01, 0.015, 0.015)):
+        assert ring.headline()[key] == pytest.approx(sector.headline()[key], rel=tol), key
+    assert ring.rotation - ring.first_touch == pytest.approx(
+        sector.rotation - sector.first_touch, rel=0.005)
