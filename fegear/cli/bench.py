@@ -15,15 +15,24 @@ def add_parser(sub) -> None:
     add_inputs(p, PAIR_INPUTS, "pair")
     p.add_argument("--repeat", type=int, default=3, help="repetitions (best is kept)")
     p.add_argument("--pair-quality", default="standard",
-                   help="quality of the tooth-pair benchmark (coarse / fast / standard / fine)")
+                   help="quality of the estimate, cycle and scaling runs (coarse / fast / "
+                        "standard / fine; default standard, the default of fegear solve)")
     p.add_argument("--cycle", type=int, default=24,
                    help="positions in the benchmarked mesh cycle (default 24; 0: skip)")
     p.add_argument("--disk-levels", default="2,4,8,16,32",
                    help="Hertz-case ladder: elements across b, comma-separated (>= 2)")
     p.add_argument("--pair-levels", default="coarse,fast,standard,fine",
-                   help="tooth-pair ladder: quality levels, comma-separated (>= 2)")
+                   help="tooth-pair (ring model) ladder: quality levels, comma-separated (>= 2)")
+    p.add_argument("--sector-levels", default="",
+                   help="also the sector model at these levels, with CalculiX on its meshes "
+                        "(e.g. coarse,fast; minutes each; default: none)")
     p.add_argument("--torque", type=float, default=200.0,
                    help="tooth-pair torque on gear 1 [N·m] (default 200)")
+    p.add_argument("--scaling", default="45,90,180",
+                   help="teeth of gear 2 for the cost-growth runs, module scaled to keep the "
+                        "pitch radius (comma-separated; empty: skip)")
+    p.add_argument("--paper-study", action="store_true",
+                   help="also time studies/paper_trends.toml on 2 workers (about a minute)")
     p.add_argument("--no-peer", action="store_true",
                    help="do not run CalculiX beside the ladders even if ccx is installed")
     p.add_argument("--study-cases", type=int, default=6,
@@ -31,12 +40,22 @@ def add_parser(sub) -> None:
     p.add_argument("--study-only", action="store_true",
                    help="run only the study-runner overhead benchmark")
     p.add_argument("--out", default="out/bench",
-                   help="directory for bench.json and bench.png (default out/bench)")
+                   help="directory for bench.json and the plots (default out/bench)")
+
+
+def _levels(name: str, text: str, allowed, least: int) -> list[str]:
+    from ..errors import ParameterError
+
+    levels = [q.strip() for q in text.split(",") if q.strip()]
+    if (text.strip() or least) and (len(levels) < least or any(q not in allowed
+                                                               for q in levels)):
+        raise ParameterError(name, text, f"{'two or more' if least > 1 else 'some'} of "
+                             + " / ".join(allowed) + ", comma-separated")
+    return levels
 
 
 def run(a: argparse.Namespace) -> int:
     from ..errors import ParameterError
-    from ..files import prepare_dir, write_json
     from ..geometry import admissible_pair
     from ..toothpair import QUALITY
 
@@ -47,59 +66,179 @@ def run(a: argparse.Namespace) -> int:
     torque = require_range("torque", a.torque, 0.0, 1e4, lo_open=True, unit="N·m")
     if a.pair_quality not in QUALITY:
         raise ParameterError("pair_quality", a.pair_quality, " / ".join(QUALITY))
-    pair_levels = [q.strip() for q in a.pair_levels.split(",")]
-    if len(pair_levels) < 2 or any(q not in QUALITY for q in pair_levels):
-        raise ParameterError("pair_levels", a.pair_levels,
-                             "two or more of " + " / ".join(QUALITY) + ", comma-separated")
+    pair_levels = _levels("pair_levels", a.pair_levels, QUALITY, 2)
+    sector_levels = _levels("sector_levels", a.sector_levels, QUALITY, 0)
     disk_levels = [number("disk_levels", x) for x in a.disk_levels.split(",")]
     if len(disk_levels) < 2 or not all(1 <= n <= 200 for n in disk_levels):
         raise ParameterError("disk_levels", a.disk_levels,
                              "two or more numbers 1 <= elements across b <= 200")
+    teeth = [number("scaling", x) for x in a.scaling.split(",") if x.strip()]
+    if not all(float(z).is_integer() and 12 <= z <= 400 for z in teeth):
+        raise ParameterError("scaling", a.scaling, "teeth of gear 2, 12 ... 400, "
+                             "comma-separated")
     study_cases = int(a.study_cases)
     if study_cases != 0 or a.study_only:
         require_range("study_cases", study_cases, 2, 1000)
     params = admissible_pair(input_values(a, PAIR_INPUTS))
     if a.study_only:
         return _study_bench(params, study_cases)
+    from ..files import prepare_dir
+
     out = prepare_dir(a.out)
+    return _bench(a, params, torque, repeat, cycle, pair_levels, sector_levels, disk_levels,
+                  [int(z) for z in teeth], study_cases, out)
+
+
+def _bench(a, params, torque, repeat, cycle, pair_levels, sector_levels, disk_levels, teeth,
+           study_cases, out) -> int:
+    from ..files import write_json
     from ..verify import (  # the FE stack, once every input is sound
         PEER_TARGET,
+        Series,
         disk_ladder,
         geometry_bench,
         ladder_json,
         ladder_png,
         ladder_table,
         ladder_targets,
-        pair_bench,
         pair_ladder,
-        peer_speedups,
+        ring_ladder,
+        ring_table,
+        run_fresh,
+        scaling_png,
+        scaling_runs,
+        scaling_table,
     )
+    from ..verify import ring_bench as rb
+    from ..verify.bench import HERTZ_TARGET
+
     print(geometry_bench(params, repeat))
     print()
     disks = disk_ladder(disk_levels, repeat, peer=not a.no_peer)
     print(ladder_table(disks))
     print()
-    pair = pair_ladder(params, torque, pair_levels, peer=not a.no_peer)
-    print(ladder_table(pair))
-    print()
-    targets = ladder_targets(disks, pair)
-    for t in targets:
+    for t in ladder_targets(disks):
         print(f"* {t.line()}")
-    for ladder in (disks, pair):
-        for rung, ratio in peer_speedups(ladder):
-            status = "met" if ratio >= PEER_TARGET else "MISSED"
-            print(f"* {ladder.name.split(':')[0]}, `{rung.level}`: CalculiX / fegear = "
-                  f"{ratio:.1f}× (target >= {PEER_TARGET:g}×: {status})")
-    write_json(out / "bench.json", ladder_json((disks, pair), targets))
-    ladder_png(out / "bench.png", (disks, pair), targets)
-    print(f"\nbench.json, bench.png in {out}")
-    if cycle:
+    print()
+    print(f"### Tooth pair, ring model: {params.describe()}, T {torque:g} N·m, one position, "
+          "each level in a fresh process")
+    print()
+    ring = ring_ladder(params, torque, pair_levels)
+    print(ring_table(ring))
+    record = {"ring": [r.__dict__ for r in ring]}
+    default = next((r for r in ring if r.label == a.pair_quality), None)
+    if default is None:
+        default = run_fresh(a.pair_quality, params, torque, a.pair_quality)
+    extra = run_fresh(f"{a.pair_quality}, with estimate", params, torque, a.pair_quality,
+                      estimate=True, cycle=cycle or None)
+    record["default"] = default.__dict__
+    record["extras"] = extra.__dict__
+    sector = None
+    if sector_levels:
         print()
-        print(pair_bench(params, torque, quality=a.pair_quality, positions=cycle))
+        sector = pair_ladder(params, torque, sector_levels, peer=not a.no_peer)
+        print(ladder_table(sector))
+    scale = scaling_runs(params, torque, a.pair_quality, teeth) if teeth else []
+    if scale:
+        print()
+        print("### How the cost grows: the same pair with more, smaller teeth "
+              f"(`{a.pair_quality}`)")
+        print()
+        print(scaling_table(scale))
+        scaling_png(out / "bench_scaling.png", ring, scale)
+        record["scaling"] = [r.__dict__ for r in scale]
+    study = rb.paper_study_s() if a.paper_study else None
+    print()
+    lines = _targets(rb, default, extra, cycle, sector, ring, study, PEER_TARGET)
+    print("\n".join(lines))
+    record["targets"] = lines
+    series = [Series("Hertz disks", [(r.total_s, disks.error_pct(r.values, disks.judged),
+                                      r.level) for r in disks.rungs],
+                     [(r.peer_s, disks.error_pct(r.peer_values, disks.judged))
+                      for r in disks.rungs if r.peer_s], HERTZ_TARGET),
+              Series("tooth pair, ring model",
+                     [(r.total_s, max(abs(v) for v in r.error_pct(rb.SECTOR_REFERENCE)
+                                      .values()), r.label) for r in ring],
+                     target=rb.SINGLE_TARGET)]
+    if sector is not None:
+        series.append(Series("tooth pair, sector model",
+                             [(r.total_s, _sector_error(rb, r.values), r.level)
+                              for r in sector.rungs],
+                             [(r.peer_s, _sector_error(rb, r.peer_values, partial=True))
+                              for r in sector.rungs if r.peer_s]))
+    ladder_png(out / "bench.png", series)
+    write_json(out / "bench.json", {**ladder_json([disks] + ([sector] if sector else []),
+                                                  ladder_targets(disks)), "ring": record})
+    print(f"\nbench.json, bench.png{', bench_scaling.png' if scale else ''} in {out}")
     if study_cases:
         print()
         _study_bench(params, study_cases)
     return 0
+
+
+def _sector_error(rb, values: dict, partial: bool = False) -> float:
+    keys = [k for k in rb.SECTOR_REFERENCE if k in values] if partial else rb.SECTOR_REFERENCE
+    return max(abs(100.0 * (values[k] / rb.SECTOR_REFERENCE[k] - 1.0)) for k in keys)
+
+
+def _targets(rb, default, extra, cycle, sector, ring, study, peer_target) -> list[str]:
+    """The issue's targets, each met or MISSED with its number."""
+    err = max(abs(v) for v in default.error_pct(rb.SECTOR_REFERENCE).values())
+    resolved = dict(rb.SECTOR_REFERENCE, von_mises_max_MPa=rb.VON_MISES_RESOLVED)
+    err_resolved = max(abs(v) for v in default.error_pct(resolved).values())
+    worst = max(default.timings_s, key=default.timings_s.get)
+    lines = ["### Targets", ""]
+
+    def status(ok):
+        return "met" if ok else "MISSED"
+
+    e_lim, t_lim = rb.SINGLE_TARGET
+    lines.append(f"* baseline pair, default quality (`{default.label}`), every headline within "
+                 f"{e_lim:g} % in {t_lim:g} s: {default.total_s:.2f} s, largest error "
+                 f"{err:.2f} % against the sector references, {err_resolved:.2f} % with the "
+                 f"resolved von Mises reference: "
+                 f"{status(default.total_s <= t_lim and err_resolved <= e_lim)} "
+                 f"({default.total_s / rb.GOAL_S:.1f}× the {rb.GOAL_S:g} s goal; largest stage "
+                 f"{worst} {default.timings_s[worst]:.2f} s)")
+    est = extra.extra.get("estimate_s")
+    if est is not None:
+        ratio = est / extra.total_s
+        lines.append(f"* with the error estimate (second level "
+                     f"`{extra.extra['estimate_from']}`): {est:.2f} s, {ratio:.2f}× the single "
+                     f"solve (target <= {rb.ESTIMATE_TARGET:g}×): "
+                     f"{status(ratio <= rb.ESTIMATE_TARGET)}")
+    if cycle:
+        ratio = extra.extra["cycle_s"] / extra.total_s
+        later = extra.extra["cycle_later_s"]
+        top = max(later, key=later.get)
+        lines.append(f"* {cycle}-position mesh cycle: {extra.extra['cycle_s']:.2f} s, "
+                     f"{ratio:.2f}× one position (target <= {rb.CYCLE_TARGET:g}×): "
+                     f"{status(ratio <= rb.CYCLE_TARGET)}; each later position "
+                     f"{sum(later.values()):.2f} s, most in {top} ({later[top]:.2f} s)")
+    peak = max(r.peak_mb for r in (default, extra)) / 1024.0
+    lines.append(f"* peak memory, default quality with estimate and cycle: {peak:.2f} GB "
+                 f"(target <= {rb.MEMORY_TARGET_GB:g} GB): {status(peak <= rb.MEMORY_TARGET_GB)}")
+    if study is not None:
+        lines.append(f"* studies/paper_trends.toml, {study[1]} cases with estimates, 2 workers: "
+                     f"{study[0]:.1f} s (target <= {rb.STUDY_TARGET_S:g} s): "
+                     f"{status(study[0] <= rb.STUDY_TARGET_S)}")
+    if sector is not None:
+        for r in sector.rungs:
+            if not r.peer_s:
+                continue
+            peer_err = _sector_error(rb, r.peer_values, partial=True)
+            ours = [x for x in ring if max(abs(v) for v in x.error_pct(rb.SECTOR_REFERENCE)
+                                           .values()) <= max(peer_err, 1e-9)]
+            if not ours:
+                continue
+            fastest = min(ours, key=lambda x: x.total_s)
+            ratio = r.peer_s / fastest.total_s
+            lines.append(f"* CalculiX on the sector model's `{r.level}` mesh, {r.peer_s:.0f} s "
+                         f"(error {peer_err:.2f} % on the stresses it gives) against the ring "
+                         f"model's `{fastest.label}` at no larger error, {fastest.total_s:.2f} s: "
+                         f"{ratio:.0f}× (target >= {peer_target:g}×): "
+                         f"{status(ratio >= peer_target)}")
+    return lines
 
 
 def _study_bench(params, cases: int) -> int:

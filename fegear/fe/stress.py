@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.sparse.linalg import splu
-from skfem import Basis, BilinearForm, ElementTriP2, LinearForm, asm
+from skfem import Basis, BilinearForm, ElementTriP2, asm
 
 from .assembly import Body
 
@@ -75,18 +75,38 @@ def quadrature_stress(body: Body, u: np.ndarray) -> np.ndarray:
 
 
 def recover(body: Body, u: np.ndarray) -> StressField:
-    """Nodal stresses of displacement ``u`` (ndofs,) by L2 projection onto continuous P2."""
-    if "mass" not in body.cache:  # depends only on the mesh: shared by placed copies
-        scalar = Basis(body.mesh, ElementTriP2(), quadrature=body.basis.quadrature)
-        mass = asm(BilinearForm(lambda a, b, w: a * b), scalar).tocsc()
-        body.cache["mass"] = (scalar, splu(mass))
-    scalar, factor = body.cache["mass"]
-    sq = quadrature_stress(body, u)
-    rhs = np.column_stack([asm(LinearForm(lambda v, w: w.s * v), scalar, s=c) for c in sq])
-    nodal = factor.solve(rhs)
+    """Nodal stresses of displacement ``u`` (ndofs,) by L2 projection onto continuous P2.
+
+    The projection is linear in u: M s = C u per component, with M the scalar P2 mass matrix
+    and C the mixed matrix ∫ φ σ(ψ). Both are assembled and M factorised once per mesh (kept in
+    ``body.cache``, shared by placed copies); each call is then a sparse product and a solve."""
+    if "projector" not in body.cache:
+        body.cache["projector"] = _projector(body)
+    factor, parts = body.cache["projector"]
+    nodal = factor.solve(np.column_stack([C @ u for C in parts]))
     sxx, syy, sxy = nodal.T
     if body.material.plane == "stress":
         szz = np.zeros_like(sxx)
     else:
         szz = body.material.nu * (sxx + syy)
     return StressField(sxx, syy, sxy, szz, body.material.plane)
+
+
+def _projector(body: Body):
+    """The mass factor and the three mixed matrices C_xx, C_yy, C_xy (nodes × dofs)."""
+    lam, mu = body.material.lame
+    scalar = Basis(body.mesh, ElementTriP2(), quadrature=body.basis.quadrature)
+    mass = asm(BilinearForm(lambda a, b, w: a * b), scalar).tocsc()
+
+    def part(component):
+        @BilinearForm
+        def form(v, q, w):   # v: the vector trial (displacement), q: the scalar test
+            g = v.grad
+            tr = g[0, 0] + g[1, 1]
+            return q * component(g, tr)
+        return asm(form, body.basis, scalar).tocsr()
+
+    parts = (part(lambda g, tr: lam * tr + 2 * mu * g[0, 0]),
+             part(lambda g, tr: lam * tr + 2 * mu * g[1, 1]),
+             part(lambda g, tr: mu * (g[0, 1] + g[1, 0])))
+    return splu(mass), parts

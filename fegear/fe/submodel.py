@@ -96,32 +96,66 @@ class SubmodelProblem:
     pressure: Callable[[np.ndarray], np.ndarray]
     held: Callable[[np.ndarray], np.ndarray]
     name: str = "submodel"
+    key: object = None
 
 
-def solve_submodels(problems: list[SubmodelProblem], material: Material) -> list[Submodel]:
-    """Solve each submodel (meshed together: one gmsh session)."""
+@dataclass(eq=False)
+class _Prepared:
+    """A submodel's mesh with its assembly and factorisation: what a later problem with the
+    same key reuses (only the held displacement and the pressure change)."""
+
+    mesh: BodyMesh
+    centre: np.ndarray
+    angles: tuple[float, float]
+    piece: _Piece
+    cut: np.ndarray
+    fixed: np.ndarray
+    free: np.ndarray
+    K_free_fixed: object
+    factor: object
+
+
+def solve_submodels(problems: list[SubmodelProblem], material: Material,
+                    kept: dict | None = None) -> list[Submodel]:
+    """Solve each submodel (those not prepared yet meshed together: one gmsh session). A
+    problem whose ``key`` is in ``kept`` reuses that mesh and factorisation (the caller makes
+    the key name the same disk of the same curve); new ones are kept there."""
+    kept = {} if kept is None else kept
+    todo = [pb for pb in problems if pb.key is None or pb.key not in kept]
+    shapes = [_geometry(pb) for pb in todo]
+    meshes = mesh_bodies([geo for geo, _, _ in shapes]) if shapes else ()
+    fresh = {id(pb): _prepare(mesh, centre, angles, material)
+             for pb, (_, centre, angles), mesh in zip(todo, shapes, meshes)}
+    for pb in todo:
+        if pb.key is not None:
+            kept[pb.key] = fresh[id(pb)]
+    out = []
+    for pb in problems:
+        prep = fresh.get(id(pb)) or kept[pb.key]
+        m = prep.mesh.mesh
+        f = _pressure_loads(m, m.boundaries["boundary"], pb.pressure, material.thickness)
+        u = np.zeros(2 * m.doflocs.shape[1])
+        u[prep.fixed] = pb.held(m.doflocs.T[prep.cut]).ravel()
+        u[prep.free] = prep.factor.solve(f[prep.free] - prep.K_free_fixed @ u[prep.fixed])
+        out.append(Submodel(prep.mesh, u, recover(prep.piece, u), prep.centre, float(pb.radius),
+                            prep.angles))
+    return out
+
+
+def _prepare(mesh: BodyMesh, centre, angles, material: Material) -> _Prepared:
     from skfem import Basis, ElementTriP2, ElementVector, asm
     from skfem.models.elasticity import linear_elasticity
 
     from .solvers import Factor
 
-    shapes = [_geometry(pb) for pb in problems]
-    meshes = mesh_bodies([geo for geo, _, _ in shapes]) if shapes else ()
-    out = []
-    for pb, (_, centre, angles), mesh in zip(problems, shapes, meshes):
-        m = mesh.mesh
-        basis = Basis(m, ElementVector(ElementTriP2()))
-        K = (material.thickness * asm(linear_elasticity(*material.lame), basis)).tocsr()
-        f = _pressure_loads(m, m.boundaries["boundary"], pb.pressure, material.thickness)
-        cut = np.unique(facet_nodes(m, m.boundaries["cut"]))
-        fixed = node_dofs(cut).ravel()
-        u = np.zeros(basis.N)
-        u[fixed] = pb.held(m.doflocs.T[cut]).ravel()
-        free = np.setdiff1d(np.arange(basis.N), fixed)
-        u[free] = Factor(K[free][:, free]).solve(f[free] - K[free][:, fixed] @ u[fixed])
-        stress = recover(_Piece(m, basis, material, {}), u)
-        out.append(Submodel(mesh, u, stress, centre, float(pb.radius), angles))
-    return out
+    m = mesh.mesh
+    basis = Basis(m, ElementVector(ElementTriP2()))
+    K = (material.thickness * asm(linear_elasticity(*material.lame), basis)).tocsr()
+    cut = np.unique(facet_nodes(m, m.boundaries["cut"]))
+    fixed = node_dofs(cut).ravel()
+    free = np.setdiff1d(np.arange(basis.N), fixed)
+    return _Prepared(mesh, centre, angles, _Piece(m, basis, material, {}), cut, fixed, free,
+                     K[free][:, fixed], Factor(K[free][:, free]))
 
 
 def _geometry(pb: SubmodelProblem):

@@ -34,9 +34,8 @@ def write_vtu(path: Path, points: np.ndarray, cells: np.ndarray,
 
     xyz = np.zeros((len(points), 3))
     xyz[:, :2] = points
-    # fields in single precision (7 digits: far beyond any stress's accuracy), half the file
-    data = {k: np.asarray(v, dtype=np.float32) for k, v in point_data.items()}
-    out = meshio.Mesh(xyz, [("triangle6", np.asarray(cells, dtype=np.int64))], point_data=data)
+    out = meshio.Mesh(xyz, [("triangle6", np.asarray(cells, dtype=np.int64))],
+                      point_data=point_data)
 
     def w(tmp: Path) -> None:
         meshio.write(tmp, out, file_format="vtu", binary=True)

@@ -40,7 +40,8 @@ def prepare_job(values: Mapping[str, object]) -> Job:
     case = SolveCase(admissible_pair(v), torque=v["torque"], beta=math.radians(position),
                      thickness=v["thickness"], E=v["E"], nu=v["nu"], quality=v["quality"],
                      rim1=v["rim1"], rim2=v["rim2"], extra_teeth=v["extra-teeth"],
-                     extra_pairs=v["extra-pairs"], tip_round=v["tip-round"], **kw)
+                     extra_pairs=v["extra-pairs"], tip_round=v["tip-round"], model=v["model"],
+                     **kw)
     betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
     return Job(case, tuple(betas), not v["no-estimate"])
 

@@ -21,12 +21,15 @@ from ..exports import lazy
 __getattr__, __dir__, __all__ = lazy(__name__, {
     "disk_case": ("DiskCase", "QUALITY"),
     "disks": ("DiskResult", "solve_disks", "disk_geometries", "write_disk_outputs"),
-    "bench": ("Ladder", "Rung", "Target", "richardson", "geometry_bench", "pair_bench",
+    "bench": ("Ladder", "Rung", "Target", "richardson", "geometry_bench",
               "disk_ladder", "pair_ladder", "ladder_targets", "ladder_table", "ladder_json",
               "peer_speedups", "PEER_TARGET", "machine"),
+    "ring_bench": ("RingRun", "run_fresh", "ring_ladder", "scaling_runs", "ring_table",
+                   "scaling_table", "scaling_png", "paper_study_s", "SECTOR_REFERENCE",
+                   "VON_MISES_RESOLVED"),
     "study_overhead": ("study_overhead", "overhead_table"),
     "calculix": ("CcxDeck", "CcxResult", "ccx_available", "write_deck", "run_ccx", "ccx_disks"),
     "ccx_files": ("PeerError", "PeerConvergenceError"),
     "calculix_pair": ("CcxPairResult", "ccx_pair"),
-    "plot": ("ladder_png",),
+    "plot": ("ladder_png", "Series"),
 })

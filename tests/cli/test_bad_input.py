@@ -39,7 +39,7 @@ OPTIONS = {
               "--penalty-factor": ["0", "-300", "1e300"]},
     "solve": {**PAIR, "--torque": ["0", "-200", "1e300"], "--position": ["400", "-400"],
               "--positions": ["1", "0", "-24", "100000"], **MATERIAL,
-              "--quality": ["best"], "--tip-round": ["-0.25", "100"],
+              "--quality": ["best"], "--model": ["wedge"], "--tip-round": ["-0.25", "100"],
               "--rim1": ["0", "-6", "1e300"], "--rim2": ["0", "-6", "1e300"],
               "--extra-teeth": ["0", "-2", "1000"], "--extra-pairs": ["-1", "1000"],
               "--penalty-factor": ["0", "-1000", "1e300"]},
@@ -48,10 +48,12 @@ OPTIONS = {
               "--pair-quality": ["best"], "--torque": ["0", "-200", "1e300"],
               "--disk-levels": ["8", "0,4", "4,1e9", "4,x"],
               "--pair-levels": ["fast", "fast,best", ""],
+              "--sector-levels": ["best", "fast,best"], "--scaling": ["7", "45,x", "45.5"],
               "--study-cases": ["1", "-6", "100000"]},
     "study": {"--workers": ["0", "-2", "100000"]},
     "drive": {},  # its options sit on its subcommands: tests/test_drive_cli.py
 }
+CHOICE = {"--model", "--sector-levels"}
 INTEGER = {"--z1", "--z2", "--positions", "--extra-teeth", "--extra-pairs", "--repeat",
            "--cycle", "--study-cases", "--workers"}
 ARGS = {"profile": ["--positions", "4"], "hertz": [], "solve": [], "bench": [], "drive": [],
@@ -61,7 +63,7 @@ ARGS = {"profile": ["--positions", "4"], "hertz": [], "solve": [], "bench": [], 
 def _cases():
     for command, options in OPTIONS.items():
         for option, values in options.items():
-            extra = [] if option in INTEGER or option.endswith("quality") else NOT_FINITE
+            extra = [] if option in INTEGER | CHOICE or option.endswith("quality") else NOT_FINITE
             for value in values + extra:
                 yield pytest.param(command, option, value, id=f"{command} {option} {value}")
 
@@ -74,8 +76,8 @@ def no_work(monkeypatch):
     for module, name in ((fegear.geometry, "build_geometry"), (fegear.verify, "solve_disks"),
                          (fegear.toothpair.pair, "solve_positions"),
                          (fegear.verify, "geometry_bench"), (fegear.verify, "disk_ladder"),
-                         (fegear.verify, "pair_ladder"),
-                         (fegear.verify, "pair_bench"), (fegear.study, "run_study"),
+                         (fegear.verify, "pair_ladder"), (fegear.verify, "ring_ladder"),
+                         (fegear.verify, "run_fresh"), (fegear.study, "run_study"),
                          (fegear.verify, "study_overhead")):
         monkeypatch.setattr(module, name, accepted)
 

@@ -9,7 +9,7 @@ import pytest
 
 from fegear.errors import FegearError
 from fegear.fe import Material, Probe, StarCurve, SubmodelProblem, solve_submodels
-from fegear.fe.mesh import BodyGeometry, Refinement, Segment, mesh_bodies
+from fegear.fe.mesh import BodyGeometry, Segment, mesh_bodies
 
 MAT = Material(thickness=3.0)  # plane stress
 

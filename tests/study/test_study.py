@@ -344,7 +344,9 @@ def test_kept_vtu_files_arrive_beside_the_record(tmp_path):
     assert (report.computed, report.failed) == (1, 0)
     key = study.cases[0].key
     rec = json.loads((tmp_path / "out" / "cases" / f"{key}.json").read_text())
-    assert sorted(rec["files"]) == ["gear1.vtu", "gear2.vtu"]  # no picture: png = false
+    # both rings and the contact submodels; no picture: png = false
+    assert sorted(rec["files"]) == ["gear1.vtu", "gear1_contact.vtu", "gear2.vtu",
+                                    "gear2_contact.vtu"]
     mesh = meshio.read(rec["files"]["gear1.vtu"])
     assert mesh.points.shape[0] > 1000 and "von_mises" in mesh.point_data
     again = run_study(study, tmp_path / "out", workers=1, progress=False)

@@ -12,15 +12,18 @@ from draws import Draws, finite
 from hypothesis import HealthCheck, Phase, given, reject, settings
 from hypothesis import strategies as st
 
-from fegear.errors import FegearError, ParameterError
+from fegear.errors import FegearError, GeometryError, ParameterError
+from fegear.geometry import Gear1Profile, ToothContact
 from fegear.geometry.admissible import check_admissible
 from fegear.geometry.parameters import PairParameters
 from fegear.toothpair.case import SolveCase
 from fegear.toothpair.pair import solve_pair
 from fegear.toothpair.report import pair_summary
+from fegear.toothpair.teeth import refuse_interference
 
-#: admissible draws that may be refused by name; the 200-draw run refused TODO
-MAX_REFUSED = 0.10
+#: admissible draws that may be refused by name; the 200-draw run (2026-11-23, 6 min 26 s)
+#: refused none once the draws whose geometry is refused are left out (below)
+MAX_REFUSED = 0.02
 
 # a solve takes 5-60 s: a failure is reported as drawn, unshrunk
 SETTINGS = settings(max_examples=200, deadline=None, derandomize=True,
@@ -40,7 +43,12 @@ def pairs(draw):
                            shift=draw(st.floats(0.0, 0.01 * m)),
                            rotation=draw(st.floats(0.0, 0.002 * m)))
         check_admissible(p)
-    except ParameterError:
+        # designs the geometry stage refuses by name are not the solver's to converge: no
+        # conjugate gear 1 (the gear-2 normal misses the pitch circle; 8 of the 200 draws),
+        # or teeth that overlap before any load (the shift and rotation against the default
+        # tip relief; 30)
+        refuse_interference([(0.0, ToothContact(p, Gear1Profile(p)).state(0.0))])
+    except (ParameterError, GeometryError):
         reject()
     torque = 10 ** draw(st.floats(0.0, math.log10(300.0))) * (m / 2.0) ** 2 * z1 / 44
     return SolveCase(p, torque=torque, quality="coarse")

@@ -25,6 +25,7 @@ from ...planar import rotate
 SAMPLES = 4001        # samples of one tooth pitch to find windows and spacings on
 COARSE = 10           # the windows are found on every COARSE-th sample first
 MIN_POINTS = 24       # a window gets at least this many points
+PROBE_POINTS = 24     # … and a probe grid about this many
 JUNCTION = 0.5        # refined zone around a round's tangent points, in round Hertz widths
 JUNCTION_FACTOR = 4.0  # … this many times finer than the round
 
@@ -42,6 +43,7 @@ class ToothGrid:
     normal: np.ndarray
     curvature: np.ndarray
     on_round: np.ndarray
+    probe: bool = False   # a coarse grid on a tooth not expected to carry load
 
     def __len__(self) -> int:
         return len(self.s)
@@ -134,13 +136,17 @@ def _gaps(x: np.ndarray, curve2, turn: float, beta: float, e: float):
 
 
 def tooth_grid(samples: ToothSamples, win: Window, load: float, E_star: float, per_b: float,
-               floor: float) -> ToothGrid:
+               floor: float, probe: bool = False) -> ToothGrid:
     """The grid over the window ``win``: spacing a ``per_b``-th of the local Hertz half-width
     under the line load ``load`` (N/mm) for the relative curvature of the two profiles, at
     least ``floor`` (mm), at most a ``MIN_POINTS``-th of the window; ``JUNCTION_FACTOR`` times
-    finer again within ``JUNCTION`` round widths of the rounds' tangent points."""
+    finer again within ``JUNCTION`` round widths of the rounds' tangent points. A ``probe``
+    grid, on a tooth not expected to touch, has PROBE_POINTS evenly: enough to tell whether it
+    does."""
     k = slice(win.lo, win.hi + 1)
     s = samples.s[k] - samples.s[win.lo]
+    if probe:
+        floor = max(floor, s[-1] / PROBE_POINTS)
     relative = np.maximum(samples.kappa[k] + win.kappa2, 1e-9)
     b = np.sqrt(4.0 * load / (math.pi * E_star * relative))
     spacing = np.clip(b / per_b, floor, max(s[-1] / MIN_POINTS, floor))
@@ -155,10 +161,14 @@ def tooth_grid(samples: ToothSamples, win: Window, load: float, E_star: float, p
     count = np.concatenate([[0.0], np.cumsum(np.diff(s) / (0.5 * (spacing[1:] + spacing[:-1])))])
     m = max(int(math.ceil(count[-1])), MIN_POINTS)
     sg = np.interp(np.linspace(0.0, count[-1], m + 1), count, s)
+    sg = sg[np.concatenate([[True], np.diff(sg) > 1e-9 * s[-1]])]  # samples of zero length
     phi0 = np.interp(sg, s, samples.phi[k])            # tooth 0's angles
     shape = samples.shape
     x, n, kappa = shape.frame(phi0)
     turn = win.tooth * shape.pitch
     xg, ng = rotate(x, turn), rotate(n, turn)
+    chord = np.hypot(*np.diff(xg, axis=0).T)
+    keep = np.concatenate([[True], chord > 1e-9 * max(s[-1], 1e-12)])  # coincident points
+    xg, ng, kappa, phi0 = xg[keep], ng[keep], kappa[keep], phi0[keep]
     sg = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xg, axis=0).T))])  # exact chords
-    return ToothGrid(win.tooth, sg, phi0 + turn, xg, ng, kappa, shape.on_round(phi0))
+    return ToothGrid(win.tooth, sg, phi0 + turn, xg, ng, kappa, shape.on_round(phi0), probe)

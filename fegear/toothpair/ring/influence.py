@@ -92,7 +92,8 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
 
     cp = master.closest(rotate(x, turn) + o1)
     x2, n2 = rotate(cp.foot, -beta), rotate(cp.normal, -beta)   # n2 out of gear 2's material
-    match = (_matching(g1, x, n1, model.level.depth), _matching(g2, x2, n2, model.level.depth))
+    match = (_matching(g1, x, n1, model.level.depth, grids, offsets),
+             _matching(g2, x2, n2, model.level.depth, grids, offsets))
     nh = int(offsets[-1])
     A = np.zeros((nh, nh))
     for side, loads, m in zip((g1, g2), (loads1, loads2), match):
@@ -133,10 +134,18 @@ def _hat_loads(model: RingModel, grids, offsets, thickness: float):
     return np.vstack(xs), np.vstack(ns), np.vstack(sizes), np.vstack(cols)
 
 
-def _matching(side: GearSide, x: np.ndarray, normal: np.ndarray, depth: float) -> Matching:
-    """Matching points ``depth`` local facets below the gear's surface points ``x`` (its frame,
-    outward ``normal``), and the approach direction (into the material) in the template."""
-    d = depth * side.facet_size(side.locate(x).local)
+def _matching(side: GearSide, x: np.ndarray, normal: np.ndarray, depth: float,
+              grids, offsets) -> Matching:
+    """Matching points below the gear's surface points ``x`` (its frame, outward ``normal``),
+    and the approach direction (into the material) in the template. The depth is at least
+    ``depth`` local facets and changes no faster than the arc along each grid: the smallest
+    such function, d(s) = max_j (depth h_j − |s − s_j|). (Taken point by point, it jumped
+    where the facets do, at a round's ends, and the peak pressure with it by 0.5 %.)"""
+    h = depth * side.facet_size(side.locate(x).local)
+    d = np.empty_like(h)
+    for k, g in enumerate(grids):
+        blk = slice(int(offsets[k]), int(offsets[k + 1]))
+        d[blk] = np.max(h[blk][None, :] - np.abs(g.s[:, None] - g.s[None, :]), axis=1)
     at = side.locate(x - d[:, None] * normal)
     return Matching(at, rotate(-normal, -at.turn), d)
 

@@ -139,8 +139,9 @@ class RingDetail:
     def peak_fields(self) -> tuple[BodyField, ...]:
         """The contact submodels in the fixed frame: displacement, stresses."""
         out = []
-        for gear, sm in self.stresses.submodels:
+        for gear, turn, sm in self.stresses.submodels:
             angle, offset = self._placement(gear)
+            angle += turn
             m = sm.mesh.mesh
             data = vtu_fields(sm.u, sm.stress)
             data["displacement"][:, :2] = rotate(data["displacement"][:, :2], angle)

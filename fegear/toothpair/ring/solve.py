@@ -42,6 +42,7 @@ GRID_FLOOR = 1e-5    # smallest grid spacing, in modules (20 nm at m = 2)
 PLACEMENT = 0.5      # grids are placed again if the solved rotation's elastic part differs
                      # from the expected one by more than this fraction
 ATTEMPTS = 5
+PROBE_MARGIN_UM = 1.0  # fine grids also on teeth within this of closing at the expected rotation
 
 
 def solve_pair(case: SolveCase, profile: Gear1Profile | None = None,
@@ -89,11 +90,12 @@ def solve_position(model: RingModel, case: SolveCase, state,
         elastic_um = torque / p.r0 / (case.thickness * TOOTH_STIFFNESS) / SHARE_GUESS
     reach = {}
     teeth = choose_teeth(state, first_um + elastic_um, case.extra_pairs)
+    full = _expected(state, first_um + elastic_um)
     formed = sum(g.response_s for g in model.gears)
     for _ in range(ATTEMPTS):
         theta = (first_um + elastic_um) * 1e-3 / p.r0
         t0 = time.perf_counter()
-        grids = _grids(model, case, teeth, theta, elastic_um, reach)
+        grids = _grids(model, case, teeth, full, theta, elastic_um, reach)
         times["grids"] += time.perf_counter() - t0
         t0 = time.perf_counter()
         contact = assemble_contact(model, grids, case.beta, p.ratio * case.beta + theta)
@@ -104,14 +106,17 @@ def solve_position(model: RingModel, case: SolveCase, state,
         more = set(choose_teeth(state, sol.rotation * p.r0 * 1e3, case.extra_pairs))
         ends = [g.tooth for k, g in enumerate(grids)
                 if sol.pressure[contact.block(k)][[0, -1]].max() > 0]
+        touched = {g.tooth for k, g in enumerate(grids)
+                   if g.probe and sol.pressure[contact.block(k)].max() > 0}
         solved_um = sol.rotation * p.r0 * 1e3 - first_um
         moved = abs(solved_um - elastic_um) > PLACEMENT * max(abs(solved_um), 1e-3)
-        if more <= set(teeth) and not ends and not moved:
+        if more <= set(teeth) and not ends and not moved and not touched:
             break
-        log.info("β %.6f: placing the grids again (teeth %s, ends %s, elastic %.3g µm, "
-                 "expected %.3g)", case.beta, sorted(more - set(teeth)), ends, solved_um,
-                 elastic_um)
+        log.info("β %.6f: placing the grids again (teeth %s, ends %s, probes touched %s, "
+                 "elastic %.3g µm, expected %.3g)", case.beta, sorted(more - set(teeth)),
+                 ends, sorted(touched), solved_um, elastic_um)
         teeth = tuple(sorted(set(teeth) | more))
+        full = full | touched | _expected(state, sol.rotation * p.r0 * 1e3)
         for t in ends:
             reach[t] = 2.0 * reach.get(t, 1.0)
         elastic_um = max(solved_um, 1e-6)
@@ -137,10 +142,18 @@ def solve_position(model: RingModel, case: SolveCase, state,
         detail=RingDetail(model, case, contact, sol, stresses))
 
 
-def _grids(model: RingModel, case: SolveCase, teeth, theta: float, elastic_um: float,
-           reach: dict) -> tuple[ToothGrid, ...]:
+def _expected(state, closure_um: float) -> set[int]:
+    """Teeth a rigid rotation of ``closure_um`` (µm of arc at r0) closes: they get fine grids,
+    the others chosen coarse probe grids (:func:`~.grid.tooth_grid`)."""
+    return {c.tooth for c in state.teeth
+            if c.plus_um is not None and c.plus_um <= closure_um + PROBE_MARGIN_UM}
+
+
+def _grids(model: RingModel, case: SolveCase, teeth, full: set[int], theta: float,
+           elastic_um: float, reach: dict) -> tuple[ToothGrid, ...]:
     """A grid on each of ``teeth`` whose profile a rotation θ (rad, from the kinematic
-    position) brings within reach of gear 2 (``reach``: extra factors per tooth)."""
+    position) brings within reach of gear 2 (``reach``: extra factors per tooth); fine on the
+    ``full`` ones, a probe on the others."""
     p = case.params
     base = REACH * elastic_um * 1e-3 + REACH_FLOOR * p.m
     turn = p.ratio * case.beta + theta - elastic_um * 1e-3 / p.r0   # at the first touch
@@ -152,7 +165,7 @@ def _grids(model: RingModel, case: SolveCase, teeth, theta: float, elastic_um: f
                      base * reach.get(tooth, 1.0))
         if win is not None:
             out.append(tooth_grid(model.samples, win, load, E_star, model.level.per_b,
-                                  GRID_FLOOR * p.m))
+                                  GRID_FLOOR * p.m, probe=tooth not in full))
     if not out:
         raise FegearError("no tooth comes within reach of gear 2: the pair does not mesh")
     return tuple(out)

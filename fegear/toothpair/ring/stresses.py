@@ -66,13 +66,13 @@ class RingStresses:
     stresses: tuple[dict, dict] = field(repr=False)
     roots: tuple[RootZone, RootZone]
     surface: np.ndarray = field(repr=False)
-    submodels: tuple[tuple[int, Submodel], ...] = field(repr=False)
+    submodels: tuple[tuple[int, float, Submodel], ...] = field(repr=False)  # gear, turn
     bulk_von_mises: float       # the templates' largest, away from the contacts
 
     @property
     def von_mises_max(self) -> float:
         """Largest von Mises stress: the submodels' at the contacts, the templates' elsewhere."""
-        sub = [sm.peak(sm.stress.von_mises)[0] for _, sm in self.submodels]
+        sub = [sm.peak(sm.stress.von_mises)[0] for _, _, sm in self.submodels]
         return max(sub + [self.bulk_von_mises])
 
 
@@ -88,7 +88,8 @@ def ring_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray
     surface = surface_von_mises(model, contact, pressure, fields)
     peaks = _peaks(contact, pressure, surface)
     problems = [contact_submodel(model, contact, pressure, fields, g, i) for g, i in peaks]
-    subs = tuple(zip((g for g, _ in peaks), solve_submodels(problems, model.case.material)))
+    solved = solve_submodels([pb for pb, _ in problems], model.case.material, model.submodels)
+    subs = tuple((g, turn, sm) for (g, _), (_, turn), sm in zip(peaks, problems, solved))
     bulk = max(_bulk_von_mises(side, s, pts[pressure > 0])
                for side, s, pts in zip(model.gears, stresses, (contact.x, contact.facing[0])))
     return RingStresses(fields, stresses, roots, surface, subs, bulk)
@@ -202,17 +203,22 @@ def local_half_width(contact: RingContact, pressure: np.ndarray, i: int) -> floa
 
 
 def contact_submodel(model: RingModel, contact: RingContact, pressure: np.ndarray,
-                     fields: tuple[dict, dict], gear: int, i: int) -> SubmodelProblem:
-    """The submodel of ``gear`` about grid point ``i``'s contact (see module docstring)."""
+                     fields: tuple[dict, dict], gear: int, i: int
+                     ) -> tuple[SubmodelProblem, float]:
+    """The submodel of ``gear`` about grid point ``i``'s contact (see module docstring), set
+    in the frame of the gear's tooth 0 so that a later position or torque with its peak at the
+    same place of a tooth reuses its mesh and factorisation; and the turn (rad) from that frame
+    to the gear's. Its radius and element size are rounded to quarter powers of two and its
+    centre to a quarter of its finest zone, which keeps the peak inside that zone."""
     side = model.gears[gear]
     k = int(contact.grid_index[i])
     blk = contact.block(k)
-    grid, p = contact.grids[k], pressure[blk]
+    p = pressure[blk]
     b = local_half_width(contact, pressure, i)
     if gear == 0:
-        curve = StarCurve(model.shape.point, inside=True)
+        point = model.shape.point
         x = contact.x[i]
-        angles = grid.phi
+        angles = contact.grids[k].phi
     else:
         curve2 = model.curve2
 
@@ -220,21 +226,32 @@ def contact_submodel(model: RingModel, contact: RingContact, pressure: np.ndarra
             r = curve2.radius_at_angle(theta)
             return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
 
-        curve = StarCurve(point, inside=False)
         x = contact.facing[0][i]
         angles = np.unwrap(np.arctan2(contact.facing[0][blk, 1], contact.facing[0][blk, 0]))
     centre = float(np.arctan2(x[1], x[0]))
+    turn = float(np.floor(centre / side.pitch) * side.pitch)
     order = np.argsort(angles)
-    ang, pr = angles[order], p[order]
+    ang, pr = angles[order] - turn, p[order]
 
-    def pressure_at(y):
+    def pressure_at(y):   # tooth-0 frame
         a = ang[0] + wrap(np.arctan2(y[:, 1], y[:, 0]) - ang[0])
         return np.interp(a, ang, pr, left=0.0, right=0.0)
 
-    facet = float(side.facet_size(side.locate(x[None]).local)[0])
-    radius = max(SUB_FACETS * facet, SUB_WIDTHS * b)
-    size = max(b / model.level.sub_per_b, SUB_FLOOR * model.case.params.m)
-    return SubmodelProblem(curve, centre, radius, size, SUB_FOCUS * b, pressure_at,
-                           lambda y: side.displacement_at(y, fields[gear]),
-                           name=f"gear{gear + 1}_contact")
+    def held(y):          # tooth-0 frame in, tooth-0 frame out
+        return rotate(side.displacement_at(rotate(y, turn), fields[gear]), -turn)
 
+    facet = float(side.facet_size(side.locate(x[None]).local)[0])
+    radius = _quarter_power(max(SUB_FACETS * facet, SUB_WIDTHS * b))
+    size = _quarter_power(max(b / model.level.sub_per_b, SUB_FLOOR * model.case.params.m))
+    focus = _quarter_power(SUB_FOCUS * b)
+    step = 0.25 * min(focus, 0.5 * radius) / np.linalg.norm(x)
+    local = round((centre - turn) / step)
+    key = (gear, local, radius, size, focus)
+    curve = StarCurve(point, inside=gear == 0)
+    return SubmodelProblem(curve, local * step, radius, size, focus, pressure_at, held,
+                           name=f"gear{gear + 1}_contact", key=key), turn
+
+
+def _quarter_power(x: float) -> float:
+    """``x`` rounded to the nearest quarter power of two."""
+    return float(2.0 ** (round(4.0 * np.log2(x)) / 4.0))

@@ -69,7 +69,10 @@ def gear1_template(p: PairParameters, shape: RoundedProfile, sizes: TemplateSize
     rounds = [(c - h, c + h) for c, h, _ in shape.fillet_angles(range(-1, 3))
               if a < c < b]
     span = 2.0 * sizes.round / r_max  # the tangent points: finer over ± two round elements
-    marks = [(x - span, x + span, "g1_junction") for lo, hi in rounds for x in (lo, hi)]
+    # a round shorter than the two zones is one zone (else a sliver piece between them)
+    marks = [mark for lo, hi in rounds for mark in (
+        [(lo - span, lo + span, "g1_junction"), (hi - span, hi + span, "g1_junction")]
+        if hi - lo > 3 * span else [(lo - span, hi + span, "g1_junction")])]
     marks += [(lo - 4 * span, hi + 4 * span, "g1_round") for lo, hi in rounds]
     marks += [(x, x, None) for lo, hi in rounds for x in (lo, hi)]  # cut at the curvature jump
 

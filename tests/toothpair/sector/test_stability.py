@@ -29,6 +29,7 @@ def _check(sol):
     assert all(math.isfinite(v) for v in sol.headline().values())
 
 
+@pytest.mark.slow  # 25 s; the ring model's jiggle test runs by default
 def test_jiggled_interior_nodes_move_headline_stresses_by_less_than_2pct(monkeypatch,
                                                                         sector_light_touch):
     case = sector_light_touch.case  # the baseline pair at 1 N·m, coarse

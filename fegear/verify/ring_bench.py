@@ -1,0 +1,219 @@
+"""The tooth-pair benchmark of the ring model: run time, memory and error per quality level,
+the error estimate and the mesh cycle against one position, and how the cost grows with the
+model's size and the number of teeth.
+
+Every run happens in a fresh process (spawned, fegear imported before the clock starts), so
+that its time includes building the model and its peak memory (the process's resident-set
+high-water mark) is its own. Errors are measured against the sector model's `fine`
+references (Richardson over fast/standard/fine, measured 2026-11-22 and kept in
+docs/benchmark.md): the present model's answers are judged by the old model's best ones.
+The old model's von Mises at the edge contact is low by about 1.3 %: its own `fine` state
+re-solved in a submodel gives ``VON_MISES_RESOLVED`` (docs/benchmark.md, "The von Mises
+reference"); both are shown.
+"""
+
+from __future__ import annotations
+
+import math
+import multiprocessing
+import time
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..geometry import PairParameters
+
+#: the sector model's `fine` references (Richardson over fast/standard/fine), MPa
+SECTOR_REFERENCE = {"root_stress_gear1_MPa": 285.02, "root_stress_gear2_MPa": 266.53,
+                    "contact_pressure_MPa": 1875.7, "von_mises_max_MPa": 1835.5}
+#: the sector model's own `fine` state (pressure, displacement) re-solved in a submodel, MPa
+VON_MISES_RESOLVED = 1861.7
+SINGLE_TARGET = (1.0, 5.0)    # every headline stress within 1 % in at most 5 s
+GOAL_S = 1.0                  # what users asked for
+ESTIMATE_TARGET = 2.0         # with the error estimate: at most 2× the single solve
+CYCLE_TARGET = 1.5            # 24 positions: at most 1.5× one position
+MEMORY_TARGET_GB = 2.0
+STUDY_TARGET_S = 60.0         # studies/paper_trends.toml, 12 cases with estimates, 2 workers
+
+
+@dataclass(frozen=True)
+class RingRun:
+    """One run in its own process: what was run, its stage times (s), total time after
+    import (s), peak memory (MB), template DOFs, DOFs of both whole rings, headline values and
+    extras (estimate, cycle)."""
+
+    label: str
+    timings_s: dict
+    total_s: float
+    peak_mb: float
+    dofs: int
+    ring_dofs: int
+    values: dict
+    extra: dict
+
+    def error_pct(self, reference: dict) -> dict:
+        return {k: 100.0 * (self.values[k] / v - 1.0) for k, v in reference.items()}
+
+
+def _child(task: dict) -> dict:
+    """Runs in a fresh process: import, then time the task."""
+    import resource
+
+    from ..geometry import Gear1Profile
+    from ..toothpair import (
+        SolveCase,
+        cycle_positions,
+        pair_summary,
+        second_level_estimate,
+        solve_positions,
+        write_pair_outputs,
+    )
+
+    p = PairParameters(**task["params"])
+    case = SolveCase(p, torque=task["torque"], quality=task["quality"])
+    t0 = time.perf_counter()
+    profile = Gear1Profile(p)
+    t_profile = time.perf_counter() - t0
+    sol = solve_positions(case, (0.0,), profile)[0]
+    total = time.perf_counter() - t0
+    extra = {}
+    if task.get("estimate"):
+        t1 = time.perf_counter()
+        estimate, other = second_level_estimate(sol, profile)
+        extra["estimate_s"] = total + time.perf_counter() - t1
+        extra["estimate_pct"] = estimate
+        extra["estimate_from"] = other
+    if task.get("output"):
+        import tempfile
+
+        with tempfile.TemporaryDirectory() as tmp:
+            t1 = time.perf_counter()
+            write_pair_outputs(sol, Path(tmp), pair_summary(sol))
+            extra["output_s"] = time.perf_counter() - t1
+    if task.get("cycle"):
+        t1 = time.perf_counter()
+        cycle_positions_ = cycle_positions(0.0, task["cycle"], p.z2)
+        sols = solve_positions(case, cycle_positions_, profile)
+        extra["cycle_s"] = time.perf_counter() - t1 + t_profile
+        later = sols[1:]
+        extra["cycle_later_s"] = {k: sum(s.timings_s.get(k, 0.0) for s in later) / len(later)
+                                  for k in later[0].timings_s}
+    timings = {"profile": t_profile + sol.timings_s.get("profile", 0.0),
+               **{k: v for k, v in sol.timings_s.items() if k != "profile"}}
+    rings = sum(side.body.ndofs * side.count for side in sol.detail.model.gears)
+    return {"timings_s": timings, "total_s": total, "dofs": sol.dofs, "ring_dofs": rings,
+            "values": sol.headline(), "extra": extra,
+            "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0}
+
+
+def run_fresh(label: str, params: PairParameters, torque: float, quality: str,
+              **task) -> RingRun:
+    """Run one task in a fresh spawned process (see :func:`_child`)."""
+    payload = {"params": _fields(params), "torque": torque, "quality": quality, **task}
+    context = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(max_workers=1, mp_context=context) as pool:
+        r = pool.submit(_child, payload).result()
+    return RingRun(label, r["timings_s"], r["total_s"], r["peak_mb"], r["dofs"],
+                   r["ring_dofs"], r["values"], r["extra"])
+
+
+def _fields(params: PairParameters) -> dict:
+    from dataclasses import fields
+
+    return {f.name: getattr(params, f.name) for f in fields(params) if f.init}
+
+
+def ring_ladder(params: PairParameters, torque: float, levels) -> list[RingRun]:
+    """Each quality level in its own process; the outputs timed at each too."""
+    return [run_fresh(q, params, torque, q, output=True) for q in levels]
+
+
+def scaling_runs(params: PairParameters, torque: float, quality: str,
+                 teeth=(45, 90, 180)) -> list[RingRun]:
+    """The pair with z2 = 45, 90, 180 teeth (z1 = z2 − 1) and the module scaled so that the
+    pitch radius stays; torque scaled with the module squared (the same tooth stresses)."""
+    out = []
+    for z2 in teeth:
+        m = params.m * params.z2 / z2
+        scaled = PairParameters(m=m, z2=z2, z1=z2 - (params.z2 - params.z1), h1=params.h1,
+                                f1=params.f1, shift=params.shift * m / params.m,
+                                rotation=params.rotation * m / params.m)
+        out.append(run_fresh(f"z2 {z2}", scaled, torque * (m / params.m), quality))
+    return out
+
+
+def ring_table(runs: list[RingRun]) -> str:
+    """Markdown: stage times, memory, DOFs and each headline stress with its error against
+    the sector model's fine reference."""
+    stages = list(dict.fromkeys(k for r in runs for k in r.timings_s))
+    head = (["level", "DOFs (templates / rings)"] + stages + ["total [s]", "peak MB"]
+            + ["root σ1 g1", "root σ1 g2", "contact p", "von Mises"] + ["max err %",
+                                                                        "output [s]"])
+    lines = ["| " + " | ".join(head) + " |", "|---|---|" + "---:|" * (len(head) - 2)]
+    for r in runs:
+        err = r.error_pct(SECTOR_REFERENCE)
+        vm_resolved = 100.0 * (r.values["von_mises_max_MPa"] / VON_MISES_RESOLVED - 1.0)
+        cells = [f"`{r.label}`", f"{r.dofs} / {r.ring_dofs}"]
+        cells += [f"{r.timings_s.get(k, 0.0):.2f}" for k in stages]
+        cells += [f"**{r.total_s:.2f}**", f"{r.peak_mb:.0f}"]
+        cells += [f"{r.values[k]:.1f} ({err[k]:+.2f} %)" for k in SECTOR_REFERENCE]
+        cells[-1] += f" [{vm_resolved:+.2f} %]"
+        cells += [f"{max(abs(v) for v in err.values()):.2f}",
+                  f"{r.extra.get('output_s', math.nan):.2f}"]
+        lines.append("| " + " | ".join(cells) + " |")
+    ref = ", ".join(f"{v:g}" for v in SECTOR_REFERENCE.values())
+    lines += ["", f"errors against the sector model's `fine` references ({ref} MPa); "
+              f"[von Mises against that model's own fine state re-solved in a submodel, "
+              f"{VON_MISES_RESOLVED:g} MPa]"]
+    return "\n".join(lines)
+
+
+def scaling_table(runs: list[RingRun]) -> str:
+    lines = ["| pair | DOFs (templates / rings) | total [s] | peak MB | root σ1 g1 | "
+             "contact p |", "|---|---|---:|---:|---:|---:|"]
+    for r in runs:
+        lines.append(f"| {r.label} | {r.dofs} / {r.ring_dofs} | {r.total_s:.2f} | "
+                     f"{r.peak_mb:.0f} | {r.values['root_stress_gear1_MPa']:.1f} | "
+                     f"{r.values['contact_pressure_MPa']:.1f} |")
+    return "\n".join(lines)
+
+
+def scaling_png(path: Path, ladder: list[RingRun], teeth: list[RingRun]) -> Path:
+    """Time against DOFs (the quality ladder) and against the number of teeth at equal size,
+    log-log, with slope guides."""
+    from ..figures import pyplot, save_png
+
+    plt = pyplot()
+    fig, ax = plt.subplots(1, 2, figsize=(11, 4.5))
+    for a, runs, xs, name in ((ax[0], ladder, [r.dofs for r in ladder], "template DOFs"),
+                              (ax[1], teeth, [int(r.label.split()[-1]) for r in teeth],
+                               "teeth of gear 2 (module scaled, same pitch radius)")):
+        t = [r.total_s for r in runs]
+        a.loglog(xs, t, "o-", label="total after import")
+        for r, x, y in zip(runs, xs, t):
+            a.annotate(r.label, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7)
+        for slope in (1.0,):
+            a.loglog(xs, [t[0] * (x / xs[0]) ** slope for x in xs], ":", color="grey",
+                     label=f"slope {slope:g}")
+        a.set_xlabel(name)
+        a.set_ylabel("time [s]")
+        a.grid(alpha=0.3, which="both")
+        a.legend(fontsize=8)
+    fig.suptitle("ring model: how the cost grows", fontsize=10)
+    fig.tight_layout()
+    return save_png(fig, path, 120)
+
+
+def paper_study_s(workers: int = 2) -> tuple[float, int]:
+    """Wall time (s) of studies/paper_trends.toml (with estimates) on ``workers`` workers in
+    a temporary directory, and the cases computed."""
+    import tempfile
+
+    from ..study import load_study, run_study
+
+    root = Path(__file__).resolve().parents[2] / "studies" / "paper_trends.toml"
+    with tempfile.TemporaryDirectory(prefix="fegear-bench-paper-") as tmp:
+        t0 = time.perf_counter()
+        report = run_study(load_study(root), Path(tmp) / "out", workers=workers,
+                           progress=False)
+        return time.perf_counter() - t0, report.computed
