@@ -157,15 +157,15 @@ def _bench(a, params, torque, repeat, cycle, pair_levels, sector_levels, disk_le
                      [(r.peer_s, disks.error_pct(r.peer_values, disks.judged))
                       for r in disks.rungs if r.peer_s], HERTZ_TARGET),
               Series("tooth pair, ring model",
-                     [(r.total_s, max(abs(v) for v in r.error_pct(rb.SECTOR_REFERENCE)
-                                      .values()), r.label) for r in ring],
+                     [(r.total_s, _sector_error(rb, r.values), r.label) for r in ring],
                      target=rb.SINGLE_TARGET)]
     if sector is not None:
         series.append(Series("tooth pair, sector model",
                              [(r.total_s, _sector_error(rb, r.values), r.level)
                               for r in sector.rungs],
-                             [(r.peer_s, _sector_error(rb, r.peer_values, partial=True))
-                              for r in sector.rungs if r.peer_s]))
+                             [(r.peer_s, _sector_error(rb, r.peer_values, PEER_KEYS))
+                              for r in sector.rungs if r.peer_s],
+                             peer_note=" (root stresses)"))
     ladder_png(out / "bench.png", series)
     write_json(out / "bench.json", {**ladder_json([disks] + ([sector] if sector else []),
                                                   ladder_targets(disks)), "ring": record})
@@ -176,9 +176,17 @@ def _bench(a, params, torque, repeat, cycle, pair_levels, sector_levels, disk_le
     return 0
 
 
-def _sector_error(rb, values: dict, partial: bool = False) -> float:
-    keys = [k for k in rb.SECTOR_REFERENCE if k in values] if partial else rb.SECTOR_REFERENCE
-    return max(abs(100.0 * (values[k] / rb.SECTOR_REFERENCE[k] - 1.0)) for k in keys)
+#: what CalculiX gives that means what ours means: its largest CSTR is a pointwise penalty
+#: pressure at one integration point, not a contact pressure (docs/benchmark.md)
+PEER_KEYS = ("root_stress_gear1_MPa", "root_stress_gear2_MPa")
+
+
+def _sector_error(rb, values: dict, keys=None) -> float:
+    """Largest error (%) of ``values`` against the references, von Mises against the
+    resolved one (:mod:`fegear.verify.ring_bench`)."""
+    ref = dict(rb.SECTOR_REFERENCE, von_mises_max_MPa=rb.VON_MISES_RESOLVED)
+    keys = ref if keys is None else keys
+    return max(abs(100.0 * (values[k] / ref[k] - 1.0)) for k in keys)
 
 
 def _targets(rb, default, extra, cycle, sector, ring, study, peer_target) -> list[str]:
@@ -226,18 +234,22 @@ def _targets(rb, default, extra, cycle, sector, ring, study, peer_target) -> lis
         for r in sector.rungs:
             if not r.peer_s:
                 continue
-            peer_err = _sector_error(rb, r.peer_values, partial=True)
-            ours = [x for x in ring if max(abs(v) for v in x.error_pct(rb.SECTOR_REFERENCE)
-                                           .values()) <= max(peer_err, 1e-9)]
+            peer_err = _sector_error(rb, r.peer_values, PEER_KEYS)
+            ours = [x for x in ring if _sector_error(rb, x.values, PEER_KEYS) <= peer_err]
             if not ours:
+                lines.append(f"* CalculiX on the sector model's `{r.level}` mesh, "
+                             f"{r.peer_s:.0f} s, root stresses within {peer_err:.2f} %: no "
+                             f"ring level is as close (target >= {peer_target:g}× at equal "
+                             "error): MISSED")
                 continue
             fastest = min(ours, key=lambda x: x.total_s)
             ratio = r.peer_s / fastest.total_s
-            lines.append(f"* CalculiX on the sector model's `{r.level}` mesh, {r.peer_s:.0f} s "
-                         f"(error {peer_err:.2f} % on the stresses it gives) against the ring "
-                         f"model's `{fastest.label}` at no larger error, {fastest.total_s:.2f} s: "
-                         f"{ratio:.0f}× (target >= {peer_target:g}×): "
-                         f"{status(ratio >= peer_target)}")
+            lines.append(f"* CalculiX on the sector model's `{r.level}` mesh, {r.peer_s:.0f} s, "
+                         f"root stresses within {peer_err:.2f} % of the references, against the "
+                         f"ring model's `{fastest.label}` "
+                         f"({_sector_error(rb, fastest.values, PEER_KEYS):.2f} %), "
+                         f"{fastest.total_s:.2f} s: {ratio:.1f}× (target >= {peer_target:g}× "
+                         f"at equal error): {status(ratio >= peer_target)}")
     return lines
 
 

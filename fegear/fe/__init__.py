@@ -36,6 +36,7 @@ from ..exports import lazy
 __getattr__, __dir__, __all__ = lazy(__name__, {
     "mesh": ("Segment", "Refinement", "Periodic", "BodyGeometry", "BodyMesh", "MeshQuality",
              "MeshError", "mesh_bodies", "mesh_quality", "jiggle"),
+    "libraries": ("import_libraries",),
     "material": ("Material", "MATERIAL_INPUTS", "plane_modulus", "contact_modulus"),
     "assembly": ("Body", "RigidLink", "Placement", "SupportError", "assemble_body"),
     "dofs": ("node_dofs", "facet_nodes"),

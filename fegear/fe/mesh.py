@@ -147,6 +147,11 @@ def gmsh_session() -> Iterator[object]:
         gmsh.finalize()
 
 
+def import_gmsh() -> None:
+    """Import gmsh now rather than at the first mesh (:func:`.libraries.import_libraries`)."""
+    import gmsh  # noqa: F401
+
+
 def mesh_bodies(bodies: Sequence[BodyGeometry]) -> tuple[BodyMesh, ...]:
     """Mesh each body with second-order triangles and check the quality of every mesh."""
     with gmsh_session() as gmsh:

@@ -262,7 +262,8 @@ class Gear1Profile:
                 e = b.evaluate(s)
                 # dq/dξ = σ t ; d²q/dξ² normal part = κ σ² n_left  (enough for curvature bound)
                 d1 = e.speed[:, None] * e.tangent
-                d2 = (e.kappa * e.speed**2)[:, None] * (-e.normal)
+                with np.errstate(invalid="ignore"):  # NaN at a singular point: refused below
+                    d2 = (e.kappa * e.speed**2)[:, None] * (-e.normal)
                 return e.q, d1, d2
 
             xi = adaptive_parameters(derivs, pc.xi0, pc.xi1, chord_error, n0=16)

@@ -196,7 +196,13 @@ def adaptive_parameters(derivs, a: float, b: float, chord_error: float,
         _, d1, d2 = derivs(probe)
         speed = np.hypot(d1[:, 0], d1[:, 1])
         cross = np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
-        kappa = cross / np.maximum(speed, 1e-300) ** 3
+        with np.errstate(divide="ignore", invalid="ignore"):
+            kappa = cross / speed**3
+        if not np.isfinite(kappa).all():  # speed 0: a singular point, curvature unbounded
+            raise GeometryError(
+                f"the curve has a cusp (a singular point at parameter "
+                f"{probe[~np.isfinite(kappa)][0]:.6g}): no polyline of chord error "
+                f"{chord_error:g} mm follows it")
         # arc length per parameter unit and curvature, worst case over the interval
         kmax = 1.5 * kappa.max() + 1e-12
         seg = np.sqrt(8.0 * chord_error / kmax)

@@ -13,14 +13,28 @@ from .pair import solve_pair
 GCI_FS = 3.0  # safety factor of the grid convergence index from two mesh levels (Roache)
 
 
-def error_estimate(fine: dict[str, float], coarse: dict[str, float]) -> dict[str, float]:
+def error_estimate(fine: dict[str, float], coarse: dict[str, float],
+                   ratio: float = 2.0) -> dict[str, float]:
     """Discretisation error (%) of each headline stress of the finer mesh: Roache's grid
     convergence index for two grids, e ≈ Fs · |s_fine − s_coarse| / (r^p − 1) with the
-    two-grid safety factor Fs = 3, mesh ratio r = 2 and the P2 stress order p = 2, i.e.
-    e ≈ |s_fine − s_coarse|. (Plain Richardson, Fs = 1, understated the baseline's von Mises
-    error at ``standard`` 7×: peaks on a contact edge are not yet in the asymptotic range.)"""
-    return {k: 100.0 * GCI_FS * abs(fine[k] - coarse[k]) / (2.0 ** 2 - 1.0)
+    two-grid safety factor Fs = 3, the mesh ratio r (element sizes coarse / fine) and the P2
+    stress order p = 2; e ≈ |s_fine − s_coarse| for r = 2, 3 |s_fine − s_coarse| for
+    r = √2. (Plain Richardson, Fs = 1, understated the sector model's von Mises error at
+    ``standard`` 7×: peaks on a contact edge are not yet in the asymptotic range.)"""
+    return {k: 100.0 * GCI_FS * abs(fine[k] - coarse[k]) / (ratio ** 2 - 1.0)
             / max(abs(fine[k]), 1e-300) for k in HEADLINE}
+
+
+def mesh_ratio(model: str, coarse: str, fine: str) -> float:
+    """Element sizes at quality ``coarse`` over those at ``fine``: the sector model halves
+    them from level to level; the ring model's templates (their root zones) shrink by about
+    √2 up to ``standard`` and by 2 to ``fine``."""
+    if model == "sector":
+        levels = tuple(QUALITY)
+        return 2.0 ** (levels.index(fine) - levels.index(coarse))
+    from .ring.model import LEVELS
+
+    return LEVELS[coarse].root / LEVELS[fine].root
 
 
 def second_level_estimate(sol: PairSolution,
@@ -34,7 +48,8 @@ def second_level_estimate(sol: PairSolution,
     second = solve_pair(replace(sol.case, quality=other), profile).headline()
     own = sol.headline()
     if k > 0:
-        return error_estimate(own, second), other
-    # the estimate is for the finer level; the coarser one's error is 4× larger (rate h²)
-    finer = error_estimate(second, own)
-    return {key: 4.0 * v * second[key] / own[key] for key, v in finer.items()}, other
+        return error_estimate(own, second, mesh_ratio(sol.case.model, other, levels[k])), other
+    # the estimate is for the finer level; the coarser one's error is r² larger (rate h²)
+    r = mesh_ratio(sol.case.model, levels[0], other)
+    finer = error_estimate(second, own, r)
+    return {key: r ** 2 * v * second[key] / own[key] for key, v in finer.items()}, other

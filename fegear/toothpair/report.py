@@ -94,7 +94,7 @@ def pair_table(summary: dict) -> str:
     unloaded = [t["tooth"] for t in summary["teeth"] if t["load_N"] <= 0]
     if any(t["peak_on_tip_round"] for t in summary["teeth"]):
         lines += ["", "e: the peak sits on gear 1's tip-edge round (edge contact); it depends on "
-                  "the round's radius, --tip-round (README, \"Edge contact\")"]
+                  "the round's radius, --tip-round (docs/model.md, \"Tip edges\")"]
     lines += ["",
               f"teeth in contact {summary['teeth_in_contact']} (paired but open: {unloaded}); "
               f"load shares sum to {summary['load_share_sum']:.6f}; torque balance error "

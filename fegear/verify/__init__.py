@@ -5,7 +5,7 @@ against error), and CalculiX solving the same meshes.
 stage on meshes each twice as fine as the last and measures each level's error against the
 Richardson extrapolation of the finest (``fegear bench``); :mod:`.calculix` and
 :mod:`.calculix_pair` write the very same bodies, supports, penalty and load as CalculiX decks
-and read its answers back; :mod:`.study_overhead` times the study runner.
+and read its answers back; :mod:`.runner_bench` times the study runner.
 
 >>> from fegear.verify import DiskCase, richardson, solve_disks
 >>> result = solve_disks(DiskCase(quality=4))   # 4 elements across the Hertz half-width
@@ -27,7 +27,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "ring_bench": ("RingRun", "run_fresh", "ring_ladder", "scaling_runs", "ring_table",
                    "scaling_table", "scaling_png", "paper_study_s", "SECTOR_REFERENCE",
                    "VON_MISES_RESOLVED"),
-    "study_overhead": ("study_overhead", "overhead_table"),
+    "runner_bench": ("study_overhead", "overhead_table"),
     "calculix": ("CcxDeck", "CcxResult", "ccx_available", "write_deck", "run_ccx", "ccx_disks"),
     "ccx_files": ("PeerError", "PeerConvergenceError"),
     "calculix_pair": ("CcxPairResult", "ccx_pair"),

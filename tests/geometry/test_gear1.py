@@ -107,3 +107,26 @@ def test_degenerate_pairs_raise_a_named_error(params, fragment):
 
     with pytest.raises(GeometryError, match=fragment):
         build_geometry(params, chord_error=1e-3, backlash_positions=4)
+
+
+def test_a_singular_point_of_the_envelope_is_refused_by_name(monkeypatch, baseline_profile):
+    """Where the envelope's speed σ vanishes (a cusp of gear 1's profile, where a piece can
+    end) its curvature is unbounded: the sampler refuses the curve with a GeometryError (found
+    by the property test: a bare ValueError, NaN curvature, from an admissible draw)."""
+    from dataclasses import replace
+
+    from fegear.errors import GeometryError
+    from fegear.geometry.envelope import Branch
+
+    evaluate = Branch.evaluate
+
+    def singular_at_the_first_point(self, xi):
+        e = evaluate(self, xi)
+        speed, kappa = e.speed.copy(), e.kappa.copy()
+        speed[0], kappa[0] = 0.0, np.inf
+        return replace(e, speed=speed, kappa=kappa)
+
+    assert np.isfinite(baseline_profile.period_polyline(1e-3)).all()
+    monkeypatch.setattr(Branch, "evaluate", singular_at_the_first_point)
+    with pytest.raises(GeometryError, match="cusp"):
+        baseline_profile.period_polyline(1e-3)

@@ -93,3 +93,30 @@ def test_a_failed_calculix_run_is_reported_and_the_ladder_goes_on(monkeypatch):
     row = next(line for line in table.splitlines() if line.startswith("| 4 per b |"))
     assert row.endswith("| – | – |")  # ccx time and ratio: none
     assert ladder_json([ladder], [])["ladders"][0]["rungs"][0]["peer_failure"]
+
+
+def test_the_peer_is_compared_at_equal_error_on_the_stresses_it_gives():
+    """CalculiX's root stresses against the references pick the cheapest ring level at no
+    larger error; its contact value (a pointwise penalty pressure) is not compared."""
+    from types import SimpleNamespace
+
+    from fegear.cli.bench import _targets
+    from fegear.verify import ring_bench as rb
+
+    ref = rb.SECTOR_REFERENCE
+
+    def run(label, seconds, err_pct):
+        values = {k: v * (1 + err_pct / 100) for k, v in ref.items()}
+        return rb.RingRun(label, {"mesh": seconds}, seconds, 500.0, 1, 1, values, {})
+
+    ring = [run("coarse", 2.0, 1.0), run("fast", 3.0, 0.4), run("standard", 5.0, 0.1)]
+    peer = {k: v * 1.003 for k, v in ref.items()}
+    peer["contact_pressure_MPa"] = 2.3 * ref["contact_pressure_MPa"]
+    sector = SimpleNamespace(rungs=[SimpleNamespace(level="coarse", peer_s=100.0,
+                                                    peer_values=peer)])
+    lines = _targets(rb, ring[1], ring[1], 0, sector, ring, None, 20.0)
+    (line,) = [x for x in lines if x.startswith("* CalculiX")]
+    assert "`standard` (0.10 %), 5.00 s: 20.0×" in line and line.endswith(": met")
+    peer.update({k: v * 1.0001 for k, v in ref.items() if k.startswith("root")})
+    lines = _targets(rb, ring[1], ring[1], 0, sector, ring, None, 20.0)
+    assert [x for x in lines if x.startswith("* CalculiX")][0].endswith("MISSED")

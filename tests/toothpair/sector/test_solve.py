@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from fegear.toothpair.case import HEADLINE, SolveCase, cycle_positions
-from fegear.toothpair.estimate import error_estimate
+from fegear.toothpair.estimate import error_estimate, mesh_ratio
 from fegear.toothpair.sector.solve import solve_pair, solve_positions
 
 
@@ -95,5 +95,10 @@ def test_error_estimate_is_the_two_grid_convergence_index():
     coarse = {k: 200.0 + d for k, d in zip(HEADLINE, (2.0, -2.0, 0.0, 20.0))}
     # Fs = 3, r = 2, p = 2: e = 3 |Δ| / 3 = |Δ|, relative to the finer value
     assert list(error_estimate(fine, coarse).values()) == pytest.approx([1.0, 1.0, 0.0, 10.0])
+    # the ring model's levels up to standard shrink by about √2: r² − 1 ≈ 1, e ≈ 3 |Δ|
+    r = mesh_ratio("ring", "fast", "standard")
+    assert r == pytest.approx(20 / 14)
+    assert error_estimate(fine, coarse, r)[next(iter(HEADLINE))] == pytest.approx(3.0 / (r * r - 1))
+    assert mesh_ratio("ring", "standard", "fine") == mesh_ratio("sector", "fast", "standard") == 2
 
 
