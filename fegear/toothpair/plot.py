@@ -82,7 +82,9 @@ def von_mises_png(path: Path, sol: PairSolution, bodies, peaks=()) -> Path:
 
     plot = pv.Plotter(off_screen=True, shape=(1, 2), window_size=(1600, 800))
     plot.subplot(0, 0)
-    view(plot, grids, teeth_half, (0.0, clip), "vM [MPa]")
+    # distinct titles: pyvista shares one colour table between scalar bars of the same title,
+    # and the zoom's full range then recoloured the clipped overview
+    view(plot, grids, teeth_half, (0.0, clip), "vM [MPa], clipped")
     plot.add_text(f"von Mises, T {sol.case.torque:g} N·m: the loaded teeth\n"
                   f"(colours clipped at {clip:.0f} MPa, twice the root stress)", font_size=11)
     plot.subplot(0, 1)
