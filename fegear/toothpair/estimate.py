@@ -39,7 +39,7 @@ def mesh_ratio(model: str, coarse: str, fine: str) -> float:
 
 def second_level_estimate(sol: PairSolution,
                           profile: Gear1Profile | None = None) -> tuple[dict[str, float], str]:
-    """Solve the same case at the next coarser quality (``standard`` for ``fast``: the next
+    """Solve the same case at the next coarser quality (``fast`` for ``coarse``: the next
     finer) and estimate the headline errors (%) of ``sol``. Returns the estimate and the
     other quality."""
     levels = tuple(QUALITY)  # coarsest first, each halving the element sizes
