@@ -26,6 +26,19 @@ def hat(s, j, x):
     return np.interp(x, s, np.eye(len(s))[j], left=0.0, right=0.0)
 
 
+def _hat_quadrature(s, t, d, point):
+    """Reference matrix: the point solution ``point(t − x, d)`` integrated against hat j over
+    its support, split at the hat's peak and at the field point."""
+    ref = np.empty((len(t), len(s)))
+    for i in range(len(t)):
+        for j in range(len(s)):
+            lo, hi = s[max(j - 1, 0)], s[min(j + 1, len(s) - 1)]
+            breaks = [x for x in (s[j], t[i]) if lo < x < hi]
+            ref[i, j] = quad(lambda x, i=i, j=j: hat(s, j, x) * point(t[i] - x, d[i]), lo, hi,
+                             points=breaks or None, limit=200, epsabs=0, epsrel=1e-11)[0]
+    return ref
+
+
 @pytest.mark.parametrize("kernel,point", [(approach_matrix, point_approach),
                                           (strain_matrix, point_strain)])
 def test_hat_integrals_equal_quadrature_of_the_point_load(kernel, point):
@@ -33,13 +46,9 @@ def test_hat_integrals_equal_quadrature_of_the_point_load(kernel, point):
     t = np.array([-0.02, 0.0, 0.002, 0.004, 0.031, 0.3])
     d = np.array([0.01, 0.005, 0.02, 0.001, 0.04, 0.02])
     K = kernel(t, d, s, E, NU)
-    for i in range(len(t)):
-        for j in range(len(s)):
-            lo, hi = s[max(j - 1, 0)], s[min(j + 1, len(s) - 1)]
-            breaks = [x for x in (s[j], t[i]) if lo < x < hi]
-            ref = quad(lambda x, i=i, j=j: hat(s, j, x) * point(t[i] - x, d[i]), lo, hi,
-                       points=breaks or None, limit=200, epsabs=0, epsrel=1e-11)[0]
-            assert K[i, j] == pytest.approx(ref, rel=1e-7, abs=1e-12 * abs(K).max()), (i, j)
+    ref = _hat_quadrature(s, t, d, point)
+    for (i, j), value in np.ndenumerate(ref):
+        assert K[i, j] == pytest.approx(value, rel=1e-7, abs=1e-12 * abs(K).max()), (i, j)
 
 
 def test_approach_and_strain_come_from_one_displacement_field():
@@ -53,13 +62,8 @@ def test_approach_and_strain_come_from_one_displacement_field():
         r2 = tt * tt + dd * dd
         return -2.0 / (math.pi * E) * dd * (dd * dd - NU * tt * tt) / r2 ** 2
 
-    for i in range(len(t)):
-        for j in range(len(s)):
-            lo, hi = s[max(j - 1, 0)], s[min(j + 1, len(s) - 1)]
-            breaks = [x for x in (s[j], t[i]) if lo < x < hi]
-            ref = quad(lambda x, i=i, j=j: hat(s, j, x) * eps_zz(t[i] - x, d[i]), lo, hi,
-                       points=breaks or None, limit=200, epsabs=0, epsrel=1e-11)[0]
-            assert dz[i, j] == pytest.approx(ref, rel=1e-5, abs=1e-16), (i, j)
+    for (i, j), value in np.ndenumerate(_hat_quadrature(s, t, d, eps_zz)):
+        assert dz[i, j] == pytest.approx(value, rel=1e-5, abs=1e-16), (i, j)
 
 
 def test_a_uniform_pressure_far_away_has_a_vanishing_approach():
