@@ -114,9 +114,9 @@ def test_the_peer_is_compared_at_equal_error_on_the_stresses_it_gives():
     peer["contact_pressure_MPa"] = 2.3 * ref["contact_pressure_MPa"]
     sector = SimpleNamespace(rungs=[SimpleNamespace(level="coarse", peer_s=100.0,
                                                     peer_values=peer)])
-    lines = _targets(rb, ring[1], ring[1], 0, sector, ring, None, 20.0)
+    lines = _targets(rb, ring[1], ring[1], None, sector, ring, None, 20.0)
     (line,) = [x for x in lines if x.startswith("* CalculiX")]
     assert "`standard` (0.10 %), 5.00 s: 20.0×" in line and line.endswith(": met")
     peer.update({k: v * 1.0001 for k, v in ref.items() if k.startswith("root")})
-    lines = _targets(rb, ring[1], ring[1], 0, sector, ring, None, 20.0)
+    lines = _targets(rb, ring[1], ring[1], None, sector, ring, None, 20.0)
     assert [x for x in lines if x.startswith("* CalculiX")][0].endswith("MISSED")
