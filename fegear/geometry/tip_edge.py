@@ -15,12 +15,13 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import fsolve
 
 from ..errors import ParameterError
 from .gear1 import Gear1Profile
 
 KINK_DEG = 1.0  # tangent changes below this are left sharp (the root junction turns 0.015°)
+NEWTON_STEPS = 30   # Newton steps for a round's tangent points …
+NEWTON_TOL = 1e-13  # … until the two centres agree to this (mm)
 
 
 @dataclass(frozen=True)
@@ -49,8 +50,7 @@ class RoundedProfile:
         self.phi_space = profile.phi_space
         self.tooth_center = profile.tooth_center
         self.kinks = tuple(k for k in (self._kink(pc.phi0) for pc in profile.pieces[1:]) if k)
-        self.fillets = tuple(self._fillet(phi, gamma) for phi, gamma in self.kinks
-                             ) if self.radius_mm > 0 else ()
+        self.fillets = self._fillets() if self.radius_mm > 0 else ()
 
     def _kink(self, phi: float) -> tuple[float, float] | None:
         ev = self.profile.evaluate(np.array([phi - 1e-10, phi + 1e-10]))
@@ -58,34 +58,54 @@ class RoundedProfile:
         gamma = math.atan2(t0[0] * t1[1] - t0[1] * t1[0], t0 @ t1)
         return (phi, abs(gamma)) if math.degrees(abs(gamma)) > KINK_DEG else None
 
-    def _centre(self, phi: float) -> np.ndarray:
-        ev = self.profile.evaluate(np.array([phi]))
-        return ev.q[0] - self.radius_mm * ev.normal[0]
+    def _centres(self, phi: np.ndarray) -> np.ndarray:
+        """Centres (n, 2) of circles of the radius tangent to the profile at angles ``phi``."""
+        ev = self.profile.evaluate(phi)
+        return ev.q - self.radius_mm * ev.normal
 
-    def _fillet(self, phi_c: float, gamma: float) -> Fillet:
+    def _fillets(self) -> tuple[Fillet, ...]:
+        """The round of every kink: its tangent points φa < φc < φb are where the circles
+        tangent on either side have one centre, c(φa) = c(φb). Newton on the unknowns
+        log(φc − φa), log(φb − φc), which keep the points on their sides (from r_c alone both
+        fell onto the kink), for all kinks at once; the Jacobian by differences in one
+        evaluation with the residual."""
         rho = self.radius_mm
-        # tangent length ρ tan(γ/2) as a polar angle on each side (the flank is steep: arc
-        # length per radian is several times the radius); unknowns log(φc − φa), log(φb − φc)
-        # keep the tangent points on their sides (from r_c alone both fell onto the kink)
+        phi_c = np.array([phi for phi, _ in self.kinks])
+        gamma = np.array([g for _, g in self.kinks])
+        if len(phi_c) == 0:
+            return ()
+        # start: the tangent length ρ tan(γ/2) as a polar angle on each side (the flank is
+        # steep: arc length per radian is several times the radius)
         eps = 1e-7
-        q = self.profile.evaluate(np.array([phi_c - eps, phi_c - 2 * eps, phi_c + eps,
-                                            phi_c + 2 * eps])).q
-        speed = (np.linalg.norm(q[0] - q[1]) / eps, np.linalg.norm(q[3] - q[2]) / eps)
-        tangent = rho * math.tan(0.5 * gamma)
-        sol, info, _, _ = fsolve(
-            lambda x: self._centre(phi_c - math.exp(x[0])) - self._centre(phi_c + math.exp(x[1])),
-            [math.log(tangent / speed[0]), math.log(tangent / speed[1])], full_output=True,
-            xtol=1e-14)
-        phi_a, phi_b = phi_c - math.exp(sol[0]), phi_c + math.exp(sol[1])
-        ev = self.profile.evaluate(np.array([phi_a, phi_b]))
-        side_ok = phi_a < phi_c < phi_b and phi_b - phi_a < 0.25 * self.pitch
-        curv_ok = np.all(ev.kappa * rho > -1.0) and np.all(ev.kappa * rho < 1.0)
-        if np.abs(info["fvec"]).max() > 1e-9 or not side_ok or not curv_ok:
-            raise ParameterError("tip_round", rho, "a radius that fits the tip edge "
-                                 f"(smaller than {0.5 / max(np.abs(ev.kappa).max(), 1e-9):.3g} "
-                                 "mm here)")
-        c = self._centre(phi_a)
-        return Fillet(phi_a, phi_b, (float(c[0]), float(c[1])), rho, gamma)
+        q = self.profile.evaluate(np.concatenate([phi_c - eps, phi_c - 2 * eps, phi_c + eps,
+                                                  phi_c + 2 * eps])).q.reshape(4, -1, 2)
+        speed = (np.linalg.norm(q[0] - q[1], axis=1) / eps,
+                 np.linalg.norm(q[3] - q[2], axis=1) / eps)
+        tangent = rho * np.tan(0.5 * gamma)
+        x = np.column_stack([np.log(tangent / speed[0]), np.log(tangent / speed[1])])
+        step = 1e-7   # relative, in the log unknowns
+        for _ in range(NEWTON_STEPS):
+            phi = np.concatenate([phi_c - np.exp(x[:, 0]), phi_c + np.exp(x[:, 1]),
+                                  phi_c - np.exp(x[:, 0] + step), phi_c + np.exp(x[:, 1] + step)])
+            c = self._centres(phi).reshape(4, -1, 2)
+            residual = c[0] - c[1]
+            if np.abs(residual).max() <= NEWTON_TOL:
+                break
+            jac = np.stack([(c[2] - c[0]) / step, -(c[3] - c[1]) / step], axis=2)
+            x = x - np.clip(np.linalg.solve(jac, residual[..., None])[..., 0], -1.0, 1.0)
+        out = []
+        for k, (pc, g) in enumerate(zip(phi_c, gamma)):
+            phi_a, phi_b = float(pc - math.exp(x[k, 0])), float(pc + math.exp(x[k, 1]))
+            ev = self.profile.evaluate(np.array([phi_a, phi_b]))
+            side_ok = phi_a < pc < phi_b and phi_b - phi_a < 0.25 * self.pitch
+            curv_ok = np.all(ev.kappa * rho > -1.0) and np.all(ev.kappa * rho < 1.0)
+            if np.abs(residual[k]).max() > 1e-9 or not side_ok or not curv_ok:
+                raise ParameterError("tip_round", rho, "a radius that fits the tip edge "
+                                     "(smaller than "
+                                     f"{0.5 / max(np.abs(ev.kappa).max(), 1e-9):.3g} mm here)")
+            c = self._centres(np.array([phi_a]))[0]
+            out.append(Fillet(phi_a, phi_b, (float(c[0]), float(c[1])), rho, float(g)))
+        return tuple(out)
 
     def _on_fillet(self, phi: np.ndarray):
         """Per angle: index of the fillet it falls on (−1: none) and the local angle."""

@@ -66,7 +66,7 @@ class GearSide:
     probe: Probe = field(init=False, repr=False)
     response_s: float = 0.0                                 # time spent forming responses
     _column: np.ndarray = field(init=False, repr=False)     # template dof → response column
-    _X: np.ndarray = field(init=False, repr=False)          # clamped fields, by column
+    _X: list = field(init=False, repr=False)                # clamped fields: column blocks
     _rho: np.ndarray = field(init=False, repr=False)        # cut loads, by column
     _used: int = 0
     _cut_field: np.ndarray | None = field(default=None, repr=False)
@@ -76,7 +76,7 @@ class GearSide:
         self.facets = np.concatenate([m.boundaries[n] for n in self.template.profile])
         self.probe = Probe(m)
         self._column = np.full(self.body.ndofs, -1, dtype=np.int64)
-        self._X = np.zeros((self.body.ndofs, 0))
+        self._X = []
         self._rho = np.zeros((len(self.body.interface), 0))
 
     @property
@@ -137,17 +137,12 @@ class GearSide:
         if len(new):
             t0 = time.perf_counter()
             need = self._used + len(new)
-            if need > self._X.shape[1]:
-                cap = max(need, 2 * self._X.shape[1], 256)
-                self._X = np.hstack([self._X, np.zeros((self._X.shape[0],
-                                                        cap - self._X.shape[1]))])
-                self._rho = np.hstack([self._rho, np.zeros((self._rho.shape[0],
-                                                            cap - self._rho.shape[1]))])
             E = np.zeros((self.body.ndofs, len(new)))
             E[new, np.arange(len(new))] = 1.0
-            cols = slice(self._used, need)
-            self._X[:, cols] = self.body.clamped(E)
-            self._rho[:, cols] = self.body.cut_loads(E)
+            # the fields are kept as the blocks they were formed in (growing one array copied
+            # it whole every time); the cut loads are small
+            self._X.append((self._used, self.body.clamped(E)))
+            self._rho = np.hstack([self._rho, self.body.cut_loads(E)])
             self._column[new] = np.arange(self._used, need)
             self._used = need
             self.response_s += time.perf_counter() - t0
@@ -159,7 +154,12 @@ class GearSide:
         cols = self._form(dofs)
         rows = sp.csr_matrix(rows)
         used = np.unique(rows.indices)
-        return np.asarray(rows[:, used] @ self._X[np.ix_(used, cols)])
+        X = np.empty((len(used), len(cols)))
+        for start, block in self._X:
+            sel = np.flatnonzero((cols >= start) & (cols < start + block.shape[1]))
+            if len(sel):
+                X[:, sel] = block[np.ix_(used, cols[sel] - start)]
+        return np.asarray(rows[:, used] @ X)
 
     def cut_loads(self, dofs: np.ndarray) -> np.ndarray:
         """Cut loads (2 n_f, dofs) of unit loads at template ``dofs``."""
