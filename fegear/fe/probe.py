@@ -60,15 +60,25 @@ class Probe:
         _, cand = self._tree.query(points, k=k)
         cand = cand.reshape(len(points), k)
         X = self.mesh.doflocs.T[self._nodes[cand]]             # (n, k, 6, 2)
-        ref = _invert(X, points[:, None, :])                   # (n, k, 2)
-        xi, eta = ref[..., 0], ref[..., 1]
-        outside = np.maximum.reduce([-xi, -eta, xi + eta - 1.0, np.zeros_like(xi)])
-        best = np.argmin(outside, axis=1)
         rows = np.arange(len(points))
-        if outside[rows, best].max() > TOLERANCE:
-            i = int(np.argmax(outside[rows, best]))
+        # Newton on the candidate whose corner triangle holds the point best; on all
+        # candidates only for the points it leaves outside (near curved edges)
+        best = np.argmin(_outside(_affine(X, points[:, None, :])), axis=1)
+        ref = _invert(X[rows, best], points)                   # (n, 2)
+        out = _outside(ref)
+        redo = np.flatnonzero(out > 0.0)
+        if len(redo):
+            every = _invert(X[redo], points[redo, None, :])     # (m, k, 2)
+            pick = np.argmin(_outside(every), axis=1)
+            better = _outside(every[np.arange(len(redo)), pick]) < out[redo]
+            redo, pick = redo[better], pick[better]
+            best[redo] = pick
+            ref[redo] = every[better][np.arange(len(redo)), pick]
+            out[redo] = _outside(ref[redo])
+        if out.max() > TOLERANCE:
+            i = int(np.argmax(out))
             raise FegearError(f"point {points[i].tolist()} lies outside the mesh")
-        return Located(cand[rows, best], xi[rows, best], eta[rows, best])
+        return Located(cand[rows, best], ref[:, 0], ref[:, 1])
 
     def rows(self, points: np.ndarray, direction: np.ndarray | None = None,
              strain: bool = False) -> sp.csr_matrix:
@@ -118,12 +128,24 @@ def _grad(xi: np.ndarray, eta: np.ndarray) -> np.ndarray:
     return np.stack([np.stack(c, axis=-1) for c in g], axis=-2)
 
 
+def _outside(ref: np.ndarray) -> np.ndarray:
+    """How far reference coordinates (…, 2) lie outside the reference triangle (0 inside)."""
+    xi, eta = ref[..., 0], ref[..., 1]
+    return np.maximum.reduce([-xi, -eta, xi + eta - 1.0, np.zeros_like(xi)])
+
+
+def _affine(X: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Reference coordinates (…, 2) of points y under the affine maps of the corners of
+    elements with nodes X (…, 6, 2)."""
+    a, b, c = X[..., 0, :], X[..., 1, :], X[..., 2, :]
+    A = np.stack([b - a, c - a], axis=-1)                        # (…, 2, 2)
+    return np.linalg.solve(A, (y - a)[..., None])[..., 0]
+
+
 def _invert(X: np.ndarray, y: np.ndarray) -> np.ndarray:
     """Reference coordinates (…, 2) of points y under the quadratic maps of elements with nodes
     X (…, 6, 2): the affine map of the corners first, then Newton on the quadratic one."""
-    a, b, c = X[..., 0, :], X[..., 1, :], X[..., 2, :]
-    A = np.stack([b - a, c - a], axis=-1)                        # (…, 2, 2)
-    ref = np.linalg.solve(A, (y - a)[..., None])[..., 0]
+    ref = _affine(X, y)
     for _ in range(NEWTON):
         N = _shape(ref[..., 0], ref[..., 1])
         dN = _grad(ref[..., 0], ref[..., 1])

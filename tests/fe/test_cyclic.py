@@ -102,3 +102,28 @@ def test_cyclic_ring_equals_the_ring_assembled_whole(count):
         theirs = u[np.stack([2 * ids[k], 2 * ids[k] + 1], -1)]
         assert np.abs(mine - theirs).max() < 1e-9 * scale, k
     assert body.residual({t: f}, fields) < 1e-9
+
+
+def test_far_couplings_are_thin_products_within_their_tolerance():
+    """Sectors two or more apart couple through a few smooth modes: W(Δ) = U V within
+    LOW_RANK_TOL of W(0), U and V thin; the sector itself and its neighbours are kept whole."""
+    from fegear.fe.cyclic import LOW_RANK_SHARE, LOW_RANK_TOL
+
+    count = 24
+    body = assemble_cyclic(sector(count, size=0.5), MAT, count, "cut_b", fixed=("inside",))
+    n = len(body.interface)
+    scale = np.linalg.norm(body.ring[0])
+    assert body.coupling_factors(0) is None
+    assert body.coupling_factors(1) is None and body.coupling_factors(-1) is None
+    thin = []
+    for delta in range(2, count - 1):
+        factors = body.coupling_factors(delta)
+        if factors is None:
+            continue
+        thin.append(delta)
+        U, V = factors
+        assert U.shape[1] == V.shape[0] <= LOW_RANK_SHARE * n
+        err = np.linalg.norm(body.coupling(delta) - U @ V)
+        assert err <= LOW_RANK_TOL * scale, delta
+    assert set(range(4, count - 3)) <= set(thin)   # this coarse, narrow ring: from Δ = 4
+    assert body.coupling_factors(count + 5) is body.coupling_factors(5)   # by Δ mod count

@@ -152,26 +152,29 @@ def _matching(side: GearSide, x: np.ndarray, normal: np.ndarray, depth: float,
 
 def _fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
              nh: int) -> np.ndarray:
-    """n · u_FE at the matching points per unit pressure of each hat (see module docstring).
-    Accumulated hats-first (transposed), so that every scatter is over rows."""
+    """n · u_FE at the matching points per unit pressure of each hat (see module docstring):
+    for the points in sector k and the hats loading sector t, the clamped field if t = k plus
+    N Ψ W(t − k) ρ, the product taken through the thin factors of W where the sectors are far
+    apart (:meth:`~fegear.fe.cyclic.CyclicBody.coupling_factors`)."""
     at = match.at
     N = side.rows(at.local, match.direction)
     NQ = np.asarray(N @ side.cut_field)
-    rows = {int(k): np.flatnonzero(at.sector == k) for k in np.unique(at.sector)}
-    sectors = sorted(rows)
-    nf = len(side.body.interface)
     dofs = np.unique(np.concatenate([b.dofs for b in loads.values()]))
     clamped = side.clamped_rows(N, dofs)                     # (points, loaded dofs)
-    cuts = np.zeros((nh, len(sectors) * nf))   # per hat: cut motion of every row sector
-    out = np.zeros((nh, len(at.sector)))                      # transposed
-    for t, blk in loads.items():
-        W = np.concatenate([side.body.coupling(t - k) for k in sectors])
-        cuts[blk.columns] += (W @ (side.cut_loads(blk.dofs) @ blk.matrix)).T
-        if t in rows:
-            r = rows[t]
-            out[np.ix_(blk.columns, r)] += (clamped[np.ix_(r, np.searchsorted(dofs, blk.dofs))]
-                                            @ blk.matrix).T
-    for i, k in enumerate(sectors):
-        r = rows[k]
-        out[:, r] += cuts[:, i * nf:(i + 1) * nf] @ NQ[r].T
-    return out.T
+    rho = {t: side.cut_loads(blk.dofs) @ blk.matrix for t, blk in loads.items()}
+    out = np.zeros((len(at.sector), nh))
+    for k in np.unique(at.sector):
+        r = np.flatnonzero(at.sector == k)
+        part = np.zeros((len(r), nh))
+        for t, blk in loads.items():
+            factors = side.body.coupling_factors(t - k)
+            if factors is None:
+                block = NQ[r] @ (side.body.coupling(t - k) @ rho[t])
+            else:
+                U, V = factors
+                block = (NQ[r] @ U) @ (V @ rho[t])
+            if t == k:
+                block += clamped[np.ix_(r, np.searchsorted(dofs, blk.dofs))] @ blk.matrix
+            part[:, blk.columns] += block
+        out[r] = part
+    return out
