@@ -84,22 +84,26 @@ class RoundedProfile:
         tangent = rho * np.tan(0.5 * gamma)
         x = np.column_stack([np.log(tangent / speed[0]), np.log(tangent / speed[1])])
         step = 1e-7   # relative, in the log unknowns
-        for _ in range(NEWTON_STEPS):
+        for i in range(NEWTON_STEPS + 1):
             phi = np.concatenate([phi_c - np.exp(x[:, 0]), phi_c + np.exp(x[:, 1]),
                                   phi_c - np.exp(x[:, 0] + step), phi_c + np.exp(x[:, 1] + step)])
             c = self._centres(phi).reshape(4, -1, 2)
             residual = c[0] - c[1]
-            if np.abs(residual).max() <= NEWTON_TOL:
+            if (np.abs(residual).max() <= NEWTON_TOL or not np.all(np.isfinite(residual))
+                    or i == NEWTON_STEPS):   # the residual is that of x
                 break
             jac = np.stack([(c[2] - c[0]) / step, -(c[3] - c[1]) / step], axis=2)
-            x = x - np.clip(np.linalg.solve(jac, residual[..., None])[..., 0], -1.0, 1.0)
+            try:
+                x = x - np.clip(np.linalg.solve(jac, residual[..., None])[..., 0], -1.0, 1.0)
+            except np.linalg.LinAlgError:
+                break
         out = []
         for k, (pc, g) in enumerate(zip(phi_c, gamma)):
             phi_a, phi_b = float(pc - math.exp(x[k, 0])), float(pc + math.exp(x[k, 1]))
             ev = self.profile.evaluate(np.array([phi_a, phi_b]))
             side_ok = phi_a < pc < phi_b and phi_b - phi_a < 0.25 * self.pitch
             curv_ok = np.all(ev.kappa * rho > -1.0) and np.all(ev.kappa * rho < 1.0)
-            if np.abs(residual[k]).max() > 1e-9 or not side_ok or not curv_ok:
+            if not np.all(np.abs(residual[k]) <= 1e-9) or not side_ok or not curv_ok:
                 raise ParameterError("tip_round", rho, "a radius that fits the tip edge "
                                      "(smaller than "
                                      f"{0.5 / max(np.abs(ev.kappa).max(), 1e-9):.3g} mm here)")
