@@ -140,3 +140,35 @@ def sampled(name, curve, project, lo, hi, zone=None, size=math.inf) -> Segment:
         n = min(max(8, int(s[-1] / spacing) + 2), 4000)
         points = curve(np.interp(np.linspace(0.0, s[-1], n), s, dense))
     return Segment(name, points, project, zone)
+
+
+def gear2_polar(curve):
+    """Gear 2's profile as points by polar angle (its frame), and the projection of points
+    onto it along their polar angle."""
+
+    def point(theta):
+        r = curve.radius_at_angle(theta)
+        return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
+
+    def project(x):
+        return point(np.arctan2(x[:, 1], x[:, 0]))
+
+    return point, project
+
+
+def gear2_outline(point, segs, a: float, b: float, outer: float,
+                  rim_points: int) -> tuple[Segment, ...]:
+    """Gear 2's sector from polar angle ``a`` to ``b`` as a closed outline: the rim arc of
+    radius ``outer`` (``rim_points`` points), the cut at ``b``, the profile ``segs`` (given
+    from a to b) reversed, the cut at ``a``. ``point``: the profile by polar angle."""
+    t = np.linspace(a, b, rim_points)
+    rim = outer * np.column_stack([np.cos(t), np.sin(t)])
+
+    def rim_project(x):
+        return outer * x / np.linalg.norm(x, axis=1)[:, None]
+
+    pa, pb = point(np.array([a]))[0], point(np.array([b]))[0]
+    return (Segment("g2_rim", rim, rim_project),
+            Segment("g2_cut_b", np.array([rim[-1], pb])),
+            *(Segment(s.name, s.points[::-1], s.project, s.zone) for s in reversed(segs)),
+            Segment("g2_cut_a", np.array([pa, rim[0]])))

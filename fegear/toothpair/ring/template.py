@@ -24,7 +24,13 @@ import numpy as np
 
 from ...fe import BodyGeometry, Periodic, Refinement, Segment
 from ...geometry import Cycloid, PairParameters, RoundedProfile
-from ..segments import ROOT_BAND, profile_segments, root_half_angle
+from ..segments import (
+    ROOT_BAND,
+    gear2_outline,
+    gear2_polar,
+    profile_segments,
+    root_half_angle,
+)
 
 
 @dataclass(frozen=True)
@@ -114,33 +120,14 @@ def gear2_template(p: PairParameters, curve: Cycloid, sizes: TemplateSizes,
     r_min, r_max = p.r0 - 2 * p.e1, p.r0 + 2 * p.e1
     outer = r_max + rim
 
-    def g2_curve(theta):
-        r = curve.radius_at_angle(theta)
-        return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
-
-    def project(x):
-        return g2_curve(np.arctan2(x[:, 1], x[:, 0]))
-
+    g2_curve, project = gear2_polar(curve)
     root_half = root_half_angle(lambda t: curve.radius_at_angle(t), 0.5 * pitch, pitch, r_min,
                                 r_max, inverted=True)
     segs, names = profile_segments(
         "g2", g2_curve, project, a, b, [], [("g2_root", 0.5 * pitch, root_half)],
         sizes={"g2_root": sizes.root, "g2_flank": sizes.flank})
-    t = np.linspace(a, b, 40)
-    rim_pts = outer * np.column_stack([np.cos(t), np.sin(t)])
-
-    def rim_project(x):
-        return outer * x / np.linalg.norm(x, axis=1)[:, None]
-
-    pa, pb = g2_curve(np.array([a]))[0], g2_curve(np.array([b]))[0]
-    reversed_segs = tuple(Segment(s.name, s.points[::-1], s.project, s.zone)
-                          for s in reversed(segs))
-    geo = BodyGeometry("gear2", (
-        Segment("g2_rim", rim_pts, rim_project),
-        Segment("g2_cut_b", np.array([rim_pts[-1], pb])),
-        *reversed_segs,
-        Segment("g2_cut_a", np.array([pa, rim_pts[0]])),
-    ), size=sizes.body, refinements=(
+    geo = BodyGeometry("gear2", gear2_outline(g2_curve, segs, a, b, outer, 40),
+                       size=sizes.body, refinements=(
         Refinement(("g2_root",), sizes.root, sizes.growth),
         Refinement(("g2_flank",), sizes.flank, sizes.growth)),
         periodic=(Periodic("g2_cut_b", "g2_cut_a", pitch),))

@@ -36,6 +36,8 @@ from ...geometry import Cycloid, Gear1Profile, PairParameters, RoundedProfile, g
 from ...planar import rotate
 from ..segments import (
     ROOT_BAND,
+    gear2_outline,
+    gear2_polar,
     path_windows,
     profile_segments,
     root_half_angle,
@@ -305,12 +307,7 @@ def gear2_body(case: SolveCase, shape: RoundedProfile, sector: Sector, paired, h
     root_half2 = root_half_angle(lambda t: g2.radius_at_angle(t), roots2[0][1], pitch2,
                                  R_min, R_max, inverted=True)
 
-    def g2_curve(theta):
-        r = g2.radius_at_angle(theta)
-        return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
-
-    def g2_project(x):
-        return g2_curve(np.arctan2(x[:, 1], x[:, 0]))
+    g2_curve, g2_project = gear2_polar(g2)
 
     # where a refined round comes near gear 2 at some β, gear 2 under it gets the same size
     marks2 = round_strips(params, shape, g2, rounds, betas, sizes.b_round / params.r0,
@@ -320,21 +317,8 @@ def gear2_body(case: SolveCase, shape: RoundedProfile, sector: Sector, paired, h
         [("g2_contact", p_, w) for _, p_, w in windows2],
         [(f"g2_root_{k}", p_, root_half2) for k, p_ in roots2], marks=marks2,
         sizes={"g2_contact": sizes.contact, "g2_round": sizes.round})
-    rim_pts = outer * np.column_stack([np.cos(np.linspace(th_a, th_b, 80)),
-                                       np.sin(np.linspace(th_a, th_b, 80))])
-
-    def rim_project(x):
-        return outer * x / np.linalg.norm(x, axis=1)[:, None]
-
-    pa2, pb2 = g2_curve(np.array([th_a]))[0], g2_curve(np.array([th_b]))[0]
-    reversed_segs = tuple(Segment(s.name, s.points[::-1], s.project, s.zone)
-                          for s in reversed(segs2))
-    geo2 = BodyGeometry("gear2", (
-        Segment("g2_rim", rim_pts, rim_project),
-        Segment("g2_cut_b", np.array([rim_pts[-1], pb2])),
-        *reversed_segs,
-        Segment("g2_cut_a", np.array([pa2, rim_pts[0]])),
-    ), size=sizes.body, refinements=(
+    geo2 = BodyGeometry("gear2", gear2_outline(g2_curve, segs2, th_a, th_b, outer, 80),
+                        size=sizes.body, refinements=(
         Refinement(("g2_contact",), sizes.contact),
         Refinement(tuple(n for n in names2 if n.startswith("g2_root")), sizes.root),
         *([Refinement(("g2_round",), sizes.round)] if marks2 else [])))
