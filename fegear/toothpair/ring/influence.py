@@ -166,13 +166,14 @@ def _fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
     for k in np.unique(at.sector):
         r = np.flatnonzero(at.sector == k)
         part = np.zeros((len(r), nh))
+        Nk = NQ[r]
         for t, blk in loads.items():
             factors = side.body.coupling_factors(t - k)
             if factors is None:
-                block = NQ[r] @ (side.body.coupling(t - k) @ rho[t])
+                block = Nk @ (side.body.coupling(t - k) @ rho[t])
             else:
                 U, V = factors
-                block = (NQ[r] @ U) @ (V @ rho[t])
+                block = (Nk @ U) @ (V @ rho[t])
             if t == k:
                 block += clamped[np.ix_(r, np.searchsorted(dofs, blk.dofs))] @ blk.matrix
             part[:, blk.columns] += block
