@@ -85,7 +85,7 @@ class Input:
 
     @property
     def dest(self) -> str:
-        """The Python name: ``tip-relief`` → ``tip_relief``."""
+        """The Python name: ``tip-clearance`` → ``tip_clearance``."""
         return self.name.replace("-", "_")
 
     @property

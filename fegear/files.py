@@ -51,11 +51,15 @@ def _umask() -> int:
     return mask
 
 
-def write_points_csv(path: Path, points: np.ndarray) -> Path:
-    """Write an (n, 2) point array as CSV with header ``x_mm,y_mm`` (full float precision)."""
+def write_points_csv(path: Path, points: np.ndarray, extra: dict | None = None) -> Path:
+    """Write an (n, 2) point array as CSV with header ``x_mm,y_mm`` (full float precision),
+    and the ``extra`` columns (name → (n,) values) after them."""
+    extra = extra or {}
+    table = np.column_stack([points, *extra.values()]) if extra else points
 
     def w(tmp: Path) -> None:
-        np.savetxt(tmp, points, delimiter=",", header="x_mm,y_mm", comments="", fmt="%.17g")
+        np.savetxt(tmp, table, delimiter=",", header=",".join(["x_mm", "y_mm", *extra]),
+                   comments="", fmt="%.17g")
 
     return write_atomic(path, w)
 

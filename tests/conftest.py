@@ -20,16 +20,16 @@ def nominal():
 
 @pytest.fixture(scope="session")
 def conjugate():
-    """The exact conjugate pair: no shift, no rotation, no tip relief (zero clearance)."""
+    """The exact conjugate pair: no shift, no rotation, zero tip clearance (zero clearance)."""
     from fegear.geometry import PairParameters
 
-    return PairParameters(shift=0.0, rotation=0.0, tip_relief=0.0)
+    return PairParameters(shift=0.0, rotation=0.0, tip_clearance=0.0)
 
 
 @pytest.fixture(scope="session")
 def baseline():
     """The baseline pair as the seed paper builds it (§2): shift Δ1 0.016 mm, rotation
-    Δ2 0.002 mm, the default tip relief."""
+    Δ2 0.002 mm, the default tip clearance."""
     from fegear.geometry import PairParameters
 
     return PairParameters(shift=0.016, rotation=0.002)

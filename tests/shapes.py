@@ -9,9 +9,9 @@ BASELINE_MODS = dict(shift=0.016, rotation=0.002)
 
 #: id: (pair inputs, torque N·m, whether only far-side teeth may carry it)
 EXTREME_SHAPES = {
-    "no tip relief, light: only far-side teeth touch": (dict(BASELINE_MODS, tip_relief=0.0),
+    "zero tip clearance, light: only far-side teeth touch": (dict(BASELINE_MODS, tip_clearance=0.0),
                                                         1.0, True),
-    "no tip relief, baseline torque": (dict(BASELINE_MODS, tip_relief=0.0), 200.0, False),
+    "zero tip clearance, baseline torque": (dict(BASELINE_MODS, tip_clearance=0.0), 200.0, False),
     "unmodified: zero clearance": (dict(), 50.0, False),
     "shift 0.1 µm": (dict(shift=1e-4), 200.0, False),
     "h1 0.6 (limit 0.6047)": (dict(h1=0.6), 50.0, False),

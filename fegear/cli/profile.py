@@ -33,11 +33,12 @@ def run(a: argparse.Namespace) -> int:
     geo = build_geometry(params, chord, positions)
     summary = geo.summary()
     files = {
-        "gear1_csv": write_points_csv(out / "gear1.csv", geo.gear1),
+        "gear1_csv": write_points_csv(out / "gear1.csv", geo.gear1, None if geo.relief_depth
+                                      is None else {"relief_um": geo.relief_depth * 1e3}),
         "gear2_csv": write_points_csv(out / "gear2.csv", geo.gear2),
         "png": pair_png(out / "pair.png", geo.gear1, geo.gear2, params.e, params.r0,
                         f"compound-cycloid pair: {params.describe()}",
-                        zoom_half_width=4.0 * params.m),
+                        zoom_half_width=4.0 * params.m, relief=geo.relief_chart),
     }
     summary["files"] = {k: str(v) for k, v in files.items()}
     write_json(out / "summary.json", summary)
@@ -57,10 +58,15 @@ def _profile_table(geo) -> str:
     def f(v):
         return "   none" if v is None else f"{v:8.3f}"
 
-    lines = [f"gear 1 tip radius {geo.tip_radius:.6f} mm, root radius {geo.root_radius:.6f} mm",
-             "", "clearance at β = 0 (µm of arc at r0; + = gear 1 turning counter-clockwise)",
-             "| tooth | position [deg] |     + µm |     − µm |",
-             "|------:|---------------:|---------:|---------:|"]
+    lines = [f"gear 1 tip radius {geo.tip_radius:.6f} mm, root radius {geo.root_radius:.6f} mm"]
+    for side, c in zip(("first", "second"), geo.relief_chart):
+        lines.append(f"tip relief, {side} flank: {c['corner_depth_um']:.3f} µm at the tip corner "
+                     f"(r {c['corner_radius_mm']:.4f} mm), from r {c['start_radius_mm']:.4f} mm, "
+                     f"{c['extent_mm']:.4f} mm along the flank before the conjugate tip end, "
+                     f"{geo.params.relief_shape}")
+    lines += ["", "clearance at β = 0 (µm of arc at r0; + = gear 1 turning counter-clockwise)",
+              "| tooth | position [deg] |     + µm |     − µm |",
+              "|------:|---------------:|---------:|---------:|"]
     for t in rows:
         lines.append(f"| {t.tooth:5d} | {t.position_deg:14.3f} | {f(t.plus_um)} | "
                      f"{f(t.minus_um)} |")

@@ -39,7 +39,7 @@ def defect(p: PairParameters) -> str | None:
     if near.disc.min() <= 0.0:
         return ("part of the gear-2 flank has no conjugate point (its normal misses the pitch "
                 "circle)")
-    tip = p.r0 - 2 * p.e1 + p.e - p.tip_clearance
+    tip = p.r0 - 2 * p.e1 + p.e - p.radial_tip_clearance
     working = near.radius <= tip
     speed = near.speed[working]
     if speed.size and (np.any(np.sign(speed) != np.sign(speed[0])) or np.any(speed == 0)):
@@ -95,4 +95,8 @@ def admissible_pair(values: Mapping[str, object]) -> PairParameters:
     given = {row.name: values.get(row.name, row.default) for row in PAIR_INPUTS}
     p = PairParameters(**{row.dest: given[row.name] for row in PAIR_INPUTS})
     check_admissible(p)
+    if p.relief > 0:   # where the relief fits depends on the whole profile
+        from .gear1 import gear1_profile
+
+        gear1_profile(p)
     return p

@@ -8,7 +8,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from .clearance import Backlash, ContactState, ToothContact
-from .gear1 import Gear1Profile
+from .gear1 import gear1_profile
 from .gear2 import gear2_curve
 from .parameters import PairParameters
 
@@ -35,6 +35,8 @@ class PairGeometry:
     contact: ContactState
     backlash: Backlash | None
     timings: dict
+    relief_depth: np.ndarray | None = None   # tip relief depth (mm) at each gear-1 point
+    relief_chart: tuple = ()                 # :meth:`Gear1Profile.relief_chart`
 
     def summary(self) -> dict:
         """JSON-ready summary (units in the key names)."""
@@ -47,7 +49,9 @@ class PairGeometry:
         out = {
             "inputs": {"m": p.m, "z2": p.z2, "z1": p.z1, "h1": p.h1, "f1": p.f1,
                        "shift_mm": p.shift, "rotation_mm": p.rotation,
-                       "tip_relief_mm": p.tip_clearance},
+                       "tip_clearance_mm": p.radial_tip_clearance, "relief_um": p.relief,
+                       "relief_extent_mm": p.relief_extent, "relief_start_mm": p.relief_start,
+                       "relief_shape": p.relief_shape},
             "derived": {"r0_mm": p.r0, "e1_mm": p.e1, "e2_mm": p.e2, "e_mm": p.e,
                         "gear2_tip_radius_mm": p.r0 - 2 * p.e1,
                         "gear2_root_radius_mm": p.r0 + 2 * p.e1,
@@ -58,6 +62,9 @@ class PairGeometry:
             "interference": [asdict(i) for i in self.contact.interference],
             "timings_s": {k: round(v, 4) for k, v in self.timings.items()},
         }
+        if self.relief_chart:
+            out["relief"] = [{k: v for k, v in c.items() if not isinstance(v, np.ndarray)}
+                             for c in self.relief_chart]
         if self.backlash is not None:
             b = self.backlash
             out["backlash_um"] = {"plus": b.plus_um, "minus": b.minus_um,
@@ -71,10 +78,10 @@ def build_geometry(params: PairParameters, chord_error: float = 1e-4,
     """Generate both profiles, the β = 0 clearance table and (optionally) the backlash."""
     t = {}
     t0 = time.perf_counter()
-    g1 = Gear1Profile(params)
+    g1 = gear1_profile(params)
     t["gear1_envelope"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    poly1 = g1.polyline(chord_error)
+    poly1, depth = g1.polyline(chord_error, relief=True)
     poly2 = gear2_curve(params).polyline(chord_error, -np.pi / params.z2,
                                          2 * np.pi - np.pi / params.z2)[:-1]
     t["polylines"] = time.perf_counter() - t0
@@ -91,4 +98,5 @@ def build_geometry(params: PairParameters, chord_error: float = 1e-4,
     root = float(g1.radius(np.array([g1.phi_space]))[0])
     return PairGeometry(params=params, gear1=poly1, gear2=poly2, chord_error=chord_error,
                         tip_radius=tip, root_radius=root, contact=contact, backlash=backlash,
-                        timings=t)
+                        timings=t, relief_depth=depth if params.relief > 0 else None,
+                        relief_chart=tuple(g1.relief_chart()))

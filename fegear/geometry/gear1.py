@@ -10,14 +10,17 @@ Branches that shape gear 1 (docs/model.md, "Gear 1"):
 
 * near side of the Δ2 tool at ``e + shift`` (working flanks, negative shift);
 * far side of the same tool at ``e + shift`` (what the generating tool itself cuts);
-* far side of the nominal gear 2 at ``e - tip_relief`` (tip relief: the assembled pair keeps at
-  least ``tip_relief`` of radial clearance on the far side).
+* far side of the nominal gear 2 at ``e - tip_clearance`` (the assembled pair keeps at least
+  ``tip_clearance`` of radial clearance on the far side).
+
+With a tip relief the working branch is cut back near the tip (:mod:`.relief`) and the envelope
+found again.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 import numpy as np
 from scipy.optimize import brentq
@@ -28,6 +31,7 @@ from .admissible import check_admissible
 from .envelope import FAR, NEAR, Branch, BranchPoints
 from .gear2 import adaptive_parameters, gear2_curve
 from .parameters import PairParameters
+from .relief import RelievedBranch, relief_zones
 
 SAMPLES_PER_RUN = 1024
 ENVELOPE_GRID = 2048
@@ -65,7 +69,7 @@ def generating_branches(p: PairParameters) -> tuple[Branch, ...]:
     return (
         Branch(tool, a_gen, p.z2, p.z1, NEAR),
         Branch(tool, a_gen, p.z2, p.z1, FAR),
-        Branch(nominal, p.e - p.tip_clearance, p.z2, p.z1, FAR),
+        Branch(nominal, p.e - p.radial_tip_clearance, p.z2, p.z1, FAR),
     )
 
 
@@ -85,6 +89,40 @@ class Gear1Profile:
         self.phi_space = float(np.arctan2(near.q[0, 1], near.q[0, 0]))
         self.runs = tuple(r for i, b in enumerate(self.branches) for r in _split_runs(b, i))
         self.pieces = self._lower_envelope()
+        if params.relief > 0:
+            self._relieve()
+
+    def _relieve(self) -> None:
+        """Cut the working flanks back by the tip relief (:mod:`.relief`): the zones are placed
+        on the conjugate profile's flanks, measured from where they meet the tip trim; then
+        the envelope is found again with the relieved branch."""
+        p = self.params
+        ends = self.tip_ends()
+        extent = p.relief_extent if p.relief_start is None else None
+        zones = relief_zones(self.branches[0], ends, p.relief * 1e-3, extent, p.relief_shape,
+                             p.m, p.relief_start)
+        self.branches = (RelievedBranch(self.branches[0], zones), *self.branches[1:])
+        self.runs = tuple(r for i, b in enumerate(self.branches) for r in _split_runs(b, i))
+        self.pieces = self._lower_envelope()
+        for (end, _), zone in zip(self.tip_ends(), zones):
+            toward = np.sign(zone.stop - zone.start)
+            if not toward * (end - zone.end) > 0 or not toward * (zone.stop - end) > 0:
+                raise GeometryError("the relieved flank does not meet the tip trim just past "
+                                    "its tip end; lower relief or raise relief_extent")
+
+    def tip_ends(self) -> list[tuple[float, float]]:
+        """Per working flank of tooth 0 that meets the tip trim: (ξ of the working branch at
+        that corner, ξ at the flank's other end)."""
+        out = []
+        for a, b in zip(self.pieces[:-1], self.pieces[1:]):
+            if (a.run.branch == 0) == (b.run.branch == 0):
+                continue
+            flank, at_start = (a, False) if a.run.branch == 0 else (b, True)
+            # φ grows with ξ on an increasing run: the corner is at the flank's phi1 (a) or
+            # its phi0 (b)
+            corner_low = at_start == flank.run.increasing
+            out.append((flank.xi0, flank.xi1) if corner_low else (flank.xi1, flank.xi0))
+        return out
 
     # --- construction --------------------------------------------------------------------
     def _run_polar(self, run: Run, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -252,9 +290,10 @@ class Gear1Profile:
         """Polar angle of the middle of tooth 0's tip [rad]."""
         return self.phi_space + 0.5 * self.pitch
 
-    def period_polyline(self, chord_error: float) -> np.ndarray:
-        """One pitch of the profile (tooth space centre to next), chord error ≤ ``chord_error``."""
-        pts = []
+    def period_polyline(self, chord_error: float, relief: bool = False):
+        """One pitch of the profile (tooth space centre to next), chord error ≤ ``chord_error``;
+        with ``relief``, also the tip relief's depth (mm) at each point."""
+        pts, depth = [], []
         for pc in self.pieces:
             b = self.branches[pc.run.branch]
 
@@ -268,16 +307,53 @@ class Gear1Profile:
 
             xi = adaptive_parameters(derivs, pc.xi0, pc.xi1, chord_error, n0=16)
             q = rotate(b.evaluate(xi).q, pc.turn * self.pitch)
+            d = b.depth(xi) if isinstance(b, RelievedBranch) else np.zeros(len(xi))
             ang = np.unwrap(np.arctan2(q[:, 1], q[:, 0]))
             if ang[-1] < ang[0]:
-                q = q[::-1]
+                q, d = q[::-1], d[::-1]
             pts.append(q[:-1])
+            depth.append(d[:-1])
+        if relief:
+            return np.concatenate(pts), np.concatenate(depth)
         return np.concatenate(pts)
 
-    def polyline(self, chord_error: float) -> np.ndarray:
-        """Closed gear-1 profile (all teeth, counter-clockwise, last point not repeated)."""
-        one = self.period_polyline(chord_error)
-        return np.concatenate([rotate(one, j * self.pitch) for j in range(self.params.z1)])
+    def polyline(self, chord_error: float, relief: bool = False):
+        """Closed gear-1 profile (all teeth, counter-clockwise, last point not repeated); with
+        ``relief``, also the tip relief's depth (mm) at each point."""
+        one, depth = self.period_polyline(chord_error, relief=True)
+        pts = np.concatenate([rotate(one, j * self.pitch) for j in range(self.params.z1)])
+        return (pts, np.tile(depth, self.params.z1)) if relief else pts
+
+    def relief_chart(self, count: int = 200) -> list[dict]:
+        """The tip relief of each working flank of tooth 0 as a profile chart: per flank, the
+        arc length from the flank's tip corner (mm, < 0 towards the root), the depth (µm) and
+        the radius (mm) from before the relief's start to the corner; the amount (µm) and
+        where it is reached (the conjugate flank's tip end, mm from the corner), the start and
+        corner radii and the extent. Empty without relief."""
+        b = self.branches[0]
+        if not isinstance(b, RelievedBranch):
+            return []
+        out = []
+        for (corner, _), zone in zip(self.tip_ends(), b.zones):
+            xi = np.linspace(zone.start - 0.2 * (zone.end - zone.start), corner, count)
+            w, _ = zone.arc_length(xi)
+            ev = b.evaluate(xi)
+            out.append({"arc_mm": w - w[-1], "depth_um": b.depth(xi) * 1e3,
+                        "amount_um": zone.shape.amount * 1e3,
+                        "end_arc_mm": float(zone.shape.extent - w[-1]),
+                        "radius_mm": ev.radius, "extent_mm": zone.shape.extent,
+                        "start_radius_mm": float(b.evaluate(np.array([zone.start])).radius[0]),
+                        "corner_radius_mm": float(ev.radius[-1]),
+                        "corner_depth_um": float(b.depth(np.array([corner]))[0] * 1e3)})
+        return out
+
+
+@lru_cache(maxsize=8)
+def gear1_profile(params: PairParameters) -> Gear1Profile:
+    """:class:`Gear1Profile` of ``params``, kept for the last few pairs: a relieved pair is
+    built when its inputs are checked (a relief that does not fit is refused before any output)
+    and again by the solve."""
+    return Gear1Profile(params)
 
 
 def _split_runs(b: Branch, index: int, n: int = SAMPLES_PER_RUN) -> list[Run]:

@@ -16,8 +16,17 @@ from dataclasses import dataclass
 from ..checks import Input, require_range
 from ..errors import ParameterError
 
+#: tip relief shapes (:mod:`.relief`) and the default extent, in modules
+SHAPES = ("parabolic", "arc", "linear")
+EXTENT_DEFAULT = 0.25
+
+#: inputs renamed since an earlier release, with what a study file should say now
+RENAMED = {"tip-relief": "tip-clearance (the radial clearance at gear 1's tip; tip relief now "
+                         "means the flank modification: relief, relief-extent, relief-start, "
+                         "relief-shape)"}
+
 #: the pair's inputs (``fegear profile``, ``solve`` and ``bench``, study files); the ranges of
-#: h1, shift, rotation and tip-relief depend on the other inputs and are checked by
+#: h1, shift, rotation and tip-clearance depend on the other inputs and are checked by
 #: :class:`PairParameters` and :func:`~fegear.geometry.admissible.check_admissible`
 PAIR_INPUTS = (
     Input("m", float, 2.0, "module", "mm", low=0.0, high=100.0, low_open=True),
@@ -30,8 +39,15 @@ PAIR_INPUTS = (
           "e + shift, 0 <= shift <= m h1/4", "mm"),
     Input("rotation", float, 0.0, "Δ2 rotation modification of the generating tool, "
           "|rotation| <= m h1/4", "mm"),
-    Input("tip-relief", float, None, "radial clearance of gear 1's tip to the far side of "
-          "gear 2, -shift <= tip-relief <= m h1 (default: = shift)", "mm"),
+    Input("tip-clearance", float, None, "radial clearance of gear 1's tip to the far side of "
+          "gear 2, -shift <= tip-clearance <= m h1 (default: = shift)", "mm"),
+    Input("relief", float, 0.0, "tip relief of gear 1's flanks: depth cut normal to the "
+          "profile at the tip end, 0 <= relief <= 50 m µm (0: none)", "µm"),
+    Input("relief-extent", float, None, "length of the tip relief along the flank from the "
+          "tip end (default 0.25 m)", "mm"),
+    Input("relief-start", float, None, "or: the radius where the tip relief starts, instead "
+          "of relief-extent", "mm"),
+    Input("relief-shape", str, "parabolic", "shape of the tip relief", choices=SHAPES),
 )
 _ROW = {row.name: row for row in PAIR_INPUTS}
 
@@ -49,12 +65,18 @@ class PairParameters:
         shift: Δ1 [mm], "negative shift": gear 1 is generated at centre distance ``e + shift``.
         rotation: Δ2 [mm], "rotation" modification: the generating gear-2 tool uses
             ``e1 ∓ rotation`` (paper eq. 11); the gear 2 of the pair stays nominal.
-        tip_relief: radial clearance [mm] between gear 1's tip and the far side of the nominal
+        tip_clearance: radial clearance [mm] between gear 1's tip and the far side of the nominal
             gear 2 in the assembled pair. ``None`` means the default, equal to ``shift``: the
             negative shift already gives about ``shift`` of radial clearance on the near side,
             so the default makes the tip clearance the same on both sides and keeps the
-            assembled pair free of interference. ``tip_relief = -shift`` is the gear exactly as
+            assembled pair free of interference. ``tip_clearance = -shift`` is the gear exactly as
             generated, without relief: it interferes by ≈ shift on the far side.
+        relief: tip relief [µm], the depth the working flanks are cut back normal to the
+            conjugate profile at their tip end (:mod:`.relief`); 0 for none.
+        relief_extent: its length along the flank [mm] (``None``: ``0.25 m``, or
+            ``relief_start``).
+        relief_start: or the radius [mm] where it starts.
+        relief_shape: ``parabolic``, ``arc`` or ``linear``.
     """
 
     m: float = 2.0
@@ -64,7 +86,11 @@ class PairParameters:
     f1: float = 0.15
     shift: float = 0.0
     rotation: float = 0.0
-    tip_relief: float | None = None
+    tip_clearance: float | None = None
+    relief: float = 0.0
+    relief_extent: float | None = None
+    relief_start: float | None = None
+    relief_shape: str = "parabolic"
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
@@ -83,9 +109,27 @@ class PairParameters:
         set_(self, "shift", require_range("shift", self.shift, 0.0, 0.25 * e1, unit="mm"))
         set_(self, "rotation", require_range("rotation", self.rotation, -0.25 * e1, 0.25 * e1,
                                              unit="mm"))
-        if self.tip_relief is not None:
-            set_(self, "tip_relief", require_range("tip_relief", self.tip_relief, -self.shift,
-                                                   e1, unit="mm"))
+        if self.tip_clearance is not None:
+            set_(self, "tip_clearance", require_range("tip_clearance", self.tip_clearance,
+                                                      -self.shift, e1, unit="mm"))
+        self._check_relief()
+
+    def _check_relief(self) -> None:
+        set_ = object.__setattr__
+        set_(self, "relief", require_range("relief", self.relief, 0.0, 50.0 * self.m,
+                                           unit="µm"))
+        set_(self, "relief_shape", _ROW["relief-shape"].check(self.relief_shape))
+        if self.relief_extent is not None and self.relief_start is not None:
+            raise ParameterError("relief_start", self.relief_start, "unset when relief_extent "
+                                 "is given (one or the other)")
+        if self.relief_extent is not None:
+            set_(self, "relief_extent", require_range("relief_extent", self.relief_extent, 0.0,
+                                                      None, lo_open=True, unit="mm"))
+        if self.relief_start is not None:
+            set_(self, "relief_start", require_range("relief_start", self.relief_start, 0.0,
+                                                     None, lo_open=True, unit="mm"))
+        if self.relief > 0 and self.relief_extent is None and self.relief_start is None:
+            set_(self, "relief_extent", EXTENT_DEFAULT * self.m)
 
     @property
     def r0(self) -> float:
@@ -118,9 +162,9 @@ class PairParameters:
         return self.z2 / self.z1
 
     @property
-    def tip_clearance(self) -> float:
-        """Effective gear-1 tip relief [mm] (``tip_relief`` or its default, ``shift``)."""
-        return self.shift if self.tip_relief is None else self.tip_relief
+    def radial_tip_clearance(self) -> float:
+        """Effective gear-1 tip clearance [mm] (``tip_clearance`` or its default, ``shift``)."""
+        return self.shift if self.tip_clearance is None else self.tip_clearance
 
     def describe(self) -> str:
         """Short text naming the parameters, for messages."""

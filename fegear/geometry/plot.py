@@ -10,8 +10,10 @@ from ..figures import pyplot, save_png
 
 
 def pair_png(path: Path, gear1: np.ndarray, gear2: np.ndarray, e: float, r0: float,
-             title: str, zoom_half_width: float) -> Path:
-    """Draw the assembled pair at β = 0 (fixed frame) with a zoom on the pitch-point teeth.
+             title: str, zoom_half_width: float, relief=()) -> Path:
+    """Draw the assembled pair at β = 0 (fixed frame) with a zoom on the pitch-point teeth,
+    and with a tip relief (``relief``: :meth:`~.gear1.Gear1Profile.relief_chart`) its profile
+    chart.
 
     ``gear1``, ``gear2``: closed profiles in their own frames (mm); gear 1 is drawn about
     ``(0, e)``.
@@ -29,7 +31,12 @@ def pair_png(path: Path, gear1: np.ndarray, gear2: np.ndarray, e: float, r0: flo
     verts = np.vstack([outer, inner])
     codes = np.full(len(verts), MplPath.LINETO)
     codes[0] = codes[len(outer)] = MplPath.MOVETO
-    fig, (ax, az) = plt.subplots(1, 2, figsize=(13, 6.2))
+    if relief:
+        fig, (ax, az, ar) = plt.subplots(1, 3, figsize=(19, 6.2),
+                                         gridspec_kw={"width_ratios": [1, 1, 0.8]})
+        _relief_chart(ar, relief)
+    else:
+        fig, (ax, az) = plt.subplots(1, 2, figsize=(13, 6.2))
     for a in (ax, az):
         a.add_patch(PathPatch(MplPath(verts, codes), facecolor="#c9d6e8", edgecolor="none",
                               zorder=0))
@@ -57,3 +64,25 @@ def pair_png(path: Path, gear1: np.ndarray, gear2: np.ndarray, e: float, r0: flo
     fig.tight_layout()
 
     return save_png(fig, path, 130)
+
+
+def _relief_chart(ax, charts) -> None:
+    """Tip relief depth against the arc length from the tip corner, one line per flank."""
+    for side, c in zip(("first flank", "second flank"), charts):
+        ax.plot(c["arc_mm"], c["depth_um"], lw=1.2, label=side)
+    c = charts[0]
+    ax.axvline(0.0, color="k", lw=0.6, ls=":")
+    ax.plot([c["end_arc_mm"]], [c["amount_um"]], "ko", ms=4)
+    ax.annotate(f"conjugate tip end: {c['amount_um']:.3g} µm", (c["end_arc_mm"], c["amount_um"]),
+                textcoords="offset points", xytext=(-8, 4), ha="right", fontsize=8)
+    ax.annotate(f"tip corner (r {c['corner_radius_mm']:.3f} mm):\n"
+                f"{c['corner_depth_um']:.2f} µm", (0.0, c["corner_depth_um"]),
+                textcoords="offset points", xytext=(-8, -36), ha="right", fontsize=8)
+    ax.annotate(f"relief starts\n(r {c['start_radius_mm']:.3f} mm)",
+                (float(c["arc_mm"][max(int(np.argmax(c["depth_um"] > 0)) - 1, 0)]), 0.0),
+                textcoords="offset points", xytext=(4, 14), fontsize=8)
+    ax.set_xlabel("arc length along gear 1's flank from the tip corner [mm]")
+    ax.set_ylabel("material removed normal to the conjugate flank [µm]")
+    ax.set_title("tip relief (profile chart)", fontsize=9)
+    ax.grid(True, lw=0.3)
+    ax.legend(loc="upper left", fontsize=8)

@@ -36,6 +36,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import FegearError
+from ..geometry.parameters import RENAMED
 from ..provenance import code_version
 from ..toothpair import SOLVE_INPUTS, prepare_job
 
@@ -256,6 +257,8 @@ def _known(table: dict, known, where: str, what: str) -> dict:
         if k not in known:
             close = difflib.get_close_matches(k, list(known), n=1)
             hint = f" (did you mean {close[0]!r}?)" if close else ""
+            if k in RENAMED:
+                hint = f" (renamed: now {RENAMED[k]})"
             raise StudyError(f"{where}: unknown {what} {k!r}{hint}; known: "
                              + ", ".join(known))
     return table

@@ -62,14 +62,14 @@ def run_job(job: Job, out: Path | None, fields: bool = True,
             pictures: bool = True) -> JobResult:
     """Solve ``job``; write summary.json, and the VTUs (``fields``) and pictures
     (``pictures``) into ``out`` unless it is None."""
-    from ..geometry import Gear1Profile
+    from ..geometry.gear1 import gear1_profile
     from .estimate import second_level_estimate
     from .output import write_cycle_outputs, write_mesh_stiffness, write_pair_outputs
     from .pair import solve_positions
     from .report import cycle_rows, cycle_summary, pair_summary
 
     t0 = time.perf_counter()
-    profile = Gear1Profile(job.case.params)
+    profile = gear1_profile(job.case.params)
     sols = solve_positions(job.case, job.betas, profile)
     cycle_s = time.perf_counter() - t0
     # pictures, VTUs and the error estimate at the position of the largest gear-1 root stress

@@ -16,7 +16,10 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
     peak = max(loaded, key=lambda t: t.p_max_MPa)
     out = {
         "inputs": {"m": p.m, "z1": p.z1, "z2": p.z2, "h1": p.h1, "f1": p.f1, "shift": p.shift,
-                   "rotation": p.rotation, "tip_relief": p.tip_relief, "torque_Nm": c.torque,
+                   "rotation": p.rotation, "tip_clearance": p.tip_clearance,
+                   "relief_um": p.relief, "relief_extent_mm": p.relief_extent,
+                   "relief_start_mm": p.relief_start, "relief_shape": p.relief_shape,
+                   "torque_Nm": c.torque,
                    "position_deg": math.degrees(c.beta), "thickness_mm": c.thickness,
                    "E_MPa": c.E, "nu": c.nu, "model": c.model, "quality": c.quality,
                    "tip_round_mm": c.edge_radius,
@@ -68,7 +71,10 @@ def pair_table(summary: dict) -> str:
         f"pair m {i['m']:g}, z {i['z2']}/{i['z1']}, h1 {i['h1']:g}, f1 {i['f1']:g}, "
         f"shift {i['shift']:g}, rotation {i['rotation']:g} mm; T {i['torque_Nm']:g} N·m at "
         f"β {i['position_deg']:g}°, t {i['thickness_mm']:g} mm, quality {i['quality']}, "
-        f"tip round {i['tip_round_mm']:g} mm",
+        f"tip round {i['tip_round_mm']:g} mm"
+        + (f", tip relief {i['relief_um']:g} µm {i['relief_shape']}"
+           + (f" over {i['relief_extent_mm']:g} mm" if i["relief_extent_mm"] else
+              f" from r {i['relief_start_mm']:g} mm") if i["relief_um"] else ""),
         "",
         "| headline [MPa]          |      FE | err est % |",
         "|-------------------------|--------:|----------:|",

@@ -111,4 +111,4 @@ def refuse_interference(states) -> None:
             raise GeometryError(f"the unloaded pair interferes: gear-1 tooth {c.tooth} overlaps "
                                 f"gear 2 by {-c.plus_um:.3g} µm of arc at r0 at β = "
                                 f"{math.degrees(beta):.4g}°; an interference fit is not "
-                                "modelled (raise tip_relief, or check shift and rotation)")
+                                "modelled (raise tip_clearance, or check shift and rotation)")

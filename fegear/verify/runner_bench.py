@@ -23,8 +23,8 @@ def study_overhead(params: PairParameters, cases: int, workers: int = 1,
     base = {"m": params.m, "z1": params.z1, "z2": params.z2, "h1": params.h1, "f1": params.f1,
             "shift": params.shift, "rotation": params.rotation, "quality": quality,
             "no-estimate": True}
-    if params.tip_relief is not None:
-        base["tip-relief"] = params.tip_relief
+    if params.tip_clearance is not None:
+        base["tip-clearance"] = params.tip_clearance
     doc = {"study": {"name": "bench"}, "base": base,
            "sweep": [{"torque": [10.0 * (i + 1) for i in range(cases)]}]}
     with tempfile.TemporaryDirectory(prefix="fegear-bench-study-") as tmp:

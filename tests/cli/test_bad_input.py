@@ -26,7 +26,10 @@ PAIR = {
     "--f1": ["-0.15", "1.5"],
     "--shift": ["-0.016", "5"],
     "--rotation": ["-5", "5"],
-    "--tip-relief": ["-5", "5"],
+    "--tip-clearance": ["-5", "5"],
+    "--relief": ["-1", "1000"],
+    "--relief-extent": ["0", "-0.5"],   # too long for the flank: tests/geometry/test_relief.py
+    "--relief-start": ["0", "-44"],
 }
 MATERIAL = {"--thickness": ["0", "-5", "1e300"], "--E": ["0", "-206000", "1e300"],
             "--nu": ["-0.1", "0.5", "3"]}

@@ -61,9 +61,9 @@ def test_paper_section2_backlash(baseline):
 
 
 def test_unrelieved_gear_interferes_by_about_shift_on_far_side():
-    """Without tip relief (tip_relief = −shift: gear 1 exactly as generated at e + Δ1) the
+    """Without tip clearance (tip_clearance = −shift: gear 1 exactly as generated at e + Δ1) the
     assembled pair interferes on the far side by ≈ Δ1 (docs/model.md, "Modifications")."""
-    p = PairParameters(shift=0.016, tip_relief=-0.016)
+    p = PairParameters(shift=0.016, tip_clearance=-0.016)
     st = ToothContact(p).state(0.0)
     assert st.interference
     worst = max(st.interference, key=lambda i: i.depth_um)

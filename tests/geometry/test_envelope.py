@@ -53,6 +53,6 @@ def test_tangent_speed_and_curvature_are_exact(side, baseline):
 
 def test_near_branch_reaches_45_2_alone():
     """docs/model.md, "Gear 1": the near branch alone reaches 45.2 mm; the far branch trims it."""
-    b = generating_branches(PairParameters(tip_relief=0.0))[0]
+    b = generating_branches(PairParameters(tip_clearance=0.0))[0]
     xi = np.linspace(-np.pi / 45, np.pi / 45, 4001)
     assert b.evaluate(xi).radius.max() == pytest.approx(45.2, abs=1e-9)

@@ -32,8 +32,8 @@ def test_modified_gear1_against_its_generating_tool_and_assembled(baseline, base
     near = g.evaluate(phi).xi  # parameter of the owning piece
     owner = _owner_branch(g, phi)
     assert np.all(d_gen[owner == 0] < TOL)
-    # tip pieces come from the relief branch and clear the tool by shift + tip relief
-    assert d_gen[owner == 2].max() == pytest.approx(p.shift + p.tip_clearance, abs=1e-6)
+    # tip pieces come from the relief branch and clear the tool by shift + tip clearance
+    assert d_gen[owner == 2].max() == pytest.approx(p.shift + p.radial_tip_clearance, abs=1e-6)
     # assembled at e with the nominal gear 2: free of interference, clearance everywhere
     d_asm = sweep_min_distance(q, p.e, p.z1, p.r0, p.e1, p.e2, p.z2, 0.0, steps_per_pitch=60)
     assert d_asm.min() > 1 * UM
@@ -48,11 +48,11 @@ def _owner_branch(g, phi):
 
 
 def test_tip_and_root_radii_are_exact(conjugate_profile, baseline_profile):
-    """Far-side trimming: the tip stops at r0 − 2e1 + e − tip relief (44.8 mm at baseline)."""
+    """Far-side trimming: the tip stops at r0 − 2e1 + e − tip clearance (44.8 mm at baseline)."""
     for g in (conjugate_profile, baseline_profile):
         p = g.params
         tip = g.radius(np.array([g.tooth_center]))[0]
-        assert tip == pytest.approx(p.r0 - 2 * p.e1 + p.e - p.tip_clearance, abs=1e-12)
+        assert tip == pytest.approx(p.r0 - 2 * p.e1 + p.e - p.radial_tip_clearance, abs=1e-12)
         root = g.radius(np.array([g.phi_space]))[0]
         assert root == pytest.approx(p.r0 - 2 * p.e1 - p.e - p.shift, abs=1e-12)
     assert conjugate_profile.radius(np.array([conjugate_profile.tooth_center]))[0] == \

@@ -25,7 +25,7 @@ from fegear.geometry.parameters import PairParameters
     (dict(f1=-0.1), "f1", "0 <= f1"),
     (dict(shift=-0.001), "shift", "0 <= shift"),
     (dict(rotation=1.0), "rotation", "rotation <= 0.15"),
-    (dict(shift=0.01, tip_relief=-0.02), "tip_relief", "-0.01 <= tip_relief"),
+    (dict(shift=0.01, tip_clearance=-0.02), "tip_clearance", "-0.01 <= tip_clearance"),
 ])
 def test_simple_ranges(kw, name, fragment):
     with pytest.raises(ParameterError) as err:

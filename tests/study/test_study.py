@@ -20,7 +20,7 @@ from fegear.study.file import Outputs, StudyError, build_study, case_key, load_s
 ROOT = Path(__file__).resolve().parents[2]
 
 # four cheap real solves (a 25/24 pair, coarse, no second level) and one that fails in the
-# solve (an interfering tip relief), which must not stop the study
+# solve (an interfering tip clearance), which must not stop the study
 SMALL = """
 [study]
 name = "small"
@@ -35,7 +35,7 @@ no-estimate = true
 torque = [5, 10, 15, 20]
 [[sweep]]
 torque = 10
-tip-relief = -1e-5
+tip-clearance = -1e-5
 """
 N_SMALL = 5
 # columns that say when, where and how fast, not what
@@ -133,7 +133,8 @@ def test_key_follows_inputs_outputs_and_code_not_spelling():
 
 
 @pytest.mark.parametrize("text, words", [
-    ("[base]\ntip_relief = 0.01", ["[base]", "'tip_relief'", "did you mean 'tip-relief'"]),
+    ("[base]\ntip_clearance = 0.01", ["[base]", "'tip_clearance'", "did you mean 'tip-clearance'"]),
+    ("[base]\ntip-relief = 0.01", ["[base]", "'tip-relief'", "renamed: now tip-clearance"]),
     ("[base]\nh1 = 'big'", ["[base] h1", "must be a number"]),
     ("[base]\nz1 = 44.0", ["[base] z1", "must be an integer"]),
     ("[base]\nno-estimate = 1", ["[base] no-estimate", "true or false"]),
@@ -240,7 +241,7 @@ def test_killed_study_restarts_without_losing_duplicating_or_recomputing(pool_ru
 def test_failed_case_is_recorded_with_its_reason(pool_run):
     rows = {r["case"]: r for r in _table(pool_run["out"])}
     bad = rows["4"]
-    assert bad["status"] == "failed" and bad["tip-relief"] == "-1e-05"
+    assert bad["status"] == "failed" and bad["tip-clearance"] == "-1e-05"
     assert bad["error"].startswith("GeometryError: the unloaded pair interferes")
     assert bad["root_stress_gear1_MPa"] == ""
     assert all(rows[str(i)]["status"] == "ok" for i in range(4))

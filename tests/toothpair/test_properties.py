@@ -46,7 +46,7 @@ def pairs(draw):
         # designs the geometry stage refuses by name are not the solver's to converge: no
         # conjugate gear 1 (the gear-2 normal misses the pitch circle; 8 of the 200 draws),
         # or teeth that overlap before any load (the shift and rotation against the default
-        # tip relief; 30)
+        # tip clearance; 30)
         refuse_interference([(0.0, ToothContact(p, Gear1Profile(p)).state(0.0))])
     except (ParameterError, GeometryError):
         reject()

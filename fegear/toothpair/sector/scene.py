@@ -161,7 +161,7 @@ def gear1_sector(p: PairParameters, shape: RoundedProfile, teeth, extra: int) ->
     if hi - lo + 2 > p.z1:
         raise FegearError(f"the paired teeth {list(teeth)} and {extra} more on each side span "
                           f"{hi - lo + 1} of gear 1's {p.z1} teeth: a full-ring model is "
-                          "not built (lower the torque or raise the tip relief)")
+                          "not built (lower the torque or raise the tip clearance)")
     centre0 = shape.tooth_center + start * pitch1
     return Sector(start, lo, hi, centre0 + lo * pitch1, centre0 + hi * pitch1,
                   tuple(int((start + k) % p.z1) for k in range(lo, hi + 1)))

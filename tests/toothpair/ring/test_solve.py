@@ -130,14 +130,14 @@ def test_jiggled_templates_move_headline_stresses_by_less_than_2pct(monkeypatch,
 
 
 def test_an_interfering_pair_is_refused_by_name():
-    case = SolveCase(PairParameters(shift=0.016, rotation=0.002, tip_relief=-1e-5),
+    case = SolveCase(PairParameters(shift=0.016, rotation=0.002, tip_clearance=-1e-5),
                      torque=200.0, quality="coarse")
     with pytest.raises(GeometryError, match="interferes: gear-1 tooth 32 overlaps gear 2 by 0.194"):
         solve_pair(case)
 
 
 @pytest.mark.parametrize("params, torque, far_side_only", extreme_shapes(
-    slow={"no tip relief, baseline torque", "unmodified: zero clearance", "shift 0.1 µm",
+    slow={"zero tip clearance, baseline torque", "unmodified: zero clearance", "shift 0.1 µm",
           "h1 0.6 (limit 0.6047)", "f1 0.39 (limit 0.3902)"}, extra=[
     # a far-side tooth's window on the sharp tip: two grid points coincided, and NaN stresses
     # followed (found by the property test)

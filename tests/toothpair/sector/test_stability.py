@@ -67,9 +67,9 @@ def test_sector_light_touch_follows_hertz_and_three_times_the_allowable_converge
 
 
 def test_an_interfering_pair_is_refused_by_name_before_meshing():
-    # 10 nm less than no tip relief: the far-side tips overlap gear 2 by 0.19 µm of arc. The
+    # 10 nm less than zero tip clearance: the far-side tips overlap gear 2 by 0.19 µm of arc. The
     # contact iterations used to cycle on it ("ill-posed at this load")
-    case = SolveCase(PairParameters(shift=0.016, rotation=0.002, tip_relief=-1e-5),
+    case = SolveCase(PairParameters(shift=0.016, rotation=0.002, tip_clearance=-1e-5),
                      torque=200.0, quality="coarse", model="sector")
     with pytest.raises(GeometryError, match="interferes: gear-1 tooth 32 overlaps gear 2 by 0.194"):
         solve_pair(case)
@@ -78,7 +78,7 @@ def test_an_interfering_pair_is_refused_by_name_before_meshing():
 def test_touching_teeth_of_a_conformal_pair_are_not_an_interference():
     # the unmodified pair touches along whole flanks: clearances of −2e-10 µm are rounding
     states = [(0.0, ToothContact(p, Gear1Profile(p)).state(0.0))
-              for p in (PairParameters(), PairParameters(shift=0.016, tip_relief=0.0))]
+              for p in (PairParameters(), PairParameters(shift=0.016, tip_clearance=0.0))]
     for state in states:
         assert min(c.plus_um for c in state[1].teeth if c.plus_um is not None) < 0
         refuse_interference([state])
