@@ -26,6 +26,9 @@ def run(a: argparse.Namespace) -> int:
     from ..geometry import admissible_pair
 
     params = admissible_pair(input_values(a, PAIR_INPUTS))
+    from ..geometry import gear1_profile  # the envelope needs scipy
+
+    gear1_profile(params)   # a relief that does not fit is refused before any output
     chord = require_range("chord_error", a.chord_error, 1e-7, 0.1, unit="mm")
     positions = int(require_range("positions", a.positions, 4, 360))
     out = prepare_dir(a.out)

@@ -29,10 +29,10 @@ Conventions and the seed paper's corrected parameters: docs/model.md.
 from ..exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
-    "parameters": ("PairParameters", "PAIR_INPUTS"),
+    "parameters": ("PairParameters", "PAIR_INPUTS", "RENAMED"),
     "gear2": ("Cycloid", "gear2_curve"),
     "envelope": ("Branch", "BranchPoints", "NEAR", "FAR"),
-    "gear1": ("Gear1Profile",),
+    "gear1": ("Gear1Profile", "gear1_profile"),
     "admissible": ("check_admissible", "admissible_pair"),
     "clearance": ("ToothContact", "ContactState", "ToothClearance", "Backlash", "Interference"),
     "tip_edge": ("RoundedProfile",),

@@ -95,8 +95,4 @@ def admissible_pair(values: Mapping[str, object]) -> PairParameters:
     given = {row.name: values.get(row.name, row.default) for row in PAIR_INPUTS}
     p = PairParameters(**{row.dest: given[row.name] for row in PAIR_INPUTS})
     check_admissible(p)
-    if p.relief > 0:   # where the relief fits depends on the whole profile
-        from .gear1 import gear1_profile
-
-        gear1_profile(p)
     return p

@@ -36,9 +36,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import FegearError
-from ..geometry.parameters import RENAMED
 from ..provenance import code_version
-from ..toothpair import SOLVE_INPUTS, prepare_job
+from ..toothpair import RENAMED, SOLVE_INPUTS, prepare_job
 
 MAX_CASES = 100_000
 _SECTIONS = ("study", "outputs", "base", "sweep")

@@ -8,22 +8,25 @@ from ..figures import pyplot, save_png
 
 
 def study_png(path: Path, x: str, lines, stresses: dict[str, str], title: str) -> Path:
-    """One panel per headline stress (``stresses``: key → label) against study input ``x``;
-    ``lines``: (label, x values, {key: (values, error bars)}, whether the contact peak sits
-    on gear 1's tip round) per level of the other inputs; such peaks get an open red ring."""
+    """One panel per headline stress (``stresses``: key → label) against study input ``x``,
+    and one of the load on gear 1's tip rounds (series key ``edge``, % of the normal load);
+    ``lines``: (label, x values, {key: (values, error bars)}, whether a tip round carries load)
+    per level of the other inputs; such cases get an open red ring on the contact panels."""
     plt = pyplot()
 
-    fig, axes = plt.subplots(2, 2, figsize=(10, 7.5), sharex=True)
-    for ax, (k, label) in zip(axes.ravel(), stresses.items()):
+    panels = {**{k: f"{label} [MPa]" for k, label in stresses.items()},
+              "edge": "load on the tip rounds [% of normal load]"}
+    fig, axes = plt.subplots(2, 3, figsize=(14, 7.5), sharex=True)
+    for ax, (k, label) in zip(axes.ravel(), panels.items()):
         for n, (name, xs, series, edge) in enumerate(lines):
             ys, err = series[k]
             ax.errorbar(xs, ys, yerr=err, marker="o", ms=4, capsize=3, label=name)
-            if k == "contact_pressure_MPa" and any(edge):
+            if k in ("contact_pressure_MPa", "edge") and any(edge):
                 ax.plot([a for a, e in zip(xs, edge) if e], [b for b, e in zip(ys, edge) if e],
                         "o", ms=11, mfc="none", color="red",
-                        label="peak on gear-1 tip round" if n == 0 else None)
+                        label="tip round carries load" if n == 0 else None)
                 ax.legend(fontsize=7)
-        ax.set_ylabel(f"{label} [MPa]")
+        ax.set_ylabel(label)
         ax.grid(alpha=0.3)
     for ax in axes[-1]:
         ax.set_xlabel(x)

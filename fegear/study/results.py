@@ -18,6 +18,11 @@ from ..files import write_atomic
 from ..toothpair import HEADLINE, SOLVE_INPUTS
 from .file import Study
 
+#: headline stresses in the study table's head
+SHORT = {"root_stress_gear1_MPa": "root σ1 g1", "root_stress_gear2_MPa": "root σ1 g2",
+         "contact_pressure_MPa": "p_max", "flank_contact_pressure_MPa": "p flank",
+         "von_mises_max_MPa": "vM max"}
+
 #: columns after the summary
 _TRAILER = ("case_wall_s", "solve_s", "fegear", "code_version", "host", "pid", "finished_utc")
 
@@ -125,13 +130,15 @@ def to_csv(table: list[dict], cols: list[str]) -> str:
 
 def markdown(study: Study, table: list[dict]) -> str:
     """The study at a glance: varied inputs, headline stresses, error estimate, status."""
-    head = (list(study.varied) + ["root σ1 g1", "root σ1 g2", "p_max", "vM max",
-                                  "est. error %", "teeth", "status", "time s"])
+    head = (list(study.varied) + [SHORT[k] for k in HEADLINE]
+            + ["edge N", "est. error %", "teeth", "status", "time s"])
     lines = ["| " + " | ".join(head) + " |", "|" + "---:|" * len(head)]
     for r in table:
         ok = r["status"] == "ok"
         cells = [_cell(r.get(x)) for x in study.varied]
         cells += [f"{r[k]:.1f}" if ok else "–" for k in HEADLINE]
+        edge = r.get("edge_contact.load_N")
+        cells.append(f"{edge:.1f}" if ok and edge is not None else "–")
         est = r.get("error_estimate_pct")
         cells += [f"{est:.2f}" if ok and est is not None else "–",
                   str(r.get("teeth_in_contact", "–")) if ok else "–",
@@ -168,7 +175,10 @@ def plot_input(path: Path, study: Study, table: list[dict], x: str) -> Path | No
             series[k] = ([r[k] for r in rs],
                          [0.0 if e is None or not math.isfinite(e) else r[k] * e / 100.0
                           for r, e in zip(rs, err)])
-        edge = [bool(r.get("contact_peak_on_tip_round")) for r in rs]
+        edge = [bool(r.get("edge_contact.load_N") or r.get("contact_peak_on_tip_round"))
+                for r in rs]
+        series["edge"] = ([100.0 * (r.get("edge_contact.load_fraction") or 0.0) for r in rs],
+                          [0.0] * len(rs))
         lines.append((label, [r[x] for r in rs], series, edge))
     if not lines:
         return None

@@ -41,7 +41,7 @@ The same inputs as ``fegear solve`` takes them, by name (defaults for the rest):
 from ..exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
-    "inputs": ("SOLVE_INPUTS", "QUALITY", "TIP_ROUND"),
+    "inputs": ("SOLVE_INPUTS", "QUALITY", "TIP_ROUND", "RENAMED"),
     "case": ("SolveCase", "PairSolution", "ToothResult", "ContactChecks", "BodyField",
              "ContactZone", "HEADLINE", "cycle_positions"),
     "pair": ("solve_pair", "solve_positions"),

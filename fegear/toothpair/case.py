@@ -20,7 +20,8 @@ from .inputs import SOLVE_INPUTS, TIP_ROUND
 
 #: headline stresses: JSON key (MPa) → label in the table and the cycle plot
 HEADLINE = {"root_stress_gear1_MPa": "root σ1, gear 1", "root_stress_gear2_MPa": "root σ1, gear 2",
-            "contact_pressure_MPa": "contact pressure", "von_mises_max_MPa": "von Mises max"}
+            "contact_pressure_MPa": "contact pressure", "flank_contact_pressure_MPa":
+            "flank pressure", "von_mises_max_MPa": "von Mises max"}
 
 
 @dataclass(frozen=True)
@@ -84,7 +85,8 @@ class ToothResult:
     """One paired gear-1 tooth: normal load (N), torque share, FE contact pressure peak (MPa)
     and half-width (mm), Hertz p0 and b from the FE load and the analytic curvature radii
     (None where the curvatures are not a Hertz pair), b/R*, unloaded clearance (µm); whether
-    the peak sits on gear 1's tip round (edge contact)."""
+    the peak sits on gear 1's tip round; the flank and edge pressures apart and the round's
+    load (edge contact)."""
 
     tooth: int
     clearance_um: float | None    # None: no + contact point on this tooth at this β
@@ -98,6 +100,14 @@ class ToothResult:
     root1_MPa: float          # max σ1 in the root zone within ± half a pitch of this tooth
     root2_MPa: float          # … and of the gear-2 tooth it meshes with
     peak_on_round: bool       # the largest traction sits on gear 1's tip-edge round
+    flank_p_MPa: float = 0.0  # pressure on the flank and its relief, away from the round …
+    edge_p_MPa: float = 0.0   # … and on the round (:mod:`~fegear.toothpair.edge`)
+    edge_load_N: float = 0.0  # the load the round carries
+
+    @property
+    def edge_contact(self) -> bool:
+        """Whether this tooth's tip round carries load."""
+        return self.edge_load_N > 0
 
 
 @dataclass(frozen=True)
@@ -169,6 +179,11 @@ class PairSolution:
         return max(t.p_max_MPa for t in self.teeth if t.load_N > 0)
 
     @property
+    def flank_contact_pressure(self) -> float:
+        """The largest flank pressure, away from the tip rounds."""
+        return max(t.flank_p_MPa for t in self.teeth if t.load_N > 0)
+
+    @property
     def mesh_stiffness(self) -> float:
         """Secant mesh stiffness T / (θ − θ_touch), N·m/rad."""
         return self.case.torque / (self.rotation - self.first_touch)
@@ -181,6 +196,7 @@ class PairSolution:
         return {"root_stress_gear1_MPa": self.root_stress[0],
                 "root_stress_gear2_MPa": self.root_stress[1],
                 "contact_pressure_MPa": self.contact_pressure,
+                "flank_contact_pressure_MPa": self.flank_contact_pressure,
                 "von_mises_max_MPa": self.von_mises_max}
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from ..checks import Input, InputTable
 from ..fe import MATERIAL_INPUTS
-from ..geometry import PAIR_INPUTS
+from ..geometry import PAIR_INPUTS, RENAMED  # noqa: F401  (RENAMED: for study files)
 
 #: mesh quality levels, coarsest first; each halves the element sizes of the one before
 QUALITY = ("coarse", "fast", "standard", "fine")

@@ -33,11 +33,16 @@ def prepare_job(values: Mapping[str, object]) -> Job:
     :class:`~fegear.errors.ParameterError` or :class:`~fegear.errors.GeometryError`. No
     meshing, no output."""
     v = SOLVE_INPUTS.complete(values)
+    params = admissible_pair(v)
+    if params.relief > 0:   # where a relief fits depends on the whole profile (kept)
+        from ..geometry import gear1_profile
+
+        gear1_profile(params)
     kw = {} if v["penalty-factor"] is None else {"penalty_factor": v["penalty-factor"]}
     position = SOLVE_INPUTS["position"].check(v["position"])
     positions = SOLVE_INPUTS["positions"].check(v["positions"])
     n = 1 if positions is None else positions
-    case = SolveCase(admissible_pair(v), torque=v["torque"], beta=math.radians(position),
+    case = SolveCase(params, torque=v["torque"], beta=math.radians(position),
                      thickness=v["thickness"], E=v["E"], nu=v["nu"], quality=v["quality"],
                      rim1=v["rim1"], rim2=v["rim2"], extra_teeth=v["extra-teeth"],
                      extra_pairs=v["extra-pairs"], tip_round=v["tip-round"], model=v["model"],
@@ -62,7 +67,7 @@ def run_job(job: Job, out: Path | None, fields: bool = True,
             pictures: bool = True) -> JobResult:
     """Solve ``job``; write summary.json, and the VTUs (``fields``) and pictures
     (``pictures``) into ``out`` unless it is None."""
-    from ..geometry.gear1 import gear1_profile
+    from ..geometry import gear1_profile
     from .estimate import second_level_estimate
     from .output import write_cycle_outputs, write_mesh_stiffness, write_pair_outputs
     from .pair import solve_positions

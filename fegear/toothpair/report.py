@@ -28,6 +28,7 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
                    "penalty_factor": c.penalty_factor},
         **sol.headline(),
         "contact_peak_on_tip_round": peak.peak_on_round,
+        "edge_contact": _edge_summary(loaded),
         "hertz_p0_MPa": peak.hertz_p0_MPa,
         "hertz_b_over_R": peak.b_over_R,
         "teeth_in_contact": sol.teeth_in_contact,
@@ -51,12 +52,24 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
                    "half_width_mm": t.half_width_mm, "hertz_p0_MPa": t.hertz_p0_MPa,
                    "hertz_b_mm": t.hertz_b_mm, "b_over_R": t.b_over_R,
                    "root_stress_gear1_MPa": t.root1_MPa, "root_stress_gear2_MPa": t.root2_MPa,
-                   "peak_on_tip_round": t.peak_on_round}
+                   "peak_on_tip_round": t.peak_on_round,
+                   "flank_pressure_MPa": t.flank_p_MPa, "edge_pressure_MPa": t.edge_p_MPa,
+                   "edge_load_N": t.edge_load_N, "edge_contact": t.edge_contact}
                   for t in sol.teeth],
         "timings_s": sol.timings_s,
         "wall_s": wall_s,
     }
     return out
+
+
+def _edge_summary(loaded) -> dict:
+    """Which teeth press on their tip round, how hard and with how much of the load."""
+    edge = [t for t in loaded if t.edge_contact]
+    total = sum(t.load_N for t in loaded)
+    return {"teeth": [t.tooth for t in edge],
+            "load_N": sum(t.edge_load_N for t in edge),
+            "load_fraction": sum(t.edge_load_N for t in edge) / total if total > 0 else 0.0,
+            "max_pressure_MPa": max((t.edge_p_MPa for t in edge), default=0.0)}
 
 
 def pair_table(summary: dict) -> str:
@@ -82,25 +95,33 @@ def pair_table(summary: dict) -> str:
     for k, label in HEADLINE.items():
         lines.append(f"| {label:23s} | {summary[k]:7.1f} |    {e(k)} |")
     lines += ["",
-              "| tooth | clear. µm | load N | share | p_max MPa | b mm  | Hertz p0 | b/R*   "
-              "| root1 | root2 |",
-              "|------:|---------:|-------:|------:|----------:|------:|---------:|-------:"
-              "|------:|------:|"]
+              "| tooth | clear. µm | load N | share | p_max MPa | p flank | p edge | edge N "
+              "| b mm  | Hertz p0 | b/R*   | root1 | root2 |",
+              "|------:|---------:|-------:|------:|----------:|--------:|-------:|-------:"
+              "|------:|---------:|-------:|------:|------:|"]
     for t in summary["teeth"]:
         if t["load_N"] <= 0:
             continue
         hz = f"{t['hertz_p0_MPa']:8.1f}" if t["hertz_p0_MPa"] else "       -"
         br = f"{t['b_over_R']:.4f}" if t["b_over_R"] else "     -"
         edge = "e" if t["peak_on_tip_round"] else " "
+        p_edge = f"{t['edge_pressure_MPa']:6.0f}" if t["edge_contact"] else "     -"
+        n_edge = f"{t['edge_load_N']:6.1f}" if t["edge_contact"] else "     -"
         lines.append(f"| {t['tooth']:5d} | {t['clearance_um']:8.2f} | {t['load_N']:6.0f} | "
                      f"{t['load_share']:.3f} | {t['p_max_MPa']:8.1f}{edge} | "
+                     f"{t['flank_pressure_MPa']:7.1f} | {p_edge} | {n_edge} | "
                      f"{t['half_width_mm']:.3f} "
                      f"| {hz} | {br} | {t['root_stress_gear1_MPa']:5.0f} | "
                      f"{t['root_stress_gear2_MPa']:5.0f} |")
     unloaded = [t["tooth"] for t in summary["teeth"] if t["load_N"] <= 0]
-    if any(t["peak_on_tip_round"] for t in summary["teeth"]):
-        lines += ["", "e: the peak sits on gear 1's tip-edge round (edge contact); it depends on "
-                  "the round's radius, --tip-round (docs/model.md, \"Tip edges\")"]
+    edge = summary["edge_contact"]
+    if edge["teeth"]:
+        lines += ["", f"EDGE CONTACT: the tip rounds of teeth {edge['teeth']} carry "
+                  f"{edge['load_N']:.1f} N ({100 * edge['load_fraction']:.1f} % of the normal "
+                  f"load) at up to {edge['max_pressure_MPa']:.0f} MPa, a pressure set by the "
+                  "round's radius (--tip-round); the flank pressure beside it is the flank's "
+                  "own. A tip relief keeps the load off the round (--relief; docs/model.md, "
+                  "\"Tip edges\"). e: the tooth's peak is on its round."]
     lines += ["",
               f"teeth in contact {summary['teeth_in_contact']} (paired but open: {unloaded}); "
               f"load shares sum to {summary['load_share_sum']:.6f}; torque balance error "
@@ -117,7 +138,8 @@ def pair_table(summary: dict) -> str:
 
 
 #: cycle CSV columns besides the headline stresses and the per-tooth shares
-CYCLE_COLUMNS = ("position_deg", *HEADLINE, "transmission_error_urad", "rotation_urad",
+CYCLE_COLUMNS = ("position_deg", *HEADLINE, "edge_load_N", "transmission_error_urad",
+                 "rotation_urad",
                  "first_touch_urad", "mesh_stiffness_Nm_per_rad", "teeth_in_contact",
                  "torque_balance_error")
 
@@ -131,6 +153,7 @@ def cycle_rows(sols) -> list[dict]:
     for s in sols:
         share = {t.tooth: t.load_share for t in s.teeth}
         rows.append({"position_deg": math.degrees(s.case.beta), **s.headline(),
+                     "edge_load_N": sum(t.edge_load_N for t in s.teeth),
                      "transmission_error_urad": 1e6 * (s.rotation - s.first_touch),
                      "rotation_urad": 1e6 * s.rotation, "first_touch_urad": 1e6 * s.first_touch,
                      "mesh_stiffness_Nm_per_rad": s.mesh_stiffness,
@@ -160,13 +183,14 @@ def cycle_table(rows: list[dict]) -> str:
     """Markdown table of a cycle (the `fegear solve --positions` output)."""
     share_keys = [k for k in rows[0] if k.startswith("share_")]
     shown = [k for k in share_keys if any(r[k] > 0 for r in rows)]
-    head = ("| β [deg] | root1 | root2 | p_max | vM max | TE µrad | k N·m/rad | teeth | "
-            + " | ".join(f"tooth {k[6:]}" for k in shown) + " |")
-    lines = [head, "|" + "---:|" * (8 + len(shown))]
+    head = ("| β [deg] | root1 | root2 | p_max | p flank | edge N | vM max | TE µrad | "
+            "k N·m/rad | teeth | " + " | ".join(f"tooth {k[6:]}" for k in shown) + " |")
+    lines = [head, "|" + "---:|" * (10 + len(shown))]
     for r in rows:
         lines.append(
             f"| {r['position_deg']:7.3f} | {r['root_stress_gear1_MPa']:5.1f} | "
             f"{r['root_stress_gear2_MPa']:5.1f} | {r['contact_pressure_MPa']:6.0f} | "
+            f"{r['flank_contact_pressure_MPa']:6.0f} | {r['edge_load_N']:6.1f} | "
             f"{r['von_mises_max_MPa']:6.0f} | {r['transmission_error_urad']:7.1f} | "
             f"{r['mesh_stiffness_Nm_per_rad']:.4g} | {r['teeth_in_contact']} | "
             + " | ".join(f"{r[k]:.3f}" if abs(r[k]) >= 5e-4 else "0.000"

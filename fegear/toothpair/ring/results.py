@@ -17,9 +17,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...errors import ParameterError
-from ...fe import line_contact, recover, vtu_fields
+from ...fe import contact_modulus, line_contact, recover, vtu_fields
 from ...planar import rotate
 from ..case import BodyField, ContactZone, SolveCase, ToothResult
+from ..edge import flank_and_edge
 from .contact import RingContactSolution, rigid_gap
 from .influence import RingContact
 from .model import RingModel
@@ -49,6 +50,8 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
         else:
             theta2 = c.theta2 if c is not None else math.nan
         hz = _hertz(c, load, case) if load > 0 and c is not None else None
+        split = flank_and_edge(grid.s, pk, grid.on_round, case.thickness,
+                               model.shape.radius_mm, contact_modulus(case.E, case.E))
         out.append(ToothResult(
             tooth=grid.tooth, clearance_um=clearance.get(grid.tooth), load_N=load,
             load_share=float(-(w[blk] * pk) @ rate[blk] / (case.torque * 1e3)),
@@ -60,7 +63,9 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
                                              pitch1),
             root2_MPa=(stresses.roots[1].near(round(theta2 / pitch2) * pitch2, pitch2)
                        if math.isfinite(theta2) else 0.0),
-            peak_on_round=bool(load > 0 and grid.on_round[i - blk.start])))
+            peak_on_round=bool(load > 0 and grid.on_round[i - blk.start]),
+            flank_p_MPa=split.flank_MPa, edge_p_MPa=split.edge_MPa,
+            edge_load_N=split.edge_load_N))
     return tuple(out)
 
 

@@ -15,9 +15,10 @@ import numpy as np
 
 from ...contact import ContactModel, ContactSolution
 from ...errors import ParameterError
-from ...fe import Body, StressField, facet_nodes, line_contact
+from ...fe import Body, StressField, contact_modulus, facet_nodes, line_contact
 from ...planar import wrap
 from ..case import SolveCase, ToothResult
+from ..edge import flank_and_edge
 from ..teeth import Candidate
 from .scene import Scene
 
@@ -70,8 +71,25 @@ def tooth_results(case: SolveCase, scene: Scene, bodies: tuple[Body, Body],
             root1_MPa=_sector_max(g1, stresses[0], zones[0],
                                   scene.shape.tooth_center + tooth * pitch1, pitch1),
             root2_MPa=root2,
-            peak_on_round=_peak_on_round(scene.shape, contact.x[sel], sol.pressure[sel])))
+            peak_on_round=_peak_on_round(scene.shape, contact.x[sel], sol.pressure[sel]),
+            **_flank_edge(scene.shape, contact.x[sel], sol.pressure[sel], case)))
     return tuple(results)
+
+
+def _flank_edge(shape, x: np.ndarray, pressure: np.ndarray, case: SolveCase) -> dict:
+    """Flank and edge pressure of one tooth's contact points ``x`` (gear 1's frame), taken in
+    the order of their polar angle."""
+    if not len(pressure):
+        return {}
+    phi = np.arctan2(x[:, 1], x[:, 0])
+    phi = phi[0] + np.angle(np.exp(1j * (phi - phi[0])))
+    order = np.argsort(phi)
+    xs = x[order]
+    s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xs, axis=0).T))])
+    split = flank_and_edge(s, pressure[order], shape.on_round(phi[order]), case.thickness,
+                           shape.radius_mm, contact_modulus(case.E, case.E))
+    return {"flank_p_MPa": split.flank_MPa, "edge_p_MPa": split.edge_MPa,
+            "edge_load_N": split.edge_load_N}
 
 
 def _peak_on_round(shape, x: np.ndarray, pressure: np.ndarray) -> bool:

@@ -48,8 +48,35 @@ def test_baseline_pair_carries_the_torque_on_four_teeth(baseline_200):
     edge = [t for t in sol.teeth if t.peak_on_round]
     assert {t.tooth for t in edge} == {10, 11}
     assert all(t.p_max_MPa > 2 * t.hertz_p0_MPa for t in edge)
+    # flank and edge apart: the rounds carry a few per cent of the load at the edge pressure;
+    # the flanks beside them press at about Hertz (+10 % and +29 % with the edge's tail)
+    assert {t.tooth for t in sol.teeth if t.edge_contact} == {10, 11}
+    for t in edge:
+        assert t.edge_p_MPa == t.p_max_MPa
+        assert 0.005 * t.load_N < t.edge_load_N < 0.1 * t.load_N
+        assert t.hertz_p0_MPa < t.flank_p_MPa < 1.35 * t.hertz_p0_MPa
+    assert sol.flank_contact_pressure < 0.4 * sol.contact_pressure
     # the submodel's surface von Mises at the edge peak is the pressure less a little
     assert 0.97 * sol.contact_pressure < sol.von_mises_max < sol.contact_pressure
+
+
+def test_tip_relief_keeps_the_baseline_off_its_rounds(baseline_200):
+    """A 10 µm parabolic relief over 0.5 mm lifts the load off the rounds at β = 0: no edge
+    contact, the peak pressure is the flank's, the load shared as before within 0.03 and the
+    transmission error a little larger (the relief removes material where the teeth touch).
+    (A longer relief, 20 µm over 1 mm, turns gear 1 so much further that a far-side tip,
+    tooth 24's, touches on its round.)"""
+    case = replace(baseline_200.case, quality="coarse",
+                   params=replace(baseline_200.case.params, relief=10.0, relief_extent=0.5))
+    sol = solve_pair(case)
+    _check(sol)
+    assert not any(t.edge_contact or t.peak_on_round for t in sol.teeth)
+    assert sol.contact_pressure == sol.flank_contact_pressure
+    before = {t.tooth: t.load_share for t in baseline_200.teeth}
+    for t in sol.teeth:
+        assert t.load_share == pytest.approx(before.get(t.tooth, 0.0), abs=0.03)
+    te = sol.rotation - sol.first_touch
+    assert te > baseline_200.rotation - baseline_200.first_touch
 
 
 def test_the_rigid_gap_of_the_solved_rotation_is_closed_by_the_elastic_approach(baseline_200):

@@ -1,0 +1,46 @@
+"""Flank and edge pressure apart (fegear.toothpair.edge) on pressures whose parts are known."""
+
+import math
+
+import numpy as np
+import pytest
+
+from fegear.toothpair.edge import EDGE_ZONE, flank_and_edge
+
+E_STAR = 103_000.0
+
+
+def _hertz(s, centre, b, p0):
+    return p0 * np.sqrt(np.clip(1.0 - ((s - centre) / b) ** 2, 0.0, None))
+
+
+def test_a_flank_contact_alone_is_all_flank():
+    s = np.linspace(0.0, 1.0, 2001)
+    p = _hertz(s, 0.6, 0.1, 500.0)
+    split = flank_and_edge(s, p, s < 0.2, 5.0, 0.25, E_STAR)
+    assert split.flank_MPa == pytest.approx(p.max(), rel=0.0)
+    assert split.edge_MPa == 0.0 and split.edge_load_N == 0.0 and not split.edge
+
+
+def test_an_edge_spike_beside_a_flank_contact_is_split_at_its_own_width():
+    """A Hertz spike of half-width b_e on the round (s < 0.2) beside a 500 MPa flank contact:
+    the edge pressure is the spike's peak, the edge load its force on the round, and the flank
+    pressure the flank's peak, though the spike's tail on the flank side is higher."""
+    s = np.linspace(0.0, 1.0, 200001)
+    q_round = 20.0                                      # N/mm on the round
+    b_e = math.sqrt(4 * q_round * 0.25 / (math.pi * E_STAR))
+    p0 = 2 * q_round / (math.pi * b_e)
+    # centred on the round's end: half its force on the round
+    spike = _hertz(s, 0.2, b_e, p0)
+    flank = _hertz(s, 0.6, 0.3, 500.0)
+    on_round = s <= 0.2
+    tail = spike[(~on_round) & (s < 0.2 + 0.5 * b_e)].max()
+    assert tail > 500.0
+    split = flank_and_edge(s, spike + flank, on_round, 5.0, 0.25, E_STAR)
+    assert split.edge_MPa == pytest.approx(p0 + _hertz(np.array([0.2]), 0.6, 0.3, 500.0)[0],
+                                           rel=1e-6)
+    on = np.trapezoid((spike + flank)[on_round], s[on_round])
+    assert split.edge_load_N == pytest.approx(5.0 * on, rel=1e-3)
+    far = (s > 0.2 + EDGE_ZONE * b_e)
+    assert split.flank_MPa == pytest.approx((spike + flank)[far].max(), rel=1e-9)
+    assert split.flank_MPa == pytest.approx(500.0, rel=1e-3)
