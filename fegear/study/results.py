@@ -183,4 +183,5 @@ def plot_input(path: Path, study: Study, table: list[dict], x: str) -> Path | No
     if not lines:
         return None
     title = f"{study.name}: headline stresses against {x}"
-    return study_png(path, x, lines, HEADLINE, title)
+    unit = SOLVE_INPUTS[x].unit if x in SOLVE_INPUTS else ""
+    return study_png(path, f"{x} [{unit}]" if unit else x, lines, HEADLINE, title)

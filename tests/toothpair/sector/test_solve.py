@@ -92,9 +92,10 @@ def test_two_more_teeth_each_side_change_no_stress_by_1pct(more, baseline):
 
 def test_error_estimate_is_the_two_grid_convergence_index():
     fine = dict.fromkeys(HEADLINE, 200.0)
-    coarse = {k: 200.0 + d for k, d in zip(HEADLINE, (2.0, -2.0, 0.0, 20.0))}
+    coarse = {k: 200.0 + d for k, d in zip(HEADLINE, (2.0, -2.0, 0.0, 4.0, 20.0), strict=True)}
     # Fs = 3, r = 2, p = 2: e = 3 |Δ| / 3 = |Δ|, relative to the finer value
-    assert list(error_estimate(fine, coarse).values()) == pytest.approx([1.0, 1.0, 0.0, 10.0])
+    assert list(error_estimate(fine, coarse).values()) == pytest.approx([1.0, 1.0, 0.0, 2.0,
+                                                                        10.0])
     # the ring model's levels up to standard shrink by about √2: r² − 1 ≈ 1, e ≈ 3 |Δ|
     r = mesh_ratio("ring", "fast", "standard")
     assert r == pytest.approx(20 / 14)
