@@ -1,4 +1,5 @@
-"""Command line: ``fegear profile``, ``hertz``, ``solve``, ``study``, ``drive`` and ``bench``.
+"""Command line: ``fegear profile``, ``hertz``, ``solve``, ``relief``, ``study``, ``drive`` and
+``bench``.
 
 One module per command, each with ``add_parser`` (its options) and ``run`` (the command). User
 errors (bad parameters, unwritable output) print one line ``fegear: error: …`` on stderr and exit
@@ -21,12 +22,12 @@ import logging
 import sys
 
 from ..errors import FegearError
-from . import bench, drive, hertz, profile, solve, study
+from . import bench, drive, hertz, profile, relief, solve, study
 from .args import EXIT_USAGE, Parser
 
 #: the commands in the order of ``fegear --help``
-COMMANDS = {"profile": profile, "hertz": hertz, "solve": solve, "study": study, "drive": drive,
-            "bench": bench}
+COMMANDS = {"profile": profile, "hertz": hertz, "solve": solve, "relief": relief,
+            "study": study, "drive": drive, "bench": bench}
 
 
 def build_parser() -> Parser:

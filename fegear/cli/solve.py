@@ -5,15 +5,15 @@ from __future__ import annotations
 import argparse
 import json
 
-from ..toothpair.inputs import SOLVE_INPUTS
+from ..toothpair.inputs import PAIR_INPUTS, SOLVE_INPUTS
 from .args import add_inputs, input_values
 
 
 def add_parser(sub) -> None:
     p = sub.add_parser("solve", help="tooth-pair FE solve: stresses, load sharing, stiffness")
     rows = list(SOLVE_INPUTS.values())
-    add_inputs(p, rows[:8], "pair")
-    add_inputs(p, rows[8:])
+    add_inputs(p, rows[:len(PAIR_INPUTS)], "pair")
+    add_inputs(p, rows[len(PAIR_INPUTS):])
     p.add_argument("--out", required=True, help="output directory (VTU, PNG, summary.json)")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
 

@@ -12,6 +12,7 @@ import pytest
 import fegear.geometry
 import fegear.study
 import fegear.toothpair.pair
+import fegear.toothpair.relief_rule
 import fegear.verify
 from fegear.cli import main
 
@@ -53,13 +54,21 @@ OPTIONS = {
               "--pair-levels": ["fast", "fast,best", ""],
               "--sector-levels": ["best", "fast,best"], "--scaling": ["7", "45,x", "45.5"],
               "--study-cases": ["1", "-6", "100000"]},
+    "relief": {**{k: v for k, v in PAIR.items() if k != "--relief"},
+               "--torque": ["0", "-200", "1e300"], **MATERIAL, "--quality": ["best"],
+               "--model": ["wedge"], "--tip-round": ["-0.25", "100"],
+               "--rim1": ["0", "-6", "1e300"], "--rim2": ["0", "-6", "1e300"],
+               "--extra-teeth": ["0", "-2", "1000"], "--extra-pairs": ["-1", "1000"],
+               "--penalty-factor": ["0", "-1000", "1e300"],
+               "--cycle-positions": ["1", "0", "100000"], "--margin": ["-0.1", "3"]},
     "study": {"--workers": ["0", "-2", "100000"]},
     "drive": {},  # its options sit on its subcommands: tests/test_drive_cli.py
 }
 CHOICE = {"--model", "--sector-levels"}
 INTEGER = {"--z1", "--z2", "--positions", "--extra-teeth", "--extra-pairs", "--repeat",
-           "--cycle", "--study-cases", "--workers"}
+           "--cycle", "--study-cases", "--workers", "--cycle-positions"}
 ARGS = {"profile": ["--positions", "4"], "hertz": [], "solve": [], "bench": [], "drive": [],
+        "relief": ["--relief-extent", "0.5"],
         "study": [str(Path(__file__).resolve().parents[2] / "studies" / "paper_trends.toml")]}
 
 
@@ -81,7 +90,8 @@ def no_work(monkeypatch):
                          (fegear.verify, "geometry_bench"), (fegear.verify, "disk_ladder"),
                          (fegear.verify, "pair_ladder"), (fegear.verify, "ring_ladder"),
                          (fegear.verify, "run_fresh"), (fegear.study, "run_study"),
-                         (fegear.verify, "study_overhead")):
+                         (fegear.verify, "study_overhead"),
+                         (fegear.toothpair.relief_rule, "cycle_result")):
         monkeypatch.setattr(module, name, accepted)
 
 
@@ -90,7 +100,7 @@ def test_bad_value_exits_2_with_one_line_naming_the_parameter(command, option, v
                                                                tmp_path, capsys, no_work):
     out = tmp_path / "out"
     argv = [command, *ARGS[command], f"{option}={value}"]
-    if command != "bench":
+    if command not in ("bench", "relief"):
         argv += ["--out", str(out)]
     try:
         code = main(argv)

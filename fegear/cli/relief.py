@@ -1,0 +1,39 @@
+"""``fegear relief``: the smallest tip relief that keeps the loaded teeth off their tip rounds
+over a mesh cycle (:mod:`fegear.toothpair.relief_rule`)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from ..checks import require_range
+from ..toothpair.inputs import SOLVE_INPUTS
+from .args import add_inputs, input_values
+
+#: the solve inputs the relief search takes (the amount is what it finds; one model, no
+#: estimate, its own number of positions)
+TAKEN = [row for name, row in SOLVE_INPUTS.items()
+         if name not in ("relief", "position", "positions", "no-estimate")]
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("relief", help="the smallest tip relief that keeps the teeth off their "
+                                      "tip rounds over a mesh cycle")
+    add_inputs(p, TAKEN)
+    p.add_argument("--cycle-positions", type=int, default=12,
+                   help="rolling angles per trial across one tooth pitch (default 12)")
+    p.add_argument("--margin", type=float, default=0.2,
+                   help="torque overload the relief must cover, 0 <= margin <= 2 (default 0.2)")
+    p.add_argument("--json", action="store_true", help="print the result as JSON")
+
+
+def run(a: argparse.Namespace) -> int:
+    from ..toothpair.relief_rule import size_relief, sizing_table, stderr_report
+
+    values = input_values(a, TAKEN)
+    positions = int(require_range("cycle_positions", a.cycle_positions, 2, 360))
+    margin = require_range("margin", a.margin, 0.0, 2.0)
+    result = size_relief(values, positions=positions, margin=margin,
+                         report=None if a.json else stderr_report)
+    print(json.dumps(result.summary(), indent=2) if a.json else sizing_table(result))
+    return 0

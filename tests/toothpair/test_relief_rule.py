@@ -1,0 +1,67 @@
+"""The relief search (fegear.toothpair.relief_rule) on trials whose outcome is known, and once
+on the baseline pair (slow)."""
+
+import pytest
+
+from fegear.errors import FegearError
+from fegear.toothpair.relief_rule import CycleResult, size_relief
+
+BASE = {"shift": 0.016, "rotation": 0.002, "torque": 200.0, "relief-extent": 0.5,
+        "quality": "coarse"}
+
+
+def _fake(needed_um: float, far_from_um: float | None = None):
+    """Trials: the near-side rounds (tooth 11, 2° from the pitch point) carry load below
+    ``needed_um``; a far-side round (tooth 23, 100°) from ``far_from_um`` on."""
+    calls = []
+
+    def solve(values, amount, torque, positions):
+        calls.append((amount, torque, positions))
+        edge = []
+        if amount < needed_um:
+            edge.append((11, 2.0))
+        if far_from_um is not None and amount >= far_from_um:
+            edge.append((23, 100.0))
+        return CycleResult(amount, torque, 50.0 * len(edge), tuple(t for t, _ in edge),
+                           tuple(a for _, a in edge), 600.0 + amount, 1000.0, 350.0 + amount,
+                           5.0, {11: 0.43})
+
+    return solve, calls
+
+
+def test_the_search_finds_the_smallest_amount_within_its_tolerance_at_the_raised_torque():
+    solve, calls = _fake(7.3)
+    s = size_relief(BASE, positions=6, margin=0.2, tolerance_um=0.25, solve=solve)
+    assert 7.3 <= s.amount_um < 7.3 + 0.25
+    assert [t.amount_um for t in s.trials[:4]] == [0.0, 2.0, 4.0, 8.0]   # scan, then bisect
+    assert all(torque == pytest.approx(240.0) for _, torque, _ in calls[:len(s.trials)])
+    assert s.without.torque == s.with_relief.torque == 200.0           # reported at the design
+    assert s.with_relief.amount_um == s.amount_um and s.without.amount_um == 0.0
+    assert all(positions == 6 for _, _, positions in calls)
+
+
+def test_no_relief_is_needed_where_the_rounds_stay_unloaded():
+    solve, _ = _fake(0.0)
+    s = size_relief(BASE, solve=solve)
+    assert s.amount_um == 0.0 and len(s.trials) == 1
+
+
+def test_a_relief_that_only_trades_near_for_far_side_edges_is_refused_naming_both():
+    solve, _ = _fake(7.3, far_from_um=4.0)
+    with pytest.raises(FegearError) as err:
+        size_relief(BASE, solve=solve)
+    text = str(err.value)
+    assert "far-side teeth [23]" in text and "tip_clearance" in text
+    assert "no tip relief over 0.5 mm" in text
+
+
+@pytest.mark.slow
+def test_the_baseline_with_a_larger_tip_clearance_gets_a_relief_that_keeps_it_off_its_rounds():
+    """Over a 6-position cycle at `coarse`: the baseline pair with 32 µm of radial tip
+    clearance needs a relief; with it no round carries load at 200 N·m, the flank pressure is
+    the peak and the transmission error grows."""
+    s = size_relief({**BASE, "tip-clearance": 0.032}, positions=6)
+    assert 0.0 < s.amount_um < 50.0
+    assert s.with_relief.off_the_rounds and not s.without.off_the_rounds
+    assert s.with_relief.contact_MPa == s.with_relief.flank_MPa
+    assert s.with_relief.te_mean_urad > s.without.te_mean_urad
