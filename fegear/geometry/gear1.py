@@ -25,7 +25,7 @@ from functools import cached_property, lru_cache
 import numpy as np
 from scipy.optimize import brentq
 
-from ..errors import GeometryError
+from ..errors import GeometryError, ParameterError
 from ..planar import rotate, wrap
 from .admissible import check_admissible
 from .envelope import FAR, NEAR, Branch, BranchPoints
@@ -107,8 +107,10 @@ class Gear1Profile:
         for (end, _), zone in zip(self.tip_ends(), zones):
             toward = np.sign(zone.stop - zone.start)
             if not toward * (end - zone.end) > 0 or not toward * (zone.stop - end) > 0:
-                raise GeometryError("the relieved flank does not meet the tip trim just past "
-                                    "its tip end; lower relief or raise relief_extent")
+                raise ParameterError("relief", p.relief, "a smaller relief or a longer "
+                                     "relief_extent: the relieved flank must meet the tip "
+                                     "trim within 0.5 relief_extent + 0.05 m past its tip "
+                                     "end")
 
     def tip_ends(self) -> list[tuple[float, float]]:
         """Per working flank of tooth 0 that meets the tip trim: (ξ of the working branch at

@@ -21,7 +21,7 @@ import sys
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
-from ..errors import FegearError, GeometryError
+from ..errors import FegearError, ParameterError
 from ..planar import wrap
 
 FIRST_UM = 2.0       # the scan's first amount
@@ -144,7 +144,9 @@ def size_relief(values: Mapping, positions: int = POSITIONS, margin: float = MAR
         while amount <= limit:
             try:
                 passed = trial(amount).off_the_rounds
-            except GeometryError:   # deeper than the extent can take: the scan ends
+            except ParameterError as exc:   # deeper than the extent can take: the scan ends
+                if exc.name != "relief":
+                    raise
                 break
             if passed:
                 high = amount

@@ -120,8 +120,8 @@ def pair_table(summary: dict) -> str:
                   f"{edge['load_N']:.1f} N ({100 * edge['load_fraction']:.1f} % of the normal "
                   f"load) at up to {edge['max_pressure_MPa']:.0f} MPa, a pressure set by the "
                   "round's radius (--tip-round); the flank pressure beside it is the flank's "
-                  "own. A tip relief keeps the load off the round (--relief; docs/model.md, "
-                  "\"Tip edges\"). e: the tooth's peak is on its round."]
+                  "own. A tip relief keeps the load off the round (--relief; `fegear relief` "
+                  "sizes one). e: the tooth's peak is on its round."]
     lines += ["",
               f"teeth in contact {summary['teeth_in_contact']} (paired but open: {unloaded}); "
               f"load shares sum to {summary['load_share_sum']:.6f}; torque balance error "
