@@ -97,8 +97,9 @@ class ToothResult:
     hertz_p0_MPa: float | None
     hertz_b_mm: float | None
     b_over_R: float | None
-    root1_MPa: float          # max σ1 in the root zone within ± half a pitch of this tooth
-    root2_MPa: float          # … and of the gear-2 tooth it meshes with
+    root1_MPa: float          # max σ1 in the fillets of the space after this tooth (its
+                              # tension side under the + torque) …
+    root2_MPa: float          # … and of gear 2's space before the tooth it presses on
     peak_on_round: bool       # the largest traction sits on gear 1's tip-edge round
     flank_p_MPa: float = 0.0  # pressure on the flank and its relief, away from the round …
     edge_p_MPa: float = 0.0   # … and on the round (:mod:`~fegear.toothpair.edge`)

@@ -2,11 +2,12 @@
 peak pressure and half-width beside Hertz, its root stresses and whether its peak sits on the
 tip round; and the whole rings' fields for the pictures and VTU files.
 
-A gear-1 tooth's root stress is the largest σ1 in the root zone within half a pitch of the
-tooth; gear 2's is that of the gear-2 tooth nearest to where the gear-1 tooth touches it (its
-pressure peak, or the predicted contact point if it carries none). Hertz p0 and b use the
-curvature radii at the predicted contact point of the sharp profiles, as the sector model does
-(docs/model.md, "Hertz").
+A gear-1 tooth's root stress is the largest σ1 in the tooth space after it, whose fillet it
+bends in tension under the + torque; gear 2's is that of the space before the gear-2 tooth
+nearest to where the gear-1 tooth touches it (its pressure peak, or the predicted contact point
+if it carries none), that tooth's tension side (:func:`~..teeth.tension_fillets`). Hertz p0
+and b use the curvature radii at the predicted contact point of the sharp profiles, as the
+sector model does (docs/model.md, "Hertz").
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from ...fe import contact_modulus, line_contact, recover, vtu_fields
 from ...planar import rotate
 from ..case import BodyField, ContactZone, SolveCase, ToothResult
 from ..edge import flank_and_edge
+from ..teeth import tension_fillets
 from .contact import RingContactSolution, rigid_gap
 from .influence import RingContact
 from .model import RingModel
@@ -50,6 +52,8 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
         else:
             theta2 = c.theta2 if c is not None else math.nan
         hz = _hertz(c, load, case) if load > 0 and c is not None else None
+        fillets = tension_fillets(model.shape.tooth_center + grid.tooth * pitch1, pitch1,
+                                  theta2 if math.isfinite(theta2) else 0.0, pitch2)
         split = flank_and_edge(grid.s, pk, grid.on_round, case.thickness,
                                model.shape.radius_mm, contact_modulus(case.E, case.E))
         out.append(ToothResult(
@@ -59,10 +63,9 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
             half_width_mm=local_half_width(contact, sol.pressure, i) if load > 0 else 0.0,
             hertz_p0_MPa=hz.p0 if hz else None, hertz_b_mm=hz.b if hz else None,
             b_over_R=hz.b_over_R if hz else None,
-            root1_MPa=stresses.roots[0].near(model.shape.tooth_center + grid.tooth * pitch1,
-                                             pitch1),
-            root2_MPa=(stresses.roots[1].near(round(theta2 / pitch2) * pitch2, pitch2)
-                       if math.isfinite(theta2) else 0.0),
+            root1_MPa=stresses.roots[0].near(fillets[0], pitch1),
+            root2_MPa=stresses.roots[1].near(fillets[1], pitch2) if math.isfinite(theta2)
+            else 0.0,
             peak_on_round=bool(load > 0 and grid.on_round[i - blk.start]),
             flank_p_MPa=split.flank_MPa, edge_p_MPa=split.edge_MPa,
             edge_load_N=split.edge_load_N))

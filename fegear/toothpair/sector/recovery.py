@@ -19,7 +19,7 @@ from ...fe import Body, StressField, contact_modulus, facet_nodes, line_contact
 from ...planar import wrap
 from ..case import SolveCase, ToothResult
 from ..edge import flank_and_edge
-from ..teeth import Candidate
+from ..teeth import Candidate, tension_fillets
 from .scene import Scene
 
 
@@ -58,9 +58,10 @@ def tooth_results(case: SolveCase, scene: Scene, bodies: tuple[Body, Body],
         patch = patches.get(contact.pairs[k].name)
         load = patch.load if patch else 0.0
         hz = _hertz(c, load, case) if load > 0 and c is not None else None
-        root2 = (_sector_max(g2, stresses[1], zones[1], round(c.theta2 / pitch2) * pitch2,
-                             pitch2)
-                 if c is not None else 0.0)  # gear-2 tooth tips sit at 2πk/z2
+        fillets = tension_fillets(scene.shape.tooth_center + tooth * pitch1, pitch1,
+                                  c.theta2 if c is not None else 0.0, pitch2)
+        root2 = _sector_max(g2, stresses[1], zones[1], fillets[1], pitch2) if c is not None \
+            else 0.0
         results.append(ToothResult(
             tooth=tooth, clearance_um=c.clearance_um if c is not None else None, load_N=load,
             load_share=float(-(a[sel] @ sol.force[sel]) / torque),
@@ -68,8 +69,7 @@ def tooth_results(case: SolveCase, scene: Scene, bodies: tuple[Body, Body],
             half_width_mm=patch.half_width if patch else 0.0,
             hertz_p0_MPa=hz.p0 if hz else None, hertz_b_mm=hz.b if hz else None,
             b_over_R=hz.b_over_R if hz else None,
-            root1_MPa=_sector_max(g1, stresses[0], zones[0],
-                                  scene.shape.tooth_center + tooth * pitch1, pitch1),
+            root1_MPa=_sector_max(g1, stresses[0], zones[0], fillets[0], pitch1),
             root2_MPa=root2,
             peak_on_round=_peak_on_round(scene.shape, contact.x[sel], sol.pressure[sel]),
             **_flank_edge(scene.shape, contact.x[sel], sol.pressure[sel], case)))

@@ -56,6 +56,13 @@ def test_baseline_pair_carries_the_torque_on_four_teeth(baseline_200):
         assert 0.005 * t.load_N < t.edge_load_N < 0.1 * t.load_N
         assert t.hertz_p0_MPa < t.flank_p_MPa < 1.35 * t.hertz_p0_MPa
     assert sol.flank_contact_pressure < 0.4 * sol.contact_pressure
+    # root stresses per fillet: each tooth's tension side, so the headline is some tooth's and
+    # a lightly loaded or unloaded tooth no longer shows its loaded neighbour's fillet
+    root = {t.tooth: (t.root1_MPa, t.root2_MPa) for t in sol.teeth}
+    assert max(r[0] for r in root.values()) == sol.root_stress[0] == root[11][0]
+    assert max(r[1] for r in root.values()) == sol.root_stress[1] == root[10][1]
+    assert root[13][0] < 0.15 * sol.root_stress[0]      # unloaded (its neighbour's side: 105)
+    assert root[9][1] < 0.25 * sol.root_stress[1]       # 3 % of the load (neighbour's: 175)
     # the submodel's surface von Mises at the edge peak is the pressure less a little
     assert 0.97 * sol.contact_pressure < sol.von_mises_max < sol.contact_pressure
 
