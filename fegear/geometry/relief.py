@@ -35,7 +35,6 @@ from scipy.optimize import brentq
 
 from ..errors import ParameterError
 from .envelope import Branch, BranchPoints
-from .parameters import SHAPES  # noqa: F401  (named in the docstrings)
 
 RUN_IN = 0.2             # the linear shape's quadratic run-in, as a fraction of the extent
 CHEB_DEGREE = 64         # Chebyshev degree of the arc length over a relief zone
@@ -47,7 +46,7 @@ DKAPPA_STEP = 1e-6       # relative step (of the zone's ξ span) for dκ/dξ by 
 @dataclass(frozen=True)
 class ReliefShape:
     """δ(w) of a relief: amount ``amount`` (mm) at w = ``extent`` (mm), ``shape`` one of
-    :data:`SHAPES`."""
+    :data:`~fegear.geometry.parameters.SHAPES`."""
 
     amount: float
     extent: float

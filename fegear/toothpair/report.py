@@ -66,9 +66,9 @@ def _edge_summary(loaded) -> dict:
     """Which teeth press on their tip round, how hard and with how much of the load."""
     edge = [t for t in loaded if t.edge_contact]
     total = sum(t.load_N for t in loaded)
-    return {"teeth": [t.tooth for t in edge],
-            "load_N": sum(t.edge_load_N for t in edge),
-            "load_fraction": sum(t.edge_load_N for t in edge) / total if total > 0 else 0.0,
+    on_rounds = sum(t.edge_load_N for t in edge)
+    return {"teeth": [t.tooth for t in edge], "load_N": on_rounds,
+            "load_fraction": on_rounds / total if total > 0 else 0.0,
             "max_pressure_MPa": max((t.edge_p_MPa for t in edge), default=0.0)}
 
 
@@ -135,13 +135,6 @@ def pair_table(summary: dict) -> str:
               "time [s]: " + ", ".join(f"{k} {v:.2f}" for k, v in summary["timings_s"].items())
               + (f"; wall {summary['wall_s']:.1f}" if summary["wall_s"] else "")]
     return "\n".join(lines)
-
-
-#: cycle CSV columns besides the headline stresses and the per-tooth shares
-CYCLE_COLUMNS = ("position_deg", *HEADLINE, "edge_load_N", "transmission_error_urad",
-                 "rotation_urad",
-                 "first_touch_urad", "mesh_stiffness_Nm_per_rad", "teeth_in_contact",
-                 "torque_balance_error")
 
 
 def cycle_rows(sols) -> list[dict]:

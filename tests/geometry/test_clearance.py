@@ -28,18 +28,27 @@ def _min_gap_after_rotation(tca, tooth, delta, beta=0.0):
     return signed_distance(y, p.r0, p.e1, p.e2, p.z2, 0.0).min()
 
 
+def assert_closest_teeth_close_exactly(tca, direction, count=3) -> dict[int, float]:
+    """Turning gear 1 by the reported clearance (µm) of each of the ``count`` closest teeth in
+    ``direction`` makes it touch (to 0.05 µm), 0.1 µm less leaves a gap; their clearances."""
+    st = tca.state(0.0)
+    key = "plus_um" if direction > 0 else "minus_um"
+    out = {}
+    for t in sorted(st.teeth, key=lambda t: getattr(t, key) or np.inf)[:count]:
+        c = getattr(t, key)
+        delta = direction * c * UM / tca.params.r0
+        assert abs(_min_gap_after_rotation(tca, t.tooth, delta)) < 0.05 * UM
+        less = direction * (c - 0.1) * UM / tca.params.r0
+        assert _min_gap_after_rotation(tca, t.tooth, less) > 0
+        out[t.tooth] = c
+    return out
+
+
 @pytest.mark.parametrize("direction", [+1, -1])
 def test_reported_clearance_closes_exactly(tca_modified, direction):
     """Turning gear 1 by the reported clearance makes the tooth touch (to 0.05 µm), and
     turning it 0.1 µm less leaves a gap."""
-    st = tca_modified.state(0.0)
-    key = "plus_um" if direction > 0 else "minus_um"
-    for t in sorted(st.teeth, key=lambda t: getattr(t, key) or np.inf)[:3]:
-        c = getattr(t, key)
-        delta = direction * c * UM / tca_modified.params.r0
-        assert abs(_min_gap_after_rotation(tca_modified, t.tooth, delta)) < 0.05 * UM
-        less = direction * (c - 0.1) * UM / tca_modified.params.r0
-        assert _min_gap_after_rotation(tca_modified, t.tooth, less) > 0
+    assert_closest_teeth_close_exactly(tca_modified, direction)
 
 
 def test_conjugate_pair_has_zero_backlash(conjugate, conjugate_profile):
