@@ -83,3 +83,55 @@ def strain_matrix(t, d, s, E: float, nu: float) -> np.ndarray:
     """ε_tt at depth ``d_i`` below surface point ``t_i`` (tangential strain, + stretching) per
     unit pressure of hat j on the grid ``s``: 1/MPa."""
     return -2.0 / (math.pi * E) * _hat_matrix(t, d, s, _strain_antiderivatives, nu)
+
+
+def _log_antiderivatives(u: np.ndarray, d, nu: float) -> tuple[np.ndarray, np.ndarray]:
+    """F0 = ∫ K du and F1 = ∫ u K du for the surface kernel K(u) = −2 ln|u| (the depth and
+    ν do not enter: the surface's own approach, up to a constant)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lg = np.where(u == 0.0, 0.0, np.log(np.abs(np.where(u == 0.0, 1.0, u))))
+    return -2.0 * u * (lg - 1.0), -u * u * (lg - 0.5)
+
+
+def surface_matrix(s: np.ndarray, E_star: float) -> np.ndarray:
+    """How far two elastic half-planes' surfaces approach each other at the grid points ``s``
+    per unit pressure of hat j (mm/MPa), up to one rigid approach: (1/(π E*)) ∫ φ_j(σ)
+    (−2 ln|s_i − σ|) dσ, E* the contact modulus."""
+    s = np.asarray(s, dtype=float)
+    return _hat_matrix(s, np.zeros(len(s)), s, _log_antiderivatives, 0.0) / (math.pi * E_star)
+
+
+def gap_contact(s: np.ndarray, gap: np.ndarray, load: float, E_star: float,
+                max_iterations: int = 200) -> np.ndarray:
+    """Line contact of two elastic half-planes whose unloaded surfaces are ``gap`` (mm) apart
+    at the arc positions ``s`` (mm, increasing), pressed together by ``load`` (N per mm of
+    thickness): the pressure (MPa, piecewise linear on ``s``). Hertz's assumptions except one:
+    the gap is the profiles' own, not the parabola of the curvatures at one point. Active set:
+    where pressure acts, gap + approach(p) equals the rigid approach δ; elsewhere it is not
+    less; Σ w p = load."""
+    s, gap = np.asarray(s, dtype=float), np.asarray(gap, dtype=float)
+    A = surface_matrix(s, E_star)
+    w = np.zeros(len(s))
+    w[:-1] += 0.5 * np.diff(s)
+    w[1:] += 0.5 * np.diff(s)
+    active = gap <= gap.min()
+    for _ in range(max_iterations):
+        ia = np.flatnonzero(active)
+        n = len(ia)
+        M = np.zeros((n + 1, n + 1))
+        M[:n, :n] = A[np.ix_(ia, ia)]
+        M[:n, n] = -1.0
+        M[n, :n] = w[ia]
+        x = np.linalg.solve(M, np.concatenate([-gap[ia], [load]]))
+        p = np.zeros(len(s))
+        p[ia] = x[:n]
+        if (x[:n] < 0.0).any():
+            active[ia[x[:n] < 0.0]] = False
+            continue
+        opened = gap + A @ p - x[n]
+        closing = (opened < 0.0) & ~active
+        if not closing.any():
+            return p
+        active |= closing
+    raise ValueError(f"the half-plane contact's active set did not settle in {max_iterations} "
+                     "iterations")

@@ -1,5 +1,6 @@
 """The half-plane (Flamant, plane stress) hat integrals against numerical quadrature of the
-point-load solution, and the displacement kernel against the stresses it must derive from."""
+point-load solution, and the displacement kernel against the stresses it must derive from; the
+line contact on an arbitrary gap against Hertz where the gap is a parabola."""
 
 import math
 
@@ -7,7 +8,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from fegear.contact.halfplane import approach_matrix, strain_matrix
+from fegear.contact.halfplane import approach_matrix, gap_contact, strain_matrix, surface_matrix
+from fegear.fe import line_contact
 
 E, NU = 206000.0, 0.29
 
@@ -51,23 +53,55 @@ def test_hat_integrals_equal_quadrature_of_the_point_load(kernel, point):
         assert K[i, j] == pytest.approx(value, rel=1e-7, abs=1e-12 * abs(K).max()), (i, j)
 
 
-def test_approach_and_strain_come_from_one_displacement_field():
-    # −∂Δ/∂d is the normal strain at depth d, ε_zz = (σ_zz − ν σ_tt)/E, of the same loads;
-    # the tangential strain kernel is the σ_tt − ν σ_zz of the same point solution
-    s = np.linspace(-0.02, 0.02, 9)
-    t, d, h = np.array([0.003, -0.011, 0.05]), np.array([0.01, 0.02, 0.015]), 1e-7
-    dz = -(approach_matrix(t, d + h, s, E, NU) - approach_matrix(t, d - h, s, E, NU)) / (2 * h)
+def test_the_surface_kernel_is_the_log_of_the_point_load_and_the_approach_kernel_far_down():
+    s = np.array([-0.03, -0.01, 0.0, 0.004, 0.02, 0.05])
+    K = surface_matrix(s, E)
+    ref = _hat_quadrature(s, s, np.zeros(len(s)),
+                          lambda t, d: -2.0 * math.log(abs(t)) / (math.pi * E))
+    for (i, j), value in np.ndenumerate(ref):
+        assert K[i, j] == pytest.approx(value, rel=1e-7, abs=1e-12 * abs(K).max()), (i, j)
+    # far down, the depth-referenced kernel (ν = −1 drops its second term) is the surface
+    # kernel plus the rigid approach 2 ln(d)/(π E) per unit of the hat's area, up to
+    # ln(1 + u²/d²) < 1e-6
+    d = 100.0
+    area = np.zeros(len(s))
+    area[:-1] += 0.5 * np.diff(s)
+    area[1:] += 0.5 * np.diff(s)
+    deep = approach_matrix(s, np.full(len(s), d), s, E, -1.0)
+    assert deep == pytest.approx(K + 2.0 * math.log(d) / (math.pi * E) * area, rel=1e-6)
 
-    def eps_zz(tt, dd):
-        r2 = tt * tt + dd * dd
-        return -2.0 / (math.pi * E) * dd * (dd * dd - NU * tt * tt) / r2 ** 2
 
-    for (i, j), value in np.ndenumerate(_hat_quadrature(s, t, d, eps_zz)):
-        assert dz[i, j] == pytest.approx(value, rel=1e-5, abs=1e-16), (i, j)
+@pytest.mark.parametrize("per_b,tolerance", [(4, 0.007), (8, 0.002), (16, 5e-4)])
+def test_the_contact_on_a_parabolic_gap_is_hertz(per_b, tolerance):
+    """Two 10 mm disks, 1000 N over 5 mm (Hertz p0 1145.18 MPa, b 0.111 mm): the gap
+    s²/(2R*) gives Hertz's peak and half-width on grids of 4, 8, 16 points per half-width,
+    wherever the grid's points fall against the contact's middle."""
+    hz = line_contact(10.0, 10.0, 1000.0, 5.0, E, NU)
+    for offset in (0.0, 0.2, 0.5):
+        s = (np.arange(-5 * per_b, 5 * per_b + 1) + offset) * hz.b / per_b
+        p = gap_contact(s, s * s / (2.0 * hz.R_star), 1000.0 / 5.0, E / 2.0)
+        assert p.max() == pytest.approx(hz.p0, rel=tolerance)
+        on = s[p > 0]
+        assert 0.5 * (on.max() - on.min()) == pytest.approx(hz.b, abs=hz.b / per_b)
+        w = np.gradient(s)
+        assert (w * p).sum() == pytest.approx(200.0, rel=1e-12)
 
 
-def test_a_uniform_pressure_far_away_has_a_vanishing_approach():
-    s = np.linspace(-1.0, 1.0, 41)
-    near = approach_matrix(np.array([0.0]), np.array([0.1]), s, E, NU).sum()
-    far = approach_matrix(np.array([50.0]), np.array([0.1]), s, E, NU).sum()
-    assert near > 0 and abs(far) < 1e-4 * near  # decays like (d/t)², here 4e-6
+def test_the_gap_beyond_its_curvature_at_one_point_moves_and_reshapes_the_pressure():
+    """Hertz knows the gap's curvature at one point. A cubic term (the curvature changing
+    across the contact, as on gear 2's flank) moves the pressure towards the side where the gap
+    opens more slowly and leaves its peak (within 0.1 %); a quartic term (the gap closing
+    faster than its parabola, as between nearly conformal flanks) narrows the contact and
+    raises its peak. Mirrored gaps give mirrored pressures."""
+    hz = line_contact(10.0, 10.0, 1000.0, 5.0, E, NU)
+    s = np.linspace(-4 * hz.b, 4 * hz.b, 161)
+    parabola = s * s / (2.0 * hz.R_star)
+    cubic = parabola * (1.0 + s / (8.0 * hz.b))          # at least half the parabola
+    p = gap_contact(s, cubic, 200.0, E / 2.0)
+    assert (s * p).sum() / p.sum() < -0.04 * hz.b
+    assert p.max() == pytest.approx(hz.p0, rel=1e-3)
+    mirrored = gap_contact(-s[::-1], cubic[::-1], 200.0, E / 2.0)
+    assert mirrored == pytest.approx(p[::-1], rel=1e-9, abs=1e-9 * p.max())
+    quartic = gap_contact(s, parabola * (1.0 + (s / hz.b) ** 2), 200.0, E / 2.0)
+    on = s[quartic > 0]
+    assert quartic.max() > 1.1 * hz.p0 and 0.5 * (on.max() - on.min()) < 0.8 * hz.b
