@@ -86,7 +86,9 @@ class ToothResult:
     and half-width (mm), Hertz p0 and b from the FE load and the analytic curvature radii
     (None where the curvatures are not a Hertz pair), b/R*, unloaded clearance (µm); whether
     the peak sits on gear 1's tip round; the flank and edge pressures apart and the round's
-    load (edge contact)."""
+    load (edge contact); the pressure of two half-planes with the profiles' exact gap under
+    the same load (Hertz without the constant curvature; ring model); and how finely the
+    contact is resolved."""
 
     tooth: int
     clearance_um: float | None    # None: no + contact point on this tooth at this β
@@ -104,6 +106,10 @@ class ToothResult:
     flank_p_MPa: float = 0.0  # pressure on the flank and its relief, away from the round …
     edge_p_MPa: float = 0.0   # … and on the round (:mod:`~fegear.toothpair.edge`)
     edge_load_N: float = 0.0  # the load the round carries
+    halfplane_p_MPa: float | None = None      # the exact-gap half-plane reference: its peak …
+    halfplane_flank_MPa: float | None = None  # … and its flank pressure (docs/model.md, "Hertz")
+    per_half_width: float = 0.0  # grid points (or elements) across the half-width (0: no load) …
+    resolved: bool = True        # … and whether that is at least half the quality's
 
     @property
     def edge_contact(self) -> bool:

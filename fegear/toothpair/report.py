@@ -54,7 +54,10 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
                    "root_stress_gear1_MPa": t.root1_MPa, "root_stress_gear2_MPa": t.root2_MPa,
                    "peak_on_tip_round": t.peak_on_round,
                    "flank_pressure_MPa": t.flank_p_MPa, "edge_pressure_MPa": t.edge_p_MPa,
-                   "edge_load_N": t.edge_load_N, "edge_contact": t.edge_contact}
+                   "edge_load_N": t.edge_load_N, "edge_contact": t.edge_contact,
+                   "halfplane_p_MPa": t.halfplane_p_MPa,
+                   "halfplane_flank_MPa": t.halfplane_flank_MPa,
+                   "points_per_half_width": t.per_half_width, "resolved": t.resolved}
                   for t in sol.teeth],
         "timings_s": sol.timings_s,
         "wall_s": wall_s,
@@ -95,10 +98,10 @@ def pair_table(summary: dict) -> str:
     for k, label in HEADLINE.items():
         lines.append(f"| {label:23s} | {summary[k]:7.1f} |    {e(k)} |")
     lines += ["",
-              "| tooth | clear. µm | load N | share | p_max MPa | p flank | p edge | edge N "
-              "| b mm  | Hertz p0 | b/R*   | root1 | root2 |",
+              "| tooth | clear. µm | load N | share | p_max MPa | p flank | p ref  | p edge "
+              "| edge N | b mm   | Hertz p0 | b/R*   | root1 | root2 |",
               "|------:|---------:|-------:|------:|----------:|--------:|-------:|-------:"
-              "|------:|---------:|-------:|------:|------:|"]
+              "|-------:|-------:|---------:|-------:|------:|------:|"]
     for t in summary["teeth"]:
         if t["load_N"] <= 0:
             continue
@@ -107,10 +110,13 @@ def pair_table(summary: dict) -> str:
         edge = "e" if t["peak_on_tip_round"] else " "
         p_edge = f"{t['edge_pressure_MPa']:6.0f}" if t["edge_contact"] else "     -"
         n_edge = f"{t['edge_load_N']:6.1f}" if t["edge_contact"] else "     -"
+        ref = t.get("halfplane_flank_MPa")
+        ref = f"{ref:6.0f}" if ref else "     -"
+        coarse = " " if t.get("resolved", True) else "u"
         lines.append(f"| {t['tooth']:5d} | {t['clearance_um']:8.2f} | {t['load_N']:6.0f} | "
                      f"{t['load_share']:.3f} | {t['p_max_MPa']:8.1f}{edge} | "
-                     f"{t['flank_pressure_MPa']:7.1f} | {p_edge} | {n_edge} | "
-                     f"{t['half_width_mm']:.3f} "
+                     f"{t['flank_pressure_MPa']:7.1f} | {ref} | {p_edge} | {n_edge} | "
+                     f"{t['half_width_mm']:.3f}{coarse} "
                      f"| {hz} | {br} | {t['root_stress_gear1_MPa']:5.0f} | "
                      f"{t['root_stress_gear2_MPa']:5.0f} |")
     unloaded = [t["tooth"] for t in summary["teeth"] if t["load_N"] <= 0]
@@ -122,6 +128,16 @@ def pair_table(summary: dict) -> str:
                   "round's radius (--tip-round); the flank pressure beside it is the flank's "
                   "own. A tip relief keeps the load off the round (--relief; `fegear relief` "
                   "sizes one). e: the tooth's peak is on its round."]
+    coarse = [t for t in summary["teeth"] if t["load_N"] > 0 and not t.get("resolved", True)]
+    if coarse:
+        lines += ["", "UNDER-RESOLVED (u): " + ", ".join(
+            f"tooth {t['tooth']} has {t['points_per_half_width']:.1f}" for t in coarse)
+            + " points across its half-width, under half of what "
+            f"`{summary['inputs']['quality']}` gives a contact; its pressure may be off by 1-4 % "
+            "(a finer --quality resolves it)."]
+    lines += ["", "p ref: the flank pressure of two half-planes with the teeth's exact gap "
+              "under the same load (Hertz without constant curvature; docs/model.md, \"Hertz\")."
+              if any(t.get("halfplane_flank_MPa") for t in summary["teeth"]) else ""]
     lines += ["",
               f"teeth in contact {summary['teeth_in_contact']} (paired but open: {unloaded}); "
               f"load shares sum to {summary['load_share_sum']:.6f}; torque balance error "

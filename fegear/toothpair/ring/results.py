@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ...contact.halfplane import gap_contact
 from ...errors import ParameterError
 from ...fe import contact_modulus, line_contact, recover, vtu_fields
 from ...planar import rotate
@@ -36,7 +37,8 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
     p = case.params
     pitch1, pitch2 = model.shape.pitch, 2 * math.pi / p.z2
     w = contact.weight * case.thickness
-    _, rate = rigid_gap(model, contact.x, case.beta, p.ratio * case.beta + sol.rotation)
+    gap, rate = rigid_gap(model, contact.x, case.beta, p.ratio * case.beta + sol.rotation)
+    E_star = contact_modulus(case.E, case.E)
     clearance = {c.tooth: c.plus_um for c in state.teeth}
     by_tooth = {c.tooth: c for c in cands}
     out = []
@@ -55,12 +57,18 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
         fillets = tension_fillets(model.shape.tooth_center + grid.tooth * pitch1, pitch1,
                                   theta2 if math.isfinite(theta2) else 0.0, pitch2)
         split = flank_and_edge(grid.s, pk, grid.on_round, case.thickness,
-                               model.shape.radius_mm, contact_modulus(case.E, case.E))
+                               model.shape.radius_mm, E_star)
+        b = local_half_width(contact, sol.pressure, i) if load > 0 else 0.0
+        ref = (_halfplane(grid, gap[blk], load / case.thickness, E_star, case.thickness,
+                          model.shape.radius_mm) if load > 0 else None)
+        j = i - blk.start
+        spacing = 0.5 * (grid.s[min(j + 1, len(grid) - 1)] - grid.s[max(j - 1, 0)])
+        per_b = b / spacing if load > 0 else 0.0
         out.append(ToothResult(
             tooth=grid.tooth, clearance_um=clearance.get(grid.tooth), load_N=load,
             load_share=float(-(w[blk] * pk) @ rate[blk] / (case.torque * 1e3)),
             p_max_MPa=float(pk.max()),
-            half_width_mm=local_half_width(contact, sol.pressure, i) if load > 0 else 0.0,
+            half_width_mm=b,
             hertz_p0_MPa=hz.p0 if hz else None, hertz_b_mm=hz.b if hz else None,
             b_over_R=hz.b_over_R if hz else None,
             root1_MPa=stresses.roots[0].near(fillets[0], pitch1),
@@ -68,8 +76,21 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
             else 0.0,
             peak_on_round=bool(load > 0 and grid.on_round[i - blk.start]),
             flank_p_MPa=split.flank_MPa, edge_p_MPa=split.edge_MPa,
-            edge_load_N=split.edge_load_N))
+            edge_load_N=split.edge_load_N,
+            halfplane_p_MPa=float(ref[0].max()) if ref else None,
+            halfplane_flank_MPa=ref[1].flank_MPa if ref else None,
+            per_half_width=float(per_b),
+            resolved=bool(load <= 0 or per_b >= 0.5 * model.level.per_b)))
     return tuple(out)
+
+
+def _halfplane(grid, gap: np.ndarray, q: float, E_star: float, thickness: float,
+               radius: float):
+    """The reference of docs/model.md, "Hertz": two half-planes with the tooth's exact gap
+    along its grid, pressed by its load q (N/mm); its pressure and that split into flank and
+    edge."""
+    p = gap_contact(grid.s, gap, q, E_star)
+    return p, flank_and_edge(grid.s, p, grid.on_round, thickness, radius, E_star)
 
 
 def _hertz(c, load: float, case: SolveCase):

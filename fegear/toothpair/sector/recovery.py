@@ -20,7 +20,7 @@ from ...planar import wrap
 from ..case import SolveCase, ToothResult
 from ..edge import flank_and_edge
 from ..teeth import Candidate, tension_fillets
-from .scene import Scene
+from .scene import QUALITY, Scene
 
 
 def root_nodes(body: Body, names: tuple[str, ...], band: tuple[float, float]) -> np.ndarray:
@@ -72,13 +72,16 @@ def tooth_results(case: SolveCase, scene: Scene, bodies: tuple[Body, Body],
             root1_MPa=_sector_max(g1, stresses[0], zones[0], fillets[0], pitch1),
             root2_MPa=root2,
             peak_on_round=_peak_on_round(scene.shape, contact.x[sel], sol.pressure[sel]),
-            **_flank_edge(scene.shape, contact.x[sel], sol.pressure[sel], case)))
+            **_flank_edge(scene.shape, contact.x[sel], sol.pressure[sel], case,
+                          patch.half_width if patch else 0.0)))
     return tuple(results)
 
 
-def _flank_edge(shape, x: np.ndarray, pressure: np.ndarray, case: SolveCase) -> dict:
+def _flank_edge(shape, x: np.ndarray, pressure: np.ndarray, case: SolveCase,
+                half_width: float) -> dict:
     """Flank and edge pressure of one tooth's contact points ``x`` (gear 1's frame), taken in
-    the order of their polar angle."""
+    the order of their polar angle; the elements across the contact's ``half_width`` (mm) at
+    its peak, and whether they are as many as the quality gives a contact."""
     if not len(pressure):
         return {}
     phi = np.arctan2(x[:, 1], x[:, 0])
@@ -88,8 +91,14 @@ def _flank_edge(shape, x: np.ndarray, pressure: np.ndarray, case: SolveCase) -> 
     s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xs, axis=0).T))])
     split = flank_and_edge(s, pressure[order], shape.on_round(phi[order]), case.thickness,
                            shape.radius_mm, contact_modulus(case.E, case.E))
-    return {"flank_p_MPa": split.flank_MPa, "edge_p_MPa": split.edge_MPa,
-            "edge_load_N": split.edge_load_N}
+    out = {"flank_p_MPa": split.flank_MPa, "edge_p_MPa": split.edge_MPa,
+           "edge_load_N": split.edge_load_N}
+    if half_width > 0 and len(s) > 1:
+        j = int(np.argmax(pressure[order]))
+        spacing = 0.5 * (s[min(j + 1, len(s) - 1)] - s[max(j - 1, 0)])
+        out["per_half_width"] = float(half_width / spacing)
+        out["resolved"] = bool(out["per_half_width"] >= QUALITY[case.quality][0])
+    return out
 
 
 def _peak_on_round(shape, x: np.ndarray, pressure: np.ndarray) -> bool:
