@@ -24,6 +24,9 @@ def add_parser(sub) -> None:
                    help="rolling angles per trial across one tooth pitch (default 12)")
     p.add_argument("--margin", type=float, default=0.2,
                    help="torque overload the relief must cover, 0 <= margin <= 2 (default 0.2)")
+    p.add_argument("--keep-tip-clearance", action="store_true",
+                   help="refuse, rather than raise the tip clearance, when far-side tips land "
+                        "on their rounds")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
 
 
@@ -34,6 +37,7 @@ def run(a: argparse.Namespace) -> int:
     positions = int(require_range("cycle_positions", a.cycle_positions, 2, 360))
     margin = require_range("margin", a.margin, 0.0, 2.0)
     result = size_relief(values, positions=positions, margin=margin,
+                         clearance=not a.keep_tip_clearance,
                          report=None if a.json else stderr_report)
     print(json.dumps(result.summary(), indent=2) if a.json else sizing_table(result))
     return 0

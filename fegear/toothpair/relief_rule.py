@@ -7,8 +7,10 @@ raised by the ``margin`` (default +20 %): the approach of the teeth grows about 
 the load, so the relief found keeps the rounds unloaded up to that overload. It scans
 C = 2, 4, 8, … µm until a trial passes, then bisects to ``tolerance``. A longer relief turns
 gear 1 further before the teeth carry the torque, which can close a far-side tip onto its
-round (docs/model.md, "Tip relief"): if no amount up to the admissible limit passes, the
-search says so and names the extent to change.
+round (docs/model.md, "Tip relief"). Such a far-side tip is kept off by a larger radial tip
+clearance, which the search raises in steps of 0.002 m until the far side is off at the amount
+found (and then checks that amount again on the trimmed tips); told to keep the tip clearance,
+or if no amount up to the admissible limit passes, it says why and names what to change.
 
 The relief found is then solved at the design torque beside the unrelieved pair: flank and
 peak pressure, transmission error and load sharing over the cycle.
@@ -29,6 +31,7 @@ MARGIN = 0.2         # torque overload the relief must cover
 TOLERANCE_UM = 0.5   # bisection stops when the bracket is this narrow
 POSITIONS = 12       # rolling angles per trial
 FAR_DEG = 45.0       # teeth farther than this from the pitch point (about O1) are far-side
+CLEARANCE_STEP = 0.002  # × m: the tip clearance's step when a far-side tip lands on its round
 
 
 @dataclass(frozen=True)
@@ -36,8 +39,9 @@ class CycleResult:
     """A relief over a mesh cycle: amount (µm), torque (N·m), the largest load on the tip
     rounds at any position (N) and the teeth whose round carried some, the largest flank and
     overall contact pressure (MPa), the transmission error's mean and peak-to-peak (µrad),
-    and each tooth's largest load share. Teeth more than ``FAR_DEG`` from the pitch point are
-    far-side teeth: their tips meet gear 2's other flanks across the mesh."""
+    each tooth's largest load share, and the radial tip clearance (mm). Teeth more than
+    ``FAR_DEG`` from the pitch point are far-side teeth: their tips meet gear 2's other flanks
+    across the mesh."""
 
     amount_um: float
     torque: float
@@ -49,6 +53,7 @@ class CycleResult:
     te_mean_urad: float
     te_p2p_urad: float
     shares: dict
+    tip_clearance_mm: float = 0.0
 
     @property
     def off_the_rounds(self) -> bool:
@@ -57,8 +62,9 @@ class CycleResult:
 
 @dataclass(frozen=True)
 class ReliefSizing:
-    """The search's trials (at the raised torque), the amount it found (µm), and the pair
-    without and with that relief at the design torque."""
+    """The search's trials (at the raised torque), the amount it found (µm), the radial tip
+    clearance given and the one it needed (mm), and the pair as given (no relief) and with the
+    relief and tip clearance found, at the design torque."""
 
     extent_mm: float
     shape: str
@@ -66,6 +72,8 @@ class ReliefSizing:
     positions: int
     trials: tuple[CycleResult, ...]
     amount_um: float
+    given_tip_clearance_mm: float
+    tip_clearance_mm: float
     without: CycleResult
     with_relief: CycleResult
 
@@ -73,7 +81,9 @@ class ReliefSizing:
         def row(r: CycleResult) -> dict:
             return {k: (list(v) if isinstance(v, tuple) else v) for k, v in r.__dict__.items()}
 
-        return {"relief_um": self.amount_um, "relief_extent_mm": self.extent_mm,
+        return {"relief_um": self.amount_um, "tip_clearance_mm": self.tip_clearance_mm,
+                "given_tip_clearance_mm": self.given_tip_clearance_mm,
+                "relief_extent_mm": self.extent_mm,
                 "relief_shape": self.shape, "margin": self.margin, "positions": self.positions,
                 "without_relief": row(self.without), "with_relief": row(self.with_relief),
                 "trials": [row(t) for t in self.trials]}
@@ -107,16 +117,20 @@ def cycle_result(values: Mapping, amount_um: float, torque: float, positions: in
         flank_MPa=max(s.flank_contact_pressure for s in sols),
         contact_MPa=max(s.contact_pressure for s in sols),
         te_mean_urad=sum(te) / len(te), te_p2p_urad=max(te) - min(te),
-        shares={k: v for k, v in sorted(shares.items()) if v > 0})
+        shares={k: v for k, v in sorted(shares.items()) if v > 0},
+        tip_clearance_mm=p.radial_tip_clearance)
 
 
 def size_relief(values: Mapping, positions: int = POSITIONS, margin: float = MARGIN,
-                tolerance_um: float = TOLERANCE_UM,
+                tolerance_um: float = TOLERANCE_UM, clearance: bool = True,
                 solve: Callable[..., CycleResult] | None = None,
                 report: Callable[[str], None] | None = None) -> ReliefSizing:
     """The smallest relief (module docstring) for the pair, torque, extent and shape of
-    ``values``; ``solve`` evaluates one trial (values, amount µm, torque, positions) →
-    :class:`CycleResult` (default :func:`cycle_result`), ``report`` is told of each trial."""
+    ``values``. With ``clearance`` a far-side tip that lands on its round raises the radial tip
+    clearance in steps of ``CLEARANCE_STEP`` · m (the search then goes on at the new value);
+    without, it ends the search. ``solve`` evaluates one trial (values, amount µm, torque,
+    positions) → :class:`CycleResult` (default :func:`cycle_result`), ``report`` is told of
+    each trial."""
     from .job import prepare_job
 
     solve = solve or cycle_result
@@ -126,24 +140,31 @@ def size_relief(values: Mapping, positions: int = POSITIONS, margin: float = MAR
     torque = float(values.get("torque", 200.0))
     raised = torque * (1.0 + margin)
     limit = 50.0 * params.m                                     # the relief input's range
-    trials = []
+    given = params.radial_tip_clearance
+    most = params.m * params.h1                                 # the tip_clearance input's range
+    trials: list[CycleResult] = []
+    tip = given
 
     def trial(amount: float) -> CycleResult:
-        r = solve(values, amount, raised, positions)
+        r = solve({**values, "tip-clearance": tip}, amount, raised, positions)
         trials.append(r)
         if report:
             where = (f"rounds of teeth {list(r.edge_teeth)} carry {r.edge_load_N:.1f} N"
                      if not r.off_the_rounds else "off the rounds")
-            report(f"relief {amount:7.3f} µm at {raised:g} N·m: {where}; flank "
-                   f"{r.flank_MPa:.0f} MPa")
+            report(f"relief {amount:7.3f} µm, tip clearance {1e3 * tip:5.1f} µm at "
+                   f"{raised:g} N·m: {where}; flank {r.flank_MPa:.0f} MPa")
         return r
 
-    low, high = 0.0, None
-    if not trial(0.0).off_the_rounds:
-        amount = FIRST_UM
+    def near_side(low: float) -> float | None:
+        """The smallest amount above ``low`` (which fails, or is 0) whose near-side rounds stay
+        unloaded at the present tip clearance, to the tolerance; None if none up to the
+        limit. The trials' far-side teeth are left to the caller."""
+        if low == 0.0 and not near(trial(0.0)):
+            return 0.0
+        amount, high = max(FIRST_UM, 2.0 * low), None
         while amount <= limit:
             try:
-                passed = trial(amount).off_the_rounds
+                passed = not near(trial(amount))
             except ParameterError as exc:   # deeper than the extent can take: the scan ends
                 if exc.name != "relief":
                     raise
@@ -153,40 +174,64 @@ def size_relief(values: Mapping, positions: int = POSITIONS, margin: float = MAR
                 break
             low, amount = amount, 2.0 * amount
         if high is None:
-            raise FegearError(_no_relief(trials, params.relief_extent, raised))
+            return None
         while high - low > tolerance_um:
             mid = 0.5 * (low + high)
-            if trial(mid).off_the_rounds:
-                high = mid
-            else:
+            if near(trial(mid)):
                 low = mid
-    else:
-        high = 0.0
+            else:
+                high = mid
+        return high
+
+    low = 0.0
+    while True:
+        high = near_side(low)
+        if high is None:
+            raise FegearError(_no_relief(trials, params.relief_extent, raised))
+        last = next(t for t in reversed(trials) if t.amount_um == high)
+        if not far(last):
+            break
+        if not clearance:
+            raise FegearError(_no_relief(trials, params.relief_extent, raised))
+        while far(last):                      # raise the tip clearance until the far side is
+            tip += CLEARANCE_STEP * params.m  # off, at the amount found
+            if tip > most:
+                raise FegearError(_no_relief(trials, params.relief_extent, raised))
+            last = trial(high)
+        if not near(last):
+            break
+        low = high                            # the trimmed tips need a little more
     without = solve(values, 0.0, torque, positions)
-    found = solve(values, high, torque, positions) if high > 0 else without
+    found = solve({**values, "tip-clearance": tip}, high, torque, positions)
     return ReliefSizing(params.relief_extent, params.relief_shape, margin, positions,
-                        tuple(trials), high, without, found)
+                        tuple(trials), high, given, tip, without, found)
+
+
+def near(r: CycleResult) -> list[int]:
+    """The teeth by the pitch point whose rounds carried load in the trial ``r``."""
+    return [k for k, a in zip(r.edge_teeth, r.edge_angles) if abs(a) <= FAR_DEG]
+
+
+def far(r: CycleResult) -> list[int]:
+    """The far-side teeth whose rounds carried load in the trial ``r``."""
+    return [k for k, a in zip(r.edge_teeth, r.edge_angles) if abs(a) > FAR_DEG]
 
 
 def _no_relief(trials, extent: float, torque: float) -> str:
     """Why no amount passed, and what to change."""
-    def sides(t):
-        far = [k for k, a in zip(t.edge_teeth, t.edge_angles) if abs(a) > FAR_DEG]
-        return [k for k in t.edge_teeth if k not in far], far
-
     why = []
-    far = [(t.amount_um, sides(t)[1]) for t in trials if sides(t)[1]]
-    if far:
-        teeth = sorted({k for _, ks in far for k in ks})
-        why.append(f"far-side teeth {teeth} press on their rounds from {far[0][0]:g} µm on "
-                   "(their tips meet gear 2 across the mesh; a relief turns gear 1 further "
+    far_side = [(t.amount_um, far(t)) for t in trials if far(t)]
+    if far_side:
+        teeth = sorted({k for _, ks in far_side for k in ks})
+        why.append(f"far-side teeth {teeth} press on their rounds from {far_side[0][0]:g} µm "
+                   "on (their tips meet gear 2 across the mesh; a relief turns gear 1 further "
                    "onto them, a larger tip_clearance keeps them off)")
-    near = sides(trials[-1])[0]
-    if near:
-        why.append(f"teeth {near} by the pitch point still do at {trials[-1].amount_um:g} µm "
+    still = near(trials[-1])
+    if still:
+        why.append(f"teeth {still} by the pitch point still do at {trials[-1].amount_um:g} µm "
                    "(a longer relief_extent reaches further down the flank)")
     else:
-        clear = next(t.amount_um for t in trials if not sides(t)[0])
+        clear = next(t.amount_um for t in trials if not near(t))
         why.append(f"the rounds by the pitch point are unloaded from {clear:g} µm on")
     return (f"no tip relief over {extent:g} mm keeps the tip rounds unloaded at {torque:g} N·m "
             f"(tried up to {trials[-1].amount_um:g} µm): " + "; ".join(why))
@@ -197,22 +242,30 @@ def sizing_table(s: ReliefSizing) -> str:
     a, b = s.without, s.with_relief
     lines = [f"tip relief {s.amount_um:.2f} µm, {s.shape}, over {s.extent_mm:g} mm along the "
              f"flank: the smallest that keeps every tip round unloaded over the cycle at "
-             f"{(1 + s.margin) * a.torque:g} N·m ({100 * s.margin:.0f} % over {a.torque:g})",
-             "",
-             f"| over the cycle at {a.torque:g} N·m | no relief | {s.amount_um:.2f} µm |",
-             "|---|---:|---:|",
-             f"| peak contact pressure [MPa] | {a.contact_MPa:.0f} | {b.contact_MPa:.0f} |",
-             f"| flank pressure [MPa] | {a.flank_MPa:.0f} | {b.flank_MPa:.0f} |",
-             f"| load on the tip rounds, largest [N] | {a.edge_load_N:.1f} | "
-             f"{b.edge_load_N:.1f} |",
-             f"| transmission error, mean [µrad] | {a.te_mean_urad:.1f} | {b.te_mean_urad:.1f} |",
-             f"| transmission error, peak to peak [µrad] | {a.te_p2p_urad:.1f} | "
-             f"{b.te_p2p_urad:.1f} |"]
+             f"{(1 + s.margin) * a.torque:g} N·m ({100 * s.margin:.0f} % over {a.torque:g})"]
+    found = f"{s.amount_um:.2f} µm"
+    if s.tip_clearance_mm > s.given_tip_clearance_mm:
+        lines.append(f"tip clearance raised from {1e3 * s.given_tip_clearance_mm:.1f} to "
+                     f"{1e3 * s.tip_clearance_mm:.1f} µm (--tip-clearance "
+                     f"{s.tip_clearance_mm:.4g}): with less, far-side tips land on their rounds")
+        found += f", tip clearance {1e3 * s.tip_clearance_mm:.1f} µm"
+    lines += ["",
+              f"| over the cycle at {a.torque:g} N·m | as given | {found} |",
+              "|---|---:|---:|",
+              f"| peak contact pressure [MPa] | {a.contact_MPa:.0f} | {b.contact_MPa:.0f} |",
+              f"| flank pressure [MPa] | {a.flank_MPa:.0f} | {b.flank_MPa:.0f} |",
+              f"| load on the tip rounds, largest [N] | {a.edge_load_N:.1f} | "
+              f"{b.edge_load_N:.1f} |",
+              f"| transmission error, mean [µrad] | {a.te_mean_urad:.1f} | "
+              f"{b.te_mean_urad:.1f} |",
+              f"| transmission error, peak to peak [µrad] | {a.te_p2p_urad:.1f} | "
+              f"{b.te_p2p_urad:.1f} |"]
     for tooth in sorted(set(a.shares) | set(b.shares)):
         lines.append(f"| largest load share, tooth {tooth} | {a.shares.get(tooth, 0.0):.3f} | "
                      f"{b.shares.get(tooth, 0.0):.3f} |")
     lines += ["", f"{len(s.trials)} trials, each over {s.positions} positions:"]
-    lines += [f"  {t.amount_um:7.3f} µm: " + ("off the rounds" if t.off_the_rounds else
+    lines += [f"  {t.amount_um:7.3f} µm, tip clearance {1e3 * t.tip_clearance_mm:5.1f} µm: "
+              + ("off the rounds" if t.off_the_rounds else
                                               f"rounds of teeth {list(t.edge_teeth)} carry "
                                               f"{t.edge_load_N:.1f} N")
               for t in s.trials]

@@ -4,27 +4,31 @@ on the baseline pair (slow)."""
 import pytest
 
 from fegear.errors import FegearError
-from fegear.toothpair.relief_rule import CycleResult, size_relief
+from fegear.toothpair.relief_rule import CycleResult, size_relief, sizing_table
 
 BASE = {"shift": 0.016, "rotation": 0.002, "torque": 200.0, "relief-extent": 0.5,
         "quality": "coarse"}
 
 
-def _fake(needed_um: float, far_from_um: float | None = None):
+def _fake(needed_um: float, far_from_um: float | None = None, far_off_mm: float = 1.0,
+          trimmed_um: float = 0.0):
     """Trials: the near-side rounds (tooth 11, 2° from the pitch point) carry load below
-    ``needed_um``; a far-side round (tooth 23, 100°) from ``far_from_um`` on."""
+    ``needed_um`` (plus ``trimmed_um`` once the tip clearance exceeds the default 0.016 mm);
+    a far-side round (tooth 23, 100°) from ``far_from_um`` on, while the tip clearance is
+    below ``far_off_mm``."""
     calls = []
 
     def solve(values, amount, torque, positions):
-        calls.append((amount, torque, positions))
+        tip = values.get("tip-clearance", 0.016)
+        calls.append((amount, torque, positions, tip))
         edge = []
-        if amount < needed_um:
+        if amount < needed_um + (trimmed_um if tip > 0.016 else 0.0):
             edge.append((11, 2.0))
-        if far_from_um is not None and amount >= far_from_um:
+        if far_from_um is not None and amount >= far_from_um and tip < far_off_mm:
             edge.append((23, 100.0))
         return CycleResult(amount, torque, 50.0 * len(edge), tuple(t for t, _ in edge),
                            tuple(a for _, a in edge), 600.0 + amount, 1000.0, 350.0 + amount,
-                           5.0, {11: 0.43})
+                           5.0, {11: 0.43}, tip)
 
     return solve, calls
 
@@ -34,10 +38,11 @@ def test_the_search_finds_the_smallest_amount_within_its_tolerance_at_the_raised
     s = size_relief(BASE, positions=6, margin=0.2, tolerance_um=0.25, solve=solve)
     assert 7.3 <= s.amount_um < 7.3 + 0.25
     assert [t.amount_um for t in s.trials[:4]] == [0.0, 2.0, 4.0, 8.0]   # scan, then bisect
-    assert all(torque == pytest.approx(240.0) for _, torque, _ in calls[:len(s.trials)])
+    assert all(torque == pytest.approx(240.0) for _, torque, _, _ in calls[:len(s.trials)])
     assert s.without.torque == s.with_relief.torque == 200.0           # reported at the design
     assert s.with_relief.amount_um == s.amount_um and s.without.amount_um == 0.0
-    assert all(positions == 6 for _, _, positions in calls)
+    assert all(positions == 6 for _, _, positions, _ in calls)
+    assert s.tip_clearance_mm == s.given_tip_clearance_mm == 0.016
 
 
 def test_no_relief_is_needed_where_the_rounds_stay_unloaded():
@@ -46,22 +51,44 @@ def test_no_relief_is_needed_where_the_rounds_stay_unloaded():
     assert s.amount_um == 0.0 and len(s.trials) == 1
 
 
-def test_a_relief_that_only_trades_near_for_far_side_edges_is_refused_naming_both():
+def test_a_far_side_tip_on_its_round_raises_the_tip_clearance_in_steps_until_it_is_off():
+    solve, calls = _fake(7.3, far_from_um=4.0, far_off_mm=0.021)
+    s = size_relief(BASE, tolerance_um=0.25, solve=solve)
+    assert 7.3 <= s.amount_um < 7.3 + 0.25
+    assert s.given_tip_clearance_mm == 0.016
+    assert s.tip_clearance_mm == pytest.approx(0.024)    # 16 µm + 2 steps of 4 µm (m = 2)
+    assert [round(t.tip_clearance_mm, 4) for t in s.trials[-2:]] == [0.02, 0.024]
+    assert s.with_relief.tip_clearance_mm == pytest.approx(0.024)
+    assert s.without.tip_clearance_mm == 0.016 and s.without.amount_um == 0.0
+    table = sizing_table(s)
+    assert "tip clearance raised from 16.0 to 24.0 µm (--tip-clearance 0.024)" in table
+
+
+def test_trimmed_tips_that_need_more_relief_send_the_search_on_from_the_amount_found():
+    solve, _ = _fake(7.3, far_from_um=4.0, far_off_mm=0.021, trimmed_um=1.0)
+    s = size_relief(BASE, tolerance_um=0.25, solve=solve)
+    assert 8.3 <= s.amount_um < 8.3 + 0.25
+    assert s.tip_clearance_mm == pytest.approx(0.024)
+    assert s.with_relief.off_the_rounds
+
+
+def test_a_relief_that_only_trades_near_for_far_side_edges_is_refused_when_told_to_keep_the_tip():
     solve, _ = _fake(7.3, far_from_um=4.0)
     with pytest.raises(FegearError) as err:
-        size_relief(BASE, solve=solve)
+        size_relief(BASE, clearance=False, solve=solve)
     text = str(err.value)
     assert "far-side teeth [23]" in text and "tip_clearance" in text
     assert "no tip relief over 0.5 mm" in text
 
 
 @pytest.mark.slow
-def test_the_baseline_with_a_larger_tip_clearance_gets_a_relief_that_keeps_it_off_its_rounds():
-    """Over a 6-position cycle at `coarse`: the baseline pair with 32 µm of radial tip
-    clearance needs a relief; with it no round carries load at 200 N·m, the flank pressure is
-    the peak and the transmission error grows."""
-    s = size_relief({**BASE, "tip-clearance": 0.032}, positions=6)
+def test_the_baseline_gets_a_relief_and_tip_clearance_that_keep_it_off_its_rounds():
+    """Over a 6-position cycle at `coarse`: the baseline pair needs a relief, and its far-side
+    tooth 23 a larger tip clearance than the default 16 µm; with both no round carries load
+    at 200 N·m, the flank pressure is the peak and the transmission error grows."""
+    s = size_relief(BASE, positions=6)
     assert 0.0 < s.amount_um < 50.0
+    assert s.tip_clearance_mm > s.given_tip_clearance_mm == 0.016
     assert s.with_relief.off_the_rounds and not s.without.off_the_rounds
     assert s.with_relief.contact_MPa == s.with_relief.flank_MPa
     assert s.with_relief.te_mean_urad > s.without.te_mean_urad
