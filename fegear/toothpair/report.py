@@ -132,12 +132,13 @@ def pair_table(summary: dict) -> str:
     if coarse:
         lines += ["", "UNDER-RESOLVED (u): " + ", ".join(
             f"tooth {t['tooth']} has {t['points_per_half_width']:.1f}" for t in coarse)
-            + " points across its half-width, under half of what "
-            f"`{summary['inputs']['quality']}` gives a contact; its pressure may be off by 1-4 % "
-            "(a finer --quality resolves it)."]
-    lines += ["", "p ref: the flank pressure of two half-planes with the teeth's exact gap "
-              "under the same load (Hertz without constant curvature; docs/model.md, \"Hertz\")."
-              if any(t.get("halfplane_flank_MPa") for t in summary["teeth"]) else ""]
+            + " grid points or elements across its half-width (on a round, the round's), fewer "
+            f"than `{summary['inputs']['quality']}` needs for a converged pressure "
+            "(docs/model.md, \"Under-resolved contacts\"); a finer --quality resolves it."]
+    if any(t.get("halfplane_flank_MPa") for t in summary["teeth"]):
+        lines += ["", "p ref: the flank pressure of two half-planes with the teeth's exact gap "
+                  "under the same load (Hertz without constant curvature; docs/model.md, "
+                  "\"Hertz at load\")."]
     lines += ["",
               f"teeth in contact {summary['teeth_in_contact']} (paired but open: {unloaded}); "
               f"load shares sum to {summary['load_share_sum']:.6f}; torque balance error "

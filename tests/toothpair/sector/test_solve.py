@@ -103,3 +103,16 @@ def test_error_estimate_is_the_two_grid_convergence_index():
     assert mesh_ratio("ring", "standard", "fine") == mesh_ratio("sector", "fast", "standard") == 2
 
 
+
+
+@pytest.mark.slow
+def test_contacts_too_narrow_for_their_elements_are_flagged(baseline):
+    """`coarse`, 200 N·m: tooth 9's flank contact has one element across its half-width (306
+    MPa against Hertz 192) and the rounds of teeth 10 and 11 have 2.6 and 4.3 nodes across
+    their own half-width (tooth 10's nodal pressures zig-zag); all three are flagged, tooth 12
+    (5.5 elements) is not. At `fast` the rounds have 5 and 8 and are not."""
+    coarse = solve_pair(SolveCase(baseline, torque=200.0, quality="coarse", model="sector"))
+    flagged = {t.tooth for t in coarse.teeth if t.load_N > 0 and not t.resolved}
+    assert flagged == {9, 10, 11}
+    fast = solve_pair(SolveCase(baseline, torque=200.0, quality="fast", model="sector"))
+    assert all(t.resolved for t in fast.teeth if t.edge_contact)
