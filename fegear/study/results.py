@@ -152,23 +152,42 @@ def _cell(v) -> str:
     return f"{v:g}" if isinstance(v, float) else str(v)
 
 
+def _tied(study: Study, rows: list[dict], x: str) -> list[str]:
+    """The varied inputs that sweep blocks set together with ``x`` and that ``x`` determines
+    in every such case."""
+    tied = []
+    for o in study.varied:
+        if o == x:
+            continue
+        seen: dict = {}
+        both = [study.cases[r["case"]].swept for r in rows]
+        both = [s for s in both if x in s and o in s]
+        if both and all(seen.setdefault(s[x], s[o]) == s[o] for s in both):
+            tied.append(o)
+    return tied
+
+
 def plot_input(path: Path, study: Study, table: list[dict], x: str) -> Path | None:
     """Each headline stress against input ``x``, one line per level of the other varied
     inputs (only levels where ``x`` takes two or more values), error bars from the case's
-    error estimate. None if no such line exists."""
+    error estimate. An input a sweep block sets along with ``x`` as a function of it (a
+    ``zip`` block: a relief sized per case) goes with ``x`` and does not split the lines.
+    None if no such line exists."""
     from .plot import study_png
 
-    others = [v for v in study.varied if v != x]
+    ok = [r for r in table if r["status"] == "ok"]
+    tied = _tied(study, ok, x)
+    others = [v for v in study.varied if v != x and v not in tied]
     groups: dict[tuple, list[dict]] = {}
-    for r in table:
-        if r["status"] == "ok":
-            groups.setdefault(tuple(r[o] for o in others), []).append(r)
+    for r in ok:
+        groups.setdefault(tuple(r[o] for o in others), []).append(r)
     lines = []
     for level, rs in groups.items():
         if len({r[x] for r in rs}) < 2:
             continue
         rs = sorted(rs, key=lambda r: r[x])
-        label = ", ".join(f"{o} {_cell(v)}" for o, v in zip(others, level)) or "all"
+        label = ", ".join([f"{o} {_cell(v)}" for o, v in zip(others, level)]
+                          + [f"{o} with {x}" for o in tied]) or "all"
         series = {}
         for k in HEADLINE:
             err = [r.get(f"error_estimate_by_stress_pct.{k}") for r in rs]

@@ -183,6 +183,22 @@ def test_shipped_studies_load():
         assert s.cases and s.varied, path
 
 
+def test_an_input_zipped_with_the_plotted_one_goes_with_it_a_product_splits_the_lines():
+    """paper_trends_relieved zips a relief per case with h1: the h1 plot is one line through
+    its cases and the m = 2 case (h1 0.30); a product of torque and shift is one line per
+    shift."""
+    from fegear.study.results import _tied
+
+    s = load_study(ROOT / "studies" / "paper_trends_relieved.toml")
+    rows = [{"case": c.index, "status": "ok"} for c in s.cases]
+    assert _tied(s, rows, "h1") == ["relief"] and _tied(s, rows, "m") == ["relief"]
+    assert _tied(s, rows, "relief") == []
+    p = build_study({"base": {}, "sweep": [{"torque": [10.0, 20.0], "shift": [0.0, 0.01]}]},
+                    Path("x"))
+    rows = [{"case": c.index, "status": "ok"} for c in p.cases]
+    assert _tied(p, rows, "torque") == [] and _tied(p, rows, "shift") == []
+
+
 def test_build_study_accepts_a_parsed_document(tmp_path):
     s = build_study({"base": {"torque": 50}, "sweep": [{"m": [1.5, 2.0]}]}, tmp_path / "x")
     assert s.name == "x" and [c.values["m"] for c in s.cases] == [1.5, 2.0]
