@@ -14,7 +14,7 @@ from fegear.geometry.tip_edge import RoundedProfile
 from fegear.planar import rotate
 from fegear.toothpair.case import SolveCase
 from fegear.toothpair.sector.scene import build_scene, tooth_run
-from fegear.toothpair.segments import profile_segments, sampled
+from fegear.toothpair.segments import SPLINE_CHORD, profile_segments, sampled
 from fegear.toothpair.teeth import candidate_data, choose_teeth
 
 
@@ -210,3 +210,13 @@ def test_a_nearly_radial_curve_is_sampled_evenly_in_arc_length():
     assert np.allclose(np.diff(angles), angles[1] - angles[0])
 
 
+def test_a_tighter_curve_than_the_spacing_assumes_is_sampled_within_the_chord_error():
+    # spaced for a 0.5 mm radius, an arc of 0.1 mm strayed 2.5 µm from its 8-point polyline
+    # (gear 2's flanks at m = 0.5 turn at 0.26 mm: their nodes, snapped back, inverted elements)
+    def small(theta):
+        return 0.1 * np.column_stack([np.cos(theta), np.sin(theta)])
+
+    pts = sampled("s", small, None, 0.0, math.pi).points
+    half_chord = 0.5 * np.hypot(*np.diff(pts, axis=0).T)
+    assert np.max(0.1 - np.sqrt(0.1 ** 2 - half_chord ** 2)) <= SPLINE_CHORD
+    assert np.allclose(pts[[0, -1]], small(np.array([0.0, math.pi])))
