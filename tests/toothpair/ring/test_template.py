@@ -21,6 +21,11 @@ REFUSED = {
     "m 0.53, z 50/52: gear 2 inverted": SMALL_SHIFTED,
     "m 0.5, z 50/52: gear 2 inverted": dict(SMALL_SHIFTED, m=0.5),
     "m 0.5, z 65/66: gear 2 inverted": dict(TIGHT, m=0.5),
+    # gear 1's round zone ended 0.6 µm before its root zone began: a 0.6 µm boundary piece
+    # under 57 µm elements (shape quality 0.010)
+    "m 3.67, z 65/66: gear 1 sliver": dict(TIGHT, m=3.6733480641517477,
+                                           shift=0.02582530840530918,
+                                           rotation=0.003758945773820904),
 }
 
 
