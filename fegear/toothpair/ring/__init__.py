@@ -39,7 +39,7 @@ the flanks, beside Hertz (MPa):
 from ...exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
-    "model": ("RingModel", "RingLevel", "LEVELS", "build_ring"),
+    "model": ("RingModel", "RingLevel", "LEVELS", "build_ring", "build_templates"),
     "solve": ("solve_pair", "solve_positions", "solve_position"),
     "results": ("RingDetail",),
 })

@@ -20,7 +20,7 @@ from ...geometry import Gear1Profile, RoundedProfile, gear2_curve
 from ..case import SolveCase
 from .grid import ToothSamples, sample_tooth
 from .side import GearSide
-from .template import TemplateSizes, gear1_template, gear2_template
+from .template import Template, TemplateSizes, gear1_template, gear2_template
 
 
 @dataclass(frozen=True)
@@ -104,6 +104,20 @@ def ring_model(case: SolveCase, profile: Gear1Profile | None = None) -> RingMode
     return model
 
 
+def build_templates(case: SolveCase, shape: RoundedProfile) -> tuple[Template, Template]:
+    """Both template sectors of ``case`` at its quality, unmeshed (gear 1's from its rounded
+    profile ``shape``)."""
+    p = case.params
+    level = LEVELS[case.quality]
+    rho = max(case.edge_radius, ROUND_FLOOR * p.m)
+    sizes = TemplateSizes(root=level.root * p.m, flank=level.flank * p.m,
+                          round=level.round * rho, junction=level.junction * rho,
+                          body=level.body * p.m)
+    rim1, rim2 = case.rims
+    return (gear1_template(p, shape, sizes, rim1),
+            gear2_template(p, gear2_curve(p), sizes, rim2))
+
+
 def build_ring(case: SolveCase, profile: Gear1Profile | None = None) -> RingModel:
     """Mesh both templates, assemble, factorise and condense them: once per geometry."""
     p = case.params
@@ -115,13 +129,7 @@ def build_ring(case: SolveCase, profile: Gear1Profile | None = None) -> RingMode
     samples = sample_tooth(shape)
     times["profile"] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    rho = max(case.edge_radius, ROUND_FLOOR * p.m)
-    sizes = TemplateSizes(root=level.root * p.m, flank=level.flank * p.m,
-                          round=level.round * rho, junction=level.junction * rho,
-                          body=level.body * p.m)
-    rim1, rim2 = case.rims
-    t1 = gear1_template(p, shape, sizes, rim1)
-    t2 = gear2_template(p, gear2_curve(p), sizes, rim2)
+    t1, t2 = build_templates(case, shape)
     m1, m2 = mesh_bodies([t1.geometry, t2.geometry])
     times["mesh"] = time.perf_counter() - t0
     t0 = time.perf_counter()

@@ -14,7 +14,7 @@ from fegear.geometry.tip_edge import RoundedProfile
 from fegear.planar import rotate
 from fegear.toothpair.case import SolveCase
 from fegear.toothpair.sector.scene import build_scene, tooth_run
-from fegear.toothpair.segments import profile_segments, sampled
+from fegear.toothpair.segments import SHORT, SPLINE_CHORD, profile_segments, sampled
 from fegear.toothpair.teeth import candidate_data, choose_teeth
 
 
@@ -210,3 +210,32 @@ def test_a_nearly_radial_curve_is_sampled_evenly_in_arc_length():
     assert np.allclose(np.diff(angles), angles[1] - angles[0])
 
 
+def test_a_tighter_curve_than_the_spacing_assumes_is_sampled_within_the_chord_error():
+    # spaced for a 0.5 mm radius, an arc of 0.1 mm strayed 2.5 µm from its 8-point polyline
+    # (gear 2's flanks at m = 0.5 turn at 0.26 mm: their nodes, snapped back, inverted elements)
+    def small(theta):
+        return 0.1 * np.column_stack([np.cos(theta), np.sin(theta)])
+
+    pts = sampled("s", small, None, 0.0, math.pi).points
+    half_chord = 0.5 * np.hypot(*np.diff(pts, axis=0).T)
+    assert np.max(0.1 - np.sqrt(0.1 ** 2 - half_chord ** 2)) <= SPLINE_CHORD
+    assert np.allclose(pts[[0, -1]], small(np.array([0.0, math.pi])))
+
+
+def test_a_boundary_piece_much_shorter_than_its_elements_joins_a_neighbour():
+    # gear 1's round zone ended 0.6 µm before its root zone began: a 0.6 µm piece under
+    # 57 µm elements, a sliver of shape quality 0.01
+    sizes = {"r": 0.05, "round": 0.02, "p_flank": 0.1}
+    jump = 0.6 + 2e-7  # a curvature jump 2 µm past the root's end (r dθ, r = 10 mm)
+    marks = [(0.3, 0.4 - 1e-7, "round"), (jump, jump, None)]
+    segs, names = profile_segments("p", circle, None, 0.0, 1.0, [], [("r", 0.5, 0.1)], marks,
+                                   sizes)
+    for s0, s1 in zip(segs, segs[1:]):
+        assert np.allclose(s0.points[-1], s1.points[0], atol=1e-12)
+    lengths = [np.hypot(*np.diff(s.points, axis=0).T).sum() for s in segs]
+    assert min(lengths) > SHORT * min(sizes.values())
+    assert names == ("p_flank", "r")
+    ang = {(s.name, s.zone): np.arctan2(s.points[[0, -1], 1], s.points[[0, -1], 0])
+           for s in segs}
+    assert ang["p_flank", "round"] == pytest.approx([0.3, 0.4], abs=1e-12)  # zone 1 µm longer
+    assert ang["r", None] == pytest.approx([0.4, jump], abs=1e-12)  # the root ends on the jump
