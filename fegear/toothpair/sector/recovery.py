@@ -22,7 +22,6 @@ from ..edge import flank_and_edge
 from ..teeth import Candidate, tension_fillets
 from .scene import QUALITY, Scene
 
-
 #: nodes across the round's Hertz half-width an edge pressure needs: at `coarse`, 200 N·m,
 #: tooth 10's round has 2.6 and its nodal pressures zig-zag (1517 / 789 / 1470 MPa), tooth
 #: 11's 4.3 and reads 2.3 % over the converged value; at `fast`, 5.0 and 8.2, within 1.1 %
