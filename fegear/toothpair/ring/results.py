@@ -88,8 +88,11 @@ def _halfplane(grid, gap: np.ndarray, q: float, E_star: float, thickness: float,
                radius: float):
     """The reference of docs/model.md, "Hertz": two half-planes with the tooth's exact gap
     along its grid, pressed by its load q (N/mm); its pressure and that split into flank and
-    edge."""
-    p = gap_contact(grid.s, gap, q, E_star)
+    edge; None where its active set does not settle (no reference rather than no result)."""
+    try:
+        p = gap_contact(grid.s, gap, q, E_star)
+    except (ValueError, np.linalg.LinAlgError):
+        return None
     return p, flank_and_edge(grid.s, p, grid.on_round, thickness, radius, E_star)
 
 
