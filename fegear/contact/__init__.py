@@ -61,5 +61,5 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "solve": ("ContactSolution", "ContactPatch", "solve_contact", "first_touch",
               "nodal_pressure"),
     "search": ("locate_on_facets", "p2_edge_shape"),
-    "halfplane": ("approach_matrix", "strain_matrix"),
+    "halfplane": ("approach_matrix", "strain_matrix", "surface_matrix", "gap_contact"),
 })

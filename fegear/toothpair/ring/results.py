@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...contact.halfplane import gap_contact
+from ...contact import gap_contact
 from ...errors import ParameterError
 from ...fe import contact_modulus, line_contact, recover, vtu_fields
 from ...planar import rotate
