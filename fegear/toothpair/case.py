@@ -109,7 +109,7 @@ class ToothResult:
     halfplane_p_MPa: float | None = None      # the exact-gap half-plane reference: its peak …
     halfplane_flank_MPa: float | None = None  # … and its flank pressure (docs/model.md, "Hertz")
     per_half_width: float = 0.0  # grid points (or elements) across the half-width (0: no load) …
-    resolved: bool = True        # … and whether that is at least half the quality's
+    resolved: bool = True        # … and whether that is enough for a converged pressure
 
     @property
     def edge_contact(self) -> bool:
