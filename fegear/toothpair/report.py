@@ -57,6 +57,7 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
                    "edge_load_N": t.edge_load_N, "edge_contact": t.edge_contact,
                    "halfplane_p_MPa": t.halfplane_p_MPa,
                    "halfplane_flank_MPa": t.halfplane_flank_MPa,
+                   "bending_curvature": t.bending_curvature,
                    "points_per_half_width": t.per_half_width, "resolved": t.resolved}
                   for t in sol.teeth],
         "timings_s": sol.timings_s,
@@ -136,9 +137,9 @@ def pair_table(summary: dict) -> str:
             f"than `{summary['inputs']['quality']}` needs for a converged pressure "
             "(docs/model.md, \"Under-resolved contacts\"); a finer --quality resolves it."]
     if any(t.get("halfplane_flank_MPa") for t in summary["teeth"]):
-        lines += ["", "p ref: the flank pressure of two half-planes with the teeth's exact gap "
-                  "under the same load (Hertz without constant curvature; docs/model.md, "
-                  "\"Hertz at load\")."]
+        lines += ["", "p ref: the flank pressure of two half-planes with the teeth's exact gap, "
+                  "bent as the teeth bend, under the same load (Hertz without its constant "
+                  "curvature and rigid teeth; docs/model.md, \"Hertz at load\")."]
     lines += ["",
               f"teeth in contact {summary['teeth_in_contact']} (paired but open: {unloaded}); "
               f"load shares sum to {summary['load_share_sum']:.6f}; torque balance error "

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ...contact import gap_contact
+from ...contact import gap_contact, surface_matrix
 from ...errors import ParameterError
 from ...fe import contact_modulus, line_contact, recover, vtu_fields
 from ...planar import rotate
@@ -63,8 +63,10 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
         split = flank_and_edge(grid.s, pk, grid.on_round, case.thickness,
                                model.shape.radius_mm, E_star)
         b = local_half_width(contact, sol.pressure, i) if load > 0 else 0.0
-        ref = (_halfplane(grid, gap[blk], load / case.thickness, E_star, case.thickness,
-                          model.shape.radius_mm) if load > 0 else None)
+        bend = (_bending(grid.s, pk, sol.gap[blk] - gap[blk], E_star) if load > 0
+                else np.zeros(len(grid.s)))
+        ref = (_halfplane(grid, gap[blk] + bend, load / case.thickness, E_star,
+                          case.thickness, model.shape.radius_mm) if load > 0 else None)
         j = i - blk.start
         spacing = 0.5 * (grid.s[min(j + 1, len(grid) - 1)] - grid.s[max(j - 1, 0)])
         per_b = b / spacing if load > 0 else 0.0
@@ -83,16 +85,47 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
             edge_load_N=split.edge_load_N,
             halfplane_p_MPa=float(ref[0].max()) if ref else None,
             halfplane_flank_MPa=ref[1].flank_MPa if ref else None,
+            bending_curvature=_curvature_ratio(grid.s, pk, bend, gap[blk]),
             per_half_width=float(per_b),
             resolved=bool(load <= 0 or per_b >= RESOLVED_PER_B)))
     return tuple(out)
 
 
+def _bending(s: np.ndarray, p: np.ndarray, elastic: np.ndarray, E_star: float) -> np.ndarray:
+    """How the teeth's own deformation under the load changes the gap along a tooth's grid
+    ``s`` (mm): the elastic opening ``elastic`` = A p the ring model computes, less the local
+    indentation of two half-planes under the same pressure ``p`` (:func:`surface_matrix`),
+    fitted by a quadratic over the loaded stretch and held at its end values beyond it (the
+    approach constant is immaterial). docs/model.md, "Hertz at load"."""
+    on = p > 0
+    if np.count_nonzero(on) < 3:
+        return np.zeros(len(s))
+    rest = elastic - surface_matrix(s, E_star) @ p
+    lo, hi = s[on].min(), s[on].max()
+    inside = (s >= lo) & (s <= hi)
+    return np.polyval(np.polyfit(s[inside], rest[inside], 2), np.clip(s, lo, hi))
+
+
+def _curvature_ratio(s: np.ndarray, p: np.ndarray, bend: np.ndarray, gap: np.ndarray
+                     ) -> float:
+    """The bending's second derivative over the unloaded gap's, both fitted by a quadratic
+    over the loaded stretch (0 where nothing is loaded): −0.07 lowers the gap's curvature by
+    7 %, which lowers a Hertzian peak by about 3.5 %."""
+    on = p > 0
+    if np.count_nonzero(on) < 3:
+        return 0.0
+    lo, hi = s[on].min(), s[on].max()
+    inside = (s >= lo) & (s <= hi)
+    g = np.polyfit(s[inside], gap[inside], 2)[0]
+    return float(np.polyfit(s[inside], bend[inside], 2)[0] / g) if g > 0 else 0.0
+
+
 def _halfplane(grid, gap: np.ndarray, q: float, E_star: float, thickness: float,
                radius: float):
     """The reference of docs/model.md, "Hertz": two half-planes with the tooth's exact gap
-    along its grid, pressed by its load q (N/mm); its pressure and that split into flank and
-    edge; None where its active set does not settle (no reference rather than no result)."""
+    along its grid, bent as the teeth bend under the load, pressed by its load q (N/mm); its
+    pressure and that split into flank and edge; None where its active set does not settle
+    (no reference rather than no result)."""
     try:
         p = gap_contact(grid.s, gap, q, E_star)
     except (ValueError, np.linalg.LinAlgError):

@@ -116,11 +116,12 @@ def test_at_load_the_flanks_follow_the_exact_gap_not_hertz_at_one_point(baseline
     """At 200 N·m the contacts are 0.2-0.5 mm wide on flanks whose relative curvature (a small
     difference of two) changes across them: Hertz at the predicted point misses tooth 9 by a
     quarter (438 against 548 MPa). Two half-planes pressed together over the profiles' exact gap
-    reproduce each flank pressure within 5 %, from above: what is left is the teeth's own
-    compliance (the sector model's meshes give the same within 1.5 %, docs/model.md, "Hertz").
-    The case: the baseline with the relief and tip clearance `fegear relief` sizes (3 µm, 20 µm),
-    2.9° into the cycle, all on the flanks; and the unrelieved baseline's flanks beside the
-    edge contact."""
+    come within 4 %, from above; with that gap bent as the teeth bend (its curvature lowered by
+    4-8 %, measured on the ring's own elastic field less the local indentation) they reproduce
+    each flank pressure within 0.3 % (docs/model.md, "Hertz at load"). The case: the baseline
+    with the relief and tip clearance `fegear relief` sizes (3 µm, 20 µm), 2.9° into the cycle,
+    all on the flanks; and the unrelieved baseline, whose edge-contact teeth's fit spans the
+    round (within 3 %)."""
     case = replace(baseline_200.case, quality="coarse", beta=0.05,
                    params=replace(baseline_200.case.params, relief=3.0, tip_clearance=0.020))
     sol = solve_pair(case)
@@ -128,11 +129,13 @@ def test_at_load_the_flanks_follow_the_exact_gap_not_hertz_at_one_point(baseline
     loaded = [t for t in sol.teeth if t.load_N > 0]
     assert len(loaded) == 3 and not any(t.edge_contact for t in loaded)
     for t in loaded:
-        assert 0.95 * t.halfplane_flank_MPa < t.flank_p_MPa < 1.005 * t.halfplane_flank_MPa
+        assert t.flank_p_MPa == pytest.approx(t.halfplane_flank_MPa, rel=0.005)
+        assert -0.1 < t.bending_curvature < -0.03
     assert max(abs(t.hertz_p0_MPa / t.flank_p_MPa - 1) for t in loaded) > 0.2
     for t in baseline_200.teeth:
-        if t.edge_contact:
-            assert 0.93 * t.halfplane_flank_MPa < t.flank_p_MPa < t.halfplane_flank_MPa
+        if t.load_N > 0:
+            tol = 0.03 if t.edge_contact else 0.01
+            assert t.flank_p_MPa == pytest.approx(t.halfplane_flank_MPa, rel=tol)
 
 
 def test_a_contact_narrower_than_its_grid_is_flagged(baseline_200):
