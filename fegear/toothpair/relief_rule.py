@@ -144,6 +144,7 @@ def size_relief(values: Mapping, positions: int = POSITIONS, margin: float = MAR
     most = params.m * params.h1                                 # the tip_clearance input's range
     trials: list[CycleResult] = []
     tip = given
+    tip_note = "a larger tip_clearance keeps them off"
 
     def trial(amount: float) -> CycleResult:
         r = solve({**values, "tip-clearance": tip}, amount, raised, positions)
@@ -187,16 +188,21 @@ def size_relief(values: Mapping, positions: int = POSITIONS, margin: float = MAR
     while True:
         high = near_side(low)
         if high is None:
-            raise FegearError(_no_relief(trials, params.relief_extent, raised))
+            raise FegearError(_no_relief(trials, params.relief_extent, raised, tip_note))
         last = next(t for t in reversed(trials) if t.amount_um == high)
         if not far(last):
             break
         if not clearance:
-            raise FegearError(_no_relief(trials, params.relief_extent, raised))
+            tip_note = ("a larger tip_clearance keeps them off: without --keep-tip-clearance "
+                        "fegear relief raises it")
+            raise FegearError(_no_relief(trials, params.relief_extent, raised, tip_note))
         while far(last):                      # raise the tip clearance until the far side is
             tip += CLEARANCE_STEP * params.m  # off, at the amount found
             if tip > most:
-                raise FegearError(_no_relief(trials, params.relief_extent, raised))
+                tip_note = (f"they still do with the tip clearance raised to "
+                            f"{1e3 * (tip - CLEARANCE_STEP * params.m):.0f} µm, the most "
+                            f"this pair takes is {1e3 * most:.0f} µm")
+                raise FegearError(_no_relief(trials, params.relief_extent, raised, tip_note))
             last = trial(high)
         if not near(last):
             break
@@ -217,15 +223,15 @@ def far(r: CycleResult) -> list[int]:
     return [k for k, a in zip(r.edge_teeth, r.edge_angles) if abs(a) > FAR_DEG]
 
 
-def _no_relief(trials, extent: float, torque: float) -> str:
-    """Why no amount passed, and what to change."""
+def _no_relief(trials, extent: float, torque: float, tip_note: str) -> str:
+    """Why no amount passed, and what to change (``tip_note``: what the tip clearance did)."""
     why = []
     far_side = [(t.amount_um, far(t)) for t in trials if far(t)]
     if far_side:
         teeth = sorted({k for _, ks in far_side for k in ks})
         why.append(f"far-side teeth {teeth} press on their rounds from {far_side[0][0]:g} µm "
                    "on (their tips meet gear 2 across the mesh; a relief turns gear 1 further "
-                   "onto them, a larger tip_clearance keeps them off)")
+                   f"onto them; {tip_note})")
     still = near(trials[-1])
     if still:
         why.append(f"teeth {still} by the pitch point still do at {trials[-1].amount_um:g} µm "

@@ -77,8 +77,18 @@ def test_a_relief_that_only_trades_near_for_far_side_edges_is_refused_when_told_
     with pytest.raises(FegearError) as err:
         size_relief(BASE, clearance=False, solve=solve)
     text = str(err.value)
-    assert "far-side teeth [23]" in text and "tip_clearance" in text
+    assert "far-side teeth [23]" in text and "without --keep-tip-clearance" in text
     assert "no tip relief over 0.5 mm" in text
+
+
+def test_a_far_side_round_that_no_tip_clearance_frees_is_refused_naming_the_limit():
+    solve, calls = _fake(7.3, far_from_um=4.0)   # tooth 23 stays on its round up to 1 mm
+    with pytest.raises(FegearError) as err:
+        size_relief(BASE, solve=solve)
+    text = str(err.value)
+    assert "far-side teeth [23]" in text
+    assert "raised to 596 µm, the most this pair takes is 600 µm" in text  # m h1, 4 µm steps
+    assert max(tip for *_, tip in calls) == pytest.approx(0.596, abs=1e-9)
 
 
 @pytest.mark.slow
