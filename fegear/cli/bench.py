@@ -39,6 +39,10 @@ def add_parser(sub) -> None:
                    help="solves in the study-runner overhead benchmark (default 6; 0: skip)")
     p.add_argument("--study-only", action="store_true",
                    help="run only the study-runner overhead benchmark")
+    p.add_argument("--contact-peer", action="store_true",
+                   help="run only the contact-pressure comparison with CalculiX (an edge and a "
+                        "flank-only case on the baseline pair at --sector-levels, default "
+                        "coarse,fast; about 15 minutes; needs ccx)")
     p.add_argument("--out", default="out/bench",
                    help="directory for bench.json and the plots (default out/bench)")
 
@@ -82,6 +86,8 @@ def run(a: argparse.Namespace) -> int:
     params = admissible_pair(input_values(a, PAIR_INPUTS))
     if a.study_only:
         return _study_bench(params, study_cases)
+    if a.contact_peer:
+        return _contact_peer(sector_levels or ["coarse", "fast"], a.out)
     from ..files import prepare_dir
 
     out = prepare_dir(a.out)
@@ -260,4 +266,31 @@ def _study_bench(params, cases: int) -> int:
     from ..verify import overhead_table, study_overhead
 
     print(overhead_table(study_overhead(params, cases, workers=1), workers=1))
+    return 0
+
+
+def _contact_peer(levels: list[str], out) -> int:
+    """The contact pressures beside CalculiX's, read alike (:mod:`fegear.verify.peer_contact`);
+    the table printed and kept in ``contact_peer.json``."""
+    from ..files import prepare_dir, write_json
+    from ..verify.calculix import ccx_available
+    from ..verify.ccx_files import PeerError
+    from ..verify.peer_contact import CASES, contact_peer, peer_table
+
+    if not ccx_available():
+        raise PeerError("fegear bench --contact-peer needs CalculiX's ccx on the PATH "
+                        "(Debian: apt install calculix-ccx)")
+    results = []
+    for name, torque, beta in CASES:
+        for level in levels:
+            results.append(contact_peer(name, torque, beta, level))
+            print(f"{name} at `{level}` done (ccx {results[-1].ccx_s:.0f} s)", flush=True)
+    table = peer_table(results)
+    print()
+    print(table)
+    directory = prepare_dir(out)
+    write_json(directory / "contact_peer.json", {"table": table, "cases": [
+        {**{k: v for k, v in r.__dict__.items() if k != "teeth"},
+         "teeth": [t.__dict__ for t in r.teeth]} for r in results]})
+    print(f"\ncontact_peer.json in {directory}")
     return 0

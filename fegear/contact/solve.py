@@ -153,7 +153,7 @@ def solve_contact(model: ContactModel, load: float | None = None,
     balance = abs(link_force - load) / max(abs(load), 1e-300) if load is not None else 0.0
     displacements, residuals = _displacements(model, lam, theta)
     pressure = model.kappa * np.maximum(-gap, 0.0)
-    patches = _patches(model, lam)
+    patches = contact_patches(model, lam)
     max_pen = float(max(0.0, -gap.min()))
     widest = max((p.half_width for p in patches), default=0.0)
     if widest > 0 and max_pen > st.penetration_tol * widest:
@@ -211,7 +211,9 @@ def _displacements(model: ContactModel, lam: np.ndarray, theta: float):
     return tuple(us), tuple(res)
 
 
-def _patches(model: ContactModel, lam: np.ndarray) -> tuple[ContactPatch, ...]:
+def contact_patches(model: ContactModel, lam: np.ndarray) -> tuple[ContactPatch, ...]:
+    """One patch per pair that carries load under the node forces ``lam`` (N, the model's
+    contact nodes): its load, peak pressure λ_i/D_i, half-width and centre."""
     out = []
     for k, pair in enumerate(model.pairs):
         sel = (model.pair_index == k) & (lam > 0)
@@ -231,6 +233,27 @@ def _patches(model: ContactModel, lam: np.ndarray) -> tuple[ContactPatch, ...]:
                                 center=(float(centre[0]), float(centre[1])),
                                 points=int(sel.sum())))
     return tuple(out)
+
+
+def forces_from_body(model: ContactModel, body: int, f: np.ndarray) -> np.ndarray:
+    """The contact node forces λ (N) that a body's nodal forces ``f`` (its frame, (ndofs,),
+    e.g. K u of a displacement another code computed on the same mesh) stand for.
+
+    Per pair of which ``body`` is the slave, λ is the least-squares fit of C_bᵀλ = f over the
+    dofs of the pair's rows: the hat-weighted pressure whose consistent nodal forces come
+    closest to ``f``. For this model's own solution it returns its λ (C_bᵀλ is what the body
+    carries); for another code's it averages that code's nodal contact forces over the same
+    hats, so that the two are read alike (:mod:`fegear.verify.peer_contact`)."""
+    C = model.C[body].tocsc()
+    lam = np.zeros(model.npoints)
+    for k, pair in enumerate(model.pairs):
+        if pair.slave != body:
+            continue
+        rows = np.flatnonzero(model.pair_index == k)
+        A = C[rows].tocsc()
+        cols = np.flatnonzero(np.diff(A.indptr))
+        lam[rows] = np.linalg.lstsq(A[:, cols].toarray().T, np.asarray(f)[cols], rcond=None)[0]
+    return lam
 
 
 def nodal_pressure(model: ContactModel, solution: ContactSolution, body: int) -> np.ndarray:

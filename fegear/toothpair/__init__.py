@@ -52,4 +52,5 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "output": ("write_pair_outputs", "write_cycle_outputs", "write_mesh_stiffness"),
     "stiffness": ("MeshStiffness", "read_mesh_stiffness", "mesh_stiffness_of_cycle"),
     "job": ("Job", "JobResult", "prepare_job", "run_job"),
+    "sector.recovery": ("contact_split",),
 })

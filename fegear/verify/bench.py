@@ -237,7 +237,7 @@ def _pair_peer(case, sol) -> tuple[float | None, dict | None]:
         _, c = ccx_pair(case, tmp, solution=sol)
     return c.wall_s, {"root_stress_gear1_MPa": c.root_stress[0],
                       "root_stress_gear2_MPa": c.root_stress[1],
-                      "contact_pressure_MPa": c.p_max}
+                      "contact_pressure_MPa": c.pressure}
 
 
 @dataclass(frozen=True)

@@ -40,7 +40,8 @@ Units: mm, N, MPa. Choices, each checked on the Hertz disks (r 10 mm, P 1000 N, 
 * **Read-back** (``.dat``): p_max, the largest CSTR pressure at the slave integration points (the
   ``.frd`` nodal values are extrapolated and overshoot at the contact edges); the contact normal
   force of each pair (``CF``); the total reaction of the fixed supports; θ of a rotation link's
-  reference node. ``stresses=True`` also writes the step-2 stresses to the ``.frd``.
+  reference node. ``stresses=True`` also writes the step-2 displacements and stresses to the
+  ``.frd``.
 """
 
 from __future__ import annotations
@@ -203,9 +204,10 @@ def write_deck(bodies: Sequence[Body], load: float, directory: str | os.PathLike
     the slave boundary's facets) and ``penalty`` (K, MPa/mm; default penalty_factor·E*/h̄ of
     the pair's slave facets); default: the disk pair, body 0's "contact" against body 1's.
     ``preload``: step-1 motion of the link, δ0 (mm; default 1e-6 × the link body's size) or
-    θ0 (rad; required for a rotation link). ``stresses``: write the step-2 stresses to the
-    ``.frd`` (``*EL FILE``). ``increments``: step 2 applies the load in at least this many
-    increments (CalculiX pairs the contact points once per increment).
+    θ0 (rad; required for a rotation link). ``stresses``: write the step-2 displacements and
+    stresses to the ``.frd`` (``*NODE FILE``, ``*EL FILE``). ``increments``: step 2 applies
+    the load in at least this many increments (CalculiX pairs the contact points once per
+    increment).
     """
     linked = _check_deck(bodies, load, penalty_factor, plane_stress_element, preload,
                          increments)
@@ -383,7 +385,7 @@ def _step_cards(link: _Link, load: float, increments: int, npairs: int,
     for k in range(npairs):
         lines += [f"*CONTACT PRINT, SLAVE=SLAVE{k + 1}, MASTER=MASTER{k + 1}", "CF"]
     if stresses:
-        lines += ["*EL FILE", "S"]
+        lines += ["*NODE FILE", "U", "*EL FILE", "S"]
     lines.append("*END STEP")
     return lines
 

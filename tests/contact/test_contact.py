@@ -8,7 +8,7 @@ import pytest
 import scipy.sparse as sp
 
 from fegear.contact.model import Circle
-from fegear.contact.solve import solve_contact
+from fegear.contact.solve import forces_from_body, solve_contact
 from fegear.verify import DiskCase, solve_disks, write_disk_outputs
 
 
@@ -29,6 +29,22 @@ def test_convex_pair_matches_hertz(plane, convex):
     assert sol.max_penetration < 0.01 * r.half_width
     # the recovered surface normal stress agrees with the penalty traction
     assert r.surface_stress == pytest.approx(r.p_max, rel=0.01)
+
+
+def test_node_forces_are_recovered_from_the_slave_body_nodal_forces(convex):
+    # K u of the slave's own displacement is C_slaveᵀ λ: the fit returns λ, and a field with
+    # some of it left out (a foreign code's forces, say) gives a different λ
+    sol, model = convex.solution, convex.model
+    body = model.bodies[0]
+    f = body.K @ sol.displacements[0]
+    lam = forces_from_body(model, 0, f)
+    assert np.abs(lam - sol.force).max() < 1e-6 * sol.force.max()
+    assert lam.sum() == pytest.approx(convex.case.load, rel=1e-4)
+    hit = model.C[0][int(np.argmax(sol.force))].indices
+    g = f.copy()
+    g[hit] = 0.0
+    assert np.abs(forces_from_body(model, 0, g) - sol.force).max() > 0.1 * sol.force.max()
+    assert not forces_from_body(model, 1, f).any()  # body 1 is the slave of no pair
 
 
 def test_weighted_gaps_average_and_integrate_exactly(convex):

@@ -77,17 +77,18 @@ def tooth_results(case: SolveCase, scene: Scene, bodies: tuple[Body, Body],
             root1_MPa=_sector_max(g1, stresses[0], zones[0], fillets[0], pitch1),
             root2_MPa=root2,
             peak_on_round=_peak_on_round(scene.shape, contact.x[sel], sol.pressure[sel]),
-            **_flank_edge(scene.shape, contact.x[sel], sol.pressure[sel], case,
+            **contact_split(scene.shape, contact.x[sel], sol.pressure[sel], case,
                           patch.half_width if patch else 0.0)))
     return tuple(results)
 
 
-def _flank_edge(shape, x: np.ndarray, pressure: np.ndarray, case: SolveCase,
-                half_width: float) -> dict:
-    """Flank and edge pressure of one tooth's contact points ``x`` (gear 1's frame), taken in
-    the order of their polar angle; the elements across the contact's ``half_width`` (mm) at
-    its peak, and whether they are as many as the quality gives a contact (on a tip round:
-    across the round's own Hertz half-width, at least ``EDGE_PER_B``)."""
+def contact_split(shape, x: np.ndarray, pressure: np.ndarray, case: SolveCase,
+                  half_width: float) -> dict:
+    """Flank and edge pressure (``flank_p_MPa``, ``edge_p_MPa``, ``edge_load_N``) of one
+    tooth's contact points ``x`` (gear 1's frame), taken in the order of their polar angle; the
+    elements across the contact's ``half_width`` (mm) at its peak, and whether they are as many
+    as the quality gives a contact (on a tip round: across the round's own Hertz half-width, at
+    least ``EDGE_PER_B``)."""
     if not len(pressure):
         return {}
     phi = np.arctan2(x[:, 1], x[:, 0])
