@@ -180,3 +180,16 @@ def test_disk_case_rejects_bad_fields(field, value):
     with pytest.raises(ParameterError) as err:
         DiskCase(**{field: value})
     assert err.value.name == field
+
+
+def test_contact_peer_without_calculix_is_one_line_and_writes_nothing(tmp_path, capsys,
+                                                                      monkeypatch):
+    import fegear.verify.calculix
+
+    monkeypatch.setattr(fegear.verify.calculix, "ccx_available", lambda: False)
+    out = tmp_path / "out"
+    code = main(["bench", "--contact-peer", "--out", str(out)])
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert code != 0
+    assert len(lines) == 1 and "ccx" in lines[0] and "calculix-ccx" in lines[0], lines
+    assert not out.exists()
