@@ -381,3 +381,18 @@ def test_contact_peer_agrees_on_the_flank_only_case():
         assert t.agrees, (t.tooth, t.p_err_pct, t.b_err_pct)
         assert t.cstr_max > 1.5 * t.ours_p
         assert t.ours_edge_N == 0.0 and t.ccx_edge_N < 1.0
+
+
+def test_contact_peer_table_judges_each_tooth():
+    from fegear.verify.peer_contact import CasePeer, ToothPeer, peer_table
+
+    ok = ToothPeer(11, 2179.2, 1884.7, 1885.4, 0.4594, 0.4540, 96.0, 96.5, 1919.8, 4318.9,
+                   4.3, False)
+    wide = ToothPeer(12, 616.0, 385.8, 386.2, 0.2091, 0.2150, 0.0, 0.2, 406.2, 1216.9, 5.5,
+                     True)
+    assert ok.agrees and abs(ok.b_err_pct + 1.175) < 0.01
+    assert not wide.agrees  # +2.8 % in half-width: over the 2 % asked
+    table = peer_table([CasePeer("edge", "fast", 200.0, 0.0, (ok, wide), 36.3, 178.0)])
+    rows = [r for r in table.splitlines() if r.startswith("| edge")]
+    assert rows[0].endswith("| 4.3 u | yes |") and rows[1].endswith("| 5.5 | NO |")
+    assert "| 2.29 |" in rows[0]  # the CSTR maximum over our facet peak
