@@ -87,7 +87,7 @@ def run(a: argparse.Namespace) -> int:
     if a.study_only:
         return _study_bench(params, study_cases)
     if a.contact_peer:
-        return _contact_peer(sector_levels or ["coarse", "fast"], a.out)
+        return _contact_peer(sector_levels, a.out)
     from ..files import prepare_dir
 
     out = prepare_dir(a.out)
@@ -270,19 +270,19 @@ def _study_bench(params, cases: int) -> int:
 
 
 def _contact_peer(levels: list[str], out) -> int:
-    """The contact pressures beside CalculiX's, read alike (:mod:`fegear.verify.peer_contact`);
-    the table printed and kept in ``contact_peer.json``."""
+    """The contact pressures beside CalculiX's, read alike (:mod:`fegear.verify.peer_contact`),
+    at ``levels`` (none: its ``LEVELS``); the table printed and kept in ``contact_peer.json``."""
     from ..files import prepare_dir, write_json
     from ..verify.calculix import ccx_available
     from ..verify.ccx_files import PeerError
-    from ..verify.peer_contact import CASES, contact_peer, peer_table
+    from ..verify.peer_contact import CASES, LEVELS, contact_peer, peer_table
 
     if not ccx_available():
         raise PeerError("fegear bench --contact-peer needs CalculiX's ccx on the PATH "
                         "(Debian: apt install calculix-ccx)")
     results = []
     for name, torque, beta in CASES:
-        for level in levels:
+        for level in levels or LEVELS:
             results.append(contact_peer(name, torque, beta, level))
             print(f"{name} at `{level}` done (ccx {results[-1].ccx_s:.0f} s)", flush=True)
     table = peer_table(results)

@@ -59,7 +59,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "flexibility": ("PointFlexibility",),
     "build": ("build_contact",),
     "solve": ("ContactSolution", "ContactPatch", "solve_contact", "first_touch",
-              "nodal_pressure", "contact_patches", "forces_from_body"),
+              "nodal_pressure", "forces_from_body"),
     "search": ("locate_on_facets", "p2_edge_shape"),
     "halfplane": ("approach_matrix", "strain_matrix", "surface_matrix", "gap_contact"),
 })

@@ -153,7 +153,7 @@ def solve_contact(model: ContactModel, load: float | None = None,
     balance = abs(link_force - load) / max(abs(load), 1e-300) if load is not None else 0.0
     displacements, residuals = _displacements(model, lam, theta)
     pressure = model.kappa * np.maximum(-gap, 0.0)
-    patches = contact_patches(model, lam)
+    patches = _patches(model, lam)
     max_pen = float(max(0.0, -gap.min()))
     widest = max((p.half_width for p in patches), default=0.0)
     if widest > 0 and max_pen > st.penetration_tol * widest:
@@ -211,9 +211,7 @@ def _displacements(model: ContactModel, lam: np.ndarray, theta: float):
     return tuple(us), tuple(res)
 
 
-def contact_patches(model: ContactModel, lam: np.ndarray) -> tuple[ContactPatch, ...]:
-    """One patch per pair that carries load under the node forces ``lam`` (N, the model's
-    contact nodes): its load, peak pressure λ_i/D_i, half-width and centre."""
+def _patches(model: ContactModel, lam: np.ndarray) -> tuple[ContactPatch, ...]:
     out = []
     for k, pair in enumerate(model.pairs):
         sel = (model.pair_index == k) & (lam > 0)

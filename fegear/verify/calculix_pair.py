@@ -39,7 +39,7 @@ Units: mm, N, MPa, rad; the torque is in N·m in the case and N·mm in the deck.
   2 %, coarse and fast, 1 to 200 N·m). ccx's own pressure output, CSTR, is a pointwise penalty
   × overclosure at one slave integration point; in these decks about 30 % of the contact area
   carries no spring (ccx's reported contact area is 0.67-0.74 of the facets in contact, 1.00 on
-  the Hertz disks) and the points scatter ±30 % within a facet, so its largest CSTR is 2-2.4×
+  the Hertz disks) and the points scatter ±30 % within a facet, so its largest CSTR is 1.9-3.2×
   the pressure the contact transmits, at any penalty factor from 3 to 30, either start, either
   side as slave. The transmitted pressure is read instead from ccx's displacements: K u with
   our stiffness on the same mesh gives gear 1's nodal contact forces, which are averaged over
@@ -228,8 +228,8 @@ def ccx_pair(case: SolveCase, workdir: str | os.PathLike, threads: int = 1,
         rotation=float(rotation), cstr_max=float(rows[:, 2].max()) if len(rows) else 0.0,
         teeth=tuple(t.tooth for t in sol.teeth), tooth_load=tuple(map(float, load)),
         tooth_share=tuple(map(float, share)), tooth_cstr_max=tuple(map(float, p_tooth)),
-        **{("tooth_facet_load" if k == "load" else f"tooth_{k}"): tuple(r[k] for r in read)
-           for k in ("pressure", "half_width", "load", "flank_pressure", "edge_load")},
+        **{f"tooth_{k}": tuple(r[k] for r in read)
+           for k in ("pressure", "half_width", "facet_load", "flank_pressure", "edge_load")},
         root_stress=roots, torque=total, wall_s=wall, dofs=deck.dofs,
         equations=int(m.group(1)) if m else 0, increments=len(steps),
         iterations=sum(int(s[3]) for s in steps),
@@ -321,7 +321,7 @@ def facet_reading(sol: PairSolution, lam: np.ndarray) -> list[dict[str, float]]:
     takes out the node-to-node zig-zag a pointwise penalty leaves. ``pressure`` the largest p̄
     (MPa); ``half_width`` (mm) from the second moment of the facet loads over the run of
     loaded facets around the peak (2·√(Σ F (s − s̄)² + F h²/12)/Σ F), as an elliptic pressure
-    gives its b; ``load`` (N) of that run; ``flank_pressure`` (MPa) and the round's
+    gives its b; ``facet_load`` (N) of that run; ``flank_pressure`` (MPa) and the round's
     ``edge_load`` (N) as :func:`~fegear.toothpair.contact_split` splits them."""
     model = sol.detail.model
     thickness = sol.case.thickness
@@ -331,7 +331,7 @@ def facet_reading(sol: PairSolution, lam: np.ndarray) -> list[dict[str, float]]:
         sel = sel[np.argsort(model.arc[sel])]
         p = lam[sel] / model.weight[sel]
         bar = np.maximum(0.5 * (p[1:] + p[:-1]), 0.0)
-        zero = {"pressure": 0.0, "half_width": 0.0, "load": 0.0, "flank_pressure": 0.0,
+        zero = {"pressure": 0.0, "half_width": 0.0, "facet_load": 0.0, "flank_pressure": 0.0,
                 "edge_load": 0.0}
         if not len(bar) or bar.max() <= 0:
             out.append(zero)
@@ -349,7 +349,7 @@ def facet_reading(sol: PairSolution, lam: np.ndarray) -> list[dict[str, float]]:
         half = 2.0 * math.sqrt(np.sum(F * ((mid - mean) ** 2 + h**2 / 12)) / F.sum())
         x = 0.5 * (model.x[sel][1:] + model.x[sel][:-1])
         split = contact_split(sol.detail.scene.shape, x, bar, sol.case, half)
-        out.append({"pressure": float(bar[j]), "half_width": half, "load": float(F.sum()),
+        out.append({"pressure": float(bar[j]), "half_width": half, "facet_load": float(F.sum()),
                     "flank_pressure": split.get("flank_p_MPa", 0.0),
                     "edge_load": split.get("edge_load_N", 0.0)})
     return out

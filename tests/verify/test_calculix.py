@@ -322,10 +322,10 @@ def test_facet_reading_of_our_own_forces(light):
     reading = facet_reading(light, light.detail.contact.force)
     for t, r in zip(light.teeth, reading):
         if t.load_N <= 0:
-            assert r["pressure"] == r["load"] == 0.0
+            assert r["pressure"] == r["facet_load"] == 0.0
             continue
         assert 0.95 * t.p_max_MPa < r["pressure"] <= t.p_max_MPa
-        assert r["load"] == pytest.approx(t.load_N, rel=1e-3)
+        assert r["facet_load"] == pytest.approx(t.load_N, rel=1e-3)
         assert r["half_width"] == pytest.approx(t.half_width_mm, rel=0.15)
         assert r["flank_pressure"] <= r["pressure"] + 1e-9
     lam = light.detail.contact.force.copy()

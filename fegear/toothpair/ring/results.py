@@ -63,8 +63,7 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
         split = flank_and_edge(grid.s, pk, grid.on_round, case.thickness,
                                model.shape.radius_mm, E_star)
         b = local_half_width(contact, sol.pressure, i) if load > 0 else 0.0
-        bend = (_bending(grid.s, pk, sol.gap[blk] - gap[blk], E_star) if load > 0
-                else np.zeros(len(grid.s)))
+        bend, curvature = _bending(grid.s, pk, sol.gap[blk] - gap[blk], gap[blk], E_star)
         ref = (_halfplane(grid, gap[blk] + bend, load / case.thickness, E_star,
                           case.thickness, model.shape.radius_mm) if load > 0 else None)
         j = i - blk.start
@@ -85,39 +84,31 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
             edge_load_N=split.edge_load_N,
             halfplane_p_MPa=float(ref[0].max()) if ref else None,
             halfplane_flank_MPa=ref[1].flank_MPa if ref else None,
-            bending_curvature=_curvature_ratio(grid.s, pk, bend, gap[blk]),
+            bending_curvature=curvature,
             per_half_width=float(per_b),
             resolved=bool(load <= 0 or per_b >= RESOLVED_PER_B)))
     return tuple(out)
 
 
-def _bending(s: np.ndarray, p: np.ndarray, elastic: np.ndarray, E_star: float) -> np.ndarray:
+def _bending(s: np.ndarray, p: np.ndarray, elastic: np.ndarray, gap: np.ndarray,
+             E_star: float) -> tuple[np.ndarray, float]:
     """How the teeth's own deformation under the load changes the gap along a tooth's grid
     ``s`` (mm): the elastic opening ``elastic`` = A p the ring model computes, less the local
     indentation of two half-planes under the same pressure ``p`` (:func:`surface_matrix`),
     fitted by a quadratic over the loaded stretch and held at its end values beyond it (the
-    approach constant is immaterial). docs/model.md, "Hertz at load"."""
+    approach constant is immaterial; docs/model.md, "Hertz at load"). Also that quadratic's
+    curvature over the unloaded ``gap``'s, fitted over the same stretch: −0.07 lowers the
+    gap's curvature by 7 %, which lowers a Hertzian peak by about 3.5 %. Zero (and 0.0) where
+    fewer than 3 points are loaded."""
     on = p > 0
     if np.count_nonzero(on) < 3:
-        return np.zeros(len(s))
+        return np.zeros(len(s)), 0.0
     rest = elastic - surface_matrix(s, E_star) @ p
     lo, hi = s[on].min(), s[on].max()
     inside = (s >= lo) & (s <= hi)
-    return np.polyval(np.polyfit(s[inside], rest[inside], 2), np.clip(s, lo, hi))
-
-
-def _curvature_ratio(s: np.ndarray, p: np.ndarray, bend: np.ndarray, gap: np.ndarray
-                     ) -> float:
-    """The bending's second derivative over the unloaded gap's, both fitted by a quadratic
-    over the loaded stretch (0 where nothing is loaded): −0.07 lowers the gap's curvature by
-    7 %, which lowers a Hertzian peak by about 3.5 %."""
-    on = p > 0
-    if np.count_nonzero(on) < 3:
-        return 0.0
-    lo, hi = s[on].min(), s[on].max()
-    inside = (s >= lo) & (s <= hi)
+    fit = np.polyfit(s[inside], rest[inside], 2)
     g = np.polyfit(s[inside], gap[inside], 2)[0]
-    return float(np.polyfit(s[inside], bend[inside], 2)[0] / g) if g > 0 else 0.0
+    return np.polyval(fit, np.clip(s, lo, hi)), float(fit[0] / g) if g > 0 else 0.0
 
 
 def _halfplane(grid, gap: np.ndarray, q: float, E_star: float, thickness: float,
