@@ -1,4 +1,4 @@
-"""Figures: matplotlib set up for files (no screen), and PNGs written atomically.
+"""Figures: matplotlib and pyvista set up for files (no screen), and PNGs written atomically.
 
 matplotlib is imported here, inside the functions, so that no stage pays for it at import.
 """
@@ -31,3 +31,14 @@ def save_png(fig, path: Path, dpi: int) -> Path:
         return write_atomic(path, w)
     finally:
         plt.close(fig)
+
+
+def pyvista():
+    """``pyvista`` set up for files: off-screen, and VTK's own log silenced (without a display
+    VTK logs "bad X server connection" with terminal colour codes on every render, then
+    renders off-screen all the same)."""
+    import pyvista as pv
+
+    pv.OFF_SCREEN = True
+    pv.vtk_verbosity("off")
+    return pv

@@ -29,6 +29,26 @@ def prepare_dir(path: str | os.PathLike) -> Path:
     return out
 
 
+def check_dir(path: str | os.PathLike) -> Path:
+    """Check that ``path`` can be made (or is) a writable directory, creating nothing: raise
+    :class:`OutputError` if not. A command checks its ``--out`` with this before it computes,
+    and makes the directory with :func:`prepare_dir` only when it has results to write."""
+    out = Path(path)
+    if out.exists():
+        if not out.is_dir():
+            raise OutputError(f"--out {str(out)!r} is a file, not a directory")
+        if not os.access(out, os.W_OK | os.X_OK):
+            raise OutputError(f"--out {str(out)!r} is not writable")
+        return out
+    parent = out.absolute().parent
+    while not parent.exists():
+        parent = parent.parent
+    if not parent.is_dir() or not os.access(parent, os.W_OK | os.X_OK):
+        raise OutputError(f"--out {str(out)!r} cannot be created: {str(parent)!r} is not a "
+                          "writable directory")
+    return out
+
+
 def write_atomic(path: Path, writer: Callable[[Path], None]) -> Path:
     """Call ``writer(tmp)`` on a temporary file beside ``path``, then rename it into place
     with the permissions an ordinary file gets (the temporary file is private: 0600)."""

@@ -16,7 +16,7 @@ from fegear import provenance
 PACKAGE = Path(__file__).parents[1] / "fegear"
 #: modules allowed beside the stages: entry points and shared helpers
 SHARED = {"__init__", "__main__", "checks", "errors", "exports", "figures", "files", "planar",
-          "provenance"}
+          "progress", "provenance"}
 #: which stages each stage may import (the shared helpers are open to all)
 ALLOWED = {
     "geometry": set(),

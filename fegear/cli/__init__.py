@@ -21,9 +21,11 @@ from __future__ import annotations
 import logging
 import sys
 
+from .. import progress
 from ..errors import FegearError
 from . import bench, drive, hertz, profile, relief, solve, study
 from .args import EXIT_USAGE, Parser
+from .terminal import StageBar, Stopped, stop_on_signals
 
 #: the commands in the order of ``fegear --help``
 COMMANDS = {"profile": profile, "hertz": hertz, "solve": solve, "relief": relief,
@@ -31,8 +33,14 @@ COMMANDS = {"profile": profile, "hertz": hertz, "solve": solve, "relief": relief
 
 
 def build_parser() -> Parser:
+    from .. import __version__
+
     parser = Parser(prog="fegear", description=__doc__.splitlines()[0])
-    parser.add_argument("-v", "--verbose", action="store_true", help="log progress")
+    parser.add_argument("--version", action="version", version=f"fegear {__version__}")
+    parser.add_argument("-v", "--verbose", action="store_true",
+                        help="log what the solver does (on stderr)")
+    parser.add_argument("-q", "--quiet", action="store_true",
+                        help="no progress bar (it shows only on a terminal anyway)")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
     for module in COMMANDS.values():
         module.add_parser(sub)
@@ -44,11 +52,21 @@ def main(argv: list[str] | None = None) -> int:
     a = build_parser().parse_args(argv)
     logging.basicConfig(level=logging.INFO if a.verbose else logging.WARNING,
                         format="%(levelname)s %(name)s: %(message)s")
+    bar = StageBar(enabled=not a.quiet and sys.stderr.isatty())
     try:
-        return COMMANDS[a.command].run(a)
+        with stop_on_signals(), progress.reporting(bar):
+            return COMMANDS[a.command].run(a)
     except FegearError as exc:
+        bar.close()
         print(f"fegear: error: {exc}", file=sys.stderr)
         return EXIT_USAGE
+    except Stopped as exc:
+        bar.close()
+        print(f"fegear: stopped by {exc}; nothing half-written was left behind",
+              file=sys.stderr)
+        return 128 + exc.signum
+    finally:
+        bar.close()
 
 
 __all__ = ["main", "build_parser", "COMMANDS", "EXIT_USAGE"]

@@ -40,3 +40,11 @@ def add_inputs(parser: argparse.ArgumentParser, rows: Iterable[Input],
 def input_values(a: argparse.Namespace, rows: Iterable[Input]) -> dict[str, object]:
     """The parsed values of the schema rows' options, by input name."""
     return {row.name: getattr(a, row.dest) for row in rows}
+
+
+def given_values(a: argparse.Namespace, rows: Iterable[Input]) -> dict[str, object]:
+    """The parsed values of the schema rows' options that differ from their defaults, by
+    input name: the inputs the user changed, which a refused design may be blamed on (the
+    others take their defaults from the schema)."""
+    return {row.name: getattr(a, row.dest) for row in rows
+            if getattr(a, row.dest) != row.default}

@@ -6,7 +6,7 @@ import argparse
 
 from ..checks import require_range
 from ..geometry.parameters import PAIR_INPUTS
-from .args import add_inputs, input_values
+from .args import add_inputs, given_values
 from .hertz import number
 
 
@@ -83,7 +83,7 @@ def run(a: argparse.Namespace) -> int:
     study_cases = int(a.study_cases)
     if study_cases != 0 or a.study_only:
         require_range("study_cases", study_cases, 2, 1000)
-    params = admissible_pair(input_values(a, PAIR_INPUTS))
+    params = admissible_pair(given_values(a, PAIR_INPUTS))
     if a.study_only:
         return _study_bench(params, study_cases)
     if a.contact_peer:

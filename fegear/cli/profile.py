@@ -7,7 +7,7 @@ import json
 
 from ..checks import require_range
 from ..geometry.parameters import PAIR_INPUTS
-from .args import add_inputs, input_values
+from .args import add_inputs, given_values
 
 
 def add_parser(sub) -> None:
@@ -25,7 +25,7 @@ def run(a: argparse.Namespace) -> int:
     from ..files import prepare_dir, write_json, write_points_csv
     from ..geometry import admissible_pair
 
-    params = admissible_pair(input_values(a, PAIR_INPUTS))
+    params = admissible_pair(given_values(a, PAIR_INPUTS))
     from ..geometry import gear1_profile  # the envelope needs scipy
 
     gear1_profile(params)   # a relief that does not fit is refused before any output

@@ -8,7 +8,7 @@ import json
 
 from ..checks import require_range
 from ..toothpair.inputs import SOLVE_INPUTS
-from .args import add_inputs, input_values
+from .args import add_inputs, given_values
 
 #: the solve inputs the relief search takes (the amount is what it finds; one model, no
 #: estimate, its own number of positions)
@@ -33,7 +33,7 @@ def add_parser(sub) -> None:
 def run(a: argparse.Namespace) -> int:
     from ..toothpair.relief_rule import size_relief, sizing_table, stderr_report
 
-    values = input_values(a, TAKEN)
+    values = given_values(a, TAKEN)
     positions = int(require_range("cycle_positions", a.cycle_positions, 2, 360))
     margin = require_range("margin", a.margin, 0.0, 2.0)
     result = size_relief(values, positions=positions, margin=margin,

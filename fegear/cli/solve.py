@@ -6,7 +6,7 @@ import argparse
 import json
 
 from ..toothpair.inputs import PAIR_INPUTS, SOLVE_INPUTS
-from .args import add_inputs, input_values
+from .args import add_inputs, given_values
 
 
 def add_parser(sub) -> None:
@@ -14,26 +14,41 @@ def add_parser(sub) -> None:
     rows = list(SOLVE_INPUTS.values())
     add_inputs(p, rows[:len(PAIR_INPUTS)], "pair")
     add_inputs(p, rows[len(PAIR_INPUTS):])
-    p.add_argument("--out", required=True, help="output directory (VTU, PNG, summary.json)")
+    p.add_argument("--out", default=None,
+                   help="output directory for summary.json, VTU files and pictures, made when "
+                        "the solve has succeeded (default: none, the table only)")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
 
 
 def run(a: argparse.Namespace) -> int:
-    from ..files import prepare_dir
-    from ..toothpair import cycle_table, pair_table, prepare_job, run_job
+    import shutil
 
-    job = prepare_job(input_values(a, SOLVE_INPUTS.values()))
-    result = run_job(job, prepare_dir(a.out))
+    from ..files import check_dir
+    from ..toothpair import cycle_table, pair_table, prepare_job, run_job
+    from .terminal import command_wall_s
+
+    job = prepare_job(given_values(a, SOLVE_INPUTS.values()))
+    out = None if a.out is None else check_dir(a.out)
+    made = out is not None and not out.exists()
+    try:
+        result = run_job(job, out)
+    except BaseException:
+        if made and out.exists():  # made by this run: nothing half-written stays
+            shutil.rmtree(out, ignore_errors=True)
+        raise
     files = {k: str(v) for k, v in result.files.items()}
     if a.json:
         print(json.dumps({**result.summary, "files": files}, indent=2))
-    else:
-        if result.rows:
-            print(cycle_table(result.rows))
-            print(f"\n{len(result.rows)} positions on one mesh in "
-                  f"{result.summary['cycle']['solve_s']:.1f} s; the details below are at the "
-                  "position of the largest gear-1 root stress\n")
-        print(pair_table(result.summary))
-        for k, v in files.items():
-            print(f"{k:10s} {v}")
+        return 0
+    if result.rows:
+        print(cycle_table(result.rows))
+        print(f"\n{len(result.rows)} positions on one mesh in "
+              f"{result.summary['cycle']['solve_s']:.1f} s; the details below are at the "
+              "position of the largest gear-1 root stress\n")
+    print(pair_table(result.summary))
+    for k, v in files.items():
+        print(f"{k:10s} {v}")
+    if out is None:
+        print("(no files written: --out DIR writes summary.json, VTU files and pictures)")
+    print(f"wall {command_wall_s():.1f} s for the whole command")
     return 0

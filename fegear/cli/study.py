@@ -20,7 +20,8 @@ def add_parser(sub) -> None:
     p.add_argument("--out", default=None, help="output directory (default out/study/NAME)")
     p.add_argument("--retry-failed", action="store_true",
                    help="run the cases that failed before again (default: keep their record)")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--no-progress", action="store_true",
+                   help="no progress bar (as fegear --quiet; it shows only on a terminal)")
 
 
 def run(a: argparse.Namespace) -> int:
@@ -43,7 +44,8 @@ def run(a: argparse.Namespace) -> int:
 
     try:
         report = run_study(study, out, workers=a.workers, scheduler=a.scheduler,
-                           retry_failed=a.retry_failed, progress=not a.no_progress,
+                           retry_failed=a.retry_failed,
+                           progress=sys.stderr.isatty() and not (a.no_progress or a.quiet),
                            on_start=started)
     except StudyInterrupted as exc:
         print(f"fegear: {exc}", file=sys.stderr)

@@ -16,6 +16,8 @@ from __future__ import annotations
 import contextlib
 import logging
 import math
+import signal
+import threading
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
 
@@ -135,16 +137,30 @@ class BodyMesh:
 
 @contextlib.contextmanager
 def gmsh_session() -> Iterator[object]:
-    """Initialise gmsh quietly and always finalise it, whatever happens inside."""
+    """Initialise gmsh quietly and always finalise it, whatever happens inside. gmsh's
+    initialisation sets SIGTERM back to the system's default (the process dies without a
+    word, its temporary files left): the handlers from before are put back."""
     import gmsh
 
+    held = _signal_handlers()
     gmsh.initialize(readConfigFiles=False, interruptible=False)
+    for signum, handler in held.items():
+        signal.signal(signum, handler)
     try:
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.option.setNumber("General.Verbosity", 1)
         yield gmsh
     finally:
         gmsh.finalize()
+
+
+def _signal_handlers() -> dict:
+    """Python's handlers of SIGTERM and SIGINT (none outside the main thread, where they
+    cannot be set)."""
+    if threading.current_thread() is not threading.main_thread():
+        return {}
+    return {s: h for s in (signal.SIGTERM, signal.SIGINT)
+            if (h := signal.getsignal(s)) is not None}
 
 
 def import_gmsh() -> None:

@@ -35,10 +35,11 @@ PAIR_INPUTS = (
     Input("h1", float, 0.30, "tooth-height coefficient (e1 = m h1), 0 < h1 < z2/4 and "
           "admissible"),
     Input("f1", float, 0.15, "tooth-shape coefficient (e2 = f1 e1)", low=0.0, high=1.0),
-    Input("shift", float, 0.0, "Δ1 negative shift: gear 1 generated at centre distance "
-          "e + shift, 0 <= shift <= m h1/4", "mm"),
-    Input("rotation", float, 0.0, "Δ2 rotation modification of the generating tool, "
-          "|rotation| <= m h1/4", "mm"),
+    Input("shift", float, None, "Δ1 negative shift: gear 1 generated at centre distance "
+          "e + shift, 0 <= shift <= m h1/4 (default 0.008 m, the seed paper's 0.016 mm at "
+          "m = 2)", "mm"),
+    Input("rotation", float, None, "Δ2 rotation modification of the generating tool, "
+          "|rotation| <= m h1/4 (default 0.001 m, the seed paper's 0.002 mm at m = 2)", "mm"),
     Input("tip-clearance", float, None, "radial clearance of gear 1's tip to the far side of "
           "gear 2, -shift <= tip-clearance <= m h1 (default: = shift)", "mm"),
     Input("relief", float, 0.0, "tip relief of gear 1's flanks: depth cut normal to the "
@@ -50,6 +51,16 @@ PAIR_INPUTS = (
     Input("relief-shape", str, "parabolic", "shape of the tip relief", choices=SHAPES),
 )
 _ROW = {row.name: row for row in PAIR_INPUTS}
+#: the modifications the seed paper's pair is built with, in modules: the command line's and
+#: study files' defaults (Δ1 0.016, Δ2 0.002 mm at m = 2), kept within m h1/4 for low teeth.
+#: :class:`PairParameters` itself defaults to the unmodified pair.
+BUILT = {"shift": 0.008, "rotation": 0.001}
+
+
+def built_modification(name: str, m: float, h1: float) -> float:
+    """The default of ``shift`` or ``rotation`` [mm] for module ``m`` and height ``h1``:
+    :data:`BUILT` times m, at most the m h1/4 the pair admits."""
+    return min(BUILT[name] * m, 0.25 * m * h1)
 
 
 @dataclass(frozen=True)

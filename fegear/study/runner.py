@@ -158,6 +158,10 @@ class _exclusive:
             raise StudyError(f"--out {str(self.path.parent)!r}: another study is running "
                              f"there (pid {holder}); wait for it or choose another --out"
                              ) from None
+        if os.fstat(self.f.fileno()).st_ino != _inode(self.path):
+            # the run before removed the file between our open and our lock: ours is stale
+            self.f.close()
+            return self.__enter__()
         self.f.seek(0)
         self.f.truncate()
         self.f.write(str(os.getpid()))
@@ -165,7 +169,15 @@ class _exclusive:
         return self
 
     def __exit__(self, *exc):
+        self.path.unlink(missing_ok=True)  # removed while still held, so no run takes it over
         self.f.close()  # closing releases the lock
+
+
+def _inode(path: Path) -> int | None:
+    try:
+        return path.stat().st_ino
+    except FileNotFoundError:
+        return None
 
 
 def run_case(key: str, values: dict, vtu: bool, png: bool,

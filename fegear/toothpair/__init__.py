@@ -31,12 +31,16 @@ True
 The same inputs as ``fegear solve`` takes them, by name (defaults for the rest):
 
 >>> from fegear.toothpair import SOLVE_INPUTS, prepare_job
->>> SOLVE_INPUTS["torque"].range_text
-'0 < torque <= 100000 N·m'
->>> job = prepare_job({"z2": 25, "z1": 24, "shift": 0.016, "rotation": 0.002,
-...                    "torque": 20.0, "quality": "coarse", "positions": 4})
+>>> SOLVE_INPUTS["shift"].default is None  # 0.008 m: the seed paper's built pair
+True
+>>> job = prepare_job({"z2": 25, "z1": 24, "torque": 20.0, "quality": "coarse",
+...                    "positions": 4})
+>>> job.case.params.shift, job.case.params.rotation
+(0.016, 0.002)
 >>> [round(beta, 5) for beta in job.betas]  # rad: one gear-2 pitch in 4 steps
 [0.0, 0.06283, 0.12566, 0.1885]
+>>> round(job.case.torque_limit)  # N·m: the largest torque, 0.05 E m b r1
+2472
 """
 
 from ..exports import lazy

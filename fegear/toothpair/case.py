@@ -16,7 +16,7 @@ from ..checks import require_range
 from ..fe import Material
 from ..geometry import PairParameters
 from ..planar import wrap
-from .inputs import SOLVE_INPUTS, TIP_ROUND
+from .inputs import LOAD_LIMIT, SOLVE_INPUTS, TIP_ROUND
 
 #: headline stresses: JSON key (MPa) → label in the table and the cycle plot
 HEADLINE = {"root_stress_gear1_MPa": "root σ1, gear 1", "root_stress_gear2_MPa": "root σ1, gear 2",
@@ -53,6 +53,9 @@ class SolveCase:
         SOLVE_INPUTS["torque"].check(self.torque)
         require_range("position", self.beta, -math.pi, math.pi, unit="rad")
         Material(self.E, self.nu, self.thickness)  # validates E, nu, thickness
+        require_range("torque", self.torque, 0.0, self.torque_limit, lo_open=True,
+                      unit=f"N·m (0.05 E m b r1 at E={self.E:g} MPa, m={self.params.m:g}, "
+                           f"b={self.thickness:g}, r1={self.params.r1:g} mm)")
         SOLVE_INPUTS["quality"].check(self.quality)
         SOLVE_INPUTS["model"].check(self.model)
         for name in ("rim1", "rim2"):
@@ -63,6 +66,11 @@ class SolveCase:
             SOLVE_INPUTS[name].check(getattr(self, SOLVE_INPUTS[name].dest))
         if self.tip_round is not None:
             require_range("tip_round", self.tip_round, 0.0, 0.5 * self.params.m, unit="mm")
+
+    @property
+    def torque_limit(self) -> float:
+        """The largest torque the solve takes (N·m): :data:`~.inputs.LOAD_LIMIT` E m b r1."""
+        return LOAD_LIMIT * self.E * self.params.m * self.thickness * self.params.r1 * 1e-3
 
     @property
     def material(self) -> Material:

@@ -13,9 +13,10 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
+from .. import progress
 from ..geometry import admissible_pair
 from .case import SolveCase, cycle_positions
-from .inputs import SOLVE_INPUTS
+from .inputs import QUALITY, SOLVE_INPUTS
 
 
 @dataclass(frozen=True)
@@ -33,7 +34,7 @@ def prepare_job(values: Mapping[str, object]) -> Job:
     :class:`~fegear.errors.ParameterError` or :class:`~fegear.errors.GeometryError`. No
     meshing, no output."""
     v = SOLVE_INPUTS.complete(values)
-    params = admissible_pair(v)
+    params = admissible_pair(v, given=values)
     if params.relief > 0:   # where a relief fits depends on the whole profile (kept)
         from ..geometry import gear1_profile
 
@@ -66,7 +67,9 @@ class JobResult:
 def run_job(job: Job, out: Path | None, fields: bool = True,
             pictures: bool = True) -> JobResult:
     """Solve ``job``; write summary.json, and the VTUs (``fields``) and pictures
-    (``pictures``) into ``out`` unless it is None."""
+    (``pictures``) into ``out`` unless it is None. ``out`` is made only after the solve, so a
+    solve that fails leaves nothing behind."""
+    from ..files import prepare_dir
     from ..geometry import gear1_profile
     from .estimate import second_level_estimate
     from .output import write_cycle_outputs, write_mesh_stiffness, write_pair_outputs
@@ -74,13 +77,22 @@ def run_job(job: Job, out: Path | None, fields: bool = True,
     from .report import cycle_rows, cycle_summary, pair_summary
 
     t0 = time.perf_counter()
+    progress.plan(2 + len(job.betas) + job.estimate + (out is not None))
+    progress.stage("gear 1's profile")
     profile = gear1_profile(job.case.params)
     sols = solve_positions(job.case, job.betas, profile)
     cycle_s = time.perf_counter() - t0
     # pictures, VTUs and the error estimate at the position of the largest gear-1 root stress
     sol = max(sols, key=lambda s: s.root_stress[0])
-    estimate, other = second_level_estimate(sol, profile) if job.estimate else (None, None)
+    estimate, other, estimate_s = None, None, None
+    if job.estimate:
+        t1 = time.perf_counter()
+        progress.stage(f"error estimate: the same case again at quality {_second(job)}")
+        with progress.reporting(None):  # one stage, however the second solve goes
+            estimate, other = second_level_estimate(sol, profile)
+        estimate_s = time.perf_counter() - t1
     summary = pair_summary(sol, estimate, time.perf_counter() - t0, other)
+    summary["estimate_s"] = estimate_s
     rows = None
     if len(sols) > 1:
         rows = cycle_rows(sols)
@@ -89,6 +101,8 @@ def run_job(job: Job, out: Path | None, fields: bool = True,
     solve_s = time.perf_counter() - t0
     files: dict[str, Path] = {}
     if out is not None:
+        progress.stage(f"writing files to {out}")
+        out = prepare_dir(out)
         if rows:
             files.update(write_mesh_stiffness(out, rows, job.case))
         if rows and pictures:
@@ -100,3 +114,10 @@ def run_job(job: Job, out: Path | None, fields: bool = True,
         files.update(write_pair_outputs(sol, out, {**summary, "files": {
             k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures))
     return JobResult(summary, files, rows, solve_s)
+
+
+def _second(job: Job) -> str:
+    """The quality the error estimate solves the case at again (the next coarser one;
+    ``fast`` for ``coarse``)."""
+    k = QUALITY.index(job.case.quality)
+    return QUALITY[k - 1] if k > 0 else QUALITY[1]

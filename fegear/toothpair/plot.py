@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..figures import pyplot, save_png
+from ..figures import pyplot, pyvista, save_png
 from ..files import write_atomic
 from .case import PairSolution
 
@@ -51,9 +51,7 @@ def von_mises_png(path: Path, sol: PairSolution, bodies, peaks=()) -> Path:
     stress so that the bending shows beside the contact; and the most loaded contact, with the
     submodels that resolve its peak (``peaks``; the ring model) drawn over the bodies, on their
     own scale. ``bodies`` and ``peaks``: :class:`~.case.BodyField` s."""
-    import pyvista as pv
-
-    pv.OFF_SCREEN = True
+    pv = pyvista()
     grids = [_polydata(pv, b) for b in bodies]
     fine = [_polydata(pv, b) for b in peaks]
     zone = sol.detail.contact_zone()

@@ -151,8 +151,17 @@ def pair_table(summary: dict) -> str:
               f"iterations {summary['iterations']}, max penetration "
               f"{summary['max_penetration_um']:.3g} µm",
               "time [s]: " + ", ".join(f"{k} {v:.2f}" for k, v in summary["timings_s"].items())
-              + (f"; wall {summary['wall_s']:.1f}" if summary["wall_s"] else "")]
+              + _estimate_time(summary)
+              + (f"; solve wall {summary['wall_s']:.1f}" if summary["wall_s"] else "")]
     return "\n".join(lines)
+
+
+def _estimate_time(summary: dict) -> str:
+    """The error estimate's second solve in the time line, if there was one."""
+    if not summary.get("estimate_s"):
+        return ""
+    return (f"; error estimate (the case again at {summary['error_estimate_from']}) "
+            f"{summary['estimate_s']:.2f}")
 
 
 def cycle_rows(sols) -> list[dict]:

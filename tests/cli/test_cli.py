@@ -48,7 +48,7 @@ def test_profile_table_output(tmp_path):
     ("profile", ["--h1", "inf"], "h1 = inf is not admissible"),
     ("profile", ["--z2", "44", "--z1", "44"], "z2 = 44"),
     ("profile", ["--f1", "0.7"], "f1 = 0.7 is not admissible"),
-    ("profile", ["--h1", "0.8"], "admissible: 0 < h1 <="),
+    ("profile", ["--h1", "0.8"], "admissible: 0.032 <= h1 <="),
     ("profile", ["--chord-error", "0"], "chord_error"),
     ("profile", ["--m", "abc"], "invalid float value"),
     ("hertz", ["--r2", "-5"], "r2 = -5.0 is not admissible"),
@@ -65,7 +65,7 @@ def test_profile_table_output(tmp_path):
     ("solve", ["--tip-round", "5"], "tip_round = 5.0 is not admissible"),
     ("solve", ["--position", "400"], "position = 400.0 is not admissible"),
     ("solve", ["--extra-teeth", "0"], "extra_teeth = 0 is not admissible"),
-    ("solve", ["--h1", "0.8"], "admissible: 0 < h1 <="),
+    ("solve", ["--h1", "0.8"], "admissible: 0.032 <= h1 <="),
 ])
 def test_user_errors_exit_2_with_one_line(tmp_path, command, args, fragment):
     out = tmp_path / "o"

@@ -155,7 +155,7 @@ def test_key_follows_inputs_outputs_and_code_not_spelling():
     ("[base]\nno-estimate = 1", ["[base] no-estimate", "true or false"]),
     ("[outputs]\nvtk = true", ["[outputs]", "'vtk'", "did you mean 'vtu'"]),
     ("[sweeps]\nm = [1]", ["unknown section 'sweeps'", "did you mean 'sweep'"]),
-    ("[[sweep]]\nh1 = [0.3, 0.7]", ["[[sweep]] 1", "h1 = 0.7", "h1 = 0.7 is not admissible",
+    ("[[sweep]]\nh1 = [0.3, 0.8]", ["[[sweep]] 1", "h1 = 0.8", "h1 = 0.8 is not admissible",
                                     "admissible: "]),
     ("[[sweep]]\nm = []", ["[[sweep]] 1 m", "at least one value"]),
     ("[[sweep]]\nm = {start = 1, stop = 2}", ["[[sweep]] 1 m", "{start, stop, step}"]),
@@ -238,7 +238,8 @@ def pool_run(tmp_path_factory):
         proc.wait(timeout=60)
         stages.append({"signal": sig, "returncode": proc.returncode,
                        "stderr": proc.stderr.read(), "records": _records(out),
-                       "table": _table(out) if (out / "results.csv").exists() else []})
+                       "table": _table(out) if (out / "results.csv").exists() else [],
+                       "lock": (out / ".lock").exists()})
     final = subprocess.run([sys.executable, "-m", "fegear", "study", str(toml), "--workers",
                             "1", "--out", str(out), "--no-progress"], cwd=ROOT,
                            capture_output=True, text=True, timeout=600)
@@ -250,6 +251,7 @@ def test_killed_study_restarts_without_losing_duplicating_or_recomputing(pool_ru
     term, kill = pool_run["stages"]
     assert term["returncode"] == 128 + signal.SIGTERM
     assert "stopped by SIGTERM" in term["stderr"] and "Traceback" not in term["stderr"]
+    assert not term["lock"] and kill["lock"]   # SIGKILL leaves its lock, for the next run
     # SIGTERM leaves a table of exactly the finished cases
     assert {r["key"] + ".json" for r in term["table"]} == set(term["records"])
     assert kill["returncode"] == -signal.SIGKILL
@@ -267,6 +269,7 @@ def test_killed_study_restarts_without_losing_duplicating_or_recomputing(pool_ru
     assert len(table) == N_SMALL and len({r["key"] for r in table}) == N_SMALL
     assert [int(r["case"]) for r in table] == list(range(N_SMALL))
     assert not list((pool_run["out"] / "cases" / ".running").iterdir())
+    assert not (pool_run["out"] / ".lock").exists()   # the lock goes with the run
 
 
 def test_failed_case_is_recorded_with_its_reason(pool_run):

@@ -17,9 +17,11 @@ starts from the previous one's rotation.
 from __future__ import annotations
 
 import logging
+import math
 import time
 from dataclasses import replace
 
+from ... import progress
 from ...errors import FegearError
 from ...fe import contact_modulus
 from ...geometry import Gear1Profile, ToothContact
@@ -57,6 +59,7 @@ def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None,
     case, else one built here)."""
     t0 = time.perf_counter()
     if model is None or not model.fits(case):
+        progress.stage(f"model: both gears meshed and condensed at quality {case.quality}")
         model = ring_model(case, profile)
     fresh = not any(g.response_s for g in model.gears)
     t_model = time.perf_counter() - t0
@@ -67,6 +70,8 @@ def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None,
     t_tca = time.perf_counter() - t0
     sols = []
     for k, (beta, state) in enumerate(states):
+        progress.stage(f"contact at β {math.degrees(beta):.3g}°"
+                       + (f" ({k + 1} of {len(states)})" if len(states) > 1 else ""))
         sol = solve_position(model, replace(case, beta=beta), state,
                              sols[-1] if sols else None)
         if k == 0:  # the first position carries the one-off stages

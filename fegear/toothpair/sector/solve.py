@@ -15,11 +15,13 @@ solves the small contact problem.
 from __future__ import annotations
 
 import logging
+import math
 import time
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ... import progress
 from ...contact import (
     ContactError,
     ContactModel,
@@ -101,9 +103,12 @@ def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None
     teeth = _union(choose_teeth(st, _first_clearance(st) + estimate_um, case.extra_pairs)
                    for _, st in states)
     for _ in range(4):
+        progress.stage(f"model: sector meshes of both gears at quality {case.quality}")
         model = build_model(case, profile, states, teeth)
         sols = []
         for k, (beta, state) in enumerate(states):
+            progress.stage(f"contact at β {math.degrees(beta):.3g}°"
+                           + (f" ({k + 1} of {len(states)})" if len(states) > 1 else ""))
             sol = solve_position(model, beta, state, sols[-1] if sols else None)
             if k == 0:  # the first position carries the one-off stages
                 sol = replace(sol, timings_s={"profile": t_profile, **model.timings_s,
