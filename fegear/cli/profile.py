@@ -17,12 +17,13 @@ def add_parser(sub) -> None:
                    help="max chord error of the written polylines [mm] (default 1e-4)")
     p.add_argument("--positions", type=int, default=16,
                    help="rolling positions scanned for the backlash (default 16)")
-    p.add_argument("--out", required=True, help="output directory")
+    p.add_argument("--out", default=None, help="output directory for gear1.csv, gear2.csv, "
+                   "pair.png and summary.json (default: none, the table only)")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
 
 
 def run(a: argparse.Namespace) -> int:
-    from ..files import prepare_dir, write_json, write_points_csv
+    from ..files import check_dir, prepare_dir, write_json, write_points_csv
     from ..geometry import admissible_pair
 
     params = admissible_pair(given_values(a, PAIR_INPUTS))
@@ -31,10 +32,14 @@ def run(a: argparse.Namespace) -> int:
     gear1_profile(params)   # a relief that does not fit is refused before any output
     chord = require_range("chord_error", a.chord_error, 1e-7, 0.1, unit="mm")
     positions = int(require_range("positions", a.positions, 4, 360))
-    out = prepare_dir(a.out)
+    out = None if a.out is None else check_dir(a.out)
     from ..geometry import build_geometry, pair_png  # the envelope needs scipy
     geo = build_geometry(params, chord, positions)
     summary = geo.summary()
+    if out is None:
+        print(json.dumps(summary, indent=2) if a.json else _profile_table(geo))
+        return 0
+    out = prepare_dir(out)
     files = {
         "gear1_csv": write_points_csv(out / "gear1.csv", geo.gear1, None if geo.relief_depth
                                       is None else {"relief_um": geo.relief_depth * 1e3}),
