@@ -31,13 +31,14 @@ def add_parser(sub) -> None:
 
 
 def run(a: argparse.Namespace) -> int:
-    from ..toothpair.relief_rule import size_relief, sizing_table, stderr_report
+    from .. import progress
+    from ..toothpair.relief_rule import size_relief, sizing_table
 
     values = given_values(a, TAKEN)
     positions = int(require_range("cycle_positions", a.cycle_positions, 2, 360))
     margin = require_range("margin", a.margin, 0.0, 2.0)
     result = size_relief(values, positions=positions, margin=margin,
                          clearance=not a.keep_tip_clearance,
-                         report=None if a.json else stderr_report)
+                         report=progress.stage)  # each relief tried: a stage on the bar
     print(json.dumps(result.summary(), indent=2) if a.json else sizing_table(result))
     return 0

@@ -19,7 +19,6 @@ peak pressure, transmission error and load sharing over the cycle.
 from __future__ import annotations
 
 import math
-import sys
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
@@ -276,9 +275,3 @@ def sizing_table(s: ReliefSizing) -> str:
                                               f"{t.edge_load_N:.1f} N")
               for t in s.trials]
     return "\n".join(lines)
-
-
-def stderr_report(line: str) -> None:
-    print(line, file=sys.stderr, flush=True)
-
-
