@@ -66,6 +66,8 @@ class Input:
     does not depend on other inputs: ``low``/``high`` (open or closed) for numbers, ``choices``
     for strings. Ranges that depend on other inputs (a shift against the tooth height, say) are
     checked by the object the inputs build, with a message naming the range at those values.
+    ``post``: the input only reads the results (an allowable stress): it changes no number of
+    the solve, so a cache key leaves it out (:meth:`InputTable.keyed`).
     """
 
     name: str
@@ -78,6 +80,7 @@ class Input:
     low_open: bool = False
     high_open: bool = False
     choices: tuple[str, ...] = ()
+    post: bool = False
 
     def __post_init__(self) -> None:
         if self.kind not in (float, int, str, bool):
@@ -150,3 +153,8 @@ class InputTable(Mapping[str, Input]):
             raise ParameterError(unknown[0], values[unknown[0]], "one of "
                                  + ", ".join(self._rows), "unknown input")
         return {**self.defaults(), **values}
+
+    def keyed(self, values: Mapping[str, object]) -> dict[str, object]:
+        """The inputs that decide a solve's numbers, by name, missing ones at their defaults:
+        :meth:`complete` without the post-processing inputs (``post``), for a cache key."""
+        return {k: v for k, v in self.complete(values).items() if not self._rows[k].post}

@@ -11,9 +11,9 @@ from ..toothpair.inputs import SOLVE_INPUTS
 from .args import add_inputs, given_values
 
 #: the solve inputs the relief search takes (the amount is what it finds; one model, no
-#: estimate, its own number of positions)
+#: estimate, its own number of positions; no safety factors, so no allowable stresses)
 TAKEN = [row for name, row in SOLVE_INPUTS.items()
-         if name not in ("relief", "position", "positions", "no-estimate")]
+         if name not in ("relief", "position", "positions", "no-estimate") and not row.post]
 
 
 def add_parser(sub) -> None:

@@ -36,7 +36,19 @@ MATERIAL_INPUTS = (
           low_open=True),  # diamond: 1.2e6
     Input("nu", float, 0.29, "Poisson ratio", low=0.0, high=0.5, high_open=True),
 )
-_ROW = {row.name: row for row in MATERIAL_INPUTS}
+
+#: allowable stresses of the material, for the safety factors S = allowable / stress; the
+#: defaults are 42CrMo's (quenched and tempered): σ_FP 558 MPa in bending, σ_HP 745 MPa in
+#: contact. They only read the results (``post``): no solve depends on them.
+ALLOWABLE_INPUTS = (
+    Input("allowable-bending", float, 558.0, "allowable root (bending) stress σ_FP for the "
+          "bending safety factors S_F = σ_FP / root σ1 (default: 42CrMo)", "MPa",
+          low=0.0, high=1e5, low_open=True, post=True),
+    Input("allowable-contact", float, 745.0, "allowable contact pressure σ_HP for the contact "
+          "safety factor S_H = σ_HP / peak contact pressure (default: 42CrMo)", "MPa",
+          low=0.0, high=1e5, low_open=True, post=True),
+)
+_ROW = {row.name: row for row in (*MATERIAL_INPUTS, *ALLOWABLE_INPUTS)}
 
 
 @dataclass(frozen=True)
@@ -73,3 +85,18 @@ class Material:
     @property
     def shear_modulus(self) -> float:
         return self.E / (2.0 * (1.0 + self.nu))
+
+
+@dataclass(frozen=True)
+class Allowables:
+    """A material's allowable stresses (MPa): ``bending`` σ_FP at the tooth root (max
+    principal stress), ``contact`` σ_HP on the flank (contact pressure). The defaults are
+    42CrMo's. Plain material limits, not ISO 6336 permissible stresses (no life, size,
+    roughness or lubrication factors)."""
+
+    bending: float = 558.0
+    contact: float = 745.0
+
+    def __post_init__(self) -> None:
+        _ROW["allowable-bending"].check(self.bending)
+        _ROW["allowable-contact"].check(self.contact)

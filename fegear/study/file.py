@@ -61,8 +61,9 @@ class Outputs:
 @dataclass(frozen=True)
 class StudyCase:
     """One solve of a study: its position in the study, its key (hash of the inputs, the kept
-    outputs and the code version), every ``fegear solve`` input by name, and the values its
-    sweep block set (what tells it apart in tables and plots)."""
+    outputs and the code version; :func:`case_key`), every ``fegear solve`` input by name, and
+    the values its sweep block set (what tells it apart in tables and plots). Cases that
+    differ in the allowable stresses alone share a key: one solve, a row each."""
 
     index: int
     key: str
@@ -130,9 +131,11 @@ def build_study(data: dict, path: Path) -> Study:
     for label, swept in combos:
         values = {**base, **swept}
         key = case_key(values, outputs, code)
-        if key in seen:
+        # cases that differ in an allowable stress alone share a key (one solve) but not a row
+        same = (key, json.dumps(SOLVE_INPUTS.complete(values), sort_keys=True))
+        if same in seen:
             continue
-        seen.add(key)
+        seen.add(same)
         _check_case(values, f"{label or where + ': [base]'} ({_describe(swept) or 'base'})")
         cases.append(StudyCase(len(cases), key, values, swept))
     full = [SOLVE_INPUTS.complete(c.values) for c in cases]
@@ -141,9 +144,10 @@ def build_study(data: dict, path: Path) -> Study:
 
 
 def case_key(values: dict, outputs: Outputs, code: str) -> str:
-    """Hash (first 16 hex digits of SHA-256) of every input, the kept outputs and the code
-    version: equal keys are equal results."""
-    full = SOLVE_INPUTS.complete(values)
+    """Hash (first 16 hex digits of SHA-256) of every input that decides the solve's numbers
+    (not the allowable stresses: the tables compute the safety factors from the stored
+    stresses), the kept outputs and the code version: equal keys are equal results."""
+    full = SOLVE_INPUTS.keyed(values)
     text = json.dumps({"inputs": full, "outputs": [outputs.vtu, outputs.png], "code": code},
                       sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:16]

@@ -2,7 +2,9 @@
 
 A row holds the case's inputs (every ``fegear solve`` input by name), its status and reason,
 every value of the ``fegear solve --json`` summary (nested keys joined by dots, lists as JSON
-text), the fegear and library versions, the code version and the times. Cases not finished yet
+text), the fegear and library versions, the code version and the times. The safety factors
+are computed here, from the stored stresses at the allowables the study file gives now
+(:func:`~fegear.toothpair.with_safety`): new allowables need no solve. Cases not finished yet
 have no row; the table is rebuilt from ``cases/*.json`` whenever the study stops.
 """
 
@@ -15,13 +17,17 @@ import math
 from pathlib import Path
 
 from ..files import write_atomic
-from ..toothpair import HEADLINE, SOLVE_INPUTS
+from ..toothpair import HEADLINE, SOLVE_INPUTS, allowables_of, with_safety
 from .file import Study
 
 #: headline stresses in the study table's head
 SHORT = {"root_stress_gear1_MPa": "root σ1 g1", "root_stress_gear2_MPa": "root σ1 g2",
          "contact_pressure_MPa": "p_max", "flank_contact_pressure_MPa": "p flank",
          "von_mises_max_MPa": "vM max"}
+
+#: the smallest safety factors over the teeth in the study table's head
+SAFETY_SHORT = {"safety_bending_gear1": "S_F g1", "safety_bending_gear2": "S_F g2",
+                "safety_contact": "S_H"}
 
 #: columns after the summary
 _TRAILER = ("case_wall_s", "solve_s", "fegear", "code_version", "host", "pid", "finished_utc")
@@ -41,7 +47,10 @@ def rows(study: Study, out: Path) -> list[dict]:
         row = {"case": case.index, "key": case.key, "status": rec["status"],
                "error": rec.get("error")}
         row.update({n: case.values.get(n, i.default) for n, i in inputs.items()})
-        row.update(_flatten(rec.get("summary") or {}))
+        summary = rec.get("summary")
+        if summary:
+            summary = with_safety(summary, allowables_of(row))
+        row.update(_flatten(summary or {}))
         row.update({k: rec.get(k) for k in _TRAILER})
         row.update({f"versions.{k}": v for k, v in (rec.get("versions") or {}).items()})
         table.append(row)
@@ -70,8 +79,8 @@ def columns(table: list[dict]) -> list[str]:
 
 
 def write_results(study: Study, out: Path) -> dict[str, Path]:
-    """results.parquet, results.csv, results.md and one PNG per varied input (in ``plots/``).
-    With no finished case yet, nothing is written."""
+    """results.parquet, results.csv, results.md and one PNG per varied input but the
+    allowables (in ``plots/``). With no finished case yet, nothing is written."""
     table = rows(study, out)
     if not table:
         return {}
@@ -84,6 +93,8 @@ def write_results(study: Study, out: Path) -> dict[str, Path]:
     plots = out / "plots"
     plots.mkdir(exist_ok=True)
     for x in study.varied:
+        if SOLVE_INPUTS[x].post:  # no stress varies with an allowable
+            continue
         png = plot_input(plots / f"{x}.png", study, table, x)
         if png is not None:
             files[f"plot_{x}"] = png
@@ -130,13 +141,14 @@ def to_csv(table: list[dict], cols: list[str]) -> str:
 
 def markdown(study: Study, table: list[dict]) -> str:
     """The study at a glance: varied inputs, headline stresses, error estimate, status."""
-    head = (list(study.varied) + [SHORT[k] for k in HEADLINE]
+    head = (list(study.varied) + [SHORT[k] for k in HEADLINE] + list(SAFETY_SHORT.values())
             + ["edge N", "est. error %", "teeth", "status", "time s"])
     lines = ["| " + " | ".join(head) + " |", "|" + "---:|" * len(head)]
     for r in table:
         ok = r["status"] == "ok"
         cells = [_cell(r.get(x)) for x in study.varied]
         cells += [f"{r[k]:.1f}" if ok else "–" for k in HEADLINE]
+        cells += [f"{r[k]:.2f}" if ok and r.get(k) is not None else "–" for k in SAFETY_SHORT]
         edge = r.get("edge_contact.load_N")
         cells.append(f"{edge:.1f}" if ok and edge is not None else "–")
         est = r.get("error_estimate_pct")

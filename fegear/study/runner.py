@@ -101,7 +101,11 @@ def _run(study: Study, out: Path, workers: int | None, client, retry_failed: boo
     running.mkdir(parents=True, exist_ok=True)
     write_json(out / "study.json", study_json(study))
     done = finished(study, out, retry_failed)
-    todo = [c for c in study.cases if c.key not in done]
+    solves: dict[str, StudyCase] = {}  # one per key: cases apart in allowables alone share it
+    for c in study.cases:
+        if c.key not in done:
+            solves.setdefault(c.key, c)
+    todo = list(solves.values())
     if on_start is not None:
         on_start(len(done), len(todo))
     code = code_version()
@@ -111,7 +115,7 @@ def _run(study: Study, out: Path, workers: int | None, client, retry_failed: boo
         with _signals_raise():
             results = (_dask_results(todo, study, client) if client is not None
                        else _pool_results(todo, study, workers, running))
-            bar = _progress(len(study.cases), len(done), study.name, progress)
+            bar = _progress(len(done) + len(todo), len(done), study.name, progress)
             with closing(results), bar:
                 for case, record, files in results:
                     if record.get("code_version") not in (None, code):

@@ -9,7 +9,8 @@ half-plane (the default: about a second a position), and :mod:`.sector`, the ear
 that meshes a sector of each gear finely enough to resolve the contact (the reference it was
 checked against). :mod:`.teeth` chooses the teeth that can touch for both; :mod:`.estimate`
 solves a second mesh level for the discretisation error; :mod:`.report`, :mod:`.output` and
-:mod:`.plot` write what a designer reads. :func:`run_job` does all of it for ``fegear solve``
+:mod:`.plot` write what a designer reads; :mod:`.safety` divides allowable stresses by the
+results (safety factors). :func:`run_job` does all of it for ``fegear solve``
 and a study case.
 
 A light pair (25/24 teeth) at 20 N·m, coarse:
@@ -52,6 +53,8 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "pair": ("solve_pair", "solve_positions"),
     "teeth": ("choose_teeth", "candidate_data", "refuse_interference"),
     "estimate": ("error_estimate", "second_level_estimate"),
+    "safety": ("Allowables", "DEFAULT_ALLOWABLES", "SAFETY", "TOOTH_SAFETY", "allowables_of",
+               "safety_factor", "safety_factors", "with_safety"),
     "report": ("pair_summary", "pair_table", "cycle_rows", "cycle_summary", "cycle_table"),
     "output": ("write_pair_outputs", "write_cycle_outputs", "write_mesh_stiffness"),
     "stiffness": ("MeshStiffness", "read_mesh_stiffness", "mesh_stiffness_of_cycle"),

@@ -2,15 +2,16 @@
 
 ``fegear solve`` builds its options from :data:`SOLVE_INPUTS`, a study file's keys are its
 names, and a study case's cache key hashes every input at its value or default, so the three
-cannot drift apart. Each row carries its kind, default, unit, static range and help; ranges
-that depend on other inputs are checked by the objects the inputs build
+cannot drift apart; the allowable stresses, which only read the results, stay out of the key
+(:meth:`~fegear.checks.InputTable.keyed`). Each row carries its kind, default, unit, static
+range and help; ranges that depend on other inputs are checked by the objects the inputs build
 (:class:`~fegear.geometry.PairParameters`, :class:`~fegear.toothpair.SolveCase`).
 """
 
 from __future__ import annotations
 
 from ..checks import Input, InputTable
-from ..fe import MATERIAL_INPUTS
+from ..fe import ALLOWABLE_INPUTS, MATERIAL_INPUTS
 from ..geometry import PAIR_INPUTS, RENAMED  # noqa: F401  (RENAMED: for study files)
 
 #: mesh quality levels, coarsest first; each halves the element sizes of the one before
@@ -56,4 +57,4 @@ MODEL_INPUTS = (
 
 #: every input of ``fegear solve`` (and of a study case), in the order of ``--help``
 SOLVE_INPUTS = InputTable(PAIR_INPUTS, LOAD_INPUTS[:2], LOAD_INPUTS[2:], MATERIAL_INPUTS,
-                          MODEL_INPUTS)
+                          ALLOWABLE_INPUTS, MODEL_INPUTS)

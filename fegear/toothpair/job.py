@@ -14,19 +14,23 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .. import progress
+from ..fe import Allowables
 from ..geometry import admissible_pair
 from .case import SolveCase, cycle_positions
 from .inputs import QUALITY, SOLVE_INPUTS
+from .safety import DEFAULT_ALLOWABLES, allowables_of
 
 
 @dataclass(frozen=True)
 class Job:
-    """A checked solve: the case, the rolling angles (rad) to solve it at, and whether to
-    estimate the discretisation error with a second mesh level."""
+    """A checked solve: the case, the rolling angles (rad) to solve it at, whether to
+    estimate the discretisation error with a second mesh level, and the allowable stresses
+    the safety factors divide (they change no number of the solve)."""
 
     case: SolveCase
     betas: tuple[float, ...]
     estimate: bool
+    allowables: Allowables = DEFAULT_ALLOWABLES
 
 
 def prepare_job(values: Mapping[str, object]) -> Job:
@@ -49,7 +53,7 @@ def prepare_job(values: Mapping[str, object]) -> Job:
                      extra_pairs=v["extra-pairs"], tip_round=v["tip-round"], model=v["model"],
                      **kw)
     betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
-    return Job(case, tuple(betas), not v["no-estimate"])
+    return Job(case, tuple(betas), not v["no-estimate"], allowables_of(v))
 
 
 @dataclass(frozen=True)
@@ -91,11 +95,11 @@ def run_job(job: Job, out: Path | None, fields: bool = True,
         with progress.reporting(None):  # one stage, however the second solve goes
             estimate, other = second_level_estimate(sol, profile)
         estimate_s = time.perf_counter() - t1
-    summary = pair_summary(sol, estimate, time.perf_counter() - t0, other)
+    summary = pair_summary(sol, estimate, time.perf_counter() - t0, other, job.allowables)
     summary["estimate_s"] = estimate_s
     rows = None
     if len(sols) > 1:
-        rows = cycle_rows(sols)
+        rows = cycle_rows(sols, job.allowables)
         summary["cycle"] = {"positions": len(sols), "solve_s": cycle_s,
                             **cycle_summary(rows), "rows": rows}
     solve_s = time.perf_counter() - t0

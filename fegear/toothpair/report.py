@@ -5,12 +5,23 @@ from __future__ import annotations
 
 import math
 
+from ..fe import Allowables
 from .case import HEADLINE, PairSolution
+from .safety import (
+    ALLOWABLE_KEYS,
+    DEFAULT_ALLOWABLES,
+    SAFETY,
+    safety_factors,
+    smallest,
+    with_safety,
+)
 
 
 def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float | None = None,
-                 coarse_quality: str | None = None) -> dict:
-    """The JSON summary: inputs, headline stresses, per-tooth results and checks."""
+                 coarse_quality: str | None = None,
+                 allowables: Allowables = DEFAULT_ALLOWABLES) -> dict:
+    """The JSON summary: inputs, headline stresses and the safety factors at ``allowables``
+    (:mod:`.safety`), per-tooth results and checks."""
     c, p = sol.case, sol.case.params
     loaded = [t for t in sol.teeth if t.load_N > 0]
     peak = max(loaded, key=lambda t: t.p_max_MPa)
@@ -27,6 +38,7 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
                    "extra_pairs": c.extra_pairs,
                    "penalty_factor": c.penalty_factor},
         **sol.headline(),
+        **dict.fromkeys(SAFETY),           # with_safety fills them in
         "contact_peak_on_tip_round": peak.peak_on_round,
         "edge_contact": _edge_summary(loaded),
         "hertz_p0_MPa": peak.hertz_p0_MPa,
@@ -63,7 +75,45 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
         "timings_s": sol.timings_s,
         "wall_s": wall_s,
     }
-    return out
+    return with_safety(out, allowables)
+
+
+#: the pair's safety factors in the printed table; the per-tooth and cycle tables show the
+#: first three (S_F1, S_F2, S_H)
+SAFETY_LABELS = {"safety_bending_gear1": "S_F gear 1 (root σ1)",
+                 "safety_bending_gear2": "S_F gear 2 (root σ1)",
+                 "safety_contact": "S_H (peak pressure)",
+                 "safety_contact_flank": "S_H flank (flank only)"}
+TABLE_SAFETY = ("safety_bending_gear1", "safety_bending_gear2", "safety_contact")
+
+
+def _factor(s: float | None, width: int = 5) -> str:
+    """A safety factor for a table: two decimals, '-' where there is none (no load)."""
+    return f"{s:{width}.2f}" if s is not None else " " * (width - 1) + "-"
+
+
+def safety_table(summary: dict) -> list[str]:
+    """The pair's safety factors beside the allowables and the stresses they divide, and a
+    line where the tip round's pressure sets S_H or a factor is below 1."""
+    i = summary["inputs"]
+    allowable = {w: i[k] for w, k in ALLOWABLE_KEYS.items()}
+    lines = ["| safety factor [-]       |     S | allowable MPa | stress MPa |",
+             "|-------------------------|------:|--------------:|-----------:|"]
+    edge = summary["contact_peak_on_tip_round"]
+    for k, label in SAFETY_LABELS.items():
+        which, stress = SAFETY[k]
+        mark = "e" if edge and k == "safety_contact" else " "
+        lines.append(f"| {label:23s} | {_factor(summary[k])} | {allowable[which]:13.0f} | "
+                     f"{summary[stress]:9.1f}{mark} |")
+    notes = []
+    if edge:
+        notes.append("e: the peak pressure, and so S_H, sits on a tip round (EDGE CONTACT "
+                     "below); S_H flank is the flanks' own.")
+    low = [SAFETY_LABELS[k].split(" (")[0] for k in SAFETY
+           if summary[k] is not None and summary[k] < 1.0]
+    if low:
+        notes.append(f"{', '.join(low)} below 1: the stress exceeds the allowable.")
+    return lines + ([" ".join(notes)] if notes else [])
 
 
 def _edge_summary(loaded) -> dict:
@@ -98,11 +148,11 @@ def pair_table(summary: dict) -> str:
     ]
     for k, label in HEADLINE.items():
         lines.append(f"| {label:23s} | {summary[k]:7.1f} |    {e(k)} |")
-    lines += ["",
+    lines += ["", *safety_table(summary), "",
               "| tooth | clear. µm | load N | share | p_max MPa | p flank | p ref  | p edge "
-              "| edge N | b mm   | Hertz p0 | b/R*   | root1 | root2 |",
+              "| edge N | b mm   | Hertz p0 | b/R*   | root1 | root2 | S_F1  | S_F2  | S_H   |",
               "|------:|---------:|-------:|------:|----------:|--------:|-------:|-------:"
-              "|-------:|-------:|---------:|-------:|------:|------:|"]
+              "|-------:|-------:|---------:|-------:|------:|------:|------:|------:|------:|"]
     for t in summary["teeth"]:
         if t["load_N"] <= 0:
             continue
@@ -119,7 +169,9 @@ def pair_table(summary: dict) -> str:
                      f"{t['flank_pressure_MPa']:7.1f} | {ref} | {p_edge} | {n_edge} | "
                      f"{t['half_width_mm']:.3f}{coarse} "
                      f"| {hz} | {br} | {t['root_stress_gear1_MPa']:5.0f} | "
-                     f"{t['root_stress_gear2_MPa']:5.0f} |")
+                     f"{t['root_stress_gear2_MPa']:5.0f} | "
+                     + " | ".join(_factor(t.get(k)) for k in TABLE_SAFETY)
+                     + " |")
     unloaded = [t["tooth"] for t in summary["teeth"] if t["load_N"] <= 0]
     edge = summary["edge_contact"]
     if edge["teeth"]:
@@ -164,15 +216,16 @@ def _estimate_time(summary: dict) -> str:
             f"{summary['estimate_s']:.2f}")
 
 
-def cycle_rows(sols) -> list[dict]:
+def cycle_rows(sols, allowables: Allowables = DEFAULT_ALLOWABLES) -> list[dict]:
     """One row per position of a :func:`fegear.toothpair.solve_positions` run: headline
-    stresses, transmission error, stiffness, teeth in contact and ``share_<tooth>`` for every
-    paired tooth."""
+    stresses, the safety factors at ``allowables``, transmission error, stiffness, teeth in
+    contact and ``share_<tooth>`` for every paired tooth."""
     teeth = sorted({t.tooth for s in sols for t in s.teeth})
     rows = []
     for s in sols:
         share = {t.tooth: t.load_share for t in s.teeth}
         rows.append({"position_deg": math.degrees(s.case.beta), **s.headline(),
+                     **safety_factors(s.headline(), allowables),
                      "edge_load_N": sum(t.edge_load_N for t in s.teeth),
                      "transmission_error_urad": 1e6 * (s.rotation - s.first_touch),
                      "rotation_urad": 1e6 * s.rotation, "first_touch_urad": 1e6 * s.first_touch,
@@ -184,12 +237,14 @@ def cycle_rows(sols) -> list[dict]:
 
 
 def cycle_summary(rows: list[dict]) -> dict:
-    """Extremes over the cycle: the largest of each headline stress and where it occurs,
-    transmission-error and stiffness range, teeth in contact."""
+    """Extremes over the cycle: the largest of each headline stress and where it occurs, the
+    smallest safety factors and where, transmission-error and stiffness range, teeth in
+    contact."""
     out = {}
     for k in HEADLINE:
         worst = max(rows, key=lambda r: r[k])
         out[k] = {"max": worst[k], "at_position_deg": worst["position_deg"]}
+    out.update(smallest(rows))
     for k in ("transmission_error_urad", "mesh_stiffness_Nm_per_rad"):
         v = [r[k] for r in rows]
         out[k] = {"min": min(v), "max": max(v), "mean": sum(v) / len(v),
@@ -200,19 +255,28 @@ def cycle_summary(rows: list[dict]) -> dict:
 
 
 def cycle_table(rows: list[dict]) -> str:
-    """Markdown table of a cycle (the `fegear solve --positions` output)."""
+    """Markdown table of a cycle (the `fegear solve --positions` output) and the smallest
+    safety factors over it."""
     share_keys = [k for k in rows[0] if k.startswith("share_")]
     shown = [k for k in share_keys if any(r[k] > 0 for r in rows)]
-    head = ("| β [deg] | root1 | root2 | p_max | p flank | edge N | vM max | TE µrad | "
-            "k N·m/rad | teeth | " + " | ".join(f"tooth {k[6:]}" for k in shown) + " |")
-    lines = [head, "|" + "---:|" * (10 + len(shown))]
+    head = ("| β [deg] | root1 | root2 | p_max | p flank | edge N | vM max | S_F1 | S_F2 | "
+            "S_H | TE µrad | k N·m/rad | teeth | "
+            + " | ".join(f"tooth {k[6:]}" for k in shown) + " |")
+    lines = [head, "|" + "---:|" * (13 + len(shown))]
     for r in rows:
         lines.append(
             f"| {r['position_deg']:7.3f} | {r['root_stress_gear1_MPa']:5.1f} | "
             f"{r['root_stress_gear2_MPa']:5.1f} | {r['contact_pressure_MPa']:6.0f} | "
             f"{r['flank_contact_pressure_MPa']:6.0f} | {r['edge_load_N']:6.1f} | "
-            f"{r['von_mises_max_MPa']:6.0f} | {r['transmission_error_urad']:7.1f} | "
+            f"{r['von_mises_max_MPa']:6.0f} | "
+            + "".join(f"{_factor(r.get(k), 4)} | " for k in TABLE_SAFETY)
+            + f"{r['transmission_error_urad']:7.1f} | "
             f"{r['mesh_stiffness_Nm_per_rad']:.4g} | {r['teeth_in_contact']} | "
             + " | ".join(f"{r[k]:.3f}" if abs(r[k]) >= 5e-4 else "0.000"
                          for k in shown) + " |")
+    least = smallest(rows)
+    if any(v["min"] is not None for v in least.values()):
+        lines += ["", "smallest safety factors over the cycle: " + ", ".join(
+            f"{SAFETY_LABELS[k].split(' (')[0]} {v['min']:.2f} at β {v['at_position_deg']:.3f}°"
+            for k, v in least.items() if v["min"] is not None)]
     return "\n".join(lines)

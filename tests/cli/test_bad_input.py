@@ -34,6 +34,8 @@ PAIR = {
 }
 MATERIAL = {"--thickness": ["0", "-5", "1e300"], "--E": ["0", "-206000", "1e300"],
             "--nu": ["-0.1", "0.5", "3"]}
+ALLOWABLE = {"--allowable-bending": ["0", "-558", "1e300"],
+             "--allowable-contact": ["0", "-745", "1e300"]}
 OPTIONS = {
     "profile": {**PAIR, "--chord-error": ["0", "-1e-4", "1"], "--positions": ["0", "-16",
                                                                               "100000"]},
@@ -42,7 +44,7 @@ OPTIONS = {
               "--quality": ["0", "-8", "1e9", "best"],
               "--penalty-factor": ["0", "-300", "1e300"]},
     "solve": {**PAIR, "--torque": ["0", "-200", "1e300"], "--position": ["400", "-400"],
-              "--positions": ["1", "0", "-24", "100000"], **MATERIAL,
+              "--positions": ["1", "0", "-24", "100000"], **MATERIAL, **ALLOWABLE,
               "--quality": ["best"], "--model": ["wedge"], "--tip-round": ["-0.25", "100"],
               "--rim1": ["0", "-6", "1e300"], "--rim2": ["0", "-6", "1e300"],
               "--extra-teeth": ["0", "-2", "1000"], "--extra-pairs": ["-1", "1000"],
