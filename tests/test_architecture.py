@@ -161,7 +161,7 @@ def test_heavy_libraries_are_imported_only_where_they_are_used():
 
 def _loaded_after(code: str) -> list[str]:
     heavy = ("numpy", "scipy", "skfem", "gmsh", "meshio", "matplotlib", "pyvista", "pyarrow",
-             "distributed")
+             "distributed", "pandas")
     probe = (f"import sys\n{code}\n"
              f"print(' '.join(m for m in {heavy!r} if m in sys.modules))")
     r = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,

@@ -5,7 +5,8 @@ A study file (:mod:`.file`) is a base case and sweeps over any ``fegear solve`` 
 case is checked as ``fegear solve`` checks it before anything runs, and a case that two sweeps
 produce runs once. :func:`run_study` (:mod:`.runner`) solves the missing cases, each stored as
 an atomic record keyed by its inputs and the code version (:mod:`.records`), so a killed study
-resumes where it stopped; :mod:`.results` writes the Parquet/CSV/markdown table and the plots.
+resumes where it stopped; :mod:`.results` writes the Parquet/CSV/markdown table and the plots,
+and :func:`load_results` (:mod:`.frame`) reads the table back as a pandas DataFrame.
 
 >>> from pathlib import Path
 >>> from fegear.study import build_study
@@ -26,5 +27,6 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "records": ("finished", "record_path"),
     "runner": ("run_study", "run_case", "StudyReport", "StudyInterrupted"),
     "results": ("write_results", "rows"),
+    "frame": ("load_results",),
     "plot": ("study_png",),
 })

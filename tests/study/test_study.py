@@ -145,6 +145,16 @@ def test_key_follows_inputs_outputs_and_code_not_spelling():
     assert case_key({"m": 2.5}, Outputs(), "v1") != k
     assert case_key({"m": 2.0}, Outputs(vtu=True), "v1") != k
     assert case_key({"m": 2.0}, Outputs(), "v2") != k
+    # the allowable stresses only read the results: they leave the key (and the cached
+    # solve) alone
+    assert case_key({"m": 2.0, "allowable-bending": 400.0, "allowable-contact": 1000.0},
+                    Outputs(), "v1") == k
+
+
+def test_cases_apart_in_allowables_alone_share_a_key_not_a_row(tmp_path):
+    s = _study(tmp_path, "[[sweep]]\nallowable-contact = [700, 800]\nm = [1.5, 2.0]\n")
+    assert len(s.cases) == 4 and len({c.key for c in s.cases}) == 2
+    assert s.varied == ("m", "allowable-contact")
 
 
 @pytest.mark.parametrize("text, words", [
@@ -386,3 +396,79 @@ def test_kept_vtu_files_arrive_beside_the_record(tmp_path):
     assert mesh.points.shape[0] > 1000 and "von_mises" in mesh.point_data
     again = run_study(study, tmp_path / "out", workers=1, progress=False)
     assert (again.found, again.computed) == (1, 0)
+
+
+# --- the results: safety factors from stored stresses, the pandas loader ----------------------
+
+def test_new_allowables_recompute_the_factors_not_the_cases(pool_run, tmp_path):
+    """The finished study with other allowables in its base and a sweep over the bending one:
+    every case is found on disk, none is solved again, the stresses stay, the factors follow
+    the file."""
+    import shutil
+
+    from fegear.study.runner import run_study
+
+    out = tmp_path / "out"
+    shutil.copytree(pool_run["out"], out)
+    text = SMALL.replace("[base]", "[base]\nallowable-contact = 1000\nallowable-bending = 400")
+    text += "[[sweep]]\ntorque = 10\nallowable-bending = [300, 600]\n"
+    study = _study(tmp_path, text, "small.toml")
+    assert len(study.cases) == N_SMALL + 2 and len({c.key for c in study.cases}) == N_SMALL
+    report = run_study(study, out, workers=1, progress=False)
+    assert (report.found, report.computed) == (N_SMALL, 0)
+    before = {r["case"]: r for r in _table(pool_run["out"])}
+    after = _table(out)
+    assert len(after) == N_SMALL + 2
+    for r in after:
+        if r["status"] != "ok":
+            assert r["safety_bending_gear1"] == ""
+            continue
+        old = before[r["case"] if int(r["case"]) < N_SMALL else "1"]   # torque 10: case 1
+        for k in ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa"):
+            assert r[k] == old[k]
+        bending = float(r["allowable-bending"])
+        assert bending == (400.0 if int(r["case"]) < N_SMALL else 300.0 + 300.0 * (
+            int(r["case"]) - N_SMALL))
+        assert float(r["safety_bending_gear1"]) == pytest.approx(
+            bending / float(r["root_stress_gear1_MPa"]), rel=1e-12)
+        assert float(r["safety_contact"]) == pytest.approx(
+            1000.0 / float(r["contact_pressure_MPa"]), rel=1e-12)
+        assert float(old["safety_contact"]) == pytest.approx(
+            745.0 / float(old["contact_pressure_MPa"]), rel=1e-12)
+        teeth = json.loads(r["teeth"])
+        assert all(t["safety_bending_gear1"] == pytest.approx(
+            bending / t["root_stress_gear1_MPa"]) for t in teeth if t["load_N"] > 0)
+    assert "S_F g1" in (out / "results.md").read_text()
+    assert not (out / "plots" / "allowable-bending.png").exists()
+
+
+def test_load_results_is_one_row_per_case_with_inputs_results_and_failures(pool_run):
+    import pandas as pd
+
+    from fegear.study import load_results
+
+    df = load_results(pool_run["out"])
+    assert isinstance(df, pd.DataFrame) and len(df) == N_SMALL
+    assert list(df["case"]) == list(range(N_SMALL))
+    for column in ("key", "status", "error", "torque", "tip-clearance", "allowable-bending",
+                   "root_stress_gear1_MPa", "contact_pressure_MPa", "safety_bending_gear1",
+                   "safety_contact", "transmission_error_urad", "teeth_in_contact"):
+        assert column in df.columns, column
+    assert list(df["status"]) == ["ok"] * 4 + ["failed"]
+    failed = df[df["status"] == "failed"].iloc[0]
+    assert failed["error"].startswith("GeometryError") and pd.isna(failed["safety_contact"])
+    ok = df[df["status"] == "ok"]
+    assert list(ok["torque"]) == [5.0, 10.0, 15.0, 20.0]
+    assert (ok["safety_bending_gear1"] * ok["root_stress_gear1_MPa"]).to_numpy() == \
+        pytest.approx(558.0)
+    assert ok["root_stress_gear1_MPa"].is_monotonic_increasing
+    assert ok["safety_contact"].is_monotonic_decreasing
+    # the Parquet file itself gives the same frame
+    assert load_results(pool_run["out"] / "results.parquet").equals(df)
+
+
+def test_load_results_of_a_directory_without_results_names_it(tmp_path):
+    from fegear.study import load_results
+
+    with pytest.raises(StudyError, match="no study results there"):
+        load_results(tmp_path)
