@@ -29,6 +29,14 @@ A light pair (25/24 teeth) at 20 N·m, coarse:
 >>> sol.checks.balance_error < 1e-6       # the torque is carried by the contact pressure
 True
 
+Safety factors, allowable / stress, at 42CrMo's allowables (558 MPa bending, 745 contact):
+S_H divides by the peak pressure, here on tooth 6's tip round (the flank alone gives 2.4):
+
+>>> from fegear.toothpair import pair_summary
+>>> s = pair_summary(sol)
+>>> [round(s[k], 2) for k in ("safety_bending_gear1", "safety_contact", "safety_contact_flank")]
+[7.49, 0.93, 2.4]
+
 The same inputs as ``fegear solve`` takes them, by name (defaults for the rest):
 
 >>> from fegear.toothpair import SOLVE_INPUTS, prepare_job
