@@ -41,11 +41,11 @@ MATERIAL_INPUTS = (
 #: defaults are 42CrMo's (quenched and tempered): σ_FP 558 MPa in bending, σ_HP 745 MPa in
 #: contact. They only read the results (``post``): no solve depends on them.
 ALLOWABLE_INPUTS = (
-    Input("allowable-bending", float, 558.0, "allowable root (bending) stress σ_FP for the "
-          "bending safety factors S_F = σ_FP / root σ1 (default: 42CrMo)", "MPa",
+    Input("allowable-bending", float, 558.0, "allowable root stress σ_FP of the material "
+          "(42CrMo) for the bending safety factors S_F = σ_FP / root σ1", "MPa",
           low=0.0, high=1e5, low_open=True, post=True),
-    Input("allowable-contact", float, 745.0, "allowable contact pressure σ_HP for the contact "
-          "safety factor S_H = σ_HP / peak contact pressure (default: 42CrMo)", "MPa",
+    Input("allowable-contact", float, 745.0, "allowable contact pressure σ_HP of the material "
+          "(42CrMo) for the contact safety factor S_H = σ_HP / peak contact pressure", "MPa",
           low=0.0, high=1e5, low_open=True, post=True),
 )
 _ROW = {row.name: row for row in (*MATERIAL_INPUTS, *ALLOWABLE_INPUTS)}

@@ -189,7 +189,8 @@ def plot_input(path: Path, study: Study, table: list[dict], x: str) -> Path | No
 
     ok = [r for r in table if r["status"] == "ok"]
     tied = _tied(study, ok, x)
-    others = [v for v in study.varied if v != x and v not in tied]
+    # an allowable changes no stress: cases apart in allowables alone are one point (one key)
+    others = [v for v in study.varied if v != x and v not in tied and not SOLVE_INPUTS[v].post]
     groups: dict[tuple, list[dict]] = {}
     for r in ok:
         groups.setdefault(tuple(r[o] for o in others), []).append(r)
@@ -197,7 +198,7 @@ def plot_input(path: Path, study: Study, table: list[dict], x: str) -> Path | No
     for level, rs in groups.items():
         if len({r[x] for r in rs}) < 2:
             continue
-        rs = sorted(rs, key=lambda r: r[x])
+        rs = sorted({r["key"]: r for r in rs}.values(), key=lambda r: r[x])
         label = ", ".join([f"{o} {_cell(v)}" for o, v in zip(others, level)]
                           + [f"{o} with {x}" for o in tied]) or "all"
         series = {}
