@@ -1,6 +1,6 @@
 """The examples are pinned by their values, as scikit-fem's tests/test_examples.py pins its
-examples: every stage's walkthrough (the docstring of its ``__init__``) and every Python example
-of the README run as doctests."""
+examples: every stage's walkthrough (the docstring of its ``__init__``), every Python example of the
+README and every Python session (``>>>``) of docs/ run as doctests."""
 
 import doctest
 import importlib
@@ -32,6 +32,10 @@ def test_stage_walkthrough(stage):
 
 
 BLOCKS = re.findall(r"```python\n(.*?)```", README.read_text(), flags=re.S)
+#: the docs' Python examples written as sessions (``>>>``); the others show code to adapt
+DOCS = [(path.name, block) for path in sorted((README.parent / "docs").glob("*.md"))
+        for block in re.findall(r"```python\n(.*?)```", path.read_text(), flags=re.S)
+        if block.lstrip().startswith(">>> ")]
 
 
 def test_every_readme_python_example_is_pinned():
@@ -43,4 +47,15 @@ def test_every_readme_python_example_is_pinned():
 @pytest.mark.parametrize("block", BLOCKS, ids=[f"block{i}" for i in range(len(BLOCKS))])
 def test_readme_example(block):
     test = doctest.DocTestParser().get_doctest(block, {}, "README", str(README), 0)
+    assert _run(test).failed == 0
+
+
+def test_the_moved_examples_are_still_pinned():
+    assert {name for name, _ in DOCS} >= {"geometry.md", "validation.md"}
+
+
+@pytest.mark.parametrize("name, block", DOCS, ids=[f"{n}-{i}" for i, (n, _) in enumerate(DOCS)])
+def test_docs_example(name, block):
+    path = README.parent / "docs" / name
+    test = doctest.DocTestParser().get_doctest(block, {}, name, str(path), 0)
     assert _run(test).failed == 0
