@@ -44,7 +44,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "flexibility": ("WindowFlexibility",),
     "stress": ("StressField", "recover"),
     "hertz": ("HertzLine", "line_contact"),
-    "vtu": ("vtu_fields", "write_vtu"),
+    "vtu": ("vtu_fields", "write_vtu", "written_name"),
     "solvers": ("Factor", "SingularError"),
     "cyclic": ("CyclicBody", "assemble_cyclic"),
     "probe": ("Probe",),

@@ -76,7 +76,12 @@ def run_job(job: Job, out: Path | None, fields: bool = True,
     from ..files import prepare_dir
     from ..geometry import gear1_profile
     from .estimate import second_level_estimate
-    from .output import write_cycle_outputs, write_mesh_stiffness, write_pair_outputs
+    from .output import (
+        write_cycle_outputs,
+        write_cycle_series,
+        write_mesh_stiffness,
+        write_pair_outputs,
+    )
     from .pair import solve_positions
     from .report import cycle_rows, cycle_summary, pair_summary
 
@@ -109,6 +114,8 @@ def run_job(job: Job, out: Path | None, fields: bool = True,
         out = prepare_dir(out)
         if rows:
             files.update(write_mesh_stiffness(out, rows, job.case))
+        if rows and fields:
+            files.update(write_cycle_series(sols, out))
         if rows and pictures:
             i = summary["inputs"]
             files.update(write_cycle_outputs(

@@ -7,10 +7,12 @@ into that frame; invariants (von Mises, σ1, σ2) need no rotation.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
+from xml.sax.saxutils import quoteattr
 
 from ..fe import write_vtu
-from ..files import write_csv, write_json
+from ..files import write_atomic, write_csv, write_json
 from .case import HEADLINE, PairSolution
 from .plot import cycle_png, von_mises_png
 
@@ -21,6 +23,30 @@ def write_cycle_outputs(rows: list[dict], out: Path, title: str) -> dict[str, Pa
     files = {"csv": write_csv(out / "cycle.csv", cols, ([r[c] for c in cols] for r in rows))}
     files["cycle_png"] = cycle_png(out / "cycle.png", rows, title, HEADLINE)
     return files
+
+
+#: sectors written either side of the loaded ones at each position of a cycle's series
+SERIES_AROUND = 1
+
+
+def write_cycle_series(sols, out: Path) -> dict[str, Path]:
+    """A time series over the rolling angle for ParaView: per position both gears' loaded
+    sectors (and :data:`SERIES_AROUND` either side) as cycle/gear1_000.vtu, …, and cycle.pvd,
+    the collection that lists them with β in degrees as their time."""
+    folder = out / "cycle"
+    folder.mkdir(exist_ok=True)
+    entries = []
+    for k, sol in enumerate(sols):
+        beta = math.degrees(sol.case.beta)
+        for part, b in enumerate(sol.detail.body_fields(around=SERIES_AROUND)):
+            name = f"{b.name}_{k:03d}.vtu"
+            write_vtu(folder / name, b.points, b.cells, b.data)
+            entries.append(f'    <DataSet timestep="{beta:.9g}" part="{part}" '
+                           f'name={quoteattr(b.name)} file={quoteattr("cycle/" + name)}/>')
+    xml = "\n".join(['<?xml version="1.0"?>',
+                     '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
+                     "  <Collection>", *entries, "  </Collection>", "</VTKFile>", ""])
+    return {"pvd": write_atomic(out / "cycle.pvd", lambda tmp: tmp.write_text(xml))}
 
 
 def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool = True,

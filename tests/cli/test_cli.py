@@ -123,8 +123,10 @@ def test_solve_writes_vtu_png_and_summary(tmp_path):
     for name in ("gear1", "gear2"):
         m = meshio.read(tmp_path / f"{name}.vtu")
         assert "triangle6" in m.cells_dict
-        assert {"displacement", "von_mises", "s1", "contact_pressure"} <= set(m.point_data)
-        assert m.point_data["contact_pressure"].max() > 0
+        assert {"displacement_mm", "von_mises_MPa", "s1_MPa", "sxx_MPa",
+                "contact_pressure_MPa"} <= set(m.point_data)
+        assert all(k.endswith(("_mm", "_MPa")) for k in m.point_data)   # ParaView shows units
+        assert m.point_data["contact_pressure_MPa"].max() > 0
     assert (tmp_path / "von_mises.png").stat().st_size > 10_000
 
 

@@ -213,10 +213,11 @@ def test_vtu_round_trip(convex, tmp_path):
         assert np.array_equal(back.cells[0].data, body.mesh.dofs.element_dofs.T)
         assert np.abs(back.points[:, :2] - body.mesh.doflocs.T).max() <= 1e-12
         u = convex.solution.displacements[i].reshape(-1, 2)
-        assert np.abs(back.point_data["displacement"][:, :2] - u).max() <= 1e-12 * np.abs(u).max()
+        disp = back.point_data["displacement_mm"][:, :2]
+        assert np.abs(disp - u).max() <= 1e-12 * np.abs(u).max()
         vm = convex.stresses[i].von_mises
-        assert np.abs(back.point_data["von_mises"] - vm).max() <= 1e-12 * vm.max()
-    pressure = meshio.read(files["disk1"]).point_data["contact_pressure"]
+        assert np.abs(back.point_data["von_mises_MPa"] - vm).max() <= 1e-12 * vm.max()
+    pressure = meshio.read(files["disk1"]).point_data["contact_pressure_MPa"]
     assert pressure.max() == pytest.approx(convex.p_max, rel=0.01)
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
 

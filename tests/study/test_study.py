@@ -393,7 +393,7 @@ def test_kept_vtu_files_arrive_beside_the_record(tmp_path):
     assert sorted(rec["files"]) == ["gear1.vtu", "gear1_contact.vtu", "gear2.vtu",
                                     "gear2_contact.vtu"]
     mesh = meshio.read(rec["files"]["gear1.vtu"])
-    assert mesh.points.shape[0] > 1000 and "von_mises" in mesh.point_data
+    assert mesh.points.shape[0] > 1000 and "von_mises_MPa" in mesh.point_data
     again = run_study(study, tmp_path / "out", workers=1, progress=False)
     assert (again.found, again.computed) == (1, 0)
 

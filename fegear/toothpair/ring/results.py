@@ -142,19 +142,23 @@ class RingDetail:
     solution: RingContactSolution = field(repr=False)
     stresses: RingStresses = field(repr=False)
 
-    def body_fields(self) -> tuple[BodyField, ...]:
-        """Both gears whole, in the fixed frame at the solved position: every sector's field
-        and nodal stresses, and the contact pressure on the profile nodes."""
+    def body_fields(self, around: int | None = None) -> tuple[BodyField, ...]:
+        """Both gears in the fixed frame at the solved position: every sector's field and
+        nodal stresses, and the contact pressure on the profile nodes. Whole gears, or with
+        ``around`` only the sectors that carry pressure and ``around`` sectors either side
+        (a mesh cycle's series: a tenth of the size)."""
         out = []
         for g, side in enumerate(self.model.gears):
             turn, offset = self._placement(g)
             loads = self.contact.loads[g]
-            fields = side.fields(loads, self.solution.pressure, range(side.count))
+            pressure = self._nodal_pressure(g)
+            sectors = range(side.count) if around is None else sorted(
+                {(k + d) % side.count for k in pressure for d in range(-around, around + 1)})
+            fields = side.fields(loads, self.solution.pressure, sectors)
             m = side.body.mesh
             n = m.doflocs.shape[1]
             points, cells, parts = [], [], []
-            pressure = self._nodal_pressure(g)
-            for k in range(side.count):
+            for j, k in enumerate(sectors):
                 u = fields[k]
                 s = recover(side.body, u)
                 data = vtu_fields(u, s, {"contact_pressure": pressure.get(k, np.zeros(n))})
@@ -162,7 +166,7 @@ class RingDetail:
                 data["displacement"][:, :2] = rotate(data["displacement"][:, :2], angle)
                 data.update(s.turned(angle))
                 points.append(rotate(m.doflocs.T, angle) + offset)
-                cells.append(m.dofs.element_dofs.T + k * n)
+                cells.append(m.dofs.element_dofs.T + j * n)
                 parts.append(data)
             data = {key: np.concatenate([d[key] for d in parts]) for key in parts[0]}
             out.append(BodyField(side.body.name, np.vstack(points), np.vstack(cells), data))

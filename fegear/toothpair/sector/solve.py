@@ -180,9 +180,10 @@ class SectorDetail:
     stresses: tuple
     root_zones: tuple[np.ndarray, np.ndarray]
 
-    def body_fields(self) -> tuple[BodyField, ...]:
+    def body_fields(self, around: int | None = None) -> tuple[BodyField, ...]:
         """Both sectors in the fixed frame with displacement, stresses (components turned into
-        the fixed frame) and contact pressure."""
+        the fixed frame) and contact pressure (``around``: no effect, the sectors are the
+        loaded teeth already)."""
         from ...contact import nodal_pressure
         from ...fe import vtu_fields
 
