@@ -10,13 +10,15 @@ from ..figures import pyplot, save_png
 
 
 def pair_png(path: Path, gear1: np.ndarray, gear2: np.ndarray, e: float, r0: float,
-             title: str, zoom_half_width: float, relief=()) -> Path:
+             title: str, zoom_half_width: float, relief=(), teeth=(),
+             tip_radius: float | None = None) -> Path:
     """Draw the assembled pair at β = 0 (fixed frame) with a zoom on the pitch-point teeth,
     and with a tip relief (``relief``: :meth:`~.gear1.Gear1Profile.relief_chart`) its profile
     chart.
 
     ``gear1``, ``gear2``: closed profiles in their own frames (mm); gear 1 is drawn about
-    ``(0, e)``.
+    ``(0, e)``. ``teeth``: (tooth number, angle of its centre from +y about gear 1's centre,
+    deg) of gear 1's teeth, numbered in the zoom inside their tips (``tip_radius``, mm).
     """
     plt = pyplot()
     from matplotlib.patches import PathPatch
@@ -60,10 +62,29 @@ def pair_png(path: Path, gear1: np.ndarray, gear2: np.ndarray, e: float, r0: flo
     az.set_ylim(r0 - 0.6 * zoom_half_width, r0 + 0.6 * zoom_half_width)
     az.plot([0], [r0], "k.", ms=5)
     az.annotate("pitch point", (0, r0), textcoords="offset points", xytext=(6, 6), fontsize=8)
-    az.set_title("zoom on the pitch-point teeth (β = 0)", fontsize=9)
+    az.set_title("zoom on the pitch-point teeth (β = 0), gear 1's teeth numbered", fontsize=9)
+    for number, x in tooth_labels(teeth, e, tip_radius or r0, 0.35 * zoom_half_width / 4):
+        if abs(x[0]) < 0.95 * zoom_half_width and abs(x[1] - r0) < 0.55 * zoom_half_width:
+            az.text(*x, str(number), ha="center", va="center", fontsize=9, color="#a34a16",
+                    weight="bold", zorder=3, clip_on=True)
+    az.text(0.02, 0.04, "gear 1 (external)", transform=az.transAxes, fontsize=9,
+            color="#a34a16")
+    az.text(0.02, 0.94, "gear 2 (internal)", transform=az.transAxes, fontsize=9,
+            color="#1f4e8c")
     fig.tight_layout()
 
     return save_png(fig, path, 130)
+
+
+def tooth_labels(teeth, e: float, tip_radius: float, depth: float):
+    """(number, where) of each gear-1 tooth's label: ``depth`` (mm) inside its tip on its
+    centre line, fixed frame at β = 0 (``teeth``: (number, angle from +y, deg))."""
+    out = []
+    for number, deg in teeth:
+        a = np.radians(deg)
+        r = tip_radius - depth
+        out.append((number, np.array([-r * np.sin(a), e + r * np.cos(a)])))
+    return out
 
 
 def _relief_chart(ax, charts) -> None:

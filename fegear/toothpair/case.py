@@ -153,6 +153,19 @@ class BodyField:
 
 
 @dataclass(frozen=True)
+class FlankPressure:
+    """The contact pressure along one loaded gear-1 tooth: arc length along its profile ``s``
+    (mm, increasing with the polar angle), pressure (MPa), whether each point lies on the tip
+    round, and the points (n, 2, fixed frame, mm)."""
+
+    tooth: int
+    s: np.ndarray
+    pressure: np.ndarray
+    on_round: np.ndarray
+    points: np.ndarray
+
+
+@dataclass(frozen=True)
 class ContactZone:
     """Where the highest contact stress sits (fixed frame, mm), the contact's half-width there
     (mm) and a label."""
@@ -169,6 +182,8 @@ class SolutionDetail(Protocol):
     def body_fields(self, around: int | None = None) -> tuple[BodyField, ...]: ...
 
     def peak_fields(self) -> tuple[BodyField, ...]: ...
+
+    def flank_pressures(self) -> tuple[FlankPressure, ...]: ...
 
     def contact_zone(self) -> ContactZone: ...
 

@@ -14,7 +14,7 @@ from xml.sax.saxutils import quoteattr
 from ..fe import write_vtu
 from ..files import write_atomic, write_csv, write_json
 from .case import HEADLINE, PairSolution
-from .plot import cycle_png, von_mises_png
+from .plot import cycle_png, flank_pressure_png, root_stress_png, von_mises_png
 
 
 def write_cycle_outputs(rows: list[dict], out: Path, title: str) -> dict[str, Path]:
@@ -52,7 +52,8 @@ def write_cycle_series(sols, out: Path) -> dict[str, Path]:
 def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool = True,
                        pictures: bool = True) -> dict[str, Path]:
     """gear1.vtu, gear2.vtu and the ring model's contact submodels (gear1_contact.vtu, …;
-    fixed frame; ``fields``), von_mises.png (``pictures``) and summary.json in ``out``."""
+    fixed frame; ``fields``), von_mises.png, flank_pressure.png and root_stress.png
+    (``pictures``) and summary.json in ``out``."""
     files = {}
     bodies = sol.detail.body_fields() if fields or pictures else ()
     peaks = sol.detail.peak_fields() if fields or pictures else ()
@@ -61,6 +62,10 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
             files[b.name] = write_vtu(out / f"{b.name}.vtu", b.points, b.cells, b.data)
     if pictures:
         files["png"] = von_mises_png(out / "von_mises.png", sol, bodies, peaks)
+        flank = flank_pressure_png(out / "flank_pressure.png", sol, summary)
+        if flank is not None:
+            files["flank_png"] = flank
+        files["root_png"] = root_stress_png(out / "root_stress.png", sol, summary)
     summary = {**summary, "files": {**summary.get("files", {}),
                                     **{k: str(v) for k, v in files.items()}}}
     files["summary"] = write_json(out / "summary.json", summary)

@@ -56,3 +56,68 @@ def test_pyvista_reads_the_series_as_time(cycle):
     reader.set_active_time_value(reader.time_values[1])
     blocks = reader.read()
     assert blocks.n_blocks == 2 and blocks[0].n_points > 1000
+
+
+PNG = b"\x89PNG\r\n\x1a\n"
+
+
+def test_every_picture_is_written(cycle):
+    out, result = cycle
+    for name in ("von_mises.png", "flank_pressure.png", "root_stress.png", "cycle.png"):
+        data = (out / name).read_bytes()
+        assert data.startswith(PNG) and len(data) > 20_000, name
+    assert {"png", "flank_png", "root_png", "cycle_png", "pvd"} <= set(result.files)
+
+
+@pytest.fixture(scope="module")
+def solved(baseline, baseline_ring):
+    from fegear.toothpair import SolveCase, solve_pair
+
+    return solve_pair(SolveCase(baseline, quality="coarse"), model=baseline_ring)
+
+
+def test_the_root_hot_spots_are_the_reported_root_stresses(solved):
+    """The marks on the von Mises picture sit where each gear's reported root stress is."""
+    from fegear.toothpair.plot import root_hot_spots
+
+    spots = root_hot_spots(solved, solved.detail.body_fields())
+    assert [s.gear for s in spots] == [1, 2]
+    for s in spots:
+        assert s.value == pytest.approx(solved.root_stress[s.gear - 1], rel=0.01)
+
+
+def test_the_flank_curves_peak_at_the_reported_pressures(solved):
+    from fegear.toothpair.plot import pressure_curve
+
+    teeth = {t.tooth: t for t in solved.teeth}
+    flanks = solved.detail.flank_pressures()
+    assert sorted(f.tooth for f in flanks) == sorted(t.tooth for t in solved.teeth
+                                                      if t.load_N > 0)
+    for f in flanks:
+        t = teeth[f.tooth]
+        curve = pressure_curve(f, t)
+        assert f.pressure.max() == pytest.approx(t.p_max_MPa, rel=1e-6)
+        lo, hi = curve.window_um
+        loaded = curve.s_um[f.pressure > 0]
+        assert lo <= loaded.min() and loaded.max() <= hi      # the window shows the contact
+        if curve.hertz is not None:
+            assert curve.hertz.max() == pytest.approx(t.hertz_p0_MPa, rel=0.02)
+
+
+def test_the_tooth_labels_of_pair_png_sit_on_their_teeth(baseline):
+    """Each label lies inside gear 1 and nearest to its own tooth's centre line."""
+    from fegear.geometry import Gear1Profile, ToothContact
+    from fegear.geometry.plot import tooth_labels
+
+    g1 = Gear1Profile(baseline)
+    teeth = ToothContact(baseline, g1).state(0.0).teeth
+    tip = float(g1.radius(np.array([g1.tooth_center]))[0])
+    labels = tooth_labels([(t.tooth, t.position_deg) for t in teeth], baseline.e, tip, 0.3)
+    for (number, x), t in zip(labels, teeth):
+        assert number == t.tooth
+        assert np.hypot(x[0], x[1] - baseline.e) == pytest.approx(tip - 0.3)
+        angle = np.degrees(np.arctan2(-x[0], x[1] - baseline.e))
+        assert angle == pytest.approx(t.position_deg, abs=1e-9)
+    # at β = 0 the first tooth to touch turning + (11) sits just left of the pitch point
+    x11 = dict(labels)[11]
+    assert -2.0 < x11[0] < 0.0

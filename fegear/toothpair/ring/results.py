@@ -21,7 +21,7 @@ from ...contact import gap_contact, surface_matrix
 from ...errors import ParameterError
 from ...fe import contact_modulus, line_contact, recover, vtu_fields
 from ...planar import rotate
-from ..case import BodyField, ContactZone, SolveCase, ToothResult
+from ..case import BodyField, ContactZone, FlankPressure, SolveCase, ToothResult
 from ..edge import flank_and_edge
 from ..teeth import tension_fillets
 from .contact import RingContactSolution, rigid_gap
@@ -214,6 +214,17 @@ class RingDetail:
             name += "" if name not in {b.name for b in out} else f"_{len(out)}"
             out.append(BodyField(name, rotate(m.doflocs.T, angle) + offset,
                                  m.dofs.element_dofs.T, data))
+        return tuple(out)
+
+    def flank_pressures(self) -> tuple[FlankPressure, ...]:
+        """The contact pressure along each loaded tooth's grid, fixed frame."""
+        angle, offset = self._placement(0)
+        out = []
+        for k, g in enumerate(self.contact.grids):
+            p = self.solution.pressure[self.contact.block(k)]
+            if p.max() > 0:
+                out.append(FlankPressure(g.tooth, g.s.copy(), p.copy(), g.on_round.copy(),
+                                         rotate(g.x, angle) + offset))
         return tuple(out)
 
     def _placement(self, gear: int) -> tuple[float, np.ndarray]:

@@ -202,6 +202,10 @@ class SectorDetail:
         """None: the sector meshes resolve the contacts themselves."""
         return ()
 
+    def flank_pressures(self) -> tuple:
+        """None: the sector model's pressures are its nodes' (the VTUs show them)."""
+        return ()
+
     def contact_zone(self) -> ContactZone:
         loaded = max(self.contact.patches, key=lambda pt: pt.load)
         return ContactZone(tuple(loaded.center), loaded.half_width, loaded.pair)
