@@ -316,6 +316,7 @@ def test_study_table_holds_solve_outputs_and_versions(pool_run):
     assert (pool_run["out"] / "plots" / "torque.png").stat().st_size > 10_000
 
 
+@pytest.mark.slow  # 10-20 s: the default suite stays under 5 min
 def test_dask_cluster_gives_the_local_pool_table(pool_run, tmp_path):
     distributed = pytest.importorskip("distributed")
     from fegear.study.runner import run_study
@@ -350,6 +351,7 @@ def test_worker_that_dies_costs_its_case_a_rerun_not_the_study(tmp_path):
     assert [r["status"] for r in _table(out)] == ["ok", "ok", "failed"]
 
 
+@pytest.mark.slow  # 10-20 s: the default suite stays under 5 min
 def test_unreachable_scheduler_is_one_line_and_creates_nothing(tmp_path, capsys):
     (tmp_path / "s.toml").write_text("[[sweep]]\nm = [1.5, 2.0]\n")
     out = tmp_path / "out"

@@ -148,6 +148,7 @@ def test_a_contact_narrower_than_its_grid_is_flagged(baseline_200):
             assert (t.per_half_width < 4.0) == (t.tooth in flagged)
 
 
+@pytest.mark.slow  # 11 s: the default suite stays under 5 min
 def test_headline_stresses_are_insensitive_to_the_matching_depth(baseline_ring):
     """The one parameter of the half-plane near field: reading the templates 2, 3 or 5 local
     facets below the surface moves no headline stress by 1 % (the penalty's role in the
@@ -186,6 +187,7 @@ def test_more_teeth_with_grids_change_nothing(baseline_200, baseline_ring):
         assert shares[t.tooth] == pytest.approx(t.load_share, abs=1e-4)
 
 
+@pytest.mark.slow  # 11 s: the default suite stays under 5 min
 def test_jiggled_templates_move_headline_stresses_by_less_than_2pct(monkeypatch, baseline_200):
     case = baseline_200.case
     for seed in (1, 2):
