@@ -18,7 +18,10 @@ transformed (carrier-fixed) ratio i^H = 1.02273
 
 from __future__ import annotations
 
+import argparse
 import logging
+import os
+import signal
 import sys
 
 from .. import progress
@@ -27,24 +30,48 @@ from . import bench, drive, hertz, profile, relief, solve, study
 from .args import EXIT_USAGE, Parser
 from .terminal import StageBar, Stopped, stop_on_signals
 
+#: exit code when the reader of stdout has gone away, as a shell reports SIGPIPE
+EXIT_BROKEN_PIPE = 128 + signal.SIGPIPE
+
 #: the commands in the order of ``fegear --help``
 COMMANDS = {"profile": profile, "hertz": hertz, "solve": solve, "relief": relief,
             "study": study, "drive": drive, "bench": bench}
 
 
+DESCRIPTION = ("Finite-element stresses of compound-cycloid internal gear tooth pairs: "
+               "profiles, tooth-pair solves, studies and the drive level.")
+
+
+def _add_common(parser: Parser, default) -> None:
+    """``-v`` and ``-q``, taken before the command or after it."""
+    parser.add_argument("-v", "--verbose", action="store_true", default=default,
+                        help="log what the solver does (on stderr)")
+    parser.add_argument("-q", "--quiet", action="store_true", default=default,
+                        help="no progress bar (it shows only on a terminal anyway)")
+
+
 def build_parser() -> Parser:
     from .. import __version__
 
-    parser = Parser(prog="fegear", description=__doc__.splitlines()[0])
+    parser = Parser(prog="fegear", description=DESCRIPTION)
     parser.add_argument("--version", action="version", version=f"fegear {__version__}")
-    parser.add_argument("-v", "--verbose", action="store_true",
-                        help="log what the solver does (on stderr)")
-    parser.add_argument("-q", "--quiet", action="store_true",
-                        help="no progress bar (it shows only on a terminal anyway)")
+    _add_common(parser, False)
     sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
     for module in COMMANDS.values():
         module.add_parser(sub)
+    for command in _commands(parser):
+        # SUPPRESS: a command's own default does not undo ``fegear -q solve``
+        _add_common(command, argparse.SUPPRESS)
     return parser
+
+
+def _commands(parser: Parser):
+    """Every (sub)command's parser below ``parser``: ``solve``, ``drive``, ``drive ratio``, …"""
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for command in action.choices.values():
+                yield command
+                yield from _commands(command)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -65,6 +92,11 @@ def main(argv: list[str] | None = None) -> int:
         print(f"fegear: stopped by {exc}; nothing half-written was left behind",
               file=sys.stderr)
         return 128 + exc.signum
+    except BrokenPipeError:
+        # the reader went away (``fegear drive bearings | head``): nothing more to say;
+        # stdout goes to devnull so that Python's own flush at exit is silent too
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return EXIT_BROKEN_PIPE
     finally:
         bar.close()
 

@@ -188,3 +188,24 @@ def test_a_silent_bar_writes_nothing(monkeypatch):
         progress.stage("b")
     bar.close()
     assert screen.getvalue() == ""
+
+
+@pytest.mark.parametrize("argv", [["-q", "-v", "drive", "bearings"],
+                                  ["drive", "bearings", "-q", "-v"],
+                                  ["drive", "-v", "bearings", "-q"]])
+def test_common_options_are_taken_before_or_after_the_command(argv):
+    from fegear.cli import build_parser
+
+    a = build_parser().parse_args(argv)
+    assert (a.quiet, a.verbose) == (True, True)
+    assert build_parser().parse_args(["drive", "bearings"]).quiet is False
+
+
+def test_a_reader_that_goes_away_ends_the_command_quietly():
+    read, write = os.pipe()
+    os.close(read)               # the reader is gone before the first line, as `| head -0`
+    proc = subprocess.run([*FEGEAR, "drive", "bearings"], stdout=write, stderr=subprocess.PIPE,
+                          timeout=120)
+    os.close(write)
+    assert proc.stderr.decode() == ""
+    assert proc.returncode == 128 + signal.SIGPIPE
