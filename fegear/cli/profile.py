@@ -46,7 +46,7 @@ def run(a: argparse.Namespace) -> int:
         "gear2_csv": write_points_csv(out / "gear2.csv", geo.gear2),
         "png": pair_png(out / "pair.png", geo.gear1, geo.gear2, params.e, params.r0,
                         f"compound-cycloid pair: {params.describe()}",
-                        zoom_half_width=4.0 * params.m, relief=geo.relief_chart,
+                        zoom_half_width=6.5 * params.m, relief=geo.relief_chart,
                         teeth=[(t.tooth, t.position_deg) for t in geo.contact.teeth],
                         tip_radius=geo.tip_radius),
     }

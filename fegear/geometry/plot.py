@@ -55,16 +55,22 @@ def pair_png(path: Path, gear1: np.ndarray, gear2: np.ndarray, e: float, r0: flo
     ax.plot([0, 0], [0, e], "k+", ms=8)
     ax.set_title(title, fontsize=9)
     ax.legend(loc="lower right", fontsize=8)
-    ax.add_patch(plt.Rectangle((-zoom_half_width, r0 - 0.6 * zoom_half_width),
-                               2 * zoom_half_width, 1.2 * zoom_half_width, fill=False,
-                               ls="--", color="k", lw=0.7))
+    # every tooth of gear 1 numbered a little inside its tip, as the solve's tables count them
+    for number, x in tooth_labels(teeth, e, tip_radius or r0, 0.09 * r0):
+        ax.text(*x, str(number), ha="center", va="center", fontsize=5.5, color="#a34a16",
+                zorder=3)
+    # the zoom window reaches deeper into gear 1 than out into the ring: the rim ends the ring
+    below, above = r0 - 0.75 * zoom_half_width, r0 + 0.4 * zoom_half_width
+    ax.add_patch(plt.Rectangle((-zoom_half_width, below), 2 * zoom_half_width, above - below,
+                               fill=False, ls="--", color="k", lw=0.7))
     az.set_xlim(-zoom_half_width, zoom_half_width)
-    az.set_ylim(r0 - 0.6 * zoom_half_width, r0 + 0.6 * zoom_half_width)
+    az.set_ylim(below, above)
     az.plot([0], [r0], "k.", ms=5)
     az.annotate("pitch point", (0, r0), textcoords="offset points", xytext=(6, 6), fontsize=8)
-    az.set_title("zoom on the pitch-point teeth (β = 0), gear 1's teeth numbered", fontsize=9)
+    az.set_title("zoom on the teeth about the pitch point (β = 0), gear 1's teeth numbered",
+                 fontsize=9)
     for number, x in tooth_labels(teeth, e, tip_radius or r0, 0.35 * zoom_half_width / 4):
-        if abs(x[0]) < 0.95 * zoom_half_width and abs(x[1] - r0) < 0.55 * zoom_half_width:
+        if abs(x[0]) < 0.95 * zoom_half_width and below < x[1] < above:
             az.text(*x, str(number), ha="center", va="center", fontsize=9, color="#a34a16",
                     weight="bold", zorder=3, clip_on=True)
     az.text(0.02, 0.04, "gear 1 (external)", transform=az.transAxes, fontsize=9,
