@@ -156,13 +156,16 @@ class BodyField:
 class FlankPressure:
     """The contact pressure along one loaded gear-1 tooth: arc length along its profile ``s``
     (mm, increasing with the polar angle), pressure (MPa), whether each point lies on the tip
-    round, and the points (n, 2, fixed frame, mm)."""
+    round, the points (n, 2, fixed frame, mm) and each point's distance along the profile from
+    the tooth's tip corner on the loaded side (mm: > 0 down the flank, < 0 on the round; the
+    corner is where the round meets the flank)."""
 
     tooth: int
     s: np.ndarray
     pressure: np.ndarray
     on_round: np.ndarray
     points: np.ndarray
+    from_corner: np.ndarray
 
 
 @dataclass(frozen=True)

@@ -243,6 +243,7 @@ def flank_pressure_png(path: Path, sol: PairSolution, summary: dict) -> Path | N
         a.plot(curve.s_um, f.pressure, color="C0", lw=1.6, label="FE")
         if curve.round_um is not None:
             a.axvspan(*curve.round_um, color="C3", alpha=0.12, label="tip round")
+        a.axvline(0.0, color="k", lw=0.6, ls=":")
         if curve.hertz is not None:
             a.plot(curve.s_um, curve.hertz, "--", color="C1", lw=1.3,
                    label=f"Hertz p0 {t.hertz_p0_MPa:.0f} MPa")
@@ -250,11 +251,16 @@ def flank_pressure_png(path: Path, sol: PairSolution, summary: dict) -> Path | N
             a.axhline(t.halfplane_flank_MPa, color="C2", ls=":", lw=1.3,
                       label=f"p ref (flank) {t.halfplane_flank_MPa:.0f} MPa")
         a.set_xlim(*curve.window_um)
-        a.set_ylim(0, 1.1 * max(f.pressure.max(), t.hertz_p0_MPa or 0.0))
+        a.set_ylim(0, curve.top)
+        if curve.top < f.pressure.max():       # the edge spike runs off the top: say so
+            k = int(np.argmax(f.pressure))
+            a.annotate(f"edge peak {f.pressure[k]:.0f} MPa\n(off the scale)",
+                       (curve.s_um[k], curve.top), xytext=(12, -30), textcoords="offset points",
+                       fontsize=8, ha="left", arrowprops={"arrowstyle": "->", "lw": 0.8})
         where = "on its tip round" if t.peak_on_round else "on the flank"
         a.set_title(f"tooth {t.tooth}: {t.load_N:.0f} N, peak {t.p_max_MPa:.0f} MPa {where}"
                     + (f"\nflank {t.flank_p_MPa:.0f} MPa" if t.edge_contact else ""), fontsize=9)
-        a.set_xlabel("arc length along gear 1's profile [µm]")
+        a.set_xlabel("distance along gear 1's profile from its tip corner [µm]")
         a.set_ylabel("contact pressure [MPa]")
         a.grid(alpha=0.3)
         a.legend(fontsize=7.5, loc="best")
@@ -267,21 +273,28 @@ def flank_pressure_png(path: Path, sol: PairSolution, summary: dict) -> Path | N
 
 @dataclass(frozen=True)
 class PressureCurve:
-    """A flank's pressure made ready to draw: arc length (µm, 0 at the grid's start), the
-    Hertz ellipse at the same points (MPa; None without a Hertz pair), the tip round's span
-    (µm; None if the grid has no round) and the window to show (µm)."""
+    """A flank's pressure made ready to draw: the distance from the tip corner (µm, > 0 down
+    the flank, < 0 on the round), the Hertz ellipse at the same points (MPa; None without a
+    Hertz pair), the tip round's span (µm; None if the grid has no round), the window to show
+    (µm) and the top of the pressure axis (MPa): the flank's scale when an edge spike would
+    flatten the flank into the axis, the whole curve's otherwise."""
 
     s_um: np.ndarray
     hertz: np.ndarray | None
     round_um: tuple[float, float] | None
     window_um: tuple[float, float]
+    top: float
+
+
+#: an edge spike higher than this many times the flank's own scale is drawn off the axis
+SPIKE_CLIP = 1.6
 
 
 def pressure_curve(f, tooth) -> PressureCurve:
     """:class:`PressureCurve` of one :class:`~.case.FlankPressure` and its tooth result: the
-    window spans the loaded stretch and three half-widths either side; Hertz is centred on
-    the flank's load (the round's left out)."""
-    s = (f.s - f.s[0]) * 1e3
+    window spans the loaded stretch and a margin either side, the tip corner kept in view;
+    Hertz is centred on the flank's load (the round's left out)."""
+    s = f.from_corner * 1e3
     flank = ~f.on_round
     w = np.where(flank, f.pressure, 0.0)
     centre = float((w * s).sum() / w.sum()) if w.sum() > 0 else float(s[np.argmax(f.pressure)])
@@ -292,9 +305,17 @@ def pressure_curve(f, tooth) -> PressureCurve:
         hertz = tooth.hertz_p0_MPa * np.sqrt(1.0 - x * x)
     rnd = (float(s[f.on_round].min()), float(s[f.on_round].max())) if f.on_round.any() else None
     on = s[f.pressure > 0]
-    half = max(tooth.half_width_mm * 1e3, 1e-3 * np.ptp(s))
-    window = (max(float(on.min() - 3 * half), 0.0), min(float(on.max() + 3 * half), float(s[-1])))
-    return PressureCurve(s, hertz, rnd, window)
+    # a margin of three half-widths, at most a third of the loaded stretch (nearly conformal
+    # flanks have half-widths of a good part of a millimetre)
+    margin = max(min(3 * tooth.half_width_mm * 1e3, np.ptp(on) / 3), 1e-3 * np.ptp(s))
+    lo = max(min(float(on.min()) - margin, 0.0 if rnd is None else rnd[0]), float(s.min()))
+    window = (lo, min(float(on.max()) + margin, float(s.max())))
+    # the flank's scale: its reported pressure (the spike's tail next to the round left out)
+    flank_p = tooth.flank_p_MPa if tooth.edge_contact else float(f.pressure.max())
+    scale = max(flank_p, tooth.hertz_p0_MPa or 0.0, tooth.halfplane_flank_MPa or 0.0)
+    peak = float(f.pressure.max())
+    top = 1.1 * max(peak, scale) if peak <= SPIKE_CLIP * scale else SPIKE_CLIP * scale
+    return PressureCurve(s, hertz, rnd, window, top)
 
 
 def root_stress_png(path: Path, sol: PairSolution, summary: dict) -> Path:

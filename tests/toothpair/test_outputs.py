@@ -102,6 +102,26 @@ def test_the_flank_curves_peak_at_the_reported_pressures(solved):
         assert lo <= loaded.min() and loaded.max() <= hi      # the window shows the contact
         if curve.hertz is not None:
             assert curve.hertz.max() == pytest.approx(t.hertz_p0_MPa, rel=0.02)
+        if t.edge_contact:     # the spike is drawn off the axis, the flank fills it
+            assert t.flank_p_MPa < curve.top < f.pressure.max()
+        else:
+            assert curve.top >= f.pressure.max()
+
+
+def test_flank_distances_start_at_the_tip_corner(solved):
+    """0 where the round meets the flank, < 0 on the round, > 0 where the flank carries load:
+    the arc measured on the profile agrees with the grid's own round/flank junction."""
+    for f in solved.detail.flank_pressures():
+        d = f.from_corner
+        assert np.all(np.abs(np.diff(d)) == pytest.approx(np.diff(f.s), rel=1e-9, abs=1e-12))
+        assert np.all(d[f.on_round] <= 1e-4)
+        assert np.all(d[~f.on_round & (f.pressure > 0)] > 0)
+        # where the grid crosses from the round onto the loaded flank (its other end meets
+        # the top land, a round's length further), the corner lies between the two points
+        junction = np.flatnonzero(np.diff(f.on_round.astype(int)))
+        if len(junction):
+            assert min(max(abs(d[j]), abs(d[j + 1])) - abs(f.s[j + 1] - f.s[j])
+                       for j in junction) <= 1e-9
 
 
 def test_the_tooth_labels_of_pair_png_sit_on_their_teeth(baseline):

@@ -34,6 +34,28 @@ from .stresses import RingStresses, local_half_width
 RESOLVED_PER_B = 4.0
 
 
+def from_tip_corner(shape, grid, pressure: np.ndarray) -> np.ndarray:
+    """Distance (mm) of each point of ``grid`` along gear 1's rounded profile ``shape`` from
+    the tip corner on its loaded side: the tangent point of a tip round nearest to where the
+    flank carries its load; > 0 down the flank, < 0 on the round. The grid need not reach the
+    round: the arc between them is measured on the profile."""
+    flank = ~grid.on_round & (pressure > 0)
+    weight = np.where(flank, pressure, 0.0)
+    centre = (float(weight @ grid.phi / weight.sum()) if weight.sum() > 0
+              else float(grid.phi[np.argmax(pressure)]))
+    turn = round((centre - shape.tooth_center) / shape.pitch) * shape.pitch
+    ends = np.array([a + turn + j * shape.pitch for f in shape.fillets for a in (f.phi_a, f.phi_b)
+                     for j in (-1, 0, 1)])
+    if len(ends) == 0:                     # sharp tips: no round, no corner to measure from
+        return grid.s - grid.s[0]
+    corner = float(ends[np.argmin(np.abs(ends - centre))])
+    phi = np.linspace(grid.phi[0], corner, 2001)
+    x = shape.point(phi)
+    arc = float(np.hypot(*np.diff(x, axis=0).T).sum())     # grid start to the corner, ≥ 0
+    s_corner = grid.s[0] + math.copysign(arc, corner - grid.phi[0])
+    return (grid.s - s_corner) * math.copysign(1.0, centre - corner)
+
+
 def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
                   sol: RingContactSolution, stresses: RingStresses, state,
                   cands) -> tuple[ToothResult, ...]:
@@ -224,7 +246,8 @@ class RingDetail:
             p = self.solution.pressure[self.contact.block(k)]
             if p.max() > 0:
                 out.append(FlankPressure(g.tooth, g.s.copy(), p.copy(), g.on_round.copy(),
-                                         rotate(g.x, angle) + offset))
+                                         rotate(g.x, angle) + offset,
+                                         from_tip_corner(self.model.shape, g, p)))
         return tuple(out)
 
     def _placement(self, gear: int) -> tuple[float, np.ndarray]:
