@@ -8,10 +8,10 @@ STAMP := $(VENV)/.installed-stamp
 
 .PHONY: demo test test-all lint bench study clean
 
+# PYTHONWARNINGS=ignore: setuptools' boxed notice on every editable install is no news to a user
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	# PYTHONWARNINGS: setuptools' boxed notice on every editable install is no news to a user
 	PYTHONWARNINGS=ignore $(BIN)/python -m pip install --quiet -e '.[dev]'
 	touch $(STAMP)
 
