@@ -209,3 +209,15 @@ def test_a_reader_that_goes_away_ends_the_command_quietly():
     os.close(write)
     assert proc.stderr.decode() == ""
     assert proc.returncode == 128 + signal.SIGPIPE
+
+
+def test_the_wall_time_is_the_whole_process():
+    """Counted from the process's start: the sleep before fegear is imported included, and no
+    more than the parent saw pass (psutil's start time was up to a second off)."""
+    code = ("import time; time.sleep(1.0); from fegear.cli.terminal import command_wall_s; "
+            "print(command_wall_s())")
+    t0 = time.perf_counter()
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         timeout=120, check=True).stdout
+    elapsed = time.perf_counter() - t0
+    assert 1.0 <= float(out) <= elapsed + 0.02
