@@ -37,16 +37,19 @@ RESOLVED_PER_B = 4.0
 def from_tip_corner(shape, grid, pressure: np.ndarray) -> np.ndarray:
     """Distance (mm) of each point of ``grid`` along gear 1's rounded profile ``shape`` from
     the tip corner on its loaded side: the tangent point of a tip round nearest to where the
-    flank carries its load; > 0 down the flank, < 0 on the round. The grid need not reach the
-    round: the arc between them is measured on the profile."""
+    flank carries its load (the kink itself on sharp tips); > 0 down the flank, < 0 on the
+    round. The grid need not reach the round: the arc between them is measured on the
+    profile."""
     flank = ~grid.on_round & (pressure > 0)
     weight = np.where(flank, pressure, 0.0)
     centre = (float(weight @ grid.phi / weight.sum()) if weight.sum() > 0
               else float(grid.phi[np.argmax(pressure)]))
     turn = round((centre - shape.tooth_center) / shape.pitch) * shape.pitch
-    ends = np.array([a + turn + j * shape.pitch for f in shape.fillets for a in (f.phi_a, f.phi_b)
-                     for j in (-1, 0, 1)])
-    if len(ends) == 0:                     # sharp tips: no round, no corner to measure from
+    # the rounds' tangent points, or with sharp tips (--tip-round 0) the kinks themselves
+    corners = ([a for f in shape.fillets for a in (f.phi_a, f.phi_b)] if shape.fillets
+               else [phi for phi, _ in shape.kinks])
+    ends = np.array([a + turn + j * shape.pitch for a in corners for j in (-1, 0, 1)])
+    if len(ends) == 0:                     # a smooth tip: no corner, the grid's start instead
         return grid.s - grid.s[0]
     corner = float(ends[np.argmin(np.abs(ends - centre))])
     phi = np.linspace(grid.phi[0], corner, 2001)
