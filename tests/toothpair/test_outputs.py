@@ -141,3 +141,19 @@ def test_the_tooth_labels_of_pair_png_sit_on_their_teeth(baseline):
     # at β = 0 the first tooth to touch turning + (11) sits just left of the pitch point
     x11 = dict(labels)[11]
     assert -2.0 < x11[0] < 0.0
+
+
+def test_with_sharp_tips_the_distances_start_at_the_kink(baseline):
+    """--tip-round 0: no round, the corner is the tip's kink; the pressure next to it (the
+    tip corner presses into gear 2's flank) sits within a few µm of 0, on the flank side."""
+    from fegear.toothpair import SolveCase, solve_pair
+
+    sharp = solve_pair(SolveCase(baseline, quality="coarse", tip_round=0.0))
+    flanks = sharp.detail.flank_pressures()
+    assert flanks and not any(f.on_round.any() for f in flanks)
+    corner_loaded = 0
+    for f in flanks:
+        d = f.from_corner[f.pressure > 0]
+        assert d.min() > -1e-3                    # nothing loaded beyond the corner
+        corner_loaded += d.min() < 0.01           # loaded within 10 µm of it
+    assert corner_loaded >= 1
