@@ -64,6 +64,13 @@ def flank_and_edge(s: np.ndarray, pressure: np.ndarray, on_round: np.ndarray,
                      float(p[on_round].max()), q * thickness)
 
 
+def flank_centre(x: np.ndarray, pressure: np.ndarray, on_round: np.ndarray) -> float:
+    """Where along ``x`` (any coordinate of the points) the flank carries its load: the mean of
+    ``x`` weighted by the pressure off the round; the peak's ``x`` if the flank carries none."""
+    w = np.where(on_round, 0.0, np.maximum(pressure, 0.0))
+    return float(w @ x / w.sum()) if w.sum() > 0 else float(x[np.argmax(pressure)])
+
+
 def _round_load(s: np.ndarray, p: np.ndarray, on_round: np.ndarray) -> float:
     """∫ p ds (N/mm) over the stretches between consecutive points both on the round, and half
     of each stretch from a round point to a flank point."""

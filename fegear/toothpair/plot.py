@@ -10,6 +10,7 @@ import numpy as np
 
 from ..figures import pyplot, save_png
 from .case import PairSolution
+from .edge import flank_centre
 
 
 def cycle_png(path: Path, rows: list[dict], title: str, stresses: dict[str, str]) -> Path:
@@ -295,9 +296,7 @@ def pressure_curve(f, tooth) -> PressureCurve:
     window spans the loaded stretch and a margin either side, the tip corner kept in view;
     Hertz is centred on the flank's load (the round's left out)."""
     s = f.from_corner * 1e3
-    flank = ~f.on_round
-    w = np.where(flank, f.pressure, 0.0)
-    centre = float((w * s).sum() / w.sum()) if w.sum() > 0 else float(s[np.argmax(f.pressure)])
+    centre = flank_centre(s, f.pressure, f.on_round)
     hertz = None
     if tooth.hertz_p0_MPa and tooth.hertz_b_mm:
         b = tooth.hertz_b_mm * 1e3

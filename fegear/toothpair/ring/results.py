@@ -22,7 +22,7 @@ from ...errors import ParameterError
 from ...fe import contact_modulus, line_contact, recover, vtu_fields
 from ...planar import rotate
 from ..case import BodyField, ContactZone, FlankPressure, SolveCase, ToothResult
-from ..edge import flank_and_edge
+from ..edge import flank_and_edge, flank_centre
 from ..teeth import tension_fillets
 from .contact import RingContactSolution, rigid_gap
 from .influence import RingContact
@@ -40,10 +40,7 @@ def from_tip_corner(shape, grid, pressure: np.ndarray) -> np.ndarray:
     flank carries its load (the kink itself on sharp tips); > 0 down the flank, < 0 on the
     round. The grid need not reach the round: the arc between them is measured on the
     profile."""
-    flank = ~grid.on_round & (pressure > 0)
-    weight = np.where(flank, pressure, 0.0)
-    centre = (float(weight @ grid.phi / weight.sum()) if weight.sum() > 0
-              else float(grid.phi[np.argmax(pressure)]))
+    centre = flank_centre(grid.phi, pressure, grid.on_round)
     turn = round((centre - shape.tooth_center) / shape.pitch) * shape.pitch
     # the rounds' tangent points, or with sharp tips (--tip-round 0) the kinks themselves
     corners = ([a for f in shape.fillets for a in (f.phi_a, f.phi_b)] if shape.fillets
