@@ -23,11 +23,9 @@ from dataclasses import dataclass
 from functools import cached_property, lru_cache
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..errors import GeometryError, ParameterError
 from ..planar import rotate, wrap
-from .admissible import check_admissible
 from .envelope import FAR, NEAR, Branch, BranchPoints
 from .gear2 import adaptive_parameters, gear2_curve
 from .parameters import PairParameters
@@ -35,6 +33,9 @@ from .relief import RelievedBranch, relief_zones
 
 SAMPLES_PER_RUN = 1024
 ENVELOPE_GRID = 2048
+TABLE_POINTS = 1025     # ξ samples a run keeps to start its inversions from …
+AMBIGUOUS = 1e-3        # … and to rank the runs by radius, exactly where two come this near (mm;
+                        # its interpolation is within 1e-4 mm on the designs tested)
 
 
 @dataclass(frozen=True)
@@ -81,8 +82,11 @@ class Gear1Profile:
     """
 
     def __init__(self, params: PairParameters) -> None:
-        check_admissible(params)
+        if not all(gear2_curve(params, tool).star_shaped() for tool in (False, True)):
+            raise GeometryError("the gear-2 curve folds back (it is not star-shaped about "
+                                "its centre): check the pair with admissible.check_design")
         self.params = params
+        self._tables: dict = {}
         self.branches = generating_branches(params)
         self.pitch = 2 * np.pi / params.z1
         near = self.branches[0].evaluate(np.array([0.0]))
@@ -98,30 +102,41 @@ class Gear1Profile:
         the envelope is found again with the relieved branch."""
         p = self.params
         ends = self.tip_ends()
+        if len(ends) < 2:
+            raise ParameterError("relief", p.relief, "0 here: gear 1's teeth are pointed, "
+                                 "with no tip corner for a relief to end at")
         extent = p.relief_extent if p.relief_start is None else None
         zones = relief_zones(self.branches[0], ends, p.relief * 1e-3, extent, p.relief_shape,
                              p.m, p.relief_start)
         self.branches = (RelievedBranch(self.branches[0], zones), *self.branches[1:])
+        self._tables = {}
         self.runs = tuple(r for i, b in enumerate(self.branches) for r in _split_runs(b, i))
         self.pieces = self._lower_envelope()
+        if len(self.tip_ends()) < 2:
+            raise ParameterError("relief", p.relief, "a smaller relief or a longer "
+                                 "relief-extent: the relieved flanks meet each other before "
+                                 "the tip trim (no tip land left)")
         for (end, _), zone in zip(self.tip_ends(), zones):
             toward = np.sign(zone.stop - zone.start)
             if not toward * (end - zone.end) > 0 or not toward * (zone.stop - end) > 0:
                 raise ParameterError("relief", p.relief, "a smaller relief or a longer "
-                                     "relief_extent: the relieved flank must meet the tip "
-                                     "trim within 0.5 relief_extent + 0.05 m past its tip "
+                                     "relief-extent: the relieved flank must meet the tip "
+                                     "trim within 0.5 relief-extent + 0.05 m past its tip "
                                      "end")
 
     def tip_ends(self) -> list[tuple[float, float]]:
         """Per working flank of tooth 0 that meets the tip trim: (ξ of the working branch at
-        that corner, ξ at the flank's other end)."""
+        that corner, ξ at the flank's other end). The working flanks are the first and the
+        last piece of the pitch, which start in the middle of the tooth spaces; a flank that
+        runs into the next working flank (a pointed tooth) has no tip end."""
         out = []
-        for a, b in zip(self.pieces[:-1], self.pieces[1:]):
-            if (a.run.branch == 0) == (b.run.branch == 0):
+        pieces = self.pieces
+        for flank, after, at_start in ((pieces[0], pieces[1], False),
+                                       (pieces[-1], pieces[-2], True)):
+            if len(pieces) < 3 or flank.run.branch != 0 or after.run.branch == 0:
                 continue
-            flank, at_start = (a, False) if a.run.branch == 0 else (b, True)
-            # φ grows with ξ on an increasing run: the corner is at the flank's phi1 (a) or
-            # its phi0 (b)
+            # φ grows with ξ on an increasing run: the corner is at the first flank's phi1
+            # and the last flank's phi0
             corner_low = at_start == flank.run.increasing
             out.append((flank.xi0, flank.xi1) if corner_low else (flank.xi1, flank.xi0))
         return out
@@ -130,8 +145,8 @@ class Gear1Profile:
     def _run_polar(self, run: Run, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """ξ and radius of ``run`` at polar angles ``phi``; NaN where the run does not reach."""
         b = self.branches[run.branch]
-        ends = b.evaluate(np.array([run.xi0, run.xi1]))
-        phi_ends = np.arctan2(ends.q[:, 1], ends.q[:, 0])
+        _, table, _ = self._table(run)
+        phi_ends = table[[0, -1]]
         span = wrap(phi_ends[1] - phi_ends[0])
         lo, hi = (phi_ends[0], phi_ends[0] + span) if span > 0 else (phi_ends[0] + span,
                                                                       phi_ends[0])
@@ -146,21 +161,59 @@ class Gear1Profile:
         rad[ok] = b.evaluate(xi[ok]).radius
         return xi, rad
 
+    def _table(self, run: Run) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """ξ at :data:`TABLE_POINTS` points of a run, their polar angles unwrapped from the
+        run's start and their radii: φ is monotone on a run, so this brackets every inversion
+        and tells which run is lowest almost everywhere."""
+        key = (run.branch, run.xi0, run.xi1)
+        if key not in self._tables:
+            xi = np.linspace(run.xi0, run.xi1, TABLE_POINTS)
+            ev = self.branches[run.branch].evaluate(xi)
+            phi = np.unwrap(np.arctan2(ev.q[:, 1], ev.q[:, 0]))
+            self._tables[key] = (xi, phi, ev.radius)
+        return self._tables[key]
+
+    def _in_run(self, run: Run, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Polar angles in the frame of a run's table (the turn nearest the run's middle: a
+        run can span a whole gear-1 pitch, and a target at one end must not go to the
+        other), and whether the run reaches them."""
+        _, ps, _ = self._table(run)
+        mid = 0.5 * (ps[0] + ps[-1])
+        rel = np.asarray(phi, dtype=float)
+        rel = rel - 2 * np.pi * np.round((rel - mid) / (2 * np.pi))
+        inside = (rel >= min(ps[0], ps[-1])) & (rel <= max(ps[0], ps[-1]))
+        return rel, inside
+
+    def _approx_radius(self, run: Run, phi: np.ndarray) -> np.ndarray:
+        """The run's radius at polar angles ``phi`` interpolated in its table (NaN where it
+        does not reach): within :data:`AMBIGUOUS` of the exact radius."""
+        _, ps, rs = self._table(run)
+        rel, inside = self._in_run(run, phi)
+        order = slice(None) if ps[-1] > ps[0] else slice(None, None, -1)
+        out = np.interp(rel, ps[order], rs[order])
+        return np.where(inside, out, np.nan)
+
     def _invert(self, run: Run, phi: np.ndarray) -> np.ndarray:
-        """Solve φ(ξ) = phi on a run: Newton steps kept inside a shrinking bracket."""
+        """Solve φ(ξ) = phi on a run: from the run's table (:meth:`_table`), Newton steps kept
+        inside the bracketing table interval, a bisection wherever a step falls outside it or
+        does not halve the step before last (near a cusp end Newton can cycle between two
+        points inside the bracket)."""
         b = self.branches[run.branch]
-        lo = np.full(phi.shape, run.xi0)
-        hi = np.full(phi.shape, run.xi1)
-        ends = b.evaluate(np.array([run.xi0]))
-        phi0 = np.arctan2(ends.q[0, 1], ends.q[0, 0])
+        xs, ps, _ = self._table(run)
         sign = 1.0 if run.increasing else -1.0
-        # linear first guess
-        span = max(abs(run.xi1 - run.xi0), 1e-300)
-        bp = b.evaluate(np.array([run.xi1]))
-        phi1 = phi0 + wrap(np.arctan2(bp.q[0, 1], bp.q[0, 0]) - phi0)
-        frac = np.clip((phi - phi0) / (phi1 - phi0) if phi1 != phi0 else 0.5, 0.0, 1.0)
-        x = run.xi0 + frac * span
-        conv = np.zeros(phi.shape, dtype=bool)
+        rel = np.clip(self._in_run(run, phi)[0], min(ps[0], ps[-1]), max(ps[0], ps[-1]))
+        order = ps if sign > 0 else ps[::-1]
+        k = np.clip(np.searchsorted(order, rel), 1, len(xs) - 1)
+        if sign < 0:
+            k = len(xs) - k
+        lo, hi = xs[k - 1], xs[k]
+        p_lo, p_hi = ps[k - 1], ps[k]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            frac = np.clip(np.where(p_hi != p_lo, (rel - p_lo) / (p_hi - p_lo), 0.5), 0, 1)
+        x = lo + frac * (hi - lo)
+        conv = np.zeros(x.shape, dtype=bool)
+        before = np.full(x.shape, np.inf)    # the step before last
+        last = np.full(x.shape, np.inf)
         for _ in range(100):
             pts = b.evaluate(x)
             f = wrap(np.arctan2(pts.q[:, 1], pts.q[:, 0]) - phi)
@@ -169,10 +222,12 @@ class Gear1Profile:
             lo = np.where(pos, lo, x)
             with np.errstate(divide="ignore", invalid="ignore"):  # a cusp: rate 0
                 xn = x - f / pts.polar_rate
-            bad = ~((xn >= lo) & (xn <= hi)) | ~np.isfinite(xn)  # → bisection
+            bad = (~((xn >= lo) & (xn <= hi)) | ~np.isfinite(xn)
+                   | (np.abs(xn - x) > 0.5 * before))
             xn = np.where(bad, 0.5 * (lo + hi), xn)
             # φ is only known to ~1e-16 rad (rounding in q), so |f| <= 1e-15 is converged
             conv |= (np.abs(f) <= 1e-15) | (np.abs(xn - x) <= 1e-16) | (hi - lo <= 1e-16)
+            before, last = last, np.abs(xn - x)
             x = np.where(conv, x, xn)
             if conv.all():
                 return x
@@ -181,20 +236,27 @@ class Gear1Profile:
     def _lower_envelope(self) -> tuple[Piece, ...]:
         n = ENVELOPE_GRID
         phi = self.phi_space + self.pitch * (np.arange(n) + 0.5) / n
-        # radius of every run (and its copies turned by whole pitches) at every grid angle
-        radii, xis, labels = [], [], []
+        # radius of every run (and its copies turned by whole pitches) at every grid angle,
+        # from the runs' tables; exact where two come within AMBIGUOUS of each other
+        radii, labels = [], []
         for r_i, run in enumerate(self.runs):
             for turn in self._turns(run):
-                xi, rad = self._run_polar(run, phi - turn * self.pitch)
+                rad = self._approx_radius(run, phi - turn * self.pitch)
                 if np.all(np.isnan(rad)):
                     continue
                 radii.append(rad)
-                xis.append(xi)
                 labels.append((r_i, turn))
-        radii = np.array(radii)
-        if np.isnan(radii).all(axis=0).any():
+        radii = np.where(np.isnan(radii), np.inf, np.array(radii))
+        if np.isinf(radii).all(axis=0).any():
             raise GeometryError("gear-1 envelope does not cover a full pitch")
-        best = np.nanargmin(np.where(np.isnan(radii), np.inf, radii), axis=0)
+        close = radii <= radii.min(axis=0) + AMBIGUOUS
+        for k in np.nonzero(close.sum(axis=1) * (close.sum(axis=0) > 1).any())[0]:
+            cols = np.nonzero(close[k] & (close.sum(axis=0) > 1))[0]
+            if len(cols):
+                r_i, turn = labels[k]
+                _, exact = self._run_polar(self.runs[r_i], phi[cols] - turn * self.pitch)
+                radii[k, cols] = np.where(np.isnan(exact), np.inf, exact)
+        best = np.argmin(radii, axis=0)
         # group consecutive grid points with the same label, join at exact crossings
         bounds = [self.phi_space]
         owners = [best[0]]
@@ -235,7 +297,7 @@ class Gear1Profile:
 
         f0, f1 = diff(p0), diff(p1)
         if np.isfinite(f0) and np.isfinite(f1) and f0 * f1 < 0:
-            return brentq(diff, p0, p1, xtol=1e-15, rtol=1e-15)
+            return self._crossing(ra, la[1], rb, lb[1], p0, p1, f0, f1)
         # a run ends inside the cell: the junction is at its end (found by bisection)
         a, b = p0, p1
         for _ in range(60):
@@ -245,6 +307,35 @@ class Gear1Profile:
             else:
                 b = mid
         return 0.5 * (a + b)
+
+    def _crossing(self, ra: Run, ta: int, rb: Run, tb: int, lo: float, hi: float,
+                  f_lo: float, f_hi: float) -> float:
+        """Where two runs (turned by ``ta``, ``tb`` pitches) have equal radius in [lo, hi],
+        the difference changing sign: Newton's method on it with its exact slope dr/dφ =
+        (dr/dξ)/(dφ/dξ), kept inside the bracket (a bisection where a step leaves it), to
+        1e-15 rad."""
+        def slope(run: Run, turn: int, x: float) -> tuple[float, float]:
+            xi, _ = self._run_polar(run, np.array([x - turn * self.pitch]))
+            e = self.branches[run.branch].evaluate(xi)
+            r = e.radius[0]
+            dr = float(e.q[0] @ e.tangent[0]) * e.speed[0] / r
+            return r, dr / e.polar_rate[0]
+
+        x = lo - f_lo * (hi - lo) / (f_hi - f_lo)
+        for _ in range(60):
+            (r1, d1), (r2, d2) = slope(ra, ta, x), slope(rb, tb, x)
+            f = r1 - r2
+            if not np.isfinite(f):
+                return 0.5 * (lo + hi)
+            lo, hi = (x, hi) if (f < 0) == (f_lo < 0) else (lo, x)
+            if abs(f) <= 1e-15 or hi - lo <= 1e-15:
+                return float(x)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                xn = x - f / (d1 - d2)   # a slope that is infinite (a cusp) stalls it:
+            if not (lo < xn < hi) or not abs(xn - x) > 1e-16:
+                xn = 0.5 * (lo + hi)     # … then, and out of the bracket, bisect
+            x = xn
+        return float(x)
 
     # --- evaluation ----------------------------------------------------------------------
     def _locate(self, phi: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -350,7 +441,7 @@ class Gear1Profile:
         return out
 
 
-@lru_cache(maxsize=8)
+@lru_cache(maxsize=64)
 def gear1_profile(params: PairParameters) -> Gear1Profile:
     """:class:`Gear1Profile` of ``params``, kept for the last few pairs: a relieved pair is
     built when its inputs are checked (a relief that does not fit is refused before any output)
@@ -361,14 +452,38 @@ def gear1_profile(params: PairParameters) -> Gear1Profile:
 def _split_runs(b: Branch, index: int, n: int = SAMPLES_PER_RUN) -> list[Run]:
     """Cut one gear-2 pitch of a branch into φ-monotone runs without jumps.
 
-    Cuts are placed exactly at cusps (dφ/dξ = 0) and where β leaves its 2π window (a jump of
-    whole gear-1 pitches, harmless since gear 1 is periodic, but not continuous).
+    Cuts are placed exactly at cusps (dφ/dξ = 0), where β leaves its 2π window (a jump of
+    whole gear-1 pitches, harmless since gear 1 is periodic, but not continuous) and where
+    the meshing equation's discriminant vanishes: a stretch of the gear-2 curve whose normal
+    misses the instantaneous-centre circle has no point on this branch (it never shapes gear
+    1: the envelope of a moving curve is made of its conjugate points alone), so it is left
+    out, and its ends are folds where the branch turns into the other one.
     """
     half = np.pi / b.z2
     xi = np.linspace(-half, half, n + 1)
     pts = b.evaluate(xi)
-    if np.any(pts.disc < 0):
-        raise GeometryError("the gear-2 normal misses the pitch circle")
+
+    def disc(x: float) -> float:
+        return float(b.evaluate(np.array([x])).disc[0])
+
+    # the stretches with a conjugate point, ends at the discriminant's exact zeros
+    folds = [_brentq(disc, xi[i], xi[i + 1], xtol=1e-15)
+             for i in np.nonzero(np.sign(pts.disc[:-1]) * np.sign(pts.disc[1:]) < 0)[0]]
+    edges = np.concatenate([[xi[0]], folds, [xi[-1]]])
+    stretches = [(a, c) for a, c in zip(edges[:-1], edges[1:])
+                 if c - a > 1e-14 and disc(0.5 * (a + c)) > 0]
+    runs = []
+    for a, c in stretches:
+        runs.extend(_monotone_runs(b, index, a, c, max(16, int(n * (c - a) / (2 * half)))))
+    return runs
+
+
+def _monotone_runs(b: Branch, index: int, lo: float, hi: float, n: int) -> list[Run]:
+    """The φ-monotone runs of a branch on ``[lo, hi]``, where it has conjugate points."""
+    # a fold's end point has an infinite speed: sample just inside it
+    inset = 1e-12 * (hi - lo)
+    xi = np.linspace(lo + inset, hi - inset, n + 1)
+    pts = b.evaluate(xi)
     rate = pts.polar_rate
 
     def g(x: float) -> float:
@@ -377,16 +492,16 @@ def _split_runs(b: Branch, index: int, n: int = SAMPLES_PER_RUN) -> list[Run]:
     def beta(x: float) -> float:
         return float(b.evaluate(np.array([x])).beta[0])
 
-    cuts = [xi[0], xi[-1]]
+    cuts = [lo, hi]
     for i in np.nonzero(np.sign(rate[:-1]) * np.sign(rate[1:]) < 0)[0]:
-        cuts.append(brentq(g, xi[i], xi[i + 1], xtol=1e-15))
+        cuts.append(_brentq(g, xi[i], xi[i + 1], xtol=1e-15))
     for i in np.nonzero(np.abs(np.diff(pts.beta)) > np.pi)[0]:
-        lo, hi = xi[i], xi[i + 1]
-        b_lo = beta(lo)
+        a, c = xi[i], xi[i + 1]
+        b_lo = beta(a)
         for _ in range(60):
-            mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if abs(beta(mid) - b_lo) < np.pi else (lo, mid)
-        cuts.extend([lo, hi])
+            mid = 0.5 * (a + c)
+            a, c = (mid, c) if abs(beta(mid) - b_lo) < np.pi else (a, mid)
+        cuts.extend([a, c])
     cuts = np.sort(np.array(cuts))
     runs = []
     for a, c in zip(cuts[:-1], cuts[1:]):
@@ -394,3 +509,11 @@ def _split_runs(b: Branch, index: int, n: int = SAMPLES_PER_RUN) -> list[Run]:
             continue
         runs.append(Run(index, float(a), float(c), bool(g(0.5 * (a + c)) > 0)))
     return runs
+
+
+def _brentq(*args, **kwargs) -> float:
+    """scipy's Brent root finder, imported when first needed (a refused input answers
+    before scipy is loaded)."""
+    from scipy.optimize import brentq
+
+    return brentq(*args, **kwargs)

@@ -108,6 +108,12 @@ class Cycloid:
         p, d1 = self.derivatives(xi, 1)
         return p[:, 0] * d1[:, 1] - p[:, 1] * d1[:, 0]
 
+    def star_shaped(self, samples: int = 2048) -> bool:
+        """Whether the curve is star-shaped about its centre (``P × P' > 0`` at ``samples``
+        points of one tooth pitch): what the polar form below needs."""
+        xi = np.linspace(-np.pi / self.z, np.pi / self.z, samples + 1)
+        return bool(self.polar_rate(xi).min() > 0.0)
+
     # --- polar form ----------------------------------------------------------------------
     def polar_angle(self, xi: np.ndarray) -> np.ndarray:
         """Continuous polar angle θ(ξ) = ξ + atan2(w, u) of the point (valid while u > 0)."""
@@ -116,16 +122,24 @@ class Cycloid:
         return np.atleast_1d(xi) + np.arctan2(w, u)
 
     def xi_at_angle(self, theta: np.ndarray, tol: float = 1e-15) -> np.ndarray:
-        """Invert θ(ξ) by Newton's method (the curve must be star-shaped)."""
+        """Invert θ(ξ) (increasing on a star-shaped curve): Newton's method inside the bracket
+        ``|θ − ξ| <= atan(|w|max / u_min)``, a bisection where a step leaves it."""
         theta = np.atleast_1d(np.asarray(theta, dtype=float))
+        reach = np.arctan2(2 * self.e2 + 2 * abs(self.d2), self.r0 - 2 * self.e1) + 1e-12
+        lo, hi = theta - reach, theta + reach
         xi = theta.copy()
-        for _ in range(50):
+        for _ in range(100):
             (u, w), (du, dw) = self._uw(xi, 1)
             f = xi + np.arctan2(w, u) - theta
+            hi = np.where(f > 0, xi, hi)
+            lo = np.where(f > 0, lo, xi)
             df = 1.0 + (u * dw - w * du) / (u * u + w * w)
-            step = f / df
-            xi = xi - step
-            if np.max(np.abs(step)) < tol:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                new = xi - f / df
+            new = np.where((new > lo) & (new < hi), new, 0.5 * (lo + hi))
+            step = new - xi
+            xi = new
+            if np.max(np.abs(step)) < tol or np.max(hi - lo) < tol:
                 return xi
         if np.max(np.abs(step)) > 1e-12:
             raise GeometryError("gear-2 polar inversion did not converge")

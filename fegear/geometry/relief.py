@@ -31,7 +31,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.polynomial import chebyshev as cheb
-from scipy.optimize import brentq
 
 from ..errors import ParameterError
 from .envelope import Branch, BranchPoints
@@ -185,16 +184,16 @@ def relief_zones(branch: Branch, tip_ends: list[tuple[float, float]], amount: fl
             if start is None:
                 r = branch.evaluate(np.array([root, end])).radius
                 raise ParameterError("relief_start", start_radius,
-                                     f"{min(r):.6g} < relief_start < {max(r):.6g} mm (the "
+                                     f"{min(r):.6g} < relief-start < {max(r):.6g} mm (the "
                                      "working flank's radii)")
             length = along(end) - along(start)
         else:
             length = extent
             if not 0.0 < length < flank:
                 raise ParameterError("relief_extent", length,
-                                     f"0 < relief_extent < {flank:.4g} mm (the working flank "
+                                     f"0 < relief-extent < {flank:.4g} mm (the working flank "
                                      "from root to tip end)")
-            start = brentq(_short_of(along, end, length), root, end, xtol=1e-15, rtol=1e-15)
+            start = _brentq(_short_of(along, end, length), root, end, xtol=1e-15, rtol=1e-15)
         stop = _past(branch, end, toward, BEYOND * length + BEYOND_FLOOR * module)
         arc, along = _arc_length(branch, root, stop, toward)
         arc[0] -= along(start)          # w = 0 at the start
@@ -225,9 +224,24 @@ def _short_of(along, end: float, length: float):
 
 
 def _past(branch: Branch, end: float, toward: float, length: float) -> float:
-    """ξ a length ``length`` (mm) along the branch past ``end`` in direction ``toward``."""
+    """ξ a length ``length`` (mm) along the branch past ``end`` in direction ``toward``, or
+    short of that where the branch ends first: at a fold (a stretch of gear 2 with no
+    conjugate point) or a cusp, where its speed changes sign."""
     speed = abs(float(branch.evaluate(np.array([end])).speed[0]))
-    return end + toward * length / max(speed, 1e-12)
+    stop = end + toward * length / max(speed, 1e-12)
+    xi = np.linspace(end, stop, 65)
+    ev = branch.evaluate(xi)
+    live = (ev.disc > 0) & (np.sign(ev.speed) == np.sign(ev.speed[0]))
+    if live.all():
+        return stop
+    k = int(np.argmin(live))          # the first sample past the branch's end
+    lo, hi = xi[k - 1], xi[k]
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        e = branch.evaluate(np.array([mid]))
+        ok = e.disc[0] > 0 and np.sign(e.speed[0]) == np.sign(ev.speed[0])
+        lo, hi = (mid, hi) if ok else (lo, mid)
+    return float(lo)
 
 
 def _radius_point(branch: Branch, root: float, end: float, radius: float) -> float | None:
@@ -239,4 +253,12 @@ def _radius_point(branch: Branch, root: float, end: float, radius: float) -> flo
     fa, fb = f(root), f(end)
     if fa * fb >= 0:
         return None
-    return brentq(f, root, end, xtol=1e-15, rtol=1e-15)
+    return _brentq(f, root, end, xtol=1e-15, rtol=1e-15)
+
+
+def _brentq(*args, **kwargs) -> float:
+    """scipy's Brent root finder, imported when first needed (a refused input answers
+    before scipy is loaded)."""
+    from scipy.optimize import brentq
+
+    return brentq(*args, **kwargs)

@@ -50,13 +50,22 @@ class RoundedProfile:
         self.phi_space = profile.phi_space
         self.tooth_center = profile.tooth_center
         self.kinks = tuple(k for k in (self._kink(pc.phi0) for pc in profile.pieces[1:]) if k)
-        self.fillets = self._fillets() if self.radius_mm > 0 else ()
+        try:
+            self.fillets = self._fillets() if self.radius_mm > 0 else ()
+        except _NoFit:
+            largest = largest_round(profile, self.radius_mm)
+            raise ParameterError("tip-round", radius, f"0 <= tip-round <= "
+                                 f"{math.floor(largest * 1e4) / 1e4:.4f} mm here (the "
+                                 "largest round that fits gear 1's tip edges)") from None
 
     def _kink(self, phi: float) -> tuple[float, float] | None:
+        """The convex kink at a piece junction (its angle, rad), if larger than KINK_DEG: a
+        concave one (where two relieved tops meet in the middle of a tooth, say) is a notch
+        no contact reaches, and no round fits it."""
         ev = self.profile.evaluate(np.array([phi - 1e-10, phi + 1e-10]))
         t0, t1 = ev.tangent
-        gamma = math.atan2(t0[0] * t1[1] - t0[1] * t1[0], t0 @ t1)
-        return (phi, abs(gamma)) if math.degrees(abs(gamma)) > KINK_DEG else None
+        gamma = math.atan2(t0[0] * t1[1] - t0[1] * t1[0], t0 @ t1)   # > 0: convex
+        return (phi, gamma) if math.degrees(gamma) > KINK_DEG else None
 
     def _centres(self, phi: np.ndarray) -> np.ndarray:
         """Centres (n, 2) of circles of the radius tangent to the profile at angles ``phi``."""
@@ -104,9 +113,7 @@ class RoundedProfile:
             side_ok = phi_a < pc < phi_b and phi_b - phi_a < 0.25 * self.pitch
             curv_ok = np.all(ev.kappa * rho > -1.0) and np.all(ev.kappa * rho < 1.0)
             if not np.all(np.abs(residual[k]) <= 1e-9) or not side_ok or not curv_ok:
-                raise ParameterError("tip_round", rho, "a radius that fits the tip edge "
-                                     "(smaller than "
-                                     f"{0.5 / max(np.abs(ev.kappa).max(), 1e-9):.3g} mm here)")
+                raise _NoFit
             c = self._centres(np.array([phi_a]))[0]
             out.append(Fillet(phi_a, phi_b, (float(c[0]), float(c[1])), rho, float(g)))
         return tuple(out)
@@ -179,3 +186,40 @@ class RoundedProfile:
                 out.append((0.5 * (f.phi_a + f.phi_b) + t * self.pitch,
                             0.5 * (f.phi_b - f.phi_a), f.kink))
         return out
+
+
+class _NoFit(Exception):
+    """A round does not fit a tip edge (told by :class:`RoundedProfile` with its range)."""
+
+
+def fits(profile: Gear1Profile, radius: float) -> bool:
+    """Whether a round of ``radius`` (mm) fits every tip edge of ``profile``."""
+    shape = RoundedProfile.__new__(RoundedProfile)
+    shape.profile, shape.radius_mm, shape.pitch = profile, float(radius), profile.pitch
+    shape.kinks = tuple(k for k in (shape._kink(pc.phi0) for pc in profile.pieces[1:]) if k)
+    try:
+        shape._fillets()
+    except _NoFit:
+        return False
+    return True
+
+
+def largest_round(profile: Gear1Profile, upper: float) -> float:
+    """The largest tip round (mm) below ``upper`` that fits every tip edge, by bisection to
+    1e-5 of ``upper`` (a round fits below a radius where it fits: the tangent points only
+    move apart as it grows)."""
+    good, bad = 0.0, upper
+    if fits(profile, bad):
+        return bad
+    while bad - good > 1e-5 * upper:
+        mid = 0.5 * (good + bad)
+        good, bad = (mid, bad) if fits(profile, mid) else (good, mid)
+    return good
+
+
+def default_round(profile: Gear1Profile, nominal: float) -> float:
+    """The tip round a solve takes when none is given: ``nominal`` (mm), or half the largest
+    round that fits where ``nominal`` does not (docs/cli.md)."""
+    if fits(profile, nominal):
+        return nominal
+    return 0.5 * largest_round(profile, nominal)

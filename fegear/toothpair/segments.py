@@ -233,14 +233,15 @@ def _halved(curve, theta, points, tol: float) -> np.ndarray:
 
 def gear2_polar(curve):
     """Gear 2's profile as points by polar angle (its frame), and the projection of points
-    onto it along their polar angle."""
+    onto it: the foot of their normal (along their polar angle a node on a nearly radial
+    flank moved far along it and inverted its element: h1 0.83 at the seed paper's pair)."""
 
     def point(theta):
         r = curve.radius_at_angle(theta)
         return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
 
     def project(x):
-        return point(np.arctan2(x[:, 1], x[:, 0]))
+        return curve.closest(x)[0]
 
     return point, project
 
