@@ -6,6 +6,7 @@ the offending value and the admissible range, so that a user sees one line sayin
 
 from __future__ import annotations
 
+import difflib
 import math
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
@@ -39,6 +40,7 @@ def describe_range(name: str, lo: float | None, hi: float | None,
                    lo_open: bool = False, hi_open: bool = False, unit: str = "") -> str:
     """Human-readable interval such as ``0 < h1 <= 0.412``."""
     u = f" {unit}" if unit else ""
+    name = name.replace("_", "-")
     left = "" if lo is None else f"{lo:.6g} {'<' if lo_open else '<='} "
     right = "" if hi is None else f" {'<' if hi_open else '<='} {hi:.6g}{u}"
     return f"{left}{name}{right}"
@@ -67,7 +69,8 @@ class Input:
     for strings. Ranges that depend on other inputs (a shift against the tooth height, say) are
     checked by the object the inputs build, with a message naming the range at those values.
     ``post``: the input only reads the results (an allowable stress): it changes no number of
-    the solve, so a cache key leaves it out (:meth:`InputTable.keyed`).
+    the solve, so a cache key leaves it out (:meth:`InputTable.keyed`). ``aliases``: other
+    names the command line and study files take for it (an earlier name, say).
     """
 
     name: str
@@ -81,6 +84,7 @@ class Input:
     high_open: bool = False
     choices: tuple[str, ...] = ()
     post: bool = False
+    aliases: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.kind not in (float, int, str, bool):
@@ -129,11 +133,16 @@ class InputTable(Mapping[str, Input]):
     def __init__(self, *groups: Iterable[Input]) -> None:
         rows = [row for group in groups for row in group]
         self._rows = {row.name: row for row in rows}
-        if len(self._rows) != len(rows):
+        self._alias = {a: row.name for row in rows for a in row.aliases}
+        if len(self._rows) != len(rows) or set(self._alias) & set(self._rows):
             raise ValueError("two inputs share a name")
 
     def __getitem__(self, name: str) -> Input:
-        return self._rows[name]
+        return self._rows[self._alias.get(name, name)]
+
+    def canonical(self, name: str) -> str:
+        """The input's own name for ``name`` (an alias → the name it stands for)."""
+        return self._alias.get(name, name)
 
     def __iter__(self) -> Iterator[str]:
         return iter(self._rows)
@@ -148,11 +157,13 @@ class InputTable(Mapping[str, Input]):
     def complete(self, values: Mapping[str, object]) -> dict[str, object]:
         """``values`` by name with every missing input at its default; an unknown name is a
         :class:`ParameterError` that lists the known ones."""
-        unknown = [k for k in values if k not in self._rows]
+        unknown = [k for k in values if k not in self]
         if unknown:
-            raise ParameterError(unknown[0], values[unknown[0]], "one of "
+            close = difflib.get_close_matches(unknown[0], [*self._rows, *self._alias], n=1)
+            hint = f"did you mean {close[0]}? " if close else ""
+            raise ParameterError(unknown[0], values[unknown[0]], f"{hint}one of "
                                  + ", ".join(self._rows), "unknown input")
-        return {**self.defaults(), **values}
+        return {**self.defaults(), **{self.canonical(k): v for k, v in values.items()}}
 
     def keyed(self, values: Mapping[str, object]) -> dict[str, object]:
         """The inputs that decide a solve's numbers, by name, missing ones at their defaults:

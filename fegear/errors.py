@@ -19,12 +19,17 @@ class ParameterError(FegearError, ValueError):
     """
 
     def __init__(self, name: str, value: object, admissible: str, reason: str = "") -> None:
-        self.name = name
-        self.value = value
+        self.name = name.replace("_", "-")   # as the input is typed: tip-clearance
+        self.value = value.item() if hasattr(value, "item") else value   # not np.float64(…)
         self.admissible = admissible
         self.reason = reason
-        why = f" ({reason})" if reason else ""
-        super().__init__(f"{name} = {value!r} is not admissible{why}; admissible: {admissible}")
+        super().__init__(self.describe(self.name))
+
+    def describe(self, name: str) -> str:
+        """The message with the input called ``name`` (``--tip-clearance`` on the command
+        line, ``tip-clearance`` in a study file)."""
+        why = f" ({self.reason})" if self.reason else ""
+        return f"{name} = {self.value!r} is not admissible{why}; admissible: {self.admissible}"
 
 
 class GeometryError(FegearError):

@@ -16,6 +16,10 @@ from dataclasses import dataclass
 from ..checks import Input, require_range
 from ..errors import ParameterError
 
+#: the lowest tooth-height coefficient: teeth 4 m h1 = 0.2 m high (the solve stopped settling
+#: below h1 ≈ 0.03 on the seed paper's pair; the paper's own range is 0.2-0.4)
+H1_MIN = 0.05
+
 #: tip relief shapes (:mod:`.relief`) and the default extent, in modules
 SHAPES = ("parabolic", "arc", "linear")
 EXTENT_DEFAULT = 0.25
@@ -32,16 +36,18 @@ PAIR_INPUTS = (
     Input("m", float, 2.0, "module", "mm", low=0.0, high=100.0, low_open=True),
     Input("z2", int, 45, "teeth of the internal gear (gear 2), z1 < z2 <= 2000", low=4),
     Input("z1", int, 44, "teeth of the external gear (gear 1)", low=3),
-    Input("h1", float, 0.30, "tooth-height coefficient (e1 = m h1), 0 < h1 < z2/4 and "
-          "admissible"),
+    Input("h1", float, 0.30, f"tooth-height coefficient (e1 = m h1), {H1_MIN:g} <= h1 < z2/4 "
+          "and admissible"),
     Input("f1", float, 0.15, "tooth-shape coefficient (e2 = f1 e1)", low=0.0, high=1.0),
     Input("shift", float, None, "Δ1 negative shift: gear 1 generated at centre distance "
           "e + shift, 0 <= shift <= m h1/4 (default 0.008 m, the seed paper's 0.016 mm at "
           "m = 2)", "mm"),
     Input("rotation", float, None, "Δ2 rotation modification of the generating tool, "
-          "|rotation| <= m h1/4 (default 0.001 m, the seed paper's 0.002 mm at m = 2)", "mm"),
+          "|rotation| <= m h1/4 and the pair clear before any load (default 0.001 m, the seed "
+          "paper's 0.002 mm at m = 2, halved until the pair is clear)", "mm"),
     Input("tip-clearance", float, None, "radial clearance of gear 1's tip to the far side of "
-          "gear 2, -shift <= tip-clearance <= m h1 (default: = shift)", "mm"),
+          "gear 2, tip-clearance <= m h1 and the tip clear before any load (default: = shift, "
+          "at least 0.001 m)", "mm"),
     Input("relief", float, 0.0, "tip relief of gear 1's flanks: depth cut normal to the "
           "profile at the tip end, 0 <= relief <= 50 m µm (0: none)", "µm"),
     Input("relief-extent", float, None, "length of the tip relief along the flank from the "
@@ -113,8 +119,7 @@ class PairParameters:
                                  "the internal gear needs more teeth than the external gear")
         if self.z2 > 2000:
             raise ParameterError("z2", self.z2, f"an integer with {self.z1} < z2 <= 2000")
-        set_(self, "h1", require_range("h1", self.h1, 0.0, self.z2 / 4.0,
-                                       lo_open=True, hi_open=True))
+        set_(self, "h1", require_range("h1", self.h1, H1_MIN, self.z2 / 4.0, hi_open=True))
         set_(self, "f1", _ROW["f1"].check(self.f1))
         e1 = self.m * self.h1
         set_(self, "shift", require_range("shift", self.shift, 0.0, 0.25 * e1, unit="mm"))
@@ -131,7 +136,7 @@ class PairParameters:
                                            unit="µm"))
         set_(self, "relief_shape", _ROW["relief-shape"].check(self.relief_shape))
         if self.relief_extent is not None and self.relief_start is not None:
-            raise ParameterError("relief_start", self.relief_start, "unset when relief_extent "
+            raise ParameterError("relief_start", self.relief_start, "unset when relief-extent "
                                  "is given (one or the other)")
         if self.relief_extent is not None:
             set_(self, "relief_extent", require_range("relief_extent", self.relief_extent, 0.0,

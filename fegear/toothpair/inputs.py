@@ -39,7 +39,8 @@ MODEL_INPUTS = (
           choices=("ring", "sector")),
     Input("quality", str, "standard", "mesh quality", choices=tuple(QUALITY)),
     Input("tip-round", float, None, f"gear-1 tip-edge round radius, 0 <= tip-round <= m/2 "
-          f"(default {TIP_ROUND:g} m)", "mm"),
+          f"and fitting the tip edges (default {TIP_ROUND:g} m, or half the largest round that "
+          "fits where that does not)", "mm"),
     Input("rim1", float, None, "gear-1 rim below the roots, to the bore, m/2 ... 20 m "
           "(default 3 m)", "mm"),
     Input("rim2", float, None, "gear-2 rim beyond the roots, to the fixed rim, m/2 ... 20 m "

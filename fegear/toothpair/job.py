@@ -17,8 +17,10 @@ from .. import progress
 from ..fe import Allowables
 from ..geometry import admissible_pair
 from .case import SolveCase, cycle_positions
-from .inputs import QUALITY, SOLVE_INPUTS
+from .inputs import PAIR_INPUTS, QUALITY, SOLVE_INPUTS, TIP_ROUND
 from .safety import DEFAULT_ALLOWABLES, allowables_of
+
+PAIR_NAMES = {row.name for row in PAIR_INPUTS}
 
 
 @dataclass(frozen=True)
@@ -38,22 +40,39 @@ def prepare_job(values: Mapping[str, object]) -> Job:
     :class:`~fegear.errors.ParameterError` or :class:`~fegear.errors.GeometryError`. No
     meshing, no output."""
     v = SOLVE_INPUTS.complete(values)
+    for name, row in SOLVE_INPUTS.items():   # every static range first: they answer at once
+        if name not in PAIR_NAMES:
+            row.check(v[name])
     params = admissible_pair(v, given=values)
-    if params.relief > 0:   # where a relief fits depends on the whole profile (kept)
-        from ..geometry import gear1_profile
-
-        gear1_profile(params)
+    v["tip-round"] = _tip_round(params, v["tip-round"])
     kw = {} if v["penalty-factor"] is None else {"penalty_factor": v["penalty-factor"]}
     position = SOLVE_INPUTS["position"].check(v["position"])
     positions = SOLVE_INPUTS["positions"].check(v["positions"])
     n = 1 if positions is None else positions
     case = SolveCase(params, torque=v["torque"], beta=math.radians(position),
-                     thickness=v["thickness"], E=v["E"], nu=v["nu"], quality=v["quality"],
+                     thickness=v["face-width"], E=v["E"], nu=v["nu"], quality=v["quality"],
                      rim1=v["rim1"], rim2=v["rim2"], extra_teeth=v["extra-teeth"],
                      extra_pairs=v["extra-pairs"], tip_round=v["tip-round"], model=v["model"],
                      **kw)
     betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
     return Job(case, tuple(betas), not v["no-estimate"], allowables_of(v))
+
+
+def _tip_round(params, given: float | None) -> float | None:
+    """The tip round a solve takes: the one given, refused by name with the largest that fits
+    if it does not; else the default :data:`~.inputs.TIP_ROUND` m, or half the largest that
+    fits where that does not (``None``: the default as it is)."""
+    from ..geometry import RoundedProfile, default_round, gear1_profile
+
+    nominal = TIP_ROUND * params.m
+    profile = gear1_profile(params)          # built by the admissibility check, kept
+    if given is not None:
+        SOLVE_INPUTS["tip-round"].check(given)
+        if 0 < given <= 0.5 * params.m:
+            RoundedProfile(profile, given)   # a round that does not fit is refused by name
+        return given
+    chosen = default_round(profile, nominal)
+    return None if chosen == nominal else chosen
 
 
 @dataclass(frozen=True)

@@ -92,4 +92,4 @@ def test_meshing_phase():
 def test_bad_input_names_the_parameter(call, name):
     with pytest.raises(ParameterError) as exc:
         call()
-    assert exc.value.name == name
+    assert exc.value.name == name.replace("_", "-")

@@ -5,7 +5,7 @@ import math
 import pytest
 
 from fegear.errors import ParameterError
-from fegear.geometry.gear1 import Gear1Profile
+from fegear.geometry.admissible import check_design, design_defect
 from fegear.geometry.parameters import PairParameters
 
 
@@ -20,12 +20,13 @@ from fegear.geometry.parameters import PairParameters
     (dict(z2=40, z1=44), "z2", "z2 > z1 = 44"),
     (dict(z1=2, z2=5), "z1", "integer >= 3"),
     (dict(z1=44.5), "z1", "integer"),
-    (dict(h1=0), "h1", "0 < h1"),
+    (dict(h1=0), "h1", "0.05 <= h1"),
+    (dict(h1=0.01), "h1", "0.05 <= h1"),
     (dict(h1=20), "h1", "h1 < 11.25"),
     (dict(f1=-0.1), "f1", "0 <= f1"),
     (dict(shift=-0.001), "shift", "0 <= shift"),
     (dict(rotation=1.0), "rotation", "rotation <= 0.15"),
-    (dict(shift=0.01, tip_clearance=-0.02), "tip_clearance", "-0.01 <= tip_clearance"),
+    (dict(shift=0.01, tip_clearance=-0.02), "tip-clearance", "-0.01 <= tip-clearance"),
 ])
 def test_simple_ranges(kw, name, fragment):
     with pytest.raises(ParameterError) as err:
@@ -35,15 +36,15 @@ def test_simple_ranges(kw, name, fragment):
     assert "\n" not in str(err.value)
 
 
-@pytest.mark.parametrize("kw,name,reason", [
-    (dict(f1=0.7), "f1", "loops"),                # gear-2 curve loops
-    (dict(h1=0.5, f1=0.3), "f1", "loops"),
-    (dict(h1=0.8), "h1", "no conjugate point"),   # normal misses the pitch circle
-    (dict(h1=3.0), "h1", "loops"),
+@pytest.mark.parametrize("values,name,reason", [
+    ({"f1": 0.7}, "f1", "folds back"),                # gear-2 curve loops
+    ({"h1": 0.5, "f1": 0.3}, "f1", "folds back"),
+    ({"h1": 0.9}, "h1", "folds back"),
+    ({"h1": 3.0}, "h1", "folds back"),
 ])
-def test_geometry_refusals_name_parameter_and_range(kw, name, reason):
+def test_geometry_refusals_name_parameter_and_range(values, name, reason):
     with pytest.raises(ParameterError) as err:
-        Gear1Profile(PairParameters(**kw))
+        check_design(values, given=set(values))
     e = err.value
     assert e.name == name and reason in e.reason
     assert f"{name} <=" in e.admissible and "m=2, z2=45, z1=44" in e.admissible
@@ -52,15 +53,12 @@ def test_geometry_refusals_name_parameter_and_range(kw, name, reason):
 def test_refusal_limit_is_sharp():
     """The reported limit is admissible and slightly above it is not."""
     with pytest.raises(ParameterError) as err:
-        Gear1Profile(PairParameters(h1=0.8))
+        check_design({"h1": 0.9})
     limit = float(err.value.admissible.split("h1 <=")[1].split()[0])
-    Gear1Profile(PairParameters(h1=limit - 2e-4))
-    with pytest.raises(ParameterError):
-        Gear1Profile(PairParameters(h1=limit + 2e-4))
+    assert design_defect({"h1": limit}) is None
+    assert design_defect({"h1": limit + 4e-4}) is not None
 
 
-def test_undercut_detected_for_cusp_on_working_flank():
-    from fegear.geometry.admissible import defect
-    # just past the f1 limit at h1 = 0.3 the near branch folds (cusp) or loses conjugacy
-    assert defect(PairParameters(f1=0.39)) is None
-    assert defect(PairParameters(f1=0.40)) is not None
+def test_the_loop_limit_of_f1_is_where_the_curve_stops_being_star_shaped():
+    assert design_defect({"f1": 0.41}) is None
+    assert design_defect({"f1": 0.42}).kind == "loop"

@@ -120,12 +120,12 @@ def test_relieved_clearance_closes_exactly(direction):
 
 
 @pytest.mark.parametrize("inputs, name, text", [
-    (dict(relief=10, relief_extent=5.0), "relief_extent", "0 < relief_extent < 2.488 mm"),
-    (dict(relief=10, relief_start=40.0), "relief_start", "< relief_start <"),
-    (dict(relief=10, relief_extent=0.5, relief_start=44.0), "relief_start", "unset when"),
+    (dict(relief=10, relief_extent=5.0), "relief-extent", "0 < relief-extent < 2.488 mm"),
+    (dict(relief=10, relief_start=40.0), "relief-start", "< relief-start <"),
+    (dict(relief=10, relief_extent=0.5, relief_start=44.0), "relief-start", "unset when"),
     (dict(relief=200), "relief", "0 <= relief <= 100 µm"),
-    (dict(relief=64, relief_extent=0.5), "relief", "a smaller relief or a longer relief_extent"),
-    (dict(relief=10, relief_shape="cubic"), "relief_shape", "parabolic / arc / linear"),
+    (dict(relief=64, relief_extent=0.5), "relief", "a smaller relief or a longer relief-extent"),
+    (dict(relief=10, relief_shape="cubic"), "relief-shape", "parabolic / arc / linear"),
 ])
 def test_bad_relief_inputs_name_the_parameter(inputs, name, text):
     with pytest.raises(ParameterError) as err:

@@ -45,8 +45,13 @@ def test_tip_round_is_tangent_and_only_removes_material(rho, pair, kink_deg, req
     assert not shape.on_round(np.array([f.phi_a - 1e-6, f.phi_b + 1e-6])).any()
 
 
-def test_tip_round_too_large_is_refused():
-    with pytest.raises(ParameterError, match="tip_round"):
-        RoundedProfile(Gear1Profile(PairParameters()), 5.0)
+def test_tip_round_too_large_is_refused_with_the_largest_that_fits():
+    profile = Gear1Profile(PairParameters())
+    with pytest.raises(ParameterError, match="tip-round") as err:
+        RoundedProfile(profile, 5.0)
+    largest = float(err.value.admissible.split("<= tip-round <=")[1].split()[0])
+    assert len(RoundedProfile(profile, largest).fillets) == 2
+    with pytest.raises(ParameterError):
+        RoundedProfile(profile, largest + 2e-4)
 
 

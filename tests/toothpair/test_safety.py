@@ -127,7 +127,7 @@ def test_a_cycle_gives_each_position_its_factors_and_the_smallest(cycle):
 def test_bad_allowable_names_it(field, value):
     with pytest.raises(ParameterError) as err:
         Allowables(**{field: value})
-    assert err.value.name == f"allowable_{field}"
+    assert err.value.name == f"allowable-{field}"
 
 
 def test_solve_takes_the_allowables_from_the_command_line(tmp_path, capsys):

@@ -21,9 +21,9 @@ The baseline pair at 200 N·m, coarse:
 >>> sol = solve_pair(case, model=model)
 >>> {name: round(value) for name, value in sol.headline().items()}  # MPa
 ... # doctest: +NORMALIZE_WHITESPACE
-{'root_stress_gear1_MPa': 287, 'root_stress_gear2_MPa': 269,
+{'root_stress_gear1_MPa': 288, 'root_stress_gear2_MPa': 269,
  'contact_pressure_MPa': 1884, 'flank_contact_pressure_MPa': 623,
- 'von_mises_max_MPa': 1870}
+ 'von_mises_max_MPa': 1871}
 >>> [(t.tooth, round(t.load_share, 2)) for t in sol.teeth if t.load_N > 0]
 [(9, 0.03), (10, 0.43), (11, 0.42), (12, 0.12)]
 

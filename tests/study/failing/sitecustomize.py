@@ -1,0 +1,20 @@
+"""Loaded at start-up by every Python process whose PYTHONPATH holds this folder: the study
+tests' solves and workers. It makes one admissible case fail inside its solve (10 N·m at
+β = 1.5°), as no admissible design does any more, so that the runner's handling of a failed
+case stays tested."""
+
+import math
+
+import fegear.toothpair.ring.solve as ring_solve
+from fegear.errors import GeometryError
+
+_solve_position = ring_solve.solve_position
+
+
+def solve_position(model, case, state, near=None):
+    if case.torque == 10.0 and abs(case.beta - math.radians(1.5)) < 1e-12:
+        raise GeometryError("injected by the study tests: a solve that fails")
+    return _solve_position(model, case, state, near)
+
+
+ring_solve.solve_position = solve_position
