@@ -25,7 +25,7 @@ import signal
 import sys
 
 from .. import progress
-from ..errors import FegearError
+from ..errors import FegearError, ParameterError
 from . import bench, drive, hertz, profile, relief, solve, study
 from .args import EXIT_USAGE, Parser
 from .terminal import StageBar, Stopped, stop_on_signals
@@ -74,6 +74,21 @@ def _commands(parser: Parser):
                 yield from _commands(command)
 
 
+def _options(parser: Parser, a: argparse.Namespace) -> set[str]:
+    """The option strings of the command ``a`` ran (its subcommands' too)."""
+    command = next((c for name, c in _subcommands(parser) if name == a.command), parser)
+    found = set()
+    for p in (command, *(c for _, c in _subcommands(command))):
+        found.update(s for action in p._actions for s in action.option_strings)
+    return found
+
+
+def _subcommands(parser: Parser):
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            yield from action.choices.items()
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run ``fegear`` with ``argv`` (default: the process's arguments); the exit code."""
     a = build_parser().parse_args(argv)
@@ -83,6 +98,12 @@ def main(argv: list[str] | None = None) -> int:
     try:
         with stop_on_signals(), progress.reporting(bar):
             return COMMANDS[a.command].run(a)
+    except ParameterError as exc:
+        bar.close()
+        typed = f"--{exc.name}"
+        known = typed in _options(build_parser(), a)
+        print(f"fegear: error: {exc.describe(typed) if known else exc}", file=sys.stderr)
+        return EXIT_USAGE
     except FegearError as exc:
         bar.close()
         print(f"fegear: error: {exc}", file=sys.stderr)
@@ -97,6 +118,13 @@ def main(argv: list[str] | None = None) -> int:
         # stdout goes to devnull so that Python's own flush at exit is silent too
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return EXIT_BROKEN_PIPE
+    except OSError as exc:
+        # an output that passed the early check and still cannot be written (a directory
+        # where a file goes, a full disk): one line, no traceback
+        bar.close()
+        target = exc.filename2 or exc.filename
+        print(f"fegear: error: cannot write {target}: {exc.strerror or exc}", file=sys.stderr)
+        return EXIT_USAGE
     finally:
         bar.close()
 

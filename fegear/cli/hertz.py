@@ -35,7 +35,7 @@ def run(a: argparse.Namespace) -> int:
 
     quality = a.quality if a.quality in QUALITY else number("quality", a.quality)
     kw = {} if a.penalty_factor is None else {"penalty_factor": a.penalty_factor}
-    case = DiskCase(r1=a.r1, r2=a.r2, load=a.load, thickness=a.thickness, E=a.E, nu=a.nu,
+    case = DiskCase(r1=a.r1, r2=a.r2, load=a.load, thickness=a.face_width, E=a.E, nu=a.nu,
                     plane=a.plane, quality=quality, **kw)
     out = prepare_dir(a.out) if a.out else None
     from ..verify import solve_disks, write_disk_outputs  # the FE stack, once the case is sound

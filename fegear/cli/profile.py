@@ -20,16 +20,24 @@ def add_parser(sub) -> None:
     p.add_argument("--out", default=None, help="output directory for gear1.csv, gear2.csv, "
                    "pair.png and summary.json (default: none, the table only)")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    p.add_argument("--map", default=None, metavar="X,Y",
+                   help="instead, map where the design is admissible over two inputs (the "
+                        "others as given) and what bounds it, e.g. h1,f1; spans may be given "
+                        "as h1=0.1:0.8,f1=0:0.4 (default spans: h1 0.05-1, f1 0-0.6, the "
+                        "input's range for the others); with --out writes map.png, "
+                        "map_grid.csv and map_edges.csv")
+    p.add_argument("--map-size", type=int, default=21,
+                   help="designs along each axis of the map (default 21)")
 
 
 def run(a: argparse.Namespace) -> int:
     from ..files import check_dir, prepare_dir, write_json, write_points_csv
     from ..geometry import admissible_pair
 
+    require_range("map_size", a.map_size, 5, 101)
+    if a.map is not None:
+        return _map(a)
     params = admissible_pair(given_values(a, PAIR_INPUTS))
-    from ..geometry import gear1_profile  # the envelope needs scipy
-
-    gear1_profile(params)   # a relief that does not fit is refused before any output
     chord = require_range("chord_error", a.chord_error, 1e-7, 0.1, unit="mm")
     positions = int(require_range("positions", a.positions, 4, 360))
     out = None if a.out is None else check_dir(a.out)
@@ -88,4 +96,99 @@ def _profile_table(geo) -> str:
         lines += [f"INTERFERENCE: {len(geo.contact.interference)} teeth, worst tooth "
                   f"{worst.tooth} by {worst.depth_um:.3f} µm at ({worst.point[0]:.4f}, "
                   f"{worst.point[1]:.4f}) mm"]
+    return "\n".join(lines)
+
+
+#: the seed paper's study ranges (its Tables 5 and 6), outlined on an h1-f1 map
+PAPER_BOX = ((0.2, 0.4), (0.1, 0.2), "the seed paper's ranges")
+#: the inputs a map can span
+MAPPED = ("h1", "f1", "shift", "rotation", "tip-clearance", "relief", "relief-extent")
+
+
+def _map(a: argparse.Namespace) -> int:
+    """``fegear profile --map X,Y``: the design-space map and its tables."""
+    import os
+    from concurrent.futures import ProcessPoolExecutor
+
+    from .. import progress
+    from ..errors import ParameterError
+    from ..files import check_dir, prepare_dir, write_csv
+    from ..geometry.plot import map_png
+    from ..geometry.space import design_map, map_span, map_tables
+
+    axes = []
+    for part in a.map.split(","):
+        name, _, span = part.partition("=")
+        name = name.strip()
+        if name not in MAPPED:
+            raise ParameterError("map", a.map, "two of " + ", ".join(MAPPED) + ", as X,Y or "
+                                 "X=lo:hi,Y=lo:hi")
+        try:
+            bounds = tuple(float(v) for v in span.split(":")) if span else None
+        except ValueError:
+            bounds = ()
+        if bounds is not None and (len(bounds) != 2 or not bounds[0] < bounds[1]):
+            raise ParameterError("map", a.map, f"a span {name}=lo:hi with lo < hi")
+        axes.append((name, bounds))
+    if len(axes) != 2 or axes[0][0] == axes[1][0]:
+        raise ParameterError("map", a.map, "two different inputs, as X,Y (e.g. h1,f1)")
+    size = int(require_range("map_size", a.map_size, 5, 101))
+    values = given_values(a, PAIR_INPUTS)
+    (x, x_span), (y, y_span) = axes
+    x_span, y_span = x_span or map_span(x, values), y_span or map_span(y, values)
+    out = None if a.out is None else check_dir(a.out)
+    progress.plan(size)
+
+    def rows(fn, args):
+        with ProcessPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:
+            for k, row in enumerate(pool.map(fn, args)):
+                progress.stage(f"{y} = {row.y:.4g} ({k + 1} of {size})")
+                yield row
+
+    dm = design_map(values, x, y, size, x_span, y_span, rows=rows)
+    head, grid, edge_head, edges = map_tables(dm)
+    table = _edges_table(dm)
+    if out is None:
+        print(table)
+        print("(no files written: --out DIR writes map.png, map_grid.csv, map_edges.csv)")
+        return 0
+    out = prepare_dir(out)
+    others = ", ".join(f"{k} {v:g}" for k, v in values.items() if k not in (x, y))
+    here = (values.get(x, _default(x, values)), values.get(y, _default(y, values)))
+    files = {
+        "png": map_png(out / "map.png", dm, f"admissible designs over {x} and {y}"
+                       + (f" at {others}" if others else " (the seed paper's pair otherwise)"),
+                       here=here, here_label="this design" if values else
+                       "the seed paper's pair", box=PAPER_BOX if (x, y) == ("h1", "f1") else
+                       None),
+        "grid_csv": write_csv(out / "map_grid.csv", head, grid),
+        "edges_csv": write_csv(out / "map_edges.csv", edge_head, edges),
+    }
+    print(table)
+    for k, v in files.items():
+        print(f"{k:10s} {v}")
+    return 0
+
+
+def _default(name: str, values: dict) -> float:
+    """The value input ``name`` takes at ``values`` (its default, or its default rule)."""
+    from dataclasses import asdict
+
+    from ..geometry.admissible import resolve
+
+    p = resolve(values)
+    return p.radial_tip_clearance if name == "tip-clearance" else asdict(p)[name.replace(
+        "-", "_")]
+
+
+def _edges_table(dm) -> str:
+    lines = [f"admissible {dm.x} at each {dm.y} (the edges a refusal states, the reason past "
+             "each)", f"| {dm.y:>8s} | {dm.x + ' from':>12s} | {'reason below':>14s} | "
+             f"{dm.x + ' to':>12s} | {'reason above':>14s} |",
+             "|---------:|-------------:|---------------:|-------------:|---------------:|"]
+    for r in reversed(dm.rows):
+        lo = "none" if r.lower is None else f"{r.lower:.4f}"
+        hi = "none" if r.upper is None else f"{r.upper:.4f}"
+        lines.append(f"| {r.y:8.4f} | {lo:>12s} | {r.lower_reason or '-':>14s} | {hi:>12s} | "
+                     f"{r.upper_reason or '-':>14s} |")
     return "\n".join(lines)

@@ -143,11 +143,16 @@ def build_study(data: dict, path: Path) -> Study:
     return Study(name, path, description, outputs, base, tuple(cases), varied)
 
 
+#: inputs renamed since studies were first stored, hashed under their earlier names so that
+#: those studies' records stay valid
+KEY_NAMES = {"face-width": "thickness"}
+
+
 def case_key(values: dict, outputs: Outputs, code: str) -> str:
     """Hash (first 16 hex digits of SHA-256) of every input that decides the solve's numbers
     (not the allowable stresses: the tables compute the safety factors from the stored
     stresses), the kept outputs and the code version: equal keys are equal results."""
-    full = SOLVE_INPUTS.keyed(values)
+    full = {KEY_NAMES.get(k, k): v for k, v in SOLVE_INPUTS.keyed(values).items()}
     text = json.dumps({"inputs": full, "outputs": [outputs.vtu, outputs.png], "code": code},
                       sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:16]

@@ -32,13 +32,14 @@ PAIR = {
     "--relief-extent": ["0", "-0.5"],   # too long for the flank: tests/geometry/test_relief.py
     "--relief-start": ["0", "-44"],
 }
-MATERIAL = {"--thickness": ["0", "-5", "1e300"], "--E": ["0", "-206000", "1e300"],
+MATERIAL = {"--face-width": ["0", "-5", "1e300"], "--E": ["0", "-206000", "1e300"],
             "--nu": ["-0.1", "0.5", "3"]}
 ALLOWABLE = {"--allowable-bending": ["0", "-558", "1e300"],
              "--allowable-contact": ["0", "-745", "1e300"]}
 OPTIONS = {
     "profile": {**PAIR, "--chord-error": ["0", "-1e-4", "1"], "--positions": ["0", "-16",
-                                                                              "100000"]},
+                                                                              "100000"],
+                "--map-size": ["0", "-5", "1000"]},
     "hertz": {"--r1": ["0", "-10", "1e300"], "--r2": ["0", "-5", "1e300"],
               "--load": ["0", "-1000", "1e300"], **MATERIAL,
               "--quality": ["0", "-8", "1e9", "best"],
@@ -124,7 +125,7 @@ def test_every_numeric_option_is_covered():
 
     sub = build_parser()._subparsers._group_actions[0].choices
     for command, parser in sub.items():
-        numeric = {a.option_strings[-1] for a in parser._actions
+        numeric = {a.option_strings[0] for a in parser._actions
                    if a.type in (int, float) or (a.dest.endswith("quality"))}
         assert numeric <= set(OPTIONS[command]), (command, numeric - set(OPTIONS[command]))
 
@@ -166,7 +167,8 @@ def test_solve_case_rejects_bad_fields(field, value):
 
     with pytest.raises(ParameterError) as err:
         SolveCase(PairParameters(), **{field: value})
-    assert err.value.name == ("position" if field == "beta" else field)
+    renamed = {"beta": "position", "thickness": "face-width"}
+    assert err.value.name == renamed.get(field, field.replace("_", "-"))
 
 
 @pytest.mark.parametrize("field,value", [
@@ -181,7 +183,7 @@ def test_disk_case_rejects_bad_fields(field, value):
 
     with pytest.raises(ParameterError) as err:
         DiskCase(**{field: value})
-    assert err.value.name == field
+    assert err.value.name == {"thickness": "face-width"}.get(field, field.replace("_", "-"))
 
 
 def test_contact_peer_without_calculix_is_one_line_and_writes_nothing(tmp_path, capsys,
