@@ -113,3 +113,79 @@ def _relief_chart(ax, charts) -> None:
     ax.set_title("tip relief (profile chart)", fontsize=9)
     ax.grid(True, lw=0.3)
     ax.legend(loc="upper left", fontsize=8)
+
+
+#: the colours and legend words of a design-space map's regions
+MAP_KINDS = {
+    "": ("#cfe8c8", "admissible"),
+    "loop": ("#f2b8a2", "loop: the gear-2 curve folds back"),
+    "undercut": ("#c9b3e0", "undercut: gear 1's working flank is cut"),
+    "no conjugate": ("#b7c6d9", "no conjugate point for gear 1's tip"),
+    "interference": ("#f5e08a", "interference: not clear before any load"),
+    "relief": ("#e0c49e", "the tip relief does not fit"),
+    "range": ("#dddddd", "outside the input's range"),
+}
+LABELS = {"h1": "h1, tooth-height coefficient (e1 = m h1)",
+          "f1": "f1, tooth-shape coefficient (e2 = f1 e1)", "m": "module m [mm]",
+          "shift": "shift Δ1 [mm]", "rotation": "rotation Δ2 [mm]",
+          "tip-clearance": "tip clearance [mm]", "relief": "tip relief [µm]",
+          "relief-extent": "tip relief extent [mm]"}
+
+
+def map_png(path: Path, dm, title: str, here: tuple[float, float] | None = None,
+            here_label: str = "this design", box=None) -> Path:
+    """Draw a design-space map (:class:`~.space.DesignMap`): each grid design coloured by its
+    defect, the admissible interval's edges a refusal states drawn as lines with the reason
+    past each, ``here`` (x, y) marked and ``box`` ((x0, x1), (y0, y1), label) outlined."""
+    plt = pyplot()
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    order = list(MAP_KINDS)
+    xs, ys = np.asarray(dm.xs), np.asarray(dm.ys)
+    codes = np.vectorize(lambda k: order.index(k))(dm.kinds()).astype(float)
+    fig, ax = plt.subplots(figsize=(9.5, 7.2))
+    dx, dy = xs[1] - xs[0], ys[1] - ys[0]
+    ax.pcolormesh(np.r_[xs - dx / 2, xs[-1] + dx / 2], np.r_[ys - dy / 2, ys[-1] + dy / 2],
+                  codes, cmap=ListedColormap([c for c, _ in MAP_KINDS.values()]),
+                  vmin=-0.5, vmax=len(order) - 0.5, shading="flat")
+    for side in ("lower", "upper"):
+        pts = [(getattr(r, side), r.y, getattr(r, f"{side}_reason")) for r in dm.rows
+               if getattr(r, side) is not None and getattr(r, f"{side}_reason")]
+        if not pts:
+            continue
+        ax.plot([p[0] for p in pts], [p[1] for p in pts], "k-", lw=1.4)
+        # name the reason once per stretch of equal reasons, at its middle
+        runs, start = [], 0
+        for i in range(1, len(pts) + 1):
+            if i == len(pts) or pts[i][2] != pts[start][2]:
+                runs.append(pts[(start + i - 1) // 2])
+                start = i
+        for x, y, why in runs:
+            ax.annotate(why, (x, y), textcoords="offset points",
+                        xytext=(8 if side == "upper" else -8, 0),
+                        ha="left" if side == "upper" else "right", va="center", fontsize=9,
+                        bbox={"boxstyle": "round,pad=0.2", "fc": "white", "ec": "0.6",
+                              "alpha": 0.85})
+    if box is not None:
+        (x0, x1), (y0, y1), label = box
+        ax.add_patch(plt.Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, ls="--", lw=1.2,
+                                   color="#1f4e8c", zorder=4))
+        ax.annotate(label, (x0, y1), textcoords="offset points", xytext=(2, 4), fontsize=8,
+                    color="#1f4e8c")
+    if here is not None:
+        ax.plot(*here, marker="*", ms=16, color="#c0392b", mec="k", zorder=5)
+        ax.annotate(here_label, here, textcoords="offset points", xytext=(10, -14),
+                    fontsize=9, color="#c0392b", weight="bold")
+    present = {k for r in dm.rows for k in r.kinds}
+    ax.legend(handles=[Patch(color=c, label=w) for k, (c, w) in MAP_KINDS.items()
+                       if k in present] + [plt.Line2D([], [], color="k", lw=1.4,
+                                                      label="edge a refusal states")],
+              loc="upper right", fontsize=8, framealpha=0.9)
+    ax.set_xlim(xs[0] - dx / 2, xs[-1] + dx / 2)
+    ax.set_ylim(ys[0] - dy / 2, ys[-1] + dy / 2)
+    ax.set_xlabel(LABELS.get(dm.x, dm.x))
+    ax.set_ylabel(LABELS.get(dm.y, dm.y))
+    ax.set_title(title, fontsize=10)
+    fig.tight_layout()
+    return save_png(fig, path, 120)
