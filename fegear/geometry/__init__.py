@@ -2,12 +2,13 @@
 unloaded contact.
 
 Gear 2, the internal gear, is the 4th-order compound cycloid of the seed paper's eq. (11)
-(:mod:`.gear2`); gear 1 is its exact envelope in relative rolling, the lower envelope of the two
-solution branches of the meshing equation (:mod:`.envelope`, :mod:`.gear1`). Designs whose
-curves loop or whose gear 1 is undercut are refused by :mod:`.admissible` with the admissible
-range of the parameter to change. :mod:`.clearance` turns gear 1 until each tooth touches
-(the clearance table, backlash, interference); :mod:`.tip_edge` rounds gear 1's tip edges for
-the stress model; :func:`build_geometry` runs the stage in one call (``fegear profile``).
+(:mod:`.gear2`); gear 1 is its exact envelope in relative rolling, the lower envelope of the
+solution branches of the meshing equation (:mod:`.envelope`, :mod:`.runs`, :mod:`.gear1`).
+Designs gear 1 cannot be built for, or that are not clear before any load, are refused by
+:mod:`.admissible` and :mod:`.refusal` with the admissible range of the input to change
+(:mod:`.space` maps them). :mod:`.clearance` turns gear 1 until each tooth touches (the
+clearance table, backlash, interference); :mod:`.tip_edge` rounds gear 1's tip edges for the
+stress model; :func:`build_geometry` runs the stage in one call (``fegear profile``).
 Conventions and the seed paper's corrected parameters: docs/model.md.
 
 >>> import math
@@ -33,8 +34,8 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "gear2": ("Cycloid", "gear2_curve"),
     "envelope": ("Branch", "BranchPoints", "NEAR", "FAR"),
     "gear1": ("Gear1Profile", "gear1_profile"),
-    "admissible": ("check_admissible", "admissible_pair", "check_design", "design_defect",
-                   "resolve", "interval", "Defect"),
+    "admissible": ("Defect", "defect", "design_defect", "resolve"),
+    "refusal": ("check_admissible", "admissible_pair", "check_design", "interval"),
     "clearance": ("ToothContact", "ContactState", "ToothClearance", "Backlash", "Interference"),
     "tip_edge": ("RoundedProfile", "default_round", "largest_round"),
     "build": ("PairGeometry", "build_geometry"),

@@ -1,17 +1,18 @@
 """Gear 1: the exact lower envelope of gear 2's generating motion.
 
-Gear 1 is made of *pieces*: cusp-free stretches of envelope branches, each monotone in the
-polar angle φ about gear 1's centre. The pieces are chosen by comparing the exact radius of
-every branch on a fine φ grid and joined at exact crossings (Brent's method to 1e-15 rad), so
-the profile is exact to floating-point precision everywhere, including at the tip corners where
-the far-side branch trims the working flank.
+Gear 1 is made of *pieces*: parts of the runs of envelope branches (:mod:`.runs`), each
+monotone in the polar angle φ about gear 1's centre. The pieces are chosen by comparing the
+radius of every run on a fine φ grid (interpolated in each run's table, exact wherever two
+come near each other) and joined at exact crossings (Newton's method in a bracket, to 1e-15
+rad), so the profile is exact to floating-point precision everywhere, including at the tip
+corners where the far-side branch trims the working flank.
 
 Branches that shape gear 1 (docs/model.md, "Gear 1"):
 
 * near side of the Δ2 tool at ``e + shift`` (working flanks, negative shift);
 * far side of the same tool at ``e + shift`` (what the generating tool itself cuts);
-* far side of the nominal gear 2 at ``e - tip_clearance`` (the assembled pair keeps at least
-  ``tip_clearance`` of radial clearance on the far side).
+* far side of the nominal gear 2 at ``e - tip_clearance`` (the tip trim: the assembled pair
+  keeps ``tip_clearance`` of radial clearance at the middle of the tip).
 
 With a tip relief the working branch is cut back near the tip (:mod:`.relief`) and the envelope
 found again.
@@ -30,22 +31,12 @@ from .envelope import FAR, NEAR, Branch, BranchPoints
 from .gear2 import adaptive_parameters, gear2_curve
 from .parameters import PairParameters
 from .relief import RelievedBranch, relief_zones
+from .runs import Run, split_runs
 
-SAMPLES_PER_RUN = 1024
 ENVELOPE_GRID = 2048
 TABLE_POINTS = 1025     # ξ samples a run keeps to start its inversions from …
 AMBIGUOUS = 1e-3        # … and to rank the runs by radius, exactly where two come this near (mm;
                         # its interpolation is within 1e-4 mm on the designs tested)
-
-
-@dataclass(frozen=True)
-class Run:
-    """Cusp-free stretch ``[xi0, xi1]`` of a branch; φ is monotone on it."""
-
-    branch: int
-    xi0: float
-    xi1: float
-    increasing: bool  # φ increases with ξ
 
 
 @dataclass(frozen=True)
@@ -84,14 +75,14 @@ class Gear1Profile:
     def __init__(self, params: PairParameters) -> None:
         if not all(gear2_curve(params, tool).star_shaped() for tool in (False, True)):
             raise GeometryError("the gear-2 curve folds back (it is not star-shaped about "
-                                "its centre): check the pair with admissible.check_design")
+                                "its centre): check the pair with refusal.check_design")
         self.params = params
         self._tables: dict = {}
         self.branches = generating_branches(params)
         self.pitch = 2 * np.pi / params.z1
         near = self.branches[0].evaluate(np.array([0.0]))
         self.phi_space = float(np.arctan2(near.q[0, 1], near.q[0, 0]))
-        self.runs = tuple(r for i, b in enumerate(self.branches) for r in _split_runs(b, i))
+        self.runs = tuple(r for i, b in enumerate(self.branches) for r in split_runs(b, i))
         self.pieces = self._lower_envelope()
         if params.relief > 0:
             self._relieve()
@@ -110,7 +101,7 @@ class Gear1Profile:
                              p.m, p.relief_start)
         self.branches = (RelievedBranch(self.branches[0], zones), *self.branches[1:])
         self._tables = {}
-        self.runs = tuple(r for i, b in enumerate(self.branches) for r in _split_runs(b, i))
+        self.runs = tuple(r for i, b in enumerate(self.branches) for r in split_runs(b, i))
         self.pieces = self._lower_envelope()
         if len(self.tip_ends()) < 2:
             raise ParameterError("relief", p.relief, "a smaller relief or a longer "
@@ -447,73 +438,3 @@ def gear1_profile(params: PairParameters) -> Gear1Profile:
     built when its inputs are checked (a relief that does not fit is refused before any output)
     and again by the solve."""
     return Gear1Profile(params)
-
-
-def _split_runs(b: Branch, index: int, n: int = SAMPLES_PER_RUN) -> list[Run]:
-    """Cut one gear-2 pitch of a branch into φ-monotone runs without jumps.
-
-    Cuts are placed exactly at cusps (dφ/dξ = 0), where β leaves its 2π window (a jump of
-    whole gear-1 pitches, harmless since gear 1 is periodic, but not continuous) and where
-    the meshing equation's discriminant vanishes: a stretch of the gear-2 curve whose normal
-    misses the instantaneous-centre circle has no point on this branch (it never shapes gear
-    1: the envelope of a moving curve is made of its conjugate points alone), so it is left
-    out, and its ends are folds where the branch turns into the other one.
-    """
-    half = np.pi / b.z2
-    xi = np.linspace(-half, half, n + 1)
-    pts = b.evaluate(xi)
-
-    def disc(x: float) -> float:
-        return float(b.evaluate(np.array([x])).disc[0])
-
-    # the stretches with a conjugate point, ends at the discriminant's exact zeros
-    folds = [_brentq(disc, xi[i], xi[i + 1], xtol=1e-15)
-             for i in np.nonzero(np.sign(pts.disc[:-1]) * np.sign(pts.disc[1:]) < 0)[0]]
-    edges = np.concatenate([[xi[0]], folds, [xi[-1]]])
-    stretches = [(a, c) for a, c in zip(edges[:-1], edges[1:])
-                 if c - a > 1e-14 and disc(0.5 * (a + c)) > 0]
-    runs = []
-    for a, c in stretches:
-        runs.extend(_monotone_runs(b, index, a, c, max(16, int(n * (c - a) / (2 * half)))))
-    return runs
-
-
-def _monotone_runs(b: Branch, index: int, lo: float, hi: float, n: int) -> list[Run]:
-    """The φ-monotone runs of a branch on ``[lo, hi]``, where it has conjugate points."""
-    # a fold's end point has an infinite speed: sample just inside it
-    inset = 1e-12 * (hi - lo)
-    xi = np.linspace(lo + inset, hi - inset, n + 1)
-    pts = b.evaluate(xi)
-    rate = pts.polar_rate
-
-    def g(x: float) -> float:
-        return float(b.evaluate(np.array([x])).polar_rate[0])
-
-    def beta(x: float) -> float:
-        return float(b.evaluate(np.array([x])).beta[0])
-
-    cuts = [lo, hi]
-    for i in np.nonzero(np.sign(rate[:-1]) * np.sign(rate[1:]) < 0)[0]:
-        cuts.append(_brentq(g, xi[i], xi[i + 1], xtol=1e-15))
-    for i in np.nonzero(np.abs(np.diff(pts.beta)) > np.pi)[0]:
-        a, c = xi[i], xi[i + 1]
-        b_lo = beta(a)
-        for _ in range(60):
-            mid = 0.5 * (a + c)
-            a, c = (mid, c) if abs(beta(mid) - b_lo) < np.pi else (a, mid)
-        cuts.extend([a, c])
-    cuts = np.sort(np.array(cuts))
-    runs = []
-    for a, c in zip(cuts[:-1], cuts[1:]):
-        if c - a <= 1e-14:
-            continue
-        runs.append(Run(index, float(a), float(c), bool(g(0.5 * (a + c)) > 0)))
-    return runs
-
-
-def _brentq(*args, **kwargs) -> float:
-    """scipy's Brent root finder, imported when first needed (a refused input answers
-    before scipy is loaded)."""
-    from scipy.optimize import brentq
-
-    return brentq(*args, **kwargs)

@@ -3,7 +3,7 @@
 A map is a grid of designs over two inputs (``x`` across, ``y`` up), the others at the values
 given, each classified by :func:`~.admissible.design_defect` (admissible, or the kind of its
 defect), and per grid row the edges of the admissible interval in ``x`` that a refusal states
-(:func:`~.admissible.interval`), with the reason found just past each edge. ``fegear profile
+(:func:`~.refusal.interval`), with the reason found just past each edge. ``fegear profile
 --map h1,f1`` draws it (:func:`~.plot.map_png`) and writes its table.
 
 >>> from fegear.geometry.space import map_row
@@ -21,7 +21,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .admissible import _span, design_defect, interval
+from .admissible import design_defect
+from .refusal import _span, interval
 
 #: the span a map takes for an input when none is given (the inputs' own spans are wider than
 #: any design a designer draws: h1 up to 2, f1 up to 1)

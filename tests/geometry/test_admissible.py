@@ -11,16 +11,9 @@ from test_clearance import assert_closest_teeth_close_exactly
 
 from fegear.errors import ParameterError
 from fegear.geometry import Gear1Profile, ToothContact, gear1_profile
-from fegear.geometry.admissible import (
-    CLEARANCE,
-    RESOLUTION,
-    _span,
-    check_design,
-    clearance,
-    design_defect,
-    resolve,
-)
-from fegear.geometry.gear1 import _split_runs
+from fegear.geometry.admissible import CLEARANCE, clearance, design_defect, resolve
+from fegear.geometry.refusal import RESOLUTION, _span, check_design
+from fegear.geometry.runs import split_runs
 from fegear.toothpair.teeth import refuse_interference
 
 UM = 1e-3
@@ -90,7 +83,7 @@ def test_trimmed_stretches_keep_the_law_of_gearing(trimmed):
     """On every kept run the common normal passes through the instantaneous centre."""
     p, g = trimmed
     for i, b in enumerate(g.branches):
-        for run in _split_runs(b, i):
+        for run in split_runs(b, i):
             xi = np.linspace(run.xi0, run.xi1, 41)[1:-1]
             e = b.evaluate(xi)
             assert (e.disc > 0).all()

@@ -100,8 +100,8 @@ def test_a_degenerate_pair_raises_a_named_error_and_is_refused_before():
     polyline asked for 22 million points). Built anyway, the library names it; the
     admissibility check refuses it first, naming the rotation the user set."""
     from fegear.errors import GeometryError, ParameterError
-    from fegear.geometry.admissible import check_design
     from fegear.geometry.build import build_geometry
+    from fegear.geometry.refusal import check_design
 
     values = {"m": 6.0, "z2": 9, "z1": 8, "h1": 0.5, "f1": 0.0, "rotation": 0.5}
     with pytest.raises(GeometryError, match="cusp"):

@@ -5,8 +5,9 @@ import math
 import pytest
 
 from fegear.errors import ParameterError
-from fegear.geometry.admissible import check_design, design_defect
+from fegear.geometry.admissible import design_defect
 from fegear.geometry.parameters import PairParameters
+from fegear.geometry.refusal import check_design
 
 
 @pytest.mark.parametrize("kw,name,fragment", [

@@ -8,7 +8,8 @@ import pytest
 import fegear.geometry.space as space
 from fegear.cli import main
 from fegear.errors import ParameterError
-from fegear.geometry.admissible import check_design, design_defect
+from fegear.geometry.admissible import design_defect
+from fegear.geometry.refusal import check_design
 
 
 def test_the_module_example():

@@ -1,0 +1,306 @@
+"""Refusals: the input a refused design is blamed on and the interval it is told.
+
+A refused design names one input the user set that fixes its defect (:mod:`.admissible`), with
+the interval of that input, at the other inputs' values, in which the design is admissible, and
+a second input that fixes it as an alternative. The interval is found from an admissible value
+towards the given one and towards the end of the input's span, each default derived again at
+every value tried (as the user would get it): by bisection, the cheap curve test first, or by
+regula falsi where the clearance is continuous in the input, and then checked inside
+(docs/geometry.md, "Admissible designs").
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Mapping
+
+import numpy as np
+
+from ..errors import ParameterError
+from .admissible import (
+    CLEARANCE,
+    _built,
+    clearance,
+    curves_defect,
+    defect,
+    profile_defect,
+    resolve,
+)
+from .parameters import H1_MIN, PAIR_INPUTS, PairParameters, built_modification
+
+BISECT = 60             # bisection steps at most
+
+
+#: the inputs a geometry refusal may blame, with their static bounds (at the other inputs)
+def _span(name: str, values: Mapping[str, object]) -> tuple[float, float] | None:
+    p = _loose(values)
+    if p is None:
+        return None
+    e1 = p.m * p.h1
+    spans = {"h1": (H1_MIN, min(2.0, 0.999 * p.z2 / 4)), "f1": (0.0, 1.0),
+             "shift": (0.0, 0.25 * e1), "rotation": (-0.25 * e1, 0.25 * e1),
+             "tip-clearance": (0.0, e1),
+             "relief": (0.0, 50.0 * p.m), "relief-extent": (1e-4 * p.m, 2.0 * p.m),
+             "relief-start": (p.r1 - 2 * p.m, p.r1 + 2 * p.m)}
+    return spans.get(name)
+
+
+def _loose(values: Mapping[str, object]) -> PairParameters | None:
+    """The pair at the given values with the modifications left unmodified, for spans."""
+    v = {k: values[k] for k in ("m", "z2", "z1", "h1", "f1") if values.get(k) is not None}
+    try:
+        return PairParameters(**v)
+    except ParameterError:
+        return None
+
+
+#: the inputs a refusal may name with an interval
+SEARCHED = ("h1", "f1", "rotation", "shift", "tip-clearance", "relief", "relief-extent",
+            "relief-start")
+#: values of each input to start the search from, tried first (then a grid over its span)
+ANCHORS = {"h1": (0.3, 0.2, 0.1, 0.5), "f1": (0.15, 0.1, 0.0, 0.3), "relief": (0.0,),
+           "rotation": (0.0,), "tip-clearance": (0.016,), "shift": (0.016,)}
+RESOLUTION = 2e-4       # an input's interval is found to this fraction of its span, and
+CHECKS = 2              # checked at this many designs inside it
+
+
+_MARGINS: dict[tuple, float] = {}   # margin of each design asked for, in this process
+
+
+def margin(values: Mapping[str, object]) -> float:
+    """How far the design given by input values is inside the admissible set: its least
+    clearance before any load less :data:`CLEARANCE` (mm, continuous in the modifications),
+    or ``-inf`` for any other defect. Kept for the designs asked for before (a refusal's
+    searches ask for many, and several refusals of one design for the same)."""
+    key = tuple(sorted((k, v) for k, v in values.items() if v is not None))
+    if key not in _MARGINS:
+        if len(_MARGINS) > 50_000:
+            _MARGINS.clear()
+        _MARGINS[key] = _margin(values)
+    return _MARGINS[key]
+
+
+def _margin(values: Mapping[str, object]) -> float:
+    try:
+        p = resolve(values)
+    except ParameterError:
+        return -math.inf
+    if curves_defect(p) is not None:
+        return -math.inf
+    g = _built(p)
+    if g is None or profile_defect(g) is not None:
+        return -math.inf
+    return clearance(g) - CLEARANCE
+
+
+def _curves_ok(values: Mapping[str, object]) -> bool:
+    """The cheap part of the test: the static ranges and the gear-2 curves (milliseconds)."""
+    v = {row.name: values.get(row.name, row.default) for row in PAIR_INPUTS}
+    try:
+        m, h1 = float(v["m"]), float(v["h1"])
+        for name in ("shift", "rotation"):
+            if v[name] is None:
+                v[name] = built_modification(name, m, h1)
+        p = PairParameters(**{row.dest: v[row.name] for row in PAIR_INPUTS
+                              if row.name != "tip-clearance"})
+    except (ParameterError, TypeError, ValueError):
+        return False
+    return curves_defect(p) is None
+
+
+def _edge(f, good: float, bad: float, tol: float) -> float:
+    """The last admissible value from ``good`` (f >= 0) towards ``bad`` (f < 0), to ``tol``:
+    regula falsi with the Illinois step where both ends have finite margins (the clearance
+    is smooth in the modifications), a bisection elsewhere and after any step that did not
+    halve the bracket (a margin can jump where a default's rule starts)."""
+    fg, fb = f(good), f(bad)
+    side, width = 0, abs(bad - good)
+    for _ in range(BISECT):
+        if abs(bad - good) <= tol:
+            break
+        x = 0.5 * (good + bad)
+        interpolate = math.isfinite(fb) and math.isfinite(fg) and fg > fb
+        if interpolate and abs(bad - good) <= 0.5 * width:
+            x = bad - fb * (bad - good) / (fb - fg)
+            if not min(good, bad) < x < max(good, bad):
+                x = 0.5 * (good + bad)
+        width = abs(bad - good)
+        fx = f(x)
+        if fx >= 0:
+            good, fg = x, fx
+            if side == +1 and math.isfinite(fb):
+                fb *= 0.5       # Illinois: the end kept twice has its value halved
+            side = +1
+            if fx < 1e-2 * CLEARANCE:   # on the boundary, on its admissible side
+                break
+        else:
+            bad, fb = x, fx
+            if side == -1 and math.isfinite(fg):
+                fg *= 0.5
+            side = -1
+    return good
+
+
+def interval(values: Mapping[str, object], name: str, resolution: float = RESOLUTION,
+             checks: int = CHECKS) -> tuple[float, float] | None:
+    """The interval of input ``name``, at the other inputs' values, in which the design is
+    admissible, nearest the value given (``None`` if there is none in the input's span). From
+    an admissible value, each end is found towards the given value (a known bad one) or the
+    span's end: first with the cheap test alone, then with the whole one from where that
+    stopped (the admissible values of one input are taken to be one interval, as every test
+    and the sweeps of docs/geometry.md find them), to ``resolution`` of the span, and checked
+    at ``checks`` designs inside."""
+    span = _span(name, values)
+    if span is None:
+        return None
+    lo, hi = span
+    tol = resolution * (hi - lo)
+    memo: dict[float, float] = {}
+
+    def full(x: float) -> float:
+        if x not in memo:
+            memo[x] = margin({**values, name: x})
+        return memo[x]
+
+    def cheap(x: float) -> float:
+        return math.inf if _curves_ok({**values, name: x}) else -math.inf
+
+    def ok(x: float) -> bool:
+        return cheap(x) >= 0 and full(x) >= 0
+
+    given = values.get(name)
+    target = float(given) if isinstance(given, (int, float)) else None
+    grid = sorted(np.linspace(lo, hi, 9), key=lambda a: abs(a - (target or 0.0)))
+    first = [a * (values.get("m") or 2.0) / 2.0 if name in ("tip-clearance", "shift") else a
+             for a in ANCHORS.get(name, ())]
+    anchor = next((a for a in [*first, *grid] if lo <= a <= hi and ok(a)), None)
+    if anchor is None:
+        return None
+    ends = []
+    for end in (lo, hi):
+        if target is not None and min(anchor, end) <= target <= max(anchor, end) and \
+                not ok(target):
+            end = target            # the given value is refused: the edge lies before it
+        elif ok(end):
+            ends.append(end)
+            continue
+        edge = end if cheap(end) >= 0 else _edge(cheap, anchor, end, tol)
+        ends.append(edge if full(edge) >= 0 else _edge(full, anchor, edge, tol))
+    # the interval is checked at a few designs inside it; one that is refused (a pocket the
+    # search stepped over) shortens it to the edge before that design
+    for x in np.linspace(ends[0], ends[1], checks + 2)[1:-1]:
+        if ends[0] < x < ends[1] and not ok(x):
+            side = 0 if x < anchor else 1
+            ends[side] = _edge(full, anchor, x, tol)
+    return ends[0], ends[1]
+
+
+def _range_text(name: str, bounds: tuple[float, float], values: Mapping[str, object]) -> str:
+    """``lo <= name <= hi unit``, rounded inwards so that both ends hold."""
+    unit = {"shift": " mm", "rotation": " mm", "tip-clearance": " mm", "relief": " µm",
+            "relief-extent": " mm", "relief-start": " mm"}.get(name, "")
+    lo, hi = bounds
+    digits = 4 if unit in ("", " µm") else 5
+    scale = 10.0 ** digits
+    lo_t = math.ceil(lo * scale - 1e-9) / scale
+    hi_t = math.floor(hi * scale + 1e-9) / scale
+    fmt = f"{{:.{digits}f}}"
+    return f"{fmt.format(lo_t)} <= {name} <= {fmt.format(hi_t)}{unit}"
+
+
+def _others(values: Mapping[str, object], name: str) -> str:
+    p = _loose(values)
+    keys = [k for k in ("h1", "f1", "m", "z2", "z1") if k != name]
+    text = ", ".join(f"{k}={getattr(p, k):g}" for k in keys) if p else ""
+    relieved = bool(values.get("relief"))
+    set_ = [k for k in ("shift", "rotation", "tip-clearance", "relief", "relief-extent",
+                        "relief-start")
+            if k != name and values.get(k) is not None
+            and (relieved or not k.startswith("relief"))]
+    return text + "".join(f", {k}={values[k]:g}" for k in set_)
+
+
+def check_design(values: Mapping[str, object], given: Iterable[str] | None = None
+                 ) -> PairParameters:
+    """The pair of the inputs given by name, checked: raises :class:`ParameterError` naming
+    the input the user changed (``given``; default: those in ``values`` not None) that fixes
+    the defect, with its admissible interval at the other inputs' values and another input's
+    as an alternative."""
+    values = {k: v for k, v in values.items() if v is not None}
+    try:
+        p = resolve(values)
+    except ParameterError as exc:   # a static range: told as the admissible interval
+        finite = isinstance(exc.value, (int, float)) and math.isfinite(exc.value)
+        bounds = interval(values, exc.name) if exc.name in ANCHORS and finite else None
+        if bounds is None:
+            raise
+        raise ParameterError(exc.name, exc.value, f"{_range_text(exc.name, bounds, values)} "
+                             f"at {_others(values, exc.name)}", exc.reason) from None
+    found = defect(p)
+    if found is None:
+        return p
+    given = set(values if given is None else given)
+    candidates = [f for f in found.fixes if f in given] or list(found.fixes)
+    ranges = {}
+    for name in found.fixes:   # the alternatives only roughly (the printed digits hold)
+        bounds = interval(values, name) if name in candidates[:1] or found.kind in (
+            "undercut", "no conjugate") else interval(values, name, 10 * RESOLUTION, 0)
+        if bounds is not None:
+            ranges[name] = bounds
+    usable = [c for c in candidates if c in ranges]
+    if not usable:   # none of the usual fixes works here: another input the user set may
+        for name in (n for n in SEARCHED if n in given and n not in ranges):
+            bounds = interval(values, name)
+            if bounds is not None:
+                ranges[name], usable = bounds, [name]
+                break
+    if found.kind in ("undercut", "no conjugate") and len(usable) > 1:
+        usable.sort(key=lambda c: _relative_change(getattr(p, c), ranges[c]))
+    if not usable:
+        name = candidates[0]
+        raise ParameterError(name, _value(p, name), f"none at {_others(values, name)}",
+                             found.reason)
+    name = usable[0]
+    alternatives = [f for f in found.fixes if f != name and f in ranges]
+    extra = f" (or {_range_text(alternatives[0], ranges[alternatives[0]], values)})" if (
+        alternatives) else ""
+    raise ParameterError(name, _value(p, name), f"{_range_text(name, ranges[name], values)} "
+                         f"at {_others(values, name)}{extra}", found.reason)
+
+
+def _value(p: PairParameters, name: str) -> float:
+    return {"tip-clearance": p.radial_tip_clearance}.get(name, getattr(p, name.replace("-", "_"),
+                                                                       None))
+
+
+def _relative_change(value: float, bounds: tuple[float, float]) -> float:
+    lo, hi = bounds
+    if lo <= value <= hi:
+        return 0.0
+    edge = hi if value > hi else lo
+    return abs(value - edge) / max(abs(value), 1e-12)
+
+
+def admissible_pair(values: Mapping[str, object],
+                    given: Iterable[str] | None = None) -> PairParameters:
+    """The pair of the pair inputs given by name (missing ones at their defaults,
+    :func:`resolve`), checked for an admissible geometry before any work starts: a refused
+    design is blamed on an input the user set (:func:`check_design`)."""
+    pair = {row.name: values.get(row.name) for row in PAIR_INPUTS}
+    if given is None:
+        given = (k for k, x in pair.items() if x is not None)
+    return check_design(pair, {g for g in given if g in pair})
+
+
+def check_admissible(p: PairParameters, given: Iterable[str] = ()) -> None:
+    """Raise :class:`ParameterError` if ``p`` is not admissible (blaming an input of
+    ``given`` where it can)."""
+    check_design(_values_of(p), given)
+
+
+def _values_of(p: PairParameters) -> dict[str, object]:
+    out = {row.name: getattr(p, row.dest) for row in PAIR_INPUTS}
+    out["tip-clearance"] = p.radial_tip_clearance
+    return out
+
+
