@@ -30,8 +30,8 @@ PLANE_MODES = ("stress", "strain")
 
 #: one isotropic material, and the thickness (face width) of a plane body
 MATERIAL_INPUTS = (
-    Input("face-width", float, 5.0, "face width: the thickness of the plane bodies (also "
-          "--thickness)", "mm", low=0.0, high=1e4, low_open=True, aliases=("thickness",)),
+    Input("face-width", float, 5.0, "face width: the thickness of the plane bodies", "mm",
+          low=0.0, high=1e4, low_open=True, aliases=("thickness",)),
     Input("E", float, 206000.0, "Young's modulus", "MPa", low=0.0, high=1e7,
           low_open=True),  # diamond: 1.2e6
     Input("nu", float, 0.29, "Poisson ratio", low=0.0, high=0.5, high_open=True),
