@@ -193,7 +193,7 @@ def _rotation_default(p: PairParameters) -> PairParameters:
     g0 = _built(replace(p, rotation=0.0))
     free = -math.inf if g0 is None or profile_defect(g0) else clearance(g0) - CLEARANCE
     if free < 0:
-        return replace(p, rotation=0.0) if free == -math.inf else p   # none frees it
+        return p                                 # no rotation down to none frees it
     share = free / (free - at_default)          # the fraction of the default that closes it
     k = min(HALVINGS, max(1, math.ceil(math.log2(1.0 / share))))
     while k < HALVINGS and gap(k) < 0:

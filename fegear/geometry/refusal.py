@@ -31,8 +31,9 @@ from .parameters import H1_MIN, PAIR_INPUTS, PairParameters, built_modification
 BISECT = 60             # bisection steps at most
 
 
-#: the inputs a geometry refusal may blame, with their static bounds (at the other inputs)
 def _span(name: str, values: Mapping[str, object]) -> tuple[float, float] | None:
+    """The static bounds of input ``name`` at the other inputs' values (``None`` for an input
+    a refusal does not search, or where m, z or h1 are themselves out of range)."""
     p = _loose(values)
     if p is None:
         return None
