@@ -36,12 +36,17 @@ GROWTH = 0.3        # element growth away from the boundary (mm per mm)
 @dataclass(frozen=True)
 class StarCurve:
     """A body's boundary as points by polar angle (rad) about its frame's origin, and on which
-    side the material lies: at smaller radii (``inside``) or at larger ones."""
+    side the material lies: at smaller radii (``inside``) or at larger ones. Mesh nodes are
+    snapped onto it along their polar angle, or by ``foot`` (points to their feet on the
+    curve) where given: along the normal a node on a nearly radial stretch stays put."""
 
     point: Callable[[np.ndarray], np.ndarray]
     inside: bool
+    foot: Callable[[np.ndarray], np.ndarray] | None = None
 
     def project(self, x: np.ndarray) -> np.ndarray:
+        if self.foot is not None:
+            return self.foot(x)
         return self.point(np.arctan2(x[:, 1], x[:, 0]))
 
 

@@ -97,11 +97,13 @@ def profile_defect(g: Gear1Profile) -> Defect | None:
         jump = abs(float(np.diff(g.radius(np.array([a.phi1 - 1e-13, b.phi0 + 1e-13])))[0]))
         if jump > JOIN_TOL:
             return Defect("no conjugate", REASONS["no conjugate"], FIXES["no conjugate"])
+    # the working flanks are the first and the last piece (from the middles of the tooth
+    # spaces); each runs to the tip trim, or into the other when the near branch makes the
+    # whole tooth; another near-branch piece after it is a cusp's (an undercut)
     first, last = pieces[0], pieces[-1]
-    middle = g.phi_space + 0.5 * g.pitch
     for flank, after in ((first, pieces[1]), (last, pieces[-2])):
-        reaches_middle = abs(flank.phi1 - middle) < 1e-9 or abs(flank.phi0 - middle) < 1e-9
-        if flank.run.branch != 0 or (after.run.branch == 0 and not reaches_middle):
+        into_the_other = len(pieces) == 2
+        if flank.run.branch != 0 or (after.run.branch == 0 and not into_the_other):
             return Defect("undercut", REASONS["undercut"], FIXES["undercut"])
     return None
 

@@ -289,7 +289,19 @@ class Gear1Profile:
         f0, f1 = diff(p0), diff(p1)
         if np.isfinite(f0) and np.isfinite(f1) and f0 * f1 < 0:
             return self._crossing(ra, la[1], rb, lb[1], p0, p1, f0, f1)
-        # a run ends inside the cell: the junction is at its end (found by bisection)
+        # a run ends inside the cell: the junction is at its end (where one run ends exactly
+        # where the other begins, as at the middle of a tooth both of whose halves the near
+        # branch makes, that end; else found by bisection)
+        ends = []
+        for run, turn in ((ra, la[1]), (rb, lb[1])):
+            _, ps, _ = self._table(run)
+            for x in (ps[0], ps[-1]):
+                x += turn * self.pitch
+                x -= 2 * np.pi * np.round((x - p0) / (2 * np.pi))
+                if p0 <= x <= p1:
+                    ends.append(x)
+        if ends and max(ends) - min(ends) <= 1e-12:
+            return float(min(ends))
         a, b = p0, p1
         for _ in range(60):
             mid = 0.5 * (a + b)

@@ -47,6 +47,20 @@ def test_designs_that_failed_to_build_are_admissible_and_build(values):
     refuse_interference([(b, tca.state(b)) for b in np.linspace(0, 2 * np.pi / p.z2, 4)])
 
 
+@pytest.mark.parametrize("z1", [8, 9, 44, 50, 119])
+def test_a_tooth_made_by_the_near_branch_alone_is_no_undercut(z1):
+    """At z2 - z1 = 2 the near branch makes the whole tooth: two flanks that meet at the
+    tooth's middle, exactly there (found once a hair off it, and every such design was
+    refused as undercut)."""
+    values = {"z1": z1, "z2": z1 + 2}
+    assert design_defect(values) is None
+    g = gear1_profile(resolve(values))
+    assert [piece.run.branch for piece in g.pieces] == [0, 0]
+    middle = g.phi_space + 0.5 * g.pitch
+    junction = g.pieces[0].phi1
+    assert abs((junction - middle + 0.5 * g.pitch) % g.pitch - 0.5 * g.pitch) < 1e-12
+
+
 @pytest.mark.parametrize("values", [
     {"m": 4.3, "z1": 11, "z2": 14, "h1": 0.244, "f1": 0.257, "relief": 8.53,
      "relief-extent": 0.995},     # the issue's "polar inversion did not converge"

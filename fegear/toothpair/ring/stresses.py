@@ -215,6 +215,7 @@ def contact_submodel(model: RingModel, contact: RingContact, pressure: np.ndarra
     blk = contact.block(k)
     p = pressure[blk]
     b = local_half_width(contact, pressure, i)
+    foot = None
     if gear == 0:
         point = model.shape.point
         x = contact.x[i]
@@ -225,6 +226,9 @@ def contact_submodel(model: RingModel, contact: RingContact, pressure: np.ndarra
         def point(theta):
             r = curve2.radius_at_angle(theta)
             return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
+
+        def foot(y):   # along the normal: a near-radial flank (h1 0.2, f1 0.6) inverted
+            return curve2.closest(y)[0]
 
         x = contact.facing[0][i]
         angles = np.unwrap(np.arctan2(contact.facing[0][blk, 1], contact.facing[0][blk, 0]))
@@ -247,7 +251,7 @@ def contact_submodel(model: RingModel, contact: RingContact, pressure: np.ndarra
     step = 0.25 * min(focus, 0.5 * radius) / np.linalg.norm(x)
     local = round((centre - turn) / step)
     key = (gear, local, radius, size, focus)
-    curve = StarCurve(point, inside=gear == 0)
+    curve = StarCurve(point, inside=gear == 0, foot=foot)
     return SubmodelProblem(curve, local * step, radius, size, focus, pressure_at, held,
                            name=f"gear{gear + 1}_contact", key=key), turn
 
