@@ -114,15 +114,15 @@ def test_trimmed_gear1_against_the_brute_force_swept_body(trimmed):
     """Against its generating tool gear 1 penetrates nowhere and its working flanks touch;
     assembled with the nominal gear 2 it is clear everywhere."""
     p, g = trimmed
-    q = g.period_polyline(4e-4)
+    q = g.period_polyline(1e-3)
     d_gen = sweep_min_distance(q, p.e + p.shift, p.z1, p.r0, p.e1, p.e2, p.z2, p.rotation,
-                               steps_per_pitch=60)
+                               steps_per_pitch=30)
     assert d_gen.min() > -TOL
     phi = np.arctan2(q[:, 1], q[:, 0])
     idx, _, _ = g._locate(phi)
     flank = np.array([g.pieces[i].run.branch == 0 for i in idx])
     assert np.all(d_gen[flank] < TOL)
-    d_asm = sweep_min_distance(q, p.e, p.z1, p.r0, p.e1, p.e2, p.z2, 0.0, steps_per_pitch=60)
+    d_asm = sweep_min_distance(q, p.e, p.z1, p.r0, p.e1, p.e2, p.z2, 0.0, steps_per_pitch=30)
     # the swept body's distance is along the normal, the clearance along the radius: at
     # least as long
     assert 0 < d_asm.min() <= clearance(g) + TOL
