@@ -9,7 +9,8 @@ The pipeline, one subpackage per stage (docs/architecture.md):
 * :mod:`fegear.study`: parameter studies;
 * :mod:`fegear.verify` and :mod:`fegear.drive` beside them: the Hertz case, the benchmark and
   CalculiX; the drive level;
-* :mod:`fegear.cli`: the ``fegear`` command.
+* :mod:`fegear.cli`: the ``fegear`` command; :mod:`fegear.api`: the same solve from Python
+  (:func:`solve`, :func:`cycle`; docs/python.md).
 """
 
 from .exports import lazy
@@ -21,5 +22,6 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
                  "build_geometry"),
     "toothpair": ("SolveCase", "solve_pair", "solve_positions"),
     "errors": ("FegearError", "GeometryError", "ParameterError"),
+    "api": ("solve", "cycle", "Result"),
 })
 __all__ = [*__all__, "__version__"]

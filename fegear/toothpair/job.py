@@ -76,6 +76,21 @@ def _tip_round(params, given: float | None) -> float | None:
 
 
 @dataclass(frozen=True)
+class Solved:
+    """A solved job before any file is written: the solutions at every position, the one the
+    pictures, VTUs and the error estimate take (the largest gear-1 root stress), the JSON
+    summary (``fegear solve --json``), the cycle rows (None for one position) and the time of
+    the solve (s)."""
+
+    job: Job
+    solutions: tuple
+    solution: object
+    summary: dict
+    rows: list[dict] | None
+    solve_s: float
+
+
+@dataclass(frozen=True)
 class JobResult:
     """What a solve produced: the JSON summary (``fegear solve --json``), the files written
     (name → path), the cycle rows (``--positions``; else None) and the time of the solve
@@ -92,20 +107,20 @@ def run_job(job: Job, out: Path | None, fields: bool = True,
     """Solve ``job``; write summary.json, and the VTUs (``fields``) and pictures
     (``pictures``) into ``out`` unless it is None. ``out`` is made only after the solve, so a
     solve that fails leaves nothing behind."""
-    from ..files import prepare_dir
+    progress.plan(2 + len(job.betas) + job.estimate + (out is not None))
+    solved = solve_job(job)
+    files = {} if out is None else write_job(solved, out, fields, pictures)
+    return JobResult(solved.summary, files, solved.rows, solved.solve_s)
+
+
+def solve_job(job: Job) -> Solved:
+    """Solve ``job`` at its positions, with its error estimate; no file written."""
     from ..geometry import gear1_profile
     from .estimate import second_level_estimate
-    from .output import (
-        write_cycle_outputs,
-        write_cycle_series,
-        write_mesh_stiffness,
-        write_pair_outputs,
-    )
     from .pair import solve_positions
     from .report import cycle_rows, cycle_summary, pair_summary
 
     t0 = time.perf_counter()
-    progress.plan(2 + len(job.betas) + job.estimate + (out is not None))
     progress.stage("gear 1's profile")
     profile = gear1_profile(job.case.params)
     sols = solve_positions(job.case, job.betas, profile)
@@ -126,24 +141,39 @@ def run_job(job: Job, out: Path | None, fields: bool = True,
         rows = cycle_rows(sols, job.allowables)
         summary["cycle"] = {"positions": len(sols), "solve_s": cycle_s,
                             **cycle_summary(rows), "rows": rows}
-    solve_s = time.perf_counter() - t0
+    return Solved(job, tuple(sols), sol, summary, rows, time.perf_counter() - t0)
+
+
+def write_job(solved: Solved, out: Path, fields: bool = True,
+              pictures: bool = True) -> dict[str, Path]:
+    """Write a solved job's files into ``out`` (made here): summary.json, the VTUs
+    (``fields``), the pictures (``pictures``) and, for a cycle, its table, PVD series and
+    plot. Returns name → path."""
+    from ..files import prepare_dir
+    from .output import (
+        write_cycle_outputs,
+        write_cycle_series,
+        write_mesh_stiffness,
+        write_pair_outputs,
+    )
+
+    progress.stage(f"writing files to {out}")
+    out = prepare_dir(out)
+    rows, summary, case = solved.rows, solved.summary, solved.job.case
     files: dict[str, Path] = {}
-    if out is not None:
-        progress.stage(f"writing files to {out}")
-        out = prepare_dir(out)
-        if rows:
-            files.update(write_mesh_stiffness(out, rows, job.case))
-        if rows and fields:
-            files.update(write_cycle_series(sols, out))
-        if rows and pictures:
-            i = summary["inputs"]
-            files.update(write_cycle_outputs(
-                rows, out, f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T "
-                           f"{i['torque_Nm']:g} N·m, {len(rows)} positions, quality "
-                           f"{i['quality']}"))
-        files.update(write_pair_outputs(sol, out, {**summary, "files": {
-            k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures))
-    return JobResult(summary, files, rows, solve_s)
+    if rows:
+        files.update(write_mesh_stiffness(out, rows, case))
+    if rows and fields:
+        files.update(write_cycle_series(solved.solutions, out))
+    if rows and pictures:
+        i = summary["inputs"]
+        files.update(write_cycle_outputs(
+            rows, out, f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T "
+                       f"{i['torque_Nm']:g} N·m, {len(rows)} positions, quality "
+                       f"{i['quality']}"))
+    files.update(write_pair_outputs(solved.solution, out, {**summary, "files": {
+        k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures))
+    return files
 
 
 def _second(job: Job) -> str:

@@ -1,0 +1,130 @@
+"""fegear from Python: :func:`solve` and :func:`cycle`, the same job as ``fegear solve``.
+
+The inputs are ``fegear solve``'s, under their Python names (``--face-width`` →
+``face_width``, ``--tip-clearance`` → ``tip_clearance``), with the same defaults, checks and
+one-line refusals (:class:`~fegear.errors.ParameterError`); nothing is written until
+:meth:`Result.write` is called. docs/python.md shows it as a notebook user uses it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from .errors import ParameterError
+from .toothpair.case import HEADLINE
+from .toothpair.safety import SAFETY
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+    from .toothpair.job import Solved
+
+#: the column :attr:`Result.positions` is indexed by (the rolling angle β, degrees)
+POSITION = "position_deg"
+
+
+@dataclass(frozen=True)
+class Result:
+    """A solved design. ``summary`` is ``fegear solve --json``'s dictionary; the properties
+    are views of it: the headline numbers, the per-tooth table, the error estimate and, for
+    a cycle, the table of positions and the worst over them."""
+
+    summary: dict
+    solved: Solved
+
+    @property
+    def headline(self) -> pd.Series:
+        """The five headline stresses (MPa) and the four safety factors, by their JSON names,
+        at the position the files are written for (the largest gear-1 root stress)."""
+        import pandas as pd
+
+        return pd.Series({k: self.summary[k] for k in (*HEADLINE, *SAFETY)}, name="headline")
+
+    @property
+    def teeth(self) -> pd.DataFrame:
+        """One row per paired gear-1 tooth (index ``tooth``): clearance, load and share,
+        pressures (flank, edge, Hertz, half-plane), root stresses, safety factors."""
+        import pandas as pd
+
+        return pd.DataFrame(self.summary["teeth"]).set_index("tooth")
+
+    @property
+    def estimate(self) -> dict[str, object] | None:
+        """The discretisation-error estimate: ``pct`` (the largest over the headline
+        stresses, %), ``by_stress`` (% per headline) and ``quality`` (the second level it
+        comes from); None when solved with ``no_estimate=True``."""
+        if self.summary["error_estimate_pct"] is None:
+            return None
+        return {"pct": self.summary["error_estimate_pct"],
+                "by_stress": self.summary["error_estimate_by_stress_pct"],
+                "quality": self.summary["error_estimate_from"]}
+
+    @property
+    def positions(self) -> pd.DataFrame | None:
+        """For a cycle, one row per rolling position (index ``position_deg``): the headline
+        stresses, safety factors, rotation and mesh stiffness; None for one position."""
+        import pandas as pd
+
+        rows = self.solved.rows
+        return None if rows is None else pd.DataFrame(rows).set_index(POSITION)
+
+    @property
+    def worst(self) -> dict[str, dict] | None:
+        """For a cycle, the largest of each headline stress (``max``) and the smallest of
+        each safety factor (``min``) over its positions, each with the position where it
+        occurs (``at_position_deg``); None for one position."""
+        cycle = self.summary.get("cycle")
+        return None if cycle is None else {k: cycle[k] for k in (*HEADLINE, *SAFETY)}
+
+    def write(self, out: str | Path, fields: bool = True,
+              pictures: bool = True) -> dict[str, Path]:
+        """Write the files ``fegear solve --out`` writes into ``out``: summary.json, the VTU
+        fields (``fields``), the pictures (``pictures``), and a cycle's table, PVD series and
+        plot. Returns name → path."""
+        from .files import check_dir
+        from .toothpair.job import write_job
+
+        return write_job(self.solved, check_dir(str(out)), fields, pictures)
+
+
+def solve(**inputs: object) -> Result:
+    """Solve one position of a design: ``fegear solve``'s inputs by their Python names
+    (``m``, ``h1``, ``f1``, ``torque``, ``position``, ``face_width``, ``quality``,
+    ``no_estimate``, …), every other at its default. Raises
+    :class:`~fegear.errors.ParameterError` naming the input and its range for a design fegear
+    refuses."""
+    from .toothpair.job import prepare_job, solve_job
+
+    try:
+        job = prepare_job(_named(inputs))
+    except ParameterError as err:   # the input as the caller spelt it: tip_clearance
+        err.args = (err.describe(err.name.replace("-", "_")),)
+        raise
+    solved = solve_job(job)
+    return Result(solved.summary, solved)
+
+
+def _named(inputs: dict[str, object]) -> dict[str, object]:
+    """Python names → the schema's (``face_width`` → ``face-width``); an unknown name is
+    refused with the nearest known one."""
+    import difflib
+
+    from .toothpair.inputs import SOLVE_INPUTS
+
+    known = [row.dest for row in SOLVE_INPUTS.values()]
+    known += [a.replace("-", "_") for row in SOLVE_INPUTS.values() for a in row.aliases]
+    for name, value in inputs.items():
+        if name not in known:
+            close = difflib.get_close_matches(name, known, n=1)
+            hint = f"did you mean {close[0]}? " if close else ""
+            raise ParameterError(name, value, f"{hint}one of {', '.join(known)}",
+                                 "unknown input")
+    return {name.replace("_", "-"): value for name, value in inputs.items()}
+
+
+def cycle(positions: int = 24, **inputs: object) -> Result:
+    """Solve ``positions`` rolling positions across one tooth pitch of gear 2 from
+    ``position`` (degrees, default 0) on one model; the other inputs as :func:`solve`."""
+    return solve(positions=positions, **inputs)

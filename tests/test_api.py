@@ -1,0 +1,64 @@
+"""The Python face (:mod:`fegear.api`) is ``fegear solve``: the same inputs, checks, numbers
+and files."""
+
+import json
+
+import pytest
+
+import fegear
+from fegear.cli import main
+
+INPUTS = {"torque": 150.0, "quality": "coarse", "no_estimate": True, "z2": 25, "z1": 24}
+ARGV = ["--torque", "150", "--quality", "coarse", "--no-estimate", "--z2", "25", "--z1", "24"]
+
+
+@pytest.fixture(scope="module")
+def result():
+    return fegear.solve(**INPUTS)
+
+
+def test_solve_gives_the_numbers_the_command_prints(result, capsys):
+    assert main(["solve", *ARGV, "--json"]) == 0
+    cli = json.loads(capsys.readouterr().out)
+    for name, value in result.headline.items():
+        assert value == cli[name], name          # to the last digit: the same job
+    assert {str(k): v for k, v in result.summary["load_share"].items()} == cli["load_share"]
+    loaded = result.teeth[result.teeth.load_N > 0]
+    assert loaded.load_share.sum() == pytest.approx(1.0, abs=1e-9)
+    assert result.estimate is None and result.positions is None and result.worst is None
+
+
+def test_write_writes_what_out_writes(result, tmp_path, capsys):
+    files = result.write(tmp_path / "py", pictures=False)
+    assert main(["solve", *ARGV, "--out", str(tmp_path / "cli")]) == 0
+    capsys.readouterr()
+    assert sorted(p.name for p in (tmp_path / "py").iterdir()) == sorted(
+        p.name for p in (tmp_path / "cli").iterdir() if p.suffix != ".png")
+    summary = json.loads(files["summary"].read_text())
+    assert summary["root_stress_gear1_MPa"] == result.headline["root_stress_gear1_MPa"]
+
+
+def test_a_cycle_reports_its_worst_where_it_occurs():
+    c = fegear.cycle(positions=3, **INPUTS)
+    table = c.positions
+    assert len(table) == 3 and table.index.name == "position_deg"
+    worst = c.worst["root_stress_gear1_MPa"]
+    assert worst["max"] == table.root_stress_gear1_MPa.max()
+    assert table.root_stress_gear1_MPa[worst["at_position_deg"]] == worst["max"]
+    assert c.headline["root_stress_gear1_MPa"] == worst["max"]   # the files' position
+    assert c.worst["safety_contact"]["min"] == table.safety_contact.min()
+
+
+@pytest.mark.parametrize("inputs, name, text", [
+    ({"tip_clearence": 0.01}, "tip-clearence", "did you mean tip_clearance?"),
+    ({"tip_clearance": -5.0}, "tip-clearance", "tip_clearance = -5.0 is not admissible"),
+    ({"h1": 0.9}, "h1", "h1 = 0.9 is not admissible"),
+])
+def test_a_refused_design_raises_before_any_work(inputs, name, text, monkeypatch):
+    import fegear.toothpair.job as job
+
+    monkeypatch.setattr(job, "solve_job", lambda *a: pytest.fail("the work started"))
+    with pytest.raises(fegear.ParameterError) as exc:
+        fegear.solve(**inputs)
+    assert exc.value.name == name
+    assert text in str(exc.value)
