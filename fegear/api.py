@@ -4,6 +4,17 @@ The inputs are ``fegear solve``'s, under their Python names (``--face-width`` �
 ``face_width``, ``--tip-clearance`` → ``tip_clearance``), with the same defaults, checks and
 one-line refusals (:class:`~fegear.errors.ParameterError`); nothing is written until
 :meth:`Result.write` is called. docs/python.md shows it as a notebook user uses it.
+
+A light pair (25/24 teeth) at 20 N·m, coarse, without the error estimate:
+
+>>> import fegear
+>>> r = fegear.solve(z2=25, z1=24, torque=20, quality="coarse", no_estimate=True)
+>>> r.headline[["root_stress_gear1_MPa", "contact_pressure_MPa"]].round(1)
+root_stress_gear1_MPa     74.5
+contact_pressure_MPa     804.8
+Name: headline, dtype: float64
+>>> r.teeth.loc[r.teeth.load_N > 0, "load_share"].round(2).to_dict()
+{5: 0.44, 6: 0.56}
 """
 
 from __future__ import annotations
@@ -20,6 +31,8 @@ if TYPE_CHECKING:
     import pandas as pd
 
     from .toothpair.job import Solved
+
+__all__ = ["Result", "cycle", "solve"]
 
 #: the column :attr:`Result.positions` is indexed by (the rolling angle β, degrees)
 POSITION = "position_deg"

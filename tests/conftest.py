@@ -61,9 +61,9 @@ def coarse_disks():
 def sector_light_touch(baseline):
     """The baseline pair at 1 N·m, coarse, by the sector model: one or two teeth carry it
     (3 s)."""
-    from fegear.toothpair import SolveCase, solve_pair
+    from fegear.verify.sector import SectorCase, solve_pair
 
-    return solve_pair(SolveCase(baseline, torque=1.0, quality="coarse", model="sector"))
+    return solve_pair(SectorCase(baseline, torque=1.0, quality="coarse"))
 
 
 @pytest.fixture(scope="session")

@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 
 README = Path(__file__).parents[1] / "README.md"
-STAGES = ("geometry", "fe", "contact", "toothpair", "toothpair.ring", "toothpair.sector", "study",
-          "verify", "drive", "cli")
+STAGES = ("geometry", "fe", "contact", "toothpair", "toothpair.ring", "study", "verify",
+          "verify.sector", "drive", "cli", "api")
 FLAGS = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
 
 

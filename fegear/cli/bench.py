@@ -43,6 +43,11 @@ def add_parser(sub) -> None:
                    help="run only the contact-pressure comparison with CalculiX (an edge and a "
                         "flank-only case on the baseline pair at --sector-levels, default "
                         "coarse,fast; about 15 minutes; needs ccx)")
+    p.add_argument("--sector", action="store_true",
+                   help="only cross-check this design: solve it (one position, --torque, "
+                        "--pair-quality) with the ring model and with the sector model, the "
+                        "full-FE peer, and print both (standard: a minute or two; coarse: "
+                        "seconds)")
     p.add_argument("--out", default="out/bench",
                    help="directory for bench.json and the plots (default out/bench)")
 
@@ -88,11 +93,25 @@ def run(a: argparse.Namespace) -> int:
         return _study_bench(params, study_cases)
     if a.contact_peer:
         return _contact_peer(sector_levels, a.out)
+    if a.sector:
+        return _sector_check(params, torque, a.pair_quality)
     from ..files import prepare_dir
 
     out = prepare_dir(a.out)
     return _bench(a, params, torque, repeat, cycle, pair_levels, sector_levels, disk_levels,
                   [int(z) for z in teeth], study_cases, out)
+
+
+def _sector_check(params, torque: float, quality: str) -> int:
+    """The design by both models, side by side."""
+    from ..toothpair import SolveCase
+    from ..verify.sector import cross_check, cross_table
+
+    ring, sector = cross_check(SolveCase(params, torque=torque, quality=quality))
+    print(f"{params.describe()}, T {torque:g} N·m, β 0, quality {quality}: the ring model "
+          "(fegear solve) and the sector model (its full-FE peer, docs/sector.md)\n")
+    print(cross_table(ring, sector))
+    return 0
 
 
 def _bench(a, params, torque, repeat, cycle, pair_levels, sector_levels, disk_levels, teeth,

@@ -2,12 +2,12 @@
 position or over a mesh cycle.
 
 :data:`SOLVE_INPUTS` is the schema of a solve's inputs (``fegear solve``'s options, a study
-file's keys); :func:`prepare_job` checks them into a :class:`SolveCase`. Two models solve it
-(:func:`solve_pair`, :func:`solve_positions` pick the one the case names): :mod:`.ring`, both
-gears whole from one condensed tooth sector each with the contact's near field from the
-half-plane (the default: about a second a position), and :mod:`.sector`, the earlier model
-that meshes a sector of each gear finely enough to resolve the contact (the reference it was
-checked against). :mod:`.teeth` chooses the teeth that can touch for both; :mod:`.estimate`
+file's keys); :func:`prepare_job` checks them into a :class:`SolveCase`. The ring model
+(:mod:`.ring`: both gears whole from one condensed tooth sector each, the contact's near field
+from the half-plane; seconds a position) solves it; :func:`solve_pair` and
+:func:`solve_positions` run it through the one driver over positions (:mod:`.positions`), which
+the sector model, the full-FE peer in :mod:`fegear.verify.sector`, shares. :mod:`.teeth`
+chooses the teeth that can touch; :mod:`.estimate`
 solves a second mesh level for the discretisation error; :mod:`.report`, :mod:`.output` and
 :mod:`.plot` write what a designer reads; :mod:`.safety` divides allowable stresses by the
 results (safety factors). :func:`run_job` does all of it for ``fegear solve``
@@ -66,6 +66,6 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "report": ("pair_summary", "pair_table", "cycle_rows", "cycle_summary", "cycle_table"),
     "output": ("write_pair_outputs", "write_cycle_outputs", "write_mesh_stiffness"),
     "stiffness": ("MeshStiffness", "read_mesh_stiffness", "mesh_stiffness_of_cycle"),
-    "job": ("Job", "JobResult", "prepare_job", "run_job"),
-    "sector.recovery": ("contact_split",),
+    "job": ("Job", "JobResult", "Solved", "prepare_job", "run_job", "solve_job", "write_job"),
+    "positions": ("PositionModel", "Trial", "Attempt", "SHARE_GUESS", "ATTEMPTS"),
 })

@@ -27,12 +27,9 @@ HEADLINE = {"root_stress_gear1_MPa": "root σ1, gear 1", "root_stress_gear2_MPa"
 @dataclass(frozen=True)
 class SolveCase:
     """Inputs: the pair, torque (N·m) on gear 1, rolling angle β (rad), face width (mm), one
-    material (E MPa, ν), quality, rim thicknesses below the roots (mm; default 3 m), unloaded
-    extra teeth meshed on each side (sector model), extra teeth paired on each side of the
-    chosen ones (beyond what the closure needs: the safety check), penalty factor (sector
-    model), gear 1's tip-edge round (mm) and the model: "ring" (both gears whole, the
-    contact's near field from the half-plane) or "sector" (a sector of each gear, penalty
-    contact resolved by the mesh)."""
+    material (E MPa, ν), quality, rim thicknesses below the roots (mm; default 3 m), extra
+    teeth paired on each side of the chosen ones (beyond what the closure needs: the safety
+    check) and gear 1's tip-edge round (mm)."""
 
     params: PairParameters
     torque: float = 200.0
@@ -43,11 +40,8 @@ class SolveCase:
     quality: str = "standard"
     rim1: float | None = None
     rim2: float | None = None
-    extra_teeth: int = 2
     extra_pairs: int = 0
-    penalty_factor: float = 1000.0
     tip_round: float | None = None
-    model: str = "ring"
 
     def __post_init__(self) -> None:
         SOLVE_INPUTS["torque"].check(self.torque)
@@ -57,13 +51,11 @@ class SolveCase:
                       unit=f"N·m (0.05 E m b r1 at E={self.E:g} MPa, m={self.params.m:g}, "
                            f"b={self.thickness:g}, r1={self.params.r1:g} mm)")
         SOLVE_INPUTS["quality"].check(self.quality)
-        SOLVE_INPUTS["model"].check(self.model)
         for name in ("rim1", "rim2"):
             v = getattr(self, name)
             if v is not None:
                 require_range(name, v, 0.5 * self.params.m, 20 * self.params.m, unit="mm")
-        for name in ("extra-teeth", "extra-pairs", "penalty-factor"):
-            SOLVE_INPUTS[name].check(getattr(self, SOLVE_INPUTS[name].dest))
+        SOLVE_INPUTS["extra-pairs"].check(self.extra_pairs)
         if self.tip_round is not None:
             require_range("tip_round", self.tip_round, 0.0, 0.5 * self.params.m, unit="mm")
 
@@ -193,12 +185,11 @@ class SolutionDetail(Protocol):
 
 @dataclass(frozen=True)
 class PairSolution:
-    """One solved position of a tooth pair, whichever model solved it (``model``: "ring" or
-    "sector"). Stresses in MPa, rotations in rad: θ of gear 1 from its kinematic position under
+    """One solved position of a tooth pair, by the ring model or by the sector model (its
+    peer). Stresses in MPa, rotations in rad: θ of gear 1 from its kinematic position under
     the load, and at the first touch."""
 
     case: SolveCase
-    model: str
     teeth: tuple[ToothResult, ...]
     root_stress: tuple[float, float]          # max σ1 on the root zones of gear 1, gear 2
     von_mises_max: float

@@ -3,6 +3,7 @@ Roache's two-grid convergence index per headline stress."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import replace
 
 from ..geometry import Gear1Profile
@@ -25,31 +26,30 @@ def error_estimate(fine: dict[str, float], coarse: dict[str, float],
             / max(abs(fine[k]), 1e-300) for k in HEADLINE}
 
 
-def mesh_ratio(model: str, coarse: str, fine: str) -> float:
-    """Element sizes at quality ``coarse`` over those at ``fine``: the sector model halves
-    them from level to level; the ring model's templates (their root zones) shrink by about
-    √2 up to ``standard`` and by 2 to ``fine``."""
-    if model == "sector":
-        levels = tuple(QUALITY)
-        return 2.0 ** (levels.index(fine) - levels.index(coarse))
+def mesh_ratio(coarse: str, fine: str) -> float:
+    """Element sizes at quality ``coarse`` over those at ``fine`` in the ring model: its
+    templates (their root zones) shrink by about √2 up to ``standard`` and by 2 to ``fine``."""
     from .ring.model import LEVELS
 
     return LEVELS[coarse].root / LEVELS[fine].root
 
 
-def second_level_estimate(sol: PairSolution,
-                          profile: Gear1Profile | None = None) -> tuple[dict[str, float], str]:
+def second_level_estimate(sol: PairSolution, profile: Gear1Profile | None = None,
+                          solve: Callable = solve_pair,
+                          ratio: Callable[[str, str], float] = mesh_ratio
+                          ) -> tuple[dict[str, float], str]:
     """Solve the same case at the next coarser quality (``fast`` for ``coarse``: the next
     finer) and estimate the headline errors (%) of ``sol``. Returns the estimate and the
-    other quality."""
-    levels = tuple(QUALITY)  # coarsest first, each halving the element sizes
+    other quality. ``solve`` and ``ratio``: the model's solve and its mesh ratio between two
+    qualities (the product's by default; a peer passes its own)."""
+    levels = tuple(QUALITY)  # coarsest first
     k = levels.index(sol.case.quality)
     other = levels[k - 1] if k > 0 else levels[1]
-    second = solve_pair(replace(sol.case, quality=other), profile).headline()
+    second = solve(replace(sol.case, quality=other), profile).headline()
     own = sol.headline()
     if k > 0:
-        return error_estimate(own, second, mesh_ratio(sol.case.model, other, levels[k])), other
+        return error_estimate(own, second, ratio(other, levels[k])), other
     # the estimate is for the finer level; the coarser one's error is r² larger (rate h²)
-    r = mesh_ratio(sol.case.model, levels[0], other)
+    r = ratio(levels[0], other)
     finer = error_estimate(second, own, r)
     return {key: r ** 2 * v * second[key] / own[key] for key, v in finer.items()}, other

@@ -33,10 +33,6 @@ LOAD_INPUTS = (
 )
 
 MODEL_INPUTS = (
-    Input("model", str, "ring", "tooth-pair model: ring (both gears whole from one condensed "
-          "tooth sector each, the contact's near field from the half-plane) or sector (the "
-          "earlier model: a meshed sector of each gear, penalty contact)",
-          choices=("ring", "sector")),
     Input("quality", str, "standard", "mesh quality", choices=tuple(QUALITY)),
     Input("tip-round", float, None, f"gear-1 tip-edge round radius, 0 <= tip-round <= m/2 "
           f"and fitting the tip edges (default {TIP_ROUND:g} m, or half the largest round that "
@@ -45,13 +41,8 @@ MODEL_INPUTS = (
           "(default 3 m)", "mm"),
     Input("rim2", float, None, "gear-2 rim beyond the roots, to the fixed rim, m/2 ... 20 m "
           "(default 3 m)", "mm"),
-    Input("extra-teeth", int, 2, "sector model: unloaded teeth meshed beyond the paired ones "
-          "on each side",
-          low=1, high=10),
     Input("extra-pairs", int, 0, "pair this many more teeth on each side than the closure "
           "needs (a safety check)", low=0, high=5),
-    Input("penalty-factor", float, None, "sector model: contact penalty κ = factor·E*/h, h the "
-          "local facet length (default 1000)", low=0.0, high=1e6, low_open=True),
     Input("no-estimate", bool, False, "skip the second mesh level (no discretisation-error "
           "estimate)"),
 )

@@ -45,15 +45,13 @@ def prepare_job(values: Mapping[str, object]) -> Job:
             row.check(v[name])
     params = admissible_pair(v, given=values)
     v["tip-round"] = _tip_round(params, v["tip-round"])
-    kw = {} if v["penalty-factor"] is None else {"penalty_factor": v["penalty-factor"]}
     position = SOLVE_INPUTS["position"].check(v["position"])
     positions = SOLVE_INPUTS["positions"].check(v["positions"])
     n = 1 if positions is None else positions
     case = SolveCase(params, torque=v["torque"], beta=math.radians(position),
                      thickness=v["face-width"], E=v["E"], nu=v["nu"], quality=v["quality"],
-                     rim1=v["rim1"], rim2=v["rim2"], extra_teeth=v["extra-teeth"],
-                     extra_pairs=v["extra-pairs"], tip_round=v["tip-round"], model=v["model"],
-                     **kw)
+                     rim1=v["rim1"], rim2=v["rim2"], extra_pairs=v["extra-pairs"],
+                     tip_round=v["tip-round"])
     betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
     return Job(case, tuple(betas), not v["no-estimate"], allowables_of(v))
 

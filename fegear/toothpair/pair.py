@@ -1,5 +1,6 @@
-"""Solve a tooth pair with the model its case names: the ring model (the default) or the
-sector model (:mod:`.ring`, :mod:`.sector`)."""
+"""Solve a tooth pair with the ring model (:mod:`.ring`), the product's one model, through the
+driver of :mod:`.positions`. The sector model, the full-FE peer it is checked against, lives in
+:mod:`fegear.verify.sector` and runs through the same driver."""
 
 from __future__ import annotations
 
@@ -9,15 +10,12 @@ from .case import PairSolution, SolveCase
 
 def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None,
                     model=None) -> tuple[PairSolution, ...]:
-    """Solve ``case`` at each rolling angle of ``betas`` (rad) on one mesh. ``model``: a ring
-    model built before for the same geometry and quality (ring model only; reused)."""
-    if case.model == "sector":
-        from .sector.solve import solve_positions as sector
+    """Solve ``case`` at each rolling angle of ``betas`` (rad) on one model. ``model``: a ring
+    model (:func:`~.ring.build_ring`) built before for the same geometry and quality, kept."""
+    from .positions import solve_positions as drive
+    from .ring.solve import RingSolver
 
-        return sector(case, betas, profile)
-    from .ring.solve import solve_positions as ring
-
-    return ring(case, betas, profile, model)
+    return drive(case, betas, RingSolver(model), profile)
 
 
 def solve_pair(case: SolveCase, profile: Gear1Profile | None = None,

@@ -4,9 +4,10 @@
 from __future__ import annotations
 
 import math
+from dataclasses import fields
 
 from ..fe import Allowables
-from .case import HEADLINE, PairSolution
+from .case import HEADLINE, PairSolution, SolveCase
 from .safety import (
     ALLOWABLE_KEYS,
     DEFAULT_ALLOWABLES,
@@ -15,6 +16,9 @@ from .safety import (
     smallest,
     with_safety,
 )
+
+#: the product case's fields; a summary records a peer's further inputs by their names
+SOLVE_FIELDS = {f.name for f in fields(SolveCase)}
 
 
 def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float | None = None,
@@ -32,11 +36,12 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
                    "relief_start_mm": p.relief_start, "relief_shape": p.relief_shape,
                    "torque_Nm": c.torque,
                    "position_deg": math.degrees(c.beta), "thickness_mm": c.thickness,
-                   "E_MPa": c.E, "nu": c.nu, "model": c.model, "quality": c.quality,
+                   "E_MPa": c.E, "nu": c.nu, "quality": c.quality,
                    "tip_round_mm": c.edge_radius,
-                   "rim1_mm": c.rims[0], "rim2_mm": c.rims[1], "extra_teeth": c.extra_teeth,
-                   "extra_pairs": c.extra_pairs,
-                   "penalty_factor": c.penalty_factor},
+                   "rim1_mm": c.rims[0], "rim2_mm": c.rims[1], "extra_pairs": c.extra_pairs,
+                   # a peer's own inputs (the sector model's extra teeth and penalty factor)
+                   **{f.name: getattr(c, f.name) for f in fields(c)
+                      if f.name not in SOLVE_FIELDS}},
         **sol.headline(),
         **dict.fromkeys(SAFETY),           # with_safety fills them in
         "contact_peak_on_tip_round": peak.peak_on_round,

@@ -197,11 +197,12 @@ def pair_ladder(params: PairParameters, torque: float = 200.0,
                 levels: Sequence[str] = PAIR_LEVELS, peer: bool = False) -> Ladder:
     """The sector model's tooth pair at one position at each quality level (headline
     stresses), CalculiX beside it on the same meshes (``peer``)."""
-    from ..toothpair import SolveCase, pair_summary, solve_pair, write_pair_outputs
+    from ..toothpair import pair_summary, write_pair_outputs
+    from .sector import SectorCase, solve_pair
 
     rungs = []
     for quality in levels:
-        case = SolveCase(params, torque=torque, quality=quality, model="sector")
+        case = SectorCase(params, torque=torque, quality=quality)
         sol = solve_pair(case, Gear1Profile(params))
         timings = dict(sol.timings_s)
         timings["output"] = _timed_output(

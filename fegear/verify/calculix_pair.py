@@ -1,6 +1,6 @@
 """CalculiX peer of the tooth-pair solve: the same placed bodies, torque and contact windows.
 
-:func:`ccx_pair` solves a :class:`~fegear.toothpair.SolveCase` with fegear (one position),
+:func:`ccx_pair` solves a :class:`~fegear.verify.sector.SectorCase` with fegear (one position),
 writes its bodies with :func:`fegear.verify.calculix.write_deck` and runs CalculiX on them.
 Units: mm, N, MPa, rad; the torque is in N·m in the case and N·mm in the deck. Choices (see also
 :mod:`fegear.verify.calculix`), measured on the baseline pair (shift 0.016, rotation 0.002):
@@ -71,9 +71,10 @@ import numpy as np
 from ..contact import forces_from_body
 from ..fe import Body, Placement, StressField, contact_modulus
 from ..planar import rotate
-from ..toothpair import PairSolution, SolveCase, contact_split, solve_pair
+from ..toothpair import PairSolution
 from .calculix import write_deck
 from .ccx_files import PeerError, contact_forces, execute, floats, last_block, read_text
+from .sector import SectorCase, contact_split, solve_pair
 
 CCX_PENALTY_FACTOR = 30.0  # CalculiX's K = this · E*/h (penalty_factor=None: the case's)
 PRELOAD_FRACTION = 0.01    # step-1 rotation beyond our first touch, of our elastic rotation
@@ -159,7 +160,7 @@ def pair_surfaces(sol: PairSolution, penalty: str = "size",
     return pairs, owner
 
 
-def ccx_pair(case: SolveCase, workdir: str | os.PathLike, threads: int = 1,
+def ccx_pair(case: SectorCase, workdir: str | os.PathLike, threads: int = 1,
              timeout: float | None = None, penalty: str = "size",
              penalty_factor: float | None = CCX_PENALTY_FACTOR, start: str = "solution",
              increments: int = 1,
@@ -174,9 +175,9 @@ def ccx_pair(case: SolveCase, workdir: str | os.PathLike, threads: int = 1,
     held in step 1); ``increments``: at least this many increments in step 2 (see the module
     docstring). Raises :class:`~fegear.verify.calculix.PeerError` when ccx is missing or
     fails, or when its contact moments do not balance the torque (1 %)."""
-    if case.model != "sector":
-        raise PeerError("CalculiX solves the sector model's meshes: the case's model must be "
-                        "'sector'")
+    if not isinstance(case, SectorCase):
+        raise PeerError("CalculiX solves the sector model's meshes: the case must be a "
+                        "SectorCase")
     if solution is not None and solution.case != case:
         raise PeerError("the solution given is not of this case")
     sol = solve_pair(case) if solution is None else solution
@@ -322,7 +323,7 @@ def facet_reading(sol: PairSolution, lam: np.ndarray) -> list[dict[str, float]]:
     (MPa); ``half_width`` (mm) from the second moment of the facet loads over the run of
     loaded facets around the peak (2·√(Σ F (s − s̄)² + F h²/12)/Σ F), as an elliptic pressure
     gives its b; ``facet_load`` (N) of that run; ``flank_pressure`` (MPa) and the round's
-    ``edge_load`` (N) as :func:`~fegear.toothpair.contact_split` splits them."""
+    ``edge_load`` (N) as :func:`~fegear.verify.sector.contact_split` splits them."""
     model = sol.detail.model
     thickness = sol.case.thickness
     out = []

@@ -46,10 +46,9 @@ OPTIONS = {
               "--penalty-factor": ["0", "-300", "1e300"]},
     "solve": {**PAIR, "--torque": ["0", "-200", "1e300"], "--position": ["400", "-400"],
               "--positions": ["1", "0", "-24", "100000"], **MATERIAL, **ALLOWABLE,
-              "--quality": ["best"], "--model": ["wedge"], "--tip-round": ["-0.25", "100"],
+              "--quality": ["best"], "--tip-round": ["-0.25", "100"],
               "--rim1": ["0", "-6", "1e300"], "--rim2": ["0", "-6", "1e300"],
-              "--extra-teeth": ["0", "-2", "1000"], "--extra-pairs": ["-1", "1000"],
-              "--penalty-factor": ["0", "-1000", "1e300"]},
+              "--extra-pairs": ["-1", "1000"]},
     "bench": {**PAIR, "--repeat": ["0", "-3", "100000"], "--cycle": ["1", "-24",
                                                                      "100000"],
               "--pair-quality": ["best"], "--torque": ["0", "-200", "1e300"],
@@ -59,16 +58,15 @@ OPTIONS = {
               "--study-cases": ["1", "-6", "100000"]},
     "relief": {**{k: v for k, v in PAIR.items() if k != "--relief"},
                "--torque": ["0", "-200", "1e300"], **MATERIAL, "--quality": ["best"],
-               "--model": ["wedge"], "--tip-round": ["-0.25", "100"],
+               "--tip-round": ["-0.25", "100"],
                "--rim1": ["0", "-6", "1e300"], "--rim2": ["0", "-6", "1e300"],
-               "--extra-teeth": ["0", "-2", "1000"], "--extra-pairs": ["-1", "1000"],
-               "--penalty-factor": ["0", "-1000", "1e300"],
+               "--extra-pairs": ["-1", "1000"],
                "--cycle-positions": ["1", "0", "100000"], "--margin": ["-0.1", "3"]},
     "study": {"--workers": ["0", "-2", "100000"]},
     "drive": {},  # its options sit on its subcommands: tests/test_drive_cli.py
 }
-CHOICE = {"--model", "--sector-levels"}
-INTEGER = {"--z1", "--z2", "--positions", "--extra-teeth", "--extra-pairs", "--repeat",
+CHOICE = {"--sector-levels"}
+INTEGER = {"--z1", "--z2", "--positions", "--extra-pairs", "--repeat",
            "--cycle", "--study-cases", "--workers", "--cycle-positions"}
 ARGS = {"profile": ["--positions", "4"], "hertz": [], "solve": [], "bench": [], "drive": [],
         "relief": ["--relief-extent", "0.5"],
@@ -160,9 +158,8 @@ def test_outputs_are_written_atomically_with_ordinary_permissions(tmp_path):
     (f, v) for f, values in {
         "torque": [0.0, -1.0, 1e300], "beta": [7.0, -7.0], "thickness": [0.0, -5.0, 1e300],
         "E": [0.0, -1.0, 1e300], "nu": [-0.1, 0.5], "quality": ["best", 3],
-        "rim1": [0.0, -1.0, 1e300], "rim2": [0.0, 1e300], "extra_teeth": [0, 1000],
-        "extra_pairs": [-1, 1000], "penalty_factor": [0.0, -1.0, 1e300],
-        "tip_round": [-0.1, 100.0]}.items()
+        "rim1": [0.0, -1.0, 1e300], "rim2": [0.0, 1e300],
+        "extra_pairs": [-1, 1000], "tip_round": [-0.1, 100.0]}.items()
     for v in values + ([float("nan"), float("inf")] if f not in ("quality",) else [])])
 def test_solve_case_rejects_bad_fields(field, value):
     from fegear.errors import ParameterError

@@ -64,7 +64,7 @@ def test_profile_table_output(tmp_path):
     ("solve", ["--quality", "best"], "quality = 'best' is not admissible"),
     ("solve", ["--tip-round", "5"], "--tip-round = 5.0 is not admissible"),
     ("solve", ["--position", "400"], "position = 400.0 is not admissible"),
-    ("solve", ["--extra-teeth", "0"], "--extra-teeth = 0 is not admissible"),
+    ("solve", ["--extra-pairs", "9"], "--extra-pairs = 9 is not admissible"),
     ("solve", ["--h1", "0.9"], "admissible: 0.0500 <= h1 <= 0.83"),
 ])
 def test_user_errors_exit_2_with_one_line(tmp_path, command, args, fragment):

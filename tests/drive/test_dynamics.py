@@ -122,8 +122,8 @@ def test_fe_cycle_exports_a_stiffness_the_model_reproduces_statically(tmp_path):
     from fegear.cli import main
 
     out = tmp_path / "cycle"
-    assert main(["solve", "--z2", "25", "--z1", "24", "--quality", "coarse", "--extra-teeth",
-                 "1", "--shift", "0.016", "--rotation", "0.002", "--torque", "20",
+    assert main(["solve", "--z2", "25", "--z1", "24", "--quality", "coarse",
+                 "--shift", "0.016", "--rotation", "0.002", "--torque", "20",
                  "--positions", "4", "--no-estimate", "--out", str(out)]) == 0
     m = read_mesh_stiffness(out / "mesh_stiffness.json")
     rows = json.loads((out / "summary.json").read_text())["cycle"]["rows"]

@@ -9,7 +9,6 @@ import pytest
 from fegear.contact.model import ContactPair
 from fegear.fe.assembly import RigidLink, assemble_body, facet_nodes
 from fegear.fe.material import contact_modulus
-from fegear.toothpair.case import SolveCase
 from fegear.verify import DiskCase
 from fegear.verify.calculix import CONTROLS, ccx_available, ccx_disks, run_ccx, write_deck
 from fegear.verify.calculix_pair import (
@@ -23,6 +22,7 @@ from fegear.verify.calculix_pair import (
     turned_body,
 )
 from fegear.verify.ccx_files import PeerConvergenceError, PeerError, contact_forces
+from fegear.verify.sector import SectorCase
 
 needs_ccx = pytest.mark.skipif(not ccx_available(), reason="CalculiX (ccx) is not installed")
 
@@ -288,7 +288,7 @@ def test_gear_1_is_written_turned_about_o1(light, tmp_path):
     with pytest.raises(PeerError, match="start"):
         ccx_pair(light.case, tmp_path, solution=light, start="kinematic")
     with pytest.raises(PeerError, match="not of this case"):
-        ccx_pair(SolveCase(light.case.params, torque=2.0, quality="coarse", model="sector"),
+        ccx_pair(SectorCase(light.case.params, torque=2.0, quality="coarse"),
                  tmp_path,
                  solution=light)
 

@@ -9,13 +9,14 @@ pressure grids on the teeth that can touch; :mod:`.influence` assembles how each
 approaches gear 2 under each pressure hat; :mod:`.contact` solves the contact under the torque;
 :mod:`.stresses` reads the root stresses from the templates and the contact stresses from a
 submodel at each peak; :mod:`.results` gives per-tooth results and the rings' fields;
-:mod:`.solve` does a position or a set of them on one model.
+:mod:`.solve` is the model's part of a position (:class:`RingSolver`) for the driver of
+:mod:`fegear.toothpair.positions`, which loops over the positions.
 
 The baseline pair at 200 N·m, coarse:
 
 >>> from fegear.geometry import PairParameters
->>> from fegear.toothpair import SolveCase
->>> from fegear.toothpair.ring import build_ring, solve_pair
+>>> from fegear.toothpair import SolveCase, solve_pair
+>>> from fegear.toothpair.ring import build_ring
 >>> case = SolveCase(PairParameters(shift=0.016, rotation=0.002), quality="coarse")
 >>> model = build_ring(case)
 >>> sol = solve_pair(case, model=model)
@@ -40,6 +41,6 @@ from ...exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
     "model": ("RingModel", "RingLevel", "LEVELS", "build_ring", "build_templates"),
-    "solve": ("solve_pair", "solve_positions", "solve_position"),
+    "solve": ("RingSolver",),
     "results": ("RingDetail",),
 })

@@ -5,16 +5,16 @@ case stays tested."""
 
 import math
 
-import fegear.toothpair.ring.solve as ring_solve
 from fegear.errors import GeometryError
+from fegear.toothpair.ring.solve import RingSolver
 
-_solve_position = ring_solve.solve_position
+_attempt = RingSolver.attempt
 
 
-def solve_position(model, case, state, near=None):
+def attempt(self, case, state, trial, near):
     if case.torque == 10.0 and abs(case.beta - math.radians(1.5)) < 1e-12:
         raise GeometryError("injected by the study tests: a solve that fails")
-    return _solve_position(model, case, state, near)
+    return _attempt(self, case, state, trial, near)
 
 
-ring_solve.solve_position = solve_position
+RingSolver.attempt = attempt

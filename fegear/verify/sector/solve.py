@@ -4,7 +4,8 @@ Torque T (N·m) acts on gear 1 counter-clockwise (the ``+`` direction of the cle
 through a rigid rotation θ of its bore about O1; gear 2's outer rim is fixed. Teeth are paired
 from the unloaded clearance table and an estimate of the loaded rotation (:func:`choose_teeth`);
 after the solve every unpaired tooth is checked against the computed rotation, and the scene is
-rebuilt with more teeth if one would have closed.
+rebuilt with more teeth if one would have closed. The loop over positions and attempts is the
+product's (:mod:`fegear.toothpair.positions`); this module supplies one position.
 
 A set of rolling angles (a mesh cycle) shares one scene, one factorisation and one flexibility
 per body (:class:`PairModel`), whose rows are formed as contacts first reach their dofs; each
@@ -15,7 +16,6 @@ solves the small contact problem.
 from __future__ import annotations
 
 import logging
-import math
 import time
 from dataclasses import dataclass, field, replace
 
@@ -32,7 +32,6 @@ from ...contact import (
     first_touch,
     solve_contact,
 )
-from ...errors import FegearError
 from ...fe import (
     Body,
     Placement,
@@ -41,11 +40,14 @@ from ...fe import (
     mesh_bodies,
     recover,
 )
-from ...geometry import Gear1Profile, ToothContact
-from ..case import BodyField, ContactChecks, ContactZone, PairSolution, SolveCase
-from ..teeth import TOOTH_STIFFNESS, candidate_data, choose_teeth, refuse_interference
+from ...geometry import Gear1Profile
+from ...toothpair.case import BodyField, ContactChecks, ContactZone, PairSolution
+from ...toothpair.positions import Attempt, Trial, expected_elastic_um, first_teeth
+from ...toothpair.positions import solve_positions as drive
+from ...toothpair.teeth import candidate_data, choose_teeth
+from .case import SectorCase
 from .recovery import root_nodes, root_stresses, tooth_results
-from .scene import Scene, build_scene
+from .scene import QUALITY, Scene, build_scene
 
 log = logging.getLogger(__name__)
 
@@ -54,14 +56,14 @@ class PairModel:
     """The meshed and factorised sector bodies (in their own frames) for a set of rolling
     angles; :func:`solve_position` places them at one β and solves the contact there."""
 
-    case: SolveCase
+    case: SectorCase
     scene: Scene = field(repr=False)
     bodies: tuple[Body, Body] = field(repr=False)
     root_zones: tuple[np.ndarray, np.ndarray] = field(repr=False)
     timings_s: dict
 
 
-def build_model(case: SolveCase, profile: Gear1Profile, positions, teeth) -> PairModel:
+def build_model(case: SectorCase, profile: Gear1Profile, positions, teeth) -> PairModel:
     """Mesh and factorise the sector for the paired ``teeth`` over ``positions`` (β, state)."""
     times = {}
     t0 = time.perf_counter()
@@ -78,54 +80,65 @@ def build_model(case: SolveCase, profile: Gear1Profile, positions, teeth) -> Pai
     return PairModel(case, scene, (g1, g2), zones, times)
 
 
-def solve_pair(case: SolveCase, profile: Gear1Profile | None = None) -> PairSolution:
-    """Solve one position; pairs more teeth until no unpaired tooth would close."""
-    profile = profile if profile is not None else Gear1Profile(case.params)
+def solve_positions(case: SectorCase, betas, profile: Gear1Profile | None = None
+                    ) -> tuple[PairSolution, ...]:
+    """Solve at each rolling angle of ``betas`` (rad) through the product's driver
+    (:mod:`fegear.toothpair.positions`): the teeth, the attempts and the timings as the ring
+    model's."""
+    return drive(case, betas, SectorSolver(), profile)
+
+
+def solve_pair(case: SectorCase, profile: Gear1Profile | None = None) -> PairSolution:
+    """Solve one position."""
     return solve_positions(case, (case.beta,), profile)[0]
 
 
-def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None
-                    ) -> tuple[PairSolution, ...]:
-    """Solve at each rolling angle of ``betas`` on one mesh: the windows cover every paired
-    tooth's contact path over the positions, the bodies are factorised once (their flexibility
-    rows are formed when a position first needs them, then kept), and each position only
-    re-pairs the contact points and solves the small contact problem.
-    If an unpaired tooth would close at some position, the scene is rebuilt with it."""
-    p = case.params
-    t0 = time.perf_counter()
-    profile = profile if profile is not None else Gear1Profile(p)
-    tca = ToothContact(p, profile)
-    states = [(b, tca.state(b)) for b in betas]
-    t_profile = time.perf_counter() - t0
-    refuse_interference(states)
-    force = case.torque * 1e3 / p.r0
-    estimate_um = force / (case.thickness * TOOTH_STIFFNESS) / 3.0
-    teeth = _union(choose_teeth(st, _first_clearance(st) + estimate_um, case.extra_pairs)
-                   for _, st in states)
-    for _ in range(4):
+def mesh_ratio(coarse: str, fine: str) -> float:
+    """Element sizes at quality ``coarse`` over those at ``fine``: the sector model halves
+    them from level to level (for :func:`~fegear.toothpair.estimate.second_level_estimate`)."""
+    levels = tuple(QUALITY)
+    return 2.0 ** (levels.index(fine) - levels.index(coarse))
+
+
+class SectorSolver:
+    """The sector model as a :class:`~fegear.toothpair.positions.PositionModel`. One scene
+    covers every position's contact path for the teeth paired so far; a position whose solved
+    rotation would close a tooth outside it is solved again on a scene rebuilt with that tooth
+    (the positions before keep theirs: no tooth outside their scene closed)."""
+
+    def __init__(self) -> None:
+        self.model: PairModel | None = None
+        self.timings_s: dict = {}
+
+    def build(self, case: SectorCase, profile: Gear1Profile, states) -> None:
+        self.profile, self.states = profile, states
+        elastic = expected_elastic_um(case)
+        self._scene(case, _union(first_teeth(case, st, elastic) for _, st in states))
+        self.timings_s = dict(self.model.timings_s)
+
+    def _scene(self, case: SectorCase, teeth: tuple[int, ...]) -> None:
         progress.stage(f"model: sector meshes of both gears at quality {case.quality}")
-        model = build_model(case, profile, states, teeth)
-        sols = []
-        for k, (beta, state) in enumerate(states):
-            progress.stage(f"contact at β {math.degrees(beta):.3g}°"
-                           + (f" ({k + 1} of {len(states)})" if len(states) > 1 else ""))
-            sol = solve_position(model, beta, state, sols[-1] if sols else None)
-            if k == 0:  # the first position carries the one-off stages
-                sol = replace(sol, timings_s={"profile": t_profile, **model.timings_s,
-                                              **sol.timings_s})
-            sols.append(sol)
-        more = _union(choose_teeth(st, s.rotation * p.r0 * 1e3, case.extra_pairs)
-                      for (_, st), s in zip(states, sols))
-        if set(more) <= set(model.scene.paired):
-            return tuple(sols)
-        log.info("teeth %s would close: rebuilding the scene", sorted(set(more) - set(teeth)))
-        teeth = _union((teeth, more))
-    raise FegearError("the paired teeth did not settle after 4 rebuilds")
+        self.model = build_model(case, self.profile, self.states, teeth)
 
+    def attempt(self, case: SectorCase, state, trial: Trial,
+                near: PairSolution | None) -> Attempt:
+        paired = set(self.model.scene.paired)
+        if not set(trial.teeth) <= paired:
+            log.info("teeth %s would close: rebuilding the scene",
+                     sorted(set(trial.teeth) - paired))
+            self._scene(case, _union((tuple(paired), trial.teeth)))
+            near = None   # its loaded nodes are another scene's
+        sol = solve_position(self.model, case.beta, state, near)
+        p = case.params
+        more = set(choose_teeth(state, sol.rotation * p.r0 * 1e3, case.extra_pairs))
+        if more <= set(self.model.scene.paired):
+            return Attempt(sol, None)
+        again = Trial(_union((trial.teeth, tuple(more))), trial.elastic_um)
+        return Attempt(sol, again, f"teeth {sorted(more - set(self.model.scene.paired))} "
+                                   "would close")
 
-def _first_clearance(state) -> float:
-    """Smallest + clearance at a position (µm): the rigid closure at first touch."""
-    return state.closest(+1).plus_um
+    def finish(self, case: SectorCase, state, attempt: Attempt) -> PairSolution:
+        return attempt.result
 
 
 def _union(groups) -> tuple[int, ...]:
@@ -162,7 +175,7 @@ def solve_position(model: PairModel, beta: float, state,
     checks = ContactChecks(sol.balance_error, sol.max_penetration, sol.iterations,
                            tuple(sol.residuals), int(contact.npoints))
     return PairSolution(
-        case=case, model="sector", teeth=teeth, root_stress=roots, von_mises_max=vm,
+        case=case, teeth=teeth, root_stress=roots, von_mises_max=vm,
         rotation=sol.link_value, first_touch=_touch_rotation(contact),
         dofs=sum(b.ndofs for b in bodies), checks=checks, timings_s=times,
         detail=SectorDetail(model.scene, bodies, contact, sol, stresses, model.root_zones))

@@ -17,9 +17,10 @@ from ...contact import ContactModel, ContactSolution
 from ...errors import ParameterError
 from ...fe import Body, StressField, contact_modulus, facet_nodes, line_contact
 from ...planar import wrap
-from ..case import SolveCase, ToothResult
-from ..edge import flank_and_edge
-from ..teeth import Candidate, tension_fillets
+from ...toothpair.case import ToothResult
+from ...toothpair.edge import flank_and_edge
+from ...toothpair.teeth import Candidate, tension_fillets
+from .case import SectorCase
 from .scene import QUALITY, Scene
 
 #: nodes across the round's Hertz half-width an edge pressure needs: at `coarse`, 200 N·m,
@@ -44,7 +45,7 @@ def root_stresses(stresses: tuple[StressField, ...],
             float(stresses[1].max_principal[zones[1]].max()))
 
 
-def tooth_results(case: SolveCase, scene: Scene, bodies: tuple[Body, Body],
+def tooth_results(case: SectorCase, scene: Scene, bodies: tuple[Body, Body],
                   contact: ContactModel, sol: ContactSolution,
                   stresses: tuple[StressField, ...], zones: tuple[np.ndarray, np.ndarray],
                   cands: tuple[Candidate, ...]) -> tuple[ToothResult, ...]:
@@ -82,7 +83,7 @@ def tooth_results(case: SolveCase, scene: Scene, bodies: tuple[Body, Body],
     return tuple(results)
 
 
-def contact_split(shape, x: np.ndarray, pressure: np.ndarray, case: SolveCase,
+def contact_split(shape, x: np.ndarray, pressure: np.ndarray, case: SectorCase,
                   half_width: float) -> dict:
     """Flank and edge pressure (``flank_p_MPa``, ``edge_p_MPa``, ``edge_load_N``) of one
     tooth's contact points ``x`` (gear 1's frame), taken in the order of their polar angle; the
@@ -122,7 +123,7 @@ def _peak_on_round(shape, x: np.ndarray, pressure: np.ndarray) -> bool:
     return bool(shape.on_round(np.arctan2(x[i:i + 1, 1], x[i:i + 1, 0]))[0])
 
 
-def _hertz(c, load: float, case: SolveCase):
+def _hertz(c, load: float, case: SectorCase):
     try:
         return line_contact(c.radius1, c.radius2, load, case.thickness, case.E, case.nu)
     except ParameterError:

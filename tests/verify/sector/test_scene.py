@@ -12,10 +12,10 @@ from fegear.geometry.gear1 import Gear1Profile
 from fegear.geometry.gear2 import gear2_curve
 from fegear.geometry.tip_edge import RoundedProfile
 from fegear.planar import rotate
-from fegear.toothpair.case import SolveCase
-from fegear.toothpair.sector.scene import build_scene, tooth_run
 from fegear.toothpair.segments import SHORT, SPLINE_CHORD, profile_segments, sampled
 from fegear.toothpair.teeth import candidate_data, choose_teeth
+from fegear.verify.sector import SectorCase
+from fegear.verify.sector.scene import build_scene, tooth_run
 
 
 def circle(phi):
@@ -73,7 +73,7 @@ def test_gear2_is_refined_like_the_rounds_and_gear1_reaches_beyond(baseline):
     profile = Gear1Profile(p)
     state = ToothContact(p, profile).state(0.0)
     teeth = choose_teeth(state, 15.0)
-    case = SolveCase(p, torque=200.0, quality="fast", rim1=6.0, rim2=6.0, extra_teeth=2,
+    case = SectorCase(p, torque=200.0, quality="fast", rim1=6.0, rim2=6.0, extra_teeth=2,
                      tip_round=0.25)
     scene = build_scene(case, profile, [(0.0, state)], teeth)
     size1 = {r.segments[0]: r.size for r in scene.gear1.refinements}
@@ -161,7 +161,7 @@ def test_hertz_radii_are_those_of_the_gap_once_the_clearance_is_closed(baseline)
     # before the clearance closes) it came out half the true value
     p = baseline
     profile = Gear1Profile(p)
-    beta = SolveCase(p).beta
+    beta = SectorCase(p).beta
     state = ToothContact(p, profile).state(beta)
     shape = RoundedProfile(profile, 0.25)
     first = sorted((c for c in state.teeth if c.plus_um is not None), key=lambda c: c.plus_um)

@@ -5,15 +5,17 @@ import math
 import numpy as np
 import pytest
 
-from fegear.toothpair.case import HEADLINE, SolveCase, cycle_positions
+from fegear.toothpair.case import HEADLINE, cycle_positions
 from fegear.toothpair.estimate import error_estimate, mesh_ratio
-from fegear.toothpair.sector.solve import solve_pair, solve_positions
+from fegear.verify.sector import SectorCase
+from fegear.verify.sector.solve import mesh_ratio as sector_ratio
+from fegear.verify.sector.solve import solve_pair, solve_positions
 
 
 @pytest.mark.slow
 def test_baseline_pair_balances_torque_and_shares(baseline):
     p = baseline
-    r = solve_pair(SolveCase(p, torque=200.0, quality="fast", model="sector"))
+    r = solve_pair(SectorCase(p, torque=200.0, quality="fast"))
     assert r.checks.balance_error < 1e-6
     assert sum(t.load_share for t in r.teeth) == pytest.approx(1.0, abs=1e-3)
     assert max(r.checks.residuals) < 1e-9
@@ -29,7 +31,7 @@ def test_headline_stresses_are_insensitive_to_the_penalty_over_three_decades(bas
     # the weighted-gap penalty must not lock or oscillate there as the penalty grows 1000×
     # (measured: roots and von Mises move < 0.02 %); the penetration falls with the penalty
     p = baseline
-    runs = [solve_pair(SolveCase(p, quality="fast", penalty_factor=f, model="sector"))
+    runs = [solve_pair(SectorCase(p, quality="fast", penalty_factor=f))
             for f in (100, 1000, 10000, 100000)]
     assert all(any(t.peak_on_round for t in r.teeth) for r in runs)
     for key in runs[0].headline():
@@ -46,7 +48,7 @@ def test_mesh_cycle_repeats_after_one_pitch_with_the_next_tooth(baseline):
     is to discretisation accuracy."""
     p = baseline
     b0, b1 = 0.0, 2 * math.pi / p.z2
-    s0, s1 = solve_positions(SolveCase(p, torque=200.0, quality="fast", model="sector"), (b0, b1))
+    s0, s1 = solve_positions(SectorCase(p, torque=200.0, quality="fast"), (b0, b1))
     # one factorisation and one flexibility
     for b0_, b1_ in zip(s0.detail.bodies, s1.detail.bodies):
         assert b0_.factor is b1_.factor and b0_.cache is b1_.cache
@@ -79,8 +81,8 @@ def test_two_more_teeth_each_side_change_no_stress_by_1pct(more, baseline):
     traction-free cut faces two teeth further out, changes no headline stress, the
     transmission error or a load share by more than 1 % (measured: ≤ 0.45 %)."""
     p = baseline
-    base = solve_pair(SolveCase(p, torque=200.0, quality="fast", model="sector"))
-    wider = solve_pair(SolveCase(p, torque=200.0, quality="fast", model="sector", **more))
+    base = solve_pair(SectorCase(p, torque=200.0, quality="fast"))
+    wider = solve_pair(SectorCase(p, torque=200.0, quality="fast", **more))
     for key, value in base.headline().items():
         assert wider.headline()[key] == pytest.approx(value, rel=0.01), key
     assert wider.rotation - wider.first_touch == pytest.approx(
@@ -97,10 +99,10 @@ def test_error_estimate_is_the_two_grid_convergence_index():
     assert list(error_estimate(fine, coarse).values()) == pytest.approx([1.0, 1.0, 0.0, 2.0,
                                                                         10.0])
     # the ring model's levels up to standard shrink by about √2: r² − 1 ≈ 1, e ≈ 3 |Δ|
-    r = mesh_ratio("ring", "fast", "standard")
+    r = mesh_ratio("fast", "standard")
     assert r == pytest.approx(20 / 14)
     assert error_estimate(fine, coarse, r)[next(iter(HEADLINE))] == pytest.approx(3.0 / (r * r - 1))
-    assert mesh_ratio("ring", "standard", "fine") == mesh_ratio("sector", "fast", "standard") == 2
+    assert mesh_ratio("standard", "fine") == sector_ratio("fast", "standard") == 2
 
 
 
@@ -111,8 +113,8 @@ def test_contacts_too_narrow_for_their_elements_are_flagged(baseline):
     MPa against Hertz 192) and the rounds of teeth 10 and 11 have 2.6 and 4.3 nodes across
     their own half-width (tooth 10's nodal pressures zig-zag); all three are flagged, tooth 12
     (5.5 elements) is not. At `fast` the rounds have 5 and 8 and are not."""
-    coarse = solve_pair(SolveCase(baseline, torque=200.0, quality="coarse", model="sector"))
+    coarse = solve_pair(SectorCase(baseline, torque=200.0, quality="coarse"))
     flagged = {t.tooth for t in coarse.teeth if t.load_N > 0 and not t.resolved}
     assert flagged == {9, 10, 11}
-    fast = solve_pair(SolveCase(baseline, torque=200.0, quality="fast", model="sector"))
+    fast = solve_pair(SectorCase(baseline, torque=200.0, quality="fast"))
     assert all(t.resolved for t in fast.teeth if t.edge_contact)

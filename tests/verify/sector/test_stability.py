@@ -8,15 +8,16 @@ import math
 import pytest
 from shapes import EXTREME_SHAPES, extreme_shapes, far_side
 
-import fegear.toothpair.sector.solve as toothpair
+import fegear.verify.sector.solve as toothpair
 from fegear.errors import GeometryError
 from fegear.fe.mesh import jiggle, mesh_bodies
 from fegear.geometry.clearance import ToothContact
 from fegear.geometry.gear1 import Gear1Profile
 from fegear.geometry.parameters import PairParameters
-from fegear.toothpair.case import HEADLINE, SolveCase
-from fegear.toothpair.sector.solve import solve_pair
+from fegear.toothpair.case import HEADLINE
 from fegear.toothpair.teeth import refuse_interference
+from fegear.verify.sector import SectorCase
+from fegear.verify.sector.solve import solve_pair
 
 ALLOWABLE_CONTACT = 745.0  # MPa, 42CrMo (the paper)
 
@@ -53,14 +54,14 @@ def test_sector_light_touch_follows_hertz_and_three_times_the_allowable_converge
     # one tooth carries the light loads: FE p_max against Hertz at the same point, and p ∝ √T
     light = {}
     for torque in (1e-3, 1e-2, 1e-1):
-        sol = solve_pair(SolveCase(baseline, torque=torque, quality="fast", model="sector"))
+        sol = solve_pair(SectorCase(baseline, torque=torque, quality="fast"))
         _check(sol)
         (tooth,) = [t for t in sol.teeth if t.load_N > 0]
         assert tooth.p_max_MPa == pytest.approx(tooth.hertz_p0_MPa, rel=0.005)
         assert tooth.half_width_mm == pytest.approx(tooth.hertz_b_mm, rel=0.01)
         light[torque] = tooth.p_max_MPa / math.sqrt(torque)
     assert max(light.values()) / min(light.values()) - 1 < 0.005
-    heavy = solve_pair(SolveCase(baseline, torque=290.0, quality="fast", model="sector"))
+    heavy = solve_pair(SectorCase(baseline, torque=290.0, quality="fast"))
     _check(heavy)
     assert heavy.contact_pressure >= 3 * ALLOWABLE_CONTACT
     assert heavy.teeth_in_contact >= 4
@@ -69,8 +70,8 @@ def test_sector_light_touch_follows_hertz_and_three_times_the_allowable_converge
 def test_an_interfering_pair_is_refused_by_name_before_meshing():
     # 10 nm less than zero tip clearance: the far-side tips overlap gear 2 by 0.19 µm of arc. The
     # contact iterations used to cycle on it ("ill-posed at this load")
-    case = SolveCase(PairParameters(shift=0.016, rotation=0.002, tip_clearance=-1e-5),
-                     torque=200.0, quality="coarse", model="sector")
+    case = SectorCase(PairParameters(shift=0.016, rotation=0.002, tip_clearance=-1e-5),
+                     torque=200.0, quality="coarse")
     with pytest.raises(GeometryError, match="interferes: gear-1 tooth 32 overlaps gear 2 by 0.194"):
         solve_pair(case)
 
@@ -91,7 +92,7 @@ SLOW = pytest.mark.slow
     slow=set(EXTREME_SHAPES) - {"h1 0.05", "f1 0"}))
 def test_clearances_and_extreme_shapes_converge(params, torque, far_side_only):
     p = PairParameters(**params)
-    case = SolveCase(p, torque=torque, quality="coarse", model="sector")
+    case = SectorCase(p, torque=torque, quality="coarse")
     sol = solve_pair(case)
     _check(sol)
     far = far_side(sol)

@@ -34,7 +34,7 @@ from ...errors import FegearError, ParameterError
 from ...fe import BodyGeometry, Refinement, Segment, line_contact
 from ...geometry import Cycloid, Gear1Profile, PairParameters, RoundedProfile, gear2_curve
 from ...planar import rotate
-from ..segments import (
+from ...toothpair.segments import (
     ROOT_BAND,
     gear2_outline,
     gear2_polar,
@@ -44,10 +44,10 @@ from ..segments import (
     round_strips,
     unwrap_near,
 )
-from ..teeth import Candidate, Gear2Master, candidate_data
+from ...toothpair.teeth import Candidate, Gear2Master, candidate_data
 
 if TYPE_CHECKING:
-    from ..case import SolveCase
+    from .case import SectorCase
 
 #: mesh quality → (elements across the Hertz half-width, root size / m, global size / m);
 #: each level halves the element sizes of the one before
@@ -117,7 +117,7 @@ class Sizes:
     b_round: float
 
 
-def element_sizes(case: SolveCase, shape: RoundedProfile, first: list[Candidate]) -> Sizes:
+def element_sizes(case: SectorCase, shape: RoundedProfile, first: list[Candidate]) -> Sizes:
     """Sizes from the tooth that touches first at each position (it carries the most load),
     not from every paired tooth: pairing more teeth leaves the mesh of the others. The rounds
     meet the gear-2 flank like a cylinder of radius ρ on a plane: their elements follow that
@@ -178,7 +178,7 @@ class SectorBody:
     root_band: tuple[float, float]
 
 
-def build_scene(case: SolveCase, profile: Gear1Profile, positions, teeth: tuple[int, ...],
+def build_scene(case: SectorCase, profile: Gear1Profile, positions, teeth: tuple[int, ...],
                 shape: RoundedProfile | None = None) -> Scene:
     """Sector geometries for the paired ``teeth`` (gear-1 indices) over ``positions``, a
     sequence of (β, clearance state at β): each tooth's contact windows cover its predicted
@@ -210,7 +210,7 @@ def build_scene(case: SolveCase, profile: Gear1Profile, positions, teeth: tuple[
                  b_full=sizes.b_full, shape=shape, curve2=curve2)
 
 
-def gear1_body(case: SolveCase, shape: RoundedProfile, sector: Sector, paired, half,
+def gear1_body(case: SectorCase, shape: RoundedProfile, sector: Sector, paired, half,
                sizes: Sizes) -> tuple[SectorBody, list[tuple[float, float]]]:
     """Gear 1's sector: its profile over the sector (windows, roots, the refined tip rounds and
     their tangent points), two radial cuts and the bore. Also the body angle ranges of the
@@ -279,7 +279,7 @@ def gear1_body(case: SolveCase, shape: RoundedProfile, sector: Sector, paired, h
     return SectorBody(geo1, names1, band1), rounds
 
 
-def gear2_body(case: SolveCase, shape: RoundedProfile, sector: Sector, paired, half,
+def gear2_body(case: SectorCase, shape: RoundedProfile, sector: Sector, paired, half,
                sizes: Sizes, betas, rounds) -> tuple[SectorBody, Cycloid]:
     """Gear 2's ring sector, in its own frame: the fixed-frame range of gear 1's sector at
     every β, cut at gear-2 tooth tips; its windows, roots and the strips under gear 1's refined

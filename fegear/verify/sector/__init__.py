@@ -1,4 +1,4 @@
-"""The sector model of a tooth pair (fegear's first model, kept as a reference): a meshed
+"""The sector model of a tooth pair (fegear's first model, now the product's full-FE peer): a meshed
 sector of each gear over the teeth that can touch, refined to resolve every contact width,
 penalty contact between the sectors (:mod:`fegear.contact`).
 
@@ -6,16 +6,17 @@ penalty contact between the sectors (:mod:`fegear.contact`).
 segments; :mod:`.solve` meshes, factorises, places the bodies at each rolling angle and solves
 the contact (gear 1's bore turned by one rotation unknown under the torque, gear 2's rim fixed);
 :mod:`.recovery` reads the root and contact stresses per tooth. It resolves the contact with
-the mesh, so it costs 36-102 s a position at 1 % (docs/benchmark.md); ``fegear solve --model
-sector`` runs it.
+the mesh, so it costs 36-102 s a position at 1 % (docs/benchmark.md); ``fegear bench
+--sector-levels`` runs it beside the ring model on any design (docs/validation.md). It solves
+through the product's driver (:mod:`fegear.toothpair.positions`): the same teeth, attempts and
+reports; its case (:class:`SectorCase`) adds its own two inputs.
 
 A light pair (25/24 teeth) at 20 N·m, coarse:
 
 >>> from fegear.geometry import PairParameters
->>> from fegear.toothpair import SolveCase
->>> from fegear.toothpair.sector import solve_pair
+>>> from fegear.verify.sector import SectorCase, solve_pair
 >>> pair = PairParameters(m=2, z2=25, z1=24, shift=0.016, rotation=0.002)
->>> sol = solve_pair(SolveCase(pair, torque=20.0, quality="coarse", model="sector"))
+>>> sol = solve_pair(SectorCase(pair, torque=20.0, quality="coarse"))
 >>> {name: round(value, 1) for name, value in sol.headline().items()}  # MPa
 ... # doctest: +NORMALIZE_WHITESPACE
 {'root_stress_gear1_MPa': 72.3, 'root_stress_gear2_MPa': 54.7,
@@ -31,5 +32,8 @@ from ...exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
     "scene": ("Scene", "build_scene", "QUALITY"),
-    "solve": ("solve_pair", "solve_positions", "SectorDetail"),
+    "case": ("SectorCase",),
+    "compare": ("cross_check", "cross_table"),
+    "recovery": ("contact_split",),
+    "solve": ("solve_pair", "solve_positions", "SectorSolver", "SectorDetail", "mesh_ratio"),
 })

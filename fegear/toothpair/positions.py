@@ -1,0 +1,133 @@
+"""The one driver of a tooth-pair solve over rolling positions, whichever model solves a
+position (the ring model in the product, the sector model as its peer in
+:mod:`fegear.verify.sector`).
+
+Torque T (N·m) acts on gear 1 counter-clockwise (the ``+`` direction of the clearance table);
+gear 2's rim is held. The clearance states of all positions come from one table, and a design
+whose gears overlap before any load is refused. At each position the teeth are chosen from the
+clearance state and the expected loaded rotation (:func:`~.teeth.choose_teeth`): the previous
+position's elastic rotation, or at the first the torque shared by :data:`SHARE_GUESS` teeth of
+stiffness :data:`~.teeth.TOOTH_STIFFNESS`. The model then solves the contact on those teeth
+and says whether the choice must change (a tooth outside the set would close at the solved
+rotation, or what the model placed for the expected rotation does not fit the solved one); if
+so it is solved again from the new choice, at most :data:`ATTEMPTS` times, and only the
+settled attempt's stresses are recovered. A model supplies the pieces in
+:class:`PositionModel`; the loop, the first guess, the stage timings and the progress live
+here.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+import time
+from collections import Counter
+from dataclasses import dataclass, field, replace
+from typing import Protocol
+
+from .. import progress
+from ..errors import FegearError
+from ..geometry import Gear1Profile, ToothContact, gear1_profile
+from .case import PairSolution, SolveCase
+from .teeth import TOOTH_STIFFNESS, choose_teeth, refuse_interference
+
+log = logging.getLogger(__name__)
+
+SHARE_GUESS = 3.0    # teeth assumed to share the load before the first position is solved
+ATTEMPTS = 5         # solves of one position, each from the last one's choice of teeth
+
+
+@dataclass(frozen=True)
+class Trial:
+    """What one attempt at a position solves from: the paired teeth, the elastic part of the
+    rotation it expects (µm of arc at r0) and the model's own placement data (``own``: the
+    ring model's fine grids and reach factors, say)."""
+
+    teeth: tuple[int, ...]
+    elastic_um: float
+    own: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Attempt:
+    """An attempt's outcome: the model's record of the solved contact, the trial to solve
+    again from (None: settled), why (for the log) and the stage timings (s)."""
+
+    result: object
+    again: Trial | None
+    why: str = ""
+    timings_s: dict = field(default_factory=dict)
+
+
+class PositionModel(Protocol):
+    """How a tooth-pair model solves one position; the driver does the rest."""
+
+    def build(self, case: SolveCase, profile: Gear1Profile, states: list) -> None:
+        """Everything the positions share (meshes, factors, condensed responses), for the
+        clearance states ``states`` ((β, state) pairs); timings in :attr:`timings_s`."""
+
+    @property
+    def timings_s(self) -> dict:
+        """The one-off stages' timings (s) of :meth:`build`."""
+
+    def attempt(self, case: SolveCase, state, trial: Trial,
+                near: PairSolution | None) -> Attempt:
+        """Solve the contact at ``case.beta`` on ``trial``'s teeth; ``near``: the solution
+        of the position before, to start from."""
+
+    def finish(self, case: SolveCase, state, attempt: Attempt) -> PairSolution:
+        """Stresses and per-tooth results of a settled attempt (timings in the solution)."""
+
+
+def expected_elastic_um(case: SolveCase, near: PairSolution | None = None) -> float:
+    """The elastic part of gear 1's rotation (µm of arc at r0) to place the first attempt at:
+    ``near``'s, else the torque on :data:`SHARE_GUESS` teeth of stiffness
+    :data:`~.teeth.TOOTH_STIFFNESS` per face width."""
+    p = case.params
+    if near is not None:
+        return (near.rotation - near.first_touch) * p.r0 * 1e3
+    return case.torque * 1e3 / p.r0 / (case.thickness * TOOTH_STIFFNESS) / SHARE_GUESS
+
+
+def first_teeth(case: SolveCase, state, elastic_um: float) -> tuple[int, ...]:
+    """The teeth a rotation of ``elastic_um`` past the first touch can close at ``state``,
+    with the case's extra pairs."""
+    return choose_teeth(state, state.closest(+1).plus_um + elastic_um, case.extra_pairs)
+
+
+def solve_positions(case: SolveCase, betas, solver: PositionModel,
+                    profile: Gear1Profile | None = None) -> tuple[PairSolution, ...]:
+    """Solve ``case`` at each rolling angle of ``betas`` (rad) with ``solver``; the first
+    position carries the one-off stages' timings."""
+    t0 = time.perf_counter()
+    profile = profile if profile is not None else gear1_profile(case.params)
+    tca = ToothContact(case.params, profile)
+    states = [(b, tca.state(b)) for b in betas]
+    refuse_interference(states)
+    t_tca = time.perf_counter() - t0
+    solver.build(case, profile, states)
+    sols: list[PairSolution] = []
+    for k, (beta, state) in enumerate(states):
+        progress.stage(f"contact at β {math.degrees(beta):.3g}°"
+                       + (f" ({k + 1} of {len(states)})" if len(states) > 1 else ""))
+        at = replace(case, beta=beta)
+        near = sols[-1] if sols else None
+        elastic = expected_elastic_um(at, near)
+        trial = Trial(first_teeth(at, state, elastic), elastic)
+        times: Counter = Counter()
+        for _ in range(ATTEMPTS):
+            attempt = solver.attempt(at, state, trial, near)
+            times.update(attempt.timings_s)
+            if attempt.again is None:
+                break
+            log.info("β %.6f: solving again (%s)", beta, attempt.why)
+            trial = attempt.again
+        else:
+            raise FegearError(f"the paired teeth did not settle in {ATTEMPTS} attempts at "
+                              f"β {math.degrees(beta):.4g}° ({attempt.why})")
+        sol = solver.finish(at, state, attempt)
+        timings = {**times, **sol.timings_s}
+        if k == 0:  # the first position carries the one-off stages
+            timings = {**solver.timings_s, "clearance": t_tca, **timings}
+        sols.append(replace(sol, timings_s=timings))
+    return tuple(sols)
