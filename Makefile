@@ -32,7 +32,7 @@ bench: $(STAMP)
 	$(BIN)/fegear bench --shift 0.016 --rotation 0.002 --sector-levels coarse,fast --paper-study
 
 study: $(STAMP)
-	$(BIN)/fegear study studies/paper_trends.toml  # the paper's Tables 4-6, about 40 s
+	$(BIN)/fegear study studies/paper_trends.toml  # the paper's Tables 4-6, about 30 s
 
 clean:
 	rm -rf $(VENV) out .pytest_cache

@@ -4,6 +4,7 @@ heavy libraries imported only where they are used, and a study's cache key that 
 module that computes results."""
 
 import ast
+import re
 import shutil
 import subprocess
 import sys
@@ -14,6 +15,7 @@ import pytest
 from fegear import provenance
 
 PACKAGE = Path(__file__).parents[1] / "fegear"
+MAP = PACKAGE.parent / "docs" / "architecture.md"
 #: modules allowed beside the stages: entry points and shared helpers
 SHARED = {"__init__", "__main__", "checks", "errors", "exports", "figures", "files", "planar",
           "progress", "provenance"}
@@ -214,3 +216,26 @@ def test_the_code_version_covers_every_module_that_computes_results(tmp_path):
         assert (provenance.source_hash(copy) != before) is changes, rel
         path.write_text(original)
     provenance.source_hash.cache_clear()
+
+
+def test_the_map_names_only_paths_that_exist():
+    """docs/architecture.md: every file it names is there."""
+    text = MAP.read_text()
+    named = re.findall(r"`([a-z_]+(?:/[a-z_]+)*\.py)`", text)
+    assert len(named) > 20
+    for path in named:
+        top = path.split("/")[0] in ("fegear", "tests")
+        assert (PACKAGE.parent / path if top else PACKAGE / path).exists(), path
+    for doc in re.findall(r"\b(docs/[a-z_]+\.md)\b", text):
+        assert (PACKAGE.parent / doc).exists(), doc
+
+
+def test_the_map_has_a_row_for_every_subpackage_naming_each_of_its_modules():
+    rows = dict(re.findall(r"^\| `([a-z_.]+)` \| (.*?) \|", MAP.read_text(), re.M))
+    packages = sorted({p.parent for p in PACKAGE.rglob("__init__.py")} - {PACKAGE})
+    for package in packages:
+        name = ".".join(package.relative_to(PACKAGE).parts)
+        assert name in rows, f"docs/architecture.md has no row for {name}"
+        for module in package.glob("*.py"):
+            if module.stem != "__init__":
+                assert f"`{module.stem}`" in rows[name], f"{name}.{module.stem} is not on the map"

@@ -6,7 +6,7 @@ import argparse
 import json
 import math
 
-from ..fe.material import MATERIAL_INPUTS
+from ..fe.material import MATERIAL_INPUTS, PLANE_MODES
 from .args import add_inputs
 
 
@@ -17,7 +17,7 @@ def add_parser(sub) -> None:
                    help="disk 2 radius [mm]; negative = a bore holding disk 1 (default 10)")
     p.add_argument("--load", type=float, default=1000.0, help="normal load [N] (default 1000)")
     add_inputs(p, MATERIAL_INPUTS)
-    p.add_argument("--plane", choices=("stress", "strain"), default="stress",
+    p.add_argument("--plane", choices=PLANE_MODES, default="stress",
                    help="plane assumption (default stress)")
     p.add_argument("--quality", default="standard",
                    help="coarse / standard / fine = 4 / 8 / 16 elements across b, or a number")
@@ -31,9 +31,9 @@ def run(a: argparse.Namespace) -> int:
     import time
 
     from ..files import prepare_dir
-    from ..verify import QUALITY, DiskCase
+    from ..verify import DISK_QUALITY, DiskCase
 
-    quality = a.quality if a.quality in QUALITY else number("quality", a.quality)
+    quality = a.quality if a.quality in DISK_QUALITY else number("quality", a.quality)
     kw = {} if a.penalty_factor is None else {"penalty_factor": a.penalty_factor}
     case = DiskCase(r1=a.r1, r2=a.r2, load=a.load, thickness=a.face_width, E=a.E, nu=a.nu,
                     plane=a.plane, quality=quality, **kw)

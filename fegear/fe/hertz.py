@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 from ..checks import require_finite
 from ..errors import ParameterError
-from .material import contact_modulus, plane_modulus
+from .material import STEEL_E, STEEL_NU, Plane, contact_modulus, plane_modulus
 
 
 @dataclass(frozen=True)
@@ -46,9 +46,9 @@ def effective_radius(r1: float, r2: float) -> float:
     return 1.0 / curvature
 
 
-def line_contact(r1: float, r2: float, load: float, thickness: float, E1: float = 206000.0,
-                 nu1: float = 0.29, E2: float | None = None, nu2: float | None = None,
-                 plane: str = "stress") -> HertzLine:
+def line_contact(r1: float, r2: float, load: float, thickness: float, E1: float = STEEL_E,
+                 nu1: float = STEEL_NU, E2: float | None = None, nu2: float | None = None,
+                 plane: Plane = "stress") -> HertzLine:
     """Hertz half-width and peak pressure for a normal load ``load`` (N) over ``thickness`` (mm)."""
     E2 = E1 if E2 is None else E2
     nu2 = nu1 if nu2 is None else nu2

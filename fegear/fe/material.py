@@ -9,14 +9,22 @@ silently gives λ < 0 (docs/model.md, "Library notes"). Units MPa, mm.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Literal, get_args
 
 from ..checks import Input
 from ..errors import ParameterError
 
+#: the plane assumption: σzz = 0 (a thin gear) or εzz = 0
+Plane = Literal["stress", "strain"]
+PLANE_MODES: tuple[str, ...] = get_args(Plane)
+#: the steel every default means (42CrMo): Young's modulus (MPa) and Poisson ratio
+STEEL_E = 206000.0
+STEEL_NU = 0.29
 
-def plane_modulus(E: float, nu: float, plane: str) -> float:
+
+def plane_modulus(E: float, nu: float, plane: Plane) -> float:
     """E' = E in plane stress, E/(1 − ν²) in plane strain (MPa)."""
-    if plane not in ("stress", "strain"):
+    if plane not in PLANE_MODES:
         raise ParameterError("plane", plane, "'stress' or 'strain'")
     return E if plane == "stress" else E / (1.0 - nu * nu)
 
@@ -26,15 +34,13 @@ def contact_modulus(E1_plane: float, E2_plane: float) -> float:
     return 1.0 / (1.0 / E1_plane + 1.0 / E2_plane)
 
 
-PLANE_MODES = ("stress", "strain")
-
 #: one isotropic material, and the thickness (face width) of a plane body
 MATERIAL_INPUTS = (
     Input("face-width", float, 5.0, "face width: the thickness of the plane bodies", "mm",
           low=0.0, high=1e4, low_open=True, aliases=("thickness",)),
-    Input("E", float, 206000.0, "Young's modulus", "MPa", low=0.0, high=1e7,
+    Input("E", float, STEEL_E, "Young's modulus", "MPa", low=0.0, high=1e7,
           low_open=True),  # diamond: 1.2e6
-    Input("nu", float, 0.29, "Poisson ratio", low=0.0, high=0.5, high_open=True),
+    Input("nu", float, STEEL_NU, "Poisson ratio", low=0.0, high=0.5, high_open=True),
 )
 
 #: allowable stresses of the material, for the safety factors S = allowable / stress; the
@@ -57,10 +63,10 @@ class Material:
     ``thickness`` (mm) and the plane assumption: ``"stress"`` (σzz = 0, thin gear) or
     ``"strain"`` (εzz = 0)."""
 
-    E: float = 206000.0
-    nu: float = 0.29
+    E: float = STEEL_E
+    nu: float = STEEL_NU
     thickness: float = 5.0
-    plane: str = "stress"
+    plane: Plane = "stress"
 
     def __post_init__(self) -> None:
         for name, field in (("E", "E"), ("nu", "nu"), ("face-width", "thickness")):

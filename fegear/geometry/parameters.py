@@ -182,6 +182,14 @@ class PairParameters:
         """Effective gear-1 tip clearance [mm] (``tip_clearance`` or its default, ``shift``)."""
         return self.shift if self.tip_clearance is None else self.tip_clearance
 
+    def arc_um(self, turn):
+        """Gear 1's turn (rad) as µm of arc at r0: how the clearance table measures it."""
+        return turn * self.r0 * 1e3
+
+    def turn_of(self, arc_um):
+        """The turn (rad) of gear 1 that is ``arc_um`` µm of arc at r0."""
+        return arc_um * 1e-3 / self.r0
+
     def describe(self) -> str:
         """Short text naming the parameters, for messages."""
         return (f"m={self.m:g}, z2={self.z2}, z1={self.z1}, h1={self.h1:g}, f1={self.f1:g}, "

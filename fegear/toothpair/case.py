@@ -16,7 +16,7 @@ from ..checks import require_range
 from ..fe import Material
 from ..geometry import PairParameters
 from ..planar import wrap
-from .inputs import LOAD_LIMIT, SOLVE_INPUTS, TIP_ROUND
+from .inputs import LOAD_LIMIT, SOLVE_INPUTS, TIP_ROUND, Quality
 
 #: headline stresses: JSON key (MPa) → label in the table and the cycle plot
 HEADLINE = {"root_stress_gear1_MPa": "root σ1, gear 1", "root_stress_gear2_MPa": "root σ1, gear 2",
@@ -32,15 +32,15 @@ class SolveCase:
     check) and gear 1's tip-edge round (mm)."""
 
     params: PairParameters
-    torque: float = 200.0
+    torque: float = SOLVE_INPUTS["torque"].default
     beta: float = 0.0
-    thickness: float = 5.0
-    E: float = 206000.0
-    nu: float = 0.29
-    quality: str = "standard"
+    thickness: float = SOLVE_INPUTS["face-width"].default
+    E: float = SOLVE_INPUTS["E"].default
+    nu: float = SOLVE_INPUTS["nu"].default
+    quality: Quality = SOLVE_INPUTS["quality"].default
     rim1: float | None = None
     rim2: float | None = None
-    extra_pairs: int = 0
+    extra_pairs: int = SOLVE_INPUTS["extra-pairs"].default
     tip_round: float | None = None
 
     def __post_init__(self) -> None:

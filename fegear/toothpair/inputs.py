@@ -10,12 +10,15 @@ range and help; ranges that depend on other inputs are checked by the objects th
 
 from __future__ import annotations
 
+from typing import Literal, get_args
+
 from ..checks import Input, InputTable
 from ..fe import ALLOWABLE_INPUTS, MATERIAL_INPUTS
 from ..geometry import PAIR_INPUTS, RENAMED  # noqa: F401  (RENAMED: for study files)
 
-#: mesh quality levels, coarsest first; each halves the element sizes of the one before
-QUALITY = ("coarse", "fast", "standard", "fine")
+#: a mesh quality level; :data:`QUALITY` lists them coarsest first (each finer than the last)
+Quality = Literal["coarse", "fast", "standard", "fine"]
+QUALITY: tuple[str, ...] = get_args(Quality)
 TIP_ROUND = 0.125        # default tip-edge round of gear 1, in modules (0.25 mm at m = 2)
 #: the largest torque, as a load per face width on gear 1's pitch circle over E m: far past any
 #: steel's strength (the seed paper's pair: 4530 N·m, 23 times its 200, roots at ~1.7 GPa) and
@@ -33,7 +36,7 @@ LOAD_INPUTS = (
 )
 
 MODEL_INPUTS = (
-    Input("quality", str, "standard", "mesh quality", choices=tuple(QUALITY)),
+    Input("quality", str, "standard", "mesh quality", choices=QUALITY),
     Input("tip-round", float, None, f"gear-1 tip-edge round radius, 0 <= tip-round <= m/2 "
           f"and fitting the tip edges (default {TIP_ROUND:g} m, or half the largest round that "
           "fits where that does not)", "mm"),

@@ -85,7 +85,7 @@ def expected_elastic_um(case: SolveCase, near: PairSolution | None = None) -> fl
     :data:`~.teeth.TOOTH_STIFFNESS` per face width."""
     p = case.params
     if near is not None:
-        return (near.rotation - near.first_touch) * p.r0 * 1e3
+        return p.arc_um(near.rotation - near.first_touch)
     return case.torque * 1e3 / p.r0 / (case.thickness * TOOTH_STIFFNESS) / SHARE_GUESS
 
 

@@ -55,6 +55,18 @@ class Candidate:
     radius1: float
     radius2: float
 
+    def hertz(self, load: float, thickness: float, E: float, nu: float):
+        """Hertz's line contact of the two curvature radii under ``load`` (N) over
+        ``thickness`` (mm), one material (E MPa, ν): a :class:`~fegear.fe.HertzLine`, or None
+        where the radii are not a Hertz pair (a flank conformal or concave beyond)."""
+        from ..errors import ParameterError
+        from ..fe import line_contact
+
+        try:
+            return line_contact(self.radius1, self.radius2, load, thickness, E, nu)
+        except ParameterError:
+            return None
+
 
 def candidate_data(params: PairParameters, shape: RoundedProfile, state, teeth,
                    beta: float) -> tuple[Candidate, ...]:
@@ -74,7 +86,7 @@ def candidate_data(params: PairParameters, shape: RoundedProfile, state, teeth,
         # the gear-2 point is where that gear-1 point lands once the clearance is closed: on a
         # nearly conformal flank the relative curvature is a small difference of two large
         # ones, and gear 2's changes fast (the 6 µm of a baseline clearance doubled 1/R*)
-        x = rotate(x - o1, c.plus_um * 1e-3 / params.r0) + o1
+        x = rotate(x - o1, params.turn_of(c.plus_um)) + o1
         foot = g2.closest(rotate(x, -beta))[0]
         theta2 = float(math.atan2(foot[0, 1], foot[0, 0]))
         xi = g2.xi_at_angle(np.array([theta2]))

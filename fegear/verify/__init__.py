@@ -19,7 +19,7 @@ and read its answers back; :mod:`.runner_bench` times the study runner.
 from ..exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
-    "disk_case": ("DiskCase", "QUALITY"),
+    "disk_case": ("DiskCase", "DISK_QUALITY"),
     "disks": ("DiskResult", "solve_disks", "disk_geometries", "write_disk_outputs"),
     "bench": ("Ladder", "Rung", "Target", "richardson", "geometry_bench",
               "disk_ladder", "pair_ladder", "ladder_targets", "ladder_table", "ladder_json",

@@ -8,24 +8,24 @@ from dataclasses import dataclass
 from ..checks import require_finite, require_range
 from ..contact import ContactSettings
 from ..errors import ParameterError
-from ..fe import HertzLine, Material, line_contact
+from ..fe import STEEL_E, STEEL_NU, HertzLine, Material, Plane, line_contact
 
 #: elements across the Hertz half-width b in the contact windows, per quality level
-QUALITY = {"coarse": 4, "standard": 8, "fine": 16}
+DISK_QUALITY = {"coarse": 4, "standard": 8, "fine": 16}
 
 @dataclass(frozen=True)
 class DiskCase:
     """Inputs: radii r1 > 0 and r2 (mm; r2 < −r1 for a bore), normal ``load`` P (N),
     ``thickness`` (mm), one material for both bodies, the plane assumption and the mesh quality
-    (a name from :data:`QUALITY` or a number of elements across b)."""
+    (a name from :data:`DISK_QUALITY` or a number of elements across b)."""
 
     r1: float = 10.0
     r2: float = 10.0
     load: float = 1000.0
     thickness: float = 5.0
-    E: float = 206000.0
-    nu: float = 0.29
-    plane: str = "stress"
+    E: float = STEEL_E
+    nu: float = STEEL_NU
+    plane: Plane = "stress"
     quality: str | float = "standard"
     penalty_factor: float = ContactSettings.penalty_factor
 
@@ -34,8 +34,8 @@ class DiskCase:
         if not abs(require_finite("r2", self.r2)) <= 1e4:
             raise ParameterError("r2", self.r2, "0 < |r2| <= 10000 mm (negative: a bore)")
         Material(self.E, self.nu, self.thickness, self.plane)  # validates E, ν, t, plane
-        if isinstance(self.quality, str) and self.quality not in QUALITY:
-            raise ParameterError("quality", self.quality, " / ".join(QUALITY))
+        if isinstance(self.quality, str) and self.quality not in DISK_QUALITY:
+            raise ParameterError("quality", self.quality, " / ".join(DISK_QUALITY))
         if not isinstance(self.quality, str) and not 1 <= float(self.quality) <= 200:
             raise ParameterError("quality", self.quality, "1 <= elements across b <= 200")
         require_range("penalty_factor", self.penalty_factor, 0.0, 1e6, lo_open=True)
@@ -54,4 +54,4 @@ class DiskCase:
 
     @property
     def elements_per_b(self) -> float:
-        return float(QUALITY[self.quality] if isinstance(self.quality, str) else self.quality)
+        return float(DISK_QUALITY[self.quality] if isinstance(self.quality, str) else self.quality)

@@ -55,7 +55,7 @@ def rigid_gap(model: RingModel, x: np.ndarray, beta: float, turn: float
     return cp.distance, np.einsum("ij,ij->i", cp.normal, np.column_stack([-r[:, 1], r[:, 0]]))
 
 
-def solve_contact(model: RingModel, contact: RingContact, torque_nmm: float, theta: float,
+def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float, theta: float,
                   guess: float | None = None) -> RingContactSolution:
     """Solve the contact under ``torque_nmm`` (N·mm on gear 1) from the rotation ``theta``
     (rad); the iterations start from the points the rigid teeth overlap at the rotation
@@ -123,7 +123,7 @@ def _active_set(A, w, g0, a, torque_nmm, active):
     raise RingContactError(f"the active set did not settle in {MAX_ACTIVE_SET} iterations")
 
 
-def first_touch(model: RingModel, contact: RingContact, theta: float) -> float:
+def touch_rotation(model: RingModel, contact: RingContact, theta: float) -> float:
     """The rotation θ (rad) at which gear 1's rigid, rounded teeth first touch: the smallest
     closure over the grid points, repeated on the exact gaps."""
     alpha = model.case.params.ratio * contact.beta

@@ -18,8 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...contact import gap_contact, surface_matrix
-from ...errors import ParameterError
-from ...fe import contact_modulus, line_contact, recover, vtu_fields
+from ...fe import contact_modulus, recover, vtu_fields
 from ...planar import rotate
 from ..case import BodyField, ContactZone, FlankPressure, SolveCase, ToothResult
 from ..edge import flank_and_edge, flank_centre
@@ -79,7 +78,8 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
             theta2 = math.atan2(x2[1], x2[0])
         else:
             theta2 = c.theta2 if c is not None else math.nan
-        hz = _hertz(c, load, case) if load > 0 and c is not None else None
+        hz = (c.hertz(load, case.thickness, case.E, case.nu)
+              if load > 0 and c is not None else None)
         fillets = tension_fillets(model.shape.tooth_center + grid.tooth * pitch1, pitch1,
                                   theta2 if math.isfinite(theta2) else 0.0, pitch2)
         split = flank_and_edge(grid.s, pk, grid.on_round, case.thickness,
@@ -144,13 +144,6 @@ def _halfplane(grid, gap: np.ndarray, q: float, E_star: float, thickness: float,
     except (ValueError, np.linalg.LinAlgError):
         return None
     return p, flank_and_edge(grid.s, p, grid.on_round, thickness, radius, E_star)
-
-
-def _hertz(c, load: float, case: SolveCase):
-    try:
-        return line_contact(c.radius1, c.radius2, load, case.thickness, case.E, case.nu)
-    except ParameterError:
-        return None
 
 
 @dataclass(eq=False)

@@ -22,7 +22,7 @@ from ...geometry import Gear1Profile
 from ..case import ContactChecks, PairSolution, SolveCase
 from ..positions import SHARE_GUESS, Attempt, Trial
 from ..teeth import candidate_data, choose_teeth
-from .contact import first_touch, solve_contact
+from .contact import solve_ring_contact, touch_rotation
 from .grid import ToothGrid, tooth_grid, window
 from .influence import RingContact, assemble_contact
 from .model import RingModel, ring_model
@@ -65,7 +65,7 @@ class RingSolver:
         full = trial.own.get("full", _expected(state, first_um + elastic_um))
         reach = trial.own.get("reach", {})
         formed = sum(g.response_s for g in model.gears)
-        theta = (first_um + elastic_um) * 1e-3 / p.r0
+        theta = p.turn_of(first_um + elastic_um)
         t0 = time.perf_counter()
         grids = _grids(model, case, trial.teeth, full, theta, elastic_um, reach)
         times["grids"] += time.perf_counter() - t0
@@ -73,18 +73,18 @@ class RingSolver:
         contact = assemble_contact(model, grids, case.beta, p.ratio * case.beta + theta)
         times["assemble"] += time.perf_counter() - t0
         t0 = time.perf_counter()
-        sol = solve_contact(model, contact, torque, first_um * 1e-3 / p.r0, guess=theta)
+        sol = solve_ring_contact(model, contact, torque, p.turn_of(first_um), guess=theta)
         times["contact"] += time.perf_counter() - t0
         formed = sum(g.response_s for g in model.gears) - formed
         times["assemble"] -= formed
         times["responses"] = formed
         result = (contact, sol, grids, first_um)
-        more = set(choose_teeth(state, sol.rotation * p.r0 * 1e3, case.extra_pairs))
+        more = set(choose_teeth(state, p.arc_um(sol.rotation), case.extra_pairs))
         ends = [g.tooth for k, g in enumerate(grids)
                 if sol.pressure[contact.block(k)][[0, -1]].max() > 0]
         touched = {g.tooth for k, g in enumerate(grids)
                    if g.probe and sol.pressure[contact.block(k)].max() > 0}
-        solved_um = sol.rotation * p.r0 * 1e3 - first_um
+        solved_um = p.arc_um(sol.rotation) - first_um
         moved = abs(solved_um - elastic_um) > PLACEMENT * max(abs(solved_um), 1e-3)
         if more <= set(trial.teeth) and not ends and not moved and not touched:
             return Attempt(result, None, timings_s=times)
@@ -92,7 +92,7 @@ class RingSolver:
         for t in ends:
             reach[t] = 2.0 * reach.get(t, 1.0)
         again = Trial(tuple(sorted(set(trial.teeth) | more)), max(solved_um, 1e-6),
-                      {"full": full | touched | _expected(state, sol.rotation * p.r0 * 1e3),
+                      {"full": full | touched | _expected(state, p.arc_um(sol.rotation)),
                        "reach": reach})
         why = (f"teeth {sorted(more - set(trial.teeth))}, ends {ends}, probes touched "
                f"{sorted(touched)}, elastic {solved_um:.3g} µm, expected {elastic_um:.3g}")
@@ -103,7 +103,7 @@ class RingSolver:
         contact, sol, grids, first_um = attempt.result
         t0 = time.perf_counter()
         stresses = ring_stresses(model, contact, sol.pressure)
-        touch = first_touch(model, contact, first_um * 1e-3 / p.r0)
+        touch = touch_rotation(model, contact, p.turn_of(first_um))
         cands = candidate_data(p, model.shape, state, tuple(g.tooth for g in grids), case.beta)
         teeth_out = tooth_results(model, case, contact, sol, stresses, state, cands)
         times = {"stresses": time.perf_counter() - t0}
@@ -132,7 +132,7 @@ def _grids(model: RingModel, case: SolveCase, teeth, full: set[int], theta: floa
     ``full`` ones, a probe on the others."""
     p = case.params
     base = REACH * elastic_um * 1e-3 + REACH_FLOOR * p.m
-    turn = p.ratio * case.beta + theta - elastic_um * 1e-3 / p.r0   # at the first touch
+    turn = p.ratio * case.beta + theta - p.turn_of(elastic_um)   # at the first touch
     E_star = contact_modulus(case.E, case.E)
     load = case.torque * 1e3 / p.r0 / SHARE_GUESS / case.thickness
     out = []

@@ -14,14 +14,13 @@ import math
 import numpy as np
 
 from ...contact import ContactModel, ContactSolution
-from ...errors import ParameterError
-from ...fe import Body, StressField, contact_modulus, facet_nodes, line_contact
+from ...fe import Body, StressField, contact_modulus, facet_nodes
 from ...planar import wrap
 from ...toothpair.case import ToothResult
 from ...toothpair.edge import flank_and_edge
 from ...toothpair.teeth import Candidate, tension_fillets
 from .case import SectorCase
-from .scene import QUALITY, Scene
+from .scene import SECTOR_LEVELS, Scene
 
 #: nodes across the round's Hertz half-width an edge pressure needs: at `coarse`, 200 N·m,
 #: tooth 10's round has 2.6 and its nodal pressures zig-zag (1517 / 789 / 1470 MPa), tooth
@@ -63,7 +62,8 @@ def tooth_results(case: SectorCase, scene: Scene, bodies: tuple[Body, Body],
         sel = contact.pair_index == k
         patch = patches.get(contact.pairs[k].name)
         load = patch.load if patch else 0.0
-        hz = _hertz(c, load, case) if load > 0 and c is not None else None
+        hz = (c.hertz(load, case.thickness, case.E, case.nu)
+              if load > 0 and c is not None else None)
         fillets = tension_fillets(scene.shape.tooth_center + tooth * pitch1, pitch1,
                                   c.theta2 if c is not None else 0.0, pitch2)
         root2 = _sector_max(g2, stresses[1], zones[1], fillets[1], pitch2) if c is not None \
@@ -93,7 +93,7 @@ def contact_split(shape, x: np.ndarray, pressure: np.ndarray, case: SectorCase,
     if not len(pressure):
         return {}
     phi = np.arctan2(x[:, 1], x[:, 0])
-    phi = phi[0] + np.angle(np.exp(1j * (phi - phi[0])))
+    phi = phi[0] + wrap(phi - phi[0])
     order = np.argsort(phi)
     xs = x[order]
     s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xs, axis=0).T))])
@@ -111,7 +111,7 @@ def contact_split(shape, x: np.ndarray, pressure: np.ndarray, case: SectorCase,
             out["resolved"] = bool(out["per_half_width"] >= EDGE_PER_B)
         else:
             out["per_half_width"] = float(half_width / spacing)
-            out["resolved"] = bool(out["per_half_width"] >= QUALITY[case.quality][0])
+            out["resolved"] = bool(out["per_half_width"] >= SECTOR_LEVELS[case.quality][0])
     return out
 
 
@@ -121,13 +121,6 @@ def _peak_on_round(shape, x: np.ndarray, pressure: np.ndarray) -> bool:
         return False
     i = int(np.argmax(pressure))
     return bool(shape.on_round(np.arctan2(x[i:i + 1, 1], x[i:i + 1, 0]))[0])
-
-
-def _hertz(c, load: float, case: SectorCase):
-    try:
-        return line_contact(c.radius1, c.radius2, load, case.thickness, case.E, case.nu)
-    except ParameterError:
-        return None
 
 
 def _sector_max(body: Body, stress: StressField, nodes: np.ndarray, centre: float,

@@ -51,7 +51,7 @@ if TYPE_CHECKING:
 
 #: mesh quality → (elements across the Hertz half-width, root size / m, global size / m);
 #: each level halves the element sizes of the one before
-QUALITY = {"coarse": (2, 1 / 5, 1.0), "fast": (4, 1 / 10, 1 / 2),
+SECTOR_LEVELS = {"coarse": (2, 1 / 5, 1.0), "fast": (4, 1 / 10, 1 / 2),
            "standard": (8, 1 / 20, 1 / 4), "fine": (16, 1 / 40, 1 / 8)}
 WINDOW_B = 2.5           # gear-1 window half-length, in Hertz half-widths at the shared load
 WINDOW_MIN = 0.1         # … and at least this many modules
@@ -123,7 +123,7 @@ def element_sizes(case: SectorCase, shape: RoundedProfile, first: list[Candidate
     meet the gear-2 flank like a cylinder of radius ρ on a plane: their elements follow that
     Hertz half-width at the shared load."""
     p = case.params
-    n_b, root_m, global_m = QUALITY[case.quality]
+    n_b, root_m, global_m = SECTOR_LEVELS[case.quality]
     torque_nmm = case.torque * 1e3
     b_full = max(hertz_half_width(p, torque_nmm, c, case.thickness, case.E, case.nu)
                  for c in first)

@@ -47,7 +47,7 @@ from ...toothpair.positions import solve_positions as drive
 from ...toothpair.teeth import candidate_data, choose_teeth
 from .case import SectorCase
 from .recovery import root_nodes, root_stresses, tooth_results
-from .scene import QUALITY, Scene, build_scene
+from .scene import SECTOR_LEVELS, Scene, build_scene
 
 log = logging.getLogger(__name__)
 
@@ -96,7 +96,7 @@ def solve_pair(case: SectorCase, profile: Gear1Profile | None = None) -> PairSol
 def mesh_ratio(coarse: str, fine: str) -> float:
     """Element sizes at quality ``coarse`` over those at ``fine``: the sector model halves
     them from level to level (for :func:`~fegear.toothpair.estimate.second_level_estimate`)."""
-    levels = tuple(QUALITY)
+    levels = tuple(SECTOR_LEVELS)
     return 2.0 ** (levels.index(fine) - levels.index(coarse))
 
 
@@ -130,7 +130,7 @@ class SectorSolver:
             near = None   # its loaded nodes are another scene's
         sol = solve_position(self.model, case.beta, state, near)
         p = case.params
-        more = set(choose_teeth(state, sol.rotation * p.r0 * 1e3, case.extra_pairs))
+        more = set(choose_teeth(state, p.arc_um(sol.rotation), case.extra_pairs))
         if more <= set(self.model.scene.paired):
             return Attempt(sol, None)
         again = Trial(_union((trial.teeth, tuple(more))), trial.elastic_um)
