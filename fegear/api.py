@@ -24,13 +24,12 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .errors import ParameterError
-from .toothpair.case import HEADLINE
-from .toothpair.safety import SAFETY
+from .toothpair import HEADLINE, SAFETY
 
 if TYPE_CHECKING:
     import pandas as pd
 
-    from .toothpair.job import Solved
+    from .toothpair import Solved
 
 __all__ = ["Result", "cycle", "solve"]
 
@@ -97,7 +96,7 @@ class Result:
         fields (``fields``), the pictures (``pictures``), and a cycle's table, PVD series and
         plot. Returns name → path."""
         from .files import check_dir
-        from .toothpair.job import write_job
+        from .toothpair import write_job
 
         return write_job(self.solved, check_dir(str(out)), fields, pictures)
 
@@ -108,7 +107,7 @@ def solve(**inputs: object) -> Result:
     ``no_estimate``, …), every other at its default. Raises
     :class:`~fegear.errors.ParameterError` naming the input and its range for a design fegear
     refuses."""
-    from .toothpair.job import prepare_job, solve_job
+    from .toothpair import prepare_job, solve_job
 
     try:
         job = prepare_job(_named(inputs))
@@ -124,7 +123,7 @@ def _named(inputs: dict[str, object]) -> dict[str, object]:
     refused with the nearest known one."""
     import difflib
 
-    from .toothpair.inputs import SOLVE_INPUTS
+    from .toothpair import SOLVE_INPUTS
 
     known = [row.dest for row in SOLVE_INPUTS.values()]
     known += [a.replace("-", "_") for row in SOLVE_INPUTS.values() for a in row.aliases]

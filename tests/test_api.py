@@ -55,9 +55,9 @@ def test_a_cycle_reports_its_worst_where_it_occurs():
     ({"h1": 0.9}, "h1", "h1 = 0.9 is not admissible"),
 ])
 def test_a_refused_design_raises_before_any_work(inputs, name, text, monkeypatch):
-    import fegear.toothpair.job as job
+    import fegear.toothpair
 
-    monkeypatch.setattr(job, "solve_job", lambda *a: pytest.fail("the work started"))
+    monkeypatch.setattr(fegear.toothpair, "solve_job", lambda *a: pytest.fail("the work started"))
     with pytest.raises(fegear.ParameterError) as exc:
         fegear.solve(**inputs)
     assert exc.value.name == name

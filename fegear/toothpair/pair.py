@@ -12,7 +12,7 @@ def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None,
                     model=None) -> tuple[PairSolution, ...]:
     """Solve ``case`` at each rolling angle of ``betas`` (rad) on one model. ``model``: a ring
     model (:func:`~.ring.build_ring`) built before for the same geometry and quality, kept."""
-    from .positions import solve_positions as drive
+    from .positions import drive
     from .ring.solve import RingSolver
 
     return drive(case, betas, RingSolver(model), profile)

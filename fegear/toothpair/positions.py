@@ -95,7 +95,7 @@ def first_teeth(case: SolveCase, state, elastic_um: float) -> tuple[int, ...]:
     return choose_teeth(state, state.closest(+1).plus_um + elastic_um, case.extra_pairs)
 
 
-def solve_positions(case: SolveCase, betas, solver: PositionModel,
+def drive(case: SolveCase, betas, solver: PositionModel,
                     profile: Gear1Profile | None = None) -> tuple[PairSolution, ...]:
     """Solve ``case`` at each rolling angle of ``betas`` (rad) with ``solver``; the first
     position carries the one-off stages' timings."""

@@ -6,7 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass, fields
 
 from ...checks import require_range
-from ...toothpair.case import SolveCase
+from ...toothpair import SolveCase
 
 EXTRA_TEETH = (1, 10)        # admissible unloaded teeth meshed on each side
 PENALTY_LIMIT = 1e6          # the largest penalty factor

@@ -4,7 +4,7 @@ peer, side by side (``fegear bench --sector``)."""
 from __future__ import annotations
 
 from ...geometry import Gear1Profile, gear1_profile
-from ...toothpair.case import HEADLINE, PairSolution, SolveCase
+from ...toothpair import HEADLINE, PairSolution, SolveCase
 
 
 def cross_check(case: SolveCase, profile: Gear1Profile | None = None, **sector: object

@@ -16,9 +16,7 @@ import numpy as np
 from ...contact import ContactModel, ContactSolution
 from ...fe import Body, StressField, contact_modulus, facet_nodes
 from ...planar import wrap
-from ...toothpair.case import ToothResult
-from ...toothpair.edge import flank_and_edge
-from ...toothpair.teeth import Candidate, tension_fillets
+from ...toothpair import Candidate, ToothResult, flank_and_edge, tension_fillets
 from .case import SectorCase
 from .scene import SECTOR_LEVELS, Scene
 

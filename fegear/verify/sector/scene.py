@@ -34,8 +34,11 @@ from ...errors import FegearError, ParameterError
 from ...fe import BodyGeometry, Refinement, Segment, line_contact
 from ...geometry import Cycloid, Gear1Profile, PairParameters, RoundedProfile, gear2_curve
 from ...planar import rotate
-from ...toothpair.segments import (
+from ...toothpair import (
     ROOT_BAND,
+    Candidate,
+    Gear2Master,
+    candidate_data,
     gear2_outline,
     gear2_polar,
     path_windows,
@@ -44,7 +47,6 @@ from ...toothpair.segments import (
     round_strips,
     unwrap_near,
 )
-from ...toothpair.teeth import Candidate, Gear2Master, candidate_data
 
 if TYPE_CHECKING:
     from .case import SectorCase
@@ -179,13 +181,15 @@ class SectorBody:
 
 
 def build_scene(case: SectorCase, profile: Gear1Profile, positions, teeth: tuple[int, ...],
-                shape: RoundedProfile | None = None) -> Scene:
+                shape: RoundedProfile | None = None,
+                reach: dict[int, float] | None = None) -> Scene:
     """Sector geometries for the paired ``teeth`` (gear-1 indices) over ``positions``, a
     sequence of (β, clearance state at β): each tooth's contact windows cover its predicted
     contact points at every β, and the gear-2 sector covers gear 1's at every β.
 
     Gear 1's tip edges are rounded to ``case.edge_radius`` (:mod:`fegear.geometry.tip_edge`);
-    pass ``shape`` to reuse one :class:`RoundedProfile`."""
+    pass ``shape`` to reuse one :class:`RoundedProfile`. ``reach``: factors (tooth → factor)
+    on the contact windows of teeth whose contact was longer than their window."""
     p = case.params
     shape = shape if shape is not None else RoundedProfile(profile, case.edge_radius)
     betas = tuple(b for b, _ in positions)
@@ -197,9 +201,10 @@ def build_scene(case: SectorCase, profile: Gear1Profile, positions, teeth: tuple
                                         for _, cs in at if cs])
     # window half-length per candidate: WINDOW_B Hertz half-widths of its own curvatures at
     # the shared load, at least WINDOW_MIN modules (a contact that only just closes)
+    reach = reach or {}
     half = [(c, max(WINDOW_B * hertz_half_width(p, case.torque * 1e3, c, case.thickness, case.E,
                                                 case.nu) / math.sqrt(SHARE_GUESS),
-                    WINDOW_MIN * p.m)) for _, c in cands]
+                    WINDOW_MIN * p.m) * reach.get(c.tooth, 1.0)) for _, c in cands]
     sector = gear1_sector(p, shape, teeth, case.extra_teeth)
     paired = tuple(sorted({c.tooth for _, c in cands}))
     gear1, rounds = gear1_body(case, shape, sector, paired, half, sizes)

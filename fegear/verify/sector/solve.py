@@ -41,10 +41,20 @@ from ...fe import (
     recover,
 )
 from ...geometry import Gear1Profile
-from ...toothpair.case import BodyField, ContactChecks, ContactZone, PairSolution
-from ...toothpair.positions import Attempt, Trial, expected_elastic_um, first_teeth
-from ...toothpair.positions import solve_positions as drive
-from ...toothpair.teeth import candidate_data, choose_teeth
+from ...planar import wrap
+from ...toothpair import (
+    Attempt,
+    BodyField,
+    ContactChecks,
+    ContactZone,
+    PairSolution,
+    Trial,
+    candidate_data,
+    choose_teeth,
+    drive,
+    expected_elastic_um,
+    first_teeth,
+)
 from .case import SectorCase
 from .recovery import root_nodes, root_stresses, tooth_results
 from .scene import SECTOR_LEVELS, Scene, build_scene
@@ -63,11 +73,13 @@ class PairModel:
     timings_s: dict
 
 
-def build_model(case: SectorCase, profile: Gear1Profile, positions, teeth) -> PairModel:
-    """Mesh and factorise the sector for the paired ``teeth`` over ``positions`` (β, state)."""
+def build_model(case: SectorCase, profile: Gear1Profile, positions, teeth,
+                reach: dict[int, float] | None = None) -> PairModel:
+    """Mesh and factorise the sector for the paired ``teeth`` over ``positions`` (β, state);
+    ``reach``: factors on some teeth's contact windows (:func:`~.scene.build_scene`)."""
     times = {}
     t0 = time.perf_counter()
-    scene = build_scene(case, profile, positions, teeth)
+    scene = build_scene(case, profile, positions, teeth, reach=reach)
     m1, m2 = mesh_bodies([scene.gear1, scene.gear2])
     times["mesh"] = time.perf_counter() - t0
     t0 = time.perf_counter()
@@ -103,12 +115,15 @@ def mesh_ratio(coarse: str, fine: str) -> float:
 class SectorSolver:
     """The sector model as a :class:`~fegear.toothpair.positions.PositionModel`. One scene
     covers every position's contact path for the teeth paired so far; a position whose solved
-    rotation would close a tooth outside it is solved again on a scene rebuilt with that tooth
-    (the positions before keep theirs: no tooth outside their scene closed)."""
+    rotation would close a tooth outside it is solved again on a scene rebuilt with that tooth,
+    and one whose pressure reaches the end of a tooth's contact window (the window is shorter
+    than the contact: a near-conformal flank) on a scene with that window twice as long (the
+    positions before keep theirs: they settled on theirs)."""
 
     def __init__(self) -> None:
         self.model: PairModel | None = None
         self.timings_s: dict = {}
+        self.reach: dict[int, float] = {}
 
     def build(self, case: SectorCase, profile: Gear1Profile, states) -> None:
         self.profile, self.states = profile, states
@@ -118,7 +133,7 @@ class SectorSolver:
 
     def _scene(self, case: SectorCase, teeth: tuple[int, ...]) -> None:
         progress.stage(f"model: sector meshes of both gears at quality {case.quality}")
-        self.model = build_model(case, self.profile, self.states, teeth)
+        self.model = build_model(case, self.profile, self.states, teeth, self.reach)
 
     def attempt(self, case: SectorCase, state, trial: Trial,
                 near: PairSolution | None) -> Attempt:
@@ -131,14 +146,36 @@ class SectorSolver:
         sol = solve_position(self.model, case.beta, state, near)
         p = case.params
         more = set(choose_teeth(state, p.arc_um(sol.rotation), case.extra_pairs))
-        if more <= set(self.model.scene.paired):
+        ends = _window_ends(sol)
+        if more <= set(self.model.scene.paired) and not ends:
             return Attempt(sol, None)
+        for tooth in ends:
+            self.reach[tooth] = 2.0 * self.reach.get(tooth, 1.0)
+        if ends:
+            self._scene(case, _union((self.model.scene.paired, trial.teeth)))
         again = Trial(_union((trial.teeth, tuple(more))), trial.elastic_um)
         return Attempt(sol, again, f"teeth {sorted(more - set(self.model.scene.paired))} "
-                                   "would close")
+                                   f"would close, windows of teeth {ends} too short")
 
     def finish(self, case: SectorCase, state, attempt: Attempt) -> PairSolution:
         return attempt.result
+
+
+def _window_ends(sol: PairSolution) -> list[int]:
+    """The paired teeth whose contact pressure reaches either end of their window."""
+    d = sol.detail
+    out = []
+    for k, tooth in enumerate(d.scene.paired):
+        sel = np.flatnonzero(d.model.pair_index == k)
+        if not len(sel):
+            continue
+        x = d.model.x[sel]
+        phi = np.arctan2(x[:, 1], x[:, 0])
+        phi = phi[0] + wrap(phi - phi[0])
+        ends = sel[[np.argmin(phi), np.argmax(phi)]]
+        if d.contact.pressure[ends].max() > 0:
+            out.append(tooth)
+    return out
 
 
 def _union(groups) -> tuple[int, ...]:

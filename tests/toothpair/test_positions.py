@@ -1,0 +1,79 @@
+"""The one driver over positions (fegear/toothpair/positions.py), with a stand-in model: the
+first guess, the attempts, the timings and the error when a position does not settle."""
+
+import math
+
+import pytest
+
+from fegear.errors import FegearError
+from fegear.geometry import PairParameters, gear1_profile
+from fegear.toothpair import (
+    ATTEMPTS,
+    SHARE_GUESS,
+    TOOTH_STIFFNESS,
+    Attempt,
+    ContactChecks,
+    PairSolution,
+    SolveCase,
+    Trial,
+    drive,
+)
+
+CASE = SolveCase(PairParameters(shift=0.016, rotation=0.002), torque=200.0)
+
+
+@pytest.fixture(scope="module")
+def profile():
+    return gear1_profile(CASE.params)
+
+
+class StandIn:
+    """Settles a position after ``again`` attempts; its rotation puts the elastic part at
+    ``elastic_um`` past the first touch."""
+
+    def __init__(self, again: int, elastic_um: float = 5.0):
+        self.again, self.elastic_um = again, elastic_um
+        self.trials: list[tuple[float, Trial]] = []
+        self.timings_s = {}
+
+    def build(self, case, profile, states):
+        self.timings_s = {"model": 1.0}
+
+    def attempt(self, case, state, trial, near):
+        self.trials.append((case.beta, trial))
+        settled = sum(1 for b, _ in self.trials if b == case.beta) > self.again
+        again = None if settled else Trial(trial.teeth, trial.elastic_um * 2)
+        return Attempt(state, again, "stand-in", {"contact": 0.5})
+
+    def finish(self, case, state, attempt):
+        p = case.params
+        first = p.turn_of(state.closest(+1).plus_um)
+        return PairSolution(case, (), (0.0, 0.0), 0.0, first + p.turn_of(self.elastic_um),
+                            first, 0, ContactChecks(0.0, 0.0, 0, (), 0), {"stresses": 0.25},
+                            None)
+
+
+def test_the_first_guess_shares_the_torque_and_later_positions_start_from_the_last(profile):
+    model = StandIn(again=0)
+    betas = (0.0, 2 * math.pi / 45 / 4)
+    sols = drive(CASE, betas, model, profile)
+    (b0, first), (b1, second) = model.trials
+    p = CASE.params
+    assert first.elastic_um == pytest.approx(
+        CASE.torque * 1e3 / p.r0 / (CASE.thickness * TOOTH_STIFFNESS) / SHARE_GUESS)
+    assert second.elastic_um == pytest.approx(5.0)          # the first position's, solved
+    assert first.teeth                                       # chosen from the clearance state
+    assert [s.case.beta for s in sols] == list(betas)
+    # the one-off stages are the first position's; every position has its own
+    assert {"model", "clearance", "contact", "stresses"} <= set(sols[0].timings_s)
+    assert set(sols[1].timings_s) == {"contact", "stresses"}
+
+
+def test_attempts_are_summed_and_bounded(profile):
+    model = StandIn(again=2)
+    sol = drive(CASE, (0.0,), model, profile)[0]
+    assert len(model.trials) == 3
+    assert sol.timings_s["contact"] == pytest.approx(1.5)    # three attempts' contact stages
+    assert model.trials[2][1].elastic_um == pytest.approx(4 * model.trials[0][1].elastic_um)
+    with pytest.raises(FegearError, match=f"did not settle in {ATTEMPTS} attempts"):
+        drive(CASE, (0.0,), StandIn(again=ATTEMPTS), profile)
