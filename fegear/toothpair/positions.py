@@ -96,7 +96,7 @@ def first_teeth(case: SolveCase, state, elastic_um: float) -> tuple[int, ...]:
 
 
 def drive(case: SolveCase, betas, solver: PositionModel,
-                    profile: Gear1Profile | None = None) -> tuple[PairSolution, ...]:
+          profile: Gear1Profile | None = None) -> tuple[PairSolution, ...]:
     """Solve ``case`` at each rolling angle of ``betas`` (rad) with ``solver``; the first
     position carries the one-off stages' timings."""
     t0 = time.perf_counter()
