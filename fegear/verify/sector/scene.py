@@ -36,6 +36,7 @@ from ...geometry import Cycloid, Gear1Profile, PairParameters, RoundedProfile, g
 from ...planar import rotate
 from ...toothpair import (
     ROOT_BAND,
+    SHARE_GUESS,
     Candidate,
     Gear2Master,
     candidate_data,
@@ -58,7 +59,8 @@ SECTOR_LEVELS = {"coarse": (2, 1 / 5, 1.0), "fast": (4, 1 / 10, 1 / 2),
 WINDOW_B = 2.5           # gear-1 window half-length, in Hertz half-widths at the shared load
 WINDOW_MIN = 0.1         # … and at least this many modules
 MASTER_FACTOR = 1.4      # gear-2 window half-length relative to gear 1's
-SHARE_GUESS = 3.0        # teeth assumed to share the load when sizing the contact elements
+# the contact elements and windows are sized for the driver's first load-share guess
+# (SHARE_GUESS teeth, fegear/toothpair/positions.py)
 ROUND_DENSITY = 2        # the edge zone is a third of the round's Hertz width: twice as fine
 ROUND_SPILL = 2.0        # gear 1's round size reaches this many round Hertz widths onto the
                          # flank, gear 2's strip one: the slave is never coarser than the master
