@@ -284,6 +284,28 @@ def _mesh_one(gmsh, body: BodyGeometry) -> BodyMesh:
     return _build(body, xy, tri, lines)
 
 
+def halved(curve, theta: np.ndarray, points: np.ndarray, tol: float,
+           max_points: int) -> np.ndarray:
+    """The polyline ``points`` (``curve`` at the parameters ``theta``) with every interval
+    halved until the curve strays at most ``tol`` (mm) from its chord there, up to
+    ``max_points``. Nodes are snapped onto the exact curve after meshing: a chord that strays
+    by a large part of an element moves its nodes that far and can invert the element (gear 2's
+    flanks at m 0.5, turning at 0.26 mm, strayed 6 µm from 8-point polylines in 25 µm
+    elements; a contact submodel's 8 points over 1.5 mm of a pointed tooth, 7 µm in 3 µm)."""
+    for _ in range(20):
+        mid = 0.5 * (theta[1:] + theta[:-1])
+        at_mid = curve(mid)
+        chord, off = np.diff(points, axis=0), at_mid - points[:-1]
+        sag = np.abs(chord[:, 0] * off[:, 1] - chord[:, 1] * off[:, 0]) / np.hypot(*chord.T)
+        far = sag > tol
+        if not far.any() or len(theta) + far.sum() > max_points:
+            break
+        order = np.argsort(np.concatenate([theta, mid[far]]), kind="stable")
+        theta = np.concatenate([theta, mid[far]])[order]
+        points = np.concatenate([points, at_mid[far]])[order]
+    return points
+
+
 def _polyline_length(points: np.ndarray) -> float:
     return float(np.sum(np.linalg.norm(np.diff(points, axis=0), axis=1)))
 

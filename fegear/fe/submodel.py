@@ -24,13 +24,15 @@ import numpy as np
 from ..errors import FegearError
 from .dofs import facet_nodes, node_dofs
 from .material import Material
-from .mesh import BodyGeometry, BodyMesh, Refinement, Segment, mesh_bodies
+from .mesh import BodyGeometry, BodyMesh, Refinement, Segment, halved, mesh_bodies
 from .stress import StressField, recover
 
 CORE = 0.6          # stresses are read within this fraction of the radius of the centre
 ARC_POINTS = 48     # polyline points of the cut arc
 QUADRATURE = 6      # Gauss points per boundary facet for the pressure
 GROWTH = 0.3        # element growth away from the boundary (mm per mm)
+SNAP_CHORD = 0.1    # boundary polylines stray from the curve by at most this of the finest
+MAX_POINTS = 1000   # element size, with up to this many points a piece
 
 
 @dataclass(frozen=True)
@@ -175,8 +177,9 @@ def _geometry(pb: SubmodelProblem):
         # a spline point every few elements: nodes are snapped onto the curve anyway, and
         # gmsh's cost grows with the spline's points
         samples = int(min(200, max(8, 0.5 * span / (size if zone else radius / 8))))
-        pieces.append(Segment("boundary", curve.point(np.linspace(t0, t1, samples)),
-                              curve.project, zone))
+        t = np.linspace(t0, t1, samples)
+        points = halved(curve.point, t, curve.point(t), SNAP_CHORD * size, MAX_POINTS)
+        pieces.append(Segment("boundary", points, curve.project, zone))
     arc = _arc(curve, centre, radius, pieces[-1].points[-1], pieces[0].points[0])
     geo = BodyGeometry(pb.name, (
         *pieces,
@@ -222,7 +225,9 @@ def _arc(curve: StarCurve, centre: np.ndarray, radius: float, start: np.ndarray,
     span = (math.atan2(*(end - centre)[::-1]) - a) % (2 * math.pi)
     for sweep in (span, span - 2 * math.pi):
         mid = centre + radius * np.array([math.cos(a + 0.5 * sweep), math.sin(a + 0.5 * sweep)])
-        edge = np.linalg.norm(curve.project(mid[None])[0])
+        # the curve's radius at the point's polar angle (the curve is star-shaped; its
+        # nearest point is no test where it bends sharply, as on a pointed gear-2 tip)
+        edge = np.linalg.norm(curve.point(np.array([math.atan2(mid[1], mid[0])]))[0])
         if (np.linalg.norm(mid) < edge) == curve.inside:
             t = a + np.linspace(0.0, sweep, ARC_POINTS)
             pts = centre + radius * np.column_stack([np.cos(t), np.sin(t)])

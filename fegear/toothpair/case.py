@@ -22,6 +22,9 @@ from .inputs import LOAD_LIMIT, SOLVE_INPUTS, TIP_ROUND, Quality
 HEADLINE = {"root_stress_gear1_MPa": "root σ1, gear 1", "root_stress_gear2_MPa": "root σ1, gear 2",
             "contact_pressure_MPa": "contact pressure", "flank_contact_pressure_MPa":
             "flank pressure", "von_mises_max_MPa": "von Mises max"}
+#: gear 1's rim reaches at most this share of its root radius: the bore keeps the rest (a gear
+#: of few teeth and deep teeth has a root radius below the default 3 m; the rim stops short)
+RIM1_SHARE = 0.6
 
 
 @dataclass(frozen=True)
@@ -51,10 +54,14 @@ class SolveCase:
                       unit=f"N·m (0.05 E m b r1 at E={self.E:g} MPa, m={self.params.m:g}, "
                            f"b={self.thickness:g}, r1={self.params.r1:g} mm)")
         SOLVE_INPUTS["quality"].check(self.quality)
-        for name in ("rim1", "rim2"):
-            v = getattr(self, name)
-            if v is not None:
-                require_range(name, v, 0.5 * self.params.m, 20 * self.params.m, unit="mm")
+        m = self.params.m
+        if self.rim1 is not None:
+            deepest = min(20 * m, RIM1_SHARE * self.root_radius1)
+            require_range("rim1", self.rim1, min(0.5 * m, deepest), deepest,
+                          unit=f"mm (m/2 ... 20 m, at most {RIM1_SHARE:g} of gear 1's root "
+                               f"radius {self.root_radius1:.4g} mm)")
+        if self.rim2 is not None:
+            require_range("rim2", self.rim2, 0.5 * m, 20 * m, unit="mm")
         SOLVE_INPUTS["extra-pairs"].check(self.extra_pairs)
         if self.tip_round is not None:
             require_range("tip_round", self.tip_round, 0.0, 0.5 * self.params.m, unit="mm")
@@ -74,9 +81,19 @@ class SolveCase:
         return self.tip_round if self.tip_round is not None else TIP_ROUND * self.params.m
 
     @property
+    def root_radius1(self) -> float:
+        """Gear 1's root radius (mm), from its exact profile."""
+        from ..geometry import gear1_profile
+
+        g1 = gear1_profile(self.params)
+        return float(g1.radius(np.array([g1.phi_space]))[0])
+
+    @property
     def rims(self) -> tuple[float, float]:
+        """Gear 1's rim below its roots and gear 2's beyond its roots (mm): those given, else
+        3 m each, gear 1's at most :data:`RIM1_SHARE` of its root radius."""
         d = 3.0 * self.params.m
-        return (self.rim1 if self.rim1 is not None else d,
+        return (self.rim1 if self.rim1 is not None else min(d, RIM1_SHARE * self.root_radius1),
                 self.rim2 if self.rim2 is not None else d)
 
 

@@ -41,7 +41,7 @@ MODEL_INPUTS = (
           f"and fitting the tip edges (default {TIP_ROUND:g} m, or half the largest round that "
           "fits where that does not)", "mm"),
     Input("rim1", float, None, "gear-1 rim below the roots, to the bore, m/2 ... 20 m "
-          "(default 3 m)", "mm"),
+          "and at most 0.6 of gear 1's root radius (default 3 m, or that where less)", "mm"),
     Input("rim2", float, None, "gear-2 rim beyond the roots, to the fixed rim, m/2 ... 20 m "
           "(default 3 m)", "mm"),
     Input("extra-pairs", int, 0, "pair this many more teeth on each side than the closure "

@@ -10,6 +10,7 @@ import math
 import numpy as np
 
 from ..fe import Segment
+from ..fe.mesh import halved
 from ..planar import rotate, wrap
 
 ROOT_BAND = 0.3          # root zone: the lower 30 % of the tooth height
@@ -207,28 +208,9 @@ def sampled(name, curve, project, lo, hi, zone=None, size=math.inf) -> Segment:
         n = min(max(8, int(s[-1] / spacing) + 2), 4000)
         theta = np.interp(np.linspace(0.0, s[-1], n), s, dense)
         points = curve(theta)
-    points = _halved(curve, theta, points, min(SPLINE_CHORD, SNAP_CHORD * size))
+    points = halved(curve, theta, points, min(SPLINE_CHORD, SNAP_CHORD * size),
+                    MAX_POINTS)
     return Segment(name, points, project, zone)
-
-
-def _halved(curve, theta, points, tol: float) -> np.ndarray:
-    """The polyline ``points`` (the curve at ``theta``) with every interval halved until the
-    curve strays at most ``tol`` (mm) from its chord there, up to MAX_POINTS. The spacing
-    above assumes a 0.5 mm radius of curvature: gear 2's flanks at m = 0.5 turn at 0.26 mm and
-    strayed 6 µm from 8-point polylines, and snapped back along the polar angle of a steep
-    flank their nodes moved 16 µm in 25 µm elements and inverted some."""
-    for _ in range(20):
-        mid = 0.5 * (theta[1:] + theta[:-1])
-        at_mid = curve(mid)
-        chord, off = np.diff(points, axis=0), at_mid - points[:-1]
-        sag = np.abs(chord[:, 0] * off[:, 1] - chord[:, 1] * off[:, 0]) / np.hypot(*chord.T)
-        far = sag > tol
-        if not far.any() or len(theta) + far.sum() > MAX_POINTS:
-            break
-        order = np.argsort(np.concatenate([theta, mid[far]]), kind="stable")
-        theta = np.concatenate([theta, mid[far]])[order]
-        points = np.concatenate([points, at_mid[far]])[order]
-    return points
 
 
 def gear2_polar(curve):

@@ -36,7 +36,9 @@ from ..segments import (
 @dataclass(frozen=True)
 class TemplateSizes:
     """Element sizes of the templates (mm): root zones, flanks, gear 1's rounds and their
-    tangent points, and the rest of the body; the growth away from them (mm per mm)."""
+    tangent points, and the rest of the body; the growth away from them (mm per mm); and the
+    share of its curvature radius an element of gear 2 takes where the flank size does not
+    follow its bend."""
 
     root: float
     flank: float
@@ -44,6 +46,7 @@ class TemplateSizes:
     junction: float
     body: float
     growth: float = 0.3
+    bend: float = 0.125   # gear 2 where it bends tighter than its flank size: this × its ρ
 
 
 @dataclass(frozen=True)
@@ -72,8 +75,9 @@ def gear1_template(p: PairParameters, shape: RoundedProfile, sizes: TemplateSize
     bore = r_min - rim
     space = shape.phi_space + pitch  # the tooth space between tooth 0 and tooth 1
     root_half = root_half_angle(shape.radius, space, pitch, r_min, r_max)
+    # every round on the sector, also one the cut halves (a pointed tooth's tip round)
     rounds = [(c - h, c + h) for c, h, _ in shape.fillet_angles(range(-1, 3))
-              if a < c < b]
+              if c + h > a and c - h < b]
     span = 2.0 * sizes.round / r_max  # the tangent points: finer over ± two round elements
     # a round shorter than the two zones is one zone (else a sliver piece between them)
     marks = [mark for lo, hi in rounds for mark in (
@@ -123,13 +127,35 @@ def gear2_template(p: PairParameters, curve: Cycloid, sizes: TemplateSizes,
     g2_curve, project = gear2_polar(curve)
     root_half = root_half_angle(lambda t: curve.radius_at_angle(t), 0.5 * pitch, pitch, r_min,
                                 r_max, inverted=True)
+    marks, bent = bends(curve, a, b, sizes)
     segs, names = profile_segments(
-        "g2", g2_curve, project, a, b, [], [("g2_root", 0.5 * pitch, root_half)],
-        sizes={"g2_root": sizes.root, "g2_flank": sizes.flank})
+        "g2", g2_curve, project, a, b, [], [("g2_root", 0.5 * pitch, root_half)], marks=marks,
+        sizes={"g2_root": sizes.root, "g2_flank": sizes.flank, "g2_bend": bent})
     geo = BodyGeometry("gear2", gear2_outline(g2_curve, segs, a, b, outer, 40),
                        size=sizes.body, refinements=(
         Refinement(("g2_root",), sizes.root, sizes.growth),
-        Refinement(("g2_flank",), sizes.flank, sizes.growth)),
+        Refinement(("g2_flank",), sizes.flank, sizes.growth),
+        *([Refinement(("g2_bend",), bent, sizes.growth)] if marks else [])),
         periodic=(Periodic("g2_cut_b", "g2_cut_a", pitch),))
     band = (r_max - ROOT_BAND * (r_max - r_min), r_max)
     return Template(geo, names, a, pitch, "g2_rim", "g2_cut_b", band)
+
+
+def bends(curve: Cycloid, a: float, b: float, sizes: TemplateSizes,
+          samples: int = 4001) -> tuple[list, float]:
+    """The polar-angle stretches of gear 2's profile over [a, b] whose curvature radius ρ is
+    below the flank size over ``sizes.bend`` (its quadratic edges would bow off the exact curve
+    by ~h³/ρ²: a pointed tooth tip at larger h1 and small f1), widened by a flank element
+    each side, as refinement marks ``g2_bend``; and their element size, ``sizes.bend`` times
+    the least ρ (the flank size where there is none)."""
+    theta = np.linspace(a, b, samples)
+    rho = np.abs(curve.curvature_radius(curve.xi_at_angle(theta)))
+    tight = rho * sizes.bend < sizes.flank
+    if not tight.any():
+        return [], sizes.flank
+    r = curve.radius_at_angle(theta)
+    pad = sizes.flank / float(r.min())
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], tight.astype(int), [0]])))
+    marks = [(max(a, theta[i] - pad), min(b, theta[j - 1] + pad), "g2_bend")
+             for i, j in zip(edges[::2], edges[1::2])]
+    return marks, sizes.bend * float(rho[tight].min())
