@@ -32,5 +32,9 @@ class ParameterError(FegearError, ValueError):
         return f"{name} = {self.value!r} is not admissible{why}; admissible: {self.admissible}"
 
 
+class ContactError(FegearError):
+    """The contact at one position has no solution the iterations could find."""
+
+
 class GeometryError(FegearError):
     """A geometric construction failed for an admissible-looking input (a bug or an edge case)."""

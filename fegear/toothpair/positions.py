@@ -26,7 +26,7 @@ from dataclasses import dataclass, field, replace
 from typing import Protocol
 
 from .. import progress
-from ..errors import FegearError
+from ..errors import ContactError, FegearError
 from ..geometry import Gear1Profile, ToothContact, gear1_profile
 from .case import PairSolution, SolveCase
 from .teeth import TOOTH_STIFFNESS, choose_teeth, refuse_interference
@@ -79,6 +79,18 @@ class PositionModel(Protocol):
         """Stresses and per-tooth results of a settled attempt (timings in the solution)."""
 
 
+def _unsettled(case: SolveCase, trial: Trial, expected_um: float, err: Exception) -> str:
+    """Why the contact did not settle, with the input that changes it: how far the load had
+    turned gear 1 past its first touch at the attempt before, against the estimate."""
+    where = (f"the contact did not settle under --torque {case.torque:g} N·m at β "
+             f"{math.degrees(case.beta):.4g}° ({err})")
+    if trial.elastic_um <= 2.0 * expected_um:
+        return where
+    return (f"{where}: gear 1 had turned {trial.elastic_um:.3g} µm past its first touch, "
+            f"{trial.elastic_um / expected_um:.2g} times the {expected_um:.3g} µm expected at "
+            "their stiffness: a load far past what these teeth carry; lower --torque")
+
+
 def expected_elastic_um(case: SolveCase, near: PairSolution | None = None) -> float:
     """The elastic part of gear 1's rotation (µm of arc at r0) to place the first attempt at:
     ``near``'s, else the torque on :data:`SHARE_GUESS` teeth of stiffness
@@ -116,7 +128,10 @@ def drive(case: SolveCase, betas, solver: PositionModel,
         trial = Trial(first_teeth(at, state, elastic), elastic)
         times: Counter = Counter()
         for _ in range(ATTEMPTS):
-            attempt = solver.attempt(at, state, trial, near)
+            try:
+                attempt = solver.attempt(at, state, trial, near)
+            except ContactError as err:
+                raise ContactError(_unsettled(at, trial, elastic, err)) from None
             times.update(attempt.timings_s)
             if attempt.again is None:
                 break

@@ -31,7 +31,8 @@ from .stresses import ring_stresses
 
 REACH = 3.0          # grids reach where the rigid gap is within this many expected elastic
                      # approaches of closing …
-REACH_FLOOR = 1e-4   # … and at least this many modules
+REACH_FLOOR = 1e-4   # … and at least this many modules; …
+WIDEST_REACH = 0.02  # … widened up to this many where no tooth is within reach
 GRID_FLOOR = 1e-5    # smallest grid spacing, in modules (20 nm at m = 2)
 PLACEMENT = 0.5      # grids are placed again if the solved rotation's elastic part differs
                      # from the expected one by more than this fraction
@@ -135,16 +136,18 @@ def _grids(model: RingModel, case: SolveCase, teeth, full: set[int], theta: floa
     turn = p.ratio * case.beta + theta - p.turn_of(elastic_um)   # at the first touch
     E_star = contact_modulus(case.E, case.E)
     load = case.torque * 1e3 / p.r0 / SHARE_GUESS / case.thickness
-    out = []
-    for tooth in teeth:
-        win = window(model.samples, model.curve2, tooth, turn, case.beta, p.e,
-                     base * reach.get(tooth, 1.0))
-        if win is not None:
-            out.append(tooth_grid(model.samples, win, load, E_star, model.level.per_b,
-                                  GRID_FLOOR * p.m, probe=tooth not in full))
-    if not out:
-        raise FegearError("no tooth comes within reach of gear 2: the pair does not mesh")
-    return tuple(out)
+    while True:
+        wins = [w for tooth in teeth
+                if (w := window(model.samples, model.curve2, tooth, turn, case.beta, p.e,
+                                base * reach.get(tooth, 1.0))) is not None]
+        if wins:
+            return tuple(tooth_grid(model.samples, w, load, E_star, model.level.per_b,
+                                    GRID_FLOOR * p.m, probe=w.tooth not in full) for w in wins)
+        # the first touch the clearance table gives is the sharp profile's: on a tip edge the
+        # round stands that far back (µm at z1 = 8 and h1 0.9), so the reach widens
+        if base > WIDEST_REACH * p.m:
+            raise FegearError("no tooth comes within reach of gear 2: the pair does not mesh")
+        base *= 4.0
 
 
 def _residuals(model: RingModel, contact: RingContact, sol, stresses) -> list[float]:

@@ -1,0 +1,114 @@
+"""The contact solve's two methods and its Newton on the rotation: the designs the random-pair
+property test (tests/toothpair/test_properties.py) found unsettled, and the slower method
+against the fast one on problems both settle."""
+
+import numpy as np
+import pytest
+
+from fegear.geometry import PairParameters
+from fegear.toothpair import SolveCase
+from fegear.toothpair.pair import solve_positions
+from fegear.toothpair.ring import contact
+
+#: z 8/9, h1 0.36, f1 ≈ 0 with a relief: the contact sits by gear 2's sharp tip, whose normal
+#: turns 25 % of the torque arm in the first step; without the arm's rate in the torque row the
+#: rotation settled half a digit a linearisation and ran out of them
+SHARP_TIP = dict(m=2.912249359683178, z2=9, z1=8, h1=0.35697281980052964,
+                 f1=0.002694819653145686, shift=0.017464901693616197,
+                 rotation=-0.00635119064110767, tip_clearance=0.008310163875381117,
+                 relief=7.178377912957316)
+#: the default 3 m rim deeper than gear 1's root, and the first touch on a tip round that
+#: stands µm behind the sharp profile's first touch (no grid within reach)
+SMALL_GEAR = dict(m=1.9077814968607891, z2=9, z1=8, h1=0.9133963644840435,
+                  f1=0.01741198407749094, shift=0.015262251974886313,
+                  rotation=0.0019077814968607892, tip_clearance=0.01741198407749094)
+#: z 8/9, h1 0.85, f1 ≈ 0 with a relief: swapping every violated point at once cycles
+CYCLES = dict(m=5.030388211248785, z2=9, z1=8, h1=0.847995214552689, f1=0.0,
+              shift=0.04024310568999028, tip_clearance=0.012651386523047736,
+              relief=6.65393687077901)
+
+
+def _solved(inputs, torque, beta):
+    case = SolveCase(PairParameters(**inputs), torque=torque, beta=beta, quality="coarse")
+    sol = solve_positions(case, (beta,))[0]
+    assert sol.checks.balance_error < 1e-9
+    assert sol.checks.max_penetration < 1e-9
+    return sol
+
+
+def test_the_rotation_settles_quadratically_at_a_sharp_gear_2_tip(monkeypatch):
+    monkeypatch.setattr(contact, "MAX_TURNS", 10)   # it took more than 30 before
+    _solved(SHARP_TIP, 6.587005962987897, 0.0006990687571524972)
+
+
+def test_a_first_touch_on_a_tip_round_finds_its_grid():
+    sol = _solved(SMALL_GEAR, 0.4678902185346544, 0.000171096)
+    assert any(t.edge_load_N for t in sol.teeth)      # the load sits on the round
+
+
+@pytest.mark.slow  # 12 s
+def test_an_active_set_that_cycles_is_settled_one_point_at_a_time():
+    _solved(CYCLES, 3.35265978187051, 0.03798257795854814)
+
+
+def _problem(n, seed):
+    """A contact of n points: a symmetric positive compliance in the form the ring's (A = C W,
+    pressures times weights are forces), rigid gaps with a rotation rate a < 0 on most."""
+    rng = np.random.default_rng(seed)
+    x = np.sort(rng.uniform(0.0, 1.0, n))
+    C = 1e-4 * np.exp(-np.abs(x[:, None] - x[None, :]) / 0.2) + 1e-5 * np.eye(n)
+    w = rng.uniform(0.01, 0.05, n)
+    g0 = 1e-3 * (x - 0.4) ** 2 - 2e-5
+    a = -rng.uniform(5.0, 20.0, n)
+    return C * w[None, :], w, g0, a
+
+
+@pytest.mark.parametrize("seed", range(5))
+def test_one_at_a_time_meets_the_contact_conditions_and_agrees_with_the_fast_method(seed):
+    A, w, g0, a = _problem(60, seed)
+    torque = 5.0
+    fast = contact._active_set(A, w, g0, a, torque, g0 <= g0.min())
+    slow = contact._one_at_a_time(A, w, g0, a, torque, 0.0, 0)
+    for pressure, step, active, _ in (fast, slow):
+        gap = g0 + a * step + A @ pressure
+        assert pressure.min() >= 0.0
+        assert gap.min() >= -1e-12 * np.abs(g0).max()
+        assert np.abs(gap[active]).max() <= 1e-12 * np.abs(g0).max()
+        assert -(w * pressure) @ a == pytest.approx(torque, rel=1e-12)
+    np.testing.assert_allclose(slow[0], fast[0], rtol=1e-9, atol=1e-12 * fast[0].max())
+    assert slow[1] == pytest.approx(fast[1], rel=1e-9)
+
+
+#: z 8/9 at m 3.8 with pointed teeth (h1 0.95, f1 0) under 150 N·m: one tooth at ~10 GPa,
+#: gear 1 turned 8.6 times the elastic approach its stiffness gives; the contact does not settle
+OVERLOADED = dict(m=3.7947903015118905, z2=9, z1=8, h1=0.9492161670931352, f1=0.0,
+                  shift=0.030358322412095125, rotation=0.0037947903015118907,
+                  tip_clearance=0.030358322412095125)
+
+
+@pytest.mark.slow  # 5 s
+def test_a_contact_that_does_not_settle_under_an_overload_names_the_torque():
+    from fegear.errors import ContactError
+
+    case = SolveCase(PairParameters(**OVERLOADED), torque=150.3492207138411,
+                     beta=0.025024, quality="coarse")
+    with pytest.raises(ContactError) as err:
+        solve_positions(case, (case.beta,))
+    assert "--torque 150.349 N·m" in str(err.value)
+    assert "times the" in str(err.value) and "lower --torque" in str(err.value)
+
+
+def test_a_submodel_on_a_pointed_tooth_follows_its_curve():
+    """z 8/9 with h1 1 and f1 0 under a relief: gear 1's contact submodel had 8 polyline points
+    over 1.5 mm of a flank turning at 0.7 mm; its nodes, snapped onto the curve, moved 7 µm in
+    3 µm elements and inverted one. Now its polylines follow the curve to a tenth of its finest
+    element."""
+    pair = dict(m=3.799826525637023, z2=9, z1=8, h1=0.99999, f1=5.960464477539063e-08,
+                tip_clearance=0.03962127622959005, relief=8.764854043634411, relief_extent=0.5)
+    from fegear.toothpair.job import prepare_job
+
+    job = prepare_job({**{k.replace("_", "-"): v for k, v in pair.items()},
+                       "torque": 0.6900261746968835, "position": 0.6063068942952472,
+                       "quality": "coarse", "no-estimate": True})
+    sol = solve_positions(job.case, job.betas)[0]
+    assert sol.checks.balance_error < 1e-9 and sol.checks.max_penetration < 1e-9
