@@ -33,7 +33,7 @@ class ParameterError(FegearError, ValueError):
 
 
 class ContactError(FegearError):
-    """The contact at one position has no solution the iterations could find."""
+    """A contact problem has no admissible solution, or the iterations did not find it."""
 
 
 class GeometryError(FegearError):

@@ -11,17 +11,13 @@ from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
-from ..errors import FegearError
+from ..errors import ContactError  # noqa: F401  (fegear.contact.ContactError)
 
 if TYPE_CHECKING:  # the settings and curves are light; the model's parts come with the solve
     import scipy.sparse as sp
 
     from ..fe import Body
     from .flexibility import PointFlexibility
-
-
-class ContactError(FegearError):
-    """The contact problem has no admissible solution or the iterations did not converge."""
 
 
 @dataclass(frozen=True)
