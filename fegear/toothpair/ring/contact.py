@@ -22,7 +22,7 @@ from .model import RingModel
 
 MAX_ACTIVE_SET = 80     # active-set changes per linearisation
 MAX_TURNS = 30          # linearisations of the rigid gap
-MAX_PRIMAL = 4          # … and, one point at a time, this many per grid point
+MAX_PRIMAL = 4          # … and, by the primal method, this many per grid point
 ARM_STEP = 1e-7         # turn (rad) of the torque arm's difference quotient
 
 
@@ -102,6 +102,7 @@ def _active_set(A, w, g0, a, torque_nmm, active, arm_rate=0.0):
     gap closes and leave when their pressure pulls. Returns pressure, step, active set,
     iterations."""
     seen = set()
+    pressure = np.zeros(len(g0))
     for k in range(1, MAX_ACTIVE_SET + 1):
         pressure, step = _on(A, w, g0, a, torque_nmm, active, arm_rate)
         gap = g0 + a * step + A @ pressure
@@ -115,7 +116,7 @@ def _active_set(A, w, g0, a, torque_nmm, active, arm_rate=0.0):
             break
         seen.add(key)
         active = new
-    return _one_at_a_time(A, w, g0, a, torque_nmm, arm_rate, k)
+    return _primal(A, w, g0, a, torque_nmm, arm_rate, pressure, k)
 
 
 def _on(A, w, g0, a, torque_nmm, active, arm_rate):
@@ -137,19 +138,27 @@ def _on(A, w, g0, a, torque_nmm, active, arm_rate):
     return pressure, sol[n]
 
 
-def _one_at_a_time(A, w, g0, a, torque_nmm, arm_rate, used):
-    """The primal active-set method (Lawson and Hanson's, with the torque row) where swapping
-    every violated point at once cycles or does not settle (large loads on sharp teeth, where
-    the teeth's near fields overlap): pressures stay ≥ 0 and the torque balanced; the point
-    of most overlap joins, one at a time; a pressure that would pull stops the step where it
-    reaches zero and leaves. Finite for a symmetric positive definite compliance (the ring's,
-    collocated at the grid points, is close to one)."""
-    closing = np.flatnonzero(a < 0)
-    if len(closing) == 0:
-        raise RingContactError("no contact point closes under the torque")
-    first = closing[np.argmin(g0[closing])]
-    pressure = np.zeros(len(g0))
-    pressure[first] = -torque_nmm / (w[first] * a[first])
+def _primal(A, w, g0, a, torque_nmm, arm_rate, start, used):
+    """The primal active-set method (after Lawson and Hanson's, with the torque row) where
+    swapping every violated point at once cycles or does not settle (large loads on sharp
+    teeth, where the teeth's near fields overlap): pressures stay ≥ 0 and the torque balanced
+    throughout, so the energy falls at every step and no set comes back. From ``start`` (the
+    fast method's last pressures, the pulling ones dropped and the rest scaled to the torque;
+    else the closing point of least gap): the point of most overlap joins, one at a time (its
+    pressure then rises from zero); a pressure that would pull stops the step where it reaches
+    zero and leaves. Finite for a symmetric positive
+    definite compliance (the ring's, collocated at the grid points, is close to one)."""
+    pressure = np.maximum(start, 0.0)
+    carried = -(w * pressure) @ a
+    if carried > 0:
+        pressure *= torque_nmm / carried
+    else:
+        closing = np.flatnonzero(a < 0)
+        if len(closing) == 0:
+            raise RingContactError("no contact point closes under the torque")
+        first = closing[np.argmin(g0[closing])]
+        pressure[:] = 0.0
+        pressure[first] = -torque_nmm / (w[first] * a[first])
     step = 0.0
     active = pressure > 0
     tol = 1e-12 * max(float(np.abs(g0).max()), 1e-9)
