@@ -47,13 +47,14 @@ def designs(draw):
     if draw(st.booleans()):
         values["relief"] = draw(st.floats(0.0, 10.0 * m))
         values["relief-extent"] = _maybe(draw, st.floats(0.05 * m, 0.6 * m), 0.3)
-    # three decades of load at the intensity 1-1000 N·m puts on the seed paper's pair (m 2,
-    # z1 44): the same force per tooth per face width per module. The torque grows with m², with
-    # the radius (z1) and with the teeth that share it (z1 again: at z2 − z1 = 1-3 the teeth
-    # within a given clearance span a fixed arc). Scaled by z1 alone, a z 8/9 pair drew 5.5 times
-    # the seed pair's intensity, up to 7 GPa on one pointed tooth, where the contact does not
-    # settle (docs/solve.md)
-    values["torque"] = 10 ** draw(st.floats(0.0, 3.0)) * (m / 2.0) ** 2 * (z1 / 44) ** 2
+    # three decades of load at the intensity 0.3-300 N·m puts on the seed paper's pair (m 2,
+    # z1 44; at 200 N·m its contact pressure is already 1.3 times the allowable): the same force
+    # per tooth per face width per module. The torque grows with m², with the radius (z1) and
+    # with the teeth that share it (z1 again: at z2 − z1 = 1-3 the teeth within a given
+    # clearance span a fixed arc). Scaled by z1 alone, a z 8/9 pair drew 5.5 times the seed
+    # pair's intensity, up to 7 GPa on one pointed tooth, where the contact does not settle
+    # (docs/solve.md)
+    values["torque"] = 10 ** draw(st.floats(-0.5, 2.5)) * (m / 2.0) ** 2 * (z1 / 44) ** 2
     values["position"] = draw(st.floats(0.0, 360.0 / values["z2"]))
     values.update({"quality": "coarse", "no-estimate": True})
     return {k: v for k, v in values.items() if v is not None}
