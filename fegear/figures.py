@@ -21,11 +21,12 @@ def pyplot():
 
 
 def save_png(fig, path: Path, dpi: int) -> Path:
-    """Write a matplotlib figure as PNG (atomically) and close it."""
+    """Write a matplotlib figure as PNG (atomically) and close it. zlib at level 1: the
+    default 6 spent 0.2 s on the baseline's three pictures for files 4-22 % smaller."""
     import matplotlib.pyplot as plt
 
     def w(tmp: Path) -> None:
-        fig.savefig(tmp, dpi=dpi, format="png")
+        fig.savefig(tmp, dpi=dpi, format="png", pil_kwargs={"compress_level": 1})
 
     try:
         return write_atomic(path, w)
