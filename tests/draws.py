@@ -8,6 +8,8 @@ from __future__ import annotations
 import math
 from collections import Counter
 
+LISTED = 10   # refused draws shown whole in the summary
+
 
 class Draws:
     """The outcomes of one property test's admissible draws."""
@@ -33,9 +35,11 @@ class Draws:
         return "\n".join(f"  {n} × {reason}" for reason, n in counts.most_common())
 
     def summary(self) -> str:
+        listed = "".join(f"\n  {draw}: {kind}: {message}" for draw, kind, message in
+                         self.refused[:LISTED])
         return (f"{self.total} admissible draws: {self.converged} converged, "
                 f"{len(self.refused)} refused by name (at most "
-                f"{self.max_refused_share:.0%} allowed)\n{self.reasons()}")
+                f"{self.max_refused_share:.0%} allowed)\n{self.reasons()}{listed}")
 
     def check(self) -> None:
         print(self.summary())  # shown with -rA or -s, and on failure

@@ -19,8 +19,11 @@ from ..errors import FegearError
 
 CANDIDATES = 8      # nearest element centres tried per point
 NEWTON = 6          # iterations on the quadratic map (it is close to affine in each element)
-TOLERANCE = 1e-3    # how far outside its element a point may fall (reference units): the exact
-                    # boundary bows out of a quadratic edge by ~h³κ², 1e-5 h on the tip rounds
+TOLERANCE = 0.05    # how far outside its element a point may fall (reference units): a point
+                    # on the exact boundary lies outside the quadratic edges by ~(hκ)² of an
+                    # element, up to 0.016 where elements are an eighth of the curvature radius
+                    # (gear 2's sharp tips, gear 1's rounds); at 1e-3, points a submodel's cut
+                    # takes on the exact curve there fell outside
 
 
 @dataclass(frozen=True)

@@ -5,6 +5,7 @@ refused, meshed at `coarse` (about a second each)."""
 import numpy as np
 import pytest
 
+from fegear.errors import FegearError
 from fegear.fe import mesh_bodies
 from fegear.geometry import Gear1Profile, PairParameters, RoundedProfile
 from fegear.toothpair import SolveCase
@@ -96,7 +97,11 @@ def test_gear_2_is_refined_where_it_bends_tighter_than_its_flank_elements():
     (mesh,) = mesh_bodies([t2.geometry])
     theta = np.linspace(marks[0][0], marks[0][1], 200)
     r = curve.radius_at_angle(theta)
-    Probe(mesh.mesh).locate(np.column_stack([r * np.cos(theta), r * np.sin(theta)]))
+    on_curve = np.column_stack([r * np.cos(theta), r * np.sin(theta)])
+    Probe(mesh.mesh).locate(on_curve)
+    # a point a tenth of a millimetre off the body is no boundary approximation: refused
+    with pytest.raises(FegearError, match="outside the mesh"):
+        Probe(mesh.mesh).locate(on_curve[100:101] * (1.0 - 0.1 / r[100]))
     # a smooth gear 2 has none
     assert bends(gear2_curve(PairParameters()), 0.0, 2 * np.pi / 45,
                  _sizes(SolveCase(PairParameters(), quality="coarse")))[0] == []
