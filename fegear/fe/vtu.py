@@ -62,8 +62,9 @@ def write_vtu(path: Path, points: np.ndarray, cells: np.ndarray,
             head.append((f"</{section}>\n" if section else "") + f"<{where}>\n")
             section = where
         named = f' Name="{name}"' if name else ""
-        head.append(f'<DataArray type="{_VTK_TYPES[a.dtype.str[1:]]}"{named} '
-                    f'NumberOfComponents="{a.shape[1] if a.ndim == 2 else 1}" '
+        # scalars without NumberOfComponents: meshio reads them back as (n,), not (n, 1)
+        components = f' NumberOfComponents="{a.shape[1]}"' if a.ndim == 2 else ""
+        head.append(f'<DataArray type="{_VTK_TYPES[a.dtype.str[1:]]}"{named}{components} '
                     f'format="appended" offset="{offset}"/>\n')
         data = np.ascontiguousarray(a).tobytes()
         blobs += [np.uint64(len(data)).tobytes(), data]

@@ -39,5 +39,4 @@ def test_meshio_reads_it_back_exactly(written):
     np.testing.assert_array_equal(mesh.points[:, :2], points)
     np.testing.assert_array_equal(mesh.cells_dict["triangle6"], cells)
     for name, values in data.items():
-        np.testing.assert_array_equal(mesh.point_data[written_name(name)].reshape(values.shape),
-                                      values)
+        np.testing.assert_array_equal(mesh.point_data[written_name(name)], values)
