@@ -9,8 +9,7 @@ import math
 
 import numpy as np
 
-from ..fe import Segment
-from ..fe.mesh import halved
+from ..fe import Segment, halved
 from ..planar import rotate, wrap
 
 ROOT_BAND = 0.3          # root zone: the lower 30 % of the tooth height
