@@ -7,6 +7,18 @@ from fegear.geometry import Gear1Profile, ToothContact
 
 BASELINE_MODS = dict(shift=0.016, rotation=0.002)
 
+#: z 8/9 with h1 0.91: gear 1's root radius (4.6 mm) below the default 3 m rim (5.7 mm), and
+#: its first touch on a tip round that stands µm behind the sharp profile's (the random-pair
+#: property test's draws)
+SMALL_GEAR = dict(m=1.9077814968607891, z2=9, z1=8, h1=0.9133963644840435,
+                  f1=0.01741198407749094, shift=0.015262251974886313,
+                  rotation=0.0019077814968607892, tip_clearance=0.01741198407749094)
+#: h1 0.95 and f1 0 at m 3.8, z1 8 and 108: pointed teeth; at z2 = 111 gear 2's tooth tip bends
+#: at a 0.47 mm radius under 0.19 mm flank elements
+POINTED = dict(m=3.7947903015118905, h1=0.9492161670931352, f1=0.0,
+               shift=0.030358322412095125, rotation=0.0037947903015118907,
+               tip_clearance=0.030358322412095125)
+
 #: id: (pair inputs, torque N·m, whether only far-side teeth may carry it)
 EXTREME_SHAPES = {
     "zero tip clearance, light: only far-side teeth touch": (dict(BASELINE_MODS, tip_clearance=0.0),

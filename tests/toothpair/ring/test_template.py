@@ -4,6 +4,7 @@ refused, meshed at `coarse` (about a second each)."""
 
 import numpy as np
 import pytest
+from shapes import POINTED, SMALL_GEAR
 
 from fegear.errors import FegearError
 from fegear.fe import mesh_bodies
@@ -15,14 +16,9 @@ SMALL_SHIFTED = dict(m=0.5341851169029675, z2=52, z1=50, h1=0.29203301120379815,
                      f1=0.29203301120379815, shift=0.0035418302359403564,
                      rotation=1.6420731396915087e-166)
 TIGHT = dict(z2=66, z1=65, h1=0.31303910669746804, f1=0.2515399623644864)
-SMALL_GEAR = dict(m=1.9077814968607891, z2=9, z1=8, h1=0.9133963644840435,
-                  f1=0.01741198407749094, shift=0.015262251974886313,
-                  rotation=0.0019077814968607892, tip_clearance=0.01741198407749094)
 #: h1 0.95 and f1 0 at z2 = 111: gear 2's tooth tip bends at a 0.47 mm radius under 0.19 mm
 #: flank elements, whose quadratic edges left the exact tip by a fifth of an element
-SHARP_GEAR2 = dict(m=3.7947903015118905, z2=111, z1=108, h1=0.9492161670931352, f1=0.0,
-                   shift=0.030358322412095125, rotation=0.0037947903015118907,
-                   tip_clearance=0.030358322412095125)
+SHARP_GEAR2 = dict(POINTED, z2=111, z1=108)
 
 REFUSED = {
     # m ≈ 0.5: gear 2's flanks turn at a 0.26-0.29 mm radius and run up to 3.8 times faster
