@@ -32,11 +32,13 @@ def _solved(inputs, torque, beta):
     return sol
 
 
+@pytest.mark.slow  # 4 s: _active_set's arm_rate is exercised by every default solve
 def test_the_rotation_settles_quadratically_at_a_sharp_gear_2_tip(monkeypatch):
     monkeypatch.setattr(contact, "MAX_TURNS", 10)   # it took more than 30 before
     _solved(SHARP_TIP, 6.587005962987897, 0.0006990687571524972)
 
 
+@pytest.mark.slow  # 3 s
 def test_a_first_touch_on_a_tip_round_finds_its_grid():
     sol = _solved(SMALL_GEAR, 0.4678902185346544, 0.000171096)
     assert any(t.edge_load_N for t in sol.teeth)      # the load sits on the round
@@ -94,6 +96,7 @@ def test_a_contact_that_does_not_settle_under_an_overload_names_the_torque():
     assert "times the" in str(err.value) and "lower --torque" in str(err.value)
 
 
+@pytest.mark.slow  # 5 s
 def test_a_submodel_on_a_pointed_tooth_follows_its_curve():
     """z 8/9 with h1 1 and f1 0 under a relief: gear 1's contact submodel had 8 polyline points
     over 1.5 mm of a flank turning at 0.7 mm; its nodes, snapped onto the curve, moved 7 µm in
