@@ -112,7 +112,7 @@ def _active_set(A, w, g0, a, torque_nmm, active, arm_rate=0.0):
         if np.array_equal(new, active):
             return pressure, step, active, k
         key = new.tobytes()
-        if key in seen:   # it cycles: the slower method that cannot
+        if key in seen:   # it cycles: on by the primal method, which cannot
             break
         seen.add(key)
         active = new
@@ -146,8 +146,8 @@ def _primal(A, w, g0, a, torque_nmm, arm_rate, start, used):
     fast method's last pressures, the pulling ones dropped and the rest scaled to the torque;
     else the closing point of least gap): the point of most overlap joins, one at a time (its
     pressure then rises from zero); a pressure that would pull stops the step where it reaches
-    zero and leaves. Finite for a symmetric positive
-    definite compliance (the ring's, collocated at the grid points, is close to one)."""
+    zero and leaves. Finite for a symmetric positive definite compliance (the ring's,
+    collocated at the grid points, is close to one); bounded by MAX_PRIMAL steps a point."""
     pressure = np.maximum(start, 0.0)
     carried = -(w * pressure) @ a
     if carried > 0:
