@@ -168,7 +168,7 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
         files.update(write_cycle_outputs(
             rows, out, f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T "
                        f"{i['torque_Nm']:g} N·m, {len(rows)} positions, quality "
-                       f"{i['quality']}"))
+                       f"{i['quality']}", solved.job.allowables))
     files.update(write_pair_outputs(solved.solution, out, {**summary, "files": {
         k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures))
     return files

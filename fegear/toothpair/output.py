@@ -17,11 +17,13 @@ from .case import HEADLINE, PairSolution
 from .plot import cycle_png, flank_pressure_png, root_stress_png, von_mises_png
 
 
-def write_cycle_outputs(rows: list[dict], out: Path, title: str) -> dict[str, Path]:
-    """cycle.csv (one row per position) and cycle.png (load shares, stresses, TE)."""
+def write_cycle_outputs(rows: list[dict], out: Path, title: str,
+                        allowables=None) -> dict[str, Path]:
+    """cycle.csv (one row per position) and cycle.png (load shares, stresses with the
+    ``allowables`` and the smallest safety factors, TE)."""
     cols = list(rows[0])
     files = {"csv": write_csv(out / "cycle.csv", cols, ([r[c] for c in cols] for r in rows))}
-    files["cycle_png"] = cycle_png(out / "cycle.png", rows, title, HEADLINE)
+    files["cycle_png"] = cycle_png(out / "cycle.png", rows, title, HEADLINE, allowables)
     return files
 
 

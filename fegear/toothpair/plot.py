@@ -12,11 +12,19 @@ from ..figures import pyplot, save_png
 from .case import PairSolution
 from .edge import flank_centre
 
+#: the verdict drawn on a cycle's stress panels: safety factor key, its stress, its label
+CYCLE_VERDICT = {1: (("safety_bending_gear1", "root_stress_gear1_MPa", "S_F gear 1"),
+                     ("safety_bending_gear2", "root_stress_gear2_MPa", "S_F gear 2")),
+                 2: (("safety_contact", "contact_pressure_MPa", "S_H"),)}
 
-def cycle_png(path: Path, rows: list[dict], title: str, stresses: dict[str, str]) -> Path:
+
+def cycle_png(path: Path, rows: list[dict], title: str, stresses: dict[str, str],
+              allowables=None) -> Path:
     """Load share per tooth, the root stresses, the contact stresses (``stresses``: row key →
     label) and gear 1's rotation against position, on linear axes, from the rows of
-    :func:`fegear.toothpair.report.cycle_rows`."""
+    :func:`fegear.toothpair.report.cycle_rows`. With ``allowables`` the stress panels carry
+    the verdict: the allowable as a line (or, where it is over twice the largest stress, in
+    the legend) and the smallest S_F and S_H marked at their β."""
     plt = pyplot()
 
     beta = [r["position_deg"] for r in rows]
@@ -33,6 +41,10 @@ def cycle_png(path: Path, rows: list[dict], title: str, stresses: dict[str, str]
         for k in keys:
             ax[panel].plot(beta, [r[k] for r in rows], marker="o", ms=3, label=stresses[k])
         ax[panel].legend(fontsize=8)
+    if allowables is not None:
+        for panel, limit, name in ((1, allowables.bending, "σ_FP"),
+                                   (2, allowables.contact, "σ_HP")):
+            _verdict(ax[panel], rows, limit, name, CYCLE_VERDICT[panel])
     ax[1].set_ylabel("root stress [MPa]")
     ax[2].set_ylabel("contact stress [MPa]")
     ax[3].plot(beta, [r["rotation_urad"] for r in rows], marker="o", ms=3,
@@ -50,6 +62,25 @@ def cycle_png(path: Path, rows: list[dict], title: str, stresses: dict[str, str]
     fig.tight_layout()
 
     return save_png(fig, path, 110)
+
+
+def _verdict(ax, rows: list[dict], limit: float, name: str, factors) -> None:
+    """The allowable ``limit`` (MPa) on a cycle's stress panel and each of ``factors``
+    (safety key, stress key, label) marked where it is smallest, its value in the legend."""
+    top = max(r[stress] for _, stress, _ in factors for r in rows)
+    if limit <= 2.0 * top:
+        ax.axhline(limit, color="C3", ls="--", lw=1.2, label=f"allowable {name} {limit:g} MPa")
+    else:
+        ax.plot([], [], " ", label=f"allowable {name} {limit:g} MPa (off the scale)")
+    for key, stress, label in factors:
+        have = [r for r in rows if r.get(key) is not None]
+        if not have:
+            continue
+        worst = min(have, key=lambda r: r[key])
+        ax.plot(worst["position_deg"], worst[stress], "v", mfc="none", mec="C3", mew=1.5,
+                ms=9, label=f"smallest {label} {worst[key]:.2f}, at β "
+                            f"{worst['position_deg']:.3g}°")
+    ax.legend(fontsize=8)
 
 
 def von_mises_png(path: Path, sol: PairSolution, bodies, peaks=()) -> Path:

@@ -157,3 +157,32 @@ def test_with_sharp_tips_the_distances_start_at_the_kink(baseline):
         assert d.min() > -1e-3                    # nothing loaded beyond the corner
         corner_loaded += d.min() < 0.01           # loaded within 10 µm of it
     assert corner_loaded >= 1
+
+
+def test_the_cycle_picture_carries_the_allowable_and_the_smallest_factors():
+    """cycle.png's stress panels: the allowable as a line while within twice the largest
+    stress (else in the legend only), and the smallest S_F at the β where it occurs."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from fegear.toothpair.plot import CYCLE_VERDICT, _verdict
+
+    rows = [{"position_deg": b, "root_stress_gear1_MPa": s1, "root_stress_gear2_MPa": s2,
+             "safety_bending_gear1": 558 / s1, "safety_bending_gear2": 558 / s2}
+            for b, s1, s2 in ((0.0, 280.0, 270.0), (4.0, 300.0, 250.0), (8.0, 290.0, 275.0))]
+    fig, ax = plt.subplots()
+    _verdict(ax, rows, 558.0, "σ_FP", CYCLE_VERDICT[1])
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels == ["allowable σ_FP 558 MPa", "smallest S_F gear 1 1.86, at β 4°",
+                      "smallest S_F gear 2 2.03, at β 8°"]
+    assert [tuple(line.get_ydata()) for line in ax.lines[:1]] == [(558.0, 558.0)]
+    fig2, far = plt.subplots()
+    _verdict(far, rows, 5580.0, "σ_FP", CYCLE_VERDICT[1])
+    assert "allowable σ_FP 5580 MPa (off the scale)" in [
+        t.get_text() for t in far.get_legend().get_texts()]
+    assert all(len(line.get_ydata()) != 2 or line.get_ydata()[0] != 5580.0
+               for line in far.lines)
+    plt.close(fig)
+    plt.close(fig2)
