@@ -79,11 +79,13 @@ class PositionModel(Protocol):
         """Stresses and per-tooth results of a settled attempt (timings in the solution)."""
 
 
-def _unsettled(case: SolveCase, trial: Trial, expected_um: float, err: Exception) -> str:
+def _unsettled(case: SolveCase, trial: Trial, err: Exception) -> str:
     """Why the contact did not settle, with the input that changes it: how far the load had
-    turned gear 1 past its first touch at the attempt before, against the estimate."""
+    turned gear 1 past its first touch at the attempt before, against what the teeth's
+    stiffness gives (:func:`expected_elastic_um` without a solution before)."""
     where = (f"the contact did not settle under --torque {case.torque:g} N·m at β "
              f"{math.degrees(case.beta):.4g}° ({err})")
+    expected_um = expected_elastic_um(case)
     if trial.elastic_um <= 2.0 * expected_um:
         return where
     return (f"{where}: gear 1 had turned {trial.elastic_um:.3g} µm past its first touch, "
@@ -131,7 +133,7 @@ def drive(case: SolveCase, betas, solver: PositionModel,
             try:
                 attempt = solver.attempt(at, state, trial, near)
             except ContactError as err:
-                raise ContactError(_unsettled(at, trial, elastic, err)) from None
+                raise ContactError(_unsettled(at, trial, err)) from None
             times.update(attempt.timings_s)
             if attempt.again is None:
                 break

@@ -74,8 +74,8 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
     while True:
         # the torque's arm turns with gear 1: where gear 2 bends sharply (a pointed tip) the
         # rotation converged only linearly, half a digit a linearisation, without this term
-        arm_rate = (w * pressure) @ (rigid_gap(model, contact.x, contact.beta,
-                                               alpha + theta + ARM_STEP)[1] - a) / ARM_STEP
+        arm_rate = 0.0 if not pressure.any() else (w * pressure) @ (
+            rigid_gap(model, contact.x, contact.beta, alpha + theta + ARM_STEP)[1] - a) / ARM_STEP
         pressure, step, active, used = _active_set(A, w, g0, a, torque_nmm, active, arm_rate)
         total += used
         turns += 1
