@@ -20,6 +20,10 @@ import numpy as np
 from ..errors import GeometryError
 from .parameters import PairParameters
 
+#: a Newton iteration in ξ is done within this many ulps of ξ (an absolute 1e-15 is below one
+#: ulp for |ξ| > 4.5, where the residual θ(ξ) − θ only rounds)
+_ULPS = 4
+
 
 @dataclass(frozen=True)
 class Cycloid:
@@ -123,25 +127,33 @@ class Cycloid:
 
     def xi_at_angle(self, theta: np.ndarray, tol: float = 1e-15) -> np.ndarray:
         """Invert θ(ξ) (increasing on a star-shaped curve): Newton's method inside the bracket
-        ``|θ − ξ| <= atan(|w|max / u_min)``, a bisection where a step leaves it."""
+        ``|θ − ξ| <= atan(|w|max / u_min)``, a bisection where a step leaves it. A point is
+        done when its step or bracket is within ``tol`` or a few ulps of ξ; only the points
+        not done are iterated again."""
         theta = np.atleast_1d(np.asarray(theta, dtype=float))
         reach = np.arctan2(2 * self.e2 + 2 * abs(self.d2), self.r0 - 2 * self.e1) + 1e-12
         lo, hi = theta - reach, theta + reach
         xi = theta.copy()
+        todo = np.arange(theta.size)
         for _ in range(100):
-            (u, w), (du, dw) = self._uw(xi, 1)
-            f = xi + np.arctan2(w, u) - theta
-            hi = np.where(f > 0, xi, hi)
-            lo = np.where(f > 0, lo, xi)
+            x, t, a, b = xi[todo], theta[todo], lo[todo], hi[todo]
+            (u, w), (du, dw) = self._uw(x, 1)
+            f = x + np.arctan2(w, u) - t
+            b = np.where(f > 0, x, b)
+            a = np.where(f > 0, a, x)
             df = 1.0 + (u * dw - w * du) / (u * u + w * w)
             with np.errstate(divide="ignore", invalid="ignore"):
-                new = xi - f / df
-            new = np.where((new > lo) & (new < hi), new, 0.5 * (lo + hi))
-            step = new - xi
-            xi = new
-            if np.max(np.abs(step)) < tol or np.max(hi - lo) < tol:
+                new = x - f / df
+            # a step that lands on the bracket's end is kept: a root hit exactly (f = 0) ends its
+            # own bracket, and bisecting there sent ξ away again (47 iterations, not 6)
+            new = np.where((new >= a) & (new <= b), new, 0.5 * (a + b))
+            step = np.abs(new - x)
+            xi[todo], lo[todo], hi[todo] = new, a, b
+            floor = np.maximum(tol, _ULPS * np.spacing(np.abs(new)))
+            todo = todo[(step > floor) & (b - a > floor)]
+            if todo.size == 0:
                 return xi
-        if np.max(np.abs(step)) > 1e-12:
+        if np.max(step) > 1e-12:
             raise GeometryError("gear-2 polar inversion did not converge")
         return xi
 
@@ -165,14 +177,17 @@ class Cycloid:
         y = np.atleast_2d(np.asarray(y, dtype=float))
         xi = self.xi_at_angle(np.arctan2(y[:, 1], y[:, 0]))
         limit = 0.25 * np.pi / self.z
+        todo = np.arange(len(y))
         for _ in range(50):
-            p, d1, d2 = self.derivatives(xi, 2)
-            r = p - y
+            x = xi[todo]
+            p, d1, d2 = self.derivatives(x, 2)
+            r = p - y[todo]
             f = np.einsum("ij,ij->i", r, d1)
             df = np.einsum("ij,ij->i", d1, d1) + np.einsum("ij,ij->i", r, d2)
             step = np.clip(f / df, -limit, limit)
-            xi = xi - step
-            if np.max(np.abs(step)) < 1e-15:
+            xi[todo] = x - step
+            todo = todo[np.abs(step) > np.maximum(1e-15, _ULPS * np.spacing(np.abs(x)))]
+            if todo.size == 0:
                 break
         p, d1 = self.derivatives(xi, 1)
         t = d1 / np.hypot(d1[:, 0], d1[:, 1])[:, None]
