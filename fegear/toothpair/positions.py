@@ -116,7 +116,7 @@ def drive(case: SolveCase, betas, solver: PositionModel,
     t0 = time.perf_counter()
     profile = profile if profile is not None else gear1_profile(case.params)
     tca = ToothContact(case.params, profile)
-    states = [(b, tca.state(b)) for b in betas]
+    states = list(zip(betas, tca.states(betas)))
     refuse_interference(states)
     t_tca = time.perf_counter() - t0
     solver.build(case, profile, states)

@@ -89,3 +89,13 @@ def test_tooth_positions_and_counts(tca_modified):
     assert np.allclose(np.diff(pos), 360 / tca_modified.params.z1, atol=1e-9)
     # the closest teeth are near the pitch point
     assert abs(st.closest(+1).position_deg) < 30 and abs(st.closest(-1).position_deg) < 30
+
+
+def test_states_of_a_cycle_are_the_states_one_by_one(baseline, baseline_profile):
+    # the cycle's one search gives every position exactly what its own search gives, also
+    # for a subset of teeth and unrefined
+    betas = np.linspace(0.0, 2 * np.pi / baseline.z2, 5, endpoint=False)
+    tca = ToothContact(baseline, baseline_profile)
+    assert tca.states(betas) == [tca.state(b) for b in betas]
+    assert tca.states(betas[1:3], teeth=[9, 10, 30], refine=False) == [
+        tca.state(b, teeth=[9, 10, 30], refine=False) for b in betas[1:3]]
