@@ -34,6 +34,19 @@ def save_png(fig, path: Path, dpi: int) -> Path:
         plt.close(fig)
 
 
+def margins(fig, left: float, right: float, bottom: float, top: float,
+            wspace: float = 0.0, hspace: float = 0.0) -> None:
+    """Place a figure's subplot grid by fixed margins and gaps in inches: ``tight_layout``
+    measured every tick label by drawing the figure once more, 0.8 of the 3.8 s the
+    baseline's three pictures took."""
+    w, h = fig.get_size_inches()
+    rows, cols = fig.axes[0].get_subplotspec().get_gridspec().get_geometry()
+    width = (w - left - right - (cols - 1) * wspace) / cols
+    height = (h - top - bottom - (rows - 1) * hspace) / rows
+    fig.subplots_adjust(left=left / w, right=1.0 - right / w, bottom=bottom / h,
+                        top=1.0 - top / h, wspace=wspace / width, hspace=hspace / height)
+
+
 def pyvista():
     """``pyvista`` set up for files: off-screen, and VTK's own log silenced (without a display
     VTK logs "bad X server connection" with terminal colour codes on every render, then

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..figures import pyplot, save_png
+from ..figures import margins, pyplot, save_png
 from .case import PairSolution
 from .edge import flank_centre
 
@@ -59,8 +59,7 @@ def cycle_png(path: Path, rows: list[dict], title: str, stresses: dict[str, str]
     for a in ax:
         a.grid(alpha=0.3)
     fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
-
+    margins(fig, left=0.85, right=0.2, bottom=0.6, top=0.55, hspace=0.15)
     return save_png(fig, path, 110)
 
 
@@ -158,7 +157,7 @@ def von_mises_png(path: Path, sol: PairSolution, bodies, peaks=()) -> Path:
     _scale_bar(az, zbox, "µm")
     fig.colorbar(im, ax=az, orientation="horizontal", fraction=0.05, pad=0.03,
                  label="von Mises [MPa]")
-    fig.tight_layout()
+    margins(fig, left=0.25, right=0.25, bottom=0.55, top=0.55, wspace=0.4)
     return save_png(fig, path, 100)
 
 
@@ -299,7 +298,7 @@ def flank_pressure_png(path: Path, sol: PairSolution, summary: dict) -> Path | N
     i = summary["inputs"]
     fig.suptitle(f"contact pressure along the loaded flanks: T {i['torque_Nm']:g} N·m, β "
                  f"{i['position_deg']:.3g}°, quality {i['quality']}", fontsize=10)
-    fig.tight_layout()
+    margins(fig, left=0.75, right=0.2, bottom=0.6, top=0.8, wspace=0.75, hspace=0.9)
     return save_png(fig, path, 100)
 
 
@@ -374,5 +373,5 @@ def root_stress_png(path: Path, sol: PairSolution, summary: dict) -> Path:
                  f"{i['torque_Nm']:g} N·m, β {i['position_deg']:.3g}°", fontsize=10)
     ax.legend(fontsize=8, loc="upper right")
     ax.grid(axis="y", alpha=0.3)
-    fig.tight_layout()
+    margins(fig, left=0.8, right=0.2, bottom=0.75, top=0.6)
     return save_png(fig, path, 100)
