@@ -46,7 +46,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "stress": ("StressField", "recover"),
     "hertz": ("HertzLine", "line_contact"),
     "vtu": ("vtu_fields", "write_vtu", "written_name"),
-    "solvers": ("Factor", "SingularError"),
+    "solvers": ("Factor", "SingularError", "BLAS_THREADS", "blas_threads"),
     "cyclic": ("CyclicBody", "assemble_cyclic"),
     "probe": ("Probe",),
     "submodel": ("StarCurve", "Submodel", "SubmodelProblem", "solve_submodels"),

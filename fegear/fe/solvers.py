@@ -13,6 +13,20 @@ import scipy.sparse as sp
 
 from ..errors import FegearError
 
+#: BLAS threads while a solve runs. The dense products and solves here are of a few thousand
+#: rows: OpenBLAS's threads cost more than they give, and with a second process on the two
+#: cores (a study's other worker) they spin against each other (docs/benchmark.md, "BLAS
+#: threads": a 24-position cycle 95 s with two threads beside another job, 13 s with one)
+BLAS_THREADS = 1
+
+
+def blas_threads(limit: int = BLAS_THREADS):
+    """A context in which numpy's and scipy's BLAS use at most ``limit`` threads
+    (threadpoolctl: it reaches the libraries already loaded, whatever the environment said)."""
+    from threadpoolctl import threadpool_limits
+
+    return threadpool_limits(limits=limit, user_api="blas")
+
 
 class SingularError(FegearError):
     """The matrix is not positive definite: the body is not held."""

@@ -27,6 +27,7 @@ from typing import Protocol
 
 from .. import progress
 from ..errors import ContactError, FegearError
+from ..fe import blas_threads
 from ..geometry import Gear1Profile, ToothContact, gear1_profile
 from .case import PairSolution, SolveCase
 from .teeth import TOOTH_STIFFNESS, choose_teeth, refuse_interference
@@ -112,7 +113,14 @@ def first_teeth(case: SolveCase, state, elastic_um: float) -> tuple[int, ...]:
 def drive(case: SolveCase, betas, solver: PositionModel,
           profile: Gear1Profile | None = None) -> tuple[PairSolution, ...]:
     """Solve ``case`` at each rolling angle of ``betas`` (rad) with ``solver``; the first
-    position carries the one-off stages' timings."""
+    position carries the one-off stages' timings. BLAS runs on one thread meanwhile
+    (:data:`~fegear.fe.BLAS_THREADS`)."""
+    with blas_threads():
+        return _drive(case, betas, solver, profile)
+
+
+def _drive(case: SolveCase, betas, solver: PositionModel,
+           profile: Gear1Profile | None) -> tuple[PairSolution, ...]:
     t0 = time.perf_counter()
     profile = profile if profile is not None else gear1_profile(case.params)
     tca = ToothContact(case.params, profile)

@@ -77,3 +77,25 @@ def test_attempts_are_summed_and_bounded(profile):
     assert model.trials[2][1].elastic_um == pytest.approx(4 * model.trials[0][1].elastic_um)
     with pytest.raises(FegearError, match=f"did not settle in {ATTEMPTS} attempts"):
         drive(CASE, (0.0,), StandIn(again=ATTEMPTS), profile)
+
+
+def test_blas_runs_on_one_thread_during_a_solve_and_as_before_after(profile):
+    # OpenBLAS's threads slowed every solve on two cores (docs/benchmark.md, "BLAS threads")
+    import numpy as np  # noqa: F401  (its BLAS loaded, so that there is a pool to limit)
+    from threadpoolctl import threadpool_info
+
+    def blas():
+        return {i["filepath"]: i["num_threads"] for i in threadpool_info()
+                if i["user_api"] == "blas"}
+
+    seen = []
+
+    class Recording(StandIn):
+        def attempt(self, case, state, trial, near):
+            seen.append(blas())
+            return super().attempt(case, state, trial, near)
+
+    before = blas()
+    drive(CASE, (0.0,), Recording(again=0), profile)
+    assert seen and all(n == 1 for n in seen[0].values())
+    assert blas() == before
