@@ -26,7 +26,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
              "case_key"),
     "records": ("finished", "record_path"),
     "runner": ("run_study", "run_case", "StudyReport", "StudyInterrupted"),
-    "results": ("write_results", "rows"),
+    "results": ("write_results", "rows", "study_plot"),
     "frame": ("load_results",),
-    "plot": ("study_png",),
+    "plot": ("study_png", "StudyPlot", "Line"),
 })

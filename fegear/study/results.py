@@ -4,8 +4,12 @@ A row holds the case's inputs (every ``fegear solve`` input by name), its status
 every value of the ``fegear solve --json`` summary (nested keys joined by dots, lists as JSON
 text), the fegear and library versions, the code version and the times. The safety factors
 are computed here, from the stored stresses at the allowables the study file gives now
-(:func:`~fegear.toothpair.with_safety`): new allowables need no solve. Cases not finished yet
-have no row; the table is rebuilt from ``cases/*.json`` whenever the study stops.
+(:func:`~fegear.toothpair.with_safety`): new allowables need no solve. A case with
+``positions`` has its cycle's extremes as columns (``cycle.<stress>.max`` and
+``cycle.<factor>.min``, each with its ``at_position_deg``; docs/studies.md), the factors
+recomputed from every position's stored stresses. Cases not finished yet have no row; the
+table is rebuilt from ``cases/*.json`` whenever the study stops. :func:`study_plot` gathers
+what each plot shows.
 """
 
 from __future__ import annotations
@@ -19,6 +23,7 @@ from pathlib import Path
 from ..files import write_atomic
 from ..toothpair import HEADLINE, SOLVE_INPUTS, allowables_of, with_safety
 from .file import Study
+from .plot import Line, StudyPlot
 
 #: headline stresses in the study table's head
 SHORT = {"root_stress_gear1_MPa": "root σ1 g1", "root_stress_gear2_MPa": "root σ1 g2",
@@ -101,6 +106,14 @@ def write_results(study: Study, out: Path) -> dict[str, Path]:
     return files
 
 
+def plot_input(path: Path, study: Study, table: list[dict], x: str) -> Path | None:
+    """The picture of input ``x`` (:func:`study_plot`); None where it has no line."""
+    from .plot import study_png
+
+    plot = study_plot(study, table, x)
+    return None if plot is None else study_png(path, plot, HEADLINE)
+
+
 def write_parquet(path: Path, table: list[dict], cols: list[str]) -> Path:
     import pyarrow as pa
     import pyarrow.parquet as pq
@@ -140,28 +153,143 @@ def to_csv(table: list[dict], cols: list[str]) -> str:
 
 
 def markdown(study: Study, table: list[dict]) -> str:
-    """The study at a glance: varied inputs, headline stresses, error estimate, status."""
+    """The study at a glance: varied inputs, headline stresses, safety factors, error
+    estimate, status. A study with ``positions`` gets the cycle's largest stresses and
+    smallest factors, each at its β, beside the values at the cycle's first position β0 (the
+    study's ``position``) and a line under the table that says so."""
+    cycled = any(r.get("cycle.positions") for r in table)
     head = (list(study.varied) + [SHORT[k] for k in HEADLINE] + list(SAFETY_SHORT.values())
-            + ["edge N", "est. error %", "teeth", "status", "time s"])
+            + ["edge N"]
+            + ([f"{SHORT[k]} cycle" for k in HEADLINE]
+               + [f"{s} cycle" for s in SAFETY_SHORT.values()] if cycled else [])
+            + ["est. error %", "teeth", "status", "time s"])
     lines = ["| " + " | ".join(head) + " |", "|" + "---:|" * len(head)]
     for r in table:
         ok = r["status"] == "ok"
-        cells = [_cell(r.get(x)) for x in study.varied]
-        cells += [f"{r[k]:.1f}" if ok else "–" for k in HEADLINE]
-        cells += [f"{r[k]:.2f}" if ok and r.get(k) is not None else "–" for k in SAFETY_SHORT]
-        edge = r.get("edge_contact.load_N")
-        cells.append(f"{edge:.1f}" if ok and edge is not None else "–")
+        cells = [_cell(r.get(x)) for x in study.varied] + _position_cells(r)
+        if cycled:
+            cells += _cycle_cells(r)
         est = r.get("error_estimate_pct")
-        cells += [f"{est:.2f}" if ok and est is not None else "–",
-                  str(r.get("teeth_in_contact", "–")) if ok else "–",
+        cells += [f"{est:.2f}" if ok and est is not None else "–", _teeth(r) if ok else "–",
                   "ok" if ok else f"failed: {r['error']}",
                   f"{r['case_wall_s']:.1f}" if r.get("case_wall_s") is not None else "–"]
         lines.append("| " + " | ".join(cells) + " |")
+    if cycled:
+        lines += ["", "Stresses in MPa. With positions, the first columns are at the cycle's "
+                  "first position β0 (the study's position); \"cycle\": the largest stress "
+                  "and the smallest safety factor over the cycle, at its β. The error estimate "
+                  "is at the position of the largest root σ1 of gear 1; teeth: fewest–most "
+                  "in contact over the cycle."]
     return "\n".join(lines)
+
+
+def cycle_of(row: dict) -> list[dict] | None:
+    """A table row's cycle, one dict per position from its first, β0 (the case's
+    ``position``), on: ``cycle.rows``, with the safety factors at the study's allowables;
+    None for a case without ``positions``."""
+    text = row.get("cycle.rows")
+    return json.loads(text) if text else None
+
+
+def _position_cells(r: dict) -> list[str]:
+    """The headline stresses, safety factors and load on the tip rounds of one position: the
+    case's own, or with a cycle its first position's."""
+    n = len(HEADLINE) + len(SAFETY_SHORT) + 1
+    if r["status"] != "ok":
+        return ["–"] * n
+    cycle = cycle_of(r)
+    at = cycle[0] if cycle else None
+    values = at if at is not None else r
+    edge = values.get("edge_load_N" if at is not None else "edge_contact.load_N")
+    return ([f"{values[k]:.1f}" for k in HEADLINE] + [_factor(values.get(k))
+                                                       for k in SAFETY_SHORT]
+            + [f"{edge:.1f}" if edge is not None else "–"])
+
+
+def _cycle_cells(r: dict) -> list[str]:
+    """The cycle's largest headline stresses and smallest safety factors, each with the β
+    (deg) where it occurs; dashes for a case without a cycle."""
+    if r["status"] != "ok" or not r.get("cycle.positions"):
+        return ["–"] * (len(HEADLINE) + len(SAFETY_SHORT))
+    worst = [(r[f"cycle.{k}.max"], r[f"cycle.{k}.at_position_deg"], 1) for k in HEADLINE]
+    worst += [(r.get(f"cycle.{k}.min"), r.get(f"cycle.{k}.at_position_deg"), 2)
+              for k in SAFETY_SHORT]
+    return [f"{v:.{digits}f} ({beta:.3g}°)" if v is not None else "–"
+            for v, beta, digits in worst]
+
+
+def _factor(s: float | None) -> str:
+    return f"{s:.2f}" if s is not None else "–"
+
+
+def _teeth(r: dict) -> str:
+    """Teeth in contact: the case's, or over a cycle the fewest and the most."""
+    low, high = r.get("cycle.teeth_in_contact.min"), r.get("cycle.teeth_in_contact.max")
+    if low is None:
+        return str(r.get("teeth_in_contact", "–"))
+    return str(low) if low == high else f"{low}–{high}"
 
 
 def _cell(v) -> str:
     return f"{v:g}" if isinstance(v, float) else str(v)
+
+
+def study_plot(study: Study, table: list[dict], x: str) -> StudyPlot | None:
+    """What the picture of input ``x`` shows: one :class:`Line` per level of the other
+    varied inputs where ``x`` takes two or more values. An input a sweep block sets along
+    with ``x`` as a function of it (a ``zip`` block: a relief sized per case) goes with ``x``
+    and does not split the lines; an allowable splits none (it changes no stress: cases apart
+    in allowables alone are one point). None if no such line exists."""
+    ok = [r for r in table if r["status"] == "ok"]
+    tied = _tied(study, ok, x)
+    others = [v for v in study.varied if v != x and v not in tied and not SOLVE_INPUTS[v].post]
+    groups: dict[tuple, list[dict]] = {}
+    for r in ok:
+        groups.setdefault(tuple(r[o] for o in others), []).append(r)
+    lines, keys = [], set()
+    for level, rs in groups.items():
+        if len({r[x] for r in rs}) < 2:
+            continue
+        rs = sorted({r["key"]: r for r in rs}.values(), key=lambda r: r[x])
+        label = ", ".join([f"{o} {_cell(v)}{_unit(o)}" for o, v in zip(others, level)]
+                          + [f"{o} with {x}" for o in tied]) or "all"
+        lines.append(_line(label, x, rs))
+        keys.update(r["key"] for r in rs)
+    if not lines:
+        return None
+    shown = [r for r in ok if r["key"] in keys]
+    torques = {r["torque"] for r in shown}
+    allowables = {(r["allowable-bending"], r["allowable-contact"]) for r in shown}
+    unit = _unit(x).strip()
+    return StudyPlot(study.name, x, f"{x} [{unit}]" if unit else x, tuple(lines),
+                     torques.pop() if len(torques) == 1 else None,
+                     allowables.pop() if len(allowables) == 1 else None,
+                     tuple(sorted({r["cycle.positions"] for r in shown
+                                   if r.get("cycle.positions")})))
+
+
+def _line(label: str, x: str, rs: list[dict]) -> Line:
+    """One line through the cases ``rs`` (sorted by ``x``)."""
+    cycles = [cycle_of(r) for r in rs]
+    stress, error = {}, {}
+    for k in HEADLINE:
+        stress[k] = tuple(r[f"cycle.{k}.max"] if c else r[k] for r, c in zip(rs, cycles))
+        err = [r.get(f"error_estimate_by_stress_pct.{k}") for r in rs]
+        error[k] = tuple(0.0 if e is None or not math.isfinite(e) else s * e / 100.0
+                         for s, e in zip(stress[k], err))
+    safety = {k: tuple(r.get(f"cycle.{k}.min") if c else r.get(k) for r, c in zip(rs, cycles))
+              for k in SAFETY_SHORT}
+    edge = tuple(max(p["edge_load_N"] for p in c) if c else r.get("edge_contact.load_N") or 0.0
+                 for r, c in zip(rs, cycles))
+    on_round = tuple(
+        max(c, key=lambda p: p["contact_pressure_MPa"])["edge_load_N"] > 0 if c
+        else bool(r.get("edge_contact.load_N") or r.get("contact_peak_on_tip_round"))
+        for r, c in zip(rs, cycles))
+    start = None
+    if any(cycles):
+        start = {k: tuple(c[0][k] if c else r[k] for r, c in zip(rs, cycles))
+                 for k in HEADLINE}
+    return Line(label, tuple(r[x] for r in rs), stress, error, safety, edge, on_round, start)
 
 
 def _tied(study: Study, rows: list[dict], x: str) -> list[str]:
@@ -179,41 +307,6 @@ def _tied(study: Study, rows: list[dict], x: str) -> list[str]:
     return tied
 
 
-def plot_input(path: Path, study: Study, table: list[dict], x: str) -> Path | None:
-    """Each headline stress against input ``x``, one line per level of the other varied
-    inputs (only levels where ``x`` takes two or more values), error bars from the case's
-    error estimate. An input a sweep block sets along with ``x`` as a function of it (a
-    ``zip`` block: a relief sized per case) goes with ``x`` and does not split the lines.
-    None if no such line exists."""
-    from .plot import study_png
-
-    ok = [r for r in table if r["status"] == "ok"]
-    tied = _tied(study, ok, x)
-    # an allowable changes no stress: cases apart in allowables alone are one point (one key)
-    others = [v for v in study.varied if v != x and v not in tied and not SOLVE_INPUTS[v].post]
-    groups: dict[tuple, list[dict]] = {}
-    for r in ok:
-        groups.setdefault(tuple(r[o] for o in others), []).append(r)
-    lines = []
-    for level, rs in groups.items():
-        if len({r[x] for r in rs}) < 2:
-            continue
-        rs = sorted({r["key"]: r for r in rs}.values(), key=lambda r: r[x])
-        label = ", ".join([f"{o} {_cell(v)}" for o, v in zip(others, level)]
-                          + [f"{o} with {x}" for o in tied]) or "all"
-        series = {}
-        for k in HEADLINE:
-            err = [r.get(f"error_estimate_by_stress_pct.{k}") for r in rs]
-            series[k] = ([r[k] for r in rs],
-                         [0.0 if e is None or not math.isfinite(e) else r[k] * e / 100.0
-                          for r, e in zip(rs, err)])
-        edge = [bool(r.get("edge_contact.load_N") or r.get("contact_peak_on_tip_round"))
-                for r in rs]
-        series["edge"] = ([100.0 * (r.get("edge_contact.load_fraction") or 0.0) for r in rs],
-                          [0.0] * len(rs))
-        lines.append((label, [r[x] for r in rs], series, edge))
-    if not lines:
-        return None
-    title = f"{study.name}: headline stresses against {x}"
-    unit = SOLVE_INPUTS[x].unit if x in SOLVE_INPUTS else ""
-    return study_png(path, f"{x} [{unit}]" if unit else x, lines, HEADLINE, title)
+def _unit(name: str) -> str:
+    unit = SOLVE_INPUTS[name].unit if name in SOLVE_INPUTS else ""
+    return f" {unit}" if unit else ""
