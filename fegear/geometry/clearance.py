@@ -339,10 +339,13 @@ class ToothContact:
             oks.append(ok)
         if entries:
             k, j, piece, stretch, lo, hi = (np.array(c) for c in zip(*entries))
+            # each entry's gear-2 stretch: gear 1's centre o1 (gear 2's frame) at its angle,
+            # the stretch's ends a, b and their distances da, db from o1
             segs = [c[2] for c in coarse]
-            fv, fx = self._golden(np.asarray(betas)[k], direction, teeth[j], piece,
-                                  [segs[a][1:] for a in k], np.array([segs[a][0] for a in k]),
-                                  stretch, lo, hi)
+            seg = (np.array([segs[a][0] for a in k]),
+                   *(np.array([segs[a][c][i] for a, i in zip(k, stretch)]) for c in range(1, 5)))
+            fv, fx = self._golden(np.asarray(betas)[k], direction, teeth[j], piece, seg, lo,
+                                  hi)
             for e in range(len(k)):
                 if fv[e] < values[k[e]][j[e]]:
                     values[k[e]][j[e]], params[k[e]][j[e]] = fv[e], fx[e]
@@ -356,14 +359,13 @@ class ToothContact:
                         if ok[j] else (None, None) for j in range(nt)])
         return out
 
-    def _golden(self, beta, direction, tooth, piece, stretches, o1, segment, a, b, iters=30):
+    def _golden(self, beta, direction, tooth, piece, segment, a, b, iters=30):
         """Vectorized golden-section minimisation of the rotation to the crossing on a fixed
-        gear-2 stretch, over flank parameters ``[a, b]`` (one search per entry; ``beta``,
-        gear 1's centre ``o1`` in gear 2's frame and the ``stretches`` (a, b, da, db) of the
-        angle per entry)."""
+        gear-2 stretch, over flank parameters ``[a, b]`` (one search per entry, each with its
+        rolling angle ``beta`` and its stretch ``segment``: gear 1's centre in gear 2's frame
+        and the stretch's ends and distances, as :meth:`_gear2_segments` gives them)."""
         g = self.gear1
-        sa, sb, da, db = (np.array([s[c][i] for s, i in zip(stretches, segment)])
-                          for c in range(4))
+        o1, sa, sb, da, db = segment
         lo_d, hi_d = np.minimum(da, db), np.maximum(da, db)
 
         def f(t):
