@@ -9,13 +9,15 @@ from .case import PairSolution, SolveCase
 
 
 def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None,
-                    model=None) -> tuple[PairSolution, ...]:
+                    model=None, submodels: bool = True) -> tuple[PairSolution, ...]:
     """Solve ``case`` at each rolling angle of ``betas`` (rad) on one model. ``model``: a ring
-    model (:func:`~.ring.build_ring`) built before for the same geometry and quality, kept."""
+    model (:func:`~.ring.build_ring`) built before for the same geometry and quality, kept.
+    ``submodels`` False: no contact submodels, the von Mises stress at a contact is the
+    template's surface estimate (contact pressures and root stresses are the same)."""
     from .positions import drive
     from .ring.solve import RingSolver
 
-    return drive(case, betas, RingSolver(model), profile)
+    return drive(case, betas, RingSolver(model, submodels), profile)
 
 
 def solve_pair(case: SolveCase, profile: Gear1Profile | None = None,

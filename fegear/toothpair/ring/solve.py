@@ -41,10 +41,12 @@ PROBE_MARGIN_UM = 1.0  # fine grids also on teeth within this of closing at the 
 
 class RingSolver:
     """The ring model as a :class:`~fegear.toothpair.positions.PositionModel`: ``model``, a
-    ring model built before, is kept if it fits the case."""
+    ring model built before, is kept if it fits the case; ``submodels`` False leaves out the
+    contact submodels (:func:`~.stresses.ring_stresses`)."""
 
-    def __init__(self, model: RingModel | None = None) -> None:
+    def __init__(self, model: RingModel | None = None, submodels: bool = True) -> None:
         self.model = model
+        self.submodels = submodels
         self.timings_s: dict = {}
 
     def build(self, case: SolveCase, profile: Gear1Profile, states) -> None:
@@ -103,7 +105,7 @@ class RingSolver:
         model, p = self.model, case.params
         contact, sol, grids, first_um = attempt.result
         t0 = time.perf_counter()
-        stresses = ring_stresses(model, contact, sol.pressure)
+        stresses = ring_stresses(model, contact, sol.pressure, self.submodels)
         touch = touch_rotation(model, contact, p.turn_of(first_um))
         cands = candidate_data(p, model.shape, state, tuple(g.tooth for g in grids), case.beta)
         teeth_out = tooth_results(model, case, contact, sol, stresses, state, cands)

@@ -71,22 +71,26 @@ class RingStresses:
 
     @property
     def von_mises_max(self) -> float:
-        """Largest von Mises stress: the submodels' at the contacts, the templates' elsewhere."""
+        """Largest von Mises stress: the submodels' at the contacts, the templates' elsewhere;
+        where no submodel was solved (no contact, or left out: :func:`ring_stresses`), the
+        surface estimate at the contacts."""
         sub = [sm.peak(sm.stress.von_mises)[0] for _, _, sm in self.submodels]
-        return max(sub + [self.bulk_von_mises])
+        return max((sub or [float(self.surface.max())]) + [self.bulk_von_mises])
 
 
-def ring_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray
-                  ) -> RingStresses:
+def ring_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
+                  submodels: bool = True) -> RingStresses:
     """Fields of the loaded sectors and one on each side, their stresses, root zones, the
-    surface estimate and the submodels at the contact peaks."""
+    surface estimate and (``submodels``) the submodels at the contact peaks: without them
+    the von Mises stress at a contact is the surface estimate, for a caller that reads only
+    contact pressures and root stresses (the tip-relief search)."""
     fields = tuple(_fields(side, loads, pressure)
                    for side, loads in zip(model.gears, contact.loads))
     stresses = tuple({k: recover(side.body, u) for k, u in f.items()}
                      for side, f in zip(model.gears, fields))
     roots = tuple(_root_zone(side, s) for side, s in zip(model.gears, stresses))
     surface = surface_von_mises(model, contact, pressure, fields)
-    peaks = _peaks(contact, pressure, surface)
+    peaks = _peaks(contact, pressure, surface) if submodels else []
     problems = [contact_submodel(model, contact, pressure, fields, g, i) for g, i in peaks]
     solved = solve_submodels([pb for pb, _ in problems], model.case.material, model.submodels)
     subs = tuple((g, turn, sm) for (g, _), (_, turn), sm in zip(peaks, problems, solved))

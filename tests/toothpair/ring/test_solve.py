@@ -242,3 +242,21 @@ def test_the_ring_agrees_with_the_sector_model_once_its_cut_faces_are_far_enough
         assert ring.headline()[key] == pytest.approx(sector.headline()[key], rel=tol), key
     assert ring.rotation - ring.first_touch == pytest.approx(
         sector.rotation - sector.first_touch, rel=0.005)
+
+
+def test_without_submodels_the_contact_and_roots_are_the_same(baseline_ring, baseline_200):
+    # the relief search leaves the contact submodels out: everything it reads (loads,
+    # pressures, edge loads, rotation) and the root stresses are those of the full solve;
+    # only the von Mises stress at the contact falls back to the surface estimate
+    case = replace(baseline_ring.case, torque=200.0)
+    bare = solve_positions(case, (case.beta,), model=baseline_ring, submodels=False)[0]
+    full = baseline_200
+    assert bare.rotation == full.rotation and bare.root_stress == full.root_stress
+    for a, b in zip(bare.teeth, full.teeth):
+        assert (a.load_N, a.p_max_MPa, a.flank_p_MPa, a.edge_load_N, a.root1_MPa) == \
+            (b.load_N, b.p_max_MPa, b.flank_p_MPa, b.edge_load_N, b.root1_MPa)
+    assert not bare.detail.stresses.submodels and full.detail.stresses.submodels
+    surface = float(bare.detail.stresses.surface.max())
+    assert bare.von_mises_max == pytest.approx(max(surface,
+                                                   bare.detail.stresses.bulk_von_mises))
+    assert bare.von_mises_max == pytest.approx(full.von_mises_max, rel=0.05)
