@@ -25,6 +25,11 @@ from .parameters import PairParameters
 _ULPS = 4
 
 
+def _turned(c: np.ndarray, s: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """cos and sin of (a + kπ/2), k = 1 … 3, from c = cos a and s = sin a."""
+    return (-s, c) if k == 1 else (-c, -s) if k == 2 else (s, -c)
+
+
 @dataclass(frozen=True)
 class Cycloid:
     """Compound cycloid with ``z`` lobes (lengths in mm).
@@ -52,9 +57,9 @@ class Cycloid:
         # k-th derivative of cos(zξ) is z^k cos(zξ + kπ/2), of sin(zξ) z^k sin(zξ + kπ/2): the
         # quarter turns cycle through ±cos, ±sin (four evaluations of the trigonometric
         # functions for any order, not three more per order)
-        turns = {1: (-s1, c1, c2), 2: (-c1, -s1, -s2), 3: (s1, -c1, -c2)}
         for k in range(1, order + 1):
-            ck1, sk1, sk2 = turns[k]
+            ck1, sk1 = _turned(c1, s1, k)
+            sk2 = _turned(c2, s2, k)[1]
             out.append((-2 * e1 * z**k * ck1, 2 * e2 * (2 * z) ** k * sk2 - 2 * d2 * z**k * sk1))
         return out
 
