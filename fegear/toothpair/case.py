@@ -216,6 +216,8 @@ class PairSolution:
     checks: ContactChecks
     timings_s: dict
     detail: SolutionDetail = field(repr=False)
+    von_mises_estimated: bool = False   # the von Mises stress at the contacts is the ring
+                                        # model's surface estimate: no submodel solved there
 
     @property
     def contact_pressure(self) -> float:

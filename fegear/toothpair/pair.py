@@ -9,11 +9,13 @@ from .case import PairSolution, SolveCase
 
 
 def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None,
-                    model=None, submodels: bool = True) -> tuple[PairSolution, ...]:
+                    model=None, submodels: str = "peaks") -> tuple[PairSolution, ...]:
     """Solve ``case`` at each rolling angle of ``betas`` (rad) on one model. ``model``: a ring
     model (:func:`~.ring.build_ring`) built before for the same geometry and quality, kept.
-    ``submodels`` False: no contact submodels, the von Mises stress at a contact is the
-    template's surface estimate (contact pressures and root stresses are the same)."""
+    ``submodels``: where the contact submodels are solved, "peaks" (where the cycle's
+    headline stresses peak; every position of one), "all" or "none"; elsewhere the von Mises
+    stress at a contact is the template's surface estimate (contact pressures, root stresses
+    and everything else are the same: :meth:`~.ring.solve.RingSolver.complete`)."""
     from .positions import drive
     from .ring.solve import RingSolver
 

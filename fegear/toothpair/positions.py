@@ -79,6 +79,10 @@ class PositionModel(Protocol):
     def finish(self, case: SolveCase, state, attempt: Attempt) -> PairSolution:
         """Stresses and per-tooth results of a settled attempt (timings in the solution)."""
 
+    def complete(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
+        """The solutions of all positions, with what the model leaves until the cycle is
+        known (the ring model's submodels where the cycle peaks)."""
+
 
 def _unsettled(case: SolveCase, trial: Trial, err: Exception) -> str:
     """Why the contact did not settle, with the input that changes it: how far the load had
@@ -155,4 +159,4 @@ def _drive(case: SolveCase, betas, solver: PositionModel,
         if k == 0:  # the first position carries the one-off stages
             timings = {**solver.timings_s, "clearance": t_tca, **timings}
         sols.append(replace(sol, timings_s=timings))
-    return tuple(sols)
+    return solver.complete(tuple(sols))

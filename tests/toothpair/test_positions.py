@@ -45,6 +45,10 @@ class StandIn:
         again = None if settled else Trial(trial.teeth, trial.elastic_um * 2)
         return Attempt(state, again, "stand-in", {"contact": 0.5})
 
+    def complete(self, sols):
+        self.completed = sols
+        return sols
+
     def finish(self, case, state, attempt):
         p = case.params
         first = p.turn_of(state.closest(+1).plus_um)
@@ -64,6 +68,7 @@ def test_the_first_guess_shares_the_torque_and_later_positions_start_from_the_la
     assert second.elastic_um == pytest.approx(5.0)          # the first position's, solved
     assert first.teeth                                       # chosen from the clearance state
     assert [s.case.beta for s in sols] == list(betas)
+    assert model.completed == sols                           # the model saw the whole cycle
     # the one-off stages are the first position's; every position has its own
     assert {"model", "clearance", "contact", "stresses"} <= set(sols[0].timings_s)
     assert set(sols[1].timings_s) == {"contact", "stresses"}

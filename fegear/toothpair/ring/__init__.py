@@ -23,7 +23,7 @@ The baseline pair at 200 N·m, coarse:
 [44, 45]
 >>> sol = solve_pair(case, model=model)
 >>> round(sol.root_stress[0]), round(sol.contact_pressure)   # MPa
-(288, 1884)
+(288, 1888)
 >>> [(t.tooth, round(t.load_share, 2)) for t in sol.teeth if t.load_N > 0]
 [(9, 0.03), (10, 0.43), (11, 0.42), (12, 0.12)]
 

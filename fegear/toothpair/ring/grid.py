@@ -5,7 +5,12 @@ independent of any mesh. The grid covers the stretch of the tooth that a positiv
 closes and whose rigid gap is within reach of the expected elastic approach (``window``); its
 spacing follows the local Hertz half-width of the relative curvature of the two profiles at the
 expected tooth load, a ``per_b``-th of it, and is finer again around the points where a tip
-round meets the flank (the curvature jumps there and the edge pressure peaks within µm of it).
+round meets the flank (the curvature jumps there and the edge pressure peaks within µm of it),
+graded back to the flank's spacing. The points are counted from a fixed point of the tooth at
+the position (its smallest gap at the first touch), with the rounds' tangent points among them,
+so the window's extent moves only its ends: the same position solved alone or within a cycle,
+whose windows are placed for different expected rotations, has the same grid where pressure
+acts (and the same stresses within 1e-4).
 
 Every tooth of gear 1 is tooth 0 turned by whole pitches, so tooth 0 is sampled once per
 geometry (:class:`ToothSamples`) and the windows and spacings of any tooth come from turned
@@ -24,10 +29,11 @@ from ...planar import rotate
 
 SAMPLES = 4001        # samples of one tooth pitch to find windows and spacings on
 COARSE = 10           # the windows are found on every COARSE-th sample first
-MIN_POINTS = 24       # a window gets at least this many points
-PROBE_POINTS = 24     # … and a probe grid about this many
+MIN_POINTS = 24       # a fine grid's spacing is at most its stretch over this many
+PROBE_POINTS = 24     # a probe grid has this many intervals, evenly
 JUNCTION = 0.5        # refined zone around a round's tangent points, in round Hertz widths
-JUNCTION_FACTOR = 4.0  # … this many times finer than the round
+JUNCTION_FACTOR = 4.0  # … this many times finer than the round, …
+GRADING = 0.5          # … growing beyond by at most this fraction of the distance from it
 
 
 @dataclass(frozen=True)
@@ -90,13 +96,15 @@ def sample_tooth(shape: RoundedProfile, count: int = SAMPLES) -> ToothSamples:
 @dataclass(frozen=True)
 class Window:
     """The sample range [lo, hi] (indices into :class:`ToothSamples`) of a tooth that a
-    positive rotation closes to within the reach, and the samples' gear-2 curvature (1/mm,
-    > 0 convex) where they face gear 2."""
+    positive rotation closes to within the reach, the samples' gear-2 curvature (1/mm, > 0
+    convex) where they face gear 2 at the first touch, and the ``anchor``: the sample of the
+    smallest gap there, from which the grid's points are counted (:func:`tooth_grid`)."""
 
     tooth: int
     lo: int
     hi: int
     kappa2: np.ndarray
+    anchor: int
 
 
 def window(samples: ToothSamples, curve2, tooth: int, turn: float, beta: float, e: float,
@@ -121,7 +129,8 @@ def window(samples: ToothSamples, curve2, tooth: int, turn: float, beta: float, 
         return None
     a, b = max(int(near.min()) - 1, 0), min(int(near.max()) + 1, len(gap) - 1)
     xi = curve2.xi_at_angle(np.arctan2(foot[a:b + 1, 1], foot[a:b + 1, 0]))
-    return Window(tooth, lo + a, lo + b, 1.0 / curve2.curvature_radius(xi))
+    anchor = lo + int(near[np.argmin(gap[near])])
+    return Window(tooth, lo + a, lo + b, 1.0 / curve2.curvature_radius(xi), anchor)
 
 
 def _gaps(x: np.ndarray, curve2, turn: float, beta: float, e: float):
@@ -136,31 +145,24 @@ def _gaps(x: np.ndarray, curve2, turn: float, beta: float, e: float):
 
 
 def tooth_grid(samples: ToothSamples, win: Window, load: float, E_star: float, per_b: float,
-               floor: float, probe: bool = False) -> ToothGrid:
+               floor: float, reach: float, probe: bool = False) -> ToothGrid:
     """The grid over the window ``win``: spacing a ``per_b``-th of the local Hertz half-width
     under the line load ``load`` (N/mm) for the relative curvature of the two profiles, at
-    least ``floor`` (mm), at most a ``MIN_POINTS``-th of the window; ``JUNCTION_FACTOR`` times
-    finer again within ``JUNCTION`` round widths of the rounds' tangent points. A ``probe``
-    grid, on a tooth not expected to touch, has PROBE_POINTS evenly: enough to tell whether it
-    does."""
+    least ``floor`` (mm), at most a ``MIN_POINTS``-th of the stretch that a gap of ``reach``
+    (mm) spans at the anchor's curvature; ``JUNCTION_FACTOR`` times finer again within
+    ``JUNCTION`` round widths of the rounds' tangent points, coarsening beyond by ``GRADING``
+    of the distance (from 1 µm to the flank's 19 µm in one step, `coarse` read the flank
+    pressure beside an edge 1 % low). The points are counted from the
+    window's anchor, so two windows of a tooth at one position share every point but their
+    ends: a position solved in a cycle and alone has the same grid where it carries pressure,
+    whatever rotation each placed its windows for. A ``probe`` grid, on a tooth not expected
+    to touch, has PROBE_POINTS evenly: enough to tell whether it does."""
     k = slice(win.lo, win.hi + 1)
     s = samples.s[k] - samples.s[win.lo]
     if probe:
-        floor = max(floor, s[-1] / PROBE_POINTS)
-    relative = np.maximum(samples.kappa[k] + win.kappa2, 1e-9)
-    b = np.sqrt(4.0 * load / (math.pi * E_star * relative))
-    spacing = np.clip(b / per_b, floor, max(s[-1] / MIN_POINTS, floor))
-    on_round = samples.on_round[k]
-    edges = np.flatnonzero(np.diff(on_round.astype(int)) != 0)
-    if len(edges):
-        b_round = float(np.min(b[on_round])) if on_round.any() else float(b.min())
-        for j in edges:
-            near = np.abs(s - s[j]) < JUNCTION * b_round
-            spacing[near] = np.minimum(spacing[near],
-                                       max(b_round / (per_b * JUNCTION_FACTOR), floor))
-    count = np.concatenate([[0.0], np.cumsum(np.diff(s) / (0.5 * (spacing[1:] + spacing[:-1])))])
-    m = max(int(math.ceil(count[-1])), MIN_POINTS)
-    sg = np.interp(np.linspace(0.0, count[-1], m + 1), count, s)
+        sg = np.linspace(0.0, s[-1], PROBE_POINTS + 1)
+    else:
+        sg = _counted(samples, win, s, load, E_star, per_b, floor, reach)
     sg = sg[np.concatenate([[True], np.diff(sg) > 1e-9 * s[-1]])]  # samples of zero length
     phi0 = np.interp(sg, s, samples.phi[k])            # tooth 0's angles
     shape = samples.shape
@@ -172,3 +174,44 @@ def tooth_grid(samples: ToothSamples, win: Window, load: float, E_star: float, p
     xg, ng, kappa, phi0 = xg[keep], ng[keep], kappa[keep], phi0[keep]
     sg = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xg, axis=0).T))])  # exact chords
     return ToothGrid(win.tooth, sg, phi0 + turn, xg, ng, kappa, shape.on_round(phi0), probe)
+
+
+def _counted(samples: ToothSamples, win: Window, s: np.ndarray, load: float, E_star: float,
+             per_b: float, floor: float, reach: float) -> np.ndarray:
+    """A fine grid's arc positions (from the window's start): the points where the count of
+    spacings from the anchor is whole, the window's two ends and the rounds' exact tangent
+    points, where the curvature jumps (a whole count within half a spacing of one of those
+    gives way to it)."""
+    k = slice(win.lo, win.hi + 1)
+    relative = np.maximum(samples.kappa[k] + win.kappa2, 1e-9)
+    b = np.sqrt(4.0 * load / (math.pi * E_star * relative))
+    a = win.anchor - win.lo
+    span = min(2.0 * math.sqrt(2.0 * reach / relative[a]), samples.s[-1])
+    spacing = np.clip(b / per_b, floor, max(span / MIN_POINTS, floor))
+    on_round = samples.on_round[k]
+    for j in np.flatnonzero(np.diff(on_round.astype(int)) != 0):
+        b_round = b[j] if on_round[j] else b[j + 1]     # the round's width at its end
+        fine = max(b_round / (per_b * JUNCTION_FACTOR), floor)
+        graded = fine + GRADING * np.maximum(np.abs(s - s[j]) - JUNCTION * b_round, 0.0)
+        spacing = np.minimum(spacing, graded)
+    count = np.concatenate([[0.0], np.cumsum(np.diff(s) / (0.5 * (spacing[1:] + spacing[:-1])))])
+    count -= count[a]
+    marks = np.concatenate([[0.0], _tangent_points(samples, win, s), [s[-1]]])
+    whole = np.arange(math.ceil(count[0]), math.floor(count[-1]) + 1)
+    near = np.abs(whole[:, None] - np.interp(marks, s, count)[None, :]).min(axis=1) < 0.5
+    return np.sort(np.concatenate([marks, np.interp(whole[~near], count, s)]))
+
+
+def _tangent_points(samples: ToothSamples, win: Window, s: np.ndarray) -> np.ndarray:
+    """Arc positions (from the window's start) of the rounds' tangent points inside the
+    window."""
+    shape = samples.shape
+    phi = samples.phi[win.lo:win.hi + 1]
+    ends = np.array([a for f in shape.fillets for a in (f.phi_a, f.phi_b)])
+    if len(ends) == 0:
+        return np.zeros(0)
+    # the fillets' angles are the tooth's own, some pitch away from the samples' range
+    ends = ends + np.round((samples.phi[len(samples.phi) // 2] - ends) / shape.pitch) \
+        * shape.pitch
+    inside = ends[(ends > phi[0]) & (ends < phi[-1])]
+    return np.interp(np.sort(inside), phi, s)

@@ -14,7 +14,7 @@ loaded by the grid pressure: it resolves the stress under and beside a contact Â
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -90,13 +90,22 @@ def ring_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
                      for side, f in zip(model.gears, fields))
     roots = tuple(_root_zone(side, s) for side, s in zip(model.gears, stresses))
     surface = surface_von_mises(model, contact, pressure, fields)
-    peaks = _peaks(contact, pressure, surface) if submodels else []
-    problems = [contact_submodel(model, contact, pressure, fields, g, i) for g, i in peaks]
-    solved = solve_submodels([pb for pb, _ in problems], model.case.material, model.submodels)
-    subs = tuple((g, turn, sm) for (g, _), (_, turn), sm in zip(peaks, problems, solved))
     bulk = max(_bulk_von_mises(side, s, pts[pressure > 0])
                for side, s, pts in zip(model.gears, stresses, (contact.x, contact.facing[0])))
-    return RingStresses(fields, stresses, roots, surface, subs, bulk)
+    out = RingStresses(fields, stresses, roots, surface, (), bulk)
+    return with_submodels(model, contact, pressure, out) if submodels else out
+
+
+def with_submodels(model: RingModel, contact: RingContact, pressure: np.ndarray,
+                   stresses: RingStresses) -> RingStresses:
+    """``stresses`` with the submodels at the contact peaks solved (a mesh cycle adds them
+    only where its von Mises peak is: :meth:`~.solve.RingSolver.complete`)."""
+    peaks = _peaks(contact, pressure, stresses.surface)
+    problems = [contact_submodel(model, contact, pressure, stresses.fields, g, i)
+                for g, i in peaks]
+    solved = solve_submodels([pb for pb, _ in problems], model.case.material, model.submodels)
+    subs = tuple((g, turn, sm) for (g, _), (_, turn), sm in zip(peaks, problems, solved))
+    return replace(stresses, submodels=subs)
 
 
 def _bulk_von_mises(side: GearSide, stresses: dict, loaded: np.ndarray) -> float:

@@ -157,6 +157,10 @@ class SectorSolver:
         return Attempt(sol, again, f"teeth {sorted(more - set(self.model.scene.paired))} "
                                    f"would close, windows of teeth {ends} too short")
 
+    def complete(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
+        """Every position is complete when solved."""
+        return sols
+
     def finish(self, case: SectorCase, state, attempt: Attempt) -> PairSolution:
         return attempt.result
 

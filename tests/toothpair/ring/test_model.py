@@ -90,7 +90,7 @@ def test_grids_follow_the_local_hertz_width_and_refine_at_the_tip_round(model):
 
     p = model.case.params
     win = window(model.samples, model.curve2, 11, 135e-6, 0.0, p.e, 0.02)
-    grid = tooth_grid(model.samples, win, 300.0, contact_modulus(2.06e5, 2.06e5), 8, 2e-5)
+    grid = tooth_grid(model.samples, win, 300.0, contact_modulus(2.06e5, 2.06e5), 8, 2e-5, 0.02)
     step = np.diff(grid.s)
     assert grid.on_round.any() and not grid.on_round.all()
     # on the round (radius 0.25 mm) the Hertz width is far smaller than on the flank
@@ -99,3 +99,26 @@ def test_grids_follow_the_local_hertz_width_and_refine_at_the_tip_round(model):
     # the grid points lie on the exact rounded profile, normals outward and unit
     assert np.abs(np.linalg.norm(grid.x, axis=1) - model.shape.radius(grid.phi)).max() < 1e-9
     assert np.abs(np.linalg.norm(grid.normal, axis=1) - 1).max() < 1e-10
+
+
+def test_grids_of_two_reaches_share_their_points_but_the_ends(model):
+    # a position solved alone places its windows for another expected rotation than within a
+    # cycle: the grid points are counted from the tooth's smallest gap, so the wider window
+    # holds every inner point of the narrower one, and the rounds' tangent points
+    from fegear.fe import contact_modulus
+    from fegear.toothpair.ring.grid import tooth_grid, window
+
+    p = model.case.params
+    E_star = contact_modulus(2.06e5, 2.06e5)
+    grids = [tooth_grid(model.samples, window(model.samples, model.curve2, 11, 135e-6, 0.0,
+                                              p.e, reach), 300.0, E_star, 8, 2e-5, 0.02)
+             for reach in (0.01, 0.02)]
+    narrow, wide = (g.phi for g in grids)
+    assert len(wide) > len(narrow) + 4
+    inner = narrow[1:-1]
+    assert np.abs(wide[:, None] - inner[None, :]).min(axis=0).max() < 1e-12
+    pitch = model.shape.pitch
+    ends = np.array([a + (np.round((model.samples.phi[2000] - a) / pitch) + 11) * pitch
+                     for f in model.shape.fillets for a in (f.phi_a, f.phi_b)])
+    ends = ends[(ends > wide[0]) & (ends < wide[-1])]
+    assert len(ends) and np.abs(wide[:, None] - ends[None, :]).min(axis=0).max() < 1e-12

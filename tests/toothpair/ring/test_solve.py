@@ -249,7 +249,7 @@ def test_without_submodels_the_contact_and_roots_are_the_same(baseline_ring, bas
     # pressures, edge loads, rotation) and the root stresses are those of the full solve;
     # only the von Mises stress at the contact falls back to the surface estimate
     case = replace(baseline_ring.case, torque=200.0)
-    bare = solve_positions(case, (case.beta,), model=baseline_ring, submodels=False)[0]
+    bare = solve_positions(case, (case.beta,), model=baseline_ring, submodels="none")[0]
     full = baseline_200
     assert bare.rotation == full.rotation and bare.root_stress == full.root_stress
     for a, b in zip(bare.teeth, full.teeth):
@@ -260,3 +260,49 @@ def test_without_submodels_the_contact_and_roots_are_the_same(baseline_ring, bas
     assert bare.von_mises_max == pytest.approx(max(surface,
                                                    bare.detail.stresses.bulk_von_mises))
     assert bare.von_mises_max == pytest.approx(full.von_mises_max, rel=0.05)
+
+
+def test_a_cycle_solves_submodels_where_it_peaks_and_each_position_as_alone(baseline_ring):
+    # a cycle's positions are the positions solved alone; only the von Mises stress of those
+    # away from the cycle's peaks is the surface estimate, and the cycle's largest is solved
+    p = baseline_ring.case.params
+    case = replace(baseline_ring.case, torque=200.0)
+    betas = tuple(np.linspace(0.0, 2 * math.pi / p.z2, 6, endpoint=False))
+    cycle = solve_positions(case, betas, model=baseline_ring)
+    every = solve_positions(case, betas, model=baseline_ring, submodels="all")
+    estimated = [s for s in cycle if s.von_mises_estimated]
+    assert 0 < len(estimated) < len(cycle)
+    for s, full in zip(cycle, every):
+        alone = solve_pair(replace(case, beta=s.case.beta), model=baseline_ring)
+        assert not alone.von_mises_estimated and not full.von_mises_estimated
+        for key, value in alone.headline().items():
+            tol = 0.015 if key == "von_mises_max_MPa" and s.von_mises_estimated else 1e-3
+            assert s.headline()[key] == pytest.approx(value, rel=tol), (s.case.beta, key)
+            assert full.headline()[key] == pytest.approx(value, rel=1e-3), (s.case.beta, key)
+    assert max(s.von_mises_max for s in cycle) == pytest.approx(
+        max(s.von_mises_max for s in every), rel=1e-3)
+    pictured = max(cycle, key=lambda s: s.root_stress[0])
+    assert not pictured.von_mises_estimated and pictured.detail.stresses.submodels
+
+
+def test_a_probe_solve_that_does_not_settle_falls_back_to_fine_grids(monkeypatch, baseline_200):
+    # without a solution before, a first solve on probe grids finds the rotation; should it
+    # not settle (a contact far narrower than a probe's spacing), the fine grids are placed at
+    # the stiffness estimate instead, and the position comes out the same
+    import fegear.toothpair.ring.solve as ring_solve
+    from fegear.errors import ContactError
+
+    real, probes = ring_solve.solve_ring_contact, []
+
+    def refusing(model, contact, *args, **kwargs):
+        probes.append(all(g.probe for g in contact.grids))
+        if probes[-1]:
+            raise ContactError("stand-in: probe grids do not settle")
+        return real(model, contact, *args, **kwargs)
+
+    monkeypatch.setattr(ring_solve, "solve_ring_contact", refusing)
+    case = baseline_200.case
+    sol = solve_pair(case, model=baseline_200.detail.model)
+    assert probes[0] and not any(probes[1:])
+    for key, value in baseline_200.headline().items():
+        assert sol.headline()[key] == pytest.approx(value, rel=1e-3), key
