@@ -219,7 +219,6 @@ def _ring_flexibility(D: np.ndarray, B: np.ndarray, Bt: np.ndarray, count: int) 
     omega = np.exp(2j * np.pi * k / count)
     blocks = D[None] + B[None] * omega[:, None, None] + Bt[None] * np.conj(omega)[:, None, None]
     inv = np.linalg.inv(blocks)
-    # G(Δ) = (1/n) Σ_k inv_k ω^(−kΔ)
-    phase = np.exp(-2j * np.pi * np.outer(np.arange(count), k) / count)
-    G = np.einsum("dk,kij->dij", phase, inv) / count
-    return G.real
+    # G(Δ) = (1/n) Σ_k inv_k ω^(−kΔ): a forward FFT over k (as a dense sum over all Δ and k it
+    # was 0.86 s of a 10 s solve at z 180)
+    return (np.fft.fft(inv, axis=0) / count).real
