@@ -275,17 +275,19 @@ class ToothContact:
         """
         return self.states((beta,), teeth, refine)[0]
 
-    def states(self, betas, teeth=None, refine: bool = True) -> list[ContactState]:
+    def states(self, betas, teeth=None, refine: bool = True,
+               directions: tuple[int, ...] = (+1, -1)) -> list[ContactState]:
         """:meth:`state` at each rolling angle of ``betas``, the same values; the refinement
         of every position is one search (the baseline's 24 states of a mesh cycle: 3.2 s
-        one by one, 1.7 s together)."""
+        one by one, 1.7 s together). Only in ``directions``: a direction left out has no
+        contact point on any tooth (None), as a tooth-pair solve under a + torque needs."""
         g = self.gear1
         teeth = np.arange(self.params.z1) if teeth is None else np.asarray(teeth, dtype=int)
         betas = [float(b) for b in np.atleast_1d(betas)]
         nt = len(teeth)
         coarse = {+1: [], -1: []}
         for beta in betas:   # β outside: gear 2's stretches are formed once per angle
-            for direction in (+1, -1):
+            for direction in directions:
                 ids, pars, pts = self._flanks[direction]
                 rho = np.hypot(pts[:, 0], pts[:, 1])
                 phi0 = np.arctan2(pts[:, 1], pts[:, 0])
@@ -297,7 +299,9 @@ class ToothContact:
                                                   np.tile(valid, (nt, 1)), direction)
                 coarse[direction].append((vals.reshape(nt, len(rho)),
                                           cross.reshape(nt, len(rho)), seg))
-        found = {d: self._refine(betas, d, teeth, coarse[d], refine) for d in (+1, -1)}
+        none = [[(None, None)] * nt for _ in betas]
+        found = {d: self._refine(betas, d, teeth, coarse[d], refine) if d in directions
+                 else none for d in (+1, -1)}
         out = []
         for k, beta in enumerate(betas):
             rows = []

@@ -128,7 +128,7 @@ def _drive(case: SolveCase, betas, solver: PositionModel,
     t0 = time.perf_counter()
     profile = profile if profile is not None else gear1_profile(case.params)
     tca = ToothContact(case.params, profile)
-    states = list(zip(betas, tca.states(betas)))
+    states = list(zip(betas, tca.states(betas, directions=(+1,))))   # the + torque's side
     refuse_interference(states)
     t_tca = time.perf_counter() - t0
     solver.build(case, profile, states)

@@ -99,3 +99,15 @@ def test_states_of_a_cycle_are_the_states_one_by_one(baseline, baseline_profile)
     assert tca.states(betas) == [tca.state(b) for b in betas]
     assert tca.states(betas[1:3], teeth=[9, 10, 30], refine=False) == [
         tca.state(b, teeth=[9, 10, 30], refine=False) for b in betas[1:3]]
+
+
+def test_states_of_one_direction_are_that_direction_of_both(baseline, baseline_profile):
+    # a tooth-pair solve under a + torque asks for the + side only: the same values, and no
+    # contact point on the other side
+    betas = np.linspace(0.0, 2 * np.pi / baseline.z2, 3, endpoint=False)
+    tca = ToothContact(baseline, baseline_profile)
+    for one, both in zip(tca.states(betas, directions=(+1,)), tca.states(betas)):
+        assert [(t.tooth, t.plus_um, t.plus_point is None) for t in one.teeth] == \
+            [(t.tooth, t.plus_um, t.plus_point is None) for t in both.teeth]
+        assert all(t.minus_um is None for t in one.teeth)
+        assert one.interference == both.interference
