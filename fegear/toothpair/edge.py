@@ -9,8 +9,8 @@ the edge's own Hertz half-width b_e = √(4 q ρ / (π E*)) (q the round's load 
 width, ρ its radius). On these near-conformal flanks it falls off slowly: on the baseline's
 tooth 11 at 200 N·m (`standard`) the pressure reads 962, 759, 660, 622 and 599 MPa at 1, 3, 6,
 10 and 20 b_e from the round. The flank pressure is the largest pressure on the flank from
-``EDGE_ZONE`` b_e on, the pressure at that distance included: 622 MPa there, the same within
-0.5 % at `coarse`, `standard` and `fine` (623 / 622 / 625), and 4 % above its value at 20 b_e.
+``EDGE_ZONE`` b_e on, the pressure at that distance included: 624 MPa there, the same within
+0.8 % at `coarse`, `standard` and `fine` (622 / 624 / 627), and 4 % above its value at 20 b_e.
 Tooth 10's flank carries its own peak (571 MPa) beyond its edge's tail.
 """
 

@@ -5,8 +5,8 @@ S_F (bending), per gear, divides the allowable root stress σ_FP by the root str
 largest σ1 in the fillets a tooth bends in tension. S_H (contact) divides the allowable contact
 pressure σ_HP by the tooth's peak contact pressure wherever it sits, on the flank or on gear 1's
 tip round: an edge that presses harder than the flank sets S_H, it is not hidden behind the
-flank (on the baseline at 200 N·m the round reads 1878 MPa beside a 622 MPa flank: S_H 0.40,
-S_H flank 1.20). S_H flank, from the flank pressure alone, stands beside it: what a tip relief
+flank (on the baseline at 200 N·m the round reads 1880 MPa beside a 624 MPa flank: S_H 0.40,
+S_H flank 1.19). S_H flank, from the flank pressure alone, stands beside it: what a tip relief
 that keeps the load off the rounds would leave. A pair's factors divide by its headline
 stresses (the largest over the teeth), so they are the smallest over its teeth.
 

@@ -206,7 +206,9 @@ def scaling_table(runs: list[RingRun]) -> str:
 
 def scaling_png(path: Path, ladder: list[RingRun], teeth: list[RingRun]) -> Path:
     """Time against DOFs (the quality ladder) and against the number of teeth at equal size,
-    log-log, with slope guides."""
+    log-log, with a slope-1 guide, each segment's slope and plain-number ticks at the runs."""
+    import math
+
     from ..figures import pyplot, save_png
 
     plt = pyplot()
@@ -214,17 +216,28 @@ def scaling_png(path: Path, ladder: list[RingRun], teeth: list[RingRun]) -> Path
     for a, runs, xs, name in ((ax[0], ladder, [r.dofs for r in ladder], "template DOFs"),
                               (ax[1], teeth, [int(r.label.split()[-1]) for r in teeth],
                                "teeth of gear 2 (module scaled, same pitch radius)")):
+        if not runs:
+            a.set_axis_off()
+            continue
         t = [r.total_s for r in runs]
         a.loglog(xs, t, "o-", label="total after import")
         for r, x, y in zip(runs, xs, t):
-            a.annotate(r.label, (x, y), textcoords="offset points", xytext=(4, 4), fontsize=7)
-        for slope in (1.0,):
-            a.loglog(xs, [t[0] * (x / xs[0]) ** slope for x in xs], ":", color="grey",
-                     label=f"slope {slope:g}")
+            a.annotate(f"{r.label}: {y:.2f} s, {r.peak_mb / 1e3:.2f} GB", (x, y),
+                       textcoords="offset points", xytext=(-6, 6), ha="right", fontsize=7)
+        for (x0, y0), (x1, y1) in zip(zip(xs, t), zip(xs[1:], t[1:])):
+            k = math.log(y1 / y0) / math.log(x1 / x0)
+            a.annotate(f"slope {k:.1f}", (math.sqrt(x0 * x1), math.sqrt(y0 * y1)),
+                       textcoords="offset points", xytext=(6, -10), fontsize=7, color="C0")
+        a.loglog(xs, [t[0] * (x / xs[0]) for x in xs], ":", color="grey", label="slope 1")
+        for axis, values in ((a.xaxis, xs), (a.yaxis, t)):
+            axis.set_ticks(values, [f"{v:g}" if v >= 100 else f"{v:.3g}" for v in values])
+            axis.set_minor_formatter(plt.NullFormatter())
+        a.set_xlim(min(xs) / 1.25, max(xs) * 1.15)
+        a.set_ylim(min(t) / 1.3, max(t) * 1.3)
         a.set_xlabel(name)
         a.set_ylabel("time [s]")
         a.grid(alpha=0.3, which="both")
-        a.legend(fontsize=8)
+        a.legend(fontsize=8, loc="lower right")
     fig.suptitle("ring model: how the cost grows", fontsize=10)
     fig.tight_layout()
     return save_png(fig, path, 120)
