@@ -142,3 +142,17 @@ def test_solve_takes_the_allowables_from_the_command_line(tmp_path, capsys):
     written = json.loads((tmp_path / "summary.json").read_text())
     assert written["safety_bending_gear2"] == s["safety_bending_gear2"]
     assert written["inputs"]["allowable_bending_MPa"] == 300.0
+
+
+def test_a_cycle_table_marks_the_von_mises_estimates(cycle):
+    # positions away from the cycle's peaks give the surface estimate of von Mises: the table
+    # says which, and what that means
+    rows = [dict(r) for r in cycle_rows(cycle)]
+    rows[0]["von_mises_estimated"], rows[-1]["von_mises_estimated"] = True, False
+    lines = cycle_table(rows).splitlines()
+    first, last = lines[2], lines[1 + len(rows)]
+    assert f"~{rows[0]['von_mises_max_MPa']:5.0f} |" in first
+    assert f" {rows[-1]['von_mises_max_MPa']:5.0f} |" in last and "~" not in last
+    assert any(line.startswith("~ von Mises from the surface estimate") for line in lines)
+    assert not any(line.startswith("~") for line in cycle_table(
+        [{**r, "von_mises_estimated": False} for r in rows]).splitlines())
