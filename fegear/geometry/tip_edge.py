@@ -132,10 +132,14 @@ class RoundedProfile:
         return self._on_fillet(np.atleast_1d(np.asarray(phi, dtype=float)))[0] >= 0
 
     def radius(self, phi: np.ndarray) -> np.ndarray:
-        """Polar radius (mm) of the rounded profile."""
+        """Polar radius (mm) of the rounded profile (the exact profile's is inverted only off
+        the rounds: on a grid across an edge contact, half its points are on a round)."""
         phi = np.atleast_1d(np.asarray(phi, dtype=float))
-        r = self.profile.radius(phi)
         which, local = self._on_fillet(phi)
+        r = np.empty(phi.shape)
+        off = which < 0
+        if off.any():
+            r[off] = self.profile.radius(phi[off])
         for k, f in enumerate(self.fillets):
             sel = which == k
             if sel.any():
@@ -147,8 +151,11 @@ class RoundedProfile:
     def curvature(self, phi: np.ndarray) -> np.ndarray:
         """Curvature (1/mm, > 0 convex) of the rounded profile."""
         phi = np.atleast_1d(np.asarray(phi, dtype=float))
-        kappa = self.profile.evaluate(phi).kappa
         which, _ = self._on_fillet(phi)
+        kappa = np.empty(phi.shape)
+        off = which < 0
+        if off.any():
+            kappa[off] = self.profile.evaluate(phi[off]).kappa
         for k, f in enumerate(self.fillets):
             kappa[which == k] = 1.0 / f.radius
         return kappa
@@ -162,9 +169,13 @@ class RoundedProfile:
         """Points (n, 2), unit normals out of gear 1's material and curvature (1/mm, > 0
         convex) at polar angles ``phi``, exact on the flanks and on the rounds."""
         phi = np.atleast_1d(np.asarray(phi, dtype=float))
-        ev = self.profile.evaluate(phi)
-        points, normal, kappa = ev.q.copy(), ev.normal.copy(), ev.kappa.copy()
         which, local = self._on_fillet(phi)
+        points, normal, kappa = np.empty((len(phi), 2)), np.empty((len(phi), 2)), \
+            np.empty(len(phi))
+        off = which < 0
+        if off.any():
+            ev = self.profile.evaluate(phi[off])
+            points[off], normal[off], kappa[off] = ev.q, ev.normal, ev.kappa
         for k, f in enumerate(self.fillets):
             sel = which == k
             if sel.any():
