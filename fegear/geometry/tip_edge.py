@@ -170,8 +170,8 @@ class RoundedProfile:
         convex) at polar angles ``phi``, exact on the flanks and on the rounds."""
         phi = np.atleast_1d(np.asarray(phi, dtype=float))
         which, local = self._on_fillet(phi)
-        points, normal, kappa = np.empty((len(phi), 2)), np.empty((len(phi), 2)), \
-            np.empty(len(phi))
+        points, normal = np.empty((len(phi), 2)), np.empty((len(phi), 2))
+        kappa = np.empty(len(phi))
         off = which < 0
         if off.any():
             ev = self.profile.evaluate(phi[off])

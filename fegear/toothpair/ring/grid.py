@@ -152,11 +152,11 @@ def tooth_grid(samples: ToothSamples, win: Window, load: float, E_star: float, p
     (mm) spans at the anchor's curvature; ``JUNCTION_FACTOR`` times finer again within
     ``JUNCTION`` round widths of the rounds' tangent points, coarsening beyond by ``GRADING``
     of the distance (from 1 µm to the flank's 19 µm in one step, `coarse` read the flank
-    pressure beside an edge 1 % low). The points are counted from the
-    window's anchor, so two windows of a tooth at one position share every point but their
-    ends: a position solved in a cycle and alone has the same grid where it carries pressure,
-    whatever rotation each placed its windows for. A ``probe`` grid, on a tooth not expected
-    to touch, has PROBE_POINTS evenly: enough to tell whether it does."""
+    pressure beside an edge 1 % low). The points are counted from the window's anchor, so two
+    windows of a tooth at one position share every point but their ends: a position solved in
+    a cycle and alone has the same grid where it carries pressure, whatever rotation each
+    placed its windows for. A ``probe`` grid, on a tooth not expected to touch, has
+    PROBE_POINTS evenly: enough to tell whether it does."""
     k = slice(win.lo, win.hi + 1)
     s = samples.s[k] - samples.s[win.lo]
     if probe:

@@ -39,8 +39,6 @@ GRID_FLOOR = 1e-5    # smallest grid spacing, in modules (20 nm at m = 2)
 PLACEMENT = 0.1      # grids are placed again if the solved rotation's elastic part differs
                      # from the expected one by more than this fraction
 PROBE_MARGIN_UM = 1.0  # fine grids also on teeth within this of closing at the expected rotation
-
-
 PEAK_MARGIN = 0.02   # a cycle's position gets its submodels where its von Mises estimate is
                      # within this fraction of the cycle's largest von Mises stress (the
                      # estimate is within 0.6 % of the submodel at `standard`, 1 % at
