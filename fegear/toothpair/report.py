@@ -271,11 +271,12 @@ def cycle_table(rows: list[dict]) -> str:
             + " | ".join(f"tooth {k[6:]}" for k in shown) + " |")
     lines = [head, "|" + "---:|" * (13 + len(shown))]
     for r in rows:
+        von_mises = ("~" if r.get("von_mises_estimated") else "") + f"{r['von_mises_max_MPa']:.0f}"
         lines.append(
             f"| {r['position_deg']:7.3f} | {r['root_stress_gear1_MPa']:5.1f} | "
             f"{r['root_stress_gear2_MPa']:5.1f} | {r['contact_pressure_MPa']:6.0f} | "
             f"{r['flank_contact_pressure_MPa']:6.0f} | {r['edge_load_N']:6.1f} | "
-            f"{'~' if r.get('von_mises_estimated') else ' '}{r['von_mises_max_MPa']:5.0f} | "
+            f"{von_mises:>6} | "
             + "".join(f"{_factor(r.get(k), 4)} | " for k in TABLE_SAFETY)
             + f"{r['transmission_error_urad']:7.1f} | "
             f"{r['mesh_stiffness_Nm_per_rad']:.4g} | {r['teeth_in_contact']} | "

@@ -151,8 +151,8 @@ def test_a_cycle_table_marks_the_von_mises_estimates(cycle):
     rows[0]["von_mises_estimated"], rows[-1]["von_mises_estimated"] = True, False
     lines = cycle_table(rows).splitlines()
     first, last = lines[2], lines[1 + len(rows)]
-    assert f"~{rows[0]['von_mises_max_MPa']:5.0f} |" in first
-    assert f" {rows[-1]['von_mises_max_MPa']:5.0f} |" in last and "~" not in last
+    assert f"| {'~' + format(rows[0]['von_mises_max_MPa'], '.0f'):>6} |" in first
+    assert f"| {rows[-1]['von_mises_max_MPa']:6.0f} |" in last and "~" not in last
     assert any(line.startswith("~ von Mises from the surface estimate") for line in lines)
     assert not any(line.startswith("~") for line in cycle_table(
         [{**r, "von_mises_estimated": False} for r in rows]).splitlines())
