@@ -39,7 +39,15 @@ def cycle_png(path: Path, rows: list[dict], title: str, stresses: dict[str, str]
     for panel, keys in ((1, [k for k in stresses if "root" in k]),
                         (2, [k for k in stresses if "root" not in k])):
         for k in keys:
-            ax[panel].plot(beta, [r[k] for r in rows], marker="o", ms=3, label=stresses[k])
+            line, = ax[panel].plot(beta, [r[k] for r in rows], marker="o", ms=3,
+                                   label=stresses[k])
+            estimated = [i for i, r in enumerate(rows)
+                         if k == "von_mises_max_MPa" and r.get("von_mises_estimated")]
+            if estimated:   # open markers: the surface estimate, no submodel at that position
+                line.set_label(f"{stresses[k]} (open: surface estimate)")
+                ax[panel].plot([beta[i] for i in estimated], [rows[i][k] for i in estimated],
+                               "o", ms=3, color="white", markeredgecolor=line.get_color(),
+                               zorder=line.get_zorder() + 0.1)
         ax[panel].legend(fontsize=8)
     if allowables is not None:
         for panel, limit, name in ((1, allowables.bending, "σ_FP"),
