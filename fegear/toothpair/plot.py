@@ -41,8 +41,8 @@ def cycle_png(path: Path, rows: list[dict], title: str, stresses: dict[str, str]
         for k in keys:
             line, = ax[panel].plot(beta, [r[k] for r in rows], marker="o", ms=3,
                                    label=stresses[k])
-            estimated = [i for i, r in enumerate(rows)
-                         if k == "von_mises_max_MPa" and r.get("von_mises_estimated")]
+            estimated = [i for i, r in enumerate(rows) if r.get("von_mises_estimated")] \
+                if k == "von_mises_max_MPa" else []
             if estimated:   # open markers: the surface estimate, no submodel at that position
                 line.set_label(f"{stresses[k]} (open: surface estimate)")
                 ax[panel].plot([beta[i] for i in estimated], [rows[i][k] for i in estimated],
