@@ -25,6 +25,10 @@ class ParameterError(FegearError, ValueError):
         self.reason = reason
         super().__init__(self.describe(self.name))
 
+    def __reduce__(self):
+        # raised in a pool worker, it is pickled to the parent: by its fields, not its message
+        return type(self), (self.name, self.value, self.admissible, self.reason)
+
     def describe(self, name: str) -> str:
         """The message with the input called ``name`` (``--tip-clearance`` on the command
         line, ``tip-clearance`` in a study file)."""

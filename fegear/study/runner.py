@@ -30,6 +30,7 @@ from pathlib import Path
 from ..errors import FegearError
 from ..files import prepare_dir, write_json
 from ..provenance import code_version
+from ..workers import local_pool
 from .file import Study, StudyCase, StudyError
 from .records import finished, store, study_json
 
@@ -230,8 +231,6 @@ def _pool_results(todo: list[StudyCase], study: Study, workers: int | None,
     """Finished cases from a local process pool. A worker process that dies breaks the pool:
     the unfinished cases go to a fresh pool, and a case that was running (marked in
     ``running``) at WORKER_DEATHS such deaths is recorded as failed."""
-    import multiprocessing
-
     n = workers or os.cpu_count() or 1
     deaths: dict[str, int] = {}
     pending = list(todo)
@@ -239,9 +238,7 @@ def _pool_results(todo: list[StudyCase], study: Study, workers: int | None,
         for stale in running.glob("*"):
             stale.unlink()
         before = _children()
-        ctx = multiprocessing.get_context("spawn")  # no fork of a process holding threads
-        pool = ProcessPoolExecutor(min(n, len(pending)), mp_context=ctx,
-                                   initializer=_worker_init)
+        pool = local_pool(min(n, len(pending)))
         futures = {pool.submit(run_case, c.key, c.values, study.outputs.vtu,
                                study.outputs.png, str(running)): c for c in pending}
         try:
@@ -273,19 +270,6 @@ def _died(case: StudyCase) -> dict:
                      "(out of memory? a crash in gmsh?)", "started_unix": time.time(),
             "case_wall_s": None, "fegear": __version__,
             "finished_utc": datetime.now(UTC).isoformat(timespec="seconds")}
-
-
-def _worker_init() -> None:
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the study's to handle
-    threading.Thread(target=_exit_with_parent, args=(os.getppid(),), daemon=True).start()
-
-
-def _exit_with_parent(parent: int) -> None:
-    """A pool worker whose study process died (SIGKILL leaves no time to stop it) would
-    finish its case for nobody and then wait forever for the next: end it at once."""
-    while os.getppid() == parent:
-        time.sleep(0.5)
-    os._exit(1)
 
 
 def _children() -> set[int]:

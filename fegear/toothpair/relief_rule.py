@@ -18,12 +18,18 @@ peak pressure, transmission error and load sharing over the cycle.
 
 from __future__ import annotations
 
+import logging
 import math
 from collections.abc import Callable, Mapping
+from concurrent.futures import Executor, Future
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 
 from ..errors import FegearError, ParameterError
 from ..planar import wrap
+from ..workers import local_pool
+
+log = logging.getLogger(__name__)
 
 FIRST_UM = 2.0       # the scan's first amount
 MARGIN = 0.2         # torque overload the relief must cover
@@ -122,22 +128,66 @@ def cycle_result(values: Mapping, amount_um: float, torque: float, positions: in
         tip_clearance_mm=p.radial_tip_clearance)
 
 
+class _Ahead:
+    """Trials by key (amount µm, torque, tip clearance mm or None for the one given), solved
+    by ``solve`` on ``executor`` (None: one at a time, here), a guessed next one beside a
+    needed one while a worker is free. A trial's error is raised where it is needed."""
+
+    def __init__(self, solve: Callable[..., CycleResult], values: Mapping, positions: int,
+                 executor: Executor | None, workers: int) -> None:
+        self.solve, self.values, self.positions = solve, values, positions
+        self.executor, self.workers = executor, workers
+        self.futures: dict[tuple, Future] = {}
+
+    def _args(self, key: tuple) -> tuple:
+        amount, torque, tip = key
+        values = self.values if tip is None else {**self.values, "tip-clearance": tip}
+        return values, amount, torque, self.positions
+
+    def get(self, key: tuple, guess: tuple | None = None) -> CycleResult:
+        if self.executor is None:
+            return self.solve(*self._args(key))
+        wanted = [key] + ([guess] if guess is not None else [])
+        if key not in self.futures or not self.futures[key].done():
+            busy = sum(not f.done() for f in self.futures.values())
+            for k in wanted:
+                if k not in self.futures and (k == key or busy < self.workers):
+                    self.futures[k] = self.executor.submit(self.solve, *self._args(k))
+                    busy += 1
+        try:
+            return self.futures[key].result()
+        except BrokenProcessPool:   # a worker died (killed, out of memory): on alone, here
+            log.warning("a relief trial's worker process died; the search goes on in this one")
+            self.executor = None
+            return self.solve(*self._args(key))
+
+
 def size_relief(values: Mapping, positions: int = POSITIONS, margin: float = MARGIN,
                 tolerance_um: float = TOLERANCE_UM, clearance: bool = True,
                 solve: Callable[..., CycleResult] | None = None,
-                report: Callable[[str], None] | None = None) -> ReliefSizing:
+                report: Callable[[str], None] | None = None,
+                executor: Executor | None = None, workers: int = 1) -> ReliefSizing:
     """The smallest relief (module docstring) for the pair, torque, extent and shape of
     ``values``. With ``clearance`` a far-side tip that lands on its round raises the radial tip
     clearance in steps of ``CLEARANCE_STEP`` · m (the search then goes on at the new value);
     without, it ends the search. ``solve`` evaluates one trial (values, amount µm, torque,
     positions) → :class:`CycleResult` (default :func:`cycle_result`), ``report`` is told of
-    each trial."""
+    each trial. ``executor`` with ``workers`` workers solves ahead (module docstring); without
+    one, ``workers`` > 1 starts a local process pool of that many."""
     from .job import prepare_job
 
     solve = solve or cycle_result
     # every input checked before any solve, the extent and shape with a relief in place
     params = prepare_job({**values, "relief": FIRST_UM, "positions": positions,
                           "no-estimate": True}).case.params
+    if executor is None and workers > 1:
+        pool = local_pool(workers)
+        try:
+            out = size_relief(values, positions, margin, tolerance_um, clearance, solve,
+                              report, pool, workers)
+        finally:   # a guess still running is not waited for
+            pool.shutdown(wait=False, cancel_futures=True)
+        return out
     torque = float(values.get("torque", 200.0))
     raised = torque * (1.0 + margin)
     limit = 50.0 * params.m                                     # the relief input's range
@@ -146,9 +196,10 @@ def size_relief(values: Mapping, positions: int = POSITIONS, margin: float = MAR
     trials: list[CycleResult] = []
     tip = given
     tip_note = "a larger tip_clearance keeps them off"
+    ahead = _Ahead(solve, values, positions, executor, workers)
 
-    def trial(amount: float) -> CycleResult:
-        r = solve({**values, "tip-clearance": tip}, amount, raised, positions)
+    def trial(amount: float, guess: tuple | None = None) -> CycleResult:
+        r = ahead.get((amount, raised, tip), guess)
         trials.append(r)
         if report:
             where = (f"rounds of teeth {list(r.edge_teeth)} carry {r.edge_load_N:.1f} N"
@@ -161,12 +212,13 @@ def size_relief(values: Mapping, positions: int = POSITIONS, margin: float = MAR
         """The smallest amount above ``low`` (which fails, or is 0) whose near-side rounds stay
         unloaded at the present tip clearance, to the tolerance; None if none up to the
         limit. The trials' far-side teeth are left to the caller."""
-        if low == 0.0 and not near(trial(0.0)):
+        if low == 0.0 and not near(trial(0.0, (0.0, torque, None))):
             return 0.0
         amount, high = max(FIRST_UM, 2.0 * low), None
         while amount <= limit:
             try:
-                passed = not near(trial(amount))
+                passed = not near(trial(amount, (2.0 * amount, raised, tip)
+                                        if 2.0 * amount <= limit else None))
             except ParameterError as exc:   # deeper than the extent can take: the scan ends
                 if exc.name != "relief":
                     raise
@@ -179,7 +231,7 @@ def size_relief(values: Mapping, positions: int = POSITIONS, margin: float = MAR
             return None
         while high - low > tolerance_um:
             mid = 0.5 * (low + high)
-            if near(trial(mid)):
+            if near(trial(mid, (0.5 * (low + mid), raised, tip))):
                 low = mid
             else:
                 high = mid
@@ -204,12 +256,12 @@ def size_relief(values: Mapping, positions: int = POSITIONS, margin: float = MAR
                             f"{1e3 * (tip - CLEARANCE_STEP * params.m):.0f} µm, the most "
                             f"this pair takes is {1e3 * most:.0f} µm")
                 raise FegearError(_no_relief(trials, params.relief_extent, raised, tip_note))
-            last = trial(high)
+            last = trial(high, (high, torque, tip))
         if not near(last):
             break
         low = high                            # the trimmed tips need a little more
-    without = solve(values, 0.0, torque, positions)
-    found = solve({**values, "tip-clearance": tip}, high, torque, positions)
+    without = ahead.get((0.0, torque, None))
+    found = ahead.get((high, torque, tip))
     return ReliefSizing(params.relief_extent, params.relief_shape, margin, positions,
                         tuple(trials), high, given, tip, without, found)
 

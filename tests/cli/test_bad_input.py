@@ -61,7 +61,8 @@ OPTIONS = {
                "--tip-round": ["-0.25", "100"],
                "--rim1": ["0", "-6", "1e300"], "--rim2": ["0", "-6", "1e300"],
                "--extra-pairs": ["-1", "1000"],
-               "--cycle-positions": ["1", "0", "100000"], "--margin": ["-0.1", "3"]},
+               "--cycle-positions": ["1", "0", "100000"], "--margin": ["-0.1", "3"],
+               "--workers": ["0", "-2", "100000"]},
     "study": {"--workers": ["0", "-2", "100000"]},
     "drive": {},  # its options sit on its subcommands: tests/test_drive_cli.py
 }

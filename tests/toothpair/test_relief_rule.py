@@ -1,6 +1,9 @@
 """The relief search (fegear.toothpair.relief_rule) on trials whose outcome is known, and once
 on the baseline pair (slow)."""
 
+from collections import Counter
+from concurrent.futures import ThreadPoolExecutor
+
 import pytest
 
 from fegear.errors import FegearError
@@ -89,6 +92,28 @@ def test_a_far_side_round_that_no_tip_clearance_frees_is_refused_naming_the_limi
     assert "far-side teeth [23]" in text
     assert "raised to 596 µm, the most this pair takes is 600 µm" in text  # m h1, 4 µm steps
     assert max(tip for *_, tip in calls) == pytest.approx(0.596, abs=1e-9)
+
+
+@pytest.mark.parametrize("kind", [dict(needed_um=7.3),
+                                  dict(needed_um=7.3, far_from_um=4.0, far_off_mm=0.021),
+                                  dict(needed_um=7.3, far_from_um=4.0, far_off_mm=0.021,
+                                       trimmed_um=1.0),
+                                  dict(needed_um=0.0)])
+def test_solving_ahead_on_two_workers_finds_what_the_search_finds_alone(kind):
+    """The guesses change nothing the search reports: the same amount, tip clearance, trials
+    in the same order and the same pair at the design torque; they are solved beside the
+    trials it needs (more solves than trials, fewer rounds)."""
+    alone, alone_calls = _fake(**kind)
+    ahead, ahead_calls = _fake(**kind)
+    s1 = size_relief(BASE, tolerance_um=0.25, solve=alone)
+    with ThreadPoolExecutor(2) as pool:
+        s2 = size_relief(BASE, tolerance_um=0.25, solve=ahead, executor=pool, workers=2)
+    assert s2 == s1
+    assert not Counter(alone_calls) - Counter(ahead_calls)   # every needed solve, …
+    assert all(n == Counter(alone_calls)[c] for c, n in Counter(ahead_calls).items()
+               if c in alone_calls)                           # … each as often as alone …
+    if kind["needed_um"] > 0:                             # … and guesses beside them
+        assert len(ahead_calls) > len(alone_calls)
 
 
 @pytest.mark.slow

@@ -13,10 +13,10 @@ from __future__ import annotations
 
 import time
 from collections import OrderedDict
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from ...fe import Material, assemble_cyclic, mesh_bodies
-from ...geometry import Gear1Profile, RoundedProfile, gear2_curve
+from ...geometry import Gear1Profile, PairParameters, RoundedProfile, gear2_curve
 from ..case import SolveCase
 from .grid import ToothSamples, sample_tooth
 from .side import GearSide
@@ -50,6 +50,9 @@ LEVELS = {"coarse": RingLevel(1 / 10, 1 / 20, 1 / 8, 1 / 32, 1 / 2, 8, 4.0, 12),
           "standard": RingLevel(1 / 20, 1 / 40, 1 / 16, 1 / 64, 1 / 4, 16, 4.0, 16),
           "fine": RingLevel(1 / 40, 1 / 80, 1 / 32, 1 / 128, 1 / 8, 32, 4.0, 32)}
 ROUND_FLOOR = 0.05       # template sizes at the tip use a round of at least this many modules
+THIN = 0.1               # a tip relief or tip trim thinner than this many flank elements is
+                         # left to the contact's exact geometry: the templates are meshed
+                         # without it (a relief search's trials then share one model)
 #: the case fields a ring model depends on (not torque, position or the sector model's inputs)
 GEOMETRY_KEYS = ("params", "thickness", "E", "nu", "quality", "rim1", "rim2", "tip_round")
 
@@ -69,6 +72,11 @@ class RingModel:
     level: RingLevel
     timings_s: dict
     submodels: dict = field(default_factory=dict, repr=False)   # prepared, by key
+    meshed: PairParameters | None = None    # the pair the templates were meshed for
+
+    def __post_init__(self) -> None:
+        if self.meshed is None:
+            self.meshed = self.case.params
 
     @property
     def curve2(self):
@@ -93,15 +101,39 @@ KEEP = 4
 
 def ring_model(case: SolveCase, profile: Gear1Profile | None = None) -> RingModel:
     """The ring model for ``case``: one kept from an earlier case of the same geometry,
-    material and quality, or a new one (then kept)."""
+    material and quality; or one that shares the templates (meshes, factors and responses) of
+    a kept model meshed for the same pair (:func:`meshed_params`); or a new one. It is kept."""
     key = tuple(getattr(case, k) for k in GEOMETRY_KEYS)
     model = _KEPT.pop(key, None)
     if model is None:
-        model = build_ring(case, profile)
+        meshed = meshed_params(case)
+        kin = next((m for m in reversed(_KEPT.values())
+                    if m.meshed == meshed and _same_body(m.case, case)), None)
+        model = build_ring(case, profile, kin)
         while len(_KEPT) >= KEEP:
             _KEPT.popitem(last=False)
     _KEPT[key] = model
     return model
+
+
+def meshed_params(case: SolveCase) -> PairParameters:
+    """The pair ``case``'s templates are meshed for: its own, without a tip relief or a tip
+    trim (the radial tip clearance's departure from its default) thinner than :data:`THIN`
+    flank elements of its level. Both move gear 1's surface by µm where the flank's elements
+    are 25-100 µm; the contact grids, gaps and loads follow the exact profile either way."""
+    p = case.params
+    thin = THIN * LEVELS[case.quality].flank * p.m
+    if 0.0 < 1e-3 * p.relief <= thin:
+        p = replace(p, relief=0.0, relief_extent=None, relief_start=None,
+                    relief_shape="parabolic")
+    if p.tip_clearance is not None and abs(p.tip_clearance - p.shift) <= thin:
+        p = replace(p, tip_clearance=None)
+    return p
+
+
+def _same_body(a: SolveCase, b: SolveCase) -> bool:
+    """Whether two cases have the same material, rims, round and quality."""
+    return all(getattr(a, k) == getattr(b, k) for k in GEOMETRY_KEYS if k != "params")
 
 
 def build_templates(case: SolveCase, shape: RoundedProfile) -> tuple[Template, Template]:
@@ -118,8 +150,11 @@ def build_templates(case: SolveCase, shape: RoundedProfile) -> tuple[Template, T
             gear2_template(p, gear2_curve(p), sizes, rim2))
 
 
-def build_ring(case: SolveCase, profile: Gear1Profile | None = None) -> RingModel:
-    """Mesh both templates, assemble, factorise and condense them: once per geometry."""
+def build_ring(case: SolveCase, profile: Gear1Profile | None = None,
+               kin: RingModel | None = None) -> RingModel:
+    """Mesh both templates (for :func:`meshed_params`), assemble, factorise and condense them:
+    once per geometry. With ``kin``, a model whose templates serve ``case`` too, they are
+    shared (responses formed for one serve both)."""
     p = case.params
     level = LEVELS[case.quality]
     times = {}
@@ -128,8 +163,12 @@ def build_ring(case: SolveCase, profile: Gear1Profile | None = None) -> RingMode
     shape = RoundedProfile(profile, case.edge_radius)
     samples = sample_tooth(shape)
     times["profile"] = time.perf_counter() - t0
+    meshed = meshed_params(case)
+    if kin is not None:
+        return RingModel(case, profile, shape, samples, kin.gears, level, times, meshed=meshed)
     t0 = time.perf_counter()
-    t1, t2 = build_templates(case, shape)
+    base = shape if meshed == p else RoundedProfile(Gear1Profile(meshed), case.edge_radius)
+    t1, t2 = build_templates(replace(case, params=meshed), base)
     m1, m2 = mesh_bodies([t1.geometry, t2.geometry])
     times["mesh"] = time.perf_counter() - t0
     t0 = time.perf_counter()
@@ -137,4 +176,4 @@ def build_ring(case: SolveCase, profile: Gear1Profile | None = None) -> RingMode
     sides = (GearSide(assemble_cyclic(m1, mat, p.z1, t1.cut, (t1.held,)), t1),
              GearSide(assemble_cyclic(m2, mat, p.z2, t2.cut, (t2.held,)), t2))
     times["assemble_factor"] = time.perf_counter() - t0
-    return RingModel(case, profile, shape, samples, sides, level, times)
+    return RingModel(case, profile, shape, samples, sides, level, times, meshed=meshed)

@@ -306,3 +306,32 @@ def test_a_probe_solve_that_does_not_settle_falls_back_to_fine_grids(monkeypatch
     assert probes[0] and not any(probes[1:])
     for key, value in baseline_200.headline().items():
         assert sol.headline()[key] == pytest.approx(value, rel=1e-3), key
+
+
+def test_a_thin_relief_and_tip_trim_share_the_templates_and_change_nothing_they_would_mesh(
+        monkeypatch, baseline_200):
+    """A 4 µm relief and a 4 µm deeper tip trim are a tenth of `coarse`'s 100 µm flank
+    elements or less: their ring model shares the unmodified pair's templates (meshes, factors,
+    responses), while 20 µm of relief gets its own. The shared templates give the headline
+    stresses and the load shares of the relieved pair meshed as it is within 0.2 %."""
+    base = replace(baseline_200.case, quality="coarse")
+    params = replace(base.params, relief=4.0, relief_extent=0.5, tip_clearance=0.020)
+    thin = replace(base, params=params)
+    thick = replace(base, params=replace(params, relief=20.0))
+    assert ring_model.meshed_params(thin) == base.params
+    assert ring_model.meshed_params(thick) == replace(params, relief=20.0, tip_clearance=None)
+    kept = ring_model.ring_model(base)
+    shared = ring_model.ring_model(thin)
+    assert shared.gears is kept.gears and shared.profile is not kept.profile
+    assert ring_model.ring_model(thick).gears is not kept.gears
+    sol = solve_pair(thin, model=shared)
+    monkeypatch.setattr(ring_model, "THIN", 0.0)
+    own = build_ring(thin)
+    assert own.gears is not kept.gears
+    alone = solve_pair(thin, model=own)
+    _check(sol)
+    for key, value in alone.headline().items():
+        assert sol.headline()[key] == pytest.approx(value, rel=2e-3), key
+    shares = {t.tooth: t.load_share for t in alone.teeth}
+    for t in sol.teeth:
+        assert t.load_share == pytest.approx(shares.get(t.tooth, 0.0), abs=2e-3)

@@ -1,0 +1,34 @@
+"""Local process pools: the study runner's and the relief search's workers.
+
+Workers are spawned, not forked (the parent may hold threads: the progress bar's), leave
+Ctrl-C to the parent and end when it does: a parent killed outright (SIGKILL) leaves no time
+to stop them, and one would finish its task for nobody and then wait forever for the next.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import threading
+import time
+from concurrent.futures import ProcessPoolExecutor
+
+
+def local_pool(workers: int) -> ProcessPoolExecutor:
+    """A pool of ``workers`` spawned processes set up by :func:`init_worker`."""
+    import multiprocessing
+
+    return ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
+                               initializer=init_worker)
+
+
+def init_worker() -> None:
+    """A local pool's worker: Ctrl-C is left to the parent, and it ends with the parent."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    threading.Thread(target=_exit_with_parent, args=(os.getppid(),), daemon=True).start()
+
+
+def _exit_with_parent(parent: int) -> None:
+    while os.getppid() == parent:
+        time.sleep(0.5)
+    os._exit(1)
