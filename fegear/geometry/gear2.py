@@ -72,6 +72,12 @@ class Cycloid:
         if not 0 <= order <= 3:
             raise ValueError("order must be 0..3")
         xi = np.atleast_1d(np.asarray(xi, dtype=float))
+        er = np.stack([np.cos(xi), np.sin(xi)], axis=-1)
+        et = np.stack([-np.sin(xi), np.cos(xi)], axis=-1)
+        return [a[:, None] * er + b[:, None] * et for a, b in self._rotating(xi, order)]
+
+    def _rotating(self, xi: np.ndarray, order: int) -> list[tuple[np.ndarray, np.ndarray]]:
+        """The ê_r and t̂ components of ``[P, P', ..., P^(order)]`` at ``xi`` (order ≤ 3)."""
         uw = self._uw(xi, order) + [(0.0, 0.0)] * (3 - order)
         (u, w), (u1, w1), (u2, w2), (u3, w3) = uw
         coeffs = [
@@ -80,9 +86,7 @@ class Cycloid:
             (u2 - 2 * w1 - u, w2 + 2 * u1 - w),
             (u3 - 3 * w2 - 3 * u1 + w, w3 + 3 * u2 - 3 * w1 - u),
         ]
-        er = np.stack([np.cos(xi), np.sin(xi)], axis=-1)
-        et = np.stack([-np.sin(xi), np.cos(xi)], axis=-1)
-        return [a[:, None] * er + b[:, None] * et for a, b in coeffs[: order + 1]]
+        return coeffs[: order + 1]
 
     # --- point, tangent, normal, curvature ----------------------------------------------
     def point(self, xi: np.ndarray) -> np.ndarray:
@@ -186,11 +190,15 @@ class Cycloid:
         todo = np.arange(len(y))
         for _ in range(50):
             x = xi[todo]
-            p, d1, d2 = self.derivatives(x, 2)
-            r = p - y[todo]
-            f = np.einsum("ij,ij->i", r, d1)
-            speed2 = np.einsum("ij,ij->i", d1, d1)
-            df = speed2 + np.einsum("ij,ij->i", r, d2)
+            # in the rotating basis at ξ (ê_r, t̂), where P and its derivatives are written
+            c, s = np.cos(x), np.sin(x)
+            yt = y[todo]
+            (a0, b0), (a1, b1), (a2, b2) = self._rotating(x, 2)
+            r_r = a0 - (yt[:, 0] * c + yt[:, 1] * s)
+            r_t = b0 - (yt[:, 1] * c - yt[:, 0] * s)
+            f = r_r * a1 + r_t * b1
+            speed2 = a1 * a1 + b1 * b1
+            df = speed2 + r_r * a2 + r_t * b2
             # beyond the centre of curvature (d κ near 1 or more) Newton heads for the farthest
             # point and cycled there for all 50 steps (points 2 mm off a tooth tip): a
             # Gauss-Newton step instead, downhill for the distance

@@ -104,9 +104,10 @@ def cycle_result(values: Mapping, amount_um: float, torque: float, positions: in
     job = prepare_job({**values, "relief": amount_um, "torque": torque,
                        "positions": positions, "no-estimate": True})
     profile = gear1_profile(job.case.params)
-    # the search reads contact loads and pressures only: no submodels (3.7 s of a 9.6 s
-    # trial at `coarse`, most of it meshing a new disk wherever the peak moved)
-    sols = solve_positions(job.case, job.betas, profile, submodels="none")
+    # the search reads contact loads and pressures only: no stresses (the submodels were
+    # 3.7 s of a 9.6 s trial at `coarse`; the templates' stresses and the teeth's Hertz and
+    # half-plane references a fifth of what was left)
+    sols = solve_positions(job.case, job.betas, profile, contact_only=True)
     edge = [(t, s.case.beta) for s in sols for t in s.teeth if t.edge_contact]
     p = job.case.params
     angles = {t.tooth: math.degrees(wrap(profile.tooth_center + t.tooth * profile.pitch

@@ -56,9 +56,11 @@ def from_tip_corner(shape, grid, pressure: np.ndarray) -> np.ndarray:
 
 
 def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
-                  sol: RingContactSolution, stresses: RingStresses, state,
+                  sol: RingContactSolution, stresses: RingStresses | None, state,
                   cands) -> tuple[ToothResult, ...]:
-    """One :class:`~fegear.toothpair.case.ToothResult` per gridded tooth."""
+    """One :class:`~fegear.toothpair.case.ToothResult` per gridded tooth. Without
+    ``stresses`` (a contact-only solve) the root stresses are NaN and the half-plane
+    reference and the bending curvature are left out (None, 0)."""
     p = case.params
     pitch1, pitch2 = model.shape.pitch, 2 * math.pi / p.z2
     w = contact.weight * case.thickness
@@ -85,9 +87,12 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
         split = flank_and_edge(grid.s, pk, grid.on_round, case.thickness,
                                model.shape.radius_mm, E_star)
         b = local_half_width(contact, sol.pressure, i) if load > 0 else 0.0
-        bend, curvature = _bending(grid.s, pk, sol.gap[blk] - gap[blk], gap[blk], E_star)
-        ref = (_halfplane(grid, gap[blk] + bend, load / case.thickness, E_star,
-                          case.thickness, model.shape.radius_mm) if load > 0 else None)
+        if stresses is not None:
+            bend, curvature = _bending(grid.s, pk, sol.gap[blk] - gap[blk], gap[blk], E_star)
+            ref = (_halfplane(grid, gap[blk] + bend, load / case.thickness, E_star,
+                              case.thickness, model.shape.radius_mm) if load > 0 else None)
+        else:
+            curvature, ref = 0.0, None
         j = i - blk.start
         spacing = 0.5 * (grid.s[min(j + 1, len(grid) - 1)] - grid.s[max(j - 1, 0)])
         per_b = b / spacing if load > 0 else 0.0
@@ -98,9 +103,11 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
             half_width_mm=b,
             hertz_p0_MPa=hz.p0 if hz else None, hertz_b_mm=hz.b if hz else None,
             b_over_R=hz.b_over_R if hz else None,
-            root1_MPa=stresses.roots[0].near(fillets[0], pitch1),
-            root2_MPa=stresses.roots[1].near(fillets[1], pitch2) if math.isfinite(theta2)
-            else 0.0,
+            root1_MPa=(stresses.roots[0].near(fillets[0], pitch1) if stresses is not None
+                       else math.nan),
+            root2_MPa=(math.nan if stresses is None else
+                       stresses.roots[1].near(fillets[1], pitch2) if math.isfinite(theta2)
+                       else 0.0),
             peak_on_round=bool(load > 0 and grid.on_round[i - blk.start]),
             flank_p_MPa=split.flank_MPa, edge_p_MPa=split.edge_MPa,
             edge_load_N=split.edge_load_N,

@@ -13,6 +13,7 @@ reused for every torque and position (:class:`~.model.RingModel`).
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import replace
 
@@ -53,13 +54,18 @@ class RingSolver:
     """The ring model as a :class:`~fegear.toothpair.positions.PositionModel`: ``model``, a
     ring model built before, is kept if it fits the case; ``submodels`` one of
     :data:`SUBMODELS` (:meth:`complete`). Without a submodel, a position's von Mises stress at
-    the contacts is the template's surface estimate (:func:`~.stresses.ring_stresses`)."""
+    the contacts is the template's surface estimate (:func:`~.stresses.ring_stresses`).
+    ``contact_only``: no stresses at all, for a caller that reads only the contact (loads,
+    shares, pressures, flank and edge apart, rotations: the tip-relief search); the root and
+    von Mises stresses are NaN, the teeth's Hertz values and half-plane references None."""
 
-    def __init__(self, model: RingModel | None = None, submodels: str = "peaks") -> None:
+    def __init__(self, model: RingModel | None = None, submodels: str = "peaks",
+                 contact_only: bool = False) -> None:
         if submodels not in SUBMODELS:
             raise ValueError(f"submodels must be one of {SUBMODELS}, not {submodels!r}")
         self.model = model
-        self.submodels = submodels
+        self.submodels = "none" if contact_only else submodels
+        self.contact_only = contact_only
         self.timings_s: dict = {}
 
     def build(self, case: SolveCase, profile: Gear1Profile, states) -> None:
@@ -131,8 +137,18 @@ class RingSolver:
         model, p = self.model, case.params
         contact, sol, grids, first_um = attempt.result
         t0 = time.perf_counter()
-        stresses = ring_stresses(model, contact, sol.pressure, self.submodels == "all")
         touch = touch_rotation(model, contact, p.turn_of(first_um))
+        if self.contact_only:
+            teeth_out = tooth_results(model, case, contact, sol, None, state, ())
+            checks = ContactChecks(sol.balance_error, sol.max_penetration, sol.iterations,
+                                   (), contact.npoints)
+            return PairSolution(
+                case=case, teeth=teeth_out, root_stress=(math.nan, math.nan),
+                von_mises_max=math.nan, rotation=sol.rotation, first_touch=touch,
+                dofs=model.dofs, checks=checks,
+                timings_s={"stresses": time.perf_counter() - t0},
+                detail=RingDetail(model, case, contact, sol, None), von_mises_estimated=True)
+        stresses = ring_stresses(model, contact, sol.pressure, self.submodels == "all")
         cands = candidate_data(p, model.shape, state, tuple(g.tooth for g in grids), case.beta)
         teeth_out = tooth_results(model, case, contact, sol, stresses, state, cands)
         times = {"stresses": time.perf_counter() - t0}

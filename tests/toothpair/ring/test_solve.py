@@ -262,6 +262,25 @@ def test_without_submodels_the_contact_and_roots_are_the_same(baseline_ring, bas
     assert bare.von_mises_max == pytest.approx(full.von_mises_max, rel=0.05)
 
 
+def test_a_contact_only_solve_gives_the_full_solves_contact_and_no_stresses(baseline_ring,
+                                                                           baseline_200):
+    """What the relief search reads (loads, shares, pressures, flank and edge apart, the
+    rotations) is the full solve's to the last bit; every stress is NaN, not a number that
+    could pass for one."""
+    case = replace(baseline_ring.case, torque=200.0)
+    bare = solve_positions(case, (case.beta,), model=baseline_ring, contact_only=True)[0]
+    full = baseline_200
+    assert (bare.rotation, bare.first_touch) == (full.rotation, full.first_touch)
+    assert (bare.contact_pressure, bare.flank_contact_pressure) == \
+        (full.contact_pressure, full.flank_contact_pressure)
+    fields = ("tooth", "load_N", "load_share", "p_max_MPa", "flank_p_MPa", "edge_p_MPa",
+              "edge_load_N", "half_width_mm", "peak_on_round")
+    for a, b in zip(bare.teeth, full.teeth, strict=True):
+        assert [getattr(a, f) for f in fields] == [getattr(b, f) for f in fields]
+        assert math.isnan(a.root1_MPa) and math.isnan(a.root2_MPa)
+    assert all(math.isnan(v) for v in (*bare.root_stress, bare.von_mises_max))
+
+
 def test_a_cycle_solves_submodels_where_it_peaks_and_each_position_as_alone(baseline_ring):
     # a cycle's positions are the positions solved alone; only the von Mises stress of those
     # away from the cycle's peaks is the surface estimate, and the cycle's largest is solved
