@@ -148,13 +148,13 @@ class _Ahead:
     def get(self, key: tuple, guess: tuple | None = None) -> CycleResult:
         if self.executor is None:
             return self.solve(*self._args(key))
-        wanted = [key] + ([guess] if guess is not None else [])
-        if key not in self.futures or not self.futures[key].done():
+        # a guess goes beside a trial submitted now, not beside one already under way (it
+        # was itself a guess; guessing past it kept a worker from the next needed trial)
+        if key not in self.futures:
             busy = sum(not f.done() for f in self.futures.values())
-            for k in wanted:
-                if k not in self.futures and (k == key or busy < self.workers):
-                    self.futures[k] = self.executor.submit(self.solve, *self._args(k))
-                    busy += 1
+            self.futures[key] = self.executor.submit(self.solve, *self._args(key))
+            if guess is not None and guess not in self.futures and busy + 1 < self.workers:
+                self.futures[guess] = self.executor.submit(self.solve, *self._args(guess))
         try:
             return self.futures[key].result()
         except BrokenProcessPool:   # a worker died (killed, out of memory): on alone, here
