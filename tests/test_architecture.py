@@ -27,8 +27,9 @@ ALLOWED = {
     "toothpair": {"geometry", "fe", "contact"},
     "study": {"toothpair"},
     "drive": {"toothpair"},
+    "optimize": {"geometry", "toothpair"},
     "verify": {"geometry", "fe", "contact", "toothpair", "study"},
-    "cli": {"geometry", "fe", "contact", "toothpair", "study", "drive", "verify"},
+    "cli": {"geometry", "fe", "contact", "toothpair", "study", "drive", "verify", "optimize"},
     "api": {"toothpair"},   # the Python face: one module beside the command line
 }
 #: faces that are one module, not a subpackage

@@ -26,7 +26,7 @@ import sys
 
 from .. import progress
 from ..errors import FegearError, ParameterError
-from . import bench, drive, hertz, profile, relief, solve, study
+from . import bench, drive, hertz, optimize, profile, relief, solve, study
 from .args import EXIT_USAGE, Parser
 from .terminal import StageBar, Stopped, stop_on_signals
 
@@ -35,7 +35,7 @@ EXIT_BROKEN_PIPE = 128 + signal.SIGPIPE
 
 #: the commands in the order of ``fegear --help``
 COMMANDS = {"profile": profile, "hertz": hertz, "solve": solve, "relief": relief,
-            "study": study, "drive": drive, "bench": bench}
+            "study": study, "optimize": optimize, "drive": drive, "bench": bench}
 
 
 DESCRIPTION = ("Finite-element stresses of compound-cycloid internal gear tooth pairs: "

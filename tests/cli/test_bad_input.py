@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 import fegear.geometry
+import fegear.optimize
 import fegear.study
 import fegear.toothpair.pair
 import fegear.toothpair.relief_rule
@@ -64,13 +65,22 @@ OPTIONS = {
                "--cycle-positions": ["1", "0", "100000"], "--margin": ["-0.1", "3"],
                "--workers": ["0", "-2", "100000"]},
     "study": {"--workers": ["0", "-2", "100000"]},
+    "optimize": {**PAIR, "--torque": ["0", "-200", "1e300"], **MATERIAL, **ALLOWABLE,
+                 "--tip-round": ["-0.25", "100"], "--rim1": ["0", "-6", "1e300"],
+                 "--rim2": ["0", "-6", "1e300"], "--extra-pairs": ["-1", "1000"],
+                 "--trials": ["0", "-5", "1000000"], "--positions": ["1", "0", "100000"],
+                 "--workers": ["0", "-2", "100000"], "--best": ["-1", "100"],
+                 "--seed": ["-1", "99999999999"], "--quality": ["best"],
+                 "--max-outer-diameter": ["0", "-100", "10"],
+                 "--min-backlash": ["-1"], "--max-backlash": ["-1"]},
     "drive": {},  # its options sit on its subcommands: tests/test_drive_cli.py
 }
 CHOICE = {"--sector-levels"}
 INTEGER = {"--z1", "--z2", "--positions", "--extra-pairs", "--repeat",
-           "--cycle", "--study-cases", "--workers", "--cycle-positions"}
+           "--cycle", "--study-cases", "--workers", "--cycle-positions", "--trials", "--best",
+           "--seed"}
 ARGS = {"profile": ["--positions", "4"], "hertz": [], "solve": [], "bench": [], "drive": [],
-        "relief": ["--relief-extent", "0.5"],
+        "relief": ["--relief-extent", "0.5"], "optimize": [],
         "study": [str(Path(__file__).resolve().parents[2] / "studies" / "paper_trends.toml")]}
 
 
@@ -96,7 +106,7 @@ def no_work(monkeypatch):
                          (fegear.verify, "geometry_bench"), (fegear.verify, "disk_ladder"),
                          (fegear.verify, "pair_ladder"), (fegear.verify, "ring_ladder"),
                          (fegear.verify, "run_fresh"), (fegear.study, "run_study"),
-                         (fegear.verify, "study_overhead"),
+                         (fegear.verify, "study_overhead"), (fegear.optimize, "run_search"),
                          (fegear.toothpair.relief_rule, "cycle_result")):
         monkeypatch.setattr(module, name, accepted)
 

@@ -1,0 +1,115 @@
+"""One design of a search: the worst of its headline stresses over a mesh cycle, its safety
+factors and what limits them, and how far it is from each constraint.
+
+A design the solve refuses (outside the admissible region: the pair cannot be built) or
+cannot solve (its contact does not settle) is not an error here: it comes back with its
+reason and a violation of the ``buildable`` constraint, so that the sampler learns where the
+admissible region ends (a trial that raises is FAILED and teaches it nothing).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Mapping
+
+from ..errors import FegearError, ParameterError
+
+#: the safety factors the default objective takes the smallest of: S_F of each gear from its
+#: root σ1, S_H from the flank pressure (a load on a tip round is a constraint of its own)
+LIMITS = {"S_F1": ("bending", "root_stress_gear1_MPa"),
+          "S_F2": ("bending", "root_stress_gear2_MPa"),
+          "S_H_flank": ("contact", "flank_contact_pressure_MPa")}
+#: what a design is measured by, and which way is better
+OBJECTIVES = {"safety": "maximize", "te": "minimize", "stiffness": "maximize"}
+OBJECTIVE_HELP = {"safety": "the smallest of S_F1, S_F2 and S_H on the flank over the cycle",
+                  "te": "the transmission error's peak to peak over the cycle (µrad)",
+                  "stiffness": "the mean mesh stiffness over the cycle (N·m/rad)"}
+
+
+def outer_diameter(values: Mapping) -> float:
+    """Gear 2's outer diameter (mm): its root circle r0 + 2 e1 and the rim beyond it
+    (``rim2``, default 3 m), the size the pair takes in a housing."""
+    from ..toothpair import SOLVE_INPUTS
+
+    v = SOLVE_INPUTS.complete(values)
+    m, z2, h1 = float(v["m"]), int(v["z2"]), float(v["h1"])
+    rim2 = v["rim2"]
+    rim2 = 3.0 * m if rim2 is None else float(rim2)
+    return 2.0 * (0.5 * m * z2 + 2.0 * m * h1 + rim2)
+
+
+def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
+    """Solve ``values`` (``fegear solve`` inputs by name, a complete set) over ``positions``
+    rolling angles and measure it against ``constraints`` (``max_outer_diameter`` mm,
+    ``min_backlash``/``max_backlash`` µm, each optional). Returns a flat record: ``status``
+    (``ok``, ``refused`` or ``failed``), ``reason``, the worst headline stresses over the cycle
+    with the rolling angle (°) and tooth of each, the safety factors, ``objective_*``, the
+    constraint values (``violation_*``, > 0 violated) and the solve's time."""
+    from ..toothpair import prepare_job
+    from ..toothpair import solve_positions
+    from ..toothpair import allowables_of
+
+    t0 = time.perf_counter()
+    rec: dict = {"status": "ok", "reason": ""}
+    rec["outer_diameter_mm"] = outer_diameter(values)
+    over = constraints.get("max_outer_diameter")
+    rec["violation_outer_diameter"] = (rec["outer_diameter_mm"] - over) if over else 0.0
+    try:
+        job = prepare_job({**values, "positions": positions, "no-estimate": True})
+    except ParameterError as exc:
+        return _infeasible(rec, "refused", str(exc), t0)
+    except FegearError as exc:
+        return _infeasible(rec, "refused", str(exc), t0)
+    if constraints.get("min_backlash") is not None or constraints.get("max_backlash") is not None:
+        from ..geometry import ToothContact, gear1_profile
+
+        b = ToothContact(job.case.params, gear1_profile(job.case.params)).backlash()
+        rec["backlash_um"] = b.plus_um + b.minus_um
+        lo, hi = constraints.get("min_backlash"), constraints.get("max_backlash")
+        rec["violation_backlash"] = max(0.0 if lo is None else lo - rec["backlash_um"],
+                                        0.0 if hi is None else rec["backlash_um"] - hi)
+    try:
+        # the objective reads root stresses and contact pressures: no contact submodels
+        sols = solve_positions(job.case, job.betas, submodels="none")
+    except FegearError as exc:
+        return _infeasible(rec, "failed", str(exc), t0)
+    allow = allowables_of(values)
+    for key in ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa",
+                "flank_contact_pressure_MPa"):
+        i = max(range(len(sols)), key=lambda k: sols[k].headline()[key])
+        rec[key] = sols[i].headline()[key]
+        rec[key.replace("_MPa", "_beta_deg")] = math.degrees(sols[i].case.beta)
+        rec[key.replace("_MPa", "_tooth")] = _tooth(sols[i], key)
+    for name, (which, key) in LIMITS.items():
+        rec[name] = getattr(allow, which) / rec[key] if rec[key] > 0 else math.inf
+    rec["S_H"] = allow.contact / rec["contact_pressure_MPa"]
+    limit = min(LIMITS, key=lambda n: rec[n])
+    rec["limited_by"] = limit
+    edge = max(sum(t.edge_load_N for t in s.teeth) for s in sols)
+    rec["edge_load_N"] = edge
+    rec["violation_edge_load"] = edge          # any load on a tip round violates
+    te = [1e6 * (s.rotation - s.first_touch) for s in sols]
+    rec["te_p2p_urad"] = max(te) - min(te)
+    rec["stiffness_Nm_per_rad"] = sum(s.mesh_stiffness for s in sols) / len(sols)
+    rec["objective_safety"] = rec[limit]
+    rec["objective_te"] = rec["te_p2p_urad"]
+    rec["objective_stiffness"] = rec["stiffness_Nm_per_rad"]
+    rec["violation_buildable"] = 0.0
+    rec["time_s"] = time.perf_counter() - t0
+    return rec
+
+
+def _tooth(sol, key: str) -> int:
+    """The tooth of ``sol`` that carries the headline stress ``key``."""
+    attr = {"root_stress_gear1_MPa": "root1_MPa", "root_stress_gear2_MPa": "root2_MPa",
+            "contact_pressure_MPa": "p_max_MPa",
+            "flank_contact_pressure_MPa": "flank_p_MPa"}[key]
+    return max(sol.teeth, key=lambda t: getattr(t, attr) or 0.0).tooth
+
+
+def _infeasible(rec: dict, status: str, reason: str, t0: float) -> dict:
+    """A design that could not be built or solved: the ``buildable`` constraint violated."""
+    rec.update(status=status, reason=reason, violation_buildable=1.0,
+               violation_edge_load=0.0, time_s=time.perf_counter() - t0)
+    return rec

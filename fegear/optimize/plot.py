@@ -1,0 +1,89 @@
+"""Search plots: the objective against each design variable (feasible designs filled,
+infeasible ones open and grey, the best marked) and the search's history (each trial and the
+best so far); with two objectives, their front."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ..figures import pyplot, save_png
+from .design import OBJECTIVE_HELP, OBJECTIVES
+
+#: the objectives' axis labels
+LABELS = {"safety": "smallest S: S_F1, S_F2, S_H flank", "te": "TE peak to peak [µrad]",
+          "stiffness": "mean mesh stiffness [N·m/rad]"}
+
+
+def search_pngs(table, variables: list[str], objectives: list[str], out: Path,
+                title: str, baseline: float | None = None,
+                relieved: float | None = None) -> dict[str, Path]:
+    """``variables.png`` and ``history.png`` (and ``front.png`` with two objectives) from the
+    trials ``table`` (pandas, :func:`~.search.load_trials`); ``baseline``/``relieved``: the
+    objective of the baseline and the relieved baseline, drawn as lines."""
+    plt = pyplot()
+    done = table[table["state"] == "COMPLETE"]
+    ok = done[done["feasible"].astype(str) == "True"]
+    bad = done[done["feasible"].astype(str) != "True"]
+    o = objectives[0]
+    col = f"objective_{o}"
+    files = {}
+    best = (ok.loc[ok[col].idxmax()] if OBJECTIVES[o] == "maximize" else ok.loc[ok[col].idxmin()]
+            ) if len(ok) else None
+    n = len(variables)
+    fig, axes = plt.subplots(1, n, figsize=(3.4 * n + 0.6, 3.6), squeeze=False, sharey=True)
+    for ax, v in zip(axes[0], variables):
+        ax.scatter(bad[v], [0.0] * len(bad), s=14, facecolors="none", edgecolors="0.6",
+                   label="infeasible (at 0)")
+        ax.scatter(ok[v], ok[col], s=16, color="C0", label="feasible")
+        if best is not None:
+            ax.scatter([best[v]], [best[col]], s=90, marker="*", color="C3", zorder=3,
+                       label=f"best (trial {int(best['trial'])})")
+        _baselines(ax, baseline, relieved)
+        ax.set_xlabel(v)
+        ax.grid(alpha=0.3)
+    axes[0][0].set_ylabel(LABELS[o])
+    axes[0][-1].legend(fontsize=7, loc="best")
+    fig.suptitle(title, fontsize=9)
+    fig.tight_layout()
+    files["variables_png"] = save_png(fig, out / "variables.png", 120)
+    plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(6.4, 3.6))
+    ax.scatter(bad["trial"], [0.0] * len(bad), s=12, facecolors="none", edgecolors="0.6",
+               label="infeasible (at 0)")
+    ax.scatter(ok["trial"], ok[col], s=12, color="C0", label="feasible")
+    if len(ok):
+        ordered = ok.sort_values("trial")
+        run = ordered[col].cummax() if OBJECTIVES[o] == "maximize" else ordered[col].cummin()
+        ax.step(ordered["trial"], run, where="post", color="C3", label="best so far")
+    _baselines(ax, baseline, relieved)
+    ax.set_xlabel("trial")
+    ax.set_ylabel(LABELS[o])
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="best")
+    ax.set_title(title, fontsize=9)
+    fig.tight_layout()
+    files["history_png"] = save_png(fig, out / "history.png", 120)
+    plt.close(fig)
+
+    if len(objectives) > 1:
+        a, b = (f"objective_{k}" for k in objectives[:2])
+        fig, ax = plt.subplots(figsize=(5.2, 4.0))
+        ax.scatter(ok[a], ok[b], s=14, color="C0", label="feasible")
+        ax.set_xlabel(OBJECTIVE_HELP[objectives[0]])
+        ax.set_ylabel(OBJECTIVE_HELP[objectives[1]])
+        ax.grid(alpha=0.3)
+        ax.set_title(title, fontsize=9)
+        fig.tight_layout()
+        files["front_png"] = save_png(fig, out / "front.png", 120)
+        plt.close(fig)
+    return files
+
+
+def _baselines(ax, baseline: float | None, relieved: float | None) -> None:
+    """The baselines' smallest safety factors (every factor, a loaded round's S_H included:
+    solved again at `standard`) as horizontal lines."""
+    for value, label, style in ((baseline, "baseline (standard)", "--"),
+                                (relieved, "relieved baseline (standard)", ":")):
+        if value is not None:
+            ax.axhline(value, color="0.3", ls=style, lw=1, label=f"{label}: {value:.2f}")

@@ -1,0 +1,305 @@
+"""The design search: Optuna asks for designs, a local pool of worker processes solves each
+over a mesh cycle (:func:`~.design.evaluate`), and the answers go back as objective values
+and constraint values.
+
+* **Constraints, not exceptions.** A design the solve refuses or cannot solve, one that loads
+  a tip round, one too large for its housing or outside its backlash bounds comes back with
+  its constraint values > 0 (Optuna's ``constraints_func``): the sampler learns where the
+  feasible region ends. A trial that raised would be FAILED and teach it nothing.
+* **A journal that survives a kill.** Trials are stored in Optuna's journal file
+  (``search.journal``, one file several processes can append to; SQLite is fragile with
+  several writers). Only this process writes it: it asks, the workers solve, it tells. A
+  stop by SIGTERM or Ctrl-C finishes no trial half-way: the trials under way are marked
+  failed and queued again with the same design. So are those a killed worker (or a killed
+  search, SIGKILL, found RUNNING at the next start) leaves behind. A search started again
+  on the same directory resumes: finished trials count toward its budget and are never
+  solved again, queued ones are solved first.
+* **Cheap levels first.** Trials are screened at ``coarse``; the best are solved again at
+  ``standard`` with the error estimate (:mod:`.report`).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import signal
+import time
+from collections.abc import Callable
+from concurrent.futures import FIRST_COMPLETED, wait
+from concurrent.futures.process import BrokenProcessPool
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import FegearError
+from ..files import write_atomic, write_json
+from ..workers import local_pool
+from .design import OBJECTIVES, evaluate
+from .space import SAMPLERS, Space
+
+STUDY = "fegear-optimize"
+JOURNAL = "search.journal"
+#: the constraints every trial reports (> 0: violated), in this order
+CONSTRAINTS = ("buildable", "edge_load", "outer_diameter", "backlash")
+STARTUP = 10    # TPE's random trials before it models the objective
+
+
+class SearchInterrupted(FegearError):
+    """SIGTERM or SIGINT stopped the search; its finished trials are in the journal."""
+
+    def __init__(self, signum: int, done: int, total: int) -> None:
+        self.signum = signum
+        name = signal.Signals(signum).name
+        super().__init__(f"stopped by {name} after {done} of {total} trials; the trials under "
+                         "way were queued again: run the same command to resume")
+
+
+@dataclass(frozen=True)
+class SearchReport:
+    """A finished search: its directory, the Optuna study, the trials table, how many trials
+    were found finished and how many were solved now, and its wall time (s)."""
+
+    out: Path
+    study: object
+    table: Path
+    found: int
+    solved: int
+    wall_s: float
+
+
+def _constraints(trial) -> list[float]:
+    """A finished trial's constraint values, in :data:`CONSTRAINTS`' order (> 0: violated)."""
+    return [float(trial.constraints.get(c, 1.0)) for c in CONSTRAINTS]
+
+
+def _sampler(kind: str, seed: int, objectives: int):
+    import optuna
+
+    if kind not in SAMPLERS:
+        raise FegearError(f"unknown sampler {kind!r}: one of {', '.join(SAMPLERS)}")
+    if kind == "random":
+        return optuna.samplers.RandomSampler(seed=seed)
+    # constraints reach it through each trial's set_constraint (Optuna 5's way)
+    return optuna.samplers.TPESampler(seed=seed, n_startup_trials=STARTUP, multivariate=True)
+
+
+def open_study(space: Space, out: Path, sampler: str = "tpe", seed: int = 0):
+    """The search's Optuna study in ``out`` (made if new; resumed if it holds the same search,
+    refused if it holds another)."""
+    import optuna
+    from optuna.storages import JournalStorage
+    from optuna.storages.journal import JournalFileBackend
+
+    optuna.logging.set_verbosity(optuna.logging.WARNING)
+    storage = JournalStorage(JournalFileBackend(str(out / JOURNAL)))
+    study = optuna.create_study(
+        study_name=STUDY, storage=storage, load_if_exists=True,
+        directions=[OBJECTIVES[o] for o in space.objectives],
+        sampler=_sampler(sampler, seed, len(space.objectives)))
+    before = len(study.get_trials(deepcopy=False))
+    if before:   # resumed: a sampler seeded afresh would draw the first designs again
+        study.sampler = _sampler(sampler, seed + before, len(space.objectives))
+    settings = {**space.settings(), "sampler": sampler, "seed": seed}
+    kept = study.user_attrs.get("settings")
+    if kept is None:
+        study.set_user_attr("settings", json.loads(json.dumps(settings)))
+    elif kept != json.loads(json.dumps(settings)):
+        differ = sorted(k for k in settings if kept.get(k) != json.loads(json.dumps(settings[k])))
+        raise FegearError(f"{out} holds a search with other settings ({', '.join(differ)}): "
+                          "give a new --out, or the same settings to resume it")
+    return study
+
+
+def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: str = "tpe",
+               seed: int = 0, report: Callable[[str], None] | None = None) -> SearchReport:
+    """Search ``space`` for ``trials`` finished trials in all (those of an earlier run in
+    ``out`` included) on ``workers`` processes; the trials table is written at the end and at
+    a stop. ``report`` is told after each trial (a line: done, best, time left)."""
+    from optuna.trial import TrialState
+
+    t_start = time.perf_counter()
+    study = open_study(space, out, sampler, seed)
+    stale = study.get_trials(deepcopy=False, states=(TrialState.RUNNING,))
+    for t in stale:                      # a search killed outright left these running
+        _requeue(study, t.number, t.params)
+    found = sum(t.state == TrialState.COMPLETE for t in study.get_trials(deepcopy=False))
+    done, solved = found, 0
+    stop: list[int] = []
+    held = {s: signal.signal(s, lambda signum, frame: stop.append(signum))
+            for s in (signal.SIGTERM, signal.SIGINT)}
+    pool = local_pool(workers)
+    running: dict = {}
+    try:
+        while (done < trials or running) and not stop:
+            while len(running) < workers and done + len(running) < trials and not stop:
+                trial = study.ask()
+                params = {v.name: trial.suggest_float(v.name, v.low, v.high)
+                          for v in space.variables}
+                running[pool.submit(evaluate, space.values(params), space.positions,
+                                    dict(space.constraints))] = (trial, params)
+            finished, _ = wait(running, timeout=0.5, return_when=FIRST_COMPLETED)
+            for f in finished:
+                trial, params = running.pop(f)
+                try:
+                    rec = f.result()
+                except BrokenProcessPool:      # a worker died: every trial under way again
+                    for g, (t, p) in [(f, (trial, params)), *running.items()]:
+                        _requeue(study, t.number, p)
+                    running.clear()
+                    _stop(pool)
+                    pool = local_pool(workers)
+                    break
+                _tell(study, trial, rec, space)
+                done += 1
+                solved += 1
+                if report:
+                    report(_progress(study, space, done, trials, solved,
+                                     time.perf_counter() - t_start))
+        if stop:
+            for t, p in running.values():
+                _requeue(study, t.number, p)
+            running.clear()
+    finally:
+        _stop(pool)
+        for s, h in held.items():
+            signal.signal(s, h)
+        table = write_trials(study, space, out)
+    if stop:
+        raise SearchInterrupted(stop[0], done, trials)
+    return SearchReport(out, study, table, found, solved, time.perf_counter() - t_start)
+
+
+def _requeue(study, number: int, params: dict) -> None:
+    """Mark trial ``number`` failed (it did not finish) and queue its design again."""
+    from optuna.trial import TrialState
+
+    study.tell(number, state=TrialState.FAIL)
+    study.enqueue_trial(params, user_attrs={"requeued_from": number})
+
+
+def _clean(value):
+    """A record's value as JSON takes it (inf and NaN as None)."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def _tell(study, trial, rec: dict, space: Space) -> None:
+    for k, v in rec.items():
+        trial.set_user_attr(k, _clean(v))
+    for c in CONSTRAINTS:
+        trial.set_constraint(c, float(rec.get(f"violation_{c}", 0.0)))
+    values = []
+    for o in space.objectives:
+        v = rec.get(f"objective_{o}")
+        if v is None or not math.isfinite(v):      # not solved, or nothing limits it
+            v = 0.0 if OBJECTIVES[o] == "maximize" else 1e9
+        values.append(float(v))
+    study.tell(trial, values if len(values) > 1 else values[0])
+
+
+def feasible(t) -> bool:
+    """A finished trial that meets every constraint."""
+    return t.state.name == "COMPLETE" and all(c <= 0 for c in _constraints(t))
+
+
+def best_trials(study, space: Space, count: int = 3) -> list:
+    """The best feasible trials: by the objective (single), or the Pareto front's."""
+    ok = [t for t in study.get_trials(deepcopy=False) if feasible(t)]
+    if len(space.objectives) > 1:
+        front = {t.number for t in study.best_trials}
+        return [t for t in ok if t.number in front]
+    sign = -1.0 if OBJECTIVES[space.objectives[0]] == "maximize" else 1.0
+    return sorted(ok, key=lambda t: sign * t.values[0])[:count]
+
+
+def binding(study) -> str:
+    """Which constraint keeps the finished trials out (none feasible): the one violated by
+    the most, with how many."""
+    counts = {c: 0 for c in CONSTRAINTS}
+    done = [t for t in study.get_trials(deepcopy=False) if t.state.name == "COMPLETE"]
+    for t in done:
+        for c, v in zip(CONSTRAINTS, _constraints(t)):
+            counts[c] += v > 0
+    worst = max(counts, key=counts.get)
+    return f"{worst} (violated by {counts[worst]} of {len(done)} trials)"
+
+
+def _progress(study, space: Space, done: int, total: int, solved: int, wall: float) -> str:
+    best = best_trials(study, space, 1)
+    o = space.objectives[0]
+    text = (f"best {o} {best[0].values[0]:.4g} (trial {best[0].number})" if best
+            else "no feasible design yet")
+    left = wall / max(solved, 1) * (total - done)
+    return f"trial {done} of {total}, {text}, about {left / 60:.1f} min left"
+
+
+TABLE_COLUMNS = ("status", "objective_safety", "limited_by", "S_F1", "S_F2", "S_H_flank", "S_H",
+                 "root_stress_gear1_MPa", "root_stress_gear1_beta_deg",
+                 "root_stress_gear1_tooth", "root_stress_gear2_MPa",
+                 "root_stress_gear2_beta_deg", "root_stress_gear2_tooth",
+                 "contact_pressure_MPa", "flank_contact_pressure_MPa",
+                 "flank_contact_pressure_beta_deg", "flank_contact_pressure_tooth",
+                 "edge_load_N", "te_p2p_urad", "stiffness_Nm_per_rad", "outer_diameter_mm",
+                 "backlash_um", "time_s", "reason")
+
+
+def write_trials(study, space: Space, out: Path) -> Path:
+    """``trials.csv``: a row a trial (every state), its design, state, feasibility, the
+    constraint values and :data:`TABLE_COLUMNS`; and ``search.json``, the settings and the
+    best trials."""
+    names = [v.name for v in space.variables]
+    header = ["trial", "state", "feasible", *names, *(f"violation_{c}" for c in CONSTRAINTS),
+              *TABLE_COLUMNS]
+    rows = []
+    for t in study.get_trials(deepcopy=False):
+        a = t.user_attrs
+        cons = _constraints(t) if t.state.name == "COMPLETE" else [None] * len(CONSTRAINTS)
+        rows.append([t.number, t.state.name, feasible(t), *(t.params.get(n) for n in names),
+                     *cons, *(a.get(c) for c in TABLE_COLUMNS)])
+    path = _write_table(out / "trials.csv", header, rows)
+    best = best_trials(study, space)
+    write_json(out / "search.json", {
+        "settings": study.user_attrs.get("settings"),
+        "trials": len(rows), "finished": sum(t.state.name == "COMPLETE" for t in
+                                             study.get_trials(deepcopy=False)),
+        "feasible": sum(feasible(t) for t in study.get_trials(deepcopy=False)),
+        "best": [{"trial": t.number, "params": t.params, "values": t.values,
+                  **{k: _clean(t.user_attrs.get(k)) for k in TABLE_COLUMNS}} for t in best]})
+    return path
+
+
+def _write_table(path: Path, header, rows) -> Path:
+    """CSV with quoting where a cell needs it (a refusal's reason has commas); None empty,
+    floats at full precision."""
+    import csv
+
+    def cell(v):
+        return "" if v is None else repr(v) if isinstance(v, float) else v
+
+    def w(tmp: Path) -> None:
+        with open(tmp, "w", newline="") as f:
+            writer = csv.writer(f)
+            writer.writerow(header)
+            writer.writerows([cell(v) for v in row] for row in rows)
+
+    return write_atomic(path, w)
+
+
+def load_trials(out):
+    """A search's trials as a pandas DataFrame (``trials.csv`` of its directory ``out``)."""
+    import pandas as pd
+
+    path = Path(out) / "trials.csv"
+    if not path.is_file():
+        raise FegearError(f"no trials.csv in {out}: not a search directory")
+    return pd.read_csv(path)
+
+
+def _stop(pool) -> None:
+    """Shut the pool down and end its worker processes now (a trial under way is queued
+    again anyway)."""
+    procs = list((getattr(pool, "_processes", None) or {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for p in procs:
+        if p.is_alive():
+            p.terminate()

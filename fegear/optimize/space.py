@@ -1,0 +1,133 @@
+"""What a search varies and what it must respect: design variables with bounds, the fixed
+inputs, the constraints and the objectives, all checked before anything is solved or written.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+
+from ..errors import FegearError, ParameterError
+from .design import OBJECTIVES, outer_diameter
+
+#: the solve inputs a search may vary: the pair's shape and modifications and the gears' size
+#: (the tooth numbers are the ratio's, the torque and the material the requirement's)
+VARIABLES = ("m", "h1", "f1", "shift", "rotation", "tip-clearance", "relief", "relief-extent",
+             "relief-start", "tip-round", "face-width", "rim1", "rim2")
+#: the seed paper's ranges (§4): module, tooth height and tooth shape
+PAPER_RANGES = {"m": (1.0, 2.5), "h1": (0.2, 0.4), "f1": (0.1, 0.2)}
+#: a search's variables when none are given: the paper's ranges, and the tip relief (µm) and
+#: tip clearance (mm) that keep the tip rounds unloaded (without them every design of these
+#: ranges loads its rounds at the seed pair's torque, and none is feasible)
+DEFAULT_RANGES = {**PAPER_RANGES, "relief": (0.0, 10.0), "tip-clearance": (0.01, 0.04)}
+SAMPLERS = ("tpe", "random")
+
+
+@dataclass(frozen=True)
+class Variable:
+    """A design variable: a solve input and its bounds (its unit)."""
+
+    name: str
+    low: float
+    high: float
+
+
+@dataclass(frozen=True)
+class Space:
+    """A search's design space: ``variables``, the ``fixed`` solve inputs (by name), the rolling
+    angles per cycle, the screening quality, the ``constraints`` (``max_outer_diameter`` mm,
+    ``min_backlash``/``max_backlash`` µm) and the ``objectives`` (:data:`~.design
+    .OBJECTIVES`; the first is the one a single-objective search takes)."""
+
+    variables: tuple[Variable, ...]
+    fixed: Mapping = field(default_factory=dict)
+    positions: int = 12
+    quality: str = "coarse"
+    constraints: Mapping = field(default_factory=dict)
+    objectives: tuple[str, ...] = ("safety",)
+
+    def values(self, params: Mapping[str, float]) -> dict:
+        """The solve inputs of a design: the fixed ones with ``params`` (by variable name)."""
+        return {**self.fixed, "quality": self.quality, **params}
+
+    def settings(self) -> dict:
+        """What identifies the search (a journal holds one search: resumed only with these)."""
+        return {"variables": [[v.name, v.low, v.high] for v in self.variables],
+                "fixed": dict(sorted(self.fixed.items())), "positions": self.positions,
+                "quality": self.quality, "constraints": dict(sorted(self.constraints.items())),
+                "objectives": list(self.objectives)}
+
+
+def parse_variables(texts: Sequence[str]) -> tuple[Variable, ...]:
+    """``name=low:high`` each (``--vary``), checked: a known variable, once, finite bounds
+    with low < high, each inside the input's own range."""
+    from ..toothpair import SOLVE_INPUTS
+
+    out: dict[str, Variable] = {}
+    for text in texts:
+        name, _, bounds = text.partition("=")
+        name = name.strip().replace("_", "-")
+        if name not in VARIABLES:
+            raise ParameterError("vary", text, "name=low:high with name one of "
+                                 + ", ".join(VARIABLES), f"unknown variable {name!r}")
+        lo_text, sep, hi_text = bounds.partition(":")
+        try:
+            lo, hi = float(lo_text), float(hi_text)
+        except ValueError:
+            lo = hi = math.nan
+        if not sep or not (math.isfinite(lo) and math.isfinite(hi)) or lo >= hi:
+            raise ParameterError("vary", text, f"{name}=low:high with finite low < high")
+        if name in out:
+            raise ParameterError("vary", text, f"{name} once (it is given twice)")
+        row = SOLVE_INPUTS[name]
+        for bound in (lo, hi):
+            row.check(bound)   # outside the input's own range: refused by the input's name
+        out[name] = Variable(name, lo, hi)
+    if not out:
+        raise ParameterError("vary", "", "at least one name=low:high")
+    return tuple(out.values())
+
+
+def check_space(space: Space) -> None:
+    """Refuse, by name, a space no design of which can meet its constraints or be solved: the
+    fixed inputs must be valid, a variable not also fixed, the objectives known, the outer
+    diameter reachable inside the bounds, the backlash bounds in order."""
+    from ..toothpair import SOLVE_INPUTS
+
+    SOLVE_INPUTS.complete(space.fixed)    # an unknown input: refused by its name
+    for name, value in space.fixed.items():
+        if value is not None:
+            SOLVE_INPUTS[name].check(value)
+    for v in space.variables:
+        if v.name in space.fixed and space.fixed[v.name] is not None:
+            raise FegearError(f"--{v.name} is given and also varied (--vary {v.name}=...): "
+                              "one or the other")
+    for o in space.objectives:
+        if o not in OBJECTIVES:
+            raise ParameterError("objectives", o, "one or more of " + ", ".join(OBJECTIVES))
+    most = space.constraints.get("max_outer_diameter")
+    if most is not None:
+        if not (math.isfinite(most) and most > 0):
+            raise ParameterError("max-outer-diameter", most, "a finite size > 0 mm")
+        bounds = {v.name: v for v in space.variables}
+        smallest = {n: bounds[n].low for n in ("m", "h1", "rim2") if n in bounds}
+        least = outer_diameter({**space.fixed, **smallest})
+        if least > most:
+            raise ParameterError("max-outer-diameter", most,
+                                 f"at least {least:.4g} mm, the smallest gear 2 inside the "
+                                 "bounds (its root circle and rim at the least m, h1, rim2)",
+                                 "no design fits")
+    from ..toothpair import prepare_job
+
+    # the fixed pair itself (with the varied inputs at their defaults) must be one fegear
+    # builds: a refusal names the fixed input (z2 <= z1, a tip clearance past e1, …)
+    varied = {v.name for v in space.variables}
+    prepare_job({**{k: v for k, v in space.fixed.items() if k not in varied},
+                 "quality": space.quality, "no-estimate": True})
+    lo, hi = space.constraints.get("min_backlash"), space.constraints.get("max_backlash")
+    for name, value in (("min-backlash", lo), ("max-backlash", hi)):
+        if value is not None and not (math.isfinite(value) and value >= 0):
+            raise ParameterError(name, value, "a finite backlash >= 0 µm")
+    if lo is not None and hi is not None and lo >= hi:
+        raise ParameterError("max-backlash", hi, f"more than --min-backlash {lo:g} µm")

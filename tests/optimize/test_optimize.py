@@ -1,0 +1,203 @@
+"""The design search (fegear.optimize): its space checked before anything runs, a design's
+record against a cycle solved directly, the sampler's seed, a search resumed after SIGTERM
+and after a worker's SIGKILL with no trial lost or solved twice, and the printed ``fegear
+solve`` line giving the printed numbers. Tiny budgets at `coarse`, two or three positions."""
+
+import math
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from fegear.cli import main
+from fegear.errors import FegearError, ParameterError
+from fegear.optimize import (
+    Space,
+    Variable,
+    check_space,
+    evaluate,
+    load_trials,
+    open_study,
+    outer_diameter,
+    parse_variables,
+    run_search,
+)
+
+BASE = {"shift": 0.016, "rotation": 0.002, "torque": 200.0}
+SPACE = Space((Variable("h1", 0.25, 0.35), Variable("relief", 0.0, 6.0)),
+              {**BASE, "tip-clearance": 0.02}, positions=2, quality="coarse")
+FEGEAR = [sys.executable, "-m", "fegear"]
+
+
+# --- the space ------------------------------------------------------------------------------
+def test_variables_are_parsed_and_bad_ones_refused_by_name():
+    assert parse_variables(["m=1:2.5", "relief=0:10"]) == (Variable("m", 1.0, 2.5),
+                                                          Variable("relief", 0.0, 10.0))
+    for text, name in (("z2=40:50", "vary"), ("m=2:1", "vary"), ("m=1", "vary"),
+                       ("m=nan:2", "vary"), ("m=-1:2", "m"), ("h1=0.2:0.4,f1", "vary")):
+        with pytest.raises(ParameterError) as err:
+            parse_variables([text])
+        assert err.value.name == name, text
+    with pytest.raises(ParameterError, match="once"):
+        parse_variables(["m=1:2", "m=1.5:2.5"])
+
+
+def test_a_constraint_no_design_inside_the_bounds_meets_is_refused():
+    space = Space((Variable("m", 1.0, 2.5), Variable("h1", 0.2, 0.4)), BASE,
+                  constraints={"max_outer_diameter": 50.0})
+    with pytest.raises(ParameterError) as err:
+        check_space(space)
+    # the smallest gear 2 inside the bounds: m 1, h1 0.2, rim 3 m: 2 (22.5 + 0.4 + 3) mm
+    assert err.value.name == "max-outer-diameter" and "51.8" in str(err.value)
+    with pytest.raises(ParameterError, match="min-backlash"):
+        check_space(Space(SPACE.variables, BASE,
+                          constraints={"min_backlash": 30.0, "max_backlash": 20.0}))
+    with pytest.raises(FegearError, match="given and also varied"):
+        check_space(Space(SPACE.variables, {**BASE, "h1": 0.3}))
+
+
+def test_bad_bounds_an_unknown_variable_and_an_infeasible_constraint_write_nothing(tmp_path,
+                                                                                  capsys):
+    out = tmp_path / "search"
+    for argv in (["--vary", "m=2.5:1"], ["--vary", "teeth=40:50"],
+                 ["--max-outer-diameter", "40"]):
+        assert main(["optimize", *argv, "--out", str(out)]) == 2
+        lines = capsys.readouterr().err.strip().splitlines()
+        assert len(lines) == 1 and lines[0].startswith("fegear: error:"), lines
+        assert not out.exists()
+
+
+# --- a design -------------------------------------------------------------------------------
+def test_a_designs_record_is_its_cycle_read_as_a_designer_would():
+    """The worst of each stress over the cycle and the factors from them, against the same
+    cycle solved directly; the objective is the smallest of S_F1, S_F2, S_H flank."""
+    from fegear.toothpair.job import prepare_job
+    from fegear.toothpair.pair import solve_positions
+
+    values = {**BASE, "quality": "coarse", "relief": 3.0, "tip-clearance": 0.02}
+    rec = evaluate(values, 3, {"max_outer_diameter": 100.0})
+    job = prepare_job({**values, "positions": 3, "no-estimate": True})
+    sols = solve_positions(job.case, job.betas, submodels="none")
+    root1 = max(s.root_stress[0] for s in sols)
+    flank = max(s.flank_contact_pressure for s in sols)
+    assert rec["status"] == "ok" and rec["root_stress_gear1_MPa"] == root1
+    assert rec["S_F1"] == pytest.approx(558.0 / root1)
+    assert rec["S_H_flank"] == pytest.approx(745.0 / flank)
+    assert rec["objective_safety"] == min(rec["S_F1"], rec["S_F2"], rec["S_H_flank"])
+    assert rec["violation_edge_load"] == 0.0 and rec["violation_buildable"] == 0.0
+    # m 2, z2 45, h1 0.3, rim 6 mm: 2 (45 + 1.2 + 6) = 104.4 mm, 4.4 mm too large for 100
+    assert rec["outer_diameter_mm"] == pytest.approx(104.4)
+    assert rec["violation_outer_diameter"] == pytest.approx(4.4)
+    assert outer_diameter({"m": 1.0, "h1": 0.2, "rim2": 2.0}) == pytest.approx(2 * 24.9)
+
+
+def test_a_design_the_solve_refuses_comes_back_as_a_violation_not_an_error():
+    rec = evaluate({**BASE, "quality": "coarse", "tip-clearance": 5.0}, 2, {})
+    assert rec["status"] == "refused" and "tip-clearance" in rec["reason"]
+    assert rec["violation_buildable"] == 1.0
+
+
+# --- the search ----------------------------------------------------------------------------
+def _params(out: Path, state: str = "COMPLETE") -> list[tuple]:
+    table = load_trials(out)
+    done = table[table["state"] == state]
+    return [tuple(round(v, 12) for v in row) for row in done[["h1", "relief"]].values]
+
+
+def test_a_seeded_search_repeats_and_a_resumed_one_solves_only_what_is_missing(tmp_path):
+    a, b = tmp_path / "a", tmp_path / "b"
+    for out in (a, b):
+        out.mkdir()
+        run_search(SPACE, out, trials=3, workers=1, seed=7)
+    assert _params(a) == _params(b) and len(_params(a)) == 3
+    report = run_search(SPACE, a, trials=5, workers=1, seed=7)
+    assert (report.found, report.solved) == (3, 2)
+    done = _params(a)
+    assert len(done) == 5 and len(set(done)) == 5 and done[:3] == _params(b)
+    with pytest.raises(FegearError, match="other settings"):
+        run_search(SPACE, a, trials=5, workers=1, seed=8)
+
+
+def _wait_for(out: Path, complete: int, proc, timeout: float = 120.0) -> None:
+    """Until the search in ``out`` has ``complete`` finished trials."""
+    from optuna.trial import TrialState
+
+    t0 = time.time()
+    while time.time() - t0 < timeout:
+        assert proc.poll() is None, proc.communicate()
+        if (out / "search.journal").exists():
+            study = open_study(SPACE_CLI, out)
+            if sum(t.state == TrialState.COMPLETE for t in study.get_trials()) >= complete:
+                return
+        time.sleep(0.3)
+    raise AssertionError("the search did not get going")
+
+
+SPACE_CLI = Space((Variable("h1", 0.25, 0.35), Variable("relief", 0.0, 6.0)),
+                  {**BASE, "tip-clearance": 0.02}, positions=2, quality="coarse")
+ARGV = ["optimize", "--vary", "h1=0.25:0.35", "--vary", "relief=0:6", "--shift", "0.016",
+        "--rotation", "0.002", "--tip-clearance", "0.02", "--positions", "2", "--best", "0",
+        "--no-baselines", "--trials", "6", "--workers", "2"]
+
+
+def _check_resumed(out: Path) -> None:
+    """Six finished trials, each design once; every trial a stop or a kill cut short was
+    queued again and finished with the same design."""
+    done = _params(out)
+    assert len(done) == 6 and len(set(done)) == 6
+    cut = _params(out, "FAIL")
+    assert cut and set(cut) <= set(done)
+
+
+def test_a_search_stopped_by_sigterm_resumes_with_no_trial_lost_or_repeated(tmp_path):
+    out = tmp_path / "search"
+    proc = subprocess.Popen([*FEGEAR, *ARGV, "--out", str(out)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    _wait_for(out, 2, proc)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 128 + signal.SIGTERM, err
+    assert "queued again" in err
+    again = subprocess.run([*FEGEAR, *ARGV, "--out", str(out)], capture_output=True, text=True,
+                           timeout=300)
+    assert again.returncode == 0, again.stderr
+    _check_resumed(out)
+
+
+def test_a_killed_worker_costs_its_trial_a_second_start_and_nothing_else(tmp_path):
+    psutil = pytest.importorskip("psutil")
+    out = tmp_path / "search"
+    proc = subprocess.Popen([*FEGEAR, *ARGV, "--out", str(out)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    _wait_for(out, 1, proc)
+    workers = [p for p in psutil.Process(proc.pid).children()
+               if any("spawn_main" in part for part in p.cmdline())]
+    assert workers
+    os.kill(workers[0].pid, signal.SIGKILL)
+    _, err = proc.communicate(timeout=300)
+    assert proc.returncode == 0, err
+    _check_resumed(out)
+
+
+def test_the_printed_solve_line_gives_the_printed_numbers(tmp_path, capsys):
+    """The final table's design, solved again by the ``fegear solve`` line printed for it,
+    gives its safety factors to the last digit printed (the same solve), well inside its
+    error estimate."""
+    import json
+    import shlex
+
+    from fegear.optimize import resolve
+
+    row = resolve({**BASE, "relief": 3.0, "tip-clearance": 0.02, "h1": 0.3}, 2, None)
+    argv = shlex.split(row["command"])[1:]
+    assert main([*argv, "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    cycle = summary["cycle"]
+    assert cycle["safety_bending_gear1"]["min"] == pytest.approx(row["S_F1"], rel=1e-9)
+    assert cycle["safety_contact_flank"]["min"] == pytest.approx(row["S_H_flank"], rel=1e-9)
+    assert row["safety"] == min(row["S_F1"], row["S_F2"], row["S_H_flank"], row["S_H"])
+    assert all(math.isfinite(v) for v in row["estimate_pct"].values())
