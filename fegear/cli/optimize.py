@@ -8,7 +8,6 @@ import json
 import os
 import sys
 import time
-from pathlib import Path
 
 from ..checks import require_range
 from ..toothpair.inputs import QUALITY, SOLVE_INPUTS

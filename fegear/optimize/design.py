@@ -46,9 +46,7 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
     (``ok``, ``refused`` or ``failed``), ``reason``, the worst headline stresses over the cycle
     with the rolling angle (°) and tooth of each, the safety factors, ``objective_*``, the
     constraint values (``violation_*``, > 0 violated) and the solve's time."""
-    from ..toothpair import prepare_job
-    from ..toothpair import solve_positions
-    from ..toothpair import allowables_of
+    from ..toothpair import allowables_of, prepare_job, solve_positions
 
     t0 = time.perf_counter()
     rec: dict = {"status": "ok", "reason": ""}

@@ -142,7 +142,7 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
                 try:
                     rec = f.result()
                 except BrokenProcessPool:      # a worker died: every trial under way again
-                    for g, (t, p) in [(f, (trial, params)), *running.items()]:
+                    for t, p in [(trial, params), *running.values()]:
                         _requeue(study, t.number, p)
                     running.clear()
                     _stop(pool)
