@@ -8,8 +8,10 @@ import json
 import os
 import sys
 import time
+from pathlib import Path
 
 from ..checks import require_range
+from ..errors import FegearError
 from ..toothpair.inputs import QUALITY, SOLVE_INPUTS
 from .args import add_inputs, given_values
 
@@ -127,14 +129,21 @@ def run(a: argparse.Namespace) -> int:
         print("\n".join(lines))
         return 0
     rows: dict[str, dict] = {}
+    failed: list[str] = []
+
+    def again(name: str, values: dict, files: Path | None) -> None:
+        try:
+            rows[name] = resolve(values, positions, files)
+        except FegearError as exc:    # said, not fatal: the search's results stand
+            failed.append(f"{name} could not be solved again at standard: {exc}")
+
     if not a.no_baselines:
         for name, values in baselines(space).items():
             progress.stage(f"the {name} at standard over the cycle")
-            rows[name] = resolve(values, positions, None)
+            again(name, values, None)
     for k, t in enumerate(best[:best_count] if best_count else []):
         progress.stage(f"best design {k + 1} (trial {t.number}) at standard with the estimate")
-        rows[f"trial {t.number}"] = resolve(space.values(t.params) | {"quality": "standard"},
-                                            positions, out / "best" if k == 0 else None)
+        again(f"trial {t.number}", space.values(t.params), out / "best" if k == 0 else None)
     objective = space.objectives[0]
     pictures = search_pngs(table, [v.name for v in variables], list(space.objectives), out,
                            f"{trials} trials, {a.sampler}, {positions} positions at "
@@ -149,6 +158,7 @@ def run(a: argparse.Namespace) -> int:
     if a.json:
         print(json.dumps({"search_s": search_s, "rows": rows}, indent=2))
         return 0
+    lines += failed
     lines += ["", f"over the cycle at {fixed['torque']:g} N·m, {positions} positions, solved "
                   "again at standard; smallest: the least safety factor of all four (S_H "
                   "with a loaded tip round); gain: against the relieved baseline; est. %: the "

@@ -118,15 +118,18 @@ def ring_model(case: SolveCase, profile: Gear1Profile | None = None) -> RingMode
 
 def meshed_params(case: SolveCase) -> PairParameters:
     """The pair ``case``'s templates are meshed for: its own, without a tip relief or a tip
-    trim (the radial tip clearance's departure from its default) thinner than :data:`THIN`
-    flank elements of its level. Both move gear 1's surface by µm where the flank's elements
-    are 25-100 µm; the contact grids, gaps and loads follow the exact profile either way."""
+    trim deeper than the default (a radial tip clearance above its default, the shift)
+    thinner than :data:`THIN` flank elements of its level. Both move gear 1's surface by µm
+    where the flank's elements are 25-100 µm, and both only take material away, so the
+    exact profile lies within the templates (a tip clearance below the default would stand
+    out of them: its pair is meshed as it is). The contact grids, gaps and loads follow the
+    exact profile either way."""
     p = case.params
     thin = THIN * LEVELS[case.quality].flank * p.m
     if 0.0 < 1e-3 * p.relief <= thin:
         p = replace(p, relief=0.0, relief_extent=None, relief_start=None,
                     relief_shape="parabolic")
-    if p.tip_clearance is not None and abs(p.tip_clearance - p.shift) <= thin:
+    if p.tip_clearance is not None and 0.0 <= p.tip_clearance - p.shift <= thin:
         p = replace(p, tip_clearance=None)
     return p
 

@@ -331,7 +331,8 @@ def test_a_thin_relief_and_tip_trim_share_the_templates_and_change_nothing_they_
         monkeypatch, baseline_200):
     """A 4 µm relief and a 4 µm deeper tip trim are a tenth of `coarse`'s 100 µm flank
     elements or less: their ring model shares the unmodified pair's templates (meshes, factors,
-    responses), while 20 µm of relief gets its own. The shared templates give the headline
+    responses), while 20 µm of relief gets its own, and so does a tip trimmed less than the
+    default (the templates would not hold all of it). The shared templates give the headline
     stresses and the load shares of the relieved pair meshed as it is within 0.2 %."""
     base = replace(baseline_200.case, quality="coarse")
     params = replace(base.params, relief=4.0, relief_extent=0.5, tip_clearance=0.020)
@@ -339,6 +340,9 @@ def test_a_thin_relief_and_tip_trim_share_the_templates_and_change_nothing_they_
     thick = replace(base, params=replace(params, relief=20.0))
     assert ring_model.meshed_params(thin) == base.params
     assert ring_model.meshed_params(thick) == replace(params, relief=20.0, tip_clearance=None)
+    # a tip clearance below the default leaves more tip than the templates hold: meshed as is
+    proud = replace(base, params=replace(base.params, tip_clearance=0.014))
+    assert ring_model.meshed_params(proud) == proud.params
     kept = ring_model.ring_model(base)
     shared = ring_model.ring_model(thin)
     assert shared.gears is kept.gears and shared.profile is not kept.profile
