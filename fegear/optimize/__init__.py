@@ -7,9 +7,15 @@ every trial across a kill, and the best are solved again at ``standard`` with th
 estimate beside the baseline and the relieved baseline (:mod:`.report`, :mod:`.plot`).
 :func:`load_trials` reads a search's trials into pandas.
 
->>> from fegear.optimize import parse_variables
->>> [(v.name, v.low, v.high) for v in parse_variables(["m=1:2.5", "h1=0.2:0.4"])]
-[('m', 1.0, 2.5), ('h1', 0.2, 0.4)]
+>>> from fegear.optimize import Space, outer_diameter, parse_variables
+>>> variables = parse_variables(["m=1:2.5", "h1=0.2:0.4", "relief=0:10"])
+>>> [(v.name, v.low, v.high) for v in variables]
+[('m', 1.0, 2.5), ('h1', 0.2, 0.4), ('relief', 0.0, 10.0)]
+>>> round(outer_diameter({"m": 2.0, "h1": 0.3}), 1)   # mm: 2 (r0 + 2 e1 + rim 3 m)
+104.4
+>>> space = Space(variables, {"torque": 200.0}, constraints={"max_outer_diameter": 104.4})
+>>> space.values({"m": 1.9, "h1": 0.27, "relief": 7.0})    # what one trial solves
+{'torque': 200.0, 'quality': 'coarse', 'm': 1.9, 'h1': 0.27, 'relief': 7.0}
 """
 
 from ..exports import lazy

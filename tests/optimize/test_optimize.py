@@ -201,3 +201,15 @@ def test_the_printed_solve_line_gives_the_printed_numbers(tmp_path, capsys):
     assert cycle["safety_contact_flank"]["min"] == pytest.approx(row["S_H_flank"], rel=1e-9)
     assert row["safety"] == min(row["S_F1"], row["S_F2"], row["S_H_flank"], row["S_H"])
     assert all(math.isfinite(v) for v in row["estimate_pct"].values())
+
+
+def test_a_search_with_no_feasible_design_says_which_constraint_binds(tmp_path, capsys):
+    """Without relief every design of these bounds loads its tip rounds at 200 N·m."""
+    out = tmp_path / "search"
+    assert main(["optimize", "--vary", "h1=0.28:0.32", "--shift", "0.016", "--rotation",
+                 "0.002", "--positions", "2", "--trials", "2", "--workers", "1",
+                 "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "no feasible design: the constraint that binds is edge_load (violated by 2 of 2" \
+        in text
+    assert len(load_trials(out)) == 2
