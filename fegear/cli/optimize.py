@@ -58,6 +58,9 @@ def add_parser(sub) -> None:
     g.add_argument("--seed", type=int, default=0, help="the sampler's seed (default 0)")
     g.add_argument("--workers", type=int, default=None,
                    help="worker processes (default: the machine's cores, at most 2)")
+    g.add_argument("--scheduler", default=None,
+                   help="solve the trials on this Dask distributed scheduler (e.g. "
+                        "tcp://host:8786; its workers need fegear) instead of the local pool")
     g.add_argument("--best", type=int, default=3,
                    help="best designs solved again at standard with the estimate (default 3)")
     g.add_argument("--no-baselines", action="store_true",
@@ -88,6 +91,9 @@ def run(a: argparse.Namespace) -> int:
     )
 
     cores = os.cpu_count() or 1
+    if a.workers is not None and a.scheduler:
+        raise FegearError("--workers sets the local pool; with --scheduler the cluster's "
+                          "workers solve the trials (leave --workers out)")
     workers = int(require_range("workers", a.workers, 1, 4 * cores)
                   if a.workers is not None else min(cores, WORKERS))
     trials = int(require_range("trials", a.trials, 1, 100_000))
@@ -107,14 +113,15 @@ def run(a: argparse.Namespace) -> int:
     check_space(space)
     check_dir(a.out)                       # every check before the directory is made
     out = prepare_dir(a.out)
+    where = f"the cluster at {a.scheduler}" if a.scheduler else f"{workers} workers"
     print(f"fegear optimize: {trials} trials of {positions} positions at {a.quality} on "
-          f"{workers} workers, varying " + ", ".join(f"{v.name} {v.low:g}-{v.high:g}"
+          f"{where}, varying " + ", ".join(f"{v.name} {v.low:g}-{v.high:g}"
                                                    for v in variables)
           + f"; results in {out}", file=sys.stderr, flush=True)
     t0 = time.perf_counter()
     try:
         result = run_search(space, out, trials, workers, a.sampler, seed,
-                            report=progress.stage)
+                            report=progress.stage, scheduler=a.scheduler)
     except SearchInterrupted as exc:
         print(f"fegear: {exc}", file=sys.stderr)
         return 128 + exc.signum

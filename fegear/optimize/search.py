@@ -110,13 +110,19 @@ def open_study(space: Space, out: Path, sampler: str = "tpe", seed: int = 0):
 
 
 def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: str = "tpe",
-               seed: int = 0, report: Callable[[str], None] | None = None) -> SearchReport:
+               seed: int = 0, report: Callable[[str], None] | None = None,
+               scheduler: str | None = None) -> SearchReport:
     """Search ``space`` for ``trials`` finished trials in all (those of an earlier run in
-    ``out`` included) on ``workers`` processes; the trials table is written at the end and at
-    a stop. ``report`` is told after each trial (a line: done, best, time left)."""
+    ``out`` included) on ``workers`` local processes, or on the Dask cluster whose scheduler
+    is at ``scheduler`` (as many at once as it has worker threads; its workers need fegear
+    installed); the trials table is written at the end and at a stop. ``report`` is told
+    after each trial (a line: done, best, time left)."""
     from optuna.trial import TrialState
 
     t_start = time.perf_counter()
+    client = _connect(scheduler) if scheduler else None
+    if client is not None:
+        workers = max(1, sum(client.nthreads().values()))
     study = open_study(space, out, sampler, seed)
     stale = study.get_trials(deepcopy=False, states=(TrialState.RUNNING,))
     for t in stale:                      # a search killed outright left these running
@@ -126,7 +132,7 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
     stop: list[int] = []
     held = {s: signal.signal(s, lambda signum, frame: stop.append(signum))
             for s in (signal.SIGTERM, signal.SIGINT)}
-    pool = local_pool(workers)
+    pool = local_pool(workers) if client is None else client.get_executor(pure=False)
     running: dict = {}
     try:
         while (done < trials or running) and not stop:
@@ -148,6 +154,11 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
                     _stop(pool)
                     pool = local_pool(workers)
                     break
+                except Exception:  # noqa: BLE001  the cluster lost it (KilledWorker …)
+                    if client is None:
+                        raise
+                    _requeue(study, trial.number, params)
+                    continue
                 _tell(study, trial, rec, space)
                 done += 1
                 solved += 1
@@ -159,13 +170,30 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
                 _requeue(study, t.number, p)
             running.clear()
     finally:
-        _stop(pool)
+        if client is None:
+            _stop(pool)
+        else:
+            for f in running:
+                f.cancel()
+            client.close()
         for s, h in held.items():
             signal.signal(s, h)
         table = write_trials(study, space, out)
     if stop:
         raise SearchInterrupted(stop[0], done, trials)
     return SearchReport(out, study, table, found, solved, time.perf_counter() - t_start)
+
+
+def _connect(address: str):
+    """A Dask distributed client of the scheduler at ``address``."""
+    try:
+        from distributed import Client
+    except ImportError as exc:
+        raise FegearError(f"--scheduler needs Dask distributed: {exc}") from None
+    try:
+        return Client(address, timeout="10s")
+    except (OSError, TimeoutError, ValueError, TypeError) as exc:
+        raise FegearError(f"--scheduler {address!r}: cannot connect: {exc}") from None
 
 
 def _requeue(study, number: int, params: dict) -> None:

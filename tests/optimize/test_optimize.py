@@ -213,3 +213,13 @@ def test_a_search_with_no_feasible_design_says_which_constraint_binds(tmp_path, 
     assert "no feasible design: the constraint that binds is edge_load (violated by 2 of 2" \
         in text
     assert len(load_trials(out)) == 2
+
+
+@pytest.mark.slow  # 15-25 s: a local Dask cluster's start and three trials
+def test_a_search_runs_on_a_dask_cluster_as_on_the_local_pool(tmp_path):
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        report = run_search(SPACE, tmp_path, trials=3, seed=7,
+                            scheduler=cluster.scheduler_address)
+    assert report.solved == 3 and len(_params(tmp_path)) == 3
