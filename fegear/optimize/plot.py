@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..figures import pyplot, save_png
-from .design import OBJECTIVE_HELP, OBJECTIVES
+from .design import OBJECTIVES
 
 #: the objectives' axis labels
 LABELS = {"safety": "smallest S: S_F1, S_F2, S_H flank", "te": "TE peak to peak [µrad]",
@@ -29,19 +29,24 @@ def search_pngs(table, variables: list[str], objectives: list[str], out: Path,
     files = {}
     best = (ok.loc[ok[col].idxmax()] if OBJECTIVES[o] == "maximize" else ok.loc[ok[col].idxmin()]
             ) if len(ok) else None
-    n = len(variables)
-    fig, axes = plt.subplots(1, n, figsize=(3.4 * n + 0.6, 3.6), squeeze=False, sharey=True)
-    for ax, v in zip(axes[0], variables):
-        ax.scatter(bad[v], [0.0] * len(bad), s=14, facecolors="none", edgecolors="0.6",
-                   label="infeasible (at 0)")
-        ax.scatter(ok[v], ok[col], s=16, color="C0", label="feasible")
-        if best is not None:
-            ax.scatter([best[v]], [best[col]], s=90, marker="*", color="C3", zorder=3,
-                       label=f"best (trial {int(best['trial'])})")
-        _baselines(ax, baseline, relieved)
-        ax.set_xlabel(v)
-        ax.grid(alpha=0.3)
-    axes[0][0].set_ylabel(LABELS[o])
+    n, rows = len(variables), len(objectives)
+    fig, axes = plt.subplots(rows, n, figsize=(3.4 * n + 0.6, 3.2 * rows + 0.4), squeeze=False,
+                             sharey="row")
+    for row, objective in enumerate(objectives):
+        c = f"objective_{objective}"
+        for ax, v in zip(axes[row], variables):
+            if OBJECTIVES[objective] == "maximize":   # at 0: the worst a design can be
+                ax.scatter(bad[v], [0.0] * len(bad), s=14, facecolors="none",
+                           edgecolors="0.6", label="infeasible (at 0)")
+            ax.scatter(ok[v], ok[c], s=16, color="C0", label="feasible")
+            if best is not None:
+                ax.scatter([best[v]], [best[c]], s=90, marker="*", color="C3", zorder=3,
+                           label=f"best (trial {int(best['trial'])})")
+            if objective == "safety":
+                _baselines(ax, baseline, relieved)
+            ax.set_xlabel(v)
+            ax.grid(alpha=0.3)
+        axes[row][0].set_ylabel(LABELS[objective])
     axes[0][-1].legend(fontsize=7, loc="best")
     fig.suptitle(title, fontsize=9)
     fig.tight_layout()
@@ -68,10 +73,17 @@ def search_pngs(table, variables: list[str], objectives: list[str], out: Path,
 
     if len(objectives) > 1:
         a, b = (f"objective_{k}" for k in objectives[:2])
-        fig, ax = plt.subplots(figsize=(5.2, 4.0))
-        ax.scatter(ok[a], ok[b], s=14, color="C0", label="feasible")
-        ax.set_xlabel(OBJECTIVE_HELP[objectives[0]])
-        ax.set_ylabel(OBJECTIVE_HELP[objectives[1]])
+        signs = [1.0 if OBJECTIVES[k] == "maximize" else -1.0 for k in objectives[:2]]
+        pts = list(zip(ok[a] * signs[0], ok[b] * signs[1]))
+        front = [not any(q[0] >= p[0] and q[1] >= p[1] and q != p for q in pts) for p in pts]
+        fig, ax = plt.subplots(figsize=(5.6, 4.2))
+        ax.scatter(ok[a], ok[b], s=14, color="0.6", label="feasible")
+        on = ok[front]
+        on = on.sort_values(a)
+        ax.plot(on[a], on[b], "o-", color="C3", ms=5, label="Pareto front")
+        ax.set_xlabel(LABELS[objectives[0]])
+        ax.set_ylabel(LABELS[objectives[1]])
+        ax.legend(fontsize=7, loc="best")
         ax.grid(alpha=0.3)
         ax.set_title(title, fontsize=9)
         fig.tight_layout()

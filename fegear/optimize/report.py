@@ -81,11 +81,12 @@ def baselines(space: Space) -> dict[str, dict]:
 def final_table(rows: Mapping[str, dict], space: Space) -> str:
     """Markdown: a row a design (name → :func:`resolve` row), its varied inputs, the smallest
     safety factors over the cycle, the largest estimate of the stresses behind them, the load on
-    the tip rounds and what limits it."""
+    the tip rounds, the transmission error's peak to peak and the mean mesh stiffness over the
+    cycle, and what limits it."""
     names = [v.name for v in space.variables]
     head = ("| design | " + " | ".join(names) + " | S_F1 | S_F2 | S_H flank | S_H | smallest "
-            "| gain % | est. % | tip rounds N | limited by |")
-    lines = [head, "|---|" + "---:|" * (len(names) + 8) + "---|"]
+            "| gain % | est. % | tip rounds N | TE p-p µrad | k N·m/rad | limited by |")
+    lines = [head, "|---|" + "---:|" * (len(names) + 10) + "---|"]
     ref = rows.get("relieved baseline", {}).get("safety")
     for label, r in rows.items():
         values = [r["inputs"].get(n) for n in names]
@@ -102,7 +103,8 @@ def final_table(rows: Mapping[str, dict], space: Space) -> str:
                                                   for v in values)
                      + f" | {_f(r['S_F1'])} | {_f(r['S_F2'])} | {_f(r['S_H_flank'])} | "
                        f"{_f(r['S_H'])} | **{_f(r['safety'])}** | {gain} | {worst:.1f} | "
-                       f"{r['edge_load_N']:.1f} | {where} |")
+                       f"{r['edge_load_N']:.1f} | {r['te_p2p_urad']:.1f} | "
+                       f"{r['stiffness_Nm_per_rad']:.4g} | {where} |")
     return "\n".join(lines)
 
 

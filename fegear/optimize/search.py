@@ -261,7 +261,8 @@ def _progress(study, space: Space, done: int, total: int, solved: int, wall: flo
     return f"trial {done} of {total}, {text}, about {left / 60:.1f} min left"
 
 
-TABLE_COLUMNS = ("status", "objective_safety", "limited_by", "S_F1", "S_F2", "S_H_flank", "S_H",
+TABLE_COLUMNS = ("status", "objective_safety", "objective_te", "objective_stiffness",
+                 "limited_by", "S_F1", "S_F2", "S_H_flank", "S_H",
                  "root_stress_gear1_MPa", "root_stress_gear1_beta_deg",
                  "root_stress_gear1_tooth", "root_stress_gear2_MPa",
                  "root_stress_gear2_beta_deg", "root_stress_gear2_tooth",
