@@ -41,6 +41,8 @@ def add_parser(sub) -> None:
                         "Pareto front (default safety)")
     g.add_argument("--max-outer-diameter", type=float, default=None,
                    help="largest outer diameter of gear 2 (root circle and rim) [mm]")
+    g.add_argument("--max-centre-distance", type=float, default=None,
+                   help="largest centre distance m (z2 - z1) / 2 [mm]")
     g.add_argument("--min-backlash", type=float, default=None,
                    help="smallest backlash over the cycle, both directions together [µm] "
                         "(costs a backlash scan a trial, about 3 s)")
@@ -83,6 +85,7 @@ def run(a: argparse.Namespace) -> int:
         binding,
         check_space,
         final_table,
+        headline_table,
         load_trials,
         parse_variables,
         resolve,
@@ -106,6 +109,7 @@ def run(a: argparse.Namespace) -> int:
                                            in DEFAULT_RANGES.items() if k not in fixed])
     fixed.setdefault("torque", SOLVE_INPUTS["torque"].default)
     constraints = {k: v for k, v in (("max_outer_diameter", a.max_outer_diameter),
+                                     ("max_centre_distance", a.max_centre_distance),
                                      ("min_backlash", a.min_backlash),
                                      ("max_backlash", a.max_backlash)) if v is not None}
     space = Space(variables, fixed, positions, a.quality, constraints,
@@ -159,7 +163,8 @@ def run(a: argparse.Namespace) -> int:
                            else None,
                            rows.get("relieved baseline", {}).get("safety")
                            if objective == "safety" else None)
-    md = final_table(rows, space) if rows else ""
+    md = (final_table(rows, space) + "\n\nthe headline stresses over the cycle (MPa) and "
+          "their error estimates:\n\n" + headline_table(rows)) if rows else ""
     write_json(out / "final.json", {"search_s": search_s, "rows": rows})
     (out / "final.md").write_text(md + "\n")
     if a.json:

@@ -26,6 +26,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "design": ("evaluate", "outer_diameter", "OBJECTIVES"),
     "search": ("run_search", "open_study", "load_trials", "best_trials", "binding",
                "SearchReport", "SearchInterrupted", "write_trials"),
-    "report": ("resolve", "baselines", "final_table", "solve_command", "BASELINE_RELIEF"),
+    "report": ("resolve", "baselines", "final_table", "headline_table", "solve_command",
+               "BASELINE_RELIEF"),
     "plot": ("search_pngs",),
 })

@@ -39,13 +39,23 @@ def outer_diameter(values: Mapping) -> float:
     return 2.0 * (0.5 * m * z2 + 2.0 * m * h1 + rim2)
 
 
+def centre_distance(values: Mapping) -> float:
+    """The pair's centre distance e = m (z2 − z1) / 2 (mm): with the ratio fixed, the module's
+    size."""
+    from ..toothpair import SOLVE_INPUTS
+
+    v = SOLVE_INPUTS.complete(values)
+    return 0.5 * float(v["m"]) * (int(v["z2"]) - int(v["z1"]))
+
+
 def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
-    """Solve ``values`` (``fegear solve`` inputs by name, a complete set) over ``positions``
-    rolling angles and measure it against ``constraints`` (``max_outer_diameter`` mm,
-    ``min_backlash``/``max_backlash`` µm, each optional). Returns a flat record: ``status``
-    (``ok``, ``refused`` or ``failed``), ``reason``, the worst headline stresses over the cycle
-    with the rolling angle (°) and tooth of each, the safety factors, ``objective_*``, the
-    constraint values (``violation_*``, > 0 violated) and the solve's time."""
+    """Solve ``values`` (``fegear solve`` inputs by name) over ``positions`` rolling angles
+    and measure it against ``constraints`` (``max_outer_diameter`` and ``max_centre_distance``
+    mm, ``min_backlash``/``max_backlash`` µm, each optional). Returns a flat record:
+    ``status`` (``ok``, ``refused`` or ``failed``), ``reason``, the worst headline stresses
+    over the cycle with the rolling angle (°) and tooth of each, the safety factors,
+    ``objective_*``, the constraint values (``violation_*``, > 0 violated) and the solve's
+    time."""
     from ..toothpair import allowables_of, prepare_job, solve_positions
 
     t0 = time.perf_counter()
@@ -53,6 +63,9 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
     rec["outer_diameter_mm"] = outer_diameter(values)
     over = constraints.get("max_outer_diameter")
     rec["violation_outer_diameter"] = (rec["outer_diameter_mm"] - over) if over else 0.0
+    rec["centre_distance_mm"] = centre_distance(values)
+    far = constraints.get("max_centre_distance")
+    rec["violation_centre_distance"] = (rec["centre_distance_mm"] - far) if far else 0.0
     try:
         job = prepare_job({**values, "positions": positions, "no-estimate": True})
     except ParameterError as exc:

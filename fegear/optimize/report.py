@@ -110,3 +110,22 @@ def final_table(rows: Mapping[str, dict], space: Space) -> str:
 
 def _f(v) -> str:
     return "-" if v is None or not math.isfinite(v) else f"{v:.2f}"
+
+
+HEADLINES = {"root_stress_gear1_MPa": "root σ1 gear 1", "root_stress_gear2_MPa": "root σ1 gear 2",
+             "contact_pressure_MPa": "peak pressure", "flank_contact_pressure_MPa": "flank "
+             "pressure"}
+
+
+def headline_table(rows: Mapping[str, dict]) -> str:
+    """Markdown: each design's headline stresses, the largest over the cycle (MPa), each with
+    its error estimate (%, `standard` against the next coarser level, at the position of the
+    largest gear-1 root stress)."""
+    lines = ["| design | " + " | ".join(HEADLINES.values()) + " |",
+             "|---|" + "---:|" * len(HEADLINES)]
+    for label, r in rows.items():
+        est = r["estimate_pct"]
+        lines.append(f"| {label} | " + " | ".join(
+            f"{r[k]:.1f} ± {est[k]:.1f} %" if est.get(k) is not None else f"{r[k]:.1f}"
+            for k in HEADLINES) + " |")
+    return "\n".join(lines)

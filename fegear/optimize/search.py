@@ -39,7 +39,7 @@ from .space import SAMPLERS, Space
 STUDY = "fegear-optimize"
 JOURNAL = "search.journal"
 #: the constraints every trial reports (> 0: violated), in this order
-CONSTRAINTS = ("buildable", "edge_load", "outer_diameter", "backlash")
+CONSTRAINTS = ("buildable", "edge_load", "outer_diameter", "centre_distance", "backlash")
 STARTUP = 10    # TPE's random trials before it models the objective
 
 
@@ -269,6 +269,7 @@ TABLE_COLUMNS = ("status", "objective_safety", "objective_te", "objective_stiffn
                  "contact_pressure_MPa", "flank_contact_pressure_MPa",
                  "flank_contact_pressure_beta_deg", "flank_contact_pressure_tooth",
                  "edge_load_N", "te_p2p_urad", "stiffness_Nm_per_rad", "outer_diameter_mm",
+                 "centre_distance_mm",
                  "backlash_um", "time_s", "reason")
 
 

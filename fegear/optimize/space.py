@@ -9,7 +9,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 from ..errors import FegearError, ParameterError
-from .design import OBJECTIVES, outer_diameter
+from .design import OBJECTIVES, centre_distance, outer_diameter
 
 #: the solve inputs a search may vary: the pair's shape and modifications and the gears' size
 #: (the tooth numbers are the ratio's, the torque and the material the requirement's)
@@ -36,9 +36,9 @@ class Variable:
 @dataclass(frozen=True)
 class Space:
     """A search's design space: ``variables``, the ``fixed`` solve inputs (by name), the rolling
-    angles per cycle, the screening quality, the ``constraints`` (``max_outer_diameter`` mm,
-    ``min_backlash``/``max_backlash`` µm) and the ``objectives`` (:data:`~.design
-    .OBJECTIVES`; the first is the one a single-objective search takes)."""
+    angles per cycle, the screening quality, the ``constraints`` (``max_outer_diameter`` and
+    ``max_centre_distance`` mm, ``min_backlash``/``max_backlash`` µm) and the ``objectives``
+    (:data:`~.design.OBJECTIVES`; the first is the one a single-objective search takes)."""
 
     variables: tuple[Variable, ...]
     fixed: Mapping = field(default_factory=dict)
@@ -125,6 +125,17 @@ def check_space(space: Space) -> None:
     varied = {v.name for v in space.variables}
     prepare_job({**{k: v for k, v in space.fixed.items() if k not in varied},
                  "quality": space.quality, "no-estimate": True})
+    far = space.constraints.get("max_centre_distance")
+    if far is not None:
+        if not (math.isfinite(far) and far > 0):
+            raise ParameterError("max-centre-distance", far, "a finite distance > 0 mm")
+        bounds = {v.name: v for v in space.variables}
+        least = centre_distance({**space.fixed, **({"m": bounds["m"].low} if "m" in bounds
+                                                   else {})})
+        if least > far:
+            raise ParameterError("max-centre-distance", far,
+                                 f"at least {least:.4g} mm, the pair's at the least m",
+                                 "no design fits")
     lo, hi = space.constraints.get("min_backlash"), space.constraints.get("max_backlash")
     for name, value in (("min-backlash", lo), ("max-backlash", hi)):
         if value is not None and not (math.isfinite(value) and value >= 0):

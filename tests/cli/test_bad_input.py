@@ -72,6 +72,7 @@ OPTIONS = {
                  "--workers": ["0", "-2", "100000"], "--best": ["-1", "100"],
                  "--seed": ["-1", "99999999999"], "--quality": ["best"],
                  "--max-outer-diameter": ["0", "-100", "10"],
+                 "--max-centre-distance": ["0", "-1", "0.2"],
                  "--min-backlash": ["-1"], "--max-backlash": ["-1"]},
     "drive": {},  # its options sit on its subcommands: tests/test_drive_cli.py
 }
