@@ -171,18 +171,19 @@ def run(a: argparse.Namespace) -> int:
         print(json.dumps({"search_s": search_s, "rows": rows}, indent=2))
         return 0
     lines += failed
-    lines += ["", f"over the cycle at {fixed['torque']:g} N·m, {positions} positions, solved "
-                  "again at standard; smallest: the least safety factor of all four (S_H "
-                  "with a loaded tip round); gain: against the relieved baseline; est. %: the "
-                  "largest error estimate of the headline stresses:", "", md]
+    if rows:
+        lines += ["", f"over the cycle at {fixed['torque']:g} N·m, {positions} positions, solved "
+                      "again at standard; smallest: the least safety factor of all four (S_H "
+                      "with a loaded tip round); gain: against the relieved baseline; est. %: the "
+                      "largest error estimate of the headline stresses:", "", md]
     first = next((r for n, r in rows.items() if n.startswith("trial")), None)
     if first is not None:
         passes = first["safety"] >= 1.0 and first["edge_load_N"] <= 0.0
         verdict = ("every safety factor >= 1 over the cycle, no load on a tip round"
                    if passes else "it does not pass: a safety factor below 1 or a loaded round")
         lines += ["", f"best: {verdict}; its numbers again:", f"  {first['command']}"]
-    lines += ["", *(f"{k:14s} {v}" for k, v in {"trials": result.table, **pictures,
-                                                  "final": out / "final.md",
-                                                  "best design": out / "best"}.items())]
+    files = {"trials": result.table, **pictures, "final": out / "final.md",
+             "best design": out / "best"}
+    lines += ["", *(f"{k:14s} {v}" for k, v in files.items() if Path(v).exists())]
     print("\n".join(lines))
     return 0
