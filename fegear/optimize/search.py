@@ -25,7 +25,7 @@ import math
 import signal
 import time
 from collections.abc import Callable
-from concurrent.futures import FIRST_COMPLETED, wait
+from concurrent.futures import FIRST_COMPLETED, Future, wait
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from pathlib import Path
@@ -153,8 +153,13 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
                 trial = study.ask()
                 params = {v.name: trial.suggest_float(v.name, v.low, v.high)
                           for v in space.variables}
-                running[pool.submit(evaluate, space.values(params), space.positions,
-                                    dict(space.constraints))] = (trial, params)
+                try:
+                    future = pool.submit(evaluate, space.values(params), space.positions,
+                                         dict(space.constraints))
+                except BrokenProcessPool:      # a worker died before a result said so
+                    running[_failed()] = (trial, params)
+                    break
+                running[future] = (trial, params)
             finished, _ = wait(running, timeout=0.5, return_when=FIRST_COMPLETED)
             for f in finished:
                 trial, params = running.pop(f)
@@ -195,6 +200,13 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
     if stop:
         raise SearchInterrupted(stop[0], done, trials)
     return SearchReport(out, study, table, found, solved, time.perf_counter() - t_start)
+
+
+def _failed() -> Future:
+    """A future that holds a broken pool's error (a trial the pool refused to take)."""
+    f: Future = Future()
+    f.set_exception(BrokenProcessPool("a worker process died"))
+    return f
 
 
 def _connect(address: str):
