@@ -13,7 +13,7 @@ import math
 import time
 from collections.abc import Mapping
 
-from ..errors import FegearError, ParameterError
+from ..errors import FegearError
 
 #: the safety factors the default objective takes the smallest of: S_F of each gear from its
 #: root σ1, S_H from the flank pressure (a load on a tip round is a constraint of its own)
@@ -68,9 +68,7 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
     rec["violation_centre_distance"] = (rec["centre_distance_mm"] - far) if far else 0.0
     try:
         job = prepare_job({**values, "positions": positions, "no-estimate": True})
-    except ParameterError as exc:
-        return _infeasible(rec, "refused", str(exc), t0)
-    except FegearError as exc:
+    except FegearError as exc:       # outside the admissible region, named (ParameterError)
         return _infeasible(rec, "refused", str(exc), t0)
     if constraints.get("min_backlash") is not None or constraints.get("max_backlash") is not None:
         from ..geometry import ToothContact, gear1_profile
