@@ -39,7 +39,7 @@ COMMANDS = {"profile": profile, "hertz": hertz, "solve": solve, "relief": relief
 
 
 DESCRIPTION = ("Finite-element stresses of compound-cycloid internal gear tooth pairs: "
-               "profiles, tooth-pair solves, studies and the drive level.")
+               "profiles, tooth-pair solves, studies, design searches and the drive level.")
 
 
 def _add_common(parser: Parser, default) -> None:
