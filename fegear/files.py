@@ -85,14 +85,18 @@ def write_points_csv(path: Path, points: np.ndarray, extra: dict | None = None) 
 
 
 def write_csv(path: Path, header: Sequence[str], rows: Iterable[Sequence]) -> Path:
-    """Write a table as CSV: floats at full precision (``repr``), anything else as ``str``."""
+    """Write a table as CSV: floats at full precision (``repr``), anything else as ``str``; a
+    cell with a comma, quote or line break (a refused design's reason) quoted."""
+    import csv
 
     def cell(v) -> str:
         return repr(float(v)) if isinstance(v, (float, np.floating)) else str(v)
 
     def w(tmp: Path) -> None:
-        lines = [",".join(header)] + [",".join(cell(v) for v in row) for row in rows]
-        tmp.write_text("\n".join(lines) + "\n")
+        with open(tmp, "w", newline="") as f:
+            writer = csv.writer(f, lineterminator="\n")
+            writer.writerow(header)
+            writer.writerows([cell(v) for v in row] for row in rows)
 
     return write_atomic(path, w)
 

@@ -1,4 +1,5 @@
-"""Local process pools: the study runner's and the relief search's workers.
+"""Worker pools: the local process pools of the study runner, the relief search and the design
+search, and the Dask client of the first and the last.
 
 Workers are spawned, not forked (the parent may hold threads: the progress bar's), leave
 Ctrl-C to the parent and end when it does: a parent killed outright (SIGKILL) leaves no time
@@ -12,6 +13,8 @@ import signal
 import threading
 import time
 from concurrent.futures import ProcessPoolExecutor
+
+from .errors import FegearError
 
 
 def local_pool(workers: int) -> ProcessPoolExecutor:
@@ -32,3 +35,16 @@ def _exit_with_parent(parent: int) -> None:
     while os.getppid() == parent:
         time.sleep(0.5)
     os._exit(1)
+
+
+def connect(address: str, error: type[FegearError] = FegearError):
+    """A Dask distributed client of the scheduler at ``address`` (``--scheduler``); what is
+    wrong is raised as ``error``, naming the option."""
+    try:
+        from distributed import Client
+    except ImportError as exc:
+        raise error(f"--scheduler needs Dask distributed: {exc}") from None
+    try:
+        return Client(address, timeout="10s")
+    except (OSError, TimeoutError, ValueError, TypeError) as exc:
+        raise error(f"--scheduler {address!r}: cannot connect: {exc}") from None

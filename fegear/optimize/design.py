@@ -89,7 +89,7 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
         i = max(range(len(sols)), key=lambda k: sols[k].headline()[key])
         rec[key] = sols[i].headline()[key]
         rec[key.replace("_MPa", "_beta_deg")] = math.degrees(sols[i].case.beta)
-        rec[key.replace("_MPa", "_tooth")] = _tooth(sols[i], key)
+        rec[key.replace("_MPa", "_tooth")] = carrying_tooth(sols[i], key)
     for name, (which, key) in LIMITS.items():
         rec[name] = getattr(allow, which) / rec[key] if rec[key] > 0 else math.inf
     rec["S_H"] = allow.contact / rec["contact_pressure_MPa"]
@@ -109,8 +109,8 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
     return rec
 
 
-def _tooth(sol, key: str) -> int:
-    """The tooth of ``sol`` that carries the headline stress ``key``."""
+def carrying_tooth(sol, key: str) -> int:
+    """The gear-1 tooth of the position ``sol`` that carries the headline stress ``key``."""
     attr = {"root_stress_gear1_MPa": "root1_MPa", "root_stress_gear2_MPa": "root2_MPa",
             "contact_pressure_MPa": "p_max_MPa",
             "flank_contact_pressure_MPa": "flank_p_MPa"}[key]

@@ -10,6 +10,7 @@ import shlex
 from collections.abc import Mapping
 from pathlib import Path
 
+from .design import carrying_tooth
 from .space import Space
 
 #: the relief ``fegear relief`` sizes for the seed pair at 200 N·m (docs/solve.md): the
@@ -54,10 +55,10 @@ def resolve(values: Mapping, positions: int, out: Path | None) -> dict:
 
 def _tooth(solutions, beta_deg: float, factor: str) -> int:
     """The gear-1 tooth that sets ``factor`` at the rolling angle ``beta_deg``."""
+    from ..toothpair import SAFETY
+
     sol = min(solutions, key=lambda x: abs(math.degrees(x.case.beta) - beta_deg))
-    attr = {"S_F1": "root1_MPa", "S_F2": "root2_MPa", "S_H_flank": "flank_p_MPa",
-            "S_H": "p_max_MPa"}[factor]
-    return max(sol.teeth, key=lambda t: getattr(t, attr) or 0.0).tooth
+    return carrying_tooth(sol, SAFETY[FACTORS[factor]][1])
 
 
 def solve_command(inputs: Mapping) -> str:

@@ -31,8 +31,8 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import FegearError
-from ..files import write_atomic, write_json
-from ..workers import local_pool
+from ..files import write_csv, write_json
+from ..workers import connect, local_pool
 from .design import OBJECTIVES, evaluate
 from .space import SAMPLERS, Space
 
@@ -127,7 +127,7 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
     from optuna.trial import TrialState
 
     t_start = time.perf_counter()
-    client = _connect(scheduler) if scheduler else None
+    client = connect(scheduler) if scheduler else None
     if client is not None:
         workers = max(1, sum(client.nthreads().values()))
     study = open_study(space, out, sampler, seed)
@@ -207,18 +207,6 @@ def _failed() -> Future:
     f: Future = Future()
     f.set_exception(BrokenProcessPool("a worker process died"))
     return f
-
-
-def _connect(address: str):
-    """A Dask distributed client of the scheduler at ``address``."""
-    try:
-        from distributed import Client
-    except ImportError as exc:
-        raise FegearError(f"--scheduler needs Dask distributed: {exc}") from None
-    try:
-        return Client(address, timeout="10s")
-    except (OSError, TimeoutError, ValueError, TypeError) as exc:
-        raise FegearError(f"--scheduler {address!r}: cannot connect: {exc}") from None
 
 
 def _requeue(study, number: int, params: dict) -> None:
@@ -311,7 +299,8 @@ def write_trials(study, space: Space, out: Path) -> Path:
         cons = _constraints(t) if t.state.name == "COMPLETE" else [None] * len(CONSTRAINTS)
         rows.append([t.number, t.state.name, feasible(t), *(t.params.get(n) for n in names),
                      *cons, *(a.get(c) for c in TABLE_COLUMNS)])
-    path = _write_table(out / "trials.csv", header, rows)
+    path = write_csv(out / "trials.csv", header,
+                     (["" if v is None else v for v in row] for row in rows))
     best = best_trials(study, space)
     write_json(out / "search.json", {
         "settings": study.user_attrs.get("settings"),
@@ -321,23 +310,6 @@ def write_trials(study, space: Space, out: Path) -> Path:
         "best": [{"trial": t.number, "params": t.params, "values": t.values,
                   **{k: _clean(t.user_attrs.get(k)) for k in TABLE_COLUMNS}} for t in best]})
     return path
-
-
-def _write_table(path: Path, header, rows) -> Path:
-    """CSV with quoting where a cell needs it (a refusal's reason has commas); None empty,
-    floats at full precision."""
-    import csv
-
-    def cell(v):
-        return "" if v is None else repr(v) if isinstance(v, float) else v
-
-    def w(tmp: Path) -> None:
-        with open(tmp, "w", newline="") as f:
-            writer = csv.writer(f)
-            writer.writerow(header)
-            writer.writerows([cell(v) for v in row] for row in rows)
-
-    return write_atomic(path, w)
 
 
 def load_trials(out):

@@ -30,7 +30,7 @@ from pathlib import Path
 from ..errors import FegearError
 from ..files import prepare_dir, write_json
 from ..provenance import code_version
-from ..workers import local_pool
+from ..workers import connect, local_pool
 from .file import Study, StudyCase, StudyError
 from .records import finished, store, study_json
 
@@ -84,7 +84,8 @@ def run_study(study: Study, out: str | Path, workers: int | None = None,
     Raises :class:`StudyInterrupted` on SIGTERM or SIGINT, after writing the table of the
     finished cases."""
     t0 = time.perf_counter()
-    client = _connect(scheduler) if scheduler else None  # a bad address creates no output
+    # a bad address creates no output
+    client = connect(scheduler, StudyError) if scheduler else None
     try:
         out = prepare_dir(out)
         with _exclusive(out):
@@ -298,18 +299,6 @@ def _stop_pool(pool: ProcessPoolExecutor, before: set[int]) -> None:
             continue
     # no psutil.wait_procs: reaping them here would hide their exit from multiprocessing,
     # whose shutdown then waits forever
-
-
-def _connect(address: str):
-    """A Dask distributed client of the scheduler at ``address``."""
-    try:
-        from distributed import Client
-    except ImportError as exc:
-        raise StudyError(f"--scheduler needs Dask distributed: {exc}") from None
-    try:
-        return Client(address, timeout="10s")
-    except (OSError, TimeoutError, ValueError, TypeError) as exc:
-        raise StudyError(f"--scheduler {address!r}: cannot connect: {exc}") from None
 
 
 def _dask_results(todo: list[StudyCase], study: Study, client) -> Iterator:
