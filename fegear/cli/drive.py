@@ -60,6 +60,10 @@ def add_parser(sub) -> None:
                    help="gear-1 inertia [kg·m²] (default: steel disk of its pitch radius)")
     d.add_argument("--J2", type=float, default=None,
                    help="gear-2 inertia [kg·m²] (default: steel ring, pitch radius + 3 m)")
+    d.add_argument("--spring", choices=("tangent", "secant"), default="tangent",
+                   help="the mesh spring of the vibration about the static state: tangent "
+                        "dT/dθ at the load (the linearised model's; default) or secant T/δ "
+                        "(the static state is the secant's either way)")
     d.add_argument("--zeta", type=float, default=0.05, help="mesh damping ratio (0.05)")
     d.add_argument("--torque", type=float, default=None,
                    help="gear-1 torque [N·m] (default: the stiffness file's)")
@@ -174,14 +178,15 @@ def _dynamics(a: argparse.Namespace) -> int:
     j1, j2 = default_inertias(mesh)
     torque = mesh.torque if a.torque is None else a.torque
     pair = TorsionalPair(j1 if a.J1 is None else a.J1, j2 if a.J2 is None else a.J2,
-                         mesh.z2 / mesh.z1, mesh.mean, a.zeta)
+                         mesh.z2 / mesh.z1, mesh.kind(a.spring).mean, a.zeta)
     if speeds is None:  # through f_n/2 and f_n: mesh frequency z1 n/60 up to 1.5 f_n
         top = 1.5 * pair.natural_frequency / (2 * math.pi) * 60.0 / mesh.z1
         speeds = [top * j / 60 for j in range(1, 61)]
     require_range("torque", torque, 0.0, 1e5, lo_open=True, unit="N·m")
     out = prepare_dir(a.out) if a.out is not None else None
     summary = dynamics_summary(pair, mesh, torque,
-                               [steady_response(pair, mesh, torque, s) for s in speeds])
+                               [steady_response(pair, mesh, torque, s, spring=a.spring)
+                                for s in speeds], a.spring)
     files = write_dynamics(out, summary) if out is not None else {}
     return _report(summary, dynamics_table, files, a.json)
 

@@ -3,20 +3,24 @@
 The FE mesh cycle (``fegear solve --positions N``, :class:`~fegear.toothpair.MeshStiffness`)
 gives, at each mesh phase, gear 1's static rotation under the torque T with gear 2 held: the
 unloaded part e (rotation to first touch: the kinematic transmission error) and the elastic part
-T/k. ``k`` is the secant mesh stiffness in N·m/rad of gear-1 rotation; with it the lumped model
-reproduces the FE rotation exactly when static. The teeth are not involutes, so no base-circle
-line of action exists: the model works in gear-1 rotation, which needs none.
+T/k_s. ``k_s`` is the secant mesh stiffness in N·m/rad of gear-1 rotation: with it the model
+reproduces the FE rotation exactly when static. The spring of the vibration about that static
+state is the tangent stiffness k_t = dT/dθ (the contact set kept), larger than the secant where
+the contact grows with the load; ``spring="secant"`` uses k_s for both (the model before the
+tangent was known). The teeth are not involutes, so no base-circle line of action exists: the
+model works in gear-1 rotation, which needs none.
 
 Model (two inertias on fixed axes, the spirit of seed 003; both gears of an internal pair turn
 the same way): with ``q = θ1 − i θ2``, ``i = z2/z1``, the mesh torque on gear 1 is
-``F = k(φ)(q − e(φ)) + c q'`` (φ the mesh phase, advancing z1 per gear-1 turn), so
+``F = T1 + k_t(φ)(q − q_s(φ)) + c q'`` about the static state ``q_s = e(φ) + T1/k_s(φ)`` (φ the
+mesh phase, advancing z1 per gear-1 turn; with k_t = k_s, ``F = k_s(q − e) + c q'``), so
 
     J1 θ1'' + F = T1,    J2 θ2'' − i F = −T_L,    T_L = i T1 (steady load),
 
-and q obeys ``J_e q'' + c q' + k(φ)(q − e(φ)) = T1`` with ``1/J_e = 1/J1 + i²/J2``. Natural
-frequency ``ω_n = sqrt(k̄/J_e)`` (the other mode is the rigid rotation), damping
-``c = 2 ζ sqrt(k̄ J_e)``. The steady response to the stiffness and error variation at constant
-speed is the periodic solution over one mesh period, found by shooting (Floquet): the
+and q obeys ``J_e q'' + c q' + k_t(φ)(q − q_s(φ)) = 0`` with ``1/J_e = 1/J1 + i²/J2``. Natural
+frequency ``ω_n = sqrt(k̄/J_e)``, k̄ the spring's mean (the other mode is the rigid rotation),
+damping ``c = 2 ζ sqrt(k̄ J_e)``. The steady response to the stiffness and error variation at
+constant speed is the periodic solution over one mesh period, found by shooting (Floquet): the
 monodromy matrix also says whether the response is stable (parametric resonance).
 
 Units: kg·m², N·m, rad, s.
@@ -114,11 +118,13 @@ class Response:
 
 
 def steady_response(pair: TorsionalPair, mesh: MeshStiffness, torque: float, speed_rpm: float,
-                    steps: int = 4096) -> Response:
-    """The periodic solution of ``J_e q'' + c q' + k(φ)(q − e(φ)) = T1`` at gear-1 speed
-    ``speed_rpm``. One mesh period is cut into ``steps`` intervals with k and e frozen at the
-    interval's midpoint; on each the state x = (q, q') relaxes exactly towards that interval's
-    static state x* = (e + T1/k, 0): ``x ← E x + (I − E) x*``, ``E = exp(A h)``. The product of
+                    steps: int = 4096, spring: str = "secant") -> Response:
+    """The periodic solution of ``J_e q'' + c q' + k_t(φ)(q − q_s(φ)) = 0`` at gear-1 speed
+    ``speed_rpm``, ``spring`` "tangent" (k_t the mesh's tangent stiffness) or "secant" (k_t =
+    k_s). ``pair.stiffness`` sets the spring's mean; the secant is scaled alike. One mesh
+    period is cut into ``steps`` intervals with k and e frozen at the interval's midpoint; on
+    each the state x = (q, q') relaxes exactly towards that interval's static state
+    x* = (e + T1/k_s, 0): ``x ← E x + (I − E) x*``, ``E = exp(A h)``. The product of
     the E is the monodromy matrix Φ (its eigenvalues: the Floquet multipliers), and the
     periodic start solves ``(I − Φ) x0 = p``. No time-step limit: the natural period may be
     any fraction of the mesh period."""
@@ -132,16 +138,19 @@ def steady_response(pair: TorsionalPair, mesh: MeshStiffness, torque: float, spe
     period = 2.0 * math.pi / wm
     h = period / steps
     je, c = pair.equivalent_inertia, pair.damping
-    level = pair.stiffness / mesh.mean  # the pair's stiffness level, the mesh's shape
-    k, e = mesh.at((np.arange(steps) + 0.5) / steps)
-    k = k * level
+    dyn = mesh.kind(spring)
+    level = pair.stiffness / dyn.mean  # the pair's stiffness level, the mesh's shape
+    mid = (np.arange(steps) + 0.5) / steps
+    ks, e = mesh.at(mid)
+    k = dyn.at(mid)[0] * level
+    ks = ks * level
     a = np.zeros((steps, 2, 2))
     a[:, 0, 1] = 1.0
     a[:, 1, 0] = -k / je
     a[:, 1, 1] = -c / je
     big = expm(a * h)
     star = np.zeros((steps, 2))
-    star[:, 0] = e + torque / k  # static state (q, 0) of each interval
+    star[:, 0] = e + torque / ks  # static state (q, 0) of each interval
     phi, p = np.eye(2), np.zeros(2)
     for j in range(steps):  # x_{j+1} = E_j (x_j − x*_j) + x*_j
         phi = big[j] @ phi
@@ -153,9 +162,10 @@ def steady_response(pair: TorsionalPair, mesh: MeshStiffness, torque: float, spe
         x = big[j] @ (x - star[j]) + star[j]
         q[j + 1], v[j + 1] = x
     t = np.linspace(0.0, period, steps + 1)
-    kk, ee = mesh.at(t / period)
-    kk = kk * level
-    force = kk * (q - ee) + c * v
+    kks, ee = mesh.at(t / period)
+    kk = dyn.at(t / period)[0] * level
+    static = ee + torque / (kks * level)
+    force = torque + kk * (q - static) + c * v
     return Response(omega1, wm, t, q, force, float(force.max() / torque),
-                    float(force.min() / torque), float(np.ptp(q - (ee + torque / kk))),
+                    float(force.min() / torque), float(np.ptp(q - static)),
                     float(np.abs(np.linalg.eigvals(phi)).max()))

@@ -115,15 +115,17 @@ def ratio_table(r, eta_h: float | None) -> str:
 
 
 def dynamics_summary(pair: TorsionalPair, mesh: MeshStiffness, torque: float,
-                     responses: list[Response]) -> dict:
+                     responses: list[Response], spring: str = "secant") -> dict:
     w, _ = pair.modes()
     return {"model": {"J1_kgm2": pair.J1, "J2_kgm2": pair.J2, "ratio": pair.ratio,
                       "equivalent_inertia_kgm2": pair.equivalent_inertia,
+                      "spring": spring,
                       "stiffness_Nm_per_rad": pair.stiffness, "zeta": pair.zeta,
                       "damping_Nms_per_rad": pair.damping, "torque_Nm": torque},
             "natural_frequencies_rad_s": w.tolist(),
             "natural_frequency_Hz": pair.natural_frequency / (2 * math.pi),
             "mesh": {"torque_Nm": mesh.torque, "mean_stiffness_Nm_per_rad": mesh.mean,
+                     "mean_tangent_Nm_per_rad": mesh.mean_tangent,
                      "harmonics": mesh.harmonics(), "z1": mesh.z1, "z2": mesh.z2},
             "speeds": [{"speed_rpm": r.speed * 30 / math.pi,
                         "mesh_frequency_Hz": r.mesh_frequency / (2 * math.pi),
@@ -138,7 +140,8 @@ def dynamics_table(s: dict) -> str:
     m = s["model"]
     lines = [f"J1 {m['J1_kgm2']:.4g} kg·m², J2 {m['J2_kgm2']:.4g} kg·m², i = z2/z1 = "
              f"{m['ratio']:.6g}, J_e {m['equivalent_inertia_kgm2']:.4g} kg·m²",
-             f"mean mesh stiffness {m['stiffness_Nm_per_rad']:.5g} N·m/rad, ζ {m['zeta']:g}, "
+             f"mean mesh stiffness {m['stiffness_Nm_per_rad']:.5g} N·m/rad ({m['spring']}"
+             f"{_other_spring(s)}), ζ {m['zeta']:g}, "
              f"c {m['damping_Nms_per_rad']:.4g} N·m·s/rad",
              f"natural frequencies: 0 (rigid rotation), {s['natural_frequency_Hz']:.1f} Hz",
              "", "| speed [r/min] | mesh freq [Hz] | max F / T | min F / T | "
@@ -150,6 +153,16 @@ def dynamics_table(s: dict) -> str:
                      f"{r['dynamic_q_peak_to_peak_urad']:.3f} | "
                      f"{r['floquet_multiplier']:.4f}{'' if r['stable'] else ' UNSTABLE'} |")
     return "\n".join(lines)
+
+
+def _other_spring(s: dict) -> str:
+    """The mean of the spring not used, for comparison."""
+    mesh, spring = s["mesh"], s["model"]["spring"]
+    if spring == "tangent":
+        return f"; secant {mesh['mean_stiffness_Nm_per_rad']:.5g}"
+    if mesh.get("mean_tangent_Nm_per_rad") is None:
+        return ""
+    return f"; tangent {mesh['mean_tangent_Nm_per_rad']:.5g}"
 
 
 def write_dynamics(out: Path, summary: dict) -> dict:

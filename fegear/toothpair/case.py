@@ -218,6 +218,8 @@ class PairSolution:
     detail: SolutionDetail = field(repr=False)
     von_mises_estimated: bool = False   # the von Mises stress at the contacts is the ring
                                         # model's surface estimate: no submodel solved there
+    tangent_stiffness: float = math.nan  # dT/dθ at the load, the contact set kept (N·m/rad;
+                                         # the ring model's; NaN where not computed)
 
     @property
     def contact_pressure(self) -> float:
@@ -230,7 +232,8 @@ class PairSolution:
 
     @property
     def mesh_stiffness(self) -> float:
-        """Secant mesh stiffness T / (θ − θ_touch), N·m/rad."""
+        """Secant mesh stiffness T / (θ − θ_touch), N·m/rad (the tangent one, the spring of a
+        linearised dynamic model: :attr:`tangent_stiffness`)."""
         return self.case.torque / (self.rotation - self.first_touch)
 
     @property

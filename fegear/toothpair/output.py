@@ -75,17 +75,20 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
 
 
 def write_mesh_stiffness(out: Path, rows: list[dict], case) -> dict[str, Path]:
-    """mesh_stiffness.json (for ``fegear drive dynamics``) and mesh_stiffness.csv: stiffness
-    and unloaded transmission error over one mesh period, by mesh phase."""
+    """mesh_stiffness.json (for ``fegear drive dynamics`` and ``reducer``) and
+    mesh_stiffness.csv: secant and tangent stiffness and unloaded transmission error over one
+    mesh period, by mesh phase."""
     from ..files import write_csv, write_json
     from .stiffness import mesh_stiffness_of_cycle
 
     p = case.params
     mesh = mesh_stiffness_of_cycle(rows, p.z1, p.z2, p.m, case.thickness, case.torque)
     beta0 = rows[0]["position_deg"]
-    table = ((ph, beta0 + ph * 360.0 / p.z2, k, e)
-             for ph, k, e in zip(mesh.phase, mesh.stiffness, mesh.error))
+    tangent = mesh.tangent if mesh.tangent is not None else [""] * len(mesh.phase)
+    table = ((ph, beta0 + ph * 360.0 / p.z2, k, kt, e)
+             for ph, k, kt, e in zip(mesh.phase, mesh.stiffness, tangent, mesh.error))
     return {"mesh_stiffness": write_json(out / "mesh_stiffness.json", mesh.to_json()),
             "mesh_stiffness_csv": write_csv(
                 out / "mesh_stiffness.csv",
-                ("phase", "position_deg", "stiffness_Nm_per_rad", "error_rad"), table)}
+                ("phase", "position_deg", "stiffness_Nm_per_rad", "tangent_stiffness_Nm_per_rad",
+                 "error_rad"), table)}

@@ -54,6 +54,7 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
         "rotation_urad": 1e6 * sol.rotation,
         "first_touch_urad": 1e6 * sol.first_touch,
         "mesh_stiffness_Nm_per_rad": sol.mesh_stiffness,
+        "tangent_stiffness_Nm_per_rad": _number(sol.tangent_stiffness),
         "error_estimate_pct": max(estimate.values()) if estimate else None,
         "error_estimate_by_stress_pct": estimate,
         "error_estimate_from": coarse_quality,
@@ -203,7 +204,8 @@ def pair_table(summary: dict) -> str:
               f"{summary['torque_balance_error']:.1e}",
               f"transmission error {summary['transmission_error_urad']:.1f} µrad (rotation "
               f"{summary['rotation_urad']:.1f}, first touch {summary['first_touch_urad']:.1f}); "
-              f"mesh stiffness {summary['mesh_stiffness_Nm_per_rad']:.4g} N·m/rad",
+              f"mesh stiffness {summary['mesh_stiffness_Nm_per_rad']:.4g} N·m/rad"
+              + _tangent(summary),
               f"DOFs {summary['dofs']}, contact points {summary['contact_points']}, "
               f"iterations {summary['iterations']}, max penetration "
               f"{summary['max_penetration_um']:.3g} µm",
@@ -211,6 +213,16 @@ def pair_table(summary: dict) -> str:
               + _estimate_time(summary)
               + (f"; solve wall {summary['wall_s']:.1f}" if summary["wall_s"] else "")]
     return "\n".join(lines)
+
+
+def _number(v: float) -> float | None:
+    """``v``, or None for NaN (a value the model did not compute; JSON has no NaN)."""
+    return None if math.isnan(v) else v
+
+
+def _tangent(summary: dict) -> str:
+    k = summary.get("tangent_stiffness_Nm_per_rad")
+    return "" if k is None else f" secant, {k:.4g} tangent (dT/dθ, the contact set kept)"
 
 
 def _estimate_time(summary: dict) -> str:
@@ -237,6 +249,7 @@ def cycle_rows(sols, allowables: Allowables = DEFAULT_ALLOWABLES) -> list[dict]:
                      "transmission_error_urad": 1e6 * (s.rotation - s.first_touch),
                      "rotation_urad": 1e6 * s.rotation, "first_touch_urad": 1e6 * s.first_touch,
                      "mesh_stiffness_Nm_per_rad": s.mesh_stiffness,
+                     "tangent_stiffness_Nm_per_rad": _number(s.tangent_stiffness),
                      "teeth_in_contact": s.teeth_in_contact,
                      "torque_balance_error": s.checks.balance_error,
                      **{f"share_{t}": share.get(t, 0.0) for t in teeth}})
@@ -252,8 +265,11 @@ def cycle_summary(rows: list[dict]) -> dict:
         worst = max(rows, key=lambda r: r[k])
         out[k] = {"max": worst[k], "at_position_deg": worst["position_deg"]}
     out.update(smallest(rows))
-    for k in ("transmission_error_urad", "mesh_stiffness_Nm_per_rad"):
-        v = [r[k] for r in rows]
+    for k in ("transmission_error_urad", "mesh_stiffness_Nm_per_rad",
+              "tangent_stiffness_Nm_per_rad"):
+        v = [r[k] for r in rows if r.get(k) is not None]
+        if not v:
+            continue
         out[k] = {"min": min(v), "max": max(v), "mean": sum(v) / len(v),
                   "peak_to_peak": max(v) - min(v)}
     n = [r["teeth_in_contact"] for r in rows]

@@ -2,8 +2,11 @@
 
 At each mesh phase the cycle gives gear 1's static rotation under the torque T with gear 2
 held: the unloaded part e (rotation to first touch, the kinematic transmission error) and the
-elastic part T/k, k the secant mesh stiffness in N·m/rad of gear-1 rotation. They are written to
-``mesh_stiffness.json`` (and ``.csv``), which ``fegear drive dynamics`` reads.
+elastic part T/k, k the secant mesh stiffness in N·m/rad of gear-1 rotation; and the tangent
+stiffness dT/dθ at T with the contact set kept, the spring of a dynamic model linearised about
+the loaded state (larger than the secant where the contact grows with the load). They are
+written to ``mesh_stiffness.json`` (and ``.csv``), which ``fegear drive dynamics`` and
+``fegear drive reducer`` read.
 """
 
 from __future__ import annotations
@@ -22,7 +25,8 @@ class MeshStiffness:
     """Mesh stiffness and transmission error over one mesh period at one torque: phase in
     [0, 1) (one gear-1 tooth pitch), stiffness k (N·m/rad of gear-1 rotation, gear 2 held,
     secant: T/elastic rotation), unloaded error e (rad of gear-1 rotation to first touch),
-    torque (N·m), teeth z1, z2, module (mm) and face width (mm)."""
+    torque (N·m), teeth z1, z2, module (mm) and face width (mm); ``tangent`` dT/dθ at each
+    phase (N·m/rad), None in a file written before fegear computed it."""
 
     phase: np.ndarray
     stiffness: np.ndarray
@@ -32,6 +36,7 @@ class MeshStiffness:
     z2: int
     module: float
     thickness: float
+    tangent: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         n = len(self.phase)
@@ -41,11 +46,33 @@ class MeshStiffness:
             raise ParameterError("phase", list(self.phase), "increasing, within [0, 1)")
         if not np.all(np.isfinite(self.stiffness)) or np.any(self.stiffness <= 0):
             raise ParameterError("stiffness", list(self.stiffness), "finite and > 0")
+        t = self.tangent
+        if t is not None and (len(t) != n or not np.all(np.isfinite(t)) or np.any(t <= 0)):
+            raise ParameterError("tangent stiffness", list(t), "one per phase, finite and > 0")
 
     @property
     def mean(self) -> float:
         """Mean stiffness over the period (N·m/rad), trapezoidal on the periodic samples."""
         return float(_periodic_mean(self.phase, self.stiffness))
+
+    @property
+    def mean_tangent(self) -> float | None:
+        """Mean tangent stiffness over the period (N·m/rad), None if not known."""
+        return None if self.tangent is None else _periodic_mean(self.phase, self.tangent)
+
+    def kind(self, name: str) -> MeshStiffness:
+        """This mesh with the ``name`` ("secant" or "tangent") stiffness as its ``stiffness``
+        (the error is the same): what a model that reads ``stiffness`` should use."""
+        if name == "secant":
+            return self
+        if name != "tangent":
+            raise ParameterError("stiffness kind", name, "secant or tangent")
+        if self.tangent is None:
+            raise FegearError("this mesh_stiffness.json has no tangent stiffness (written "
+                              "before fegear computed it): solve the cycle again, or use "
+                              "the secant spring (fegear drive: --spring secant)")
+        return MeshStiffness(self.phase, self.tangent, self.error, self.torque, self.z1,
+                             self.z2, self.module, self.thickness, self.tangent)
 
     def at(self, phase) -> tuple[np.ndarray, np.ndarray]:
         """k and e at ``phase`` (any real; periodic), linear between the samples."""
@@ -68,8 +95,11 @@ class MeshStiffness:
     def to_json(self) -> dict:
         return {"z1": self.z1, "z2": self.z2, "module_mm": self.module,
                 "thickness_mm": self.thickness, "torque_Nm": self.torque,
-                "mean_stiffness_Nm_per_rad": self.mean, "harmonics": self.harmonics(),
+                "mean_stiffness_Nm_per_rad": self.mean,
+                "mean_tangent_Nm_per_rad": self.mean_tangent, "harmonics": self.harmonics(),
                 "phase": self.phase.tolist(), "stiffness_Nm_per_rad": self.stiffness.tolist(),
+                "tangent_stiffness_Nm_per_rad": (None if self.tangent is None
+                                                 else self.tangent.tolist()),
                 "error_rad": self.error.tolist()}
 
 
@@ -88,7 +118,10 @@ def mesh_stiffness_of_cycle(rows: list[dict], z1: int, z2: int, module: float, t
     order = np.argsort(phase)
     k = np.array([r["mesh_stiffness_Nm_per_rad"] for r in rows])
     e = 1e-6 * np.array([r["first_touch_urad"] for r in rows])
-    return MeshStiffness(phase[order], k[order], e[order], torque, z1, z2, module, thickness)
+    tangent = [r.get("tangent_stiffness_Nm_per_rad") for r in rows]
+    tangent = None if None in tangent else np.array(tangent)[order]
+    return MeshStiffness(phase[order], k[order], e[order], torque, z1, z2, module, thickness,
+                         tangent)
 
 
 def read_mesh_stiffness(path: str | Path) -> MeshStiffness:
@@ -99,7 +132,9 @@ def read_mesh_stiffness(path: str | Path) -> MeshStiffness:
                              np.array(d["stiffness_Nm_per_rad"], float),
                              np.array(d["error_rad"], float), float(d["torque_Nm"]),
                              int(d["z1"]), int(d["z2"]), float(d["module_mm"]),
-                             float(d["thickness_mm"]))
+                             float(d["thickness_mm"]),
+                             None if d.get("tangent_stiffness_Nm_per_rad") is None
+                             else np.array(d["tangent_stiffness_Nm_per_rad"], float))
     except OSError as exc:
         raise FegearError(f"--stiffness {str(path)!r}: cannot be read: {exc.strerror}") from None
     except (ValueError, KeyError, TypeError) as exc:

@@ -46,15 +46,21 @@ def test_ratio_command(capsys):
 
 def test_dynamics_command_on_a_stiffness_file(tmp_path, capsys):
     ph = np.arange(32) / 32
-    m = MeshStiffness(ph, 5e5 * (1 + 0.1 * np.cos(2 * np.pi * ph)), 1e-6 * np.sin(2 * np.pi * ph),
-                      200.0, 44, 45, 2.0, 5.0)
+    k = 5e5 * (1 + 0.1 * np.cos(2 * np.pi * ph))
+    m = MeshStiffness(ph, k, 1e-6 * np.sin(2 * np.pi * ph), 200.0, 44, 45, 2.0, 5.0, 1.3 * k)
     (tmp_path / "k.json").write_text(json.dumps(m.to_json()))
     assert main(["drive", "dynamics", "--stiffness", str(tmp_path / "k.json"), "--speeds",
                  "100:3000:5", "--json", "--out", str(tmp_path / "dyn")]) == 0
     s = json.loads(capsys.readouterr().out)
     j1, j2 = default_inertias(m)
     assert s["model"]["J1_kgm2"] == pytest.approx(j1)
+    # the tangent spring by default, the secant one asked for
+    assert s["model"]["spring"] == "tangent"
     assert s["natural_frequencies_rad_s"][1] == pytest.approx(
+        np.sqrt(m.mean_tangent * (1 / j1 + (45 / 44) ** 2 / j2)), rel=1e-12)
+    assert main(["drive", "dynamics", "--stiffness", str(tmp_path / "k.json"), "--speeds",
+                 "100", "--json", "--spring", "secant"]) == 0
+    assert json.loads(capsys.readouterr().out)["natural_frequencies_rad_s"][1] == pytest.approx(
         np.sqrt(m.mean * (1 / j1 + (45 / 44) ** 2 / j2)), rel=1e-12)
     assert [r["speed_rpm"] for r in s["speeds"]] == pytest.approx([100, 825, 1550, 2275, 3000])
     assert all(r["dynamic_factor"] > 1 for r in s["speeds"])
@@ -90,7 +96,7 @@ def test_bad_stiffness_file_and_bad_model_input(tmp_path, capsys):
     assert main(["drive", "dynamics", "--stiffness", str(tmp_path / "k.json")]) == 2
     assert "not a mesh_stiffness.json" in capsys.readouterr().err
     ph = np.arange(4) / 4
-    m = MeshStiffness(ph, np.full(4, 1e5), np.zeros(4), 10.0, 24, 25, 2.0, 5.0)
+    m = MeshStiffness(ph, np.full(4, 1e5), np.zeros(4), 10.0, 24, 25, 2.0, 5.0, np.full(4, 1.2e5))
     (tmp_path / "k.json").write_text(json.dumps(m.to_json()))
     for extra, name in ((["--J1", "0"], "J1"), (["--zeta", "-0.1"], "zeta"),
                         (["--torque", "0"], "torque")):
@@ -113,7 +119,7 @@ def _numeric_options():
 @pytest.mark.parametrize("command, option", list(_numeric_options()))
 def test_every_numeric_drive_option_refuses_nan(command, option, tmp_path, capsys):
     ph = np.arange(4) / 4
-    m = MeshStiffness(ph, np.full(4, 1e5), np.zeros(4), 10.0, 24, 25, 2.0, 5.0)
+    m = MeshStiffness(ph, np.full(4, 1e5), np.zeros(4), 10.0, 24, 25, 2.0, 5.0, np.full(4, 1.2e5))
     (tmp_path / "k.json").write_text(json.dumps(m.to_json()))
     need = {"ratio": ["--train", "ngw", "--teeth", "20,70"],
             "dynamics": ["--stiffness", str(tmp_path / "k.json"), "--speeds", "100"]}

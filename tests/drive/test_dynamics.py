@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from fegear.drive.dynamics import TorsionalPair, default_inertias, steady_response
-from fegear.errors import ParameterError
+from fegear.errors import FegearError, ParameterError
 from fegear.toothpair.stiffness import MeshStiffness, mesh_stiffness_of_cycle, read_mesh_stiffness
 
 N = 512  # samples per mesh period of the synthetic stiffness (linear interpolation between)
@@ -140,4 +140,45 @@ def test_fe_cycle_exports_a_stiffness_the_model_reproduces_statically(tmp_path):
     assert slow.dynamic_factor == pytest.approx(1.0, abs=1e-3)
     assert (out / "mesh_stiffness.csv").read_text().startswith("phase,position_deg,")
     table = np.loadtxt(out / "mesh_stiffness.csv", delimiter=",", skiprows=1)
-    assert np.array_equal(table[:, 2], m.stiffness) and np.array_equal(table[:, 3], m.error)
+    assert np.array_equal(table[:, 2], m.stiffness) and np.array_equal(table[:, 3], m.tangent)
+    assert np.array_equal(table[:, 4], m.error)
+    # the tangent (contact set kept) is stiffer than the secant: the contact grows with load
+    assert np.all(m.tangent > m.stiffness)
+    assert np.array_equal(again.tangent, m.tangent)
+    # about the static state, a tangent spring leaves the slow response static too
+    pt = TorsionalPair(j1, j2, 25 / 24, m.mean_tangent)
+    assert steady_response(pt, m, 20.0, 1.0, spring="tangent").dynamic_factor == \
+        pytest.approx(1.0, abs=1e-3)
+
+
+def test_a_file_without_the_tangent_reads_and_says_so(tmp_path):
+    """A mesh_stiffness.json written before the tangent was exported still reads; asking it
+    for the tangent spring is one clear error."""
+    m = MeshStiffness(np.array([0.0, 0.5]), np.array([1e5, 2e5]), np.zeros(2), 20, 24, 25, 2,
+                      5)
+    d = m.to_json()
+    del d["tangent_stiffness_Nm_per_rad"], d["mean_tangent_Nm_per_rad"]
+    path = tmp_path / "old.json"
+    path.write_text(json.dumps(d))
+    old = read_mesh_stiffness(path)
+    assert old.tangent is None and old.kind("secant") is old
+    with pytest.raises(FegearError, match="no tangent stiffness"):
+        old.kind("tangent")
+
+
+def test_tangent_and_secant_springs_differ_only_in_the_vibration():
+    """With k_t = k_s the tangent form is the secant model to rounding; a stiffer tangent
+    leaves the static state and raises the natural frequency by sqrt(k_t / k_s)."""
+    phase = np.linspace(0, 1, 8, endpoint=False)
+    ks = 1e5 * (1 + 0.1 * np.cos(2 * np.pi * phase))
+    e = 1e-5 * np.sin(2 * np.pi * phase)
+    same = MeshStiffness(phase, ks, e, 20, 24, 25, 2, 5, ks.copy())
+    p = TorsionalPair(1e-3, 2e-3, 25 / 24, same.mean)
+    a = steady_response(p, same, 20.0, 3000.0, steps=512)
+    b = steady_response(p, same, 20.0, 3000.0, steps=512, spring="tangent")
+    assert np.allclose(a.force, b.force, rtol=1e-9)
+    stiff = MeshStiffness(phase, ks, e, 20, 24, 25, 2, 5, 1.5 * ks)
+    pt = TorsionalPair(1e-3, 2e-3, 25 / 24, stiff.mean_tangent)
+    assert pt.natural_frequency / p.natural_frequency == pytest.approx(np.sqrt(1.5), rel=1e-12)
+    slow = steady_response(pt, stiff, 20.0, 1.0, spring="tangent")
+    assert slow.dynamic_factor == pytest.approx(1.0, abs=1e-3)

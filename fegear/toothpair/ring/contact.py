@@ -183,6 +183,33 @@ def _primal(A, w, g0, a, torque_nmm, arm_rate, start, used):
     raise RingContactError(f"the active set did not settle in {k} iterations")
 
 
+def tangent_stiffness(model: RingModel, contact: RingContact,
+                      sol: RingContactSolution) -> float:
+    """The tangent mesh stiffness dT/dθ (N·m/rad of gear-1 rotation) at the solved load, the
+    active points kept: the same system :func:`_on` solves, differentiated in the torque (a
+    linearised dynamic model's mesh spring; the secant T/(θ − θ_touch) is the static one). It
+    is the slope of θ(T) between the loads at which a point joins or leaves the contact."""
+    alpha = model.case.params.ratio * contact.beta
+    w = contact.weight * model.case.thickness
+    active = sol.pressure > 0
+    if not active.any():
+        return float("nan")
+    _, a = rigid_gap(model, contact.x, contact.beta, alpha + sol.rotation)
+    ahead = rigid_gap(model, contact.x, contact.beta, alpha + sol.rotation + ARM_STEP)[1]
+    arm_rate = (w * sol.pressure) @ (ahead - a) / ARM_STEP
+    idx = np.flatnonzero(active)
+    n = len(idx)
+    M = np.empty((n + 1, n + 1))
+    M[:n, :n] = contact.A[np.ix_(idx, idx)]
+    M[:n, n] = a[idx]
+    M[n, :n] = w[idx] * a[idx]
+    M[n, n] = arm_rate
+    rhs = np.zeros(n + 1)
+    rhs[n] = -1.0                      # one N·mm more on gear 1
+    rate = np.linalg.solve(M, rhs)[n]  # rad per N·mm
+    return float(1e-3 / rate)
+
+
 def touch_rotation(model: RingModel, contact: RingContact, theta: float) -> float:
     """The rotation θ (rad) at which gear 1's rigid, rounded teeth first touch: the smallest
     closure over the grid points, repeated on the exact gaps."""

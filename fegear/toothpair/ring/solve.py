@@ -24,7 +24,7 @@ from ...geometry import Gear1Profile
 from ..case import ContactChecks, PairSolution, SolveCase
 from ..positions import SHARE_GUESS, Attempt, Trial, expected_elastic_um
 from ..teeth import candidate_data, choose_teeth
-from .contact import solve_ring_contact, touch_rotation
+from .contact import solve_ring_contact, tangent_stiffness, touch_rotation
 from .grid import ToothGrid, tooth_grid, window
 from .influence import RingContact, assemble_contact
 from .model import RingModel, ring_model
@@ -138,6 +138,7 @@ class RingSolver:
         contact, sol, grids, first_um = attempt.result
         t0 = time.perf_counter()
         touch = touch_rotation(model, contact, p.turn_of(first_um))
+        tangent = tangent_stiffness(model, contact, sol)
         if self.contact_only:
             teeth_out = tooth_results(model, case, contact, sol, None, state, ())
             checks = ContactChecks(sol.balance_error, sol.max_penetration, sol.iterations,
@@ -147,7 +148,8 @@ class RingSolver:
                 von_mises_max=math.nan, rotation=sol.rotation, first_touch=touch,
                 dofs=model.dofs, checks=checks,
                 timings_s={"stresses": time.perf_counter() - t0},
-                detail=RingDetail(model, case, contact, sol, None), von_mises_estimated=True)
+                detail=RingDetail(model, case, contact, sol, None), von_mises_estimated=True,
+                tangent_stiffness=tangent)
         stresses = ring_stresses(model, contact, sol.pressure, self.submodels == "all")
         cands = candidate_data(p, model.shape, state, tuple(g.tooth for g in grids), case.beta)
         teeth_out = tooth_results(model, case, contact, sol, stresses, state, cands)
@@ -161,7 +163,7 @@ class RingSolver:
             von_mises_max=stresses.von_mises_max, rotation=sol.rotation, first_touch=touch,
             dofs=model.dofs, checks=checks, timings_s=times,
             detail=RingDetail(model, case, contact, sol, stresses),
-            von_mises_estimated=not stresses.submodels)
+            von_mises_estimated=not stresses.submodels, tangent_stiffness=tangent)
 
     def complete(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
         """With ``submodels`` "peaks", the submodels of the positions that decide a cycle:
