@@ -17,9 +17,10 @@ TRAINS = {"ngw": ("za", "zb"), "nn": ("zb", "zc", "zd", "ze"), "khv": ("zb", "zc
 
 def add_parser(sub) -> None:
     drive = sub.add_parser("drive", help="drive level: ratios and efficiencies, bearing forces "
-                                          "(seed 000), torsional dynamics from the mesh stiffness")
+                                          "(seed 000), torsional dynamics from the mesh stiffness, "
+                                          "seed 003's reducer")
     sub = drive.add_subparsers(dest="drive_command", required=True, parser_class=Parser,
-                               metavar="{ratio,bearings,dynamics}")
+                               metavar="{ratio,bearings,dynamics,reducer}")
     r = sub.add_parser("ratio", help="ratio and mesh efficiency of a planetary train")
     r.add_argument("--train", required=True, choices=[*TRAINS, "2kh"],
                    help="ngw (teeth za,zb), nn (zb,zc,zd,ze), khv (zb,zc), internal (z1,z2), "
@@ -74,8 +75,103 @@ def add_parser(sub) -> None:
     d.add_argument("--out", default=None, help="write dynamics.json, .csv and .png here")
 
 
+    _add_reducer(sub)
+
+
+#: ``fegear drive reducer``'s model inputs: option, help (the defaults are seed 003's Table 1
+#: and ReducerInputs' choices for what it leaves unsaid; docs/drive.md)
+REDUCER_OPTIONS = (
+    ("power-kW", "power [kW]"), ("speed-rpm", "working crank (input) speed [r/min]"),
+    ("module-mm", "module [mm]"), ("z-plate", "internal-gear plate teeth"),
+    ("z-gear", "external (output) gear teeth"), ("eccentricity-mm", "eccentricity [mm]"),
+    ("mesh-angle-deg", "working pressure angle [deg]"),
+    ("bearing-stiffness", "support and planet bearing stiffness [N/m]"),
+    ("mesh-damping", "mesh damping ratio ζ"),
+    ("plate-mass", "plate mass [kg], a single plate of the whole thickness"),
+    ("plate-inertia", "plate polar moment of inertia [kg·m²] (Table 1: 21.02, unit lost; "
+                      "docs/drive.md)"),
+    ("eccentric-mass", "mass of each crank's eccentric [kg] (Table 1's 0.29 kg, label lost)"),
+    ("input-diameter-mm", "crank shafts' mean diameter [mm]"),
+    ("input-length-mm", "crank shafts' length = support span [mm]"),
+    ("output-diameter-mm", "output shaft's mean diameter [mm]"),
+    ("output-length-mm", "output shaft's length (the span and an overhang) [mm]"),
+    ("plate-thickness-mm", "total plate thickness [mm] (not in Table 1)"),
+    ("plate-gap-mm", "axial gap between plates [mm] (not in Table 1)"),
+    ("crank-radius-mm", "distance of the crank shafts from the output axis [mm] (not in "
+                        "Table 1)"),
+    ("crank-angle-deg", "crank angle the model's geometry is frozen at [deg]"),
+    ("elements", "beam elements over the crank shafts' span"))
+
+
+def _add_reducer(sub) -> None:
+    from ..drive.reducer_inputs import ReducerInputs
+
+    r = sub.add_parser("reducer", help="seed 003: natural frequencies and unbalance response "
+                                       "of the three-axis internal-gear reducer (1, 2, 3 plates)")
+    r.add_argument("--plates", type=int, default=3,
+                   help="the build whose mode shapes are drawn and whose Campbell crossings "
+                        "are printed: 1, 2 or 3 plates (all three are solved) (default 3)")
+    r.add_argument("--modes", type=int, default=10, help="natural frequencies per build (10)")
+    r.add_argument("--mesh-stiffness", default="table",
+                   help="table (Table 1's constant, 4.97e8 N/m), fe (fegear's mean tangent "
+                        "stiffness of the compound-cycloid pair of the same teeth, module, "
+                        "plate width and output torque), a mesh_stiffness.json, or N/m")
+    r.add_argument("--fe-quality", default="coarse",
+                   help="mesh quality of --mesh-stiffness fe (coarse)")
+    r.add_argument("--fe-positions", type=int, default=12,
+                   help="positions of --mesh-stiffness fe's mesh cycle (12)")
+    r.add_argument("--speeds", default=None,
+                   help="crank speeds of the response [r/min]: 500,1000 or lo:hi:count "
+                        "(default: 60 up to 1.5× the working speed)")
+    defaults = ReducerInputs()
+    for name, text in REDUCER_OPTIONS:
+        value = getattr(defaults, name.replace("-", "_"))
+        r.add_argument(f"--{name}", type=type(value), default=value,
+                       help=f"{text} (default {value:g})")
+    r.add_argument("--json", action="store_true", help="print the summary as JSON")
+    r.add_argument("--out", default=None, help="write reducer.json, frequencies.csv, "
+                                               "response.csv and the pictures here")
+
+
 def run(a: argparse.Namespace) -> int:
-    return {"ratio": _ratio, "bearings": _bearings, "dynamics": _dynamics}[a.drive_command](a)
+    return {"ratio": _ratio, "bearings": _bearings, "dynamics": _dynamics,
+            "reducer": _reducer}[a.drive_command](a)
+
+
+def _reducer(a: argparse.Namespace) -> int:
+    from ..drive.reducer_inputs import ReducerInputs
+    from ..drive.reducer_report import (
+        mesh_source,
+        public,
+        reducer_summary,
+        reducer_table,
+        write_reducer,
+    )
+    from ..files import prepare_dir
+    from ..toothpair import QUALITY
+
+    if a.plates not in (1, 2, 3):
+        raise ParameterError("plates", a.plates, "1, 2 or 3")
+    require_range("modes", a.modes, 1, 60)
+    require_range("fe_positions", a.fe_positions, 2, 96)
+    if a.fe_quality not in QUALITY:
+        raise ParameterError("fe_quality", a.fe_quality, " / ".join(QUALITY))
+    inputs = ReducerInputs(**{name.replace("-", "_"): getattr(a, name.replace("-", "_"))
+                              for name, _ in REDUCER_OPTIONS})
+    speeds = None if a.speeds is None else _speeds(a.speeds)
+    if speeds is not None and len(speeds) > 2000:
+        raise ParameterError("speeds", a.speeds, "at most 2000 speeds")
+    mesh = mesh_source(a.mesh_stiffness, inputs, a.fe_quality, a.fe_positions)
+    summary = reducer_summary(inputs, mesh, a.modes, speeds)
+    files = write_reducer(prepare_dir(a.out), summary, a.plates) if a.out is not None else {}
+    if a.json:
+        print(json.dumps({**public(summary), "files": {k: str(v) for k, v in files.items()}},
+                         indent=2))
+    else:
+        print(reducer_table(summary, a.plates))
+        for k, v in files.items():
+            print(f"{k:15s} {v}")
+    return 0
 
 
 def _ratio(a: argparse.Namespace) -> int:

@@ -4,7 +4,10 @@ three-ring reducer (seed 000), and a torsional lumped model driven by the FE mes
 It stands beside the FE pipeline and uses only its output, the mesh stiffness of a solve cycle
 (:class:`~fegear.toothpair.MeshStiffness`). :mod:`.ratios`: the carrier-fixed method and the
 meshing-power efficiencies (seed 002); :mod:`.bearings`: seed 000's eccentric-bearing forces and
-support reactions; :mod:`.dynamics`: a two-inertia torsional model over speed.
+support reactions; :mod:`.dynamics`: a two-inertia torsional model over speed;
+:mod:`.reducer`: seed 003's three-axis reducer, a bending–torsional model of its shafts and
+plates (:mod:`.beams` its shaft elements, :mod:`.reducer_inputs` Table 1,
+:mod:`.reducer_report` its results and the seed's findings checked).
 
 >>> from fegear.drive import internal_teeth, ngw
 >>> drive = internal_teeth(44, 45)          # crank H in, gear 1 out, ring 2 translating
@@ -27,5 +30,15 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
                  "STEEL_DENSITY"),
     "report": ("bearings_summary", "bearings_table", "write_bearings", "ratio_table",
                "dynamics_summary", "dynamics_table", "write_dynamics"),
-    "plot": ("bearings_png", "dynamics_png"),
+    "plot": ("bearings_png", "dynamics_png", "reducer_campbell_png", "reducer_modes_png",
+             "reducer_response_png"),
+    "beams": ("Section", "Material", "shaft_matrices", "pinned_euler_bernoulli",
+              "pinned_timoshenko", "fixed_free_torsion"),
+    "reducer_inputs": ("ReducerInputs", "BUILDS"),
+    "reducer": ("ReducerModel", "Mode", "build_reducer", "modes", "response", "whirl",
+                "sweep", "turning_sweep", "over_turn", "frequency_spread", "turning_geometry",
+                "frozen_quasi_static", "unbalance_forces", "unbalance_resultants",
+                "support_reactions", "RESPONSES"),
+    "reducer_report": ("MeshSource", "mesh_source", "reducer_summary", "reducer_table",
+                       "write_reducer", "findings"),
 })
