@@ -175,8 +175,8 @@ def reducer_response_png(path: Path, s: dict, key: str) -> Path:
                 ax.axvline(rpm, color=color, lw=0.6, ls=":")
     work = s["inputs"]["speed_rpm"]
     ax.axvline(work, color="grey", lw=1.2)
-    ax.text(work, 0.02, " working speed", transform=ax.get_xaxis_transform(), fontsize=8,
-            color="grey", rotation=90, va="bottom", ha="right")
+    ax.text(work, 0.98, "working speed ", transform=ax.get_xaxis_transform(), fontsize=8,
+            color="grey", rotation=90, va="top", ha="right")
     ax.set_yscale("log")
     ax.set_xlim(0, n.max())
     ax.set_xlabel("crank (input) speed [r/min]")
