@@ -37,7 +37,7 @@ SI units inside (m, kg, N, rad, s); the inputs in the seed's units (mm, kW, r/mi
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
@@ -63,8 +63,9 @@ class Station:
 @dataclass(eq=False)
 class ReducerModel:
     """The assembled model of one build at one crank angle: mass, damping and stiffness over
-    all dofs, the dofs kept (the output's end torsion is held), the shafts' node positions
-    (m), the plates' stations, and the dof numbers by name."""
+    all dofs, the dofs kept (the output's end torsion is held; a caller that holds more sets
+    ``free`` before the first solve: the reduced matrices are kept), the shafts' node
+    positions (m), the plates' stations, and the dof numbers by name."""
 
     inputs: ReducerInputs
     plates: int
@@ -108,10 +109,9 @@ class ReducerModel:
         K, M, _ = self.reduced
         lat = np.isin(self.free, lateral(self))
         a, b = np.flatnonzero(lat), np.flatnonzero(~lat)
-        Kbb = K[np.ix_(b, b)]
-        cond = K[np.ix_(a, a)] - K[np.ix_(a, b)] @ np.linalg.solve(Kbb, K[np.ix_(b, a)])
-        lam, phi = eigh(cond, M[np.ix_(a, a)])
-        return a, b, lam, phi, -np.linalg.solve(Kbb, K[np.ix_(b, a)])
+        back = -np.linalg.solve(K[np.ix_(b, b)], K[np.ix_(b, a)])
+        lam, phi = eigh(K[np.ix_(a, a)] + K[np.ix_(a, b)] @ back, M[np.ix_(a, a)])
+        return a, b, lam, phi, back
 
     def node(self, shaft: int, z: float) -> int:
         return int(np.argmin(np.abs(self.z[shaft] - z)))
@@ -533,7 +533,3 @@ def _static(model: ReducerModel, force: np.ndarray) -> np.ndarray:
     x = np.zeros(model.ndofs, force.dtype)
     x[model.free] = np.linalg.solve(model.reduced[0], force[model.free])
     return x
-
-
-def input_names() -> tuple[str, ...]:
-    return tuple(f.name for f in fields(ReducerInputs))

@@ -361,12 +361,13 @@ def _comparison(inputs: ReducerInputs, mesh: MeshSource, count: int) -> dict:
     """The frequencies and the working-speed response with Table 1's constant mesh stiffness
     beside fegear's mean tangent, its secant, and the tangent's least and largest over the
     mesh cycle (the frequencies' band under the parametric excitation)."""
-    cases = {"table": inputs.mesh_stiffness, "tangent": mesh.stiffness}
+    used = "tangent" if mesh.secant is not None else "given"
+    cases = {"table": inputs.mesh_stiffness, used: mesh.stiffness}
     for name, v in (("secant", mesh.secant), ("tangent_min", mesh.tangent_min),
                     ("tangent_max", mesh.tangent_max)):
         if v is not None:
             cases[name] = v
-    out = {"stiffness_N_per_m": cases, "builds": {}}
+    out = {"stiffness_N_per_m": cases, "used": used, "builds": {}}
     for plates in BUILDS:
         row = {}
         for name, k in cases.items():
@@ -432,17 +433,25 @@ def reducer_table(s: dict, shown: int) -> str:
 
 def _comparison_table(s: dict) -> str:
     c = s["mesh_comparison"]
-    k = c["stiffness_N_per_m"]
+    k, used = c["stiffness_N_per_m"], c["used"]
     names = list(k)
+    short = {"input_support_um": "input support journal", "output_twist_urad": "output twist"}
     lines = ["fegear's mesh stiffness against Table 1's (single plate, N/m: " + ", ".join(
         f"{n} {v:.4g}" for n, v in k.items()) + "):", "",
-        "| plates | mode | " + " | ".join(f"{n} [rad/s]" for n in names) + " | tangent vs table |",
+        "| plates | mode | " + " | ".join(f"{n} [rad/s]" for n in names)
+        + f" | {used} vs table |",
         "|---:|---:|" + "---:|" * (len(names) + 1)]
     for p, row in c["builds"].items():
         for j in range(min(5, len(row["table"]["rad_s"]))):
-            t, f = row["table"]["rad_s"][j], row["tangent"]["rad_s"][j]
+            t, f = row["table"]["rad_s"][j], row[used]["rad_s"][j]
             lines.append(f"| {p} | {j + 1} | " + " | ".join(
                 f"{row[n]['rad_s'][j]:.1f}" for n in names) + f" | {100 * (f / t - 1):+.1f} % |")
+    lines += ["", f"the seed's frozen model at the working speed, table → {used}: "
+              + "; ".join(f"{_plates(p)}: " + ", ".join(
+                  f"{label} {row['table']['at_working_speed'][key]:.3g} → "
+                  f"{row[used]['at_working_speed'][key]:.3g}" for key, label in short.items())
+                  for p, row in c["builds"].items())
+              + " (µm, µrad)"]
     return "\n".join(lines)
 
 
