@@ -70,6 +70,11 @@ class ReducerInputs:
             raise ParameterError("plate_thickness_mm", self.plate_thickness_mm,
                                  f"< {self.input_length_mm - 3 * self.plate_gap_mm:g} mm "
                                  "(the plates fit between the support bearings)")
+        if self.module_mm * self.z_gear <= self.output_diameter_mm:
+            raise ParameterError("z_gear", self.z_gear,
+                                 f"> {self.output_diameter_mm / self.module_mm:g} (the gear's "
+                                 f"reference diameter beyond the {self.output_diameter_mm:g} mm "
+                                 "output shaft)")
         gear_radius = 0.5 * self.module_mm * self.z_gear
         require_range("crank_radius_mm", self.crank_radius_mm,
                       gear_radius + 0.5 * self.input_diameter_mm, 1e4, lo_open=True,

@@ -55,7 +55,7 @@ def mesh_source(spec: str, inputs: ReducerInputs, quality: str = "coarse",
     with the plate held; the model's spring acts along the line of action at the base radius
     r_b, so k = k_θ / r_b² keeps the torsional mesh stiffness. The model's spring is the mean
     tangent stiffness (a linearised model's), the secant beside it."""
-    from ..errors import ParameterError
+    from ..errors import FegearError, ParameterError
     from ..toothpair import read_mesh_stiffness
 
     if spec == "table":
@@ -73,7 +73,10 @@ def mesh_source(spec: str, inputs: ReducerInputs, quality: str = "coarse",
         mesh, fe = _fe_cycle(inputs, quality, positions)
         label = f"fegear {quality}, {positions} positions"
     else:
-        mesh, fe = read_mesh_stiffness(spec), None
+        try:
+            mesh, fe = read_mesh_stiffness(spec), None
+        except FegearError as exc:   # its message names fegear drive dynamics' option
+            raise FegearError(str(exc).replace("--stiffness", "--mesh-stiffness", 1)) from None
         label = f"{spec} (at {mesh.torque:g} N·m, {mesh.thickness:g} mm, scaled to the plate)"
     if mesh.tangent is None:
         raise ParameterError("mesh_stiffness", spec, "a mesh_stiffness.json with the tangent "

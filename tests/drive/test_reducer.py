@@ -241,6 +241,9 @@ def test_the_command_prints_the_three_builds_and_writes_the_pictures(tmp_path, c
     (["--z-plate", "120"], "z-plate = 120"),
     (["--plate-thickness-mm", "500"], "plate-thickness-mm"),
     (["--fe-quality", "best"], "fe-quality"),
+    (["--z-gear", "20", "--z-plate", "22"], "z-gear = 20"),
+    (["--crank-radius-mm", "100"], "crank-radius-mm"),
+    (["--mesh-stiffness", "no/such.json"], "--mesh-stiffness 'no/such.json': cannot be read"),
 ])
 def test_bad_reducer_input_is_one_line(argv, words, tmp_path, capsys):
     assert main(["drive", "reducer", *argv, "--out", str(tmp_path / "r")]) == 2
