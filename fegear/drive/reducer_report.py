@@ -290,8 +290,7 @@ def findings(s: dict) -> list[dict]:
     out.append(_finding(
         "Three plates: the smallest support-bearing amplitude",
         "input shaft's support journal at the working speed, turning mechanism "
-        + " / ".join(f"{sup_t[p]:.3g}" for p in ("1", "2", "3"))
-        + " µm; the seed's frozen model " + " / ".join(f"{sup_f[p]:.3g}" for p in ("1", "2", "3"))
+        + _each(sup_t, ".3g") + " µm; the seed's frozen model " + _each(sup_f, ".3g")
         + " µm (1 / 2 / 3 plates)",
         "reproduced" if least_t == "3" and least_f == "3" else
         "partly" if least_t == "3" else "not reproduced",
@@ -320,23 +319,20 @@ def findings(s: dict) -> list[dict]:
     out.append(_finding(
         "The unbalance excites torsion as well as bending",
         "output twist at 1×, quasi-static at the working speed's forces: frozen model "
-        + " / ".join(f"{qs[p]:.0f}" for p in ("1", "2", "3"))
-        + " µrad; turning mechanism " + " / ".join(f"{qt[p]:.2g}" for p in ("1", "2", "3"))
+        + _each(qs, ".0f") + " µrad; turning mechanism " + _each(qt, ".2g")
         + " µrad (1 / 2 / 3 plates)",
         "explained: an artefact" if max(qt.values()) < 1e-3 * max(qs.values()) else
         "reproduced",
         "in the turning mechanism a plate's inertia force points along its crank and turns "
-        "with it, as the eccentric and the mesh do: it pulls no torque out of the cranks and "
-        "a constant one out of the mesh. Frozen at one crank angle, the same force sweeps "
+        "with it, as the eccentric and the mesh do: it pulls no torque out of the free cranks "
+        "and so none out of the mesh. Frozen at one crank angle, the same force sweeps "
         "round a still mesh and eccentric and so drives torsion at 1×"))
 
     tw = {p: ws[p]["frozen"]["output_twist_urad"] for p in ws}
     more = tw["2"] > tw["1"] and tw["3"] > tw["1"]
     out.append(_finding(
         "Two and three plates twist the output shaft more than one",
-        "frozen model at the working speed: " + " / ".join(f"{tw[p]:.3g}" for p in ("1", "2",
-                                                                                  "3"))
-        + " µrad (1 / 2 / 3 plates)",
+        "frozen model at the working speed: " + _each(tw, ".3g") + " µrad (1 / 2 / 3 plates)",
         ("reproduced in the frozen model" if more else "not reproduced")
         + "; none in the turning mechanism",
         "in the frozen model the opposed plates' torques act at stations apart along the "
@@ -345,6 +341,11 @@ def findings(s: dict) -> list[dict]:
            "speed" if more else "")
         + "; the turning mechanism has no 1× twist to compare"))
     return out
+
+
+def _each(values: dict, fmt: str) -> str:
+    """The three builds' values, 1 / 2 / 3 plates."""
+    return " / ".join(format(values[p], fmt) for p in ("1", "2", "3"))
 
 
 def _plates(p) -> str:
