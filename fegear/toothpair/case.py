@@ -232,8 +232,8 @@ class PairSolution:
 
     @property
     def mesh_stiffness(self) -> float:
-        """Secant mesh stiffness T / (θ − θ_touch), N·m/rad (the tangent one, the spring of a
-        linearised dynamic model: :attr:`tangent_stiffness`)."""
+        """Secant mesh stiffness T / (θ − θ_touch), N·m/rad: the static one (a linearised
+        dynamic model's spring is :attr:`tangent_stiffness`)."""
         return self.case.torque / (self.rotation - self.first_touch)
 
     @property

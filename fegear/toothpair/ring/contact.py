@@ -124,18 +124,26 @@ def _on(A, w, g0, a, torque_nmm, active, arm_rate):
     torque balanced."""
     idx = np.flatnonzero(active)
     n = len(idx)
-    M = np.empty((n + 1, n + 1))
-    M[:n, :n] = A[np.ix_(idx, idx)]
-    M[:n, n] = a[idx]
-    M[n, :n] = w[idx] * a[idx]
-    M[n, n] = arm_rate
     try:
-        sol = np.linalg.solve(M, np.concatenate([-g0[idx], [-torque_nmm]]))
+        sol = np.linalg.solve(_bordered(A, w, a, idx, arm_rate),
+                              np.concatenate([-g0[idx], [-torque_nmm]]))
     except np.linalg.LinAlgError:
         raise RingContactError("the contact points cannot carry the torque") from None
     pressure = np.zeros(len(g0))
     pressure[idx] = sol[:n]
     return pressure, sol[n]
+
+
+def _bordered(A, w, a, idx, arm_rate) -> np.ndarray:
+    """The active points' system in (pressures, rotation step): their influence matrix
+    bordered by the gap's rate with the turn and the torque row."""
+    n = len(idx)
+    M = np.empty((n + 1, n + 1))
+    M[:n, :n] = A[np.ix_(idx, idx)]
+    M[:n, n] = a[idx]
+    M[n, :n] = w[idx] * a[idx]
+    M[n, n] = arm_rate
+    return M
 
 
 def _primal(A, w, g0, a, torque_nmm, arm_rate, start, used):
@@ -198,15 +206,9 @@ def tangent_stiffness(model: RingModel, contact: RingContact,
     ahead = rigid_gap(model, contact.x, contact.beta, alpha + sol.rotation + ARM_STEP)[1]
     arm_rate = (w * sol.pressure) @ (ahead - a) / ARM_STEP
     idx = np.flatnonzero(active)
-    n = len(idx)
-    M = np.empty((n + 1, n + 1))
-    M[:n, :n] = contact.A[np.ix_(idx, idx)]
-    M[:n, n] = a[idx]
-    M[n, :n] = w[idx] * a[idx]
-    M[n, n] = arm_rate
-    rhs = np.zeros(n + 1)
-    rhs[n] = -1.0                      # one N·mm more on gear 1
-    rate = np.linalg.solve(M, rhs)[n]  # rad per N·mm
+    rhs = np.zeros(len(idx) + 1)
+    rhs[-1] = -1.0                     # one N·mm more on gear 1
+    rate = np.linalg.solve(_bordered(contact.A, w, a, idx, arm_rate), rhs)[-1]  # rad per N·mm
     return float(1e-3 / rate)
 
 
