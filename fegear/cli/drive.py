@@ -91,6 +91,8 @@ REDUCER_OPTIONS = (
     ("plate-inertia", "plate polar moment of inertia [kg·m²] (Table 1: 21.02, unit lost; "
                       "docs/drive.md)"),
     ("eccentric-mass", "mass of each crank's eccentric [kg] (Table 1's 0.29 kg, label lost)"),
+    ("motor-inertia", "the motor rotor's inertia at the input's drive end [kg·m²] (not in "
+                      "Table 1)"),
     ("input-diameter-mm", "crank shafts' mean diameter [mm]"),
     ("input-length-mm", "crank shafts' length = support span [mm]"),
     ("output-diameter-mm", "output shaft's mean diameter [mm]"),

@@ -9,10 +9,11 @@ input shaft drives; the two support shafts carry the plate and close the mechani
 
 The model, as the seed describes it:
 
-* each shaft is beam elements (:mod:`.beams`), 5 dofs a node (x, y, their slopes, torsion; no
-  axial motion), on two support bearings (radial springs k_b at z = 0 and z = L of the crank
-  shafts' span; the output shaft has the same span and an overhang to its output end, where
-  the load holds its torsion);
+* each shaft is beam elements (:mod:`.beams`), 5 dofs a node (x, y, the section's rotations,
+  torsion; no axial motion), on two support bearings (radial springs k_b at z = 0 and z = L
+  of the crank shafts' span; the output shaft has the same span and an overhang to its output
+  end, where the load holds its torsion; the input's drive end carries the motor's inertia,
+  none by default: the seed gives none);
 * a plate is rigid and plane: x, y and its rotation Θ;
 * the vector closure at each eccentric (the seed's eqs. 1–3): the planet bearing's deflection
   is the plate's bore centre's displacement minus the eccentric centre's, which is the shaft
@@ -221,6 +222,7 @@ def build_reducer(inputs: ReducerInputs, plates: int,
         _spring(C, g, s.fraction * cm)
         model.dampers.append((np.fromiter(g, int), np.fromiter(g.values(), float),
                               s.fraction * cm))
+    M[model.dof(0, 0, TZ), model.dof(0, 0, TZ)] += ip.motor_inertia   # at the drive end
     held = model.dof(3, len(out_z) - 1, TZ)   # the load holds the output end's torsion
     model.free = np.setdiff1d(np.arange(n), [held])
     return model

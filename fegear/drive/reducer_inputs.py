@@ -36,6 +36,7 @@ class ReducerInputs:
     plate_mass: float = 39.54
     plate_inertia: float = 2.102
     eccentric_mass: float = 0.29
+    motor_inertia: float = 0.0
     input_diameter_mm: float = 38.75
     input_length_mm: float = 465.0
     output_diameter_mm: float = 68.0
@@ -59,6 +60,7 @@ class ReducerInputs:
                       hi_open=True)
         require_range("mesh_damping", self.mesh_damping, 0.0, 1.0, hi_open=True)
         require_range("eccentric_mass", self.eccentric_mass, 0.0, None)
+        require_range("motor_inertia", self.motor_inertia, 0.0, 1e3)
         require_range("plate_gap_mm", self.plate_gap_mm, 0.0, None)
         require_range("elements", self.elements, 4, 400)
         if self.output_length_mm < self.input_length_mm:
