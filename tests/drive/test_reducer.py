@@ -124,7 +124,7 @@ def test_with_the_plate_held_still_the_three_cranks_twist_alike_on_their_eccentr
 
 def test_a_motors_inertia_rides_on_the_drive_trains_stiffness():
     """A motor rotor at the input's drive end: the lowest mode becomes the input's torsion
-    (≥ 85 % of the energy) and behaves as one inertia on one spring, ω² (J_m + J_r) = k: k and
+    (≥ 75 % of the energy) and behaves as one inertia on one spring, ω² (J_m + J_r) = k: k and
     J_r fitted from J_m = 6.25 and 12.5 g·m² predict ω at 50 g·m² within 1 %, and J_r is of
     the three cranks' own polar inertia (measured 0.2 % and 0.65-0.96 × theirs)."""
     cranks = 3 * SHAFT.material.rho * SHAFT.J * L
@@ -132,7 +132,7 @@ def test_a_motors_inertia_rides_on_the_drive_trains_stiffness():
         w = {}
         for j in (0.00625, 0.0125, 0.05):
             mode = modes(build_reducer(replace(ReducerInputs(), motor_inertia=j), plates), 1)[0]
-            assert mode.shares[0][0] == "input torsion" and mode.shares[0][1] > 0.85
+            assert mode.shares[0][0] == "input torsion" and mode.shares[0][1] > 0.75
             w[j] = mode.omega
         a, b = 0.00625, 0.0125
         rest = (w[b] ** 2 * b - w[a] ** 2 * a) / (w[a] ** 2 - w[b] ** 2)
