@@ -1,5 +1,6 @@
 """Worker pools: the local process pools of the study runner, the relief search and the design
-search, and the Dask client of the first and the last.
+search (:class:`LocalPool`: all three end their workers the same way), and the Dask client of
+the first and the last.
 
 Workers are spawned, not forked (the parent may hold threads: the progress bar's), leave
 Ctrl-C to the parent and end when it does: a parent killed outright (SIGKILL) leaves no time
@@ -17,12 +18,50 @@ from concurrent.futures import ProcessPoolExecutor
 from .errors import FegearError
 
 
-def local_pool(workers: int) -> ProcessPoolExecutor:
-    """A pool of ``workers`` spawned processes set up by :func:`init_worker`."""
-    import multiprocessing
+class LocalPool(ProcessPoolExecutor):
+    """A pool of spawned processes set up by :func:`init_worker` that can be stopped at once
+    (:meth:`stop`), broken or not."""
 
-    return ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("spawn"),
-                               initializer=init_worker)
+    def __init__(self, workers: int) -> None:
+        import multiprocessing
+
+        self._before = _children()
+        super().__init__(workers, mp_context=multiprocessing.get_context("spawn"),
+                         initializer=init_worker)
+
+    def stop(self) -> None:
+        """Shut down without waiting for the tasks under way: terminate the workers, the
+        children of this process that multiprocessing's spawn started since the pool was
+        made (found by psutil: a broken pool has forgotten its own)."""
+        import psutil
+
+        procs = []
+        for p in psutil.Process().children():
+            try:
+                if p.pid not in self._before and any("spawn_main" in part
+                                                     for part in p.cmdline()):
+                    procs.append(p)
+            except psutil.Error:
+                continue
+        self.shutdown(wait=False, cancel_futures=True)
+        for p in procs:
+            try:
+                p.terminate()
+            except psutil.NoSuchProcess:
+                continue
+        # no psutil.wait_procs: reaping them here would hide their exit from
+        # multiprocessing, whose shutdown then waits forever
+
+
+def local_pool(workers: int) -> LocalPool:
+    """A pool of ``workers`` spawned processes set up by :func:`init_worker`."""
+    return LocalPool(workers)
+
+
+def _children() -> set[int]:
+    import psutil
+
+    return {p.pid for p in psutil.Process().children()}
 
 
 def init_worker() -> None:

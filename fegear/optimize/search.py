@@ -169,7 +169,7 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
                     for t, p in [(trial, params), *running.values()]:
                         _requeue(study, t.number, p)
                     running.clear()
-                    _stop(pool)
+                    pool.stop()
                     pool = local_pool(workers)
                     break
                 except Exception:  # noqa: BLE001  the cluster lost it (KilledWorker …)
@@ -189,7 +189,7 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
             running.clear()
     finally:
         if client is None:
-            _stop(pool)
+            pool.stop()
         else:
             for f in running:
                 f.cancel()
@@ -320,13 +320,3 @@ def load_trials(out):
     if not path.is_file():
         raise FegearError(f"no trials.csv in {out}: not a search directory")
     return pd.read_csv(path)
-
-
-def _stop(pool) -> None:
-    """Shut the pool down and end its worker processes now (a trial under way is queued
-    again anyway)."""
-    procs = list((getattr(pool, "_processes", None) or {}).values())
-    pool.shutdown(wait=False, cancel_futures=True)
-    for p in procs:
-        if p.is_alive():
-            p.terminate()

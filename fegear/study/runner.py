@@ -20,7 +20,7 @@ import threading
 import time
 import traceback
 from collections.abc import Iterator
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures import FIRST_COMPLETED, wait
 from concurrent.futures.process import BrokenProcessPool
 from contextlib import closing
 from dataclasses import dataclass
@@ -238,7 +238,6 @@ def _pool_results(todo: list[StudyCase], study: Study, workers: int | None,
     while pending:
         for stale in running.glob("*"):
             stale.unlink()
-        before = _children()
         pool = local_pool(min(n, len(pending)))
         futures = {pool.submit(run_case, c.key, c.values, study.outputs.vtu,
                                study.outputs.png, str(running)): c for c in pending}
@@ -260,7 +259,7 @@ def _pool_results(todo: list[StudyCase], study: Study, workers: int | None,
                 pending.remove(case)
                 yield case, _died(case), {}
         finally:
-            _stop_pool(pool, before)
+            pool.stop()
 
 
 def _died(case: StudyCase) -> dict:
@@ -271,34 +270,6 @@ def _died(case: StudyCase) -> dict:
                      "(out of memory? a crash in gmsh?)", "started_unix": time.time(),
             "case_wall_s": None, "fegear": __version__,
             "finished_utc": datetime.now(UTC).isoformat(timespec="seconds")}
-
-
-def _children() -> set[int]:
-    import psutil
-
-    return {p.pid for p in psutil.Process().children()}
-
-
-def _stop_pool(pool: ProcessPoolExecutor, before: set[int]) -> None:
-    """Shut the pool down without waiting for running cases: terminate its processes (the
-    children of this process that multiprocessing's spawn started since ``before``)."""
-    import psutil
-
-    procs = []
-    for p in psutil.Process().children():
-        try:
-            if p.pid not in before and any("spawn_main" in part for part in p.cmdline()):
-                procs.append(p)
-        except psutil.Error:
-            continue
-    pool.shutdown(wait=False, cancel_futures=True)
-    for p in procs:
-        try:
-            p.terminate()
-        except psutil.NoSuchProcess:
-            continue
-    # no psutil.wait_procs: reaping them here would hide their exit from multiprocessing,
-    # whose shutdown then waits forever
 
 
 def _dask_results(todo: list[StudyCase], study: Study, client) -> Iterator:

@@ -186,8 +186,8 @@ def size_relief(values: Mapping, positions: int = POSITIONS, margin: float = MAR
         try:
             out = size_relief(values, positions, margin, tolerance_um, clearance, solve,
                               report, pool, workers)
-        finally:   # a guess still running is not waited for
-            pool.shutdown(wait=False, cancel_futures=True)
+        finally:   # a guess still running is not waited for: its worker is ended
+            pool.stop()
         return out
     torque = float(values.get("torque", 200.0))
     raised = torque * (1.0 + margin)
