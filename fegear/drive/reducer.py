@@ -63,8 +63,8 @@ class Station:
 
 @dataclass(eq=False)
 class ReducerModel:
-    """The assembled model of one build at one crank angle: mass, damping and stiffness over
-    all dofs, the dofs kept (the output's end torsion is held; a caller that holds more sets
+    """The assembled model of one build at one crank angle: mass and stiffness over all dofs,
+    the mesh dampers, the dofs kept (the output's end torsion is held; a caller that holds more sets
     ``free`` before the first solve: the reduced matrices are kept), the shafts' node
     positions (m), the plates' stations, and the dof numbers by name."""
 
@@ -73,10 +73,10 @@ class ReducerModel:
     stations: tuple[Station, ...]
     z: tuple[np.ndarray, ...]
     M: np.ndarray
-    C: np.ndarray
     K: np.ndarray
     free: np.ndarray
-    dampers: list = field(default_factory=list)   # (dofs, directions, c) of the mesh dampers
+    dampers: list = field(default_factory=list)   # the mesh dampers: (g over all dofs, c),
+                                                  # each the term c g gᵀ of the damping
 
     def dof(self, shaft: int, node: int, comp: int) -> int:
         """Global dof of ``comp`` (:data:`~.beams.X` …) at ``node`` of shaft ``shaft``."""
@@ -86,18 +86,33 @@ class ReducerModel:
         """Global dof of plate ``plate``: 0 x, 1 y, 2 Θ."""
         return int(self._offsets[-1] + 3 * plate + comp)
 
+    @property
+    def C(self) -> np.ndarray:
+        """The damping matrix over all dofs: the mesh dampers' Σ c g gᵀ."""
+        C = np.zeros_like(self.K)
+        for g, c in self.dampers:
+            C += c * np.outer(g, g)
+        return C
+
     @cached_property
-    def reduced(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """K, M and C on the kept dofs."""
+    def reduced(self) -> tuple[np.ndarray, np.ndarray]:
+        """K and M on the kept dofs."""
         ix = np.ix_(self.free, self.free)
-        return self.K[ix], self.M[ix], self.C[ix]
+        return self.K[ix], self.M[ix]
+
+    @cached_property
+    def damper_basis(self) -> tuple[np.ndarray, np.ndarray]:
+        """The dampers with c > 0 on the kept dofs: directions (kept dofs, dampers) and c."""
+        live = [(g, c) for g, c in self.dampers if c > 0]
+        return (np.column_stack([g[self.free] for g, _ in live]) if live
+                else np.zeros((len(self.free), 0)), np.array([c for _, c in live]))
 
     @cached_property
     def modal(self) -> tuple[np.ndarray, np.ndarray]:
         """All undamped eigenpairs (ω², mass-normalised shapes on the kept dofs)."""
         from scipy.linalg import eigh
 
-        K, M, _ = self.reduced
+        K, M = self.reduced
         return eigh(K, M)
 
     @cached_property
@@ -107,7 +122,7 @@ class ReducerModel:
         mass, and the rest's static answer to the lateral dofs."""
         from scipy.linalg import eigh
 
-        K, M, _ = self.reduced
+        K, M = self.reduced
         lat = np.isin(self.free, lateral(self))
         a, b = np.flatnonzero(lat), np.flatnonzero(~lat)
         back = -np.linalg.solve(K[np.ix_(b, b)], K[np.ix_(b, a)])
@@ -170,8 +185,8 @@ def build_reducer(inputs: ReducerInputs, plates: int,
     sections = (Section(1e-3 * ip.input_diameter_mm, steel),) * 3 + (
         Section(1e-3 * ip.output_diameter_mm, steel),)
     n = sum(len(z) for z in zs) * DOF + 3 * plates
-    M, C, K = np.zeros((n, n)), np.zeros((n, n)), np.zeros((n, n))
-    model = ReducerModel(ip, plates, st, zs, M, C, K, np.arange(n))
+    M, K = np.zeros((n, n)), np.zeros((n, n))
+    model = ReducerModel(ip, plates, st, zs, M, K, np.arange(n))
     for j, (sec, z) in enumerate(zip(sections, zs)):
         k, m = shaft_matrices(sec, z)
         sl = slice(model.dof(j, 0, 0), model.dof(j, 0, 0) + len(z) * DOF)
@@ -219,9 +234,9 @@ def build_reducer(inputs: ReducerInputs, plates: int,
         g = {ux: nrm[0], uy: nrm[1], tz: -nrm[0] * p[1] + nrm[1] * p[0],
              px: -nrm[0], py: -nrm[1], pr: nrm[0] * q[1] - nrm[1] * q[0]}
         _spring(K, g, s.fraction * km)
-        _spring(C, g, s.fraction * cm)
-        model.dampers.append((np.fromiter(g, int), np.fromiter(g.values(), float),
-                              s.fraction * cm))
+        direction = np.zeros(n)
+        direction[list(g)] = list(g.values())
+        model.dampers.append((direction, s.fraction * cm))
     M[model.dof(0, 0, TZ), model.dof(0, 0, TZ)] += ip.motor_inertia   # at the drive end
     held = model.dof(3, len(out_z) - 1, TZ)   # the load holds the output end's torsion
     model.free = np.setdiff1d(np.arange(n), [held])
@@ -363,14 +378,10 @@ def response(model: ReducerModel, omega: float) -> np.ndarray:
         return phi @ ((phi.T @ v) * (gain if v.ndim == 1 else gain[:, None]))
 
     xf = undamped(force)
-    damped = [(d, c) for d in model.dampers if (c := d[2]) > 0]
-    if damped:   # the mesh dampers are a few rank-one terms: Sherman–Morrison–Woodbury
-        where = {int(d): k for k, d in enumerate(model.free)}
-        G = np.zeros((len(model.free), len(damped)))
-        for col, ((dofs, g, _), _) in enumerate(damped):
-            G[[where[int(d)] for d in dofs], col] = g
+    G, c = model.damper_basis
+    if len(c):   # the mesh dampers are a few rank-one terms: Sherman–Morrison–Woodbury
         Y = undamped(G)
-        S = np.diag([1.0 / (1j * omega * c) for _, c in damped]) + G.T @ Y
+        S = np.diag(1.0 / (1j * omega * c)) + G.T @ Y
         xf = xf - Y @ np.linalg.solve(S, G.T @ xf)
     x = np.zeros(model.ndofs, complex)
     x[model.free] = xf
