@@ -396,16 +396,21 @@ def measures(model: ReducerModel, x: np.ndarray) -> dict[str, float]:
     ends = [model.node(0, 0.0), model.node(0, span)]
     out_ends = [model.node(3, 0.0), model.node(3, span)]
     middle = model.stations[len(model.stations) // 2]
-    at = [model.node(0, s.z) for s in model.stations]
-    at_out = [model.node(3, s.z) for s in model.stations]
-    drive, held = model.dof(0, 0, TZ), model.dof(3, len(model.z[3]) - 1, TZ)
     return {
         "input_support_um": 1e6 * max(abs(x[model.dof(0, k, X)]) for k in ends),
         "output_support_um": 1e6 * max(abs(x[model.dof(3, k, X)]) for k in out_ends),
         "input_planet_um": 1e6 * abs(x[model.dof(0, model.node(0, middle.z), X)]),
-        "input_twist_urad": 1e6 * max(abs(x[model.dof(0, k, TZ)] - x[drive]) for k in at),
-        "output_twist_urad": 1e6 * max(abs(x[model.dof(3, k, TZ)] - x[held]) for k in at_out),
+        "input_twist_urad": 1e6 * np.abs(_twists(model, x, 0)).max(),
+        "output_twist_urad": 1e6 * np.abs(_twists(model, x, 3)).max(),
     }
+
+
+def _twists(model: ReducerModel, x: np.ndarray, shaft: int) -> np.ndarray:
+    """Shaft 0's (input) or 3's (output) twist at each plate station (rad) in ``x``: from its
+    drive end, or from its held output end."""
+    end = model.dof(shaft, 0 if shaft == 0 else len(model.z[shaft]) - 1, TZ)
+    return np.array([x[model.dof(shaft, model.node(shaft, s.z), TZ)] - x[end]
+                     for s in model.stations])
 
 
 def sweep(model: ReducerModel, speeds_rpm) -> dict[str, np.ndarray]:
@@ -520,26 +525,20 @@ def turning_geometry(models, omega: float) -> dict[str, np.ndarray]:
                                    "output_twist_urad": []}
     for model in models:
         x = _static(model, unbalance_forces(model, omega).real)
-        held = model.dof(3, len(model.z[3]) - 1, TZ)
+        twists = _twists(model, x, 3)
         out["crank_angle_deg"].append(model.inputs.crank_angle_deg)
         out["input_support_um"].append(1e6 * math.hypot(x[model.dof(0, 0, X)],
                                                         x[model.dof(0, 0, Y)]))
-        out["output_twist_urad"].append(1e6 * max(
-            (x[model.dof(3, model.node(3, s.z), TZ)] - x[held] for s in model.stations),
-            key=abs))
+        out["output_twist_urad"].append(1e6 * twists[np.argmax(np.abs(twists))])
     return {k: np.array(v) for k, v in out.items()}
 
 
-def frozen_quasi_static(inputs: ReducerInputs, plates: int,
-                        mesh_stiffness: float | None = None) -> dict[str, float]:
-    """The frozen model's 1× amplitudes of the same two quantities, quasi-statically (the
+def frozen_quasi_static(model: ReducerModel) -> dict[str, float]:
+    """The frozen ``model``'s 1× amplitudes of the same two quantities, quasi-statically (the
     working speed's forces on the stiffness alone)."""
-    model = build_reducer(inputs, plates, mesh_stiffness)
-    x = _static(model, unbalance_forces(model, inputs.omega))
-    held = model.dof(3, len(model.z[3]) - 1, TZ)
+    x = _static(model, unbalance_forces(model, model.inputs.omega))
     return {"input_support_um": 1e6 * abs(x[model.dof(0, 0, X)]),
-            "output_twist_urad": 1e6 * max(abs(x[model.dof(3, model.node(3, s.z), TZ)]
-                                               - x[held]) for s in model.stations)}
+            "output_twist_urad": 1e6 * np.abs(_twists(model, x, 3)).max()}
 
 
 def _static(model: ReducerModel, force: np.ndarray) -> np.ndarray:

@@ -146,7 +146,7 @@ def reducer_summary(inputs: ReducerInputs, mesh: MeshSource, count: int = 10,
                            for k, v in frozen[plates].items()},
                 "turning": {k: float(np.interp(inputs.speed_rpm, speeds_rpm, v))
                             for k, v in turning[plates].items()},
-                "quasi_static_frozen": frozen_quasi_static(inputs, plates, km),
+                "quasi_static_frozen": frozen_quasi_static(model),
                 "quasi_static_turning": {
                     "input_support_um": float(turn["input_support_um"].max()),
                     "output_twist_urad": float(0.5 * np.ptp(turn["output_twist_urad"])),
