@@ -101,20 +101,24 @@ class Result:
         return write_job(self.solved, check_dir(str(out)), fields, pictures)
 
 
-def solve(**inputs: object) -> Result:
+def solve(cache: bool | None = None, **inputs: object) -> Result:
     """Solve one position of a design: ``fegear solve``'s inputs by their Python names
     (``m``, ``h1``, ``f1``, ``torque``, ``position``, ``face_width``, ``quality``,
     ``no_estimate``, …), every other at its default. Raises
     :class:`~fegear.errors.ParameterError` naming the input and its range for a design fegear
-    refuses."""
-    from .toothpair import prepare_job, solve_job
+    refuses. ``cache``: read the meshed and condensed model from the disk cache and keep it
+    there (``fegear solve --cache``; None: as the FEGEAR_CACHE environment variable says,
+    off where it is unset). Within one Python process a design's model is kept in memory
+    anyway: the disk serves the next process, a restarted kernel."""
+    from .toothpair import disk_cache, prepare_job, solve_job
 
     try:
         job = prepare_job(_named(inputs))
     except ParameterError as err:   # the input as the caller spelt it: tip_clearance
         err.args = (err.describe(err.name.replace("-", "_")),)
         raise
-    solved = solve_job(job)
+    with disk_cache(cache):
+        solved = solve_job(job)
     return Result(solved.summary, solved)
 
 
@@ -136,7 +140,8 @@ def _named(inputs: dict[str, object]) -> dict[str, object]:
     return {name.replace("_", "-"): value for name, value in inputs.items()}
 
 
-def cycle(positions: int = 24, **inputs: object) -> Result:
+def cycle(positions: int = 24, cache: bool | None = None, **inputs: object) -> Result:
     """Solve ``positions`` rolling positions across one tooth pitch of gear 2 from
-    ``position`` (degrees, default 0) on one model; the other inputs as :func:`solve`."""
-    return solve(positions=positions, **inputs)
+    ``position`` (degrees, default 0) on one model; ``cache`` and the other inputs as
+    :func:`solve`."""
+    return solve(cache=cache, positions=positions, **inputs)

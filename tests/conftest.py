@@ -10,6 +10,26 @@ sys.path.insert(0, str(Path(__file__).parent))  # draws: a test helper
 sys.path.insert(0, str(Path(__file__).parent / "geometry"))  # swept_reference, a test helper
 
 
+@pytest.fixture(scope="session", autouse=True)
+def _disk_cache_of_the_session(tmp_path_factory):
+    """The disk cache of ring models in a folder of this session's, off unless a test turns
+    it on: the tests neither read what the user's runs kept nor write into their cache. The
+    environment is set here, so the workers the tests spawn inherit it."""
+    import os
+
+    saved = {k: os.environ.get(k) for k in ("FEGEAR_CACHE", "FEGEAR_CACHE_DIR",
+                                            "FEGEAR_CACHE_GB")}
+    os.environ["FEGEAR_CACHE_DIR"] = str(tmp_path_factory.mktemp("fegear-cache"))
+    os.environ.pop("FEGEAR_CACHE", None)
+    os.environ.pop("FEGEAR_CACHE_GB", None)
+    yield
+    for k, v in saved.items():
+        if v is None:
+            os.environ.pop(k, None)
+        else:
+            os.environ[k] = v
+
+
 @pytest.fixture(scope="session")
 def nominal():
     """The seed paper's baseline design (m 2, z 45/44, h1 0.3, f1 0.15), unmodified."""

@@ -10,6 +10,7 @@ import os
 from ..checks import require_range
 from ..toothpair.inputs import SOLVE_INPUTS
 from .args import add_inputs, given_values
+from .cache import add_switch, apply_switch
 
 #: the solve inputs the relief search takes (the amount is what it finds; one model, no
 #: estimate, its own number of positions; no safety factors, so no allowable stresses)
@@ -34,6 +35,7 @@ def add_parser(sub) -> None:
                    help="processes that solve trials at once, the next one guessed ahead "
                         "(default: the machine's cores, at most 2; 1 solves one at a time)")
     p.add_argument("--json", action="store_true", help="print the result as JSON")
+    add_switch(p, default=True)
 
 
 def run(a: argparse.Namespace) -> int:
@@ -46,6 +48,7 @@ def run(a: argparse.Namespace) -> int:
     cores = os.cpu_count() or 1
     workers = int(require_range("workers", a.workers, 1, 4 * cores)
                   if a.workers is not None else min(cores, WORKERS))
+    apply_switch(a, default=True)   # before the workers start: they inherit it
     result = size_relief(values, positions=positions, margin=margin,
                          clearance=not a.keep_tip_clearance,
                          report=progress.stage,  # each relief tried: a stage on the bar

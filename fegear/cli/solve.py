@@ -7,6 +7,7 @@ import json
 
 from ..toothpair.inputs import PAIR_INPUTS, SOLVE_INPUTS
 from .args import add_inputs, given_values
+from .cache import add_switch, apply_switch
 
 
 def add_parser(sub) -> None:
@@ -18,6 +19,7 @@ def add_parser(sub) -> None:
                    help="output directory for summary.json, VTU files and pictures, made when "
                         "the solve has succeeded (default: none, the table only)")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    add_switch(p, default=False)
 
 
 def run(a: argparse.Namespace) -> int:
@@ -28,6 +30,7 @@ def run(a: argparse.Namespace) -> int:
     from .terminal import command_wall_s
 
     job = prepare_job(given_values(a, SOLVE_INPUTS.values()))
+    apply_switch(a, default=False)
     out = None if a.out is None else check_dir(a.out)
     made = out is not None and not out.exists()
     try:

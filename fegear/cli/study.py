@@ -7,6 +7,7 @@ import sys
 
 from ..checks import require_range
 from ..errors import FegearError
+from .cache import add_switch, apply_switch
 
 
 def add_parser(sub) -> None:
@@ -22,6 +23,7 @@ def add_parser(sub) -> None:
                    help="run the cases that failed before again (default: keep their record)")
     p.add_argument("--no-progress", action="store_true",
                    help="no progress bar (as fegear --quiet; it shows only on a terminal)")
+    add_switch(p, default=True)
 
 
 def run(a: argparse.Namespace) -> int:
@@ -35,6 +37,7 @@ def run(a: argparse.Namespace) -> int:
                               "workers run the cases (leave --workers out)")
         require_range("workers", a.workers, 1, 4 * (os.cpu_count() or 1))
     study = load_study(a.file)
+    apply_switch(a, default=True)   # before the workers start: they inherit it
     out = a.out or f"out/study/{study.name}"
 
     def started(found: int, todo: int) -> None:

@@ -47,7 +47,8 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "hertz": ("HertzLine", "line_contact"),
     "vtu": ("vtu_fields", "write_vtu", "written_name"),
     "solvers": ("Factor", "SingularError", "BLAS_THREADS", "blas_threads"),
-    "cyclic": ("CyclicBody", "assemble_cyclic"),
+    "cyclic": ("CyclicBody", "assemble_cyclic", "cyclic_parts", "restore_cyclic"),
     "probe": ("Probe",),
-    "submodel": ("StarCurve", "Submodel", "SubmodelProblem", "solve_submodels"),
+    "submodel": ("StarCurve", "Submodel", "SubmodelProblem", "SubmodelMesh", "solve_submodels",
+                 "submodel_meshes"),
 })

@@ -79,9 +79,14 @@ def recover(body: Body, u: np.ndarray) -> StressField:
 
     The projection is linear in u: M s = C u per component, with M the scalar P2 mass matrix
     and C the mixed matrix ∫ φ σ(ψ). Both are assembled and M factorised once per mesh (kept in
-    ``body.cache``, shared by placed copies); each call is then a sparse product and a solve."""
+    ``body.cache``, shared by placed copies; the matrices also as ``"projector matrices"``,
+    which pickle: a disk cache puts them back and only M is factorised again); each call is
+    then a sparse product and a solve."""
     if "projector" not in body.cache:
-        body.cache["projector"] = _projector(body)
+        if "projector matrices" not in body.cache:
+            body.cache["projector matrices"] = _projector(body)
+        mass, parts = body.cache["projector matrices"]
+        body.cache["projector"] = (splu(mass), parts)
     factor, parts = body.cache["projector"]
     nodal = factor.solve(np.column_stack([C @ u for C in parts]))
     sxx, syy, sxy = nodal.T
@@ -93,7 +98,7 @@ def recover(body: Body, u: np.ndarray) -> StressField:
 
 
 def _projector(body: Body):
-    """The mass factor and the three mixed matrices C_xx, C_yy, C_xy (nodes × dofs)."""
+    """The mass matrix and the three mixed matrices C_xx, C_yy, C_xy (nodes × dofs)."""
     lam, mu = body.material.lame
     scalar = Basis(body.mesh, ElementTriP2(), quadrature=body.basis.quadrature)
     mass = asm(BilinearForm(lambda a, b, w: a * b), scalar).tocsc()
@@ -109,4 +114,4 @@ def _projector(body: Body):
     parts = (part(lambda g, tr: lam * tr + 2 * mu * g[0, 0]),
              part(lambda g, tr: lam * tr + 2 * mu * g[1, 1]),
              part(lambda g, tr: mu * (g[0, 1] + g[1, 0])))
-    return splu(mass), parts
+    return mass, parts

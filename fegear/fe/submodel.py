@@ -118,15 +118,40 @@ class _Prepared:
     cut: np.ndarray
     fixed: np.ndarray
     free: np.ndarray
+    K: object
     K_free_fixed: object
     factor: object
+
+
+@dataclass(frozen=True)
+class SubmodelMesh:
+    """A submodel's mesh, centre, boundary angles, stiffness and what its stress recovery
+    keeps (:func:`~.stress.recover`'s matrices), without a factorisation (as a disk cache
+    keeps it): :func:`solve_submodels` factorises it when first asked for it."""
+
+    mesh: BodyMesh
+    centre: np.ndarray
+    angles: tuple[float, float]
+    K: object = None
+    cache: dict = field(default_factory=dict)
+
+
+def submodel_meshes(kept: dict) -> dict:
+    """The submodels in ``kept`` as :class:`SubmodelMesh` es (key → mesh), prepared or not:
+    what a later process needs to skip meshing and assembling them."""
+    from .cyclic import pickled_cache
+
+    return {k: v if isinstance(v, SubmodelMesh) else
+            SubmodelMesh(v.mesh, v.centre, v.angles, v.K, pickled_cache(v.piece.cache))
+            for k, v in kept.items()}
 
 
 def solve_submodels(problems: list[SubmodelProblem], material: Material,
                     kept: dict | None = None) -> list[Submodel]:
     """Solve each submodel (those not prepared yet meshed together: one gmsh session). A
     problem whose ``key`` is in ``kept`` reuses that mesh and factorisation (the caller makes
-    the key name the same disk of the same curve); new ones are kept there."""
+    the key name the same disk of the same curve; a :class:`SubmodelMesh` there is assembled
+    and factorised first); new ones are kept there."""
     kept = {} if kept is None else kept
     todo = [pb for pb in problems if pb.key is None or pb.key not in kept]
     shapes = [_geometry(pb) for pb in todo]
@@ -139,6 +164,9 @@ def solve_submodels(problems: list[SubmodelProblem], material: Material,
     out = []
     for pb in problems:
         prep = fresh.get(id(pb)) or kept[pb.key]
+        if isinstance(prep, SubmodelMesh):
+            prep = kept[pb.key] = _prepare(prep.mesh, prep.centre, prep.angles, material,
+                                           prep.K, prep.cache)
         m = prep.mesh.mesh
         f = _pressure_loads(m, m.boundaries["boundary"], pb.pressure, material.thickness)
         u = np.zeros(2 * m.doflocs.shape[1])
@@ -149,7 +177,10 @@ def solve_submodels(problems: list[SubmodelProblem], material: Material,
     return out
 
 
-def _prepare(mesh: BodyMesh, centre, angles, material: Material) -> _Prepared:
+def _prepare(mesh: BodyMesh, centre, angles, material: Material, K=None,
+             cache: dict | None = None) -> _Prepared:
+    """Assemble (unless its stiffness ``K`` is given) and factorise a submodel's mesh;
+    ``cache``: its stress recovery's matrices, if kept."""
     from skfem import Basis, ElementTriP2, ElementVector, asm
     from skfem.models.elasticity import linear_elasticity
 
@@ -157,12 +188,13 @@ def _prepare(mesh: BodyMesh, centre, angles, material: Material) -> _Prepared:
 
     m = mesh.mesh
     basis = Basis(m, ElementVector(ElementTriP2()))
-    K = (material.thickness * asm(linear_elasticity(*material.lame), basis)).tocsr()
+    if K is None:
+        K = (material.thickness * asm(linear_elasticity(*material.lame), basis)).tocsr()
     cut = np.unique(facet_nodes(m, m.boundaries["cut"]))
     fixed = node_dofs(cut).ravel()
     free = np.setdiff1d(np.arange(basis.N), fixed)
-    return _Prepared(mesh, centre, angles, _Piece(m, basis, material, {}), cut, fixed, free,
-                     K[free][:, fixed], Factor(K[free][:, free]))
+    return _Prepared(mesh, centre, angles, _Piece(m, basis, material, dict(cache or {})), cut,
+                     fixed, free, K, K[free][:, fixed], Factor(K[free][:, free]))
 
 
 def _geometry(pb: SubmodelProblem):

@@ -75,6 +75,7 @@ OPTIONS = {
                  "--max-centre-distance": ["0", "-1", "0.2"],
                  "--min-backlash": ["-1"], "--max-backlash": ["-1"]},
     "drive": {},  # its options sit on its subcommands: tests/test_drive_cli.py
+    "cache": {},  # no numeric option; its cap is FEGEAR_CACHE_GB: tests/cli/test_cache_cli.py
 }
 CHOICE = {"--sector-levels"}
 INTEGER = {"--z1", "--z2", "--positions", "--extra-pairs", "--repeat",

@@ -15,9 +15,17 @@ import time
 from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 
-from ...fe import Material, assemble_cyclic, mesh_bodies
+from ...fe import (
+    Material,
+    assemble_cyclic,
+    cyclic_parts,
+    mesh_bodies,
+    restore_cyclic,
+    submodel_meshes,
+)
 from ...geometry import Gear1Profile, PairParameters, RoundedProfile, gear2_curve
 from ..case import SolveCase
+from . import disk
 from .grid import ToothSamples, sample_tooth
 from .side import GearSide
 from .template import Template, TemplateSizes, gear1_template, gear2_template
@@ -73,6 +81,7 @@ class RingModel:
     timings_s: dict
     submodels: dict = field(default_factory=dict, repr=False)   # prepared, by key
     meshed: PairParameters | None = None    # the pair the templates were meshed for
+    on_disk: tuple | None = None            # what the disk cache holds of it (:func:`kept`)
 
     def __post_init__(self) -> None:
         if self.meshed is None:
@@ -109,7 +118,10 @@ def ring_model(case: SolveCase, profile: Gear1Profile | None = None) -> RingMode
         meshed = meshed_params(case)
         kin = next((m for m in reversed(_KEPT.values())
                     if m.meshed == meshed and _same_body(m.case, case)), None)
-        model = build_ring(case, profile, kin)
+        if kin is None and disk.enabled():
+            model = _from_disk(case, profile)
+        if model is None:
+            model = build_ring(case, profile, kin)
         while len(_KEPT) >= KEEP:
             _KEPT.popitem(last=False)
     _KEPT[key] = model
@@ -160,18 +172,12 @@ def build_ring(case: SolveCase, profile: Gear1Profile | None = None,
     shared (responses formed for one serve both)."""
     p = case.params
     level = LEVELS[case.quality]
-    times = {}
-    t0 = time.perf_counter()
-    profile = profile if profile is not None else Gear1Profile(p)
-    shape = RoundedProfile(profile, case.edge_radius)
-    samples = sample_tooth(shape)
-    times["profile"] = time.perf_counter() - t0
+    profile, shape, samples, times = _shapes(case, profile)
     meshed = meshed_params(case)
     if kin is not None:
         return RingModel(case, profile, shape, samples, kin.gears, level, times, meshed=meshed)
     t0 = time.perf_counter()
-    base = shape if meshed == p else RoundedProfile(Gear1Profile(meshed), case.edge_radius)
-    t1, t2 = build_templates(replace(case, params=meshed), base)
+    t1, t2 = _templates(case, shape, meshed)
     m1, m2 = mesh_bodies([t1.geometry, t2.geometry])
     times["mesh"] = time.perf_counter() - t0
     t0 = time.perf_counter()
@@ -180,3 +186,83 @@ def build_ring(case: SolveCase, profile: Gear1Profile | None = None,
              GearSide(assemble_cyclic(m2, mat, p.z2, t2.cut, (t2.held,)), t2))
     times["assemble_factor"] = time.perf_counter() - t0
     return RingModel(case, profile, shape, samples, sides, level, times, meshed=meshed)
+
+
+def _shapes(case: SolveCase, profile: Gear1Profile | None):
+    """Gear 1's exact and rounded profiles and tooth 0 sampled, and the time they took."""
+    t0 = time.perf_counter()
+    profile = profile if profile is not None else Gear1Profile(case.params)
+    shape = RoundedProfile(profile, case.edge_radius)
+    samples = sample_tooth(shape)
+    return profile, shape, samples, {"profile": time.perf_counter() - t0}
+
+
+def _templates(case: SolveCase, shape: RoundedProfile, meshed: PairParameters):
+    """Both templates for the pair ``meshed`` (:func:`meshed_params`), unmeshed: on
+    ``case``'s own rounded profile ``shape`` where the two pairs have the same shape (a tip
+    clearance given as its default, the shift, is no other shape)."""
+    same = _shape_of(meshed) == _shape_of(case.params)
+    base = shape if same else RoundedProfile(Gear1Profile(meshed), case.edge_radius)
+    return build_templates(replace(case, params=meshed), base)
+
+
+def _shape_of(p: PairParameters) -> PairParameters:
+    """``p`` with its tip clearance written out (None is the shift)."""
+    return replace(p, tip_clearance=p.radial_tip_clearance)
+
+
+# --- the disk cache (:mod:`.disk`) ---------------------------------------------------------------
+def _disk_key(case: SolveCase) -> str:
+    """What a model's disk entry holds, in full: the pair its templates are meshed for, the
+    body's inputs and the code version."""
+    from ...provenance import code_version
+
+    body = tuple((k, getattr(case, k)) for k in GEOMETRY_KEYS if k != "params")
+    return f"ring model; {meshed_params(case)!r}; {body!r}; {code_version()}"
+
+
+def _held(model: RingModel) -> tuple:
+    """What of ``model`` an entry holds: the responses formed on each gear and the
+    submodels."""
+    return tuple(g.formed for g in model.gears) + (len(model.submodels),)
+
+
+def _from_disk(case: SolveCase, profile: Gear1Profile | None) -> RingModel | None:
+    """``case``'s model read back from the disk cache, or None."""
+    t0 = time.perf_counter()
+    data = disk.load(_disk_key(case))
+    if data is None:
+        return None
+    profile, shape, samples, times = _shapes(case, profile)
+    t1 = time.perf_counter()
+    meshed = meshed_params(case)
+    mat = Material(case.E, case.nu, case.thickness, "stress")
+    sides = []
+    for part in data["gears"]:
+        side = GearSide(restore_cyclic(part["mesh"], mat, part["body"]), part["template"])
+        side.restore_responses(part["responses"])
+        sides.append(side)
+    times["disk"] = time.perf_counter() - t1 + (t1 - t0 - times["profile"])
+    model = RingModel(case, profile, shape, samples, tuple(sides), LEVELS[case.quality], times,
+                      meshed=meshed)
+    pair, meshes = data["submodels"]
+    if pair == repr(case.params):   # cut from this pair's own profile (a thin relief's too)
+        model.submodels.update(meshes)
+    model.on_disk = _held(model)
+    return model
+
+
+def kept(model: RingModel) -> None:
+    """Keep ``model`` on disk if the cache is on and it holds more than its entry: a new
+    model, more responses formed or more submodels meshed (a mesh cycle's later positions
+    load other template dofs)."""
+    if not disk.enabled() or _held(model) == model.on_disk:
+        return
+    # a template's geometry is only for meshing (and holds the curves' functions, which do
+    # not pickle)
+    data = {"gears": [{"mesh": g.body.mesh_data, "body": cyclic_parts(g.body),
+                       "template": replace(g.template, geometry=None),
+                       "responses": g.responses()} for g in model.gears],
+            "submodels": (repr(model.case.params), submodel_meshes(model.submodels))}
+    disk.keep(_disk_key(model.case), data)
+    model.on_disk = _held(model)

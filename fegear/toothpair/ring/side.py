@@ -148,6 +148,25 @@ class GearSide:
             self.response_s += time.perf_counter() - t0
         return self._column[dofs]
 
+    @property
+    def formed(self) -> int:
+        """How many template dofs have their responses formed."""
+        return self._used
+
+    def responses(self) -> dict:
+        """The responses formed so far (a disk cache's): template dof → column, the clamped
+        fields as one block (ndofs, formed) and the cut loads (2 n_f, formed)."""
+        X = (np.hstack([block for _, block in self._X]) if len(self._X) > 1
+             else self._X[0][1] if self._X else np.zeros((self.body.ndofs, 0)))
+        return {"column": self._column, "X": X, "rho": self._rho}
+
+    def restore_responses(self, parts: dict) -> None:
+        """Take back the :meth:`responses` of a side of the same template."""
+        self._column = np.array(parts["column"], dtype=np.int64)
+        self._X = [(0, parts["X"])] if parts["X"].shape[1] else []
+        self._rho = parts["rho"]
+        self._used = int(parts["X"].shape[1])
+
     def clamped_rows(self, rows: sp.csr_matrix, dofs: np.ndarray) -> np.ndarray:
         """``rows`` applied to the clamped fields of unit loads at template ``dofs``:
         (rows, dofs)."""

@@ -1,0 +1,60 @@
+"""``fegear cache``: the disk cache of ring models (:mod:`fegear.toothpair.ring.disk`): where
+it is, what it holds, and ``--clear`` to empty it."""
+
+from __future__ import annotations
+
+import argparse
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser("cache", help="the disk cache of meshed and condensed models: list or "
+                                     "clear it")
+    p.add_argument("--clear", action="store_true", help="remove every entry")
+
+
+def add_switch(p: argparse.ArgumentParser, default: bool) -> None:
+    """``--cache`` / ``--no-cache`` on a solving command whose own default is ``default``."""
+    g = p.add_mutually_exclusive_group()
+    state = "on" if default else "off"
+    g.add_argument("--cache", dest="cache", action="store_const", const=True, default=None,
+                   help="read the meshed and condensed model from disk where an earlier run "
+                        "kept it, and keep it there: about 120 MB a design at standard "
+                        f"(`fegear cache` lists and clears them; {state} by default here, "
+                        "FEGEAR_CACHE=on|off sets the default)")
+    g.add_argument("--no-cache", dest="cache", action="store_const", const=False,
+                   help="neither read nor keep models on disk")
+
+
+def apply_switch(a: argparse.Namespace, default: bool) -> None:
+    """Turn the disk cache on or off for this command and the workers it starts: the
+    option given, else FEGEAR_CACHE, else the command's ``default``. With it on, a bad
+    size cap is refused now, before any work."""
+    from ..toothpair.ring import disk
+
+    on = a.cache if a.cache is not None else disk.setting()
+    disk.use(default if on is None else on)
+    if disk.enabled():
+        disk.cap_bytes()
+
+
+def run(a: argparse.Namespace) -> int:
+    import time
+
+    from ..toothpair.ring import disk
+
+    folder = disk.directory()
+    cap = disk.cap_bytes()
+    if a.clear:
+        n, size = disk.clear()
+        print(f"removed {n} entries ({size / 1e6:.0f} MB) from {folder}")
+        return 0
+    rows = disk.entries()
+    total = sum(size for _, size, _ in rows)
+    print(f"{folder}: {len(rows)} entries, {total / 1e6:.0f} MB of {cap / 1e9:g} GB "
+          f"({disk.ENV_CAP}; the least recently used go first)")
+    for path, size, used in reversed(rows):
+        print(f"  {path.name}  {size / 1e6:6.0f} MB  last used "
+              f"{time.strftime('%Y-%m-%d %H:%M', time.localtime(used))}")
+    print(f"on for `fegear study` and `fegear relief` (--no-cache), off for `fegear solve` "
+          f"(--cache); {disk.ENV}=on|off sets it for any command")
+    return 0

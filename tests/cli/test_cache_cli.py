@@ -1,0 +1,45 @@
+"""``fegear cache`` and the solving commands' ``--cache``: the entry a cached solve keeps, the
+listing, clearing, and a bad size cap refused in one line before anything is computed."""
+
+import pytest
+
+from fegear.cli import main
+from fegear.toothpair.ring import disk
+from fegear.toothpair.ring.model import _KEPT
+
+LIGHT = ["--z2", "25", "--z1", "24", "--torque", "20", "--quality", "coarse", "--no-estimate",
+         "-q"]
+
+
+@pytest.fixture
+def folder(tmp_path, monkeypatch):
+    monkeypatch.setenv(disk.ENV_DIR, str(tmp_path / "cache"))
+    monkeypatch.delenv(disk.ENV, raising=False)
+    _KEPT.clear()
+    yield tmp_path / "cache"
+    _KEPT.clear()
+
+
+def test_solve_keeps_its_model_only_with_cache_and_the_command_lists_and_clears(folder,
+                                                                                capsys):
+    assert main(["solve", *LIGHT]) == 0
+    assert disk.entries() == []                       # off by default for a one-off solve
+    _KEPT.clear()
+    assert main(["solve", *LIGHT, "--cache"]) == 0
+    (entry,) = disk.entries()
+    capsys.readouterr()
+    assert main(["cache"]) == 0
+    listing = capsys.readouterr().out
+    assert str(folder) in listing and entry[0].name in listing and "1 entries" in listing
+    assert main(["cache", "--clear"]) == 0
+    assert "removed 1 entries" in capsys.readouterr().out
+    assert disk.entries() == []
+
+
+def test_a_bad_cap_is_one_line_before_any_solve(folder, tmp_path, monkeypatch, capsys):
+    monkeypatch.setenv(disk.ENV_CAP, "lots")
+    out = tmp_path / "never-made"
+    assert main(["solve", *LIGHT, "--cache", "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "FEGEAR_CACHE_GB = 'lots'" in err[0] and "above 0" in err[0]
+    assert not out.exists() and not folder.exists()
