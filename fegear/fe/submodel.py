@@ -148,12 +148,17 @@ def submodel_meshes(kept: dict) -> dict:
 
 def solve_submodels(problems: list[SubmodelProblem], material: Material,
                     kept: dict | None = None) -> list[Submodel]:
-    """Solve each submodel (those not prepared yet meshed together: one gmsh session). A
-    problem whose ``key`` is in ``kept`` reuses that mesh and factorisation (the caller makes
-    the key name the same disk of the same curve; a :class:`SubmodelMesh` there is assembled
-    and factorised first); new ones are kept there."""
+    """Solve each submodel (those not prepared yet are meshed, a key asked for twice once).
+    A problem whose ``key`` is in ``kept`` reuses that mesh and factorisation (the caller
+    makes the key name one disk of one curve: the same key, the same geometry; a
+    :class:`SubmodelMesh` there is assembled and factorised first); new ones are kept
+    there."""
     kept = {} if kept is None else kept
-    todo = [pb for pb in problems if pb.key is None or pb.key not in kept]
+    todo, keys = [], set()
+    for pb in problems:   # a key asked for twice is meshed once
+        if pb.key is None or (pb.key not in kept and pb.key not in keys):
+            todo.append(pb)
+            keys.add(pb.key)
     shapes = [_geometry(pb) for pb in todo]
     meshes = mesh_bodies([geo for geo, _, _ in shapes]) if shapes else ()
     fresh = {id(pb): _prepare(mesh, centre, angles, material)

@@ -31,6 +31,7 @@ SECTOR_REFERENCE = {"root_stress_gear1_MPa": 285.02, "root_stress_gear2_MPa": 26
 VON_MISES_RESOLVED = 1861.7
 SINGLE_TARGET = (1.0, 5.0)    # every headline stress within 1 % in at most 5 s
 GOAL_S = 1.0                  # what users asked for
+COMMAND_TARGET_S = 2.0        # the whole `fegear solve` without --out, imports included
 ESTIMATE_TARGET = 2.0         # with the error estimate: at most 2× the single solve
 CYCLE_TARGET = 1.5            # 24 positions: at most 1.5× one position
 MEMORY_TARGET_GB = 2.0
@@ -71,6 +72,11 @@ def _child(task: dict) -> dict:
         write_pair_outputs,
     )
 
+    if task.get("disk"):   # the disk cache on, in the folder given
+        import os
+
+        os.environ["FEGEAR_CACHE"] = "on"
+        os.environ["FEGEAR_CACHE_DIR"] = task["disk"]
     import_libraries()
     p = PairParameters(**task["params"])
     case = SolveCase(p, torque=task["torque"], quality=task["quality"])
@@ -168,6 +174,74 @@ def scaling_runs(params: PairParameters, torque: float, quality: str,
     return out
 
 
+@dataclass(frozen=True)
+class DiskRuns:
+    """The disk cache's rows (:func:`disk_runs`): a position read back with and without the
+    estimate, and the whole ``fegear solve`` command (imports included, no ``--out``)
+    without the cache and with its models read back, with and without the estimate (s)."""
+
+    read: RingRun
+    read_estimate: RingRun
+    commands_s: dict
+
+
+def disk_runs(params: PairParameters, torque: float, quality: str,
+              pair_args: list[str]) -> DiskRuns:
+    """In a fresh cache folder: one position with its estimate built and kept; then, each in
+    a fresh process, one position and one with the estimate read back; and ``fegear solve
+    PAIR_ARGS`` timed as a user types it, without the cache and with the models read back
+    (``pair_args``: the pair's options as given to the bench)."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="fegear-bench-cache-") as tmp:
+        run_fresh("fill", params, torque, quality, estimate=True, disk=tmp)
+        read = run_fresh(f"{quality}, model read from disk", params, torque, quality, disk=tmp)
+        both = run_fresh(f"{quality}, with estimate, models read from disk", params, torque,
+                         quality, estimate=True, disk=tmp)
+        args = [*pair_args, "--torque", f"{torque:g}", "--quality", quality]
+        commands = {}
+        for name, cache, extra in (("without the cache", "off", []),
+                                   ("without the cache, --no-estimate", "off",
+                                    ["--no-estimate"]),
+                                   ("models read from disk", "on", []),
+                                   ("models read from disk, --no-estimate", "on",
+                                    ["--no-estimate"])):
+            commands[name] = command_s([*args, *extra], {"FEGEAR_CACHE": cache,
+                                                         "FEGEAR_CACHE_DIR": tmp})
+    return DiskRuns(read, both, commands)
+
+
+def command_s(args: list[str], env: dict) -> float:
+    """Wall time (s) of ``fegear solve ARGS -q`` in a new Python process with ``env`` added
+    to this one's environment: the whole command, imports included."""
+    import os
+    import subprocess
+    import sys
+
+    t0 = time.perf_counter()
+    subprocess.run([sys.executable, "-m", "fegear", "solve", "-q", *args],
+                   env={**os.environ, **env}, check=True, stdout=subprocess.DEVNULL)
+    return time.perf_counter() - t0
+
+
+def disk_table(runs: DiskRuns, built: RingRun, built_estimate: RingRun) -> str:
+    """Markdown: a position built against read back (stages, total), with the estimate, and
+    the whole command."""
+    rows = [built, runs.read, built_estimate, runs.read_estimate]
+    stages = list(dict.fromkeys(k for r in rows for k in r.timings_s))
+    lines = ["| run | " + " | ".join(stages) + " | solve after import [s] |",
+             "|---|" + "---:|" * (len(stages) + 1)]
+    for r in rows:
+        total = r.extra.get("estimate_s", r.total_s)
+        lines.append(f"| `{r.label}` | "
+                     + " | ".join(f"{r.timings_s.get(k, 0.0):.2f}" for k in stages)
+                     + f" | **{total:.2f}** |")
+    lines += ["", "| `fegear solve`, the whole command (no `--out`) | wall [s] |",
+              "|---|---:|"]
+    lines += [f"| {name} | {s:.2f} |" for name, s in runs.commands_s.items()]
+    return "\n".join(lines)
+
+
 def ring_table(runs: list[RingRun]) -> str:
     """Markdown: stage times, memory, DOFs and each headline stress with its error against
     the sector model's fine reference."""
@@ -245,14 +319,25 @@ def scaling_png(path: Path, ladder: list[RingRun], teeth: list[RingRun]) -> Path
 
 def paper_study_s(workers: int = 2) -> tuple[float, int]:
     """Wall time (s) of studies/paper_trends.toml (with estimates) on ``workers`` workers in
-    a temporary directory, and the cases computed."""
+    a temporary directory, and the cases computed; with the disk cache on in an empty folder
+    of its own, as ``fegear study`` runs it the first time."""
+    import os
     import tempfile
 
     from ..study import load_study, run_study
+    from ..toothpair import disk_cache
 
     root = Path(__file__).resolve().parents[2] / "studies" / "paper_trends.toml"
-    with tempfile.TemporaryDirectory(prefix="fegear-bench-paper-") as tmp:
-        t0 = time.perf_counter()
-        report = run_study(load_study(root), Path(tmp) / "out", workers=workers,
-                           progress=False)
-        return time.perf_counter() - t0, report.computed
+    before = os.environ.get("FEGEAR_CACHE_DIR")
+    with tempfile.TemporaryDirectory(prefix="fegear-bench-paper-") as tmp, disk_cache(True):
+        os.environ["FEGEAR_CACHE_DIR"] = str(Path(tmp) / "cache")   # the workers inherit it
+        try:
+            t0 = time.perf_counter()
+            report = run_study(load_study(root), Path(tmp) / "out", workers=workers,
+                               progress=False)
+            return time.perf_counter() - t0, report.computed
+        finally:
+            if before is None:
+                os.environ.pop("FEGEAR_CACHE_DIR", None)
+            else:
+                os.environ["FEGEAR_CACHE_DIR"] = before

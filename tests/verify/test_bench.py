@@ -120,3 +120,30 @@ def test_the_peer_is_compared_at_equal_error_on_the_stresses_it_gives():
     peer.update({k: v * 1.0001 for k, v in ref.items() if k.startswith("root")})
     lines = _targets(rb, ring[1], ring[1], None, sector, ring, None, 20.0)
     assert [x for x in lines if x.startswith("* CalculiX")][0].endswith("MISSED")
+
+
+def test_the_disk_cache_targets_judge_the_model_read_back_and_the_whole_command():
+    from fegear.cli.bench import _targets
+    from fegear.verify import ring_bench as rb
+
+    ref = dict(rb.SECTOR_REFERENCE, von_mises_max_MPa=rb.VON_MISES_RESOLVED)
+
+    def run(label, seconds, err_pct):
+        values = {k: v * (1 + err_pct / 100) for k, v in ref.items()}
+        return rb.RingRun(label, {"mesh": seconds}, seconds, 500.0, 1, 1, values, {})
+
+    built = run("standard", 2.0, 0.3)
+
+    def lines(read_s, command_s):
+        commands = {"without the cache": 3.9, "models read from disk": command_s}
+        cached = rb.DiskRuns(run("read", read_s, 0.3), run("read, estimate", 1.2, 0.3),
+                             commands)
+        out = _targets(rb, built, built, None, None, [built], None, 20.0, cached)
+        return [x for x in out if "disk" in x]
+
+    position, command = lines(0.75, 1.8)
+    assert "0.75 s after import" in position and ": met; built: 2.00 s (2.0× the goal)" \
+        in position
+    assert command.endswith("MISSED built, met read back")
+    position, command = lines(1.05, 2.1)
+    assert "MISSED; built" in position and command.endswith("MISSED built, MISSED read back")

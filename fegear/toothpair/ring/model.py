@@ -61,6 +61,8 @@ ROUND_FLOOR = 0.05       # template sizes at the tip use a round of at least thi
 THIN = 0.1               # a tip relief or tip trim thinner than this many flank elements is
                          # left to the contact's exact geometry: the templates are meshed
                          # without it (a relief search's trials then share one model)
+GROWN = 1.25            # a model is kept on disk again once it holds this many times the
+                        # responses of its entry (or new submodels)
 #: the case fields a ring model depends on (not torque, position or the sector model's inputs)
 GEOMETRY_KEYS = ("params", "thickness", "E", "nu", "quality", "rim1", "rim2", "tip_round")
 
@@ -81,7 +83,6 @@ class RingModel:
     timings_s: dict
     submodels: dict = field(default_factory=dict, repr=False)   # prepared, by key
     meshed: PairParameters | None = None    # the pair the templates were meshed for
-    on_disk: tuple | None = None            # what the disk cache holds of it (:func:`kept`)
 
     def __post_init__(self) -> None:
         if self.meshed is None:
@@ -212,6 +213,11 @@ def _shape_of(p: PairParameters) -> PairParameters:
 
 
 # --- the disk cache (:mod:`.disk`) ---------------------------------------------------------------
+#: per disk entry (its path), what this process last read from it or wrote to it
+#: (:func:`_held`): models that share templates (a relief search's trials) share their entry
+_ON_DISK: dict = {}
+
+
 def _disk_key(case: SolveCase) -> str:
     """What a model's disk entry holds, in full: the pair its templates are meshed for, the
     body's inputs and the code version."""
@@ -225,6 +231,13 @@ def _held(model: RingModel) -> tuple:
     """What of ``model`` an entry holds: the responses formed on each gear and the
     submodels."""
     return tuple(g.formed for g in model.gears) + (len(model.submodels),)
+
+
+def _grown(held: tuple, entry: tuple | None) -> bool:
+    """Whether a model holding ``held`` (:func:`_held`) is worth writing over ``entry``."""
+    if entry is None:
+        return True
+    return held[-1] > entry[-1] or sum(held[:-1]) > GROWN * sum(entry[:-1])
 
 
 def _from_disk(case: SolveCase, profile: Gear1Profile | None) -> RingModel | None:
@@ -248,15 +261,20 @@ def _from_disk(case: SolveCase, profile: Gear1Profile | None) -> RingModel | Non
     pair, meshes = data["submodels"]
     if pair == repr(case.params):   # cut from this pair's own profile (a thin relief's too)
         model.submodels.update(meshes)
-    model.on_disk = _held(model)
+    _ON_DISK[disk.entry(_disk_key(case))] = _held(model)
     return model
 
 
 def kept(model: RingModel) -> None:
     """Keep ``model`` on disk if the cache is on and it holds more than its entry: a new
-    model, more responses formed or more submodels meshed (a mesh cycle's later positions
-    load other template dofs)."""
-    if not disk.enabled() or _held(model) == model.on_disk:
+    model, more submodels meshed, or :data:`GROWN` more responses formed (a mesh cycle's
+    later positions load other template dofs; a relief search's trials add a few each, and
+    writing 120 MB for each of them cost its seven trials 0.6-0.8 s)."""
+    if not disk.enabled():
+        return
+    key = _disk_key(model.case)
+    path = disk.entry(key)
+    if path.exists() and not _grown(_held(model), _ON_DISK.get(path)):
         return
     # a template's geometry is only for meshing (and holds the curves' functions, which do
     # not pickle)
@@ -264,5 +282,5 @@ def kept(model: RingModel) -> None:
                        "template": replace(g.template, geometry=None),
                        "responses": g.responses()} for g in model.gears],
             "submodels": (repr(model.case.params), submodel_meshes(model.submodels))}
-    disk.keep(_disk_key(model.case), data)
-    model.on_disk = _held(model)
+    disk.keep(key, data)
+    _ON_DISK[path] = _held(model)

@@ -272,7 +272,9 @@ def contact_submodel(model: RingModel, contact: RingContact, pressure: np.ndarra
     radius = _quarter_power(max(SUB_FACETS * facet, SUB_WIDTHS * b))
     size = _quarter_power(max(b / model.level.sub_per_b, SUB_FLOOR * model.case.params.m))
     focus = _quarter_power(SUB_FOCUS * b)
-    step = 0.25 * min(focus, 0.5 * radius) / np.linalg.norm(x)
+    # the angle's step from the key's numbers alone (not from the point's own radius): a key
+    # names one disk, whichever peak asked for it first
+    step = 0.25 * min(focus, 0.5 * radius) / model.case.params.r0
     local = round((centre - turn) / step)
     key = (gear, local, radius, size, focus)
     curve = StarCurve(point, inside=gear == 0, foot=foot)
