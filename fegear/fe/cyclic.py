@@ -138,7 +138,7 @@ class CyclicBody:
         return worst / max(scale, 1e-300)
 
 
-#: what :meth:`CyclicBody.parts` gives and :func:`restore_cyclic` takes back: the arrays of a
+#: what :func:`cyclic_parts` gives and :func:`restore_cyclic` takes back: the arrays of a
 #: cyclic body that cost a factorisation to form (its basis and factor are rebuilt from them)
 PARTS = ("count", "pitch", "K", "interior", "face_a", "face_b", "fixed", "psi", "ring")
 
@@ -147,12 +147,9 @@ def cyclic_parts(body: CyclicBody) -> dict:
     """The arrays of ``body`` :func:`restore_cyclic` rebuilds it from (a disk cache's), with
     what its ``cache`` holds that pickles (the stress projector's matrices, the far
     couplings' factors; not a factorisation)."""
+    from .stress import pickled_cache
+
     return {**{k: getattr(body, k) for k in PARTS}, "cache": pickled_cache(body.cache)}
-
-
-def pickled_cache(cache: dict) -> dict:
-    """The entries of a body's ``cache`` that pickle: all but the factorisations."""
-    return {k: v for k, v in cache.items() if k != "projector"}
 
 
 def restore_cyclic(mesh: BodyMesh, material: Material, parts: dict) -> CyclicBody:

@@ -97,6 +97,12 @@ def recover(body: Body, u: np.ndarray) -> StressField:
     return StressField(sxx, syy, sxy, szz, body.material.plane)
 
 
+def pickled_cache(cache: dict) -> dict:
+    """The entries of a body's ``cache`` that pickle: all but the projector's factorisation
+    (its matrices stay, :func:`recover` factorises them again)."""
+    return {k: v for k, v in cache.items() if k != "projector"}
+
+
 def _projector(body: Body):
     """The mass matrix and the three mixed matrices C_xx, C_yy, C_xy (nodes × dofs)."""
     lam, mu = body.material.lame

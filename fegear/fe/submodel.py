@@ -25,7 +25,7 @@ from ..errors import FegearError
 from .dofs import facet_nodes, node_dofs
 from .material import Material
 from .mesh import BodyGeometry, BodyMesh, Refinement, Segment, halved, mesh_bodies
-from .stress import StressField, recover
+from .stress import StressField, pickled_cache, recover
 
 CORE = 0.6          # stresses are read within this fraction of the radius of the centre
 ARC_POINTS = 48     # polyline points of the cut arc
@@ -139,8 +139,6 @@ class SubmodelMesh:
 def submodel_meshes(kept: dict) -> dict:
     """The submodels in ``kept`` as :class:`SubmodelMesh` es (key → mesh), prepared or not:
     what a later process needs to skip meshing and assembling them."""
-    from .cyclic import pickled_cache
-
     return {k: v if isinstance(v, SubmodelMesh) else
             SubmodelMesh(v.mesh, v.centre, v.angles, v.K, pickled_cache(v.piece.cache))
             for k, v in kept.items()}

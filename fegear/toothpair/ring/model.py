@@ -112,7 +112,9 @@ KEEP = 4
 def ring_model(case: SolveCase, profile: Gear1Profile | None = None) -> RingModel:
     """The ring model for ``case``: one kept from an earlier case of the same geometry,
     material and quality; or one that shares the templates (meshes, factors and responses) of
-    a kept model meshed for the same pair (:func:`meshed_params`); or a new one. It is kept."""
+    a kept model meshed for the same pair (:func:`meshed_params`); or, with the disk cache on
+    (:mod:`.disk`), one read back from it; or a new one. It is kept in memory (on disk once
+    solved: :func:`keep_on_disk`)."""
     key = tuple(getattr(case, k) for k in GEOMETRY_KEYS)
     model = _KEPT.pop(key, None)
     if model is None:
@@ -247,7 +249,6 @@ def _from_disk(case: SolveCase, profile: Gear1Profile | None) -> RingModel | Non
     if data is None:
         return None
     profile, shape, samples, times = _shapes(case, profile)
-    t1 = time.perf_counter()
     meshed = meshed_params(case)
     mat = Material(case.E, case.nu, case.thickness, "stress")
     sides = []
@@ -255,7 +256,7 @@ def _from_disk(case: SolveCase, profile: Gear1Profile | None) -> RingModel | Non
         side = GearSide(restore_cyclic(part["mesh"], mat, part["body"]), part["template"])
         side.restore_responses(part["responses"])
         sides.append(side)
-    times["disk"] = time.perf_counter() - t1 + (t1 - t0 - times["profile"])
+    times["disk"] = time.perf_counter() - t0 - times["profile"]
     model = RingModel(case, profile, shape, samples, tuple(sides), LEVELS[case.quality], times,
                       meshed=meshed)
     pair, meshes = data["submodels"]
@@ -265,7 +266,7 @@ def _from_disk(case: SolveCase, profile: Gear1Profile | None) -> RingModel | Non
     return model
 
 
-def kept(model: RingModel) -> None:
+def keep_on_disk(model: RingModel) -> None:
     """Keep ``model`` on disk if the cache is on and it holds more than its entry: a new
     model, more submodels meshed, or :data:`GROWN` more responses formed (a mesh cycle's
     later positions load other template dofs; a relief search's trials add a few each, and

@@ -27,7 +27,7 @@ from ..teeth import candidate_data, choose_teeth
 from .contact import solve_ring_contact, tangent_stiffness, touch_rotation
 from .grid import ToothGrid, tooth_grid, window
 from .influence import RingContact, assemble_contact
-from .model import RingModel, kept, ring_model
+from .model import RingModel, keep_on_disk, ring_model
 from .results import RingDetail, tooth_results
 from .stresses import ring_stresses, with_submodels
 
@@ -172,10 +172,11 @@ class RingSolver:
         :data:`PEAK_MARGIN` of the largest von Mises stress solved, until no other does. A
         single position is its own peak. The others keep the surface estimate
         (``von_mises_estimated``); everything else a position reports does not depend on
-        submodels. The model is then kept on disk if the cache is on (:func:`~.model.kept`)."""
+        submodels. The model is then kept on disk if the cache is on
+        (:func:`~.model.keep_on_disk`)."""
         out = self._complete(sols)
         if self.model is not None:
-            kept(self.model)
+            keep_on_disk(self.model)
         return out
 
     def _complete(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
