@@ -4,7 +4,7 @@ formed so far and the contact submodels' meshes (docs/model.md, "The disk cache"
 
 A new baseline model at ``standard`` costs about 1.1 s (meshing 0.4 s, assembling and
 condensing 0.3 s, the responses of its first position 0.3-0.5 s) and its submodels' meshes
-0.2-0.3 s more; read back it costs 0.1-0.2 s (the factors do not pickle: each template's
+0.2-0.3 s more; read back it costs 0.15-0.25 s (the factors do not pickle: each template's
 interior is factorised again). An entry is about 120 MB at the baseline.
 
 On where the environment variable :data:`ENV` says "on": ``fegear study`` and ``fegear
@@ -94,7 +94,7 @@ def cap_bytes() -> int:
         gb = float(text)
     except ValueError:
         gb = -1.0
-    if not gb > 0:
+    if not 0 < gb < float("inf"):
         raise FegearError(f"{ENV_CAP} = {text!r} is not admissible; admissible: a size cap "
                           "in GB above 0, e.g. 2")
     return int(gb * 1e9)

@@ -124,7 +124,7 @@ def test_the_cap_drops_the_least_recently_used_entries(cache, monkeypatch):
 def test_a_bad_cap_is_refused_by_name(monkeypatch):
     from fegear.errors import FegearError
 
-    for text in ("-1", "0", "two", "nan"):
+    for text in ("-1", "0", "two", "nan", "inf"):
         monkeypatch.setenv(disk.ENV_CAP, text)
         with pytest.raises(FegearError, match=disk.ENV_CAP):
             disk.cap_bytes()
