@@ -209,7 +209,7 @@ def pair_table(summary: dict) -> str:
               f"DOFs {summary['dofs']}, contact points {summary['contact_points']}, "
               f"iterations {summary['iterations']}, max penetration "
               f"{summary['max_penetration_um']:.3g} µm",
-              "time [s]: " + ", ".join(f"{k} {v:.2f}" for k, v in summary["timings_s"].items())
+              "time [s]: " + ", ".join(f"{k} {v:.2f}" for k, v in summary["timings_s"].items() if v)
               + _estimate_time(summary)
               + (f"; solve wall {summary['wall_s']:.1f}" if summary["wall_s"] else "")]
     return "\n".join(lines)

@@ -82,6 +82,7 @@ class RingModel:
     level: RingLevel
     timings_s: dict
     submodels: dict = field(default_factory=dict, repr=False)   # prepared, by key
+    served: int = 0                         # solves it has served (its timings go to the first)
     meshed: PairParameters | None = None    # the pair the templates were meshed for
 
     def __post_init__(self) -> None:

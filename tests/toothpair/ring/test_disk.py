@@ -44,13 +44,13 @@ def _no_meshing(monkeypatch):
 
 def test_a_model_read_back_solves_as_the_one_built_without_meshing(cache, monkeypatch):
     built = solve_positions(CASE, BETAS, submodels="all")
-    assert "mesh" in built[0].timings_s
+    assert built[0].timings_s["mesh"] > 0 and built[0].timings_s["disk"] == 0
     (entry,) = disk.entries()
     _KEPT.clear()
     with monkeypatch.context() as m:
         _no_meshing(m)
         read = solve_positions(CASE, BETAS, submodels="all")
-    assert "disk" in read[0].timings_s and "mesh" not in read[0].timings_s
+    assert read[0].timings_s["disk"] > 0 and read[0].timings_s["mesh"] == 0
     assert not read[0].von_mises_estimated
     # the same factors of the same matrices: the same numbers to rounding
     np.testing.assert_allclose(_numbers(read), _numbers(built), rtol=1e-10)
@@ -75,7 +75,7 @@ def test_an_edit_to_the_code_reads_no_older_entry(cache, monkeypatch):
     _KEPT.clear()
     monkeypatch.setattr("fegear.provenance.code_version", lambda: "another version")
     again = solve_positions(CASE, BETAS[:1])
-    assert "mesh" in again[0].timings_s
+    assert again[0].timings_s["mesh"] > 0
     assert len(disk.entries()) == 2
 
 
@@ -86,7 +86,7 @@ def test_an_unreadable_entry_is_dropped_and_the_model_built_again(cache, caplog)
     _KEPT.clear()
     with caplog.at_level(logging.WARNING):
         again = solve_positions(CASE, BETAS[:1])
-    assert "unreadable" in caplog.text and "mesh" in again[0].timings_s
+    assert "unreadable" in caplog.text and again[0].timings_s["mesh"] > 0
     np.testing.assert_allclose(_numbers(again), _numbers(built), rtol=1e-10)
     (entry,) = disk.entries()
     with open(entry[0], "rb") as f:
