@@ -195,7 +195,10 @@ def _bench(a, params, torque, repeat, cycle, pair_levels, sector_levels, disk_le
                       for r in disks.rungs if r.peer_s], HERTZ_TARGET),
               Series("tooth pair, ring model",
                      [(r.total_s, _sector_error(rb, r.values), r.label) for r in ring],
-                     target=rb.SINGLE_TARGET)]
+                     target=rb.SINGLE_TARGET),
+              Series("tooth pair, ring model read from the disk cache",
+                     [(cached.read.total_s, _sector_error(rb, cached.read.values),
+                       f"{a.pair_quality}, read back")])]
     if sector is not None:
         series.append(Series("tooth pair, sector model",
                              [(r.total_s, _sector_error(rb, r.values), r.level)

@@ -228,7 +228,7 @@ def disk_table(runs: DiskRuns, built: RingRun, built_estimate: RingRun) -> str:
     """Markdown: a position built against read back (stages, total), with the estimate, and
     the whole command."""
     rows = [built, runs.read, built_estimate, runs.read_estimate]
-    stages = list(dict.fromkeys(k for r in rows for k in r.timings_s))
+    stages = _stages(rows)
     lines = ["| run | " + " | ".join(stages) + " | solve after import [s] |",
              "|---|" + "---:|" * (len(stages) + 1)]
     for r in rows:
@@ -242,10 +242,17 @@ def disk_table(runs: DiskRuns, built: RingRun, built_estimate: RingRun) -> str:
     return "\n".join(lines)
 
 
+def _stages(runs: list[RingRun]) -> list[str]:
+    """The stages any of ``runs`` spent time in, in their order (a solve reports every
+    one-off stage, zero where it did not run)."""
+    return [k for k in dict.fromkeys(k for r in runs for k in r.timings_s)
+            if any(r.timings_s.get(k) for r in runs)]
+
+
 def ring_table(runs: list[RingRun]) -> str:
     """Markdown: stage times, memory, DOFs and each headline stress with its error against
     the sector model's fine reference."""
-    stages = list(dict.fromkeys(k for r in runs for k in r.timings_s))
+    stages = _stages(runs)
     head = (["level", "DOFs (templates / rings)"] + stages + ["total [s]", "peak MB"]
             + ["root σ1 g1", "root σ1 g2", "contact p", "von Mises"] + ["max err %",
                                                                         "output [s]"])
