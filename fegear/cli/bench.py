@@ -117,11 +117,13 @@ def _sector_check(params, torque: float, quality: str) -> int:
 def _bench(a, params, torque, repeat, cycle, pair_levels, sector_levels, disk_levels, teeth,
            study_cases, out) -> int:
     from ..files import write_json
+    from ..provenance import code_version
     from ..verify import (  # the FE stack, once every input is sound
         PEER_TARGET,
         Series,
         disk_ladder,
         geometry_bench,
+        history,
         ladder_json,
         ladder_png,
         ladder_table,
@@ -185,6 +187,8 @@ def _bench(a, params, torque, repeat, cycle, pair_levels, sector_levels, disk_le
         scaling_png(out / "bench_scaling.png", ring, scale)
         record["scaling"] = [r.__dict__ for r in scale]
     study = rb.paper_study_s() if a.paper_study else None
+    if study is not None:
+        record["paper_study_s"] = study[0]
     print()
     lines = _targets(rb, default, extra, cyc, sector, ring, study, PEER_TARGET, cached)
     print("\n".join(lines))
@@ -207,9 +211,19 @@ def _bench(a, params, torque, repeat, cycle, pair_levels, sector_levels, disk_le
                               for r in sector.rungs if r.peer_s],
                              peer_note=" (root stresses)"))
     ladder_png(out / "bench.png", series)
-    write_json(out / "bench.json", {**ladder_json([disks] + ([sector] if sector else []),
-                                                  ladder_targets(disks)), "ring": record})
-    print(f"\nbench.json, bench.png{', bench_scaling.png' if scale else ''} in {out}")
+    everything = {**ladder_json([disks] + ([sector] if sector else []), ladder_targets(disks)),
+                  "ring": record}
+    before = history.last_run(out)
+    write_json(out / "bench.json", everything)
+    metrics = history.bench_metrics(everything)
+    if before is not None:
+        print()
+        print(f"### Beside the last run in {out}")
+        print()
+        print(history.beside_table(before, metrics))
+    history.remember(out, metrics, code_version(), everything["machine"])
+    print(f"\nbench.json, bench.png{', bench_scaling.png' if scale else ''}, "
+          f"{history.HISTORY} in {out}")
     if study_cases:
         print()
         _study_bench(params, study_cases)

@@ -147,3 +147,37 @@ def test_the_disk_cache_targets_judge_the_model_read_back_and_the_whole_command(
     assert command.endswith("MISSED built, met read back")
     position, command = lines(1.05, 2.1)
     assert "MISSED; built" in position and command.endswith("MISSED built, MISSED read back")
+
+
+def test_each_run_is_kept_and_the_last_one_printed_beside_the_next(tmp_path):
+    """The history: a folder with only an old bench.json gives that run's numbers; each run
+    appends a line; the next run's table puts the last line's numbers beside its own."""
+    import json
+
+    from fegear.verify import history
+
+    def record(one, cycle):
+        run = {"label": "standard", "timings_s": {"mesh": 0.3, "disk": 0.0}, "total_s": one,
+               "peak_mb": 460.0, "extra": {"output_s": 1.0}}
+        return {"ladders": [{"name": "disks", "rungs": [{"level": "4 per b", "total_s": 0.15}]}],
+                "ring": {"ring": [run], "default": run, "extras": None,
+                         "cycle": {"label": "standard, 24-position cycle",
+                                   "extra": {"cycle_s": cycle}}}}
+
+    assert history.last_run(tmp_path) is None
+    (tmp_path / "bench.json").write_text(json.dumps(record(2.0, 8.0)))
+    old = history.last_run(tmp_path)
+    assert old["metrics"]["cycle / one position [×]"] == 4.0
+    assert "ring `standard`, disk [s]" not in old["metrics"]          # a stage not run
+    history.remember(tmp_path, history.bench_metrics(record(1.0, 3.0)), "0.1.0+abc; numpy 2",
+                     {"cpus": 2})
+    last = history.last_run(tmp_path)
+    assert last["code"].startswith("0.1.0+abc") and last["metrics"]["cycle / one position [×]"] \
+        == 3.0
+    now = history.bench_metrics(record(0.5, 1.0))
+    now["a number the last run did not measure [s]"] = 1.0
+    table = history.beside_table(last, now)
+    assert "| ring `standard`, one position [s] | 1 | 0.5 | 0.50 |" in table
+    assert "| cycle / one position [×] | 3 | 2 | 0.67 |" in table
+    assert "| a number the last run did not measure [s] | – | 1 | – |" in table
+    assert len((tmp_path / history.HISTORY).read_text().splitlines()) == 1
