@@ -242,23 +242,25 @@ class ToothContact:
         theta = np.arctan2(y[:, 1], y[:, 0])
         return np.hypot(y[:, 0], y[:, 1]) > self.gear2.radius_at_angle(theta)
 
-    def _signed_angles(self, beta, rho, phi_body, ang, valid, direction):
+    def _signed_angles(self, beta, rho, phi_body, ang, valid, direction, point=None):
         """Signed rotation to contact of points (ρ, φ) against crossing angles ``ang``.
 
         Outside gear 2: the angle to the next crossing ahead in ``direction``; inside: minus
         the angle back to the nearest crossing behind. Points on the boundary (within
         ``ANGLE_TOL``) give 0 either way. Returns (value, crossing index) per point.
+
+        ``ang`` and ``valid`` are per circle: point i lies on circle ``point[i]`` (default:
+        circle i). Only the crossings next to a point's place in its circle's sorted crossings
+        are compared (:func:`_nearest_crossings`); comparing every crossing of every tooth
+        was quadratic in the teeth (0.8 s of a solve at z2 180).
         """
+        point = np.arange(len(rho)) if point is None else np.asarray(point)
         x_fixed = self._to_fixed(np.stack([rho * np.cos(phi_body), rho * np.sin(phi_body)], -1),
                                  beta)
         inside = self.inside_gear2(x_fixed, beta)
-        d = np.where(valid, wrap(direction * (ang - phi_body[:, None])), np.nan)
-        ahead = np.where(d >= -ANGLE_TOL, d, np.inf)
-        behind = np.where(d <= ANGLE_TOL, -d, np.inf)
-        ahead_i = np.argmin(ahead, axis=1)
-        behind_i = np.argmin(behind, axis=1)
-        rows = np.arange(len(rho))
-        val = np.where(inside, -behind[rows, behind_i], ahead[rows, ahead_i])
+        (ahead, ahead_i), (behind, behind_i) = _nearest_crossings(ang, valid, phi_body, point,
+                                                                  direction)
+        val = np.where(inside, -behind, ahead)
         idx = np.where(inside, behind_i, ahead_i)
         return val, idx
 
@@ -294,9 +296,8 @@ class ToothContact:
                 # all teeth at once: (tooth, point)
                 phi = (phi0[None, :] + teeth[:, None] * g.pitch).ravel()
                 ang, valid, seg = self._crossings(beta, rho)
-                vals, cross = self._signed_angles(beta, np.tile(rho, nt), phi,
-                                                  np.tile(ang, (nt, 1)),
-                                                  np.tile(valid, (nt, 1)), direction)
+                vals, cross = self._signed_angles(beta, np.tile(rho, nt), phi, ang, valid,
+                                                  direction, np.tile(np.arange(len(rho)), nt))
                 coarse[direction].append((vals.reshape(nt, len(rho)),
                                           cross.reshape(nt, len(rho)), seg))
         none = [[(None, None)] * nt for _ in betas]
@@ -449,3 +450,40 @@ def golden_min(f, a, b, iters: int):
         f1, f2 = np.where(left, fn, f2), np.where(left, f1, fn)
     take1 = f1 < f2
     return np.where(take1, f1, f2), np.where(take1, x1, x2)
+
+
+NEIGHBOURS = 3   # crossings tried on each side of a point's place among its circle's crossings
+
+
+def _nearest_crossings(ang: np.ndarray, valid: np.ndarray, phi: np.ndarray, point: np.ndarray,
+                       direction: int):
+    """For point i at polar angle ``phi[i]`` on circle ``point[i]``: the nearest crossing of
+    that circle (``ang``, ``valid``: per circle and gear-2 stretch) ahead in ``direction``
+    (d = wrap(direction (angle − φ)) ≥ −ANGLE_TOL, the smallest d) and behind (d ≤ ANGLE_TOL,
+    the smallest −d), each as (value, stretch index); inf and 0 where there is none.
+
+    The same values and indices as comparing every crossing (ties to the lowest index, as
+    ``argmin``): a circle's crossings are sorted once by direction · angle mod 2π, and only
+    the :data:`NEIGHBOURS` on each side of the point's place are compared, with d formed as
+    the full comparison forms it. The nearest ahead is the first crossing at or after the
+    point in that order and the nearest behind the last at or before it; rounding in the
+    sort key can move either by a place, not by three."""
+    n, m = ang.shape
+    key = np.where(valid, np.mod(direction * np.where(valid, ang, 0.0), 2 * np.pi), 7.0)
+    order = np.argsort(key, axis=1, kind="stable")
+    flat = (np.take_along_axis(key, order, axis=1) + 8.0 * np.arange(n)[:, None]).ravel()
+    x = np.mod(direction * phi, 2 * np.pi)
+    count = valid.sum(axis=1)[point]
+    pos = np.searchsorted(flat, x + 8.0 * point) - m * point
+    step = np.arange(-NEIGHBOURS, NEIGHBOURS)
+    place = np.mod(pos[:, None] + step[None, :], np.maximum(count, 1)[:, None])
+    cols = order[point[:, None], place]
+    d = wrap(direction * (ang[point[:, None], cols] - phi[:, None]))
+    has = (count > 0)[:, None]
+    out = []
+    for value in (np.where(has & (d >= -ANGLE_TOL), d, np.inf),
+                  np.where(has & (d <= ANGLE_TOL), -d, np.inf)):
+        best = value.min(axis=1)
+        col = np.where(value == best[:, None], cols, m).min(axis=1)
+        out.append((best, np.where(np.isfinite(best), col, 0)))
+    return out
