@@ -252,7 +252,7 @@ class ToothContact:
         ``ang`` and ``valid`` are per circle: point i lies on circle ``point[i]`` (default:
         circle i). Only the crossings next to a point's place in its circle's sorted crossings
         are compared (:func:`_nearest_crossings`); comparing every crossing of every tooth
-        was quadratic in the teeth (0.8 s of a solve at z2 180).
+        was quadratic in the teeth (0.9 s of a 6.9 s solve at z2 180).
         """
         point = np.arange(len(rho)) if point is None else np.asarray(point)
         x_fixed = self._to_fixed(np.stack([rho * np.cos(phi_body), rho * np.sin(phi_body)], -1),
@@ -471,6 +471,9 @@ def _nearest_crossings(ang: np.ndarray, valid: np.ndarray, phi: np.ndarray, poin
     n, m = ang.shape
     key = np.where(valid, np.mod(direction * np.where(valid, ang, 0.0), 2 * np.pi), 7.0)
     order = np.argsort(key, axis=1, kind="stable")
+    # every circle's sorted keys (below 8) shifted by 8 a circle: one sorted array, searched
+    # for all points at once (the shift rounds the keys by ~1e-13 rad at 160 circles, far
+    # below the spacing of distinct crossings)
     flat = (np.take_along_axis(key, order, axis=1) + 8.0 * np.arange(n)[:, None]).ravel()
     x = np.mod(direction * phi, 2 * np.pi)
     count = valid.sum(axis=1)[point]
