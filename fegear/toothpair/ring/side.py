@@ -142,7 +142,7 @@ class GearSide:
             # the fields are kept as the blocks they were formed in (growing one array copied
             # it whole every time); the cut loads are small
             self._X.append((self._used, self.body.clamped(E)))
-            self._rho = np.hstack([self._rho, self.body.cut_loads(E)])
+            self._rho = np.hstack([self._rho, self.body.unit_cut_loads(new)])
             self._column[new] = np.arange(self._used, need)
             self._used = need
             self.response_s += time.perf_counter() - t0
