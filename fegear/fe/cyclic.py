@@ -90,19 +90,36 @@ class CyclicBody:
         f = np.asarray(f, dtype=float)
         return f[self.interface] + self.psi.T @ f[self.interior]
 
-    def unit_cut_loads(self, dofs: np.ndarray) -> np.ndarray:
-        """:meth:`cut_loads` of a unit load at each of template ``dofs`` (2 n_f, len(dofs)):
-        a cut dof's own unit vector, an interior dof's row of Ψ, a held dof's zeros; gathered,
-        not multiplied out (Ψᵀ times unit columns was a 1 GFlop product for the baseline's
-        first position), the same numbers."""
-        dofs = np.asarray(dofs)
+    def unit_clamped(self, dofs: np.ndarray) -> np.ndarray:
+        """:meth:`clamped` of a unit load at each of template ``dofs`` (ndofs, len(dofs)),
+        its interior right-hand sides set directly rather than cut from a full block of unit
+        columns: the same solve of the same numbers."""
+        inner, _ = self._places()
+        q = inner[np.asarray(dofs)]
+        rhs = np.zeros((len(self.interior), len(q)))
+        rhs[q[q >= 0], np.flatnonzero(q >= 0)] = 1.0
+        u = np.zeros((self.ndofs, len(q)))
+        u[self.interior] = self.factor.solve(rhs)
+        return u
+
+    def _places(self) -> tuple[np.ndarray, np.ndarray]:
+        """Per template dof, its place among the interior dofs and among the cut dofs (−1
+        where it is not one)."""
         if "dof places" not in self.cache:
             inner = np.full(self.ndofs, -1)
             inner[self.interior] = np.arange(len(self.interior))
             cut = np.full(self.ndofs, -1)
             cut[self.interface] = np.arange(len(self.interface))
             self.cache["dof places"] = (inner, cut)
-        inner, cut = self.cache["dof places"]
+        return self.cache["dof places"]
+
+    def unit_cut_loads(self, dofs: np.ndarray) -> np.ndarray:
+        """:meth:`cut_loads` of a unit load at each of template ``dofs`` (2 n_f, len(dofs)):
+        a cut dof's own unit vector, an interior dof's row of Ψ, a held dof's zeros; gathered,
+        not multiplied out (Ψᵀ times unit columns was a 1 GFlop product for the baseline's
+        first position), the same numbers."""
+        dofs = np.asarray(dofs)
+        inner, cut = self._places()
         out = np.zeros((len(self.interface), len(dofs)))
         q, r = inner[dofs], cut[dofs]
         out[:, q >= 0] = self.psi[q[q >= 0]].T

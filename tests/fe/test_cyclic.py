@@ -131,8 +131,9 @@ def test_far_couplings_are_thin_products_within_their_tolerance():
 
 def test_unit_loads_reach_the_cuts_as_the_product_says_and_the_body_comes_back_whole():
     """The cut loads of unit loads, gathered from Ψ's rows, are those of ρ = f_I + Ψᵀ f_i to
-    the bit (interior, cut and held dofs alike); and a body rebuilt from its parts (a disk
-    cache's) gives the same fields."""
+    the bit (interior, cut and held dofs alike), and so are their clamped fields solved from
+    the interior right-hand sides alone; and a body rebuilt from its parts (a disk cache's)
+    gives the same fields."""
     from fegear.fe import cyclic_parts, restore_cyclic
 
     count = 12
@@ -141,6 +142,7 @@ def test_unit_loads_reach_the_cuts_as_the_product_says_and_the_body_comes_back_w
     E = np.zeros((body.ndofs, len(dofs)))
     E[dofs, np.arange(len(dofs))] = 1.0
     assert np.array_equal(body.unit_cut_loads(dofs), body.cut_loads(E))
+    assert np.array_equal(body.unit_clamped(dofs), body.clamped(E))
     again = restore_cyclic(body.mesh_data, MAT, cyclic_parts(body))
     f = {0: E[:, 5], 3: E[:, 9]}
     for s in (0, 1, 3, 7):

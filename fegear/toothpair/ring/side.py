@@ -137,11 +137,9 @@ class GearSide:
         if len(new):
             t0 = time.perf_counter()
             need = self._used + len(new)
-            E = np.zeros((self.body.ndofs, len(new)))
-            E[new, np.arange(len(new))] = 1.0
             # the fields are kept as the blocks they were formed in (growing one array copied
             # it whole every time); the cut loads are small
-            self._X.append((self._used, self.body.clamped(E)))
+            self._X.append((self._used, self.body.unit_clamped(new)))
             self._rho = np.hstack([self._rho, self.body.unit_cut_loads(new)])
             self._column[new] = np.arange(self._used, need)
             self._used = need
