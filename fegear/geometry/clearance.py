@@ -242,19 +242,18 @@ class ToothContact:
         theta = np.arctan2(y[:, 1], y[:, 0])
         return np.hypot(y[:, 0], y[:, 1]) > self.gear2.radius_at_angle(theta)
 
-    def _signed_angles(self, beta, rho, phi_body, ang, valid, direction, point=None):
+    def _signed_angles(self, beta, rho, phi_body, ang, valid, direction, point):
         """Signed rotation to contact of points (ρ, φ) against crossing angles ``ang``.
 
         Outside gear 2: the angle to the next crossing ahead in ``direction``; inside: minus
         the angle back to the nearest crossing behind. Points on the boundary (within
         ``ANGLE_TOL``) give 0 either way. Returns (value, crossing index) per point.
 
-        ``ang`` and ``valid`` are per circle: point i lies on circle ``point[i]`` (default:
-        circle i). Only the crossings next to a point's place in its circle's sorted crossings
-        are compared (:func:`_nearest_crossings`); comparing every crossing of every tooth
-        was quadratic in the teeth (0.9 s of a 6.9 s solve at z2 180).
+        ``ang`` and ``valid`` are per circle: point i lies on circle ``point[i]``. Only the
+        crossings next to a point's place in its circle's sorted crossings are compared
+        (:func:`_nearest_crossings`); comparing every crossing of every tooth was quadratic
+        in the teeth (0.9 s of a 6.9 s solve at z2 180).
         """
-        point = np.arange(len(rho)) if point is None else np.asarray(point)
         x_fixed = self._to_fixed(np.stack([rho * np.cos(phi_body), rho * np.sin(phi_body)], -1),
                                  beta)
         inside = self.inside_gear2(x_fixed, beta)

@@ -328,23 +328,15 @@ def paper_study_s(workers: int = 2) -> tuple[float, int]:
     """Wall time (s) of studies/paper_trends.toml (with estimates) on ``workers`` workers in
     a temporary directory, and the cases computed; with the disk cache on in an empty folder
     of its own, as ``fegear study`` runs it the first time."""
-    import os
     import tempfile
 
     from ..study import load_study, run_study
     from ..toothpair import disk_cache
 
     root = Path(__file__).resolve().parents[2] / "studies" / "paper_trends.toml"
-    before = os.environ.get("FEGEAR_CACHE_DIR")
-    with tempfile.TemporaryDirectory(prefix="fegear-bench-paper-") as tmp, disk_cache(True):
-        os.environ["FEGEAR_CACHE_DIR"] = str(Path(tmp) / "cache")   # the workers inherit it
-        try:
-            t0 = time.perf_counter()
-            report = run_study(load_study(root), Path(tmp) / "out", workers=workers,
-                               progress=False)
-            return time.perf_counter() - t0, report.computed
-        finally:
-            if before is None:
-                os.environ.pop("FEGEAR_CACHE_DIR", None)
-            else:
-                os.environ["FEGEAR_CACHE_DIR"] = before
+    with tempfile.TemporaryDirectory(prefix="fegear-bench-paper-") as tmp, \
+            disk_cache(True, Path(tmp) / "cache"):
+        t0 = time.perf_counter()
+        report = run_study(load_study(root), Path(tmp) / "out", workers=workers,
+                           progress=False)
+        return time.perf_counter() - t0, report.computed

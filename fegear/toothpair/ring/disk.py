@@ -62,18 +62,22 @@ def use(on: bool) -> None:
 
 
 @contextlib.contextmanager
-def disk_cache(on: bool | None):
-    """The cache on or off (None: as it was) within the block, as it was after."""
-    before = os.environ.get(ENV)
+def disk_cache(on: bool | None, folder: str | Path | None = None):
+    """The cache on or off (None: as it was), in ``folder`` if given, within the block (for
+    the workers spawned there too); both as they were after."""
+    before = {k: os.environ.get(k) for k in (ENV, ENV_DIR)}
     if on is not None:
         use(on)
+    if folder is not None:
+        os.environ[ENV_DIR] = str(folder)
     try:
         yield
     finally:
-        if before is None:
-            os.environ.pop(ENV, None)
-        else:
-            os.environ[ENV] = before
+        for k, v in before.items():
+            if v is None:
+                os.environ.pop(k, None)
+            else:
+                os.environ[k] = v
 
 
 def directory() -> Path:

@@ -246,7 +246,8 @@ def _grown(held: tuple, entry: tuple | None) -> bool:
 def _from_disk(case: SolveCase, profile: Gear1Profile | None) -> RingModel | None:
     """``case``'s model read back from the disk cache, or None."""
     t0 = time.perf_counter()
-    data = disk.load(_disk_key(case))
+    key = _disk_key(case)
+    data = disk.load(key)
     if data is None:
         return None
     profile, shape, samples, times = _shapes(case, profile)
@@ -263,7 +264,7 @@ def _from_disk(case: SolveCase, profile: Gear1Profile | None) -> RingModel | Non
     pair, meshes = data["submodels"]
     if pair == repr(case.params):   # cut from this pair's own profile (a thin relief's too)
         model.submodels.update(meshes)
-    _ON_DISK[disk.entry(_disk_key(case))] = _held(model)
+    _ON_DISK[disk.entry(key)] = _held(model)
     return model
 
 
@@ -275,8 +276,8 @@ def keep_on_disk(model: RingModel) -> None:
     if not disk.enabled():
         return
     key = _disk_key(model.case)
-    path = disk.entry(key)
-    if path.exists() and not _grown(_held(model), _ON_DISK.get(path)):
+    path, held = disk.entry(key), _held(model)
+    if path.exists() and not _grown(held, _ON_DISK.get(path)):
         return
     # a template's geometry is only for meshing (and holds the curves' functions, which do
     # not pickle)
@@ -285,4 +286,4 @@ def keep_on_disk(model: RingModel) -> None:
                        "responses": g.responses()} for g in model.gears],
             "submodels": (repr(model.case.params), submodel_meshes(model.submodels))}
     disk.keep(key, data)
-    _ON_DISK[path] = _held(model)
+    _ON_DISK[path] = held

@@ -148,6 +148,10 @@ def test_the_switch_follows_option_then_environment_then_the_command(monkeypatch
     with disk.disk_cache(False):
         assert not disk.enabled()
     assert disk.enabled() is on
+    folder = disk.directory()
+    with disk.disk_cache(True, folder / "elsewhere"):
+        assert disk.enabled() and disk.directory() == folder / "elsewhere"
+    assert disk.enabled() is on and disk.directory() == folder
 
 
 def test_a_submodel_meshes_the_same_whatever_was_meshed_before_it(baseline, baseline_profile):
