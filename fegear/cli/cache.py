@@ -43,11 +43,11 @@ def run(a: argparse.Namespace) -> int:
     from ..toothpair.ring import disk
 
     folder = disk.directory()
-    cap = disk.cap_bytes()
-    if a.clear:
+    if a.clear:   # whatever the cap says: a bad one must not keep the folder from emptying
         n, size = disk.clear()
         print(f"removed {n} entries ({size / 1e6:.0f} MB) from {folder}")
         return 0
+    cap = disk.cap_bytes()
     rows = disk.entries()
     total = sum(size for _, size, _ in rows)
     print(f"{folder}: {len(rows)} entries, {total / 1e6:.0f} MB of {cap / 1e9:g} GB "

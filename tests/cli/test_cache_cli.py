@@ -43,3 +43,14 @@ def test_a_bad_cap_is_one_line_before_any_solve(folder, tmp_path, monkeypatch, c
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "FEGEAR_CACHE_GB = 'lots'" in err[0] and "above 0" in err[0]
     assert not out.exists() and not folder.exists()
+
+
+def test_a_bad_cap_does_not_keep_the_cache_from_being_cleared(folder, monkeypatch, capsys):
+    from fegear.toothpair.ring import disk
+
+    disk.keep("an entry", {"x": 1})
+    monkeypatch.setenv(disk.ENV_CAP, "lots")
+    assert main(["cache", "--clear"]) == 0
+    assert "removed 1 entries" in capsys.readouterr().out and disk.entries() == []
+    assert main(["cache"]) == 2
+    assert "FEGEAR_CACHE_GB = 'lots'" in capsys.readouterr().err
