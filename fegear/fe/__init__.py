@@ -48,7 +48,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "vtu": ("vtu_fields", "write_vtu", "written_name"),
     "solvers": ("Factor", "SingularError", "BLAS_THREADS", "blas_threads"),
     "cyclic": ("CyclicBody", "assemble_cyclic", "cyclic_parts", "restore_cyclic"),
-    "probe": ("Probe",),
+    "probe": ("Probe", "Cells"),
     "submodel": ("StarCurve", "Submodel", "SubmodelProblem", "SubmodelMesh", "solve_submodels",
                  "submodel_meshes"),
 })

@@ -27,12 +27,16 @@ TOLERANCE = 0.05    # how far outside its element a point may fall (reference un
 
 
 @dataclass(frozen=True)
-class Located:
+class Cells:
     """Element of each point and its reference coordinates (ξ, η) there."""
 
     element: np.ndarray
     xi: np.ndarray
     eta: np.ndarray
+
+    def take(self, index: np.ndarray) -> Cells:
+        """The points ``index`` of these."""
+        return Cells(self.element[index], self.xi[index], self.eta[index])
 
 
 @dataclass(eq=False)
@@ -55,7 +59,7 @@ class Probe:
     def ndofs(self) -> int:
         return 2 * self.mesh.doflocs.shape[1]
 
-    def locate(self, points: np.ndarray) -> Located:
+    def locate(self, points: np.ndarray) -> Cells:
         """The element holding each point and the point's reference coordinates; raises
         :class:`~fegear.errors.FegearError` for a point outside the mesh."""
         points = np.atleast_2d(np.asarray(points, dtype=float))
@@ -81,13 +85,18 @@ class Probe:
         if out.max() > TOLERANCE:
             i = int(np.argmax(out))
             raise FegearError(f"point {points[i].tolist()} lies outside the mesh")
-        return Located(cand[rows, best], ref[:, 0], ref[:, 1])
+        return Cells(cand[rows, best], ref[:, 0], ref[:, 1])
 
     def rows(self, points: np.ndarray, direction: np.ndarray | None = None,
              strain: bool = False) -> sp.csr_matrix:
         """Sparse rows (n × ndofs): at each point, the field's component along ``direction``
         (n, 2) or, with ``strain``, the strain along it, d·∇u·d."""
-        at = self.locate(points)
+        return self.rows_at(self.locate(points), direction, strain)
+
+    def rows_at(self, at: Cells, direction: np.ndarray | None = None,
+                strain: bool = False) -> sp.csr_matrix:
+        """:meth:`rows` at points located before (:meth:`locate`): a caller that reads a
+        field at the same points more than once finds them once."""
         nodes = self._nodes[at.element]                          # (n, 6)
         n = len(nodes)
         d = np.asarray(direction, dtype=float)

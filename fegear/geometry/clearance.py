@@ -217,22 +217,26 @@ class ToothContact:
         inc = db > da
         frac = np.clip((rho - da) / np.where(db != da, db - da, 1.0), 0.0, 1.0)
         x = a + frac * (b - a)
+        todo = np.arange(len(x))   # a converged point stays where it is: only the rest iterate
+        o1 = np.broadcast_to(o1, (len(x), 2))   # one centre, or one a point
         for _ in range(60):
-            p, d1 = self.gear2.derivatives(x, 1)
-            r = p - o1
+            xt, lt, ht = x[todo], lo[todo], hi[todo]
+            p, d1 = self.gear2.derivatives(xt, 1)
+            r = p - o1[todo]
             d = np.hypot(r[:, 0], r[:, 1])
-            f = d - rho
-            up = (f > 0) == inc
-            hi = np.where(up, x, hi)
-            lo = np.where(up, lo, x)
-            xn = x - f / (np.einsum("ij,ij->i", r, d1) / d)
-            bad = ~((xn >= lo) & (xn <= hi)) | ~np.isfinite(xn)
-            xn = np.where(bad, 0.5 * (lo + hi), xn)
+            f = d - rho[todo]
+            up = (f > 0) == inc[todo]
+            ht = np.where(up, xt, ht)
+            lt = np.where(up, lt, xt)
+            xn = xt - f / (np.einsum("ij,ij->i", r, d1) / d)
+            bad = ~((xn >= lt) & (xn <= ht)) | ~np.isfinite(xn)
+            xn = np.where(bad, 0.5 * (lt + ht), xn)
             # d is known to ~1e-14 mm (rounding), so |f| <= 1e-13 is converged
-            conv = (np.abs(f) <= 1e-13) | (np.abs(xn - x) <= 1e-16) | (hi - lo <= 1e-16)
-            x = np.where(conv, x, xn)
-            if conv.all():
-                return x
+            conv = (np.abs(f) <= 1e-13) | (np.abs(xn - xt) <= 1e-16) | (ht - lt <= 1e-16)
+            x[todo], lo[todo], hi[todo] = np.where(conv, xt, xn), lt, ht
+            todo = todo[~conv]
+            if len(todo) == 0:
+                break
         return x
 
     # --- clearance --------------------------------------------------------------------------

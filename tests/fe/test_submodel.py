@@ -53,6 +53,10 @@ def test_probe_evaluates_fields_as_the_elements_do_also_under_curved_edges(annul
     strain = np.einsum("in,ijn,jn->n", d.T, grad, d.T)
     assert np.abs(probe.rows(pts, d, strain=True) @ u - strain).max() \
         < 1e-9 * np.abs(strain).max()
+    # rows at points located once are the rows of the points, for any subset of them
+    cells, some = probe.locate(pts), np.arange(0, len(pts), 3)
+    assert (probe.rows_at(cells.take(some), d[some], strain=True)
+            != probe.rows(pts[some], d[some], strain=True)).nnz == 0
     with pytest.raises(FegearError, match="outside the mesh"):
         probe.locate(np.array([[0.0, 0.0]]))
 

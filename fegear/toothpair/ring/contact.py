@@ -58,16 +58,21 @@ def rigid_gap(model: RingModel, x: np.ndarray, beta: float, turn: float
 
 
 def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float, theta: float,
-                  guess: float | None = None) -> RingContactSolution:
+                       guess: float | None = None) -> RingContactSolution | None:
     """Solve the contact under ``torque_nmm`` (N·mm on gear 1) from the rotation ``theta``
     (rad); the iterations start from the points the rigid teeth overlap at the rotation
-    ``guess`` (rad; else from the point of least gap)."""
+    ``guess`` (rad; else from the point of least gap). On a contact whose probe columns are
+    not formed (:func:`~.influence.assemble_contact`), the points of the formed columns are
+    solved and the others kept open; that is the solution if none of them then overlaps
+    (their pressures zero, their columns act on nothing), else None: the caller forms them."""
     alpha = model.case.params.ratio * contact.beta
-    A, w = contact.A, contact.weight * model.case.thickness
-    g0, a = rigid_gap(model, contact.x, contact.beta, alpha + theta)
+    on = np.flatnonzero(contact.formed)
+    x, A = contact.x[on], contact.A[np.ix_(on, on)] if not contact.complete else contact.A
+    w = contact.weight[on] * model.case.thickness
+    g0, a = rigid_gap(model, x, contact.beta, alpha + theta)
     active = g0 <= g0.min() + 1e-12
     if guess is not None:
-        overlap = rigid_gap(model, contact.x, contact.beta, alpha + guess)[0] < 0
+        overlap = rigid_gap(model, x, contact.beta, alpha + guess)[0] < 0
         active = overlap if overlap.any() else active
     pressure = np.zeros(len(g0))
     total = turns = 0
@@ -75,24 +80,29 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
         # the torque's arm turns with gear 1: where gear 2 bends sharply (a pointed tip) the
         # rotation converged only linearly, half a digit a linearisation, without this term
         arm_rate = 0.0 if not pressure.any() else (w * pressure) @ (
-            rigid_gap(model, contact.x, contact.beta, alpha + theta + ARM_STEP)[1] - a) / ARM_STEP
+            rigid_gap(model, x, contact.beta, alpha + theta + ARM_STEP)[1] - a) / ARM_STEP
         pressure, step, active, used = _active_set(A, w, g0, a, torque_nmm, active, arm_rate)
         total += used
         turns += 1
         theta += step
-        g0, a = rigid_gap(model, contact.x, contact.beta, alpha + theta)
         # settled to rounding: 1e-12 of the rotation, or a 1e-13 mm turn at the pitch circle
-        if abs(step) <= max(1e-12 * abs(theta), 1e-13 / model.case.params.r0):
+        settled = abs(step) <= max(1e-12 * abs(theta), 1e-13 / model.case.params.r0)
+        # the last evaluation at every point: the open ones' gaps are checked with it
+        g0, a = rigid_gap(model, x if not settled else contact.x, contact.beta, alpha + theta)
+        if settled:
             break
         if turns == MAX_TURNS:
             raise RingContactError(f"the rotation did not settle in {MAX_TURNS} "
                                    "linearisations")
-    gap = g0 + A @ pressure
-    balance = abs(-(w * pressure) @ a - torque_nmm) / torque_nmm
-    loaded = pressure > 0
+    full = np.zeros(contact.npoints)
+    full[on] = pressure
+    gap = g0 + contact.A @ full
+    if not contact.complete and (gap[~contact.formed] < 0).any():
+        return None
+    balance = abs(-(w * pressure) @ a[on] - torque_nmm) / torque_nmm
+    loaded = full > 0
     overlap = float(max(0.0, -gap[loaded].min())) if loaded.any() else 0.0
-    return RingContactSolution(pressure, gap, float(theta), total, turns, float(balance),
-                               overlap)
+    return RingContactSolution(full, gap, float(theta), total, turns, float(balance), overlap)
 
 
 def _active_set(A, w, g0, a, torque_nmm, active, arm_rate=0.0):

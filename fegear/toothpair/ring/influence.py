@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...contact import approach_matrix
+from ...fe import Cells
 from ...planar import rotate
 from ..teeth import Gear2Master
 from .grid import ToothGrid
@@ -32,10 +33,11 @@ GAUSS = 2   # Gauss points per grid interval for the hats' loads on the template
 @dataclass(frozen=True)
 class Matching:
     """Where one gear's finite elements are read for each grid point: the point at depth
-    (located in the template), the direction of the approach there (template frame) and the
-    depth (mm)."""
+    (located in the template, and the template element holding it), the direction of the
+    approach there (template frame) and the depth (mm)."""
 
     at: Located
+    cells: Cells
     direction: np.ndarray
     depth: np.ndarray
 
@@ -57,6 +59,12 @@ class RingContact:
     matching: tuple[Matching, Matching] = field(repr=False)
     facing: tuple[np.ndarray, np.ndarray] = field(repr=False)
     A: np.ndarray = field(repr=False)
+    formed: np.ndarray = field(repr=False)   # which columns of A (hats) are formed
+
+    @property
+    def complete(self) -> bool:
+        """Whether every column of A is formed (else the probe grids' are left out: zero)."""
+        return bool(self.formed.all())
 
     @property
     def npoints(self) -> int:
@@ -73,9 +81,13 @@ class RingContact:
 
 
 def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float,
-                     turn: float) -> RingContact:
+                     turn: float, probe_columns: bool = True) -> RingContact:
     """The contact of the ``grids`` with gear 2 turned by β and gear 1 by ``turn`` (rad, its
-    kinematic angle included, about its centre)."""
+    kinematic angle included, about its centre). Without ``probe_columns`` (and with a fine
+    grid among the ``grids``), A's columns of the probe grids' hats are not formed: the
+    approach of every point under the fine grids' pressures is all a solve needs while no
+    probe point closes (:func:`~.contact.solve_ring_contact`), and the probes' columns, with
+    the sectors only they load, were about half of the influence products."""
     p, case = model.case.params, model.case
     g1, g2 = model.gears
     offsets = np.cumsum([0] + [len(g) for g in grids])
@@ -84,8 +96,10 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     weight = np.concatenate([g.weights for g in grids])
     o1 = np.array([0.0, p.e])
     master = Gear2Master(model.curve2, beta)
+    columns = [probe_columns or not g.probe or all(h.probe for h in grids) for g in grids]
+    formed = np.repeat(columns, np.diff(offsets))
 
-    xq, nq, size, col = _hat_loads(model, grids, offsets, case.thickness)
+    xq, nq, size, col = _hat_loads(model, grids, offsets, case.thickness, columns)
     loads1 = g1.nodal_loads(xq, -nq, col, size)
     cq = master.closest(rotate(xq, turn) + o1)
     loads2 = g2.nodal_loads(rotate(cq.foot, -beta), rotate(rotate(nq, turn), -beta), col, size)
@@ -99,21 +113,26 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     for side, loads, m in zip((g1, g2), (loads1, loads2), match):
         A += _fe_part(side, loads, m, nh)
     for k, g in enumerate(grids):
+        if not columns[k]:
+            continue
         blk = slice(int(offsets[k]), int(offsets[k + 1]))
         for m in match:
             A[blk, blk] += approach_matrix(g.s, m.depth[blk], g.s, case.E, case.nu)
     return RingContact(beta, tuple(grids), offsets, x, n1, weight, (loads1, loads2), match,
-                       (x2, n2), A)
+                       (x2, n2), A, formed)
 
 
-def _hat_loads(model: RingModel, grids, offsets, thickness: float):
-    """Gauss points of every grid interval (gear 1's frame), outward normals there, and per
-    point the two hats it loads (the falling one of the interval's start, the rising one of
-    its end) with the force (N) per unit pressure of each: (n, 2) columns and sizes."""
+def _hat_loads(model: RingModel, grids, offsets, thickness: float, columns):
+    """Gauss points of every interval of the grids whose ``columns`` are formed (gear 1's
+    frame), outward normals there, and per point the two hats it loads (the falling one of
+    the interval's start, the rising one of its end) with the force (N) per unit pressure of
+    each: (n, 2) columns and sizes."""
     gq, gw = np.polynomial.legendre.leggauss(GAUSS)
     samples = model.samples
     xs, ns, sizes, cols = [], [], [], []
     for k, g in enumerate(grids):
+        if not columns[k]:
+            continue
         a, b = g.s[:-1], g.s[1:]
         sq = 0.5 * (a + b)[:, None] + 0.5 * (b - a)[:, None] * gq[None, :]
         wq = 0.5 * (b - a)[:, None] * gw[None, :]
@@ -147,7 +166,7 @@ def _matching(side: GearSide, x: np.ndarray, normal: np.ndarray, depth: float,
         blk = slice(int(offsets[k]), int(offsets[k + 1]))
         d[blk] = np.max(h[blk][None, :] - np.abs(g.s[:, None] - g.s[None, :]), axis=1)
     at = side.locate(x - d[:, None] * normal)
-    return Matching(at, rotate(-normal, -at.turn), d)
+    return Matching(at, side.cells(at.local), rotate(-normal, -at.turn), d)
 
 
 def _fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
@@ -157,7 +176,7 @@ def _fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
     N Ψ W(t − k) ρ, the product taken through the thin factors of W where the sectors are far
     apart (:meth:`~fegear.fe.cyclic.CyclicBody.coupling_factors`)."""
     at = match.at
-    N = side.rows(at.local, match.direction)
+    N = side.rows_at(match.cells, match.direction)
     NQ = np.asarray(N @ side.cut_field)
     dofs = np.unique(np.concatenate([b.dofs for b in loads.values()]))
     clamped = side.clamped_rows(N, dofs)                     # (points, loaded dofs)

@@ -17,7 +17,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ...contact import locate_on_facets, p2_edge_shape
-from ...fe import CyclicBody, Probe, facet_nodes
+from ...fe import Cells, CyclicBody, Probe, facet_nodes
 from ...planar import rotate
 from .template import Template
 
@@ -129,6 +129,16 @@ class GearSide:
         """Rows over template dofs giving, at template-frame points ``local``, the displacement
         along ``direction`` (n, 2), or (``strain``) the strain along it."""
         return self.probe.rows(local, direction, strain=strain)
+
+    def rows_at(self, cells: Cells, direction: np.ndarray,
+                strain: bool = False) -> sp.csr_matrix:
+        """:meth:`rows` at template-frame points located before (``cells``, from
+        :meth:`cells`)."""
+        return self.probe.rows_at(cells, direction, strain=strain)
+
+    def cells(self, local: np.ndarray) -> Cells:
+        """The template elements holding template-frame points ``local``, and where in them."""
+        return self.probe.locate(local)
 
     # --- responses to unit loads ------------------------------------------------------------
     def _form(self, dofs: np.ndarray) -> np.ndarray:

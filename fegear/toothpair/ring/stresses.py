@@ -181,11 +181,14 @@ def surface_von_mises(model: RingModel, contact: RingContact, pressure: np.ndarr
             rows = np.flatnonzero((m.at.sector == k) & loaded)
             u = fields[g].get(int(k))
             if u is not None:
-                eps_fe[rows] = side.rows(m.at.local[rows], tangent[rows], strain=True) @ u
+                eps_fe[rows] = side.rows_at(m.cells.take(rows), tangent[rows], strain=True) @ u
         eps_hp = np.zeros(contact.npoints)
         for k, grid in enumerate(contact.grids):
             blk = contact.block(k)
-            eps_hp[blk] = strain_matrix(grid.s, m.depth[blk], grid.s, E, nu) @ pressure[blk]
+            on = np.flatnonzero(loaded[blk])    # only these are read
+            if len(on):
+                eps_hp[blk.start + on] = strain_matrix(grid.s[on], m.depth[blk][on], grid.s,
+                                                       E, nu) @ pressure[blk]
         sig_t = E * (eps_fe - eps_hp) - pressure
         out[g] = np.where(loaded, np.sqrt(pressure ** 2 + sig_t ** 2 + pressure * sig_t), 0.0)
     return out
