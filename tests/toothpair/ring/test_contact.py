@@ -124,7 +124,6 @@ def _assembled(sol, grids, probe_columns):
 
 def _solve(sol, c):
     d = sol.detail
-    p = d.case.params
     first = d.solution.rotation   # any start within reach settles to the same rotation
     return contact.solve_ring_contact(d.model, c, d.case.torque * 1e3, first * 0.9,
                                       guess=first)
