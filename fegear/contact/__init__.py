@@ -60,6 +60,6 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "build": ("build_contact",),
     "solve": ("ContactSolution", "ContactPatch", "solve_contact", "first_touch",
               "nodal_pressure", "forces_from_body"),
-    "search": ("locate_on_facets", "p2_edge_shape"),
+    "search": ("locate_on_facets", "FacetLocator", "p2_edge_shape"),
     "halfplane": ("approach_matrix", "strain_matrix", "surface_matrix", "gap_contact"),
 })

@@ -20,33 +20,45 @@ LOCATE_CANDIDATES = 16  # chord pieces tried per point first (then 8×, 64×, �
 def nearest_chords(a: np.ndarray, ab: np.ndarray, y: np.ndarray
                    ) -> tuple[np.ndarray, np.ndarray]:
     """Per point y (n, 2): the chord a + t·ab (t ∈ [0, 1]) nearest to it and the unclipped
-    t of its foot.
+    t of its foot (:class:`Chords`, for chords searched once)."""
+    return Chords(a, ab).nearest(y)
 
-    Chords longer than the mean are cut into pieces no longer than it, and the nearest chord is
-    searched among the owners of the ``LOCATE_CANDIDATES`` pieces with the nearest midpoints.
-    The result is sure when the farthest of those midpoints is at least the best distance plus
-    half the longest piece away (the foot on the nearest chord lies on some piece, whose
-    midpoint is then no farther); the other points are searched again among eight times as
-    many pieces, up to all of them."""
-    length = np.sqrt(np.sum(ab * ab, axis=1))
-    count = np.ceil(length / max(length.mean(), 1e-300)).astype(np.int64).clip(1)
-    owner = np.repeat(np.arange(len(a)), count)
-    within = np.arange(len(owner)) - np.repeat(np.cumsum(count) - count, count)
-    mid = a[owner] + ((within + 0.5) / count[owner])[:, None] * ab[owner]
-    half = 0.5 * np.max(length / count)
-    tree = cKDTree(mid)
-    best = np.empty(len(y), dtype=np.int64)
-    todo, k = np.arange(len(y)), LOCATE_CANDIDATES
-    while len(todo):
-        k = min(k, len(owner))
-        reach, cand = tree.query(y[todo], k=k)
-        reach, cand = reach.reshape(len(todo), k), cand.reshape(len(todo), k)
-        best[todo], dist = _nearest_chord(a, ab, y[todo], owner[cand])
-        if k == len(owner):
-            break
-        todo, k = todo[reach[:, -1] < dist + half], 8 * k
-    t = np.einsum("qd,qd->q", y - a[best], ab[best]) / np.sum(ab[best] ** 2, axis=1)
-    return best, t
+
+class Chords:
+    """Chords a + t·ab (t ∈ [0, 1]) and a k-d tree over their pieces, for :meth:`nearest`:
+    chords longer than the mean are cut into pieces no longer than it, and the nearest chord
+    is searched among the owners of the ``LOCATE_CANDIDATES`` pieces with the nearest
+    midpoints. The result is sure when the farthest of those midpoints is at least the best
+    distance plus half the longest piece away (the foot on the nearest chord lies on some
+    piece, whose midpoint is then no farther); the other points are searched again among
+    eight times as many pieces, up to all of them. A caller that searches the same chords
+    again and again (a template's profile, at every position) keeps one."""
+
+    def __init__(self, a: np.ndarray, ab: np.ndarray) -> None:
+        self.a, self.ab = a, ab
+        length = np.sqrt(np.sum(ab * ab, axis=1))
+        count = np.ceil(length / max(length.mean(), 1e-300)).astype(np.int64).clip(1)
+        self.owner = np.repeat(np.arange(len(a)), count)
+        within = np.arange(len(self.owner)) - np.repeat(np.cumsum(count) - count, count)
+        mid = a[self.owner] + ((within + 0.5) / count[self.owner])[:, None] * ab[self.owner]
+        self.half = 0.5 * np.max(length / count)
+        self.tree = cKDTree(mid)
+
+    def nearest(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Per point y (n, 2): the nearest chord and the unclipped t of its foot."""
+        a, ab, owner = self.a, self.ab, self.owner
+        best = np.empty(len(y), dtype=np.int64)
+        todo, k = np.arange(len(y)), LOCATE_CANDIDATES
+        while len(todo):
+            k = min(k, len(owner))
+            reach, cand = self.tree.query(y[todo], k=k)
+            reach, cand = reach.reshape(len(todo), k), cand.reshape(len(todo), k)
+            best[todo], dist = _nearest_chord(a, ab, y[todo], owner[cand])
+            if k == len(owner):
+                break
+            todo, k = todo[reach[:, -1] < dist + self.half], 8 * k
+        t = np.einsum("qd,qd->q", y - a[best], ab[best]) / np.sum(ab[best] ** 2, axis=1)
+        return best, t
 
 
 def _nearest_chord(a: np.ndarray, ab: np.ndarray, y: np.ndarray,
@@ -83,18 +95,34 @@ def facet_curve(body: Body, facets: np.ndarray, s: np.ndarray):
 def locate_on_facets(body: Body, facets: np.ndarray,
                      y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Facet (from ``facets``) and local coordinate under each point y; s outside [0, 1] means
-    the point is not covered by these facets."""
-    nodes = facet_nodes(body.mesh, facets)
-    a = body.mesh.doflocs.T[nodes[:, 0]]
-    best, s = nearest_chords(a, body.mesh.doflocs.T[nodes[:, 1]] - a, np.asarray(y, float))
-    f = facets[best]
-    for _ in range(4):  # Newton on the quadratic facet curve
-        xs, dx, _ = facet_curve(body, f, s)
-        d2 = np.einsum("k,nkd->nd", np.array([4.0, 4.0, -8.0]),
-                       body.mesh.doflocs.T[facet_nodes(body.mesh, f)])
-        r = xs - y
-        s = s - np.sum(r * dx, axis=1) / (np.sum(dx * dx, axis=1) + np.sum(r * d2, axis=1))
-    return f, s
+    the point is not covered by these facets (:class:`FacetLocator`, for facets searched
+    once)."""
+    return FacetLocator(body.mesh, facets).locate(y)
+
+
+class FacetLocator:
+    """Quadratic ``facets`` of ``mesh`` and their chords' search tree, formed once: the
+    nearest chord first, then Newton on the quadratic facet curve."""
+
+    def __init__(self, mesh, facets: np.ndarray) -> None:
+        self.mesh, self.facets = mesh, np.asarray(facets)
+        nodes = facet_nodes(mesh, self.facets)
+        a = mesh.doflocs.T[nodes[:, 0]]
+        self.chords = Chords(a, mesh.doflocs.T[nodes[:, 1]] - a)
+
+    def locate(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Facet and local coordinate under each point y (see :func:`locate_on_facets`)."""
+        y = np.asarray(y, float)
+        best, s = self.chords.nearest(y)
+        f = self.facets[best]
+        X = self.mesh.doflocs.T[facet_nodes(self.mesh, f)]     # (n, 3, 2)
+        d2 = np.einsum("k,nkd->nd", np.array([4.0, 4.0, -8.0]), X)
+        for _ in range(4):  # Newton on the quadratic facet curve
+            xs = np.einsum("nk,nkd->nd", p2_edge_shape(s), X)
+            dx = np.einsum("nk,nkd->nd", _p2_edge_dshape(s), X)
+            r = xs - y
+            s = s - np.sum(r * dx, axis=1) / (np.sum(dx * dx, axis=1) + np.sum(r * d2, axis=1))
+        return f, s
 
 
 def ordered_boundary(body: Body, name: str) -> tuple[np.ndarray, np.ndarray]:

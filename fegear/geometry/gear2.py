@@ -14,7 +14,7 @@ middle of a tooth space (radius ``r0 + 2 e1``).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
+from functools import lru_cache
 
 import numpy as np
 
@@ -169,13 +169,12 @@ class Cycloid:
             raise GeometryError("gear-2 polar inversion did not converge")
         return xi
 
-    @cached_property
+    @property
     def _polar_table(self) -> tuple[np.ndarray, np.ndarray] | None:
         """θ(ξ) over one pitch, ξ from 0 to 2π/z (θ runs over the same range: w(0) = 0), at
-        POLAR_TABLE intervals; None where θ(ξ) is not increasing (not star-shaped)."""
-        xi = np.linspace(0.0, 2.0 * np.pi / self.z, POLAR_TABLE + 1)
-        theta = self.polar_angle(xi)
-        return (theta, xi) if np.all(np.diff(theta) > 0) else None
+        POLAR_TABLE intervals; None where θ(ξ) is not increasing (not star-shaped). Kept per
+        curve's numbers: callers make a new curve of the same pair at every position."""
+        return _polar_table(self.r0, self.e1, self.e2, self.z, self.d2)
 
     def _xi_guess(self, theta: np.ndarray) -> np.ndarray:
         """Where :meth:`xi_at_angle`'s Newton iterations start: the pitch table's linear
@@ -241,6 +240,16 @@ class Cycloid:
             xi1 = xi0 + 2 * np.pi
         xi = adaptive_parameters(lambda s: self.derivatives(s, 2), xi0, xi1, chord_error)
         return self.point(xi)
+
+
+@lru_cache(maxsize=16)
+def _polar_table(r0: float, e1: float, e2: float, z: int, d2: float
+                 ) -> tuple[np.ndarray, np.ndarray] | None:
+    """:attr:`Cycloid._polar_table` of the curve of these numbers."""
+    curve = Cycloid(r0, e1, e2, z, d2)
+    xi = np.linspace(0.0, 2.0 * np.pi / z, POLAR_TABLE + 1)
+    theta = curve.polar_angle(xi)
+    return (theta, xi) if np.all(np.diff(theta) > 0) else None
 
 
 #: a polyline longer than this is refused: the curve has a cusp (random admissible-looking

@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from ...contact import locate_on_facets, p2_edge_shape
+from ...contact import FacetLocator, p2_edge_shape
 from ...fe import Cells, CyclicBody, Probe, facet_nodes
 from ...planar import rotate
 from .template import Template
@@ -48,13 +48,6 @@ class LoadBlock:
         return f
 
 
-@dataclass(frozen=True)
-class _Mesh:
-    """What :func:`~fegear.contact.search.locate_on_facets` needs of a body: its mesh."""
-
-    mesh: object
-
-
 @dataclass(eq=False)
 class GearSide:
     """A gear of the ring: ``body`` (the cyclic template) and its ``template``; ``count``
@@ -63,6 +56,7 @@ class GearSide:
     body: CyclicBody
     template: Template
     facets: np.ndarray = field(init=False, repr=False)      # the template's profile facets
+    on_facets: FacetLocator = field(init=False, repr=False)  # … and their search tree
     probe: Probe = field(init=False, repr=False)
     response_s: float = 0.0                                 # time spent forming responses
     _column: np.ndarray = field(init=False, repr=False)     # template dof → response column
@@ -74,6 +68,7 @@ class GearSide:
     def __post_init__(self) -> None:
         m = self.body.mesh
         self.facets = np.concatenate([m.boundaries[n] for n in self.template.profile])
+        self.on_facets = FacetLocator(m, self.facets)
         self.probe = Probe(m)
         self._column = np.full(self.body.ndofs, -1, dtype=np.int64)
         self._X = []
@@ -96,7 +91,7 @@ class GearSide:
 
     def facet_size(self, local: np.ndarray) -> np.ndarray:
         """Length (mm) of the template profile facet under each template-frame point."""
-        fac, _ = locate_on_facets(_Mesh(self.body.mesh), self.facets, local)
+        fac, _ = self.on_facets.locate(local)
         ends = self.body.mesh.p[:, self.body.mesh.facets[:, fac]]
         return np.linalg.norm(ends[:, 1] - ends[:, 0], axis=0)
 
@@ -107,7 +102,7 @@ class GearSide:
         ``size[i, j]`` N per unit value (both (n, c))."""
         where = self.locate(x)
         d_local = rotate(direction, -where.turn)
-        fac, s = locate_on_facets(_Mesh(self.body.mesh), self.facets, where.local)
+        fac, s = self.on_facets.locate(where.local)
         shape = p2_edge_shape(np.clip(s, 0.0, 1.0))
         nodes = facet_nodes(self.body.mesh, fac)
         out = {}
