@@ -34,6 +34,7 @@ from numpy.polynomial import chebyshev as cheb
 
 from ..errors import ParameterError
 from .envelope import Branch, BranchPoints
+from .roots import brentq
 
 RUN_IN = 0.2             # the linear shape's quadratic run-in, as a fraction of the extent
 CHEB_DEGREE = 64         # Chebyshev degree of the arc length over a relief zone
@@ -193,7 +194,7 @@ def relief_zones(branch: Branch, tip_ends: list[tuple[float, float]], amount: fl
                 raise ParameterError("relief_extent", length,
                                      f"0 < relief-extent < {flank:.4g} mm (the working flank "
                                      "from root to tip end)")
-            start = _brentq(_short_of(along, end, length), root, end, xtol=1e-15, rtol=1e-15)
+            start = brentq(_short_of(along, end, length), root, end, xtol=1e-15, rtol=1e-15)
         stop = _past(branch, end, toward, BEYOND * length + BEYOND_FLOOR * module)
         arc, along = _arc_length(branch, root, stop, toward)
         arc[0] -= along(start)          # w = 0 at the start
@@ -253,12 +254,4 @@ def _radius_point(branch: Branch, root: float, end: float, radius: float) -> flo
     fa, fb = f(root), f(end)
     if fa * fb >= 0:
         return None
-    return _brentq(f, root, end, xtol=1e-15, rtol=1e-15)
-
-
-def _brentq(*args, **kwargs) -> float:
-    """scipy's Brent root finder, imported when first needed (a refused input answers
-    before scipy is loaded)."""
-    from scipy.optimize import brentq
-
-    return brentq(*args, **kwargs)
+    return brentq(f, root, end, xtol=1e-15, rtol=1e-15)

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .envelope import Branch
+from .roots import brentq
 
 SAMPLES_PER_RUN = 1024
 
@@ -47,7 +48,7 @@ def split_runs(b: Branch, index: int, n: int = SAMPLES_PER_RUN) -> list[Run]:
         return float(b.evaluate(np.array([x])).disc[0])
 
     # the stretches with a conjugate point, ends at the discriminant's exact zeros
-    folds = [_brentq(disc, xi[i], xi[i + 1], xtol=1e-15)
+    folds = [brentq(disc, xi[i], xi[i + 1], xtol=1e-15)
              for i in np.nonzero(np.sign(pts.disc[:-1]) * np.sign(pts.disc[1:]) < 0)[0]]
     edges = np.concatenate([[xi[0]], folds, [xi[-1]]])
     stretches = [(a, c) for a, c in zip(edges[:-1], edges[1:])
@@ -74,7 +75,7 @@ def _monotone_runs(b: Branch, index: int, lo: float, hi: float, n: int) -> list[
 
     cuts = [lo, hi]
     for i in np.nonzero(np.sign(rate[:-1]) * np.sign(rate[1:]) < 0)[0]:
-        cuts.append(_brentq(g, xi[i], xi[i + 1], xtol=1e-15))
+        cuts.append(brentq(g, xi[i], xi[i + 1], xtol=1e-15))
     for i in np.nonzero(np.abs(np.diff(pts.beta)) > np.pi)[0]:
         a, c = xi[i], xi[i + 1]
         b_lo = beta(a)
@@ -89,11 +90,3 @@ def _monotone_runs(b: Branch, index: int, lo: float, hi: float, n: int) -> list[
             continue
         runs.append(Run(index, float(a), float(c), bool(g(0.5 * (a + c)) > 0)))
     return runs
-
-
-def _brentq(*args, **kwargs) -> float:
-    """scipy's Brent root finder, imported when first needed (a refused input answers
-    before scipy is loaded)."""
-    from scipy.optimize import brentq
-
-    return brentq(*args, **kwargs)

@@ -132,3 +132,31 @@ def test_a_singular_point_of_the_envelope_is_refused_by_name(monkeypatch, baseli
     monkeypatch.setattr(Branch, "evaluate", singular_at_the_first_point)
     with pytest.raises(GeometryError, match="cusp"):
         baseline_profile.period_polyline(1e-3)
+
+
+def test_brents_root_is_scipys_to_the_bit():
+    """fegear's own Brent (``geometry/roots.py``: scipy.optimize costs 0.23 s to import) takes
+    scipy's steps: the same root, bit for bit, at the tolerances the geometry asks for."""
+    import math
+
+    from scipy.optimize import brentq as scipys
+
+    from fegear.errors import GeometryError
+    from fegear.geometry.roots import brentq
+
+    rng = np.random.default_rng(1)
+    functions = [lambda x, c=c, d=d: math.sin(c * x) - d for c, d in rng.uniform(0.5, 3, (40, 2))]
+    functions += [lambda x, c=c: x ** 3 - c for c in rng.uniform(0.1, 5, 40)]
+    functions += [lambda x, c=c: math.exp(x) - c * x - 2 for c in rng.uniform(0.1, 1, 40)]
+    compared = 0
+    for f in functions:
+        for a, b in ((-1.3, 2.1), (0.0, 3.0), (-2.0, 0.7)):
+            if f(a) * f(b) >= 0:
+                continue
+            for xtol, rtol in ((1e-15, 1e-15), (1e-15, 4 * np.finfo(float).eps), (1e-6, 1e-10)):
+                assert brentq(f, a, b, xtol=xtol, rtol=rtol) == scipys(f, a, b, xtol=xtol,
+                                                                       rtol=rtol)
+                compared += 1
+    assert compared > 300
+    with pytest.raises(GeometryError, match="different signs"):
+        brentq(lambda x: x * x + 1.0, -1.0, 1.0)
