@@ -7,7 +7,7 @@ from collections.abc import Callable
 from dataclasses import replace
 
 from ..geometry import Gear1Profile
-from .case import HEADLINE, PairSolution
+from .case import HEADLINE, PairSolution, SolveCase
 from .inputs import QUALITY
 from .pair import solve_pair
 
@@ -34,18 +34,29 @@ def mesh_ratio(coarse: str, fine: str) -> float:
     return LEVELS[coarse].root / LEVELS[fine].root
 
 
+def second_quality(quality: str) -> str:
+    """The quality the estimate solves again at: the next coarser one (``fast`` for
+    ``coarse``: the next finer)."""
+    levels = tuple(QUALITY)  # coarsest first
+    k = levels.index(quality)
+    return levels[k - 1] if k > 0 else levels[1]
+
+
 def second_level_estimate(sol: PairSolution, profile: Gear1Profile | None = None,
                           solve: Callable = solve_pair,
-                          ratio: Callable[[str, str], float] = mesh_ratio
+                          ratio: Callable[[str, str], float] = mesh_ratio,
+                          second: dict[str, float] | None = None
                           ) -> tuple[dict[str, float], str]:
-    """Solve the same case at the next coarser quality (``fast`` for ``coarse``: the next
-    finer) and estimate the headline errors (%) of ``sol``. Returns the estimate and the
-    other quality. ``solve`` and ``ratio``: the model's solve and its mesh ratio between two
-    qualities (the product's by default; a peer passes its own)."""
+    """Solve the same case at the :func:`second_quality` and estimate the headline errors
+    (%) of ``sol``. Returns the estimate and the other quality. ``solve`` and ``ratio``: the
+    model's solve and its mesh ratio between two qualities (the product's by default; a peer
+    passes its own); ``second``: the headline of that second solve if it is solved already
+    (:func:`second_headline`, in another process beside the first)."""
     levels = tuple(QUALITY)  # coarsest first
     k = levels.index(sol.case.quality)
-    other = levels[k - 1] if k > 0 else levels[1]
-    second = solve(replace(sol.case, quality=other), profile).headline()
+    other = second_quality(sol.case.quality)
+    if second is None:
+        second = solve(replace(sol.case, quality=other), profile).headline()
     own = sol.headline()
     if k > 0:
         return error_estimate(own, second, ratio(other, levels[k])), other
@@ -53,3 +64,9 @@ def second_level_estimate(sol: PairSolution, profile: Gear1Profile | None = None
     r = ratio(levels[0], other)
     finer = error_estimate(second, own, r)
     return {key: r ** 2 * v * second[key] / own[key] for key, v in finer.items()}, other
+
+
+def second_headline(case: SolveCase) -> dict[str, float]:
+    """The headline of ``case`` solved at its :func:`second_quality`: the estimate's second
+    solve, for a worker process (its profile built there)."""
+    return solve_pair(replace(case, quality=second_quality(case.quality))).headline()

@@ -77,8 +77,8 @@ def _tip_round(params, given: float | None) -> float | None:
 class Solved:
     """A solved job before any file is written: the solutions at every position, the one the
     pictures, VTUs and the error estimate take (the largest gear-1 root stress), the JSON
-    summary (``fegear solve --json``), the cycle rows (None for one position) and the time of
-    the solve (s)."""
+    summary (``fegear solve --json``), the cycle rows (None for one position), the time of
+    the solve (s) and whether the estimate's second solve ran beside the first."""
 
     job: Job
     solutions: tuple
@@ -86,52 +86,71 @@ class Solved:
     summary: dict
     rows: list[dict] | None
     solve_s: float
+    beside: bool = False
 
 
 @dataclass(frozen=True)
 class JobResult:
     """What a solve produced: the JSON summary (``fegear solve --json``), the files written
-    (name → path), the cycle rows (``--positions``; else None) and the time of the solve
-    itself (s, without writing files)."""
+    (name → path), the cycle rows (``--positions``; else None), the time of the solve
+    itself (s, without writing files) and whether the estimate's second solve ran beside
+    the first (:func:`solve_job`)."""
 
     summary: dict
     files: dict[str, Path]
     rows: list[dict] | None
     solve_s: float
+    beside: bool = False     # the estimate's second solve ran in a worker beside the first
 
 
 def run_job(job: Job, out: Path | None, fields: bool = True,
-            pictures: bool = True) -> JobResult:
+            pictures: bool = True, beside: bool = False) -> JobResult:
     """Solve ``job``; write summary.json, and the VTUs (``fields``) and pictures
     (``pictures``) into ``out`` unless it is None. ``out`` is made only after the solve, so a
-    solve that fails leaves nothing behind."""
+    solve that fails leaves nothing behind. ``beside``: see :func:`solve_job`."""
     progress.plan(2 + len(job.betas) + job.estimate + (out is not None))
-    solved = solve_job(job)
+    solved = solve_job(job, beside)
     files = {} if out is None else write_job(solved, out, fields, pictures)
-    return JobResult(solved.summary, files, solved.rows, solved.solve_s)
+    return JobResult(solved.summary, files, solved.rows, solved.solve_s, solved.beside)
 
 
-def solve_job(job: Job) -> Solved:
-    """Solve ``job`` at its positions, with its error estimate; no file written."""
+def solve_job(job: Job, beside: bool = False) -> Solved:
+    """Solve ``job`` at its positions, with its error estimate; no file written. ``beside``
+    (a one-off command on a machine with a second core): the estimate's second solve of one
+    position runs in a worker process while this one solves, started first (a cycle's
+    estimate needs the cycle's worst position, known only at its end). Should the worker
+    fail in any way, the second solve is made here, as without it."""
     from ..geometry import gear1_profile
-    from .estimate import second_level_estimate
+    from .estimate import second_headline, second_level_estimate
     from .pair import solve_positions
     from .report import cycle_rows, cycle_summary, pair_summary
 
     t0 = time.perf_counter()
-    progress.stage("gear 1's profile")
-    profile = gear1_profile(job.case.params)
-    sols = solve_positions(job.case, job.betas, profile)
-    cycle_s = time.perf_counter() - t0
-    # pictures, VTUs and the error estimate at the position of the largest gear-1 root stress
-    sol = max(sols, key=lambda s: s.root_stress[0])
-    estimate, other, estimate_s = None, None, None
-    if job.estimate:
-        t1 = time.perf_counter()
-        progress.stage(f"error estimate: the same case again at quality {_second(job)}")
-        with progress.reporting(None):  # one stage, however the second solve goes
-            estimate, other = second_level_estimate(sol, profile)
-        estimate_s = time.perf_counter() - t1
+    pool = None
+    if beside and job.estimate and len(job.betas) == 1:
+        from ..workers import local_pool
+
+        pool = local_pool(1)
+        second = pool.submit(second_headline, job.case)
+    try:
+        progress.stage("gear 1's profile")
+        profile = gear1_profile(job.case.params)
+        sols = solve_positions(job.case, job.betas, profile)
+        cycle_s = time.perf_counter() - t0
+        # pictures, VTUs and the error estimate at the position of the largest gear-1 root
+        # stress
+        sol = max(sols, key=lambda s: s.root_stress[0])
+        estimate, other, estimate_s = None, None, None
+        if job.estimate:
+            t1 = time.perf_counter()
+            progress.stage(f"error estimate: the same case again at quality {_second(job)}")
+            headline = _result(second) if pool is not None else None
+            with progress.reporting(None):  # one stage, however the second solve goes
+                estimate, other = second_level_estimate(sol, profile, second=headline)
+            estimate_s = time.perf_counter() - t1
+    finally:
+        if pool is not None:
+            pool.stop()
     summary = pair_summary(sol, estimate, time.perf_counter() - t0, other, job.allowables)
     summary["estimate_s"] = estimate_s
     rows = None
@@ -139,7 +158,16 @@ def solve_job(job: Job) -> Solved:
         rows = cycle_rows(sols, job.allowables)
         summary["cycle"] = {"positions": len(sols), "solve_s": cycle_s,
                             **cycle_summary(rows), "rows": rows}
-    return Solved(job, tuple(sols), sol, summary, rows, time.perf_counter() - t0)
+    return Solved(job, tuple(sols), sol, summary, rows, time.perf_counter() - t0,
+                  pool is not None)
+
+
+def _result(future) -> dict | None:
+    """A worker's second headline, or None if it failed (the caller solves it itself)."""
+    try:
+        return future.result()
+    except Exception:   # noqa: BLE001 - any failure there is retried here, where it shows
+        return None
 
 
 def write_job(solved: Solved, out: Path, fields: bool = True,

@@ -132,8 +132,9 @@ def _edge_summary(loaded) -> dict:
             "max_pressure_MPa": max((t.edge_p_MPa for t in edge), default=0.0)}
 
 
-def pair_table(summary: dict) -> str:
-    """Short plain-text report of a summary (the `fegear solve` output)."""
+def pair_table(summary: dict, beside: bool = False) -> str:
+    """Short plain-text report of a summary (the `fegear solve` output); ``beside``: the
+    estimate's second solve ran in a worker beside the first (its time is the wait for it)."""
     i = summary["inputs"]
     est = summary["error_estimate_by_stress_pct"] or {}
 
@@ -210,7 +211,7 @@ def pair_table(summary: dict) -> str:
               f"iterations {summary['iterations']}, max penetration "
               f"{summary['max_penetration_um']:.3g} µm",
               "time [s]: " + ", ".join(f"{k} {v:.2f}" for k, v in summary["timings_s"].items() if v)
-              + _estimate_time(summary)
+              + _estimate_time(summary, beside)
               + (f"; solve wall {summary['wall_s']:.1f}" if summary["wall_s"] else "")]
     return "\n".join(lines)
 
@@ -225,10 +226,13 @@ def _tangent(summary: dict) -> str:
     return "" if k is None else f" secant, {k:.4g} tangent (dT/dθ, the contact set kept)"
 
 
-def _estimate_time(summary: dict) -> str:
+def _estimate_time(summary: dict, beside: bool = False) -> str:
     """The error estimate's second solve in the time line, if there was one."""
     if not summary.get("estimate_s"):
         return ""
+    if beside:
+        return (f"; error estimate (the case again at {summary['error_estimate_from']}, beside "
+                f"the solve in a second process) waited for {summary['estimate_s']:.2f}")
     return (f"; error estimate (the case again at {summary['error_estimate_from']}) "
             f"{summary['estimate_s']:.2f}")
 

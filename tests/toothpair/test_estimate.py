@@ -1,7 +1,8 @@
 """The error estimate is honest (issue 34): on the baseline and two designs of another shape (a
 taller tooth pressing on its round at 3.4 GPa, a smaller module with fatter teeth), every
 headline stress at `fine` lies inside the estimate `standard` prints for it (slow: three
-`standard` solves with their estimates and three `fine` ones, about 1.5 minutes)."""
+`standard` solves with their estimates and three `fine` ones, about 1.5 minutes); and its second
+solve, made in a worker beside the first, gives the same numbers."""
 
 import pytest
 
@@ -21,3 +22,41 @@ def test_the_fine_value_lies_inside_the_standard_estimate(values):
     for key, pct in estimate.items():
         off = 100.0 * abs(fine[key] / standard[key] - 1.0)
         assert off <= pct, (key, standard[key], fine[key], pct)
+
+
+def _numbers(summary: dict) -> dict:
+    """A summary without its times."""
+    return {k: v for k, v in summary.items() if not k.endswith("_s") and k != "timings_s"}
+
+
+def test_the_second_solve_beside_the_first_gives_the_same_estimate():
+    # `fegear solve` on a second core: the estimate's second solve runs in a worker process
+    # (spawned: it imports fegear itself) while this one solves; the numbers are the same
+    job = prepare_job({"quality": "coarse", "torque": 150})
+    alone, beside = solve_job(job), solve_job(job, beside=True)
+    assert beside.beside and not alone.beside
+    assert _numbers(beside.summary) == _numbers(alone.summary)
+
+
+def test_a_worker_that_fails_leaves_the_second_solve_to_this_process(monkeypatch):
+    from concurrent.futures import Future
+
+    import fegear.workers as workers
+
+    stopped = []
+
+    class Failing:
+        def submit(self, fn, *args):
+            f = Future()
+            f.set_exception(RuntimeError("stand-in: the worker died"))
+            return f
+
+        def stop(self):
+            stopped.append(True)
+
+    monkeypatch.setattr(workers, "local_pool", lambda n: Failing())
+    job = prepare_job({"quality": "coarse", "torque": 150})
+    solved = solve_job(job, beside=True)
+    assert stopped == [True]
+    assert _numbers(solved.summary) == _numbers(solve_job(job).summary)
+    assert solved.summary["error_estimate_by_stress_pct"]
