@@ -139,7 +139,9 @@ class BodyMesh:
 def gmsh_session() -> Iterator[object]:
     """Initialise gmsh quietly and always finalise it, whatever happens inside. gmsh's
     initialisation sets SIGTERM back to the system's default (the process dies without a
-    word, its temporary files left): the handlers from before are put back."""
+    word, its temporary files left) and SIGPIPE too (a write to a closed pipe then kills the
+    process instead of raising BrokenPipeError, as Python's own setting does): the handlers
+    from before are put back."""
     import gmsh
 
     held = _signal_handlers()
@@ -155,11 +157,11 @@ def gmsh_session() -> Iterator[object]:
 
 
 def _signal_handlers() -> dict:
-    """Python's handlers of SIGTERM and SIGINT (none outside the main thread, where they
-    cannot be set)."""
+    """Python's handlers of SIGTERM, SIGINT and SIGPIPE (none outside the main thread, where
+    they cannot be set)."""
     if threading.current_thread() is not threading.main_thread():
         return {}
-    return {s: h for s in (signal.SIGTERM, signal.SIGINT)
+    return {s: h for s in (signal.SIGTERM, signal.SIGINT, signal.SIGPIPE)
             if (h := signal.getsignal(s)) is not None}
 
 

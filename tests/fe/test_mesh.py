@@ -2,6 +2,8 @@
 Invariants only (areas, lengths, node positions), never node counts."""
 
 import math
+import os
+import signal
 from dataclasses import replace
 
 import numpy as np
@@ -190,3 +192,18 @@ def test_periodic_cuts_carry_the_same_nodes_turned_by_one_pitch():
         nodes = np.unique(facet_nodes(mesh.mesh, mesh.mesh.boundaries[name]))
         assert sorted(pairs[:, col]) == sorted(nodes)
     assert len(pairs) % 2 == 1  # P2 on a line: corners and midside nodes alternate
+
+
+@pytest.mark.skipif(not os.path.exists("/proc/self/status"), reason="reads Linux's /proc")
+def test_meshing_leaves_a_closed_pipe_to_python_not_to_the_default_signal_action():
+    # gmsh's initialisation sets SIGPIPE back to the system's default, at the C level (Python's
+    # own record still says ignored): a write to a closed pipe then killed the process
+    # silently, as `fegear solve` with its estimate in a worker found at exit after a SIGTERM
+    def ignored() -> bool:
+        with open("/proc/self/status") as f:
+            mask = next(line for line in f if line.startswith("SigIgn"))
+        return bool(int(mask.split()[1], 16) >> (signal.SIGPIPE - 1) & 1)
+
+    assert ignored()
+    mesh_bodies([half_disk()])
+    assert ignored()
