@@ -29,6 +29,13 @@ from .dofs import facet_nodes
 
 log = logging.getLogger(__name__)
 
+#: how precisely gmsh integrates the size field along each curve to place its nodes (its
+#: Mesh.LcIntegrationPrecision). Its default, 1e-9, spent 0.10 of a contact submodel's 0.11 s
+#: there and half of the templates' meshing; at 1e-5 the nodes move by a fraction of the
+#: field's own accuracy and the baseline's headline stresses by 5e-5 at most
+#: (docs/benchmark.md, "Meshing a curve")
+LC_PRECISION = 1e-5
+
 _TRIANGLE6 = 9
 _LINE3 = 8
 
@@ -265,6 +272,7 @@ def _mesh_one(gmsh, body: BodyGeometry) -> BodyMesh:
     opt("Mesh.MeshSizeFromCurvature", 0)
     opt("Mesh.MeshSizeMax", body.size)
     opt("Mesh.Algorithm", 6)
+    opt("Mesh.LcIntegrationPrecision", LC_PRECISION)
     opt("Mesh.ElementOrder", 2)
     opt("Mesh.SecondOrderLinear", 0)
     try:
