@@ -17,13 +17,6 @@ from .model import ContactError
 LOCATE_CANDIDATES = 16  # chord pieces tried per point first (then 8×, 64×, … up to all)
 
 
-def nearest_chords(a: np.ndarray, ab: np.ndarray, y: np.ndarray
-                   ) -> tuple[np.ndarray, np.ndarray]:
-    """Per point y (n, 2): the chord a + t·ab (t ∈ [0, 1]) nearest to it and the unclipped
-    t of its foot (:class:`Chords`, for chords searched once)."""
-    return Chords(a, ab).nearest(y)
-
-
 class Chords:
     """Chords a + t·ab (t ∈ [0, 1]) and a k-d tree over their pieces, for :meth:`nearest`:
     chords longer than the mean are cut into pieces no longer than it, and the nearest chord

@@ -178,8 +178,8 @@ class Cycloid:
 
     def _xi_guess(self, theta: np.ndarray) -> np.ndarray:
         """Where :meth:`xi_at_angle`'s Newton iterations start: the pitch table's linear
-        interpolation (within about 1e-9 rad at 4096 intervals a pitch, so two steps end it,
-        not six from ξ = θ), else θ."""
+        interpolation (within about 1e-9 rad at 4096 intervals a pitch, so three steps end
+        it, not six from ξ = θ), else θ."""
         table = self._polar_table
         if table is None:
             return theta.copy()

@@ -17,7 +17,7 @@ from .. import progress
 from ..fe import Allowables
 from ..geometry import admissible_pair
 from .case import SolveCase, cycle_positions
-from .inputs import PAIR_INPUTS, QUALITY, SOLVE_INPUTS, TIP_ROUND
+from .inputs import PAIR_INPUTS, SOLVE_INPUTS, TIP_ROUND
 from .safety import DEFAULT_ALLOWABLES, allowables_of
 
 PAIR_NAMES = {row.name for row in PAIR_INPUTS}
@@ -86,7 +86,7 @@ class Solved:
     summary: dict
     rows: list[dict] | None
     solve_s: float
-    beside: bool = False
+    beside: bool = False   # the estimate's second solve came from a worker beside the first
 
 
 @dataclass(frozen=True)
@@ -121,12 +121,12 @@ def solve_job(job: Job, beside: bool = False) -> Solved:
     estimate needs the cycle's worst position, known only at its end). Should the worker
     fail in any way, the second solve is made here, as without it."""
     from ..geometry import gear1_profile
-    from .estimate import second_headline, second_level_estimate
+    from .estimate import second_headline, second_level_estimate, second_quality
     from .pair import solve_positions
     from .report import cycle_rows, cycle_summary, pair_summary
 
     t0 = time.perf_counter()
-    pool = None
+    pool = headline = None
     if beside and job.estimate and len(job.betas) == 1:
         from ..workers import local_pool
 
@@ -143,7 +143,8 @@ def solve_job(job: Job, beside: bool = False) -> Solved:
         estimate, other, estimate_s = None, None, None
         if job.estimate:
             t1 = time.perf_counter()
-            progress.stage(f"error estimate: the same case again at quality {_second(job)}")
+            progress.stage("error estimate: the same case again at quality "
+                           f"{second_quality(job.case.quality)}")
             headline = _result(second) if pool is not None else None
             with progress.reporting(None):  # one stage, however the second solve goes
                 estimate, other = second_level_estimate(sol, profile, second=headline)
@@ -159,7 +160,7 @@ def solve_job(job: Job, beside: bool = False) -> Solved:
         summary["cycle"] = {"positions": len(sols), "solve_s": cycle_s,
                             **cycle_summary(rows), "rows": rows}
     return Solved(job, tuple(sols), sol, summary, rows, time.perf_counter() - t0,
-                  pool is not None)
+                  headline is not None)
 
 
 def _result(future) -> dict | None:
@@ -200,10 +201,3 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
     files.update(write_pair_outputs(solved.solution, out, {**summary, "files": {
         k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures))
     return files
-
-
-def _second(job: Job) -> str:
-    """The quality the error estimate solves the case at again (the next coarser one;
-    ``fast`` for ``coarse``)."""
-    k = QUALITY.index(job.case.quality)
-    return QUALITY[k - 1] if k > 0 else QUALITY[1]

@@ -123,7 +123,7 @@ def test_nearest_chord_search_matches_the_search_among_all_chords(candidates, mo
     ab = np.vstack([[10.0, 0.0], np.tile([0.01, 0.0], (40, 1))])
     y = np.vstack([[0.25, 0.01], rng.uniform(-2.0, 12.0, (300, 2))])
     monkeypatch.setattr(contact, "LOCATE_CANDIDATES", candidates)
-    best, t = contact.nearest_chords(a, ab, y)
+    best, t = contact.Chords(a, ab).nearest(y)
     foot = a[best] + np.clip(t, 0, 1)[:, None] * ab[best]
     s = np.clip(np.einsum("qcd,cd->qc", y[:, None] - a, ab) / np.sum(ab * ab, axis=1), 0, 1)
     every = np.linalg.norm(a + s[..., None] * ab - y[:, None], axis=2).min(axis=1)

@@ -67,8 +67,8 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
     (their pressures zero, their columns act on nothing), else None: the caller forms them."""
     alpha = model.case.params.ratio * contact.beta
     on = np.flatnonzero(contact.formed)
-    x, A = contact.x[on], contact.A[np.ix_(on, on)] if not contact.complete else contact.A
-    w = contact.weight[on] * model.case.thickness
+    A = contact.A if contact.complete else contact.A[np.ix_(on, on)]
+    x, w = contact.x[on], contact.weight[on] * model.case.thickness
     g0, a = rigid_gap(model, x, contact.beta, alpha + theta)
     active = g0 <= g0.min() + 1e-12
     if guess is not None:

@@ -86,8 +86,8 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     kinematic angle included, about its centre). Without ``probe_columns`` (and with a fine
     grid among the ``grids``), A's columns of the probe grids' hats are not formed: the
     approach of every point under the fine grids' pressures is all a solve needs while no
-    probe point closes (:func:`~.contact.solve_ring_contact`), and the probes' columns, with
-    the sectors only they load, were about half of the influence products."""
+    probe point closes (:func:`~.contact.solve_ring_contact`); the probes' columns, with the
+    sectors only they load, were a fifth of the influence products."""
     p, case = model.case.params, model.case
     g1, g2 = model.gears
     offsets = np.cumsum([0] + [len(g) for g in grids])

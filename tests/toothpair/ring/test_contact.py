@@ -131,7 +131,7 @@ def _solve(sol, c):
 
 def test_a_contact_without_its_probe_columns_solves_as_the_complete_one(baseline_ring):
     # while no probe point closes, A's probe columns act on zero pressures: leaving them out
-    # (about half of the influence products) changes the solution only by rounding
+    # (a fifth of the influence products) changes the solution only by rounding
     from dataclasses import replace
 
     sol = solve_positions(replace(baseline_ring.case, torque=200.0), (0.0,),
