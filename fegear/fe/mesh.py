@@ -30,11 +30,9 @@ from .dofs import facet_nodes
 log = logging.getLogger(__name__)
 
 #: how precisely gmsh integrates the size field along each curve to place its nodes (its
-#: Mesh.LcIntegrationPrecision). Its default, 1e-9, spent 0.10 of a contact submodel's 0.11 s
-#: there and half of the templates' meshing; at 1e-5 the nodes move by a fraction of the
-#: field's own accuracy and the baseline's headline stresses by 5e-5 at most
-#: (docs/benchmark.md, "Meshing a curve")
-LC_PRECISION = 1e-5
+#: Mesh.LcIntegrationPrecision), by default: a body may ask for less (a contact submodel:
+#: :data:`~.submodel.CURVE_PRECISION`)
+CURVE_PRECISION = 1e-9
 
 _TRIANGLE6 = 9
 _LINE3 = 8
@@ -95,8 +93,9 @@ class Periodic:
 
 @dataclass(frozen=True)
 class BodyGeometry:
-    """A plane body: outer loop, holes, global element size ``size`` (mm), refinements and
-    periodic segment pairs."""
+    """A plane body: outer loop, holes, global element size ``size`` (mm), refinements,
+    periodic segment pairs and how precisely gmsh places the nodes along its curves
+    (:data:`CURVE_PRECISION`)."""
 
     name: str
     outer: tuple[Segment, ...]
@@ -105,6 +104,7 @@ class BodyGeometry:
     refinements: tuple[Refinement, ...] = ()
     min_quality: float = 0.15
     periodic: tuple[Periodic, ...] = ()
+    curve_precision: float = CURVE_PRECISION
 
     def segments(self) -> Iterator[Segment]:
         yield from self.outer
@@ -272,7 +272,7 @@ def _mesh_one(gmsh, body: BodyGeometry) -> BodyMesh:
     opt("Mesh.MeshSizeFromCurvature", 0)
     opt("Mesh.MeshSizeMax", body.size)
     opt("Mesh.Algorithm", 6)
-    opt("Mesh.LcIntegrationPrecision", LC_PRECISION)
+    opt("Mesh.LcIntegrationPrecision", body.curve_precision)
     opt("Mesh.ElementOrder", 2)
     opt("Mesh.SecondOrderLinear", 0)
     try:

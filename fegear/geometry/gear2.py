@@ -14,7 +14,6 @@ middle of a tooth space (radius ``r0 + 2 e1``).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 
@@ -24,7 +23,6 @@ from .parameters import PairParameters
 #: a Newton iteration in ξ is done within this many ulps of ξ (an absolute 1e-15 is below one
 #: ulp for |ξ| > 4.5, where the residual θ(ξ) − θ only rounds)
 _ULPS = 4
-POLAR_TABLE = 4096   # intervals a pitch of the table that starts the polar inversion
 
 
 def _turned(c: np.ndarray, s: np.ndarray, k: int) -> tuple[np.ndarray, np.ndarray]:
@@ -145,7 +143,7 @@ class Cycloid:
         theta = np.atleast_1d(np.asarray(theta, dtype=float))
         reach = np.arctan2(2 * self.e2 + 2 * abs(self.d2), self.r0 - 2 * self.e1) + 1e-12
         lo, hi = theta - reach, theta + reach
-        xi = self._xi_guess(theta)
+        xi = theta.copy()
         todo = np.arange(theta.size)
         for _ in range(100):
             x, t, a, b = xi[todo], theta[todo], lo[todo], hi[todo]
@@ -168,24 +166,6 @@ class Cycloid:
         if np.max(step) > 1e-12:
             raise GeometryError("gear-2 polar inversion did not converge")
         return xi
-
-    @property
-    def _polar_table(self) -> tuple[np.ndarray, np.ndarray] | None:
-        """θ(ξ) over one pitch, ξ from 0 to 2π/z (θ runs over the same range: w(0) = 0), at
-        POLAR_TABLE intervals; None where θ(ξ) is not increasing (not star-shaped). Kept per
-        curve's numbers: callers make a new curve of the same pair at every position."""
-        return _polar_table(self.r0, self.e1, self.e2, self.z, self.d2)
-
-    def _xi_guess(self, theta: np.ndarray) -> np.ndarray:
-        """Where :meth:`xi_at_angle`'s Newton iterations start: the pitch table's linear
-        interpolation (within about 1e-9 rad at 4096 intervals a pitch, so three steps end
-        it, not six from ξ = θ), else θ."""
-        table = self._polar_table
-        if table is None:
-            return theta.copy()
-        pitch = 2.0 * np.pi / self.z
-        whole = np.floor(theta / pitch) * pitch
-        return np.interp(theta - whole, *table) + whole
 
     def radius_at_angle(self, theta: np.ndarray) -> np.ndarray:
         """Exact radius R2(θ) of the curve at polar angle θ (star-shaped curves only)."""
@@ -240,16 +220,6 @@ class Cycloid:
             xi1 = xi0 + 2 * np.pi
         xi = adaptive_parameters(lambda s: self.derivatives(s, 2), xi0, xi1, chord_error)
         return self.point(xi)
-
-
-@lru_cache(maxsize=16)
-def _polar_table(r0: float, e1: float, e2: float, z: int, d2: float
-                 ) -> tuple[np.ndarray, np.ndarray] | None:
-    """:attr:`Cycloid._polar_table` of the curve of these numbers."""
-    curve = Cycloid(r0, e1, e2, z, d2)
-    xi = np.linspace(0.0, 2.0 * np.pi / z, POLAR_TABLE + 1)
-    theta = curve.polar_angle(xi)
-    return (theta, xi) if np.all(np.diff(theta) > 0) else None
 
 
 #: a polyline longer than this is refused: the curve has a cusp (random admissible-looking
