@@ -74,26 +74,27 @@ def candidate_data(params: PairParameters, shape: RoundedProfile, state, teeth,
     (teeth whose + flank has no contact point at β are left out)."""
     g2 = gear2_curve(params)
     alpha = params.ratio * beta
-    out = []
-    for c in state.teeth:
-        if c.tooth not in teeth or c.plus_point is None:
-            continue
-        x = np.array([c.plus_point])
-        o1 = np.array([0.0, params.e])
-        body1 = rotate(x - o1, -alpha)
-        phi1 = float(math.atan2(body1[0, 1], body1[0, 0]))
-        r1 = float(1.0 / shape.curvature(np.array([phi1]))[0])
-        # the gear-2 point is where that gear-1 point lands once the clearance is closed: on a
-        # nearly conformal flank the relative curvature is a small difference of two large
-        # ones, and gear 2's changes fast (the 6 µm of a baseline clearance doubled 1/R*)
-        x = rotate(x - o1, params.turn_of(c.plus_um)) + o1
-        foot = g2.closest(rotate(x, -beta))[0]
-        theta2 = float(math.atan2(foot[0, 1], foot[0, 0]))
-        xi = g2.xi_at_angle(np.array([theta2]))
-        r2 = float(g2.curvature_radius(xi)[0])
-        out.append(Candidate(c.tooth, float(c.plus_um), (float(x[0, 0]), float(x[0, 1])), phi1,
-                             theta2, r1, r2))
-    return tuple(out)
+    chosen = [c for c in state.teeth if c.tooth in teeth and c.plus_point is not None]
+    if not chosen:
+        return ()
+    # every tooth at once: the points are independent (one call each cost 0.6 ms of
+    # curvature and closest-point overhead, 9 ms a position)
+    x = np.array([c.plus_point for c in chosen])
+    o1 = np.array([0.0, params.e])
+    body1 = rotate(x - o1, -alpha)
+    phi1 = np.arctan2(body1[:, 1], body1[:, 0])
+    r1 = 1.0 / shape.curvature(phi1)
+    # the gear-2 point is where that gear-1 point lands once the clearance is closed: on a
+    # nearly conformal flank the relative curvature is a small difference of two large
+    # ones, and gear 2's changes fast (the 6 µm of a baseline clearance doubled 1/R*)
+    turns = np.array([params.turn_of(c.plus_um) for c in chosen])
+    x = np.array([rotate(x[i:i + 1] - o1, turns[i])[0] for i in range(len(chosen))]) + o1
+    foot = g2.closest(rotate(x, -beta))[0]
+    theta2 = np.arctan2(foot[:, 1], foot[:, 0])
+    r2 = g2.curvature_radius(g2.xi_at_angle(theta2))
+    return tuple(Candidate(c.tooth, float(c.plus_um), (float(x[i, 0]), float(x[i, 1])),
+                           float(phi1[i]), float(theta2[i]), float(r1[i]), float(r2[i]))
+                 for i, c in enumerate(chosen))
 
 
 def choose_teeth(state, closure_um: float, widen: int = 0) -> tuple[int, ...]:
