@@ -111,26 +111,51 @@ def window(samples: ToothSamples, curve2, tooth: int, turn: float, beta: float, 
            reach: float) -> Window | None:
     """The stretch of ``tooth`` whose rigid gap to gear 2 (gear 1 turned by ``turn``, its
     kinematic angle included; gear 2 by ``beta``) is below ``reach`` (mm) and closes under a
-    positive turn; None if there is none. Every COARSE-th sample first, then every sample
-    where that found the gap within reach of the threshold."""
-    _, x, _ = samples.turned(tooth)
-    coarse = np.arange(0, len(x), COARSE)
-    gap, closing, _ = _gaps(x[coarse], curve2, turn, beta, e)
-    slack = np.abs(np.diff(gap, prepend=gap[0], append=gap[-1]))
-    slack = np.maximum(slack[:-1], slack[1:])              # how far the gap moves to a neighbour
-    near = np.flatnonzero((gap < reach + slack) & closing)
-    if len(near) == 0:
-        return None
-    lo = coarse[max(int(near.min()) - 1, 0)]
-    hi = coarse[min(int(near.max()) + 1, len(coarse) - 1)]
-    gap, closing, foot = _gaps(x[lo:hi + 1], curve2, turn, beta, e)
-    near = np.flatnonzero((gap < reach) & closing)
-    if len(near) == 0:
-        return None
-    a, b = max(int(near.min()) - 1, 0), min(int(near.max()) + 1, len(gap) - 1)
-    xi = curve2.xi_at_angle(np.arctan2(foot[a:b + 1, 1], foot[a:b + 1, 0]))
-    anchor = lo + int(near[np.argmin(gap[near])])
-    return Window(tooth, lo + a, lo + b, 1.0 / curve2.curvature_radius(xi), anchor)
+    positive turn; None if there is none (:func:`windows` for one tooth)."""
+    return windows(samples, curve2, (tooth,), turn, beta, e, (reach,))[0]
+
+
+def windows(samples: ToothSamples, curve2, teeth, turn: float, beta: float, e: float,
+            reaches) -> list[Window | None]:
+    """:func:`window` of each of ``teeth`` with its own reach (mm): every COARSE-th sample
+    first, then every sample where that found the gap within reach of the threshold. The
+    teeth's samples go to gear 2's closest-point search together, one call a pass (the points
+    are independent: the same windows as one call a tooth, a tenth of the calls)."""
+    if not teeth:
+        return []
+    coarse = np.arange(0, len(samples.x), COARSE)
+    points = [samples.turned(tooth)[1] for tooth in teeth]
+    gaps = _split(_gaps(np.vstack([x[coarse] for x in points]), curve2, turn, beta, e),
+                  [len(coarse)] * len(teeth))
+    ranges = []
+    for (gap, closing, _), reach in zip(gaps, reaches):
+        slack = np.abs(np.diff(gap, prepend=gap[0], append=gap[-1]))
+        slack = np.maximum(slack[:-1], slack[1:])         # how far the gap moves to a neighbour
+        near = np.flatnonzero((gap < reach + slack) & closing)
+        ranges.append(None if len(near) == 0 else
+                      (coarse[max(int(near.min()) - 1, 0)],
+                       coarse[min(int(near.max()) + 1, len(coarse) - 1)]))
+    found = [(k, lo, hi) for k, r in enumerate(ranges) if r is not None for lo, hi in [r]]
+    out: list[Window | None] = [None] * len(teeth)
+    if not found:
+        return out
+    fine = _split(_gaps(np.vstack([points[k][lo:hi + 1] for k, lo, hi in found]), curve2,
+                        turn, beta, e), [hi + 1 - lo for _, lo, hi in found])
+    for (k, lo, _), (gap, closing, foot) in zip(found, fine):
+        near = np.flatnonzero((gap < reaches[k]) & closing)
+        if len(near) == 0:
+            continue
+        a, b = max(int(near.min()) - 1, 0), min(int(near.max()) + 1, len(gap) - 1)
+        xi = curve2.xi_at_angle(np.arctan2(foot[a:b + 1, 1], foot[a:b + 1, 0]))
+        anchor = lo + int(near[np.argmin(gap[near])])
+        out[k] = Window(teeth[k], lo + a, lo + b, 1.0 / curve2.curvature_radius(xi), anchor)
+    return out
+
+
+def _split(parts, sizes) -> list[tuple]:
+    """The arrays of ``parts`` (gap, closing, foot) cut into consecutive pieces of ``sizes``."""
+    cuts = np.cumsum(sizes)[:-1]
+    return list(zip(*(np.split(p, cuts) for p in parts)))
 
 
 def _gaps(x: np.ndarray, curve2, turn: float, beta: float, e: float):

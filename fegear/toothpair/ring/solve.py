@@ -25,7 +25,7 @@ from ..case import ContactChecks, PairSolution, SolveCase
 from ..positions import SHARE_GUESS, Attempt, Trial, expected_elastic_um
 from ..teeth import candidate_data, choose_teeth
 from .contact import solve_ring_contact, tangent_stiffness, touch_rotation
-from .grid import ToothGrid, tooth_grid, window
+from .grid import ToothGrid, tooth_grid, windows
 from .influence import RingContact, assemble_contact
 from .model import RingModel, keep_on_disk, ring_model
 from .results import RingDetail, tooth_results
@@ -246,9 +246,9 @@ def _grids(model: RingModel, case: SolveCase, teeth, full: set[int], theta: floa
     # before, so that a position solved in a cycle has the grid it has alone
     canonical = REACH * expected_elastic_um(case) * 1e-3 + REACH_FLOOR * p.m
     while True:
-        wins = [w for tooth in teeth
-                if (w := window(model.samples, model.curve2, tooth, turn, case.beta, p.e,
-                                base * reach.get(tooth, 1.0))) is not None]
+        wins = [w for w in windows(model.samples, model.curve2, tuple(teeth), turn, case.beta,
+                                   p.e, [base * reach.get(t, 1.0) for t in teeth])
+                if w is not None]
         if wins:
             return tuple(tooth_grid(model.samples, w, load, E_star, model.level.per_b,
                                     GRID_FLOOR * p.m, canonical, probe=w.tooth not in full)

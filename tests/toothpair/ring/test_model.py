@@ -84,6 +84,25 @@ def test_nodal_loads_carry_the_force_and_its_moment(model):
         assert moment == pytest.approx(expected, rel=1e-6, abs=1e-9)
 
 
+def test_the_windows_of_several_teeth_found_together_are_each_found_alone(model):
+    # one closest-point search a pass for all teeth: the points are independent, so every
+    # window (its range, anchor and gear-2 curvature) is the one-tooth search's to the bit
+    from fegear.toothpair.ring.grid import window, windows
+
+    p = model.case.params
+    teeth, reaches = (9, 10, 11, 12, 30, 40), (0.004, 0.02, 0.02, 0.001, 0.02, 0.02)
+    together = windows(model.samples, model.curve2, teeth, 135e-6, 0.0, p.e, reaches)
+    alone = [window(model.samples, model.curve2, t, 135e-6, 0.0, p.e, r)
+             for t, r in zip(teeth, reaches)]
+    assert together[-1] is None and sum(w is not None for w in together) >= 3
+    for a, b in zip(together, alone):
+        if b is None:
+            assert a is None
+            continue
+        assert (a.tooth, a.lo, a.hi, a.anchor) == (b.tooth, b.lo, b.hi, b.anchor)
+        assert np.array_equal(a.kappa2, b.kappa2)
+
+
 def test_grids_follow_the_local_hertz_width_and_refine_at_the_tip_round(model):
     from fegear.fe import contact_modulus
     from fegear.toothpair.ring.grid import tooth_grid, window
