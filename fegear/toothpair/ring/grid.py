@@ -135,7 +135,7 @@ def windows(samples: ToothSamples, curve2, teeth, turn: float, beta: float, e: f
         ranges.append(None if len(near) == 0 else
                       (coarse[max(int(near.min()) - 1, 0)],
                        coarse[min(int(near.max()) + 1, len(coarse) - 1)]))
-    found = [(k, lo, hi) for k, r in enumerate(ranges) if r is not None for lo, hi in [r]]
+    found = [(k, *r) for k, r in enumerate(ranges) if r is not None]   # (tooth index, lo, hi)
     out: list[Window | None] = [None] * len(teeth)
     if not found:
         return out
