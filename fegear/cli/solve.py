@@ -58,11 +58,8 @@ def run(a: argparse.Namespace) -> int:
 
 
 def _second_core() -> bool:
-    """Whether this process may use a second core (the error estimate's second solve runs
-    there, beside the first)."""
+    """Whether the machine has a second core (the error estimate's second solve runs there,
+    beside the first)."""
     import os
 
-    try:
-        return len(os.sched_getaffinity(0)) >= 2
-    except AttributeError:    # no affinity on this platform
-        return (os.cpu_count() or 1) >= 2
+    return (os.cpu_count() or 1) >= 2

@@ -167,7 +167,7 @@ def _result(future) -> dict | None:
     """A worker's second headline, or None if it failed (the caller solves it itself)."""
     try:
         return future.result()
-    except Exception:   # noqa: BLE001 - any failure there is retried here, where it shows
+    except Exception:   # any failure there is retried here, where it shows
         return None
 
 

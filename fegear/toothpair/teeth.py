@@ -87,8 +87,7 @@ def candidate_data(params: PairParameters, shape: RoundedProfile, state, teeth,
     # the gear-2 point is where that gear-1 point lands once the clearance is closed: on a
     # nearly conformal flank the relative curvature is a small difference of two large
     # ones, and gear 2's changes fast (the 6 µm of a baseline clearance doubled 1/R*)
-    turns = np.array([params.turn_of(c.plus_um) for c in chosen])
-    x = np.array([rotate(x[i:i + 1] - o1, turns[i])[0] for i in range(len(chosen))]) + o1
+    x = rotate(x - o1, np.array([params.turn_of(c.plus_um) for c in chosen])) + o1
     foot = g2.closest(rotate(x, -beta))[0]
     theta2 = np.arctan2(foot[:, 1], foot[:, 0])
     r2 = g2.curvature_radius(g2.xi_at_angle(theta2))

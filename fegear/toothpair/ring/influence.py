@@ -96,7 +96,8 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     weight = np.concatenate([g.weights for g in grids])
     o1 = np.array([0.0, p.e])
     master = Gear2Master(model.curve2, beta)
-    columns = [probe_columns or not g.probe or all(h.probe for h in grids) for g in grids]
+    every = probe_columns or all(g.probe for g in grids)
+    columns = [every or not g.probe for g in grids]
     formed = np.repeat(columns, np.diff(offsets))
 
     xq, nq, size, col = _hat_loads(model, grids, offsets, case.thickness, columns)
