@@ -217,12 +217,12 @@ def gear2_polar(curve):
     onto it: the foot of their normal (along their polar angle a node on a nearly radial
     flank moved far along it and inverted its element: h1 0.83 at the seed paper's pair)."""
 
-    def point(theta):
-        r = curve.radius_at_angle(theta)
+    def point(theta):   # a mesh's input: no table (Cycloid.xi_at_angle)
+        r = curve.radius_at_angle(theta, tabled=False)
         return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
 
     def project(x):
-        return curve.closest(x)[0]
+        return curve.closest(x, tabled=False)[0]
 
     return point, project
 

@@ -250,12 +250,12 @@ def contact_submodel(model: RingModel, contact: RingContact, pressure: np.ndarra
     else:
         curve2 = model.curve2
 
-        def point(theta):
-            r = curve2.radius_at_angle(theta)
+        def point(theta):   # a mesh's input: no table (Cycloid.xi_at_angle)
+            r = curve2.radius_at_angle(theta, tabled=False)
             return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
 
         def foot(y):   # along the normal: a near-radial flank (h1 0.2, f1 0.6) inverted
-            return curve2.closest(y)[0]
+            return curve2.closest(y, tabled=False)[0]
 
         x = contact.facing[0][i]
         angles = np.unwrap(np.arctan2(contact.facing[0][blk, 1], contact.facing[0][blk, 0]))

@@ -125,8 +125,9 @@ def gear2_template(p: PairParameters, curve: Cycloid, sizes: TemplateSizes,
     outer = r_max + rim
 
     g2_curve, project = gear2_polar(curve)
-    root_half = root_half_angle(lambda t: curve.radius_at_angle(t), 0.5 * pitch, pitch, r_min,
-                                r_max, inverted=True)
+    # the template's geometry and sizes are inverted without a table (Cycloid.xi_at_angle)
+    root_half = root_half_angle(lambda t: curve.radius_at_angle(t, tabled=False), 0.5 * pitch,
+                                pitch, r_min, r_max, inverted=True)
     marks, bent = bends(curve, a, b, sizes)
     segs, names = profile_segments(
         "g2", g2_curve, project, a, b, [], [("g2_root", 0.5 * pitch, root_half)], marks=marks,
@@ -149,11 +150,11 @@ def bends(curve: Cycloid, a: float, b: float, sizes: TemplateSizes,
     each side, as refinement marks ``g2_bend``; and their element size, ``sizes.bend`` times
     the least ρ (the flank size where there is none)."""
     theta = np.linspace(a, b, samples)
-    rho = np.abs(curve.curvature_radius(curve.xi_at_angle(theta)))
+    rho = np.abs(curve.curvature_radius(curve.xi_at_angle(theta, tabled=False)))
     tight = rho * sizes.bend < sizes.flank
     if not tight.any():
         return [], sizes.flank
-    r = curve.radius_at_angle(theta)
+    r = curve.radius_at_angle(theta, tabled=False)
     pad = sizes.flank / float(r.min())
     edges = np.flatnonzero(np.diff(np.concatenate([[0], tight.astype(int), [0]])))
     marks = [(max(a, theta[i] - pad), min(b, theta[j - 1] + pad), "g2_bend")

@@ -311,8 +311,8 @@ def gear2_body(case: SectorCase, shape: RoundedProfile, sector: Sector, paired, 
         paired, [(c.tooth, unwrap_near(c.theta2, 0.5 * (th_a + th_b)),
                   MASTER_FACTOR * w / params.r0) for c, w in half])
     roots2 = [(k, (k + 0.5) * pitch2) for k in range(k_a, k_b)]
-    root_half2 = root_half_angle(lambda t: g2.radius_at_angle(t), roots2[0][1], pitch2,
-                                 R_min, R_max, inverted=True)
+    root_half2 = root_half_angle(lambda t: g2.radius_at_angle(t, tabled=False), roots2[0][1],
+                                 pitch2, R_min, R_max, inverted=True)   # a mesh's input
 
     g2_curve, g2_project = gear2_polar(g2)
 
