@@ -1,16 +1,19 @@
 """Worker pools: the local process pools of the study runner, the relief search and the design
 search (:class:`LocalPool`: all three end their workers the same way), and the Dask client of
-the first and the last.
+the first and the last; and one function run in a forked copy of this process
+(:class:`Forked`: a mesh cycle's second chain of positions, on the model built here).
 
-Workers are spawned, not forked (the parent may hold threads: the progress bar's), leave
-Ctrl-C to the parent and end when it does: a parent killed outright (SIGKILL) leaves no time
-to stop them, and one would finish its task for nobody and then wait forever for the next.
+Pool workers are spawned, not forked (the parent may hold threads: the progress bar's). All
+leave Ctrl-C to the parent and end when it does: a parent killed outright (SIGKILL) leaves no
+time to stop them, and one would finish its task for nobody and then wait forever for the next.
 """
 
 from __future__ import annotations
 
 import os
+import pickle
 import signal
+import sys
 import threading
 import time
 from concurrent.futures import ProcessPoolExecutor
@@ -87,3 +90,96 @@ def connect(address: str, error: type[FegearError] = FegearError):
         return Client(address, timeout="10s")
     except (OSError, TimeoutError, ValueError, TypeError) as exc:
         raise error(f"--scheduler {address!r}: cannot connect: {exc}") from None
+
+
+class Forked:
+    """``fn()`` run in a forked copy of this process, which shares everything built so far
+    (a ring model's meshes and factors) without copying it; :meth:`result` is its return
+    value, pickled back through a pipe. The child touches none of the parent's streams or
+    locks (another thread of the parent, the progress bar's, may hold one at the fork): its
+    output goes nowhere and the progress is not reported. Not forkable (no ``os.fork``), or
+    the child failing in any way, gives the result None: the caller then does the work
+    itself, and raises whatever error it meets there."""
+
+    def __init__(self, fn) -> None:
+        self.pid = None
+        self._pipe = None
+        if not hasattr(os, "fork"):   # pragma: no cover - Windows
+            return
+        r, w = os.pipe()
+        try:
+            pid = os.fork()
+        except OSError:
+            os.close(r)
+            os.close(w)
+            return
+        if pid == 0:
+            os.close(r)
+            _forked_child(fn, w)      # never returns
+        os.close(w)
+        self.pid, self._pipe = pid, os.fdopen(r, "rb")
+
+    def result(self):
+        """The child's return value, once it has ended; None if it failed or never ran."""
+        if self._pipe is None:
+            return None
+        try:
+            data = self._pipe.read()
+        finally:
+            self._pipe.close()
+            self._pipe = None
+            self._reap()
+        try:
+            ok, value = pickle.loads(data)
+        except Exception:   # cut short: the child died before writing all of it
+            return None
+        return value if ok else None
+
+    def stop(self) -> None:
+        """End the child if it still runs (the caller stopped or failed meanwhile)."""
+        if self.pid is None:
+            return
+        try:
+            os.kill(self.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        if self._pipe is not None:
+            self._pipe.close()
+            self._pipe = None
+        self._reap()
+
+    def _reap(self) -> None:
+        if self.pid is not None:
+            try:
+                os.waitpid(self.pid, 0)
+            except ChildProcessError:
+                pass
+            self.pid = None
+
+
+def _forked_child(fn, fd: int) -> None:
+    """The forked child: Ctrl-C left to the parent, SIGTERM ending it, its output discarded;
+    it ends with the parent, and writes (ok, value) to ``fd``."""
+    import logging
+
+    from . import progress
+
+    code = 1
+    try:
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        # the log's handlers hold the parent's stderr, whose lock another thread may have
+        # held at the fork
+        logging.disable(logging.CRITICAL)
+        sys.stdout = sys.stderr = open(os.devnull, "w")
+        threading.Thread(target=_exit_with_parent, args=(os.getppid(),), daemon=True).start()
+        with progress.reporting(None):
+            data = pickle.dumps((True, fn()), protocol=pickle.HIGHEST_PROTOCOL)
+        code = 0
+    except BaseException:   # any failure: the parent does the work itself
+        data = pickle.dumps((False, None))
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+    finally:
+        os._exit(code)

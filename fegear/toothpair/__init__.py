@@ -71,7 +71,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "output": ("write_pair_outputs", "write_cycle_outputs", "write_mesh_stiffness"),
     "stiffness": ("MeshStiffness", "read_mesh_stiffness", "mesh_stiffness_of_cycle"),
     "job": ("Job", "JobResult", "Solved", "prepare_job", "run_job", "solve_job", "write_job"),
-    "positions": ("PositionModel", "Trial", "Attempt", "SHARE_GUESS", "ATTEMPTS", "drive",
-                  "expected_elastic_um", "first_teeth"),
+    "positions": ("PositionModel", "Trial", "Attempt", "SHARE_GUESS", "ATTEMPTS", "CHAINED",
+                  "drive", "expected_elastic_um", "first_teeth"),
     "ring.disk": ("disk_cache",),
 })

@@ -117,9 +117,11 @@ def run_job(job: Job, out: Path | None, fields: bool = True,
 def solve_job(job: Job, beside: bool = False) -> Solved:
     """Solve ``job`` at its positions, with its error estimate; no file written. ``beside``
     (a one-off command on a machine with a second core): the estimate's second solve of one
-    position runs in a worker process while this one solves, started first (a cycle's
-    estimate needs the cycle's worst position, known only at its end). Should the worker
-    fail in any way, the second solve is made here, as without it."""
+    position runs in a worker process while this one solves, started first; a cycle's second
+    chain of positions is solved in a forked copy of this process
+    (:func:`~.positions.drive`), and its estimate after it (it needs the cycle's worst
+    position, known only at its end). Should a worker fail in any way, its work is done
+    here, as without it."""
     from ..geometry import gear1_profile
     from .estimate import second_headline, second_level_estimate, second_quality
     from .pair import solve_positions
@@ -135,7 +137,7 @@ def solve_job(job: Job, beside: bool = False) -> Solved:
     try:
         progress.stage("gear 1's profile")
         profile = gear1_profile(job.case.params)
-        sols = solve_positions(job.case, job.betas, profile)
+        sols = solve_positions(job.case, job.betas, profile, beside=beside)
         cycle_s = time.perf_counter() - t0
         # pictures, VTUs and the error estimate at the position of the largest gear-1 root
         # stress

@@ -9,19 +9,21 @@ from .case import PairSolution, SolveCase
 
 
 def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None,
-                    model=None, submodels: str = "peaks",
-                    contact_only: bool = False) -> tuple[PairSolution, ...]:
+                    model=None, submodels: str = "peaks", contact_only: bool = False,
+                    beside: bool = False) -> tuple[PairSolution, ...]:
     """Solve ``case`` at each rolling angle of ``betas`` (rad) on one model. ``model``: a ring
     model (:func:`~.ring.build_ring`) built before for the same geometry and quality, kept.
     ``submodels``: where the contact submodels are solved, "peaks" (where the cycle's
     headline stresses peak; every position of one), "all" or "none"; elsewhere the von Mises
     stress at a contact is the template's surface estimate (contact pressures, root stresses
     and everything else are the same: :meth:`~.ring.solve.RingSolver.complete`).
-    ``contact_only``: no stresses (NaN), for a caller that reads only the contact."""
+    ``contact_only``: no stresses (NaN), for a caller that reads only the contact.
+    ``beside``: a second core is free for a cycle's second chain of positions
+    (:func:`~.positions.drive`)."""
     from .positions import drive
     from .ring.solve import RingSolver
 
-    return drive(case, betas, RingSolver(model, submodels, contact_only), profile)
+    return drive(case, betas, RingSolver(model, submodels, contact_only), profile, beside)
 
 
 def solve_pair(case: SolveCase, profile: Gear1Profile | None = None,

@@ -1,7 +1,9 @@
 """The one driver over positions (fegear/toothpair/positions.py), with a stand-in model: the
-first guess, the attempts, the timings and the error when a position does not settle."""
+first guess, the attempts, the timings, the error when a position does not settle and a long
+cycle's two chains, the second solved beside or not."""
 
 import math
+import os
 
 import pytest
 
@@ -9,6 +11,7 @@ from fegear.errors import FegearError
 from fegear.geometry import PairParameters, gear1_profile
 from fegear.toothpair import (
     ATTEMPTS,
+    CHAINED,
     SHARE_GUESS,
     TOOTH_STIFFNESS,
     Attempt,
@@ -52,9 +55,16 @@ class StandIn:
     def finish(self, case, state, attempt):
         p = case.params
         first = p.turn_of(state.closest(+1).plus_um)
+        # the process that solved it (dofs) and the trial it started from (detail)
         return PairSolution(case, (), (0.0, 0.0), 0.0, first + p.turn_of(self.elastic_um),
-                            first, 0, ContactChecks(0.0, 0.0, 0, (), 0), {"stresses": 0.25},
-                            None)
+                            first, os.getpid(), ContactChecks(0.0, 0.0, 0, (), 0),
+                            {"stresses": 0.25}, self.trials[-1][1])
+
+    def detach(self, sol):
+        return sol
+
+    def attach(self, sol):
+        return sol
 
 
 def test_the_first_guess_shares_the_torque_and_later_positions_start_from_the_last(profile):
@@ -104,3 +114,52 @@ def test_blas_runs_on_one_thread_during_a_solve_and_as_before_after(profile):
     drive(CASE, (0.0,), Recording(again=0), profile)
     assert seen and all(n == 1 for n in seen[0].values())
     assert blas() == before
+
+
+class FailingBeside(StandIn):
+    """Fails wherever it runs outside the process that made it."""
+
+    def __init__(self, *args):
+        super().__init__(*args)
+        self.home = os.getpid()
+
+    def attempt(self, case, state, trial, near):
+        if os.getpid() != self.home:
+            raise RuntimeError("a worker's failure")
+        return super().attempt(case, state, trial, near)
+
+
+@pytest.mark.parametrize("beside", [False, True])
+def test_a_long_cycle_is_two_chains_each_from_the_first_guess(profile, beside):
+    betas = tuple(2 * math.pi / 45 * k / CHAINED for k in range(CHAINED))
+    sols = drive(CASE, betas, StandIn(again=0), profile, beside=beside)
+    assert [s.case.beta for s in sols] == list(betas)
+    guess = sols[0].detail.elastic_um
+    cut = CHAINED // 2
+    starts = [k for k, s in enumerate(sols) if s.detail.elastic_um == pytest.approx(guess)]
+    assert starts == [0, cut]                     # the others start from the one before
+    assert all(s.detail.elastic_um == pytest.approx(5.0) for k, s in enumerate(sols)
+               if k not in (0, cut))
+    solvers = [s.dofs for s in sols]
+    assert set(solvers[:cut]) == {os.getpid()}
+    # beside, the second chain in one other process (a fork), which has ended
+    assert set(solvers[cut:]) == ({os.getpid()} if not beside else {solvers[cut]})
+    if beside:
+        assert solvers[cut] != os.getpid()
+        with pytest.raises(ChildProcessError):
+            os.waitpid(solvers[cut], os.WNOHANG)
+    assert "model" in sols[0].timings_s and "model" not in sols[cut].timings_s
+
+
+def test_a_chain_that_fails_beside_is_solved_here(profile):
+    betas = tuple(2 * math.pi / 45 * k / CHAINED for k in range(CHAINED))
+    sols = drive(CASE, betas, FailingBeside(0), profile, beside=True)
+    assert {s.dofs for s in sols} == {os.getpid()}
+    assert len(sols) == CHAINED
+
+
+def test_a_short_cycle_is_one_chain(profile):
+    betas = tuple(2 * math.pi / 45 * k / CHAINED for k in range(CHAINED - 1))
+    sols = drive(CASE, betas, StandIn(again=0), profile, beside=True)
+    assert {s.dofs for s in sols} == {os.getpid()}
+    assert sum(s.detail.elastic_um != pytest.approx(5.0) for s in sols) == 1

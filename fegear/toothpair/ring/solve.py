@@ -162,7 +162,7 @@ class RingSolver:
                 von_mises_max=math.nan, rotation=sol.rotation, first_touch=touch,
                 dofs=model.dofs, checks=checks,
                 timings_s={"stresses": time.perf_counter() - t0},
-                detail=RingDetail(model, case, contact, sol, None), von_mises_estimated=True,
+                detail=RingDetail(model, case, _kept(contact), sol, None), von_mises_estimated=True,
                 tangent_stiffness=tangent)
         stresses = ring_stresses(model, contact, sol.pressure, self.submodels == "all")
         cands = candidate_data(p, model.shape, state, tuple(g.tooth for g in grids), case.beta)
@@ -176,7 +176,7 @@ class RingSolver:
             root_stress=(stresses.roots[0].max, stresses.roots[1].max),
             von_mises_max=stresses.von_mises_max, rotation=sol.rotation, first_touch=touch,
             dofs=model.dofs, checks=checks, timings_s=times,
-            detail=RingDetail(model, case, contact, sol, stresses),
+            detail=RingDetail(model, case, _kept(contact), sol, stresses),
             von_mises_estimated=not stresses.submodels, tangent_stiffness=tangent)
 
     def complete(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
@@ -192,6 +192,16 @@ class RingSolver:
         if self.model is not None:
             keep_on_disk(self.model)
         return out
+
+    def detach(self, sol: PairSolution) -> PairSolution:
+        """``sol`` without its model, to cross from a chain solved beside (the fields of its
+        sectors stay: a peak's submodels are cut from them)."""
+        return replace(sol, detail=replace(sol.detail, model=None))
+
+    def attach(self, sol: PairSolution) -> PairSolution:
+        """A :meth:`detach` ed solution on this solver's model (the one it was solved on, or
+        the one its forked copy came from)."""
+        return replace(sol, detail=replace(sol.detail, model=self.model))
 
     def _complete(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
         if self.submodels != "peaks" or not sols:
@@ -223,6 +233,12 @@ def _with_submodels(sol: PairSolution) -> PairSolution:
     return replace(sol, von_mises_max=stresses.von_mises_max, timings_s=times,
                    detail=replace(d, stresses=stresses),
                    von_mises_estimated=not stresses.submodels)
+
+
+def _kept(contact: RingContact) -> RingContact:
+    """What a solved position keeps of its contact: all but A (:class:`~.influence
+    .RingContact`)."""
+    return replace(contact, A=None)
 
 
 def _expected(state, closure_um: float) -> set[int]:

@@ -60,11 +60,13 @@ class RootZone:
 
 @dataclass(eq=False)
 class RingStresses:
-    """The fields (sector → template-frame displacement, per gear), their nodal stresses, the
-    root zones, the surface von Mises estimate per grid point (2, n) and the submodels."""
+    """The fields (sector → template-frame displacement, per gear), the root zones, the
+    surface von Mises estimate per grid point (2, n) and the submodels. (The fields' nodal
+    stresses are not kept: the root zones and the bulk von Mises stress are read from them,
+    and a picture or VTU recovers them again, for one position; kept, they were 6 MB a
+    position of a cycle.)"""
 
     fields: tuple[dict, dict] = field(repr=False)
-    stresses: tuple[dict, dict] = field(repr=False)
     roots: tuple[RootZone, RootZone]
     surface: np.ndarray = field(repr=False)
     submodels: tuple[tuple[int, float, Submodel], ...] = field(repr=False)  # gear, turn
@@ -93,7 +95,7 @@ def ring_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
     surface = surface_von_mises(model, contact, pressure, fields)
     bulk = max(_bulk_von_mises(side, s, pts[pressure > 0])
                for side, s, pts in zip(model.gears, stresses, (contact.x, contact.facing[0])))
-    out = RingStresses(fields, stresses, roots, surface, (), bulk)
+    out = RingStresses(fields, roots, surface, (), bulk)
     return with_submodels(model, contact, pressure, out) if submodels else out
 
 

@@ -164,6 +164,14 @@ class SectorSolver:
     def finish(self, case: SectorCase, state, attempt: Attempt) -> PairSolution:
         return attempt.result
 
+    def detach(self, sol: PairSolution) -> PairSolution:
+        """Whole: the peer is never solved beside (its scene changes from position to
+        position, which a forked chain would not see)."""
+        return sol
+
+    def attach(self, sol: PairSolution) -> PairSolution:
+        return sol
+
 
 def _window_ends(sol: PairSolution) -> list[int]:
     """The paired teeth whose contact pressure reaches either end of their window."""

@@ -17,6 +17,7 @@ from fegear.toothpair import solve_pair, solve_positions
 from fegear.toothpair.case import HEADLINE, SolveCase
 from fegear.toothpair.ring import build_ring
 from fegear.toothpair.ring.contact import rigid_gap
+from fegear.toothpair.ring.influence import assemble_contact
 from fegear.verify.sector import SectorCase
 from fegear.verify.sector import solve_pair as sector_pair
 
@@ -94,7 +95,9 @@ def test_the_rigid_gap_of_the_solved_rotation_is_closed_by_the_elastic_approach(
     p = d.case.params
     g0, _ = rigid_gap(d.model, d.contact.x, 0.0, p.ratio * 0.0 + baseline_200.rotation)
     loaded = d.solution.pressure > 0
-    approach = d.contact.A @ d.solution.pressure
+    assert d.contact.A is None   # not kept: formed again
+    A = assemble_contact(d.model, d.contact.grids, 0.0, d.contact.turn).A
+    approach = A @ d.solution.pressure
     assert np.abs(g0[loaded] + approach[loaded]).max() < 1e-12
 
 
@@ -373,3 +376,22 @@ def test_the_tangent_stiffness_is_the_slope_of_two_solves(baseline_ring, torque)
     difference = 0.02 * torque / (hi.rotation - lo.rotation)
     assert sol.tangent_stiffness == pytest.approx(difference, rel=0.01)
     assert sol.tangent_stiffness > 1.05 * sol.mesh_stiffness
+
+
+def test_a_cycle_s_second_chain_solved_beside_is_the_one_solved_here(baseline_ring):
+    # `fegear solve --positions 16` on two cores: the second half in a forked process; the
+    # same positions to rounding (the responses formed there are formed in other batches),
+    # each joined to this model again (its fields and submodels read from it)
+    from fegear.toothpair import CHAINED
+
+    p = baseline_ring.case.params
+    case = replace(baseline_ring.case, torque=200.0)
+    betas = tuple(np.linspace(0.0, 2 * math.pi / p.z2, CHAINED, endpoint=False))
+    here = solve_positions(case, betas, model=baseline_ring)
+    beside = solve_positions(case, betas, model=baseline_ring, beside=True)
+    for a, b in zip(here, beside, strict=True):
+        assert b.detail.model is baseline_ring and b.detail.contact.A is None
+        for key, value in a.headline().items():
+            assert b.headline()[key] == pytest.approx(value, rel=1e-9), (a.case.beta, key)
+    later = beside[CHAINED // 2 + 1]
+    assert {f.name for f in later.detail.body_fields(around=1)} == {"gear1", "gear2"}

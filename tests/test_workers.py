@@ -1,0 +1,56 @@
+"""One function in a forked copy of the process (fegear/workers.py, Forked): its value back,
+None for any failure, its output discarded, and ended when the caller stops it."""
+
+import os
+import signal
+import sys
+import time
+
+import numpy as np
+
+from fegear.workers import Forked
+
+
+def test_the_value_comes_back_from_another_process():
+    data = np.arange(1_000_000.0)       # built here, read there without a copy
+    f = Forked(lambda: (os.getpid(), data.sum(), {"a": data[:3]}))
+    pid, total, rest = f.result()
+    assert pid != os.getpid()
+    assert total == data.sum()
+    assert np.array_equal(rest["a"], data[:3])
+    assert f.result() is None           # read once; the child reaped
+    f.stop()
+
+
+def test_a_failure_there_gives_none():
+    def fails():
+        raise ValueError("nothing to see")
+
+    assert Forked(fails).result() is None
+
+
+def test_a_child_killed_gives_none():
+    assert Forked(lambda: os.kill(os.getpid(), signal.SIGKILL)).result() is None
+
+
+def test_its_output_goes_nowhere(capfd):
+    def noisy():
+        print("out")
+        print("err", file=sys.stderr)
+        return 1
+
+    assert Forked(noisy).result() == 1
+    assert capfd.readouterr() == ("", "")
+
+
+def test_stop_ends_a_child_still_running():
+    f = Forked(lambda: time.sleep(60))
+    pid = f.pid
+    f.stop()            # killed and reaped (else this waits the minute out)
+    try:
+        os.kill(pid, 0)
+        alive = True
+    except ProcessLookupError:
+        alive = False
+    assert not alive
+    assert f.result() is None
