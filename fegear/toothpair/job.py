@@ -117,8 +117,9 @@ def run_job(job: Job, out: Path | None, fields: bool = True,
 def solve_job(job: Job, beside: bool = False) -> Solved:
     """Solve ``job`` at its positions, with its error estimate; no file written. ``beside``
     (a one-off command on a machine with a second core): the estimate's second solve of one
-    position runs in a worker process while this one solves, started first; a cycle's second
-    chain of positions is solved in a forked copy of this process
+    position runs in a forked copy of this process (:class:`~fegear.workers.Forked`, made
+    once the libraries are imported: spawned, importing them again, it slowed the command by
+    0.15 s) while this one solves; a cycle's second chain of positions is solved in one
     (:func:`~.positions.drive`), and its estimate after it (it needs the cycle's worst
     position, known only at its end). Should a worker fail in any way, its work is done
     here, as without it."""
@@ -128,12 +129,13 @@ def solve_job(job: Job, beside: bool = False) -> Solved:
     from .report import cycle_rows, cycle_summary, pair_summary
 
     t0 = time.perf_counter()
-    pool = headline = None
+    worker = headline = None
     if beside and job.estimate and len(job.betas) == 1:
-        from ..workers import local_pool
+        from ..fe import import_libraries
+        from ..workers import Forked
 
-        pool = local_pool(1)
-        second = pool.submit(second_headline, job.case)
+        import_libraries()    # once, for both processes
+        worker = Forked(lambda: second_headline(job.case))
     try:
         progress.stage("gear 1's profile")
         profile = gear1_profile(job.case.params)
@@ -147,13 +149,13 @@ def solve_job(job: Job, beside: bool = False) -> Solved:
             t1 = time.perf_counter()
             progress.stage("error estimate: the same case again at quality "
                            f"{second_quality(job.case.quality)}")
-            headline = _result(second) if pool is not None else None
+            headline = worker.result() if worker is not None else None
             with progress.reporting(None):  # one stage, however the second solve goes
                 estimate, other = second_level_estimate(sol, profile, second=headline)
             estimate_s = time.perf_counter() - t1
     finally:
-        if pool is not None:
-            pool.stop()
+        if worker is not None:
+            worker.stop()
     summary = pair_summary(sol, estimate, time.perf_counter() - t0, other, job.allowables)
     summary["estimate_s"] = estimate_s
     rows = None
@@ -163,14 +165,6 @@ def solve_job(job: Job, beside: bool = False) -> Solved:
                             **cycle_summary(rows), "rows": rows}
     return Solved(job, tuple(sols), sol, summary, rows, time.perf_counter() - t0,
                   headline is not None)
-
-
-def _result(future) -> dict | None:
-    """A worker's second headline, or None if it failed (the caller solves it itself)."""
-    try:
-        return future.result()
-    except Exception:   # any failure there is retried here, where it shows
-        return None
 
 
 def write_job(solved: Solved, out: Path, fields: bool = True,
