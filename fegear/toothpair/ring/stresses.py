@@ -63,7 +63,7 @@ class RingStresses:
     """The fields (sector → template-frame displacement, per gear), the root zones, the
     surface von Mises estimate per grid point (2, n) and the submodels. (The fields' nodal
     stresses are not kept: the root zones and the bulk von Mises stress are read from them,
-    and a picture or VTU recovers them again, for one position; kept, they were 6 MB a
+    and a picture or VTU recovers them again, for one position; kept, they were 5 MB a
     position of a cycle.)"""
 
     fields: tuple[dict, dict] = field(repr=False)
