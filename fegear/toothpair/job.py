@@ -119,27 +119,34 @@ def solve_job(job: Job, beside: bool = False) -> Solved:
     (a one-off command on a machine with a second core): the estimate's second solve of one
     position runs in a forked copy of this process (:class:`~fegear.workers.Forked`, made
     once the libraries are imported: spawned, importing them again, it slowed the command by
-    0.15 s) while this one solves; a cycle's second chain of positions is solved in one
-    (:func:`~.positions.drive`), and its estimate after it (it needs the cycle's worst
-    position, known only at its end). Should a worker fail in any way, its work is done
-    here, as without it."""
+    0.15 s) while this one solves. A cycle's second chain of positions is solved in one
+    (:func:`~.positions.drive`); its estimate, at the cycle's worst position (the largest
+    gear-1 root stress, which the submodels do not change), in another once every position
+    is solved, while this process solves the submodels where the cycle peaks. Should a
+    worker fail in any way, its work is done here, as without it."""
     from ..geometry import gear1_profile
     from .estimate import second_headline, second_level_estimate, second_quality
     from .pair import solve_positions
     from .report import cycle_rows, cycle_summary, pair_summary
 
     t0 = time.perf_counter()
-    worker = headline = None
-    if beside and job.estimate and len(job.betas) == 1:
+    worker = headline = ahead = None
+    if beside and job.estimate:
         from ..fe import import_libraries
         from ..workers import Forked
 
         import_libraries()    # once, for both processes
-        worker = Forked(lambda: second_headline(job.case))
+        if len(job.betas) == 1:
+            worker = Forked(lambda: second_headline(job.case))
+        else:
+            def ahead(sols) -> None:   # a cycle's positions solved, not yet completed
+                nonlocal worker
+                worst = max(sols, key=lambda s: s.root_stress[0])
+                worker = Forked(lambda: second_headline(worst.case))
     try:
         progress.stage("gear 1's profile")
         profile = gear1_profile(job.case.params)
-        sols = solve_positions(job.case, job.betas, profile, beside=beside)
+        sols = solve_positions(job.case, job.betas, profile, beside=beside, ahead=ahead)
         cycle_s = time.perf_counter() - t0
         # pictures, VTUs and the error estimate at the position of the largest gear-1 root
         # stress

@@ -10,7 +10,7 @@ from .case import PairSolution, SolveCase
 
 def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None,
                     model=None, submodels: str = "peaks", contact_only: bool = False,
-                    beside: bool = False) -> tuple[PairSolution, ...]:
+                    beside: bool = False, ahead=None) -> tuple[PairSolution, ...]:
     """Solve ``case`` at each rolling angle of ``betas`` (rad) on one model. ``model``: a ring
     model (:func:`~.ring.build_ring`) built before for the same geometry and quality, kept.
     ``submodels``: where the contact submodels are solved, "peaks" (where the cycle's
@@ -18,12 +18,13 @@ def solve_positions(case: SolveCase, betas, profile: Gear1Profile | None = None,
     stress at a contact is the template's surface estimate (contact pressures, root stresses
     and everything else are the same: :meth:`~.ring.solve.RingSolver.complete`).
     ``contact_only``: no stresses (NaN), for a caller that reads only the contact.
-    ``beside``: a second core is free for a cycle's second chain of positions
-    (:func:`~.positions.drive`)."""
+    ``beside``: a second core is free for a cycle's second chain of positions; ``ahead``:
+    called with the positions solved, before their submodels (:func:`~.positions.drive`)."""
     from .positions import drive
     from .ring.solve import RingSolver
 
-    return drive(case, betas, RingSolver(model, submodels, contact_only), profile, beside)
+    return drive(case, betas, RingSolver(model, submodels, contact_only), profile, beside,
+                 ahead)
 
 
 def solve_pair(case: SolveCase, profile: Gear1Profile | None = None,

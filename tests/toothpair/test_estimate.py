@@ -45,6 +45,19 @@ def test_the_second_solve_beside_the_first_gives_the_same_estimate(monkeypatch):
     assert _numbers(beside.summary) == _numbers(alone.summary)
 
 
+def test_a_cycle_s_estimate_beside_its_submodels_gives_the_same_numbers():
+    # a cycle's estimate is forked once its positions are solved, at its worst one, while
+    # this process solves the submodels where it peaks; its second chain was forked too
+    from fegear.toothpair import CHAINED
+
+    job = prepare_job({"quality": "coarse", "torque": 150, "positions": CHAINED})
+    beside, alone = solve_job(job, beside=True), solve_job(job)
+    assert beside.beside and not alone.beside
+    assert beside.summary["error_estimate_by_stress_pct"] == pytest.approx(
+        alone.summary["error_estimate_by_stress_pct"], rel=1e-6)
+    assert beside.solution.case.beta == alone.solution.case.beta
+
+
 def test_a_worker_that_fails_leaves_the_second_solve_to_this_process(monkeypatch):
     import os
 

@@ -163,3 +163,14 @@ def test_a_short_cycle_is_one_chain(profile):
     sols = drive(CASE, betas, StandIn(again=0), profile, beside=True)
     assert {s.dofs for s in sols} == {os.getpid()}
     assert sum(s.detail.elastic_um != pytest.approx(5.0) for s in sols) == 1
+
+
+def test_ahead_sees_every_position_before_the_model_completes_them(profile):
+    betas = tuple(2 * math.pi / 45 * k / CHAINED for k in range(CHAINED))
+    seen = []
+    model = StandIn(again=0)
+    model.completed = None
+    sols = drive(CASE, betas, model, profile, beside=True,
+                 ahead=lambda s: seen.append((list(s), model.completed)))
+    ((given, completed),) = seen
+    assert completed is None and tuple(given) == sols
