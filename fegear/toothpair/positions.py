@@ -15,7 +15,10 @@ settled attempt's stresses are recovered. A model supplies the pieces in
 :class:`PositionModel`; the loop, the first guess, the stage timings and the progress live
 here.
 
-A cycle of :data:`CHAINED` positions or more is solved as two chains, its halves, each from a
+A cycle of :data:`CHAINED` positions or more has its clearance states found in a forked
+process while this one builds the model, where the model's build does not read them and
+``beside`` gives a second core (an interference is then refused after the build). It is solved
+as two chains, its halves, each from a
 first guess of its own: one after the other, or with ``beside`` the second in a forked copy of
 this process on another core (:class:`~fegear.workers.Forked`) while this one solves the first
 (on the baseline's 24 positions it ends 0.1-0.15 s after the first: it forms the unit
@@ -77,9 +80,14 @@ class Attempt:
 class PositionModel(Protocol):
     """How a tooth-pair model solves one position; the driver does the rest."""
 
-    def build(self, case: SolveCase, profile: Gear1Profile, states: list) -> None:
+    #: whether :meth:`build` reads the clearance states (the sector model's scene does, the
+    #: ring model's templates do not: for it a cycle's states may be found beside the build)
+    reads_states: bool
+
+    def build(self, case: SolveCase, profile: Gear1Profile, states: list | None) -> None:
         """Everything the positions share (meshes, factors, condensed responses), for the
-        clearance states ``states`` ((β, state) pairs); timings in :attr:`timings_s`."""
+        clearance states ``states`` ((β, state) pairs; None where :attr:`reads_states` is
+        false and they are found beside); timings in :attr:`timings_s`."""
 
     @property
     def timings_s(self) -> dict:
@@ -154,11 +162,28 @@ def _drive(case: SolveCase, betas, solver: PositionModel, profile: Gear1Profile 
     t0 = time.perf_counter()
     profile = profile if profile is not None else gear1_profile(case.params)
     tca = ToothContact(case.params, profile)
-    states = list(zip(betas, tca.states(betas, directions=(+1,))))   # the + torque's side
-    refuse_interference(states)
+    chained = len(betas) >= CHAINED
+
+    def clearances():   # the + torque's side, every position in one search
+        return tca.states(betas, directions=(+1,))
+
+    found = states = None
+    if beside and chained and not solver.reads_states:
+        from ..workers import Forked
+
+        found = Forked(clearances)     # while the model is built here
+    else:
+        states = list(zip(betas, clearances()))
+        refuse_interference(states)
     t_tca = time.perf_counter() - t0
     solver.build(case, profile, states)
-    cut = len(states) // 2 if len(states) >= CHAINED else len(states)
+    if states is None:
+        t0 = time.perf_counter()
+        got = found.result()
+        states = list(zip(betas, got if got is not None else clearances()))
+        refuse_interference(states)
+        t_tca += time.perf_counter() - t0
+    cut = len(states) // 2 if chained else len(states)
     other = None
     if beside and cut < len(states):
         from ..workers import Forked

@@ -34,6 +34,8 @@ class StandIn:
     """Settles a position after ``again`` attempts; its rotation puts the elastic part at
     ``elastic_um`` past the first touch."""
 
+    reads_states = True
+
     def __init__(self, again: int, elastic_um: float = 5.0):
         self.again, self.elastic_um = again, elastic_um
         self.trials: list[tuple[float, Trial]] = []
@@ -174,3 +176,40 @@ def test_ahead_sees_every_position_before_the_model_completes_them(profile):
                  ahead=lambda s: seen.append((list(s), model.completed)))
     ((given, completed),) = seen
     assert completed is None and tuple(given) == sols
+
+
+class Templates(StandIn):
+    """A model whose build reads no clearance states (the ring model's kind)."""
+
+    reads_states = False
+
+    def build(self, case, profile, states):
+        self.built_with = states
+        super().build(case, profile, states)
+
+    def attempt(self, case, state, trial, near):
+        self.states = getattr(self, "states", []) + [state]
+        return super().attempt(case, state, trial, near)
+
+
+def test_a_long_cycle_s_clearances_found_beside_the_build_are_the_ones_found_here(profile):
+    from fegear.geometry import ToothContact
+
+    betas = tuple(2 * math.pi / 45 * k / CHAINED for k in range(CHAINED))
+    here = drive(CASE, betas, StandIn(again=0), profile)
+    model = Templates(again=0)
+    beside = drive(CASE, betas, model, profile, beside=True)
+    assert model.built_with is None           # found in the fork, while the model was built
+    assert [s.rotation for s in beside] == [s.rotation for s in here]
+    direct = ToothContact(CASE.params, profile).states(betas[:CHAINED // 2], directions=(+1,))
+    assert model.states == list(direct)       # the first chain's, as found here
+
+
+def test_an_interference_found_beside_is_refused_all_the_same():
+    from fegear.errors import GeometryError
+
+    case = SolveCase(PairParameters(shift=0.016, rotation=0.002, tip_clearance=-1e-5),
+                     torque=200.0)
+    betas = tuple(2 * math.pi / 45 * k / CHAINED for k in range(CHAINED))
+    with pytest.raises(GeometryError, match="interferes"):
+        drive(case, betas, Templates(again=0), gear1_profile(case.params), beside=True)

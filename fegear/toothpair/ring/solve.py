@@ -71,6 +71,8 @@ class RingSolver:
         self.contact_only = contact_only
         self.timings_s: dict = {}
 
+    reads_states = False   # the templates are the same whatever the positions
+
     def build(self, case: SolveCase, profile: Gear1Profile, states) -> None:
         t0 = time.perf_counter()
         if self.model is None or not self.model.fits(case):

@@ -120,6 +120,8 @@ class SectorSolver:
     than the contact: a near-conformal flank) on a scene with that window twice as long (the
     positions before keep theirs: they settled on theirs)."""
 
+    reads_states = True    # its scene covers every position's contact path
+
     def __init__(self) -> None:
         self.model: PairModel | None = None
         self.timings_s: dict = {}
