@@ -231,8 +231,9 @@ def _estimate_time(summary: dict, beside: bool = False) -> str:
     if not summary.get("estimate_s"):
         return ""
     if beside:
+        what = "the cycle's submodels" if "cycle" in summary else "the solve"
         return (f"; error estimate (the case again at {summary['error_estimate_from']}, beside "
-                f"the solve in a second process) waited for {summary['estimate_s']:.2f}")
+                f"{what} in a second process) waited for {summary['estimate_s']:.2f}")
     return (f"; error estimate (the case again at {summary['error_estimate_from']}) "
             f"{summary['estimate_s']:.2f}")
 

@@ -41,6 +41,10 @@ def test_the_second_solve_beside_the_first_gives_the_same_estimate(monkeypatch):
     monkeypatch.setattr(ring_model, "_KEPT", OrderedDict())
     beside = solve_job(job, beside=True)
     alone = solve_job(job)
+    from fegear.toothpair import pair_table
+
+    assert "beside the solve in a second process) waited for" in pair_table(beside.summary,
+                                                                           beside.beside)
     assert beside.beside and not alone.beside
     assert _numbers(beside.summary) == _numbers(alone.summary)
 
@@ -56,6 +60,10 @@ def test_a_cycle_s_estimate_beside_its_submodels_gives_the_same_numbers():
     assert beside.summary["error_estimate_by_stress_pct"] == pytest.approx(
         alone.summary["error_estimate_by_stress_pct"], rel=1e-6)
     assert beside.solution.case.beta == alone.solution.case.beta
+    from fegear.toothpair import pair_table
+
+    assert "beside the cycle's submodels in a second process) waited for" in pair_table(
+        beside.summary, beside.beside)
 
 
 def test_a_worker_that_fails_leaves_the_second_solve_to_this_process(monkeypatch):
