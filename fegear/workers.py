@@ -98,14 +98,15 @@ class Forked:
     (a ring model's meshes and factors) without copying it; :meth:`result` is its return
     value, pickled back through a pipe. The child touches none of the parent's streams or
     locks (another thread of the parent, the progress bar's, may hold one at the fork): its
-    output goes nowhere and the progress is not reported. Not forkable (no ``os.fork``), or
-    the child failing in any way, gives the result None: the caller then does the work
-    itself, and raises whatever error it meets there."""
+    output goes nowhere and the progress is not reported. Anywhere but Linux (no ``os.fork``
+    on Windows; on macOS a fork after Apple's BLAS has run may crash, and multiprocessing
+    spawns there for that reason), or the child failing in any way, the result is None: the
+    caller then does the work itself, and raises whatever error it meets there."""
 
     def __init__(self, fn) -> None:
         self.pid = None
         self._pipe = None
-        if not hasattr(os, "fork"):   # pragma: no cover - Windows
+        if not sys.platform.startswith("linux"):   # pragma: no cover - not Linux
             return
         r, w = os.pipe()
         try:
