@@ -15,17 +15,16 @@ settled attempt's stresses are recovered. A model supplies the pieces in
 :class:`PositionModel`; the loop, the first guess, the stage timings and the progress live
 here.
 
-A cycle of :data:`CHAINED` positions or more has its clearance states found in a forked
-process while this one builds the model, where the model's build does not read them and
-``beside`` gives a second core (an interference is then refused after the build). It is solved
-as two chains, its halves, each from a
-first guess of its own: one after the other, or with ``beside`` the second in a forked copy of
-this process on another core (:class:`~fegear.workers.Forked`) while this one solves the first
+A cycle of :data:`CHAINED` positions or more is solved as two chains, its halves, each from a
+first guess of its own. With ``beside`` (a second core free) the second chain is solved in a
+forked copy of this process (:class:`~fegear.workers.Forked`) while this one solves the first
 (on the baseline's 24 positions it ends 0.1-0.15 s after the first: it forms the unit
-responses again and sends its solutions back through a pipe).
-The numbers are the same either way, to rounding: a chain starts from its own first guess,
-whichever process solves it (the unit responses it forms, formed there in other batches, differ
-in the last bits).
+responses again and sends its solutions back through a pipe); and, where the model's build
+does not read the clearance states, they are found in another fork while this process builds
+the model (an interference is then refused after the build). Without it the chains run one
+after the other. The numbers are the same either way, to rounding: a chain starts from its
+own first guess, whichever process solves it (the unit responses it forms, formed there in
+other batches, differ in the last bits).
 """
 
 from __future__ import annotations
@@ -176,13 +175,17 @@ def _drive(case: SolveCase, betas, solver: PositionModel, profile: Gear1Profile 
         states = list(zip(betas, clearances()))
         refuse_interference(states)
     t_tca = time.perf_counter() - t0
-    solver.build(case, profile, states)
-    if states is None:
-        t0 = time.perf_counter()
-        got = found.result()
-        states = list(zip(betas, got if got is not None else clearances()))
-        refuse_interference(states)
-        t_tca += time.perf_counter() - t0
+    try:
+        solver.build(case, profile, states)
+        if states is None:
+            t0 = time.perf_counter()
+            got = found.result()
+            states = list(zip(betas, got if got is not None else clearances()))
+            refuse_interference(states)
+            t_tca += time.perf_counter() - t0
+    finally:
+        if found is not None:
+            found.stop()
     cut = len(states) // 2 if chained else len(states)
     other = None
     if beside and cut < len(states):

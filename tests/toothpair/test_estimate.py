@@ -6,6 +6,7 @@ solve, made in a worker beside the first, gives the same numbers."""
 
 import pytest
 
+from fegear.toothpair import pair_table
 from fegear.toothpair.job import prepare_job, solve_job
 
 DESIGNS = {"baseline": {}, "h1 0.4": {"h1": 0.4}, "m 1.5, f1 0.2": {"m": 1.5, "f1": 0.2}}
@@ -41,8 +42,6 @@ def test_the_second_solve_beside_the_first_gives_the_same_estimate(monkeypatch):
     monkeypatch.setattr(ring_model, "_KEPT", OrderedDict())
     beside = solve_job(job, beside=True)
     alone = solve_job(job)
-    from fegear.toothpair import pair_table
-
     assert "beside the solve in a second process) waited for" in pair_table(beside.summary,
                                                                            beside.beside)
     assert beside.beside and not alone.beside
@@ -60,8 +59,6 @@ def test_a_cycle_s_estimate_beside_its_submodels_gives_the_same_numbers():
     assert beside.summary["error_estimate_by_stress_pct"] == pytest.approx(
         alone.summary["error_estimate_by_stress_pct"], rel=1e-6)
     assert beside.solution.case.beta == alone.solution.case.beta
-    from fegear.toothpair import pair_table
-
     assert "beside the cycle's submodels in a second process) waited for" in pair_table(
         beside.summary, beside.beside)
 
