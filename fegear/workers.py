@@ -57,6 +57,12 @@ class LocalPool(ProcessPoolExecutor):
         # multiprocessing, whose shutdown then waits forever
 
 
+def second_core() -> bool:
+    """Whether the machine has a second core for a one-off command's work beside its own
+    (counted as the relief search and the design search count cores)."""
+    return (os.cpu_count() or 1) >= 2
+
+
 def local_pool(workers: int) -> LocalPool:
     """A pool of ``workers`` spawned processes set up by :func:`init_worker`."""
     return LocalPool(workers)

@@ -27,6 +27,7 @@ def run(a: argparse.Namespace) -> int:
 
     from ..files import check_dir
     from ..toothpair import cycle_table, pair_table, prepare_job, run_job
+    from ..workers import second_core
     from .terminal import command_wall_s
 
     job = prepare_job(given_values(a, SOLVE_INPUTS.values()))
@@ -34,7 +35,7 @@ def run(a: argparse.Namespace) -> int:
     out = None if a.out is None else check_dir(a.out)
     made = out is not None and not out.exists()
     try:
-        result = run_job(job, out, beside=_second_core())
+        result = run_job(job, out, beside=second_core())
     except BaseException:
         if made and out.exists():  # made by this run: nothing half-written stays
             shutil.rmtree(out, ignore_errors=True)
@@ -56,10 +57,3 @@ def run(a: argparse.Namespace) -> int:
     print(f"wall {command_wall_s():.1f} s for the whole command")
     return 0
 
-
-def _second_core() -> bool:
-    """Whether the machine has a second core (the error estimate's second solve runs there,
-    beside the first)."""
-    import os
-
-    return (os.cpu_count() or 1) >= 2

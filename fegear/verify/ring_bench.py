@@ -85,10 +85,10 @@ def _child(task: dict) -> dict:
     t_profile = time.perf_counter() - t0
     if task.get("cycle"):  # the whole cycle from nothing: its first position builds the model
         # as `fegear solve --positions` solves it: its second chain on a second core if any
-        import os
+        from ..workers import second_core
 
         sols = solve_positions(case, cycle_positions(0.0, task["cycle"], p.z2), profile,
-                               beside=(os.cpu_count() or 1) >= 2)
+                               beside=second_core())
         cycle_s = time.perf_counter() - t0
         later = sols[1:]
         extra = {"cycle_s": cycle_s,
