@@ -141,16 +141,14 @@ def solve_job(job: Job, beside: bool = False) -> Solved:
         else:
             def ahead(sols) -> None:   # a cycle's positions solved, not yet completed
                 nonlocal worker
-                worst = max(sols, key=lambda s: s.root_stress[0])
+                worst = _pictured(sols)
                 worker = Forked(lambda: second_headline(worst.case))
     try:
         progress.stage("gear 1's profile")
         profile = gear1_profile(job.case.params)
         sols = solve_positions(job.case, job.betas, profile, beside=beside, ahead=ahead)
         cycle_s = time.perf_counter() - t0
-        # pictures, VTUs and the error estimate at the position of the largest gear-1 root
-        # stress
-        sol = max(sols, key=lambda s: s.root_stress[0])
+        sol = _pictured(sols)
         estimate, other, estimate_s = None, None, None
         if job.estimate:
             t1 = time.perf_counter()
@@ -172,6 +170,12 @@ def solve_job(job: Job, beside: bool = False) -> Solved:
                             **cycle_summary(rows), "rows": rows}
     return Solved(job, tuple(sols), sol, summary, rows, time.perf_counter() - t0,
                   headline is not None)
+
+
+def _pictured(sols):
+    """The position the pictures, VTUs and the error estimate are of: the largest gear-1 root
+    stress (which a position's submodels do not change)."""
+    return max(sols, key=lambda s: s.root_stress[0])
 
 
 def write_job(solved: Solved, out: Path, fields: bool = True,

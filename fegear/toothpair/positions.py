@@ -162,14 +162,14 @@ def _drive(case: SolveCase, betas, solver: PositionModel, profile: Gear1Profile 
     profile = profile if profile is not None else gear1_profile(case.params)
     tca = ToothContact(case.params, profile)
     chained = len(betas) >= CHAINED
+    if beside:
+        from ..workers import Forked
 
     def clearances():   # the + torque's side, every position in one search
         return tca.states(betas, directions=(+1,))
 
     found = states = None
     if beside and chained and not solver.reads_states:
-        from ..workers import Forked
-
         found = Forked(clearances)     # while the model is built here
     else:
         states = list(zip(betas, clearances()))
@@ -189,8 +189,6 @@ def _drive(case: SolveCase, betas, solver: PositionModel, profile: Gear1Profile 
     cut = len(states) // 2 if chained else len(states)
     other = None
     if beside and cut < len(states):
-        from ..workers import Forked
-
         other = Forked(lambda: [solver.detach(s) for s in _chain(
             case, states, range(cut, len(states)), solver, announce=False)])
     try:

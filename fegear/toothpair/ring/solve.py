@@ -62,6 +62,8 @@ class RingSolver:
     shares, pressures, flank and edge apart, rotations: the tip-relief search); the root and
     von Mises stresses are NaN, the teeth's Hertz values and half-plane references None."""
 
+    reads_states = False   # the templates are the same whatever the positions
+
     def __init__(self, model: RingModel | None = None, submodels: str = "peaks",
                  contact_only: bool = False) -> None:
         if submodels not in SUBMODELS:
@@ -70,8 +72,6 @@ class RingSolver:
         self.submodels = "none" if contact_only else submodels
         self.contact_only = contact_only
         self.timings_s: dict = {}
-
-    reads_states = False   # the templates are the same whatever the positions
 
     def build(self, case: SolveCase, profile: Gear1Profile, states) -> None:
         t0 = time.perf_counter()
