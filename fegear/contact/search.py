@@ -25,7 +25,14 @@ class Chords:
     distance plus half the longest piece away (the foot on the nearest chord lies on some
     piece, whose midpoint is then no farther); the other points are searched again among
     eight times as many pieces, up to all of them. A caller that searches the same chords
-    again and again (a template's profile, at every position) keeps one."""
+    again and again (a template's profile, at every position) keeps one.
+
+    Chords that chain around the origin by polar angle (a gear template's profile about the
+    gear's centre) are first searched by angle: the chord whose angles hold the point's and
+    its two neighbours. That is sure when the best of them is nearer than any point outside
+    their angles can be, |y| sin Δ for the angle Δ from the point to their ends; the other
+    points go to the tree (the same chord as the tree finds, in a sixth of the time for points
+    on the profile)."""
 
     def __init__(self, a: np.ndarray, ab: np.ndarray) -> None:
         self.a, self.ab = a, ab
@@ -36,12 +43,16 @@ class Chords:
         mid = a[self.owner] + ((within + 0.5) / count[self.owner])[:, None] * ab[self.owner]
         self.half = 0.5 * np.max(length / count)
         self.tree = cKDTree(mid)
+        self.polar = _polar_chain(a, ab)
 
     def nearest(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Per point y (n, 2): the nearest chord and the unclipped t of its foot."""
         a, ab, owner = self.a, self.ab, self.owner
         best = np.empty(len(y), dtype=np.int64)
         todo, k = np.arange(len(y)), LOCATE_CANDIDATES
+        if self.polar is not None and len(y):
+            best[:], sure = self._by_angle(y)
+            todo = np.flatnonzero(~sure)
         while len(todo):
             k = min(k, len(owner))
             reach, cand = self.tree.query(y[todo], k=k)
@@ -53,18 +64,69 @@ class Chords:
         t = np.einsum("qd,qd->q", y - a[best], ab[best]) / np.sum(ab[best] ** 2, axis=1)
         return best, t
 
+    def _by_angle(self, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The nearest of the three chords about each point's polar angle, and whether it is
+        sure (class docstring)."""
+        order, start, end, mid = self.polar
+        theta = mid + np.angle(np.exp(1j * (np.arctan2(y[:, 1], y[:, 0]) - mid)))
+        i = np.clip(np.searchsorted(start, theta, side="right") - 1, 0, len(order) - 1)
+        lo, hi = np.maximum(i - 1, 0), np.minimum(i + 1, len(order) - 1)
+        cand = order[np.column_stack([lo, i, hi])]
+        d2 = _chord_distances(self.a, self.ab, y, cand)
+        j = np.argmin(d2, axis=1)
+        rows = np.arange(len(y))
+        best, dist = cand[rows, j], np.sqrt(d2[rows, j])
+        # a point on a node between two chords is as near to both: the tree's choice stands
+        tied = ((d2 == d2[rows, j][:, None]) & (cand != best[:, None])).any(axis=1)
+        # points outside the three chords' angles lie at least |y| sin Δ from y (none beyond
+        # the chain's own ends: no chord is there)
+        below = np.where(lo > 0, theta - start[lo], np.pi / 2)
+        above = np.where(hi < len(order) - 1, end[hi] - theta, np.pi / 2)
+        gap = np.clip(np.minimum(below, above), 0.0, np.pi / 2)
+        sure = (dist < np.hypot(y[:, 0], y[:, 1]) * np.sin(gap)) & ~tied
+        return best, sure
+
+
+def _polar_chain(a: np.ndarray, ab: np.ndarray):
+    """The chords' order by polar angle, their start and end angles (continuous about the
+    chain's middle) and that middle, if they chain around the origin (each turning the same
+    way, less than a quarter turn, each starting where the one before ends) within less than
+    a half turn; else None."""
+    if len(a) < 3:
+        return None
+    b = a + ab
+    phi_a, phi_b = np.arctan2(a[:, 1], a[:, 0]), np.arctan2(b[:, 1], b[:, 0])
+    mid = float(np.angle(np.exp(1j * phi_a).mean()))
+    phi_a = mid + np.angle(np.exp(1j * (phi_a - mid)))
+    phi_b = mid + np.angle(np.exp(1j * (phi_b - mid)))
+    start, end = np.minimum(phi_a, phi_b), np.maximum(phi_a, phi_b)
+    order = np.argsort(start)
+    start, end = start[order], end[order]
+    span = end - start
+    if (span <= 0).any() or (span >= np.pi / 2).any() or end[-1] - start[0] >= np.pi:
+        return None
+    if np.abs(start[1:] - end[:-1]).max() > 1e-9 * max(span.max(), 1e-300):
+        return None
+    return order, start, end, mid
+
 
 def _nearest_chord(a: np.ndarray, ab: np.ndarray, y: np.ndarray,
                    cand: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Per point y_q, the chord (a + t·ab, t ∈ [0, 1]) among its candidates ``cand[q]``
     nearest to it, and the distance."""
-    t = np.einsum("qcd,qcd->qc", y[:, None, :] - a[cand], ab[cand]) / np.sum(ab[cand] ** 2,
-                                                                           axis=2)
-    near = a[cand] + np.clip(t, 0, 1)[..., None] * ab[cand]
-    d2 = np.sum((near - y[:, None, :]) ** 2, axis=2)
+    d2 = _chord_distances(a, ab, y, cand)
     j = np.argmin(d2, axis=1)
     rows = np.arange(len(y))
     return cand[rows, j], np.sqrt(d2[rows, j])
+
+
+def _chord_distances(a: np.ndarray, ab: np.ndarray, y: np.ndarray,
+                     cand: np.ndarray) -> np.ndarray:
+    """Squared distance of each point y_q to each of its candidate chords ``cand[q]``."""
+    t = np.einsum("qcd,qcd->qc", y[:, None, :] - a[cand], ab[cand]) / np.sum(ab[cand] ** 2,
+                                                                           axis=2)
+    near = a[cand] + np.clip(t, 0, 1)[..., None] * ab[cand]
+    return np.sum((near - y[:, None, :]) ** 2, axis=2)
 
 
 def p2_edge_shape(s: np.ndarray) -> np.ndarray:

@@ -151,17 +151,24 @@ class CyclicBody:
 
     def displacement(self, loads: dict[int, np.ndarray], sectors) -> dict[int, np.ndarray]:
         """Template-frame fields (ndofs,) of the ``sectors`` under ``loads`` (sector → template
-        load vector)."""
-        rho = {t: self.cut_loads(f) for t, f in loads.items()}
-        out = {}
-        for s in sectors:
-            cut = sum((self.coupling(t - s) @ r for t, r in rho.items()),
-                      np.zeros(len(self.interface)))
-            u = self.from_cuts(cut)
-            if s in loads:
-                u = u + self.clamped(loads[s])
-            out[s] = u
-        return out
+        load vector): the sectors' cut motions and the loaded ones' clamped fields each in one
+        block (a solve and a product for all, not one a sector)."""
+        sectors = list(sectors)
+        loaded = list(loads)
+        if not loaded:
+            return {s: np.zeros(self.ndofs) for s in sectors}
+        F = np.column_stack([loads[t] for t in loaded])
+        rho = self.cut_loads(F)
+        cuts = np.zeros((len(self.interface), len(sectors)))
+        for j, s in enumerate(sectors):
+            for i, t in enumerate(loaded):
+                cuts[:, j] += self.coupling(t - s) @ rho[:, i]
+        U = self.from_cuts(cuts)
+        own = [j for j, s in enumerate(sectors) if s in loads]
+        if own:
+            U[:, own] += self.clamped(np.column_stack([loads[sectors[j]] for j in own]))
+        U = np.ascontiguousarray(U.T)
+        return {s: U[j] for j, s in enumerate(sectors)}
 
     def residual(self, loads: dict[int, np.ndarray], fields: dict[int, np.ndarray]) -> float:
         """Largest equilibrium residual of the sectors in ``fields`` at their interior dofs (the

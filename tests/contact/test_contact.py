@@ -131,6 +131,33 @@ def test_nearest_chord_search_matches_the_search_among_all_chords(candidates, mo
     assert np.allclose(np.linalg.norm(foot - y, axis=1), every, rtol=0, atol=1e-12)
 
 
+def test_a_chain_around_the_origin_is_searched_by_angle_and_finds_the_trees_chord():
+    # a wavy arc of 200 chords about the origin, 40° wide, as a gear template's profile:
+    # points on it, µm off it, far off it and beyond its ends; and points on its nodes, as
+    # near to two chords, where the tree's choice is kept
+    import fegear.contact.search as contact
+
+    rng = np.random.default_rng(5)
+    phi = np.sort(rng.uniform(0.3, 1.0, 201))
+    r = 20.0 + 0.8 * np.sin(9.0 * phi)
+    nodes = np.column_stack([r * np.cos(phi), r * np.sin(phi)])
+    a, ab = nodes[:-1], np.diff(nodes, axis=0)
+    on = a + rng.uniform(0, 1, (200, 1)) * ab
+    y = np.vstack([on, on + 1e-3 * rng.normal(size=on.shape), on + 2.0 * rng.normal(size=on.shape),
+                   30.0 * np.column_stack([np.cos([0.1, 1.2]), np.sin([0.1, 1.2])]), nodes[1:-1]])
+    chords = contact.Chords(a, ab)
+    assert chords.polar is not None
+    best, t = chords.nearest(y)
+    chords.polar = None
+    tree_best, tree_t = chords.nearest(y)
+    assert np.array_equal(best, tree_best) and np.array_equal(t, tree_t)
+    _, sure = contact.Chords(a, ab)._by_angle(y)
+    assert sure[:200].all() and not sure[-199:].any()   # on it by angle; its nodes by the tree
+    # chords that do not chain by angle (the test above's) are searched by the tree alone
+    assert contact.Chords(np.array([[0.0, 0.0], [1.0, 1.0], [3.0, 0.0]]),
+                          np.array([[1.0, 0.0], [1.0, 0.0], [0.0, 1.0]])).polar is None
+
+
 def test_penalty_over_three_decades_changes_p0_less_than_one_percent():
     default = DiskCase().penalty_factor
     factors = default * 10.0 ** np.array([-1.5, -0.5, 0.5, 1.5])

@@ -12,7 +12,7 @@ from fegear.contact.model import Circle
 from fegear.fe.assembly import RigidLink, assemble_body, facet_nodes
 from fegear.fe.material import Material
 from fegear.fe.mesh import BodyGeometry, Segment, mesh_bodies
-from fegear.fe.stress import quadrature_stress, recover
+from fegear.fe.stress import quadrature_stress, recover, recover_many
 
 E, NU, T = 206000.0, 0.29, 5.0
 
@@ -69,6 +69,12 @@ def test_patch_test_linear_field_is_reproduced(plane):
     assert np.abs(rec.sxy - sig[0, 1]).max() < 1e-9 * np.abs(sig).max()
     szz = 0.0 if plane == "stress" else NU * (sig[0, 0] + sig[1, 1])
     assert np.abs(rec.szz - szz).max() < 1e-9 * np.abs(sig).max()
+    # several fields in one solve: each as recovered alone, and linear in the field
+    both = recover_many(body, np.column_stack([u, -2.0 * u]))
+    for got, scale in zip(both, (1.0, -2.0)):
+        for name in ("sxx", "syy", "sxy", "szz"):
+            assert np.allclose(getattr(got, name), scale * getattr(rec, name), rtol=0,
+                               atol=1e-12 * np.abs(sig).max())
 
 
 def lame_error(size, a=10.0, b=20.0, p=100.0):
