@@ -116,7 +116,7 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     nh = int(offsets[-1])
     A = np.zeros((nh, nh))
     for side, loads, m in zip((g1, g2), (loads1, loads2), match):
-        A += _fe_part(side, loads, m, nh)
+        _fe_part(side, loads, m, A)
     for k, g in enumerate(grids):
         if not columns[k]:
             continue
@@ -175,31 +175,43 @@ def _matching(side: GearSide, x: np.ndarray, normal: np.ndarray, depth: float,
 
 
 def _fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
-             nh: int) -> np.ndarray:
-    """n · u_FE at the matching points per unit pressure of each hat (see module docstring):
-    for the points in sector k and the hats loading sector t, the clamped field if t = k plus
-    N Ψ W(t − k) ρ, the product taken through the thin factors of W where the sectors are far
-    apart (:meth:`~fegear.fe.cyclic.CyclicBody.coupling_factors`)."""
+             out: np.ndarray) -> None:
+    """Add n · u_FE at the matching points per unit pressure of each hat (see module
+    docstring) to ``out`` (points × hats): for the points in sector k and the hats loading
+    sector t, the clamped field if t = k plus N Ψ W(t − k) ρ, the product taken through the
+    thin factors of W where the sectors are far apart (:meth:`~fegear.fe.cyclic.CyclicBody
+    .coupling_factors`). A sector's points and a sector's hats are each one run of rows and of
+    columns but where a grid straddles two sectors."""
     at = match.at
     N = side.rows_at(match.cells, match.direction)
     NQ = np.asarray(N @ side.cut_field)
-    dofs = np.unique(np.concatenate([b.dofs for b in loads.values()]))
+    dofs = np.unique(np.concatenate([blk.dofs for blk in loads.values()]))
     clamped = side.clamped_rows(N, dofs)                     # (points, loaded dofs)
     rho = {t: side.cut_loads(blk.dofs) @ blk.matrix for t, blk in loads.items()}
-    out = np.zeros((len(at.sector), nh))
+    columns = {t: _run(blk.columns) for t, blk in loads.items()}
     for k in np.unique(at.sector):
         r = np.flatnonzero(at.sector == k)
-        part = np.zeros((len(r), nh))
+        rows = _run(r)
         Nk = NQ[r]
         for t, blk in loads.items():
             factors = side.body.coupling_factors(t - k)
-            if factors is None:
-                block = Nk @ (side.body.coupling(t - k) @ rho[t])
+            if factors is None:   # the cheaper order: a probe's few points by W first
+                W = side.body.coupling(t - k)
+                block = ((Nk @ W) @ rho[t] if len(r) < rho[t].shape[1]
+                         else Nk @ (W @ rho[t]))
             else:
                 U, V = factors
                 block = (Nk @ U) @ (V @ rho[t])
             if t == k:
-                block += clamped[np.ix_(r, np.searchsorted(dofs, blk.dofs))] @ blk.matrix
-            part[:, blk.columns] += block
-        out[r] = part
-    return out
+                block += clamped[rows][:, np.searchsorted(dofs, blk.dofs)] @ blk.matrix
+            if isinstance(rows, slice) or isinstance(columns[t], slice):
+                out[rows, columns[t]] += block
+            else:
+                out[np.ix_(r, blk.columns)] += block
+
+
+def _run(index: np.ndarray) -> slice | np.ndarray:
+    """``index`` (increasing) as a slice where it is one run of consecutive numbers."""
+    if len(index) and index[-1] - index[0] + 1 == len(index):
+        return slice(int(index[0]), int(index[-1]) + 1)
+    return index
