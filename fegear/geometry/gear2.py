@@ -196,16 +196,31 @@ class Cycloid:
         """Exact signed distance [mm] of points ``y`` (n, 2) to the curve; > 0 in the gap."""
         return self.closest(y)[2]
 
-    def closest(self, y: np.ndarray, tabled: bool = True
+    def closest(self, y: np.ndarray, tabled: bool = True, start: np.ndarray | None = None
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Foot points, unit gap-side normals and signed distances (> 0 in the gap) of ``y``.
+        """Foot points, unit gap-side normals and signed distances (> 0 in the gap) of ``y``
+        (:meth:`feet`, :meth:`at_feet`)."""
+        y = np.atleast_2d(np.asarray(y, dtype=float))
+        return self.at_feet(y, self.feet(y, tabled, start))
 
-        Newton's method on the foot-point condition ``(P(ξ) - y) · P'(ξ) = 0``, started at the
-        point of the curve with the same polar angle (meant for points within a fraction of a
-        tooth of the curve; ``tabled``: :meth:`xi_at_angle`).
+    def feet(self, y: np.ndarray, tabled: bool = True, start: np.ndarray | None = None
+             ) -> np.ndarray:
+        """The parameters ξ of the feet of ``y`` (n, 2) on the curve.
+
+        Newton's method on the foot-point condition ``(P(ξ) - y) · P'(ξ) = 0``, started at
+        ``start`` where given and finite (a foot found before for a point moved a little: two
+        steps, not the polar start's three and four), else at the point of the curve with the
+        same polar angle (meant for points within a fraction of a tooth of the curve;
+        ``tabled``: :meth:`xi_at_angle`).
         """
         y = np.atleast_2d(np.asarray(y, dtype=float))
-        xi = self.xi_at_angle(np.arctan2(y[:, 1], y[:, 0]), tabled=tabled)
+        if start is None:
+            xi = self.xi_at_angle(np.arctan2(y[:, 1], y[:, 0]), tabled=tabled)
+        else:
+            xi = np.array(start, dtype=float)
+            new = ~np.isfinite(xi)
+            if new.any():
+                xi[new] = self.xi_at_angle(np.arctan2(y[new, 1], y[new, 0]), tabled=tabled)
         limit = 0.25 * np.pi / self.z
         todo = np.arange(len(y))
         for _ in range(50):
@@ -228,6 +243,12 @@ class Cycloid:
             todo = todo[np.abs(step) > np.maximum(1e-15, _ULPS * np.spacing(np.abs(x)))]
             if todo.size == 0:
                 break
+        return xi
+
+    def at_feet(self, y: np.ndarray, xi: np.ndarray
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Foot points, unit gap-side normals and signed distances of ``y`` (n, 2) whose feet
+        are at parameters ``xi`` (:meth:`feet`)."""
         p, d1 = self.derivatives(xi, 1)
         t = d1 / np.hypot(d1[:, 0], d1[:, 1])[:, None]
         n = np.stack([-t[:, 1], t[:, 0]], axis=-1)

@@ -35,8 +35,15 @@ class Gear2Master:
     curve: Cycloid
     beta: float
 
-    def closest(self, points: np.ndarray) -> CurvePoints:
-        foot, normal, dist = self.curve.closest(rotate(np.asarray(points, float), -self.beta))
+    def closest(self, points: np.ndarray, feet: np.ndarray | None = None) -> CurvePoints:
+        """The feet of ``points`` on the curve. ``feet``: the curve's parameters ξ to start
+        each point's search from (NaN: from its polar angle), overwritten with the feet found
+        (:meth:`~fegear.geometry.Cycloid.feet`)."""
+        y = rotate(np.asarray(points, float), -self.beta)
+        xi = self.curve.feet(y, start=feet)
+        if feet is not None:
+            feet[:] = xi
+        foot, normal, dist = self.curve.at_feet(y, xi)
         return CurvePoints(rotate(foot, self.beta), rotate(normal, self.beta), dist)
 
 

@@ -82,6 +82,26 @@ def test_polar_table_start_gives_the_same_angles():
                   - c.closest(c.point(xi) * 1.001, tabled=False)[0]).max() < 1e-12
 
 
+def test_foot_search_from_feet_found_before_gives_the_same_feet_in_fewer_steps():
+    # the rigid gap at nearby rotations starts each point's search from its last foot: the
+    # same feet within the few ulps a point is done within, NaN starts from the polar angle
+    c = Counted(45.0, 0.6, 0.09, 45, 0.002)
+    rng = np.random.default_rng(4)
+    y = c.point(rng.uniform(-np.pi, np.pi, 300)) * rng.uniform(0.999, 1.001, (300, 1))
+    before = c.feet(y)
+    turned = y @ np.array([[np.cos(1e-6), np.sin(1e-6)], [-np.sin(1e-6), np.cos(1e-6)]])
+    start = before.copy()
+    start[:10] = np.nan
+    Counted.calls.clear()
+    plain = c.feet(turned)
+    polar = sum(Counted.calls)                 # points evaluated, over the steps
+    Counted.calls.clear()
+    warm = c.feet(turned, start=start)
+    assert sum(Counted.calls) < 0.6 * polar
+    assert np.abs(warm - plain).max() <= 8 * np.spacing(np.abs(plain)).max()
+    assert np.allclose(c.at_feet(turned, warm)[2], c.closest(turned)[2], rtol=0, atol=1e-13)
+
+
 def test_signed_distance_along_normal():
     c = Cycloid(45.0, 0.6, 0.09, 45)
     p, _, n, _ = c.frame(XI[::7])

@@ -45,14 +45,16 @@ class RingContactSolution:
     max_penetration: float
 
 
-def rigid_gap(model: RingModel, x: np.ndarray, beta: float, turn: float
-              ) -> tuple[np.ndarray, np.ndarray]:
+def rigid_gap(model: RingModel, x: np.ndarray, beta: float, turn: float,
+              feet: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Exact gap (mm) of gear-1 points ``x`` (its frame) to gear 2 (turned by β) with gear 1
     turned by ``turn`` (rad, kinematic angle included), and the gap's rate with that turn
-    (mm/rad)."""
+    (mm/rad). ``feet``: gear 2's parameters ξ to start the points' foot searches from (the
+    feet at a nearby turn, :attr:`~.influence.RingContact.feet`), overwritten with the feet
+    found."""
     o1 = np.array([0.0, model.case.params.e])
     fixed = rotate(x, turn) + o1
-    cp = Gear2Master(model.curve2, beta).closest(fixed)
+    cp = Gear2Master(model.curve2, beta).closest(fixed, feet)
     r = fixed - o1
     return cp.distance, np.einsum("ij,ij->i", cp.normal, np.column_stack([-r[:, 1], r[:, 0]]))
 
@@ -69,28 +71,33 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
     on = np.flatnonzero(contact.formed)
     A = contact.A if contact.complete else contact.A[np.ix_(on, on)]
     x, w = contact.x[on], contact.weight[on] * model.case.thickness
-    g0, a = rigid_gap(model, x, contact.beta, alpha + theta)
+    feet = contact.feet[on]
+    g0, a = rigid_gap(model, x, contact.beta, alpha + theta, feet)
     active = g0 <= g0.min() + 1e-12
     if guess is not None:
-        overlap = rigid_gap(model, x, contact.beta, alpha + guess)[0] < 0
+        overlap = rigid_gap(model, x, contact.beta, alpha + guess, feet.copy())[0] < 0
         active = overlap if overlap.any() else active
     pressure = np.zeros(len(g0))
     total = turns = 0
     while True:
         # the torque's arm turns with gear 1: where gear 2 bends sharply (a pointed tip) the
         # rotation converged only linearly, half a digit a linearisation, without this term
-        arm_rate = 0.0 if not pressure.any() else (w * pressure) @ (
-            rigid_gap(model, x, contact.beta, alpha + theta + ARM_STEP)[1] - a) / ARM_STEP
+        # (the loaded points' arms alone: the others carry nothing)
+        loaded = np.flatnonzero(pressure)
+        arm_rate = 0.0 if not len(loaded) else (w[loaded] * pressure[loaded]) @ (
+            rigid_gap(model, x[loaded], contact.beta, alpha + theta + ARM_STEP,
+                      feet[loaded])[1] - a[loaded]) / ARM_STEP
         pressure, step, active, used = _active_set(A, w, g0, a, torque_nmm, active, arm_rate)
         total += used
         turns += 1
         theta += step
         # settled to rounding: 1e-12 of the rotation, or a 1e-13 mm turn at the pitch circle
         settled = abs(step) <= max(1e-12 * abs(theta), 1e-13 / model.case.params.r0)
-        # the last evaluation at every point: the open ones' gaps are checked with it
-        g0, a = rigid_gap(model, x if not settled else contact.x, contact.beta, alpha + theta)
-        if settled:
+        if settled:   # the last evaluation at every point: the open ones' gaps are checked
+            contact.feet[on] = feet
+            g0, a = rigid_gap(model, contact.x, contact.beta, alpha + theta, contact.feet)
             break
+        g0, a = rigid_gap(model, x, contact.beta, alpha + theta, feet)
         if turns == MAX_TURNS:
             raise RingContactError(f"the rotation did not settle in {MAX_TURNS} "
                                    "linearisations")
@@ -212,10 +219,11 @@ def tangent_stiffness(model: RingModel, contact: RingContact,
     active = sol.pressure > 0
     if not active.any():
         return float("nan")
-    _, a = rigid_gap(model, contact.x, contact.beta, alpha + sol.rotation)
-    ahead = rigid_gap(model, contact.x, contact.beta, alpha + sol.rotation + ARM_STEP)[1]
-    arm_rate = (w * sol.pressure) @ (ahead - a) / ARM_STEP
+    _, a = rigid_gap(model, contact.x, contact.beta, alpha + sol.rotation, contact.feet)
     idx = np.flatnonzero(active)
+    ahead = rigid_gap(model, contact.x[idx], contact.beta, alpha + sol.rotation + ARM_STEP,
+                      contact.feet[idx])[1]
+    arm_rate = (w[idx] * sol.pressure[idx]) @ (ahead - a[idx]) / ARM_STEP
     rhs = np.zeros(len(idx) + 1)
     rhs[-1] = -1.0                     # one N·mm more on gear 1
     rate = np.linalg.solve(_bordered(contact.A, w, a, idx, arm_rate), rhs)[-1]  # rad per N·mm
@@ -226,8 +234,9 @@ def touch_rotation(model: RingModel, contact: RingContact, theta: float) -> floa
     """The rotation θ (rad) at which gear 1's rigid, rounded teeth first touch: the smallest
     closure over the grid points, repeated on the exact gaps."""
     alpha = model.case.params.ratio * contact.beta
+    feet = contact.feet.copy()
     for _ in range(8):
-        g0, a = rigid_gap(model, contact.x, contact.beta, alpha + theta)
+        g0, a = rigid_gap(model, contact.x, contact.beta, alpha + theta, feet)
         closing = a < 0
         step = float(np.min(g0[closing] / -a[closing]))
         theta += step

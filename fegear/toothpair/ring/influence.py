@@ -48,7 +48,9 @@ class RingContact:
     kinematic angle included): the grids and their points (gear 1's frame), outward normals,
     arc positions (mm) and hat weights ∫φ ds (mm); each gear's loads per unit hat pressure
     (sector → :class:`LoadBlock`) and matching points; gear 2's points facing the grid and its
-    outward normals there (its own frame); A (mm/MPa), which only the solve reads: a solved
+    outward normals there (its own frame) and its curve's parameter ξ there, the foot last
+    found (the rigid gap's searches at nearby rotations start from it:
+    :func:`~.contact.rigid_gap`); A (mm/MPa), which only the solve reads: a solved
     position's record (:class:`~.results.RingDetail`) is without it (38 MB at the baseline's
     2 200 points, 0.9 GB over a 24-position cycle)."""
 
@@ -64,6 +66,8 @@ class RingContact:
     facing: tuple[np.ndarray, np.ndarray] = field(repr=False)
     A: np.ndarray | None = field(repr=False)
     formed: np.ndarray = field(repr=False)   # which columns of A (hats) are formed
+    feet: np.ndarray = field(repr=False)     # gear 2's parameter ξ at each point's foot, the
+                                             # last found: the next search's start
 
     @property
     def complete(self) -> bool:
@@ -109,7 +113,8 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     cq = master.closest(rotate(xq, turn) + o1)
     loads2 = g2.nodal_loads(rotate(cq.foot, -beta), rotate(rotate(nq, turn), -beta), col, size)
 
-    cp = master.closest(rotate(x, turn) + o1)
+    feet = np.full(len(x), np.nan)
+    cp = master.closest(rotate(x, turn) + o1, feet)
     x2, n2 = rotate(cp.foot, -beta), rotate(cp.normal, -beta)   # n2 out of gear 2's material
     match = (_matching(g1, x, n1, model.level.depth, grids, offsets),
              _matching(g2, x2, n2, model.level.depth, grids, offsets))
@@ -124,7 +129,7 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
         for m in match:
             A[blk, blk] += approach_matrix(g.s, m.depth[blk], g.s, case.E, case.nu)
     return RingContact(beta, turn, tuple(grids), offsets, x, n1, weight, (loads1, loads2), match,
-                       (x2, n2), A, formed)
+                       (x2, n2), A, formed, feet)
 
 
 def _hat_loads(model: RingModel, grids, offsets, thickness: float, columns):

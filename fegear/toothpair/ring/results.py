@@ -64,7 +64,8 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
     p = case.params
     pitch1, pitch2 = model.shape.pitch, 2 * math.pi / p.z2
     w = contact.weight * case.thickness
-    gap, rate = rigid_gap(model, contact.x, case.beta, p.ratio * case.beta + sol.rotation)
+    gap, rate = rigid_gap(model, contact.x, case.beta, p.ratio * case.beta + sol.rotation,
+                          contact.feet)
     E_star = contact_modulus(case.E, case.E)
     clearance = {c.tooth: c.plus_um for c in state.teeth}
     by_tooth = {c.tooth: c for c in cands}
