@@ -182,23 +182,43 @@ def tooth_grid(samples: ToothSamples, win: Window, load: float, E_star: float, p
     a cycle and alone has the same grid where it carries pressure, whatever rotation each
     placed its windows for. A ``probe`` grid, on a tooth not expected to touch, has
     PROBE_POINTS evenly: enough to tell whether it does."""
-    k = slice(win.lo, win.hi + 1)
-    s = samples.s[k] - samples.s[win.lo]
-    if probe:
-        sg = np.linspace(0.0, s[-1], PROBE_POINTS + 1)
-    else:
-        sg = _counted(samples, win, s, load, E_star, per_b, floor, reach)
-    sg = sg[np.concatenate([[True], np.diff(sg) > 1e-9 * s[-1]])]  # samples of zero length
-    phi0 = np.interp(sg, s, samples.phi[k])            # tooth 0's angles
+    return tooth_grids(samples, (win,), load, E_star, per_b, floor, reach,
+                       (probe,))[0]
+
+
+def tooth_grids(samples: ToothSamples, wins, load: float, E_star: float, per_b: float,
+                floor: float, reach: float, probes) -> tuple[ToothGrid, ...]:
+    """:func:`tooth_grid` over each of the windows ``wins``, a probe where ``probes`` says:
+    the exact profile evaluated for all their points at once (its Newton iterations are each
+    point's own: the same points as one window at a time, a third of the time)."""
+    angles = []
+    for win, probe in zip(wins, probes):
+        k = slice(win.lo, win.hi + 1)
+        s = samples.s[k] - samples.s[win.lo]
+        if probe:
+            sg = np.linspace(0.0, s[-1], PROBE_POINTS + 1)
+        else:
+            sg = _counted(samples, win, s, load, E_star, per_b, floor, reach)
+        sg = sg[np.concatenate([[True], np.diff(sg) > 1e-9 * s[-1]])]  # samples of zero length
+        angles.append((np.interp(sg, s, samples.phi[k]), s[-1]))     # tooth 0's angles
     shape = samples.shape
-    x, n, kappa = shape.frame(phi0)
-    turn = win.tooth * shape.pitch
-    xg, ng = rotate(x, turn), rotate(n, turn)
-    chord = np.hypot(*np.diff(xg, axis=0).T)
-    keep = np.concatenate([[True], chord > 1e-9 * max(s[-1], 1e-12)])  # coincident points
-    xg, ng, kappa, phi0 = xg[keep], ng[keep], kappa[keep], phi0[keep]
-    sg = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xg, axis=0).T))])  # exact chords
-    return ToothGrid(win.tooth, sg, phi0 + turn, xg, ng, kappa, shape.on_round(phi0), probe)
+    if not angles:
+        return ()
+    x_all, n_all, kappa_all = shape.frame(np.concatenate([phi0 for phi0, _ in angles]))
+    cuts = np.cumsum([len(phi0) for phi0, _ in angles])[:-1]
+    out = []
+    for win, probe, (phi0, length), x, n, kappa in zip(
+            wins, probes, angles, np.split(x_all, cuts), np.split(n_all, cuts),
+            np.split(kappa_all, cuts)):
+        turn = win.tooth * shape.pitch
+        xg, ng = rotate(x, turn), rotate(n, turn)
+        chord = np.hypot(*np.diff(xg, axis=0).T)
+        keep = np.concatenate([[True], chord > 1e-9 * max(length, 1e-12)])  # coincident points
+        xg, ng, kappa, phi0 = xg[keep], ng[keep], kappa[keep], phi0[keep]
+        sg = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xg, axis=0).T))])  # exact chords
+        out.append(ToothGrid(win.tooth, sg, phi0 + turn, xg, ng, kappa, shape.on_round(phi0),
+                             probe))
+    return tuple(out)
 
 
 def _counted(samples: ToothSamples, win: Window, s: np.ndarray, load: float, E_star: float,

@@ -25,7 +25,7 @@ from ..case import ContactChecks, PairSolution, SolveCase
 from ..positions import SHARE_GUESS, Attempt, Trial, expected_elastic_um
 from ..teeth import candidate_data, choose_teeth
 from .contact import solve_ring_contact, tangent_stiffness, touch_rotation
-from .grid import ToothGrid, tooth_grid, windows
+from .grid import ToothGrid, tooth_grids, windows
 from .influence import RingContact, assemble_contact
 from .model import RingModel, keep_on_disk, ring_model
 from .results import RingDetail, tooth_results
@@ -245,7 +245,7 @@ def _kept(contact: RingContact) -> RingContact:
 
 def _expected(state, closure_um: float) -> set[int]:
     """Teeth a rigid rotation of ``closure_um`` (µm of arc at r0) closes: they get fine grids,
-    the others chosen coarse probe grids (:func:`~.grid.tooth_grid`)."""
+    the others chosen coarse probe grids (:func:`~.grid.tooth_grids`)."""
     return {c.tooth for c in state.teeth
             if c.plus_um is not None and c.plus_um <= closure_um + PROBE_MARGIN_UM}
 
@@ -268,9 +268,8 @@ def _grids(model: RingModel, case: SolveCase, teeth, full: set[int], theta: floa
                                    p.e, [base * reach.get(t, 1.0) for t in teeth])
                 if w is not None]
         if wins:
-            return tuple(tooth_grid(model.samples, w, load, E_star, model.level.per_b,
-                                    GRID_FLOOR * p.m, canonical, probe=w.tooth not in full)
-                         for w in wins)
+            return tooth_grids(model.samples, wins, load, E_star, model.level.per_b,
+                               GRID_FLOOR * p.m, canonical, [w.tooth not in full for w in wins])
         # the first touch the clearance table gives is the sharp profile's: on a tip edge the
         # round stands that far back (µm at z1 = 8 and h1 0.9), so the reach widens
         if base > WIDEST_REACH * p.m:
