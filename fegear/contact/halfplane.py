@@ -59,10 +59,10 @@ def _hat_matrix(t: np.ndarray, d: np.ndarray, s: np.ndarray, antiderivatives,
     s = np.asarray(s, float)
     out = np.zeros((t.shape[0], len(s)))
     a, b = s[:-1][None, :], s[1:][None, :]   # interval k: [s_k, s_k+1]
-    # over an interval σ ∈ [a, b]: u = t − σ ∈ [t − b, t − a]
-    F0b, F1b = antiderivatives(t - a, d, nu)
-    F0a, F1a = antiderivatives(t - b, d, nu)
-    I0, I1 = F0b - F0a, F1b - F1a            # ∫ K du, ∫ u K du
+    # over an interval σ ∈ [a, b]: u = t − σ ∈ [t − b, t − a]; t − b of interval k is t − a
+    # of interval k + 1, so the antiderivatives are taken once at every grid point
+    F0, F1 = antiderivatives(t - s[None, :], d, nu)
+    I0, I1 = F0[:, :-1] - F0[:, 1:], F1[:, :-1] - F1[:, 1:]   # ∫ K du, ∫ u K du
     width = b - a
     # falling part of hat k on [a, b]: (b − σ)/(b − a) = (b − t + u)/(b − a)
     falling = ((b - t) * I0 + I1) / width
