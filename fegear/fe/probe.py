@@ -18,7 +18,7 @@ import scipy.sparse as sp
 from ..errors import FegearError
 
 CANDIDATES = 8      # nearest element centres tried per point
-NEWTON = 6          # iterations on the quadratic map (it is close to affine in each element)
+NEWTON = 6          # iterations at most on the quadratic map (close to affine in each element)
 TOLERANCE = 0.05    # how far outside its element a point may fall (reference units): a point
                     # on the exact boundary lies outside the quadratic edges by ~(hκ)² of an
                     # element, up to 0.016 where elements are an eighth of the curvature radius
@@ -143,22 +143,26 @@ def _grad(xi: np.ndarray, eta: np.ndarray) -> np.ndarray:
 def _outside(ref: np.ndarray) -> np.ndarray:
     """How far reference coordinates (…, 2) lie outside the reference triangle (0 inside)."""
     xi, eta = ref[..., 0], ref[..., 1]
-    return np.maximum.reduce([-xi, -eta, xi + eta - 1.0, np.zeros_like(xi)])
+    out = np.maximum.reduce([-xi, -eta, xi + eta - 1.0, np.zeros_like(xi)])
+    return np.where(np.isnan(out), np.inf, out)
 
 
 def _affine(X: np.ndarray, y: np.ndarray) -> np.ndarray:
     """Reference coordinates (…, 2) of points y under the affine maps of the corners of
     elements with nodes X (…, 6, 2)."""
     a, b, c = X[..., 0, :], X[..., 1, :], X[..., 2, :]
-    A = np.stack([b - a, c - a], axis=-1)                        # (…, 2, 2)
-    return np.linalg.solve(A, (y - a)[..., None])[..., 0]
+    (p, q), (r, s), (v, w) = np.moveaxis(b - a, -1, 0), np.moveaxis(c - a, -1, 0), \
+        np.moveaxis(y - a, -1, 0)
+    det = p * s - r * q                 # the corners' 2 × 2 map [b − a, c − a], by Cramer
+    det = np.where(det != 0.0, det, np.nan)   # no element is flat: NaN, never chosen
+    return np.stack([(s * v - r * w) / det, (p * w - q * v) / det], axis=-1)
 
 
 def _invert(X: np.ndarray, y: np.ndarray) -> np.ndarray:
     """Reference coordinates (…, 2) of points y under the quadratic maps of elements with nodes
     X (…, 6, 2): the affine map of the corners first, then Newton on the quadratic one."""
     ref = _affine(X, y)
-    for _ in range(NEWTON):
+    for _ in range(NEWTON):   # done when every step is below rounding (two or three steps)
         N = _shape(ref[..., 0], ref[..., 1])
         dN = _grad(ref[..., 0], ref[..., 1])
         r = np.einsum("...k,...kd->...d", N, X) - y
@@ -168,5 +172,8 @@ def _invert(X: np.ndarray, y: np.ndarray) -> np.ndarray:
         det = np.where(ok, det, 1.0)
         step = np.stack([(J[..., 1, 1] * r[..., 0] - J[..., 0, 1] * r[..., 1]) / det,
                          (-J[..., 1, 0] * r[..., 0] + J[..., 0, 0] * r[..., 1]) / det], axis=-1)
-        ref = ref - np.where(ok[..., None], step, 0.0)
+        step = np.where(ok[..., None], step, 0.0)
+        ref = ref - step
+        if np.abs(step).max(initial=0.0) <= 1e-15:
+            break
     return ref
