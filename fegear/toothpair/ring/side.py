@@ -108,10 +108,13 @@ class GearSide:
         out = {}
         for k in np.unique(where.sector):
             sel = where.sector == k
-            parts = [(2 * nodes[sel, c] + d, shape[sel, c] * d_local[sel, d] * size[sel, j],
-                      column[sel, j])
-                     for c in range(3) for d in range(2) for j in range(column.shape[1])]
-            rows, vals, cols = (np.concatenate(v) for v in zip(*parts))
+            m, c = int(sel.sum()), column.shape[1]
+            # (point, facet node, direction, unknown): dof, force per unit value, unknown
+            rows = np.broadcast_to((2 * nodes[sel])[:, :, None, None]
+                                   + np.arange(2)[None, None, :, None], (m, 3, 2, c)).ravel()
+            vals = (shape[sel][:, :, None, None] * d_local[sel][:, None, :, None]
+                    * size[sel][:, None, None, :]).ravel()
+            cols = np.broadcast_to(column[sel][:, None, None, :], (m, 3, 2, c)).ravel()
             dofs, r = np.unique(rows, return_inverse=True)
             columns, c = np.unique(cols, return_inverse=True)
             matrix = np.zeros((len(dofs), len(columns)))
