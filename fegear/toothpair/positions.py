@@ -100,9 +100,11 @@ class PositionModel(Protocol):
     def finish(self, case: SolveCase, state, attempt: Attempt) -> PairSolution:
         """Stresses and per-tooth results of a settled attempt (timings in the solution)."""
 
-    def complete(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
+    def complete(self, sols: tuple[PairSolution, ...], beside: bool = False
+                 ) -> tuple[PairSolution, ...]:
         """The solutions of all positions, with what the model leaves until the cycle is
-        known (the ring model's submodels where the cycle peaks)."""
+        known (the ring model's submodels where the cycle peaks); ``beside``: a second core
+        is free for part of that work."""
 
     def detach(self, sol: PairSolution) -> PairSolution:
         """``sol`` as it crosses from a chain solved beside (:func:`drive`): without what
@@ -209,7 +211,8 @@ def _drive(case: SolveCase, betas, solver: PositionModel, profile: Gear1Profile 
                                           **sols[0].timings_s})
     if ahead is not None:
         ahead(sols)
-    return solver.complete(tuple(sols))
+    # the second core shares the completion unless what ``ahead`` started holds it
+    return solver.complete(tuple(sols), beside=beside and ahead is None)
 
 
 def _announce(states, k: int) -> None:

@@ -50,8 +50,8 @@ class StandIn:
         again = None if settled else Trial(trial.teeth, trial.elastic_um * 2)
         return Attempt(state, again, "stand-in", {"contact": 0.5})
 
-    def complete(self, sols):
-        self.completed = sols
+    def complete(self, sols, beside=False):
+        self.completed, self.completed_beside = sols, beside
         return sols
 
     def finish(self, case, state, attempt):
@@ -176,6 +176,13 @@ def test_ahead_sees_every_position_before_the_model_completes_them(profile):
                  ahead=lambda s: seen.append((list(s), model.completed)))
     ((given, completed),) = seen
     assert completed is None and tuple(given) == sols
+    # what ahead started holds the second core: the model completes here alone …
+    assert model.completed_beside is False
+    # … where without it the second core is the model's to share
+    drive(CASE, betas, model, profile, beside=True)
+    assert model.completed_beside is True
+    drive(CASE, betas, model, profile)
+    assert model.completed_beside is False
 
 
 class Templates(StandIn):

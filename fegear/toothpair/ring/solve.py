@@ -19,7 +19,7 @@ from dataclasses import replace
 
 from ... import progress
 from ...errors import ContactError, FegearError
-from ...fe import contact_modulus
+from ...fe import contact_modulus, submodel_meshes
 from ...geometry import Gear1Profile
 from ..case import ContactChecks, PairSolution, SolveCase
 from ..positions import SHARE_GUESS, Attempt, Trial, expected_elastic_um
@@ -181,16 +181,18 @@ class RingSolver:
             detail=RingDetail(model, case, _kept(contact), sol, stresses),
             von_mises_estimated=not stresses.submodels, tangent_stiffness=tangent)
 
-    def complete(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
+    def complete(self, sols: tuple[PairSolution, ...], beside: bool = False
+                 ) -> tuple[PairSolution, ...]:
         """With ``submodels`` "peaks", the submodels of the positions that decide a cycle:
         where each headline stress is largest (the job pictures and estimates the largest
         gear-1 root stress's), and wherever the von Mises estimate comes within
         :data:`PEAK_MARGIN` of the largest von Mises stress solved, until no other does. A
         single position is its own peak. The others keep the surface estimate
         (``von_mises_estimated``); everything else a position reports does not depend on
-        submodels. The model is then kept on disk if the cache is on
-        (:func:`~.model.keep_on_disk`)."""
-        out = self._complete(sols)
+        submodels. ``beside``: the first peaks are shared with a forked copy of this process
+        (their disks are meshed where they are solved: the same disks, the same numbers).
+        The model is then kept on disk if the cache is on (:func:`~.model.keep_on_disk`)."""
+        out = self._complete(sols, beside)
         if self.model is not None:
             keep_on_disk(self.model)
         return out
@@ -205,7 +207,8 @@ class RingSolver:
         the one its forked copy came from)."""
         return replace(sol, detail=replace(sol.detail, model=self.model))
 
-    def _complete(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
+    def _complete(self, sols: tuple[PairSolution, ...], beside: bool
+                  ) -> tuple[PairSolution, ...]:
         if self.submodels != "peaks" or not sols:
             return sols
         out = list(sols)
@@ -214,8 +217,7 @@ class RingSolver:
         want = {max(range(len(sols)), key=lambda i: sols[i].headline()[k]) for k in keys}
         done: set[int] = set()
         while want:
-            for i in want:
-                out[i] = _with_submodels(out[i])
+            self._with_submodels(out, sorted(want), beside and not done)
             done |= want
             solved = [s.von_mises_max for s in out if not s.von_mises_estimated]
             if not solved:   # no peak a submodel could take (no surface stress anywhere)
@@ -223,6 +225,37 @@ class RingSolver:
             want = {i for i, s in enumerate(out) if i not in done
                     and s.von_mises_max >= (1.0 - PEAK_MARGIN) * max(solved)}
         return tuple(out)
+
+
+    def _with_submodels(self, out: list[PairSolution], which: list[int],
+                        beside: bool) -> None:
+        """``out[i]`` with its submodels for each of ``which``; ``beside``: every other one in
+        a forked copy of this process (should that fail in any way, here)."""
+        theirs = which[1::2] if beside else []
+        child = None
+        if theirs:
+            from ...workers import Forked
+
+            def there():   # the solutions, and the disks meshed there for later peaks here
+                before = set(self.model.submodels)
+                sols = [self.detach(_with_submodels(out[i])) for i in theirs]
+                return sols, submodel_meshes({k: v for k, v in self.model.submodels.items()
+                                              if k not in before})
+
+            child = Forked(there)
+        try:
+            for i in which[0::2] if theirs else which:
+                out[i] = _with_submodels(out[i])
+            got = child.result() if child is not None else None
+        finally:
+            if child is not None:
+                child.stop()
+        if got is not None:
+            sols, meshes = got
+            for key, mesh in meshes.items():
+                self.model.submodels.setdefault(key, mesh)
+        for k, i in enumerate(theirs):
+            out[i] = self.attach(sols[k]) if got is not None else _with_submodels(out[i])
 
 
 def _with_submodels(sol: PairSolution) -> PairSolution:

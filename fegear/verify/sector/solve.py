@@ -159,7 +159,8 @@ class SectorSolver:
         return Attempt(sol, again, f"teeth {sorted(more - set(self.model.scene.paired))} "
                                    f"would close, windows of teeth {ends} too short")
 
-    def complete(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
+    def complete(self, sols: tuple[PairSolution, ...], beside: bool = False
+                 ) -> tuple[PairSolution, ...]:
         """Every position is complete when solved."""
         return sols
 

@@ -379,9 +379,10 @@ def test_the_tangent_stiffness_is_the_slope_of_two_solves(baseline_ring, torque)
 
 
 def test_a_cycle_s_second_chain_solved_beside_is_the_one_solved_here(baseline_ring):
-    # `fegear solve --positions 16` on two cores: the second half in a forked process; the
-    # same positions to rounding (the responses formed there are formed in other batches),
-    # each joined to this model again (its fields and submodels read from it)
+    # `fegear solve --positions 16` on two cores: the second half in a forked process, and
+    # every other peak's submodels; the same positions to rounding (the responses formed
+    # there are formed in other batches), each joined to this model again (its fields and
+    # submodels read from it)
     from fegear.toothpair import CHAINED
 
     p = baseline_ring.case.params
@@ -393,5 +394,10 @@ def test_a_cycle_s_second_chain_solved_beside_is_the_one_solved_here(baseline_ri
         assert b.detail.model is baseline_ring and b.detail.contact.A is None
         for key, value in a.headline().items():
             assert b.headline()[key] == pytest.approx(value, rel=1e-9), (a.case.beta, key)
+    peaks = [k for k, s in enumerate(here) if not s.von_mises_estimated]
+    assert len(peaks) >= 2 and peaks == [k for k, s in enumerate(beside)
+                                         if not s.von_mises_estimated]
+    for k in peaks:
+        assert len(beside[k].detail.stresses.submodels) == len(here[k].detail.stresses.submodels)
     later = beside[-1]
     assert {f.name for f in later.detail.body_fields(around=1)} == {"gear1", "gear2"}
