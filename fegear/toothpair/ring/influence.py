@@ -89,13 +89,19 @@ class RingContact:
 
 
 def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float,
-                     turn: float, probe_columns: bool = True) -> RingContact:
+                     turn: float, probe_columns: bool = True,
+                     within: float | None = None) -> RingContact:
     """The contact of the ``grids`` with gear 2 turned by β and gear 1 by ``turn`` (rad, its
     kinematic angle included, about its centre). Without ``probe_columns`` (and with a fine
     grid among the ``grids``), A's columns of the probe grids' hats are not formed: the
     approach of every point under the fine grids' pressures is all a solve needs while no
     probe point closes (:func:`~.contact.solve_ring_contact`); the probes' columns, with the
-    sectors only they load, were a fifth of the influence products."""
+    sectors only they load, were a fifth of the influence products. ``within`` (mm): only
+    the columns of the points whose rigid gap at ``turn`` is below it are formed, the hats
+    that can carry pressure there (pressure separates the surfaces everywhere, so a loaded
+    point overlaps rigidly: on the baseline's cycle, by a fifth of the elastic approach or
+    more at the expected turn); the rows of every point are, so that the solve can tell
+    whether a point left out would close."""
     p, case = model.case.params, model.case
     g1, g2 = model.gears
     offsets = np.cumsum([0] + [len(g) for g in grids])
@@ -104,17 +110,18 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     weight = np.concatenate([g.weights for g in grids])
     o1 = np.array([0.0, p.e])
     master = Gear2Master(model.curve2, beta)
+    feet = np.full(len(x), np.nan)
+    cp = master.closest(rotate(x, turn) + o1, feet)
     every = probe_columns or all(g.probe for g in grids)
-    columns = [every or not g.probe for g in grids]
-    formed = np.repeat(columns, np.diff(offsets))
+    formed = np.repeat([every or not g.probe for g in grids], np.diff(offsets))
+    if within is not None and (formed & (cp.distance < within)).any():
+        formed &= cp.distance < within
 
-    xq, nq, size, col = _hat_loads(model, grids, offsets, case.thickness, columns)
+    xq, nq, size, col = _hat_loads(model, grids, offsets, case.thickness, formed)
     loads1 = g1.nodal_loads(xq, -nq, col, size)
     cq = master.closest(rotate(xq, turn) + o1)
     loads2 = g2.nodal_loads(rotate(cq.foot, -beta), rotate(rotate(nq, turn), -beta), col, size)
 
-    feet = np.full(len(x), np.nan)
-    cp = master.closest(rotate(x, turn) + o1, feet)
     x2, n2 = rotate(cp.foot, -beta), rotate(cp.normal, -beta)   # n2 out of gear 2's material
     match = (_matching(g1, x, n1, model.level.depth, grids, offsets),
              _matching(g2, x2, n2, model.level.depth, grids, offsets))
@@ -123,27 +130,39 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     for side, loads, m in zip((g1, g2), (loads1, loads2), match):
         _fe_part(side, loads, m, A)
     for k, g in enumerate(grids):
-        if not columns[k]:
-            continue
         blk = slice(int(offsets[k]), int(offsets[k + 1]))
-        for m in match:
-            A[blk, blk] += approach_matrix(g.s, m.depth[blk], g.s, case.E, case.nu)
+        for lo, hi in _runs(formed[blk]):
+            # the hats lo … hi − 1 on the grid's points from lo − 1 to hi: the same integrals
+            # as over the whole grid (each hat's two intervals), for the formed ones alone
+            a, b = max(lo - 1, 0), min(hi + 1, len(g))
+            for m in match:
+                A[blk, blk.start + lo:blk.start + hi] += approach_matrix(
+                    g.s, m.depth[blk], g.s[a:b], case.E, case.nu)[:, lo - a:hi - a]
     return RingContact(beta, turn, tuple(grids), offsets, x, n1, weight, (loads1, loads2), match,
                        (x2, n2), A, formed, feet)
 
 
-def _hat_loads(model: RingModel, grids, offsets, thickness: float, columns):
-    """Gauss points of every interval of the grids whose ``columns`` are formed (gear 1's
-    frame), outward normals there, and per point the two hats it loads (the falling one of
-    the interval's start, the rising one of its end) with the force (N) per unit pressure of
-    each: (n, 2) columns and sizes."""
+def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """The runs [lo, hi) of consecutive True in ``mask``."""
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], mask.astype(np.int8), [0]])))
+    return list(zip(edges[0::2].tolist(), edges[1::2].tolist()))
+
+
+def _hat_loads(model: RingModel, grids, offsets, thickness: float, formed: np.ndarray):
+    """Gauss points of every interval of the grids next to a hat whose column is ``formed``
+    (per point; gear 1's frame), outward normals there, and per point the two hats it loads
+    (the falling one of the interval's start, the rising one of its end) with the force (N)
+    per unit pressure of each: (n, 2) columns and sizes (a hat not formed loads nothing: its
+    place holds its formed neighbour's column at zero force)."""
     gq, gw = np.polynomial.legendre.leggauss(GAUSS)
     samples = model.samples
     xs, ns, sizes, cols = [], [], [], []
     for k, g in enumerate(grids):
-        if not columns[k]:
+        on = formed[offsets[k]:offsets[k + 1]]
+        used = on[:-1] | on[1:]            # intervals next to a formed hat
+        if not used.any():
             continue
-        a, b = g.s[:-1], g.s[1:]
+        a, b = g.s[:-1][used], g.s[1:][used]
         sq = 0.5 * (a + b)[:, None] + 0.5 * (b - a)[:, None] * gq[None, :]
         wq = 0.5 * (b - a)[:, None] * gw[None, :]
         phi = np.interp(sq.ravel(), g.s, g.phi) - g.tooth * samples.shape.pitch
@@ -155,11 +174,14 @@ def _hat_loads(model: RingModel, grids, offsets, thickness: float, columns):
         turn = g.tooth * samples.shape.pitch
         xs.append(rotate(xq, turn))
         ns.append(rotate(nq, turn))
-        fall = ((b[:, None] - sq) / (b - a)[:, None] * wq).ravel()
-        rise = ((sq - a[:, None]) / (b - a)[:, None] * wq).ravel()
-        j = np.repeat(offsets[k] + np.arange(len(g) - 1), GAUSS)
+        start = np.flatnonzero(used)
+        fall = ((b[:, None] - sq) / (b - a)[:, None] * wq * on[start][:, None]).ravel()
+        rise = ((sq - a[:, None]) / (b - a)[:, None] * wq * on[start + 1][:, None]).ravel()
+        j = offsets[k] + np.repeat(start, GAUSS)
+        j_fall = np.where(np.repeat(on[start], GAUSS), j, j + 1)
+        j_rise = np.where(np.repeat(on[start + 1], GAUSS), j + 1, j)
         sizes.append(np.column_stack([fall, rise]) * thickness)
-        cols.append(np.column_stack([j, j + 1]))
+        cols.append(np.column_stack([j_fall, j_rise]))
     return np.vstack(xs), np.vstack(ns), np.vstack(sizes), np.vstack(cols)
 
 

@@ -40,6 +40,10 @@ GRID_FLOOR = 1e-5    # smallest grid spacing, in modules (20 nm at m = 2)
 PLACEMENT = 0.1      # grids are placed again if the solved rotation's elastic part differs
                      # from the expected one by more than this fraction
 PROBE_MARGIN_UM = 1.0  # fine grids also on teeth within this of closing at the expected rotation
+CANDIDATES = 0.1     # A's columns first on the points whose rigid gap at the expected rotation
+                     # is below this many expected elastic approaches (a rotation off by
+                     # PLACEMENT gets new grids anyway; loaded points overlap by a fifth of the
+                     # approach or more on the baseline's cycle): 0.55 of the fine grids' points
 PEAK_MARGIN = 0.02   # a cycle's position gets its submodels where its von Mises estimate is
                      # within this fraction of the cycle's largest von Mises stress (the
                      # estimate is within 0.6 % of the submodel at `standard`, 1 % at
@@ -104,26 +108,31 @@ class RingSolver:
         t0 = time.perf_counter()
         grids = _grids(model, case, trial.teeth, full, theta, elastic_um, reach)
         times["grids"] += time.perf_counter() - t0
+        # A's columns first only where pressure can act: not the probes' (where one closes,
+        # the attempt is made again with that tooth's fine grid: once in 24 positions of the
+        # baseline's cycle), and on the fine grids the points that overlap rigidly at the
+        # expected rotation, or nearly (CANDIDATES); all of them where a point left out closes
         sol, probe_columns = None, False
+        within = None if predict else CANDIDATES * elastic_um * 1e-3
         while sol is None:
-            # the probes' columns of A only where a probe closes (then the attempt is made
-            # again with that tooth's fine grid: once in 24 positions of the baseline's cycle)
             t0 = time.perf_counter()
             contact = assemble_contact(model, grids, case.beta, p.ratio * case.beta + theta,
-                                       probe_columns)
+                                       probe_columns, within)
             times["assemble"] += time.perf_counter() - t0
             t0 = time.perf_counter()
             try:
                 sol = solve_ring_contact(model, contact, torque, p.turn_of(first_um),
                                          guess=theta)
             except ContactError:
-                if not predict:
+                if within is not None:    # the candidates alone cannot carry the torque
+                    sol = None
+                elif not predict:
                     raise
-                # probe grids too coarse for this contact to settle: fine grids at the estimate
-                return Attempt(None, replace(trial, own={"reach": reach}),
-                               "probe grids did not settle", times)
+                else:   # probe grids too coarse for this contact to settle: fine grids
+                    return Attempt(None, replace(trial, own={"reach": reach}),
+                                   "probe grids did not settle", times)
             times["contact"] += time.perf_counter() - t0
-            probe_columns = True
+            probe_columns, within = True, None
         formed = sum(g.response_s for g in model.gears) - formed
         times["assemble"] -= formed
         times["responses"] = formed

@@ -101,6 +101,48 @@ def test_the_rigid_gap_of_the_solved_rotation_is_closed_by_the_elastic_approach(
     assert np.abs(g0[loaded] + approach[loaded]).max() < 1e-12
 
 
+def test_columns_formed_only_where_points_overlap_give_the_solution_of_all_columns(
+        baseline_200):
+    # A's columns first on the points that overlap rigidly at the expected turn (pressure
+    # separates the surfaces, so only those can carry it): the same solution as with every
+    # column; with too few candidates a point left out closes, and the solve says so (None)
+    from fegear.toothpair.ring.contact import solve_ring_contact
+
+    d = baseline_200.detail
+    p, turn = d.case.params, d.contact.turn
+    torque, start = d.case.torque * 1e3, baseline_200.first_touch
+    every = assemble_contact(d.model, d.contact.grids, 0.0, turn)
+    elastic_mm = p.arc_um(baseline_200.rotation - start) * 1e-3
+    some = assemble_contact(d.model, d.contact.grids, 0.0, turn, within=0.1 * elastic_mm)
+    assert 0.3 * every.npoints < some.formed.sum() < 0.7 * every.npoints
+    on = np.flatnonzero(some.formed)
+    assert np.allclose(some.A[:, on], every.A[:, on], rtol=0,   # the formed columns
+                       atol=1e-12 * np.abs(every.A).max())
+    assert not some.A[:, ~some.formed].any()
+    full = solve_ring_contact(d.model, every, torque, start, guess=turn)
+    part = solve_ring_contact(d.model, some, torque, start, guess=turn)
+    assert np.allclose(part.pressure, full.pressure, rtol=0, atol=1e-9 * full.pressure.max())
+    assert part.rotation == pytest.approx(full.rotation, rel=1e-12)
+    gap = rigid_gap(d.model, every.x, 0.0, turn)[0]
+    half = float(np.median(gap[full.pressure > 0]))      # half the loaded points left out
+    deepest = assemble_contact(d.model, d.contact.grids, 0.0, turn, within=half)
+    assert 0 < deepest.formed.sum() < (full.pressure > 0).sum()
+    assert solve_ring_contact(d.model, deepest, torque, start, guess=turn) is None
+
+
+@pytest.mark.parametrize("candidates", [-0.3, -1e3])
+def test_candidate_columns_that_miss_a_loaded_point_are_formed_again_whole(
+        monkeypatch, baseline_ring, baseline_200, candidates):
+    # too few candidates (a loaded point left out closes) or none at all: the attempt forms
+    # every column and solves the position as before
+    import fegear.toothpair.ring.solve as ring_solve
+
+    monkeypatch.setattr(ring_solve, "CANDIDATES", candidates)
+    sol = solve_pair(replace(baseline_ring.case, torque=200.0), model=baseline_ring)
+    for key, value in baseline_200.headline().items():
+        assert sol.headline()[key] == pytest.approx(value, rel=1e-9), key
+
+
 def test_light_touch_follows_hertz_on_the_flank(baseline_ring):
     """1e-3 … 1e-1 N·m: one tooth carries the load on its flank; the peak pressure follows
     Hertz at the contact point within 0.5 % and grows as √T."""
