@@ -149,16 +149,18 @@ class CyclicBody:
             self.cache[key] = _low_rank(self.ring[d], tol)
         return self.cache[key]
 
-    def displacement(self, loads: dict[int, np.ndarray], sectors) -> dict[int, np.ndarray]:
+    def displacement(self, loads: dict[int, np.ndarray], sectors,
+                     rho: dict[int, np.ndarray] | None = None) -> dict[int, np.ndarray]:
         """Template-frame fields (ndofs,) of the ``sectors`` under ``loads`` (sector → template
         load vector): the sectors' cut motions and the loaded ones' clamped fields each in one
-        block (a solve and a product for all, not one a sector)."""
+        block (a solve and a product for all, not one a sector). ``rho``: the loads' cut loads
+        (:meth:`cut_loads`) where the caller has them."""
         sectors = list(sectors)
         loaded = list(loads)
         if not loaded:
             return {s: np.zeros(self.ndofs) for s in sectors}
-        F = np.column_stack([loads[t] for t in loaded])
-        rho = self.cut_loads(F)
+        rho = (self.cut_loads(np.column_stack([loads[t] for t in loaded])) if rho is None
+               else np.column_stack([rho[t] for t in loaded]))
         cuts = np.zeros((len(self.interface), len(sectors)))
         for j, s in enumerate(sectors):
             for i, t in enumerate(loaded):

@@ -204,7 +204,12 @@ class GearSide:
         """Template-frame displacement (ndofs,) of each of ``sectors`` under the ``loads`` at
         the unknowns' ``values``."""
         f = {t: b.vector(values, self.body.ndofs) for t, b in loads.items()}
-        return self.body.displacement({t: v for t, v in f.items() if np.any(v)}, sectors)
+        f = {t: v for t, v in f.items() if np.any(v)}
+        # the cut loads from the responses formed for the loads' few dofs (a product over the
+        # whole template's Ψ a sector, which two processes read at once in a mesh cycle, else)
+        rho = {t: self.cut_loads(loads[t].dofs) @ (loads[t].matrix @ values[loads[t].columns])
+               for t in f}
+        return self.body.displacement(f, sectors, rho)
 
     def displacement_at(self, x: np.ndarray, fields: dict[int, np.ndarray]) -> np.ndarray:
         """Displacement (n, 2, gear frame) at points ``x`` of the gear from per-sector
