@@ -89,9 +89,9 @@ class Chords:
 
 def _polar_chain(a: np.ndarray, ab: np.ndarray):
     """The chords' order by polar angle, their start and end angles (continuous about the
-    chain's middle) and that middle, if they chain around the origin (each turning the same
-    way, less than a quarter turn, each starting where the one before ends) within less than
-    a half turn; else None."""
+    chain's middle) and that middle, if they chain around the origin within less than a half
+    turn: each spanning less than a quarter turn and starting where the one before ends, so
+    that no two overlap in angle; else None."""
     if len(a) < 3:
         return None
     b = a + ab

@@ -131,7 +131,7 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
         _fe_part(side, loads, m, A)
     for k, g in enumerate(grids):
         blk = slice(int(offsets[k]), int(offsets[k + 1]))
-        for lo, hi in _runs(formed[blk]):
+        for lo, hi in _true_runs(formed[blk]):
             # the hats lo … hi − 1 on the grid's points from lo − 1 to hi: the same integrals
             # as over the whole grid (each hat's two intervals), for the formed ones alone
             a, b = max(lo - 1, 0), min(hi + 1, len(g))
@@ -142,7 +142,7 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
                        (x2, n2), A, formed, feet)
 
 
-def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
+def _true_runs(mask: np.ndarray) -> list[tuple[int, int]]:
     """The runs [lo, hi) of consecutive True in ``mask``."""
     edges = np.flatnonzero(np.diff(np.concatenate([[0], mask.astype(np.int8), [0]])))
     return list(zip(edges[0::2].tolist(), edges[1::2].tolist()))

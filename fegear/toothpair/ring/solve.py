@@ -235,7 +235,6 @@ class RingSolver:
                     and s.von_mises_max >= (1.0 - PEAK_MARGIN) * max(solved)}
         return tuple(out)
 
-
     def _with_submodels(self, out: list[PairSolution], which: list[int],
                         beside: bool) -> None:
         """``out[i]`` with its submodels for each of ``which``; ``beside``: every other one in
@@ -259,12 +258,15 @@ class RingSolver:
         finally:
             if child is not None:
                 child.stop()
-        if got is not None:
-            sols, meshes = got
-            for key, mesh in meshes.items():
-                self.model.submodels.setdefault(key, mesh)
-        for k, i in enumerate(theirs):
-            out[i] = self.attach(sols[k]) if got is not None else _with_submodels(out[i])
+        if got is None:
+            for i in theirs:
+                out[i] = _with_submodels(out[i])
+            return
+        solved, meshes = got
+        for key, mesh in meshes.items():
+            self.model.submodels.setdefault(key, mesh)
+        for i, sol in zip(theirs, solved, strict=True):
+            out[i] = self.attach(sol)
 
 
 def _with_submodels(sol: PairSolution) -> PairSolution:
