@@ -141,32 +141,34 @@ def windows(samples: ToothSamples, curve2, teeth, turn: float, beta: float, e: f
         return out
     fine = _split(_gaps(np.vstack([points[k][lo:hi + 1] for k, lo, hi in found]), curve2,
                         turn, beta, e), [hi + 1 - lo for _, lo, hi in found])
-    for (k, lo, _), (gap, closing, foot) in zip(found, fine):
+    for (k, lo, _), (gap, closing, xi) in zip(found, fine):
         near = np.flatnonzero((gap < reaches[k]) & closing)
         if len(near) == 0:
             continue
         a, b = max(int(near.min()) - 1, 0), min(int(near.max()) + 1, len(gap) - 1)
-        xi = curve2.xi_at_angle(np.arctan2(foot[a:b + 1, 1], foot[a:b + 1, 0]))
         anchor = lo + int(near[np.argmin(gap[near])])
-        out[k] = Window(teeth[k], lo + a, lo + b, 1.0 / curve2.curvature_radius(xi), anchor)
+        out[k] = Window(teeth[k], lo + a, lo + b, 1.0 / curve2.curvature_radius(xi[a:b + 1]),
+                        anchor)
     return out
 
 
 def _split(parts, sizes) -> list[tuple]:
-    """The arrays of ``parts`` (gap, closing, foot) cut into consecutive pieces of ``sizes``."""
+    """The arrays of ``parts`` (gap, closing, feet) cut into consecutive pieces of ``sizes``."""
     cuts = np.cumsum(sizes)[:-1]
     return list(zip(*(np.split(p, cuts) for p in parts)))
 
 
 def _gaps(x: np.ndarray, curve2, turn: float, beta: float, e: float):
     """Rigid gap (mm) of gear-1 points ``x`` to gear 2, whether a positive turn closes it, and
-    the feet on gear 2 (its frame)."""
+    gear 2's curve parameter ξ at the feet."""
     o1 = np.array([0.0, e])
     fixed = rotate(x, turn) + o1
-    foot, normal, gap = curve2.closest(rotate(fixed, -beta))
+    y = rotate(fixed, -beta)
+    xi = curve2.feet(y)
+    _, normal, gap = curve2.at_feet(y, xi)
     r = rotate(fixed - o1, -beta)
     closing = np.einsum("ij,ij->i", normal, np.column_stack([-r[:, 1], r[:, 0]])) < 0
-    return gap, closing, foot
+    return gap, closing, xi
 
 
 def tooth_grid(samples: ToothSamples, win: Window, load: float, E_star: float, per_b: float,
