@@ -102,19 +102,23 @@ def surface_matrix(s: np.ndarray, E_star: float) -> np.ndarray:
 
 
 def gap_contact(s: np.ndarray, gap: np.ndarray, load: float, E_star: float,
-                max_iterations: int = 200) -> np.ndarray:
+                max_iterations: int = 200, surface: np.ndarray | None = None,
+                start: np.ndarray | None = None) -> np.ndarray:
     """Line contact of two elastic half-planes whose unloaded surfaces are ``gap`` (mm) apart
     at the arc positions ``s`` (mm, increasing), pressed together by ``load`` (N per mm of
     thickness): the pressure (MPa, piecewise linear on ``s``). Hertz's assumptions except one:
     the gap is the profiles' own, not the parabola of the curvatures at one point. Active set:
     where pressure acts, gap + approach(p) equals the rigid approach δ; elsewhere it is not
-    less; Σ w p = load."""
+    less; Σ w p = load. ``surface``: :func:`surface_matrix` of ``s`` where the caller has it;
+    ``start``: the points to start the active set from (a contact solved before on the same
+    grid: a few iterations, not ten; else the point of least gap)."""
     s, gap = np.asarray(s, dtype=float), np.asarray(gap, dtype=float)
-    A = surface_matrix(s, E_star)
+    A = surface_matrix(s, E_star) if surface is None else surface
     w = np.zeros(len(s))
     w[:-1] += 0.5 * np.diff(s)
     w[1:] += 0.5 * np.diff(s)
-    active = gap <= gap.min()
+    active = (gap <= gap.min()) if start is None or not np.any(start) \
+        else np.array(start, dtype=bool)
     for _ in range(max_iterations):
         ia = np.flatnonzero(active)
         n = len(ia)

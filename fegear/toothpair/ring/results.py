@@ -89,9 +89,12 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
                                model.shape.radius_mm, E_star)
         b = local_half_width(contact, sol.pressure, i) if load > 0 else 0.0
         if stresses is not None:
-            bend, curvature = _bending(grid.s, pk, sol.gap[blk] - gap[blk], gap[blk], E_star)
+            surface = surface_matrix(grid.s, E_star) if load > 0 else None
+            bend, curvature = _bending(grid.s, pk, sol.gap[blk] - gap[blk], gap[blk], E_star,
+                                       surface)
             ref = (_halfplane(grid, gap[blk] + bend, load / case.thickness, E_star,
-                              case.thickness, model.shape.radius_mm) if load > 0 else None)
+                              case.thickness, model.shape.radius_mm, surface, pk > 0)
+                   if load > 0 else None)
         else:
             curvature, ref = 0.0, None
         j = i - blk.start
@@ -121,7 +124,7 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
 
 
 def _bending(s: np.ndarray, p: np.ndarray, elastic: np.ndarray, gap: np.ndarray,
-             E_star: float) -> tuple[np.ndarray, float]:
+             E_star: float, surface: np.ndarray | None = None) -> tuple[np.ndarray, float]:
     """How the teeth's own deformation under the load changes the gap along a tooth's grid
     ``s`` (mm): the elastic opening ``elastic`` = A p the ring model computes, less the local
     indentation of two half-planes under the same pressure ``p`` (:func:`surface_matrix`),
@@ -129,11 +132,11 @@ def _bending(s: np.ndarray, p: np.ndarray, elastic: np.ndarray, gap: np.ndarray,
     approach constant is immaterial; docs/model.md, "Hertz at load"). Also that quadratic's
     curvature over the unloaded ``gap``'s, fitted over the same stretch: −0.07 lowers the
     gap's curvature by 7 %, which lowers a Hertzian peak by about 3.5 %. Zero (and 0.0) where
-    fewer than 3 points are loaded."""
+    fewer than 3 points are loaded. ``surface``: :func:`surface_matrix` of ``s`` if formed."""
     on = p > 0
     if np.count_nonzero(on) < 3:
         return np.zeros(len(s)), 0.0
-    rest = elastic - surface_matrix(s, E_star) @ p
+    rest = elastic - (surface_matrix(s, E_star) if surface is None else surface) @ p
     lo, hi = s[on].min(), s[on].max()
     inside = (s >= lo) & (s <= hi)
     fit = np.polyfit(s[inside], rest[inside], 2)
@@ -142,13 +145,14 @@ def _bending(s: np.ndarray, p: np.ndarray, elastic: np.ndarray, gap: np.ndarray,
 
 
 def _halfplane(grid, gap: np.ndarray, q: float, E_star: float, thickness: float,
-               radius: float):
+               radius: float, surface: np.ndarray, loaded: np.ndarray):
     """The reference of docs/model.md, "Hertz": two half-planes with the tooth's exact gap
     along its grid, bent as the teeth bend under the load, pressed by its load q (N/mm); its
     pressure and that split into flank and edge; None where its active set does not settle
-    (no reference rather than no result)."""
+    (no reference rather than no result). ``surface``: the grid's :func:`surface_matrix`;
+    ``loaded``: the points the ring model loads, where its active set starts."""
     try:
-        p = gap_contact(grid.s, gap, q, E_star)
+        p = gap_contact(grid.s, gap, q, E_star, surface=surface, start=loaded)
     except (ValueError, np.linalg.LinAlgError):
         return None
     return p, flank_and_edge(grid.s, p, grid.on_round, thickness, radius, E_star)
