@@ -89,7 +89,8 @@ def ring_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
     contact pressures and root stresses (the tip-relief search)."""
     fields = tuple(_fields(side, loads, pressure)
                    for side, loads in zip(model.gears, contact.loads))
-    stresses = tuple(dict(zip(f, recover_many(side.body, np.column_stack(list(f.values())))))
+    stresses = tuple(dict(zip(f, recover_many(side.body, np.column_stack(list(f.values())),
+                                              reused=True)))
                      if f else {} for side, f in zip(model.gears, fields))
     roots = tuple(_root_zone(side, s) for side, s in zip(model.gears, stresses))
     surface = surface_von_mises(model, contact, pressure, fields)
