@@ -60,7 +60,8 @@ class GearSide:
     probe: Probe = field(init=False, repr=False)
     response_s: float = 0.0                                 # time spent forming responses
     _column: np.ndarray = field(init=False, repr=False)     # template dof → response column
-    _X: list = field(init=False, repr=False)                # clamped fields: column blocks
+    _X: list = field(init=False, repr=False)                # clamped fields (interior rows):
+                                                            # column blocks
     _rho: np.ndarray = field(init=False, repr=False)        # cut loads, by column
     _used: int = 0
     _cut_field: np.ndarray | None = field(default=None, repr=False)
@@ -146,8 +147,9 @@ class GearSide:
             t0 = time.perf_counter()
             need = self._used + len(new)
             # the fields are kept as the blocks they were formed in (growing one array copied
-            # it whole every time); the cut loads are small
-            self._X.append((self._used, self.body.unit_clamped(new)))
+            # it whole every time), their interior rows alone (the cut's are zero); the cut
+            # loads are small
+            self._X.append((self._used, self.body.unit_clamped(new, interior=True)))
             self._rho = np.hstack([self._rho, self.body.unit_cut_loads(new)])
             self._column[new] = np.arange(self._used, need)
             self._used = need
@@ -161,9 +163,10 @@ class GearSide:
 
     def responses(self) -> dict:
         """The responses formed so far (a disk cache's): template dof → column, the clamped
-        fields as one block (ndofs, formed) and the cut loads (2 n_f, formed)."""
+        fields' interior rows as one block (interior dofs, formed) and the cut loads (2 n_f,
+        formed)."""
         X = (np.hstack([block for _, block in self._X]) if len(self._X) > 1
-             else self._X[0][1] if self._X else np.zeros((self.body.ndofs, 0)))
+             else self._X[0][1] if self._X else np.zeros((len(self.body.interior), 0)))
         return {"column": self._column, "X": X, "rho": self._rho}
 
     def restore_responses(self, parts: dict) -> None:
@@ -179,11 +182,14 @@ class GearSide:
         cols = self._form(dofs)
         rows = sp.csr_matrix(rows)
         used = np.unique(rows.indices)
+        place = self.body.interior_place(used)
+        used = used[place >= 0]               # a cut dof's clamped field is zero
+        place = place[place >= 0]
         X = np.empty((len(used), len(cols)))
         for start, block in self._X:
             sel = np.flatnonzero((cols >= start) & (cols < start + block.shape[1]))
             if len(sel):
-                X[:, sel] = block[np.ix_(used, cols[sel] - start)]
+                X[:, sel] = block[np.ix_(place, cols[sel] - start)]
         return np.asarray(rows[:, used] @ X)
 
     def cut_loads(self, dofs: np.ndarray) -> np.ndarray:
