@@ -90,8 +90,7 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
         b = local_half_width(contact, sol.pressure, i) if load > 0 else 0.0
         if stresses is not None:
             surface = surface_matrix(grid.s, E_star) if load > 0 else None
-            bend, curvature = _bending(grid.s, pk, sol.gap[blk] - gap[blk], gap[blk], E_star,
-                                       surface)
+            bend, curvature = _bending(grid.s, pk, sol.gap[blk] - gap[blk], gap[blk], surface)
             ref = (_halfplane(grid, gap[blk] + bend, load / case.thickness, E_star,
                               case.thickness, model.shape.radius_mm, surface, pk > 0)
                    if load > 0 else None)
@@ -124,19 +123,20 @@ def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
 
 
 def _bending(s: np.ndarray, p: np.ndarray, elastic: np.ndarray, gap: np.ndarray,
-             E_star: float, surface: np.ndarray | None = None) -> tuple[np.ndarray, float]:
+             surface: np.ndarray | None) -> tuple[np.ndarray, float]:
     """How the teeth's own deformation under the load changes the gap along a tooth's grid
     ``s`` (mm): the elastic opening ``elastic`` = A p the ring model computes, less the local
-    indentation of two half-planes under the same pressure ``p`` (:func:`surface_matrix`),
+    indentation of two half-planes under the same pressure ``p`` (``surface``, their
+    :func:`surface_matrix` on ``s``; None where nothing is loaded),
     fitted by a quadratic over the loaded stretch and held at its end values beyond it (the
     approach constant is immaterial; docs/model.md, "Hertz at load"). Also that quadratic's
     curvature over the unloaded ``gap``'s, fitted over the same stretch: −0.07 lowers the
     gap's curvature by 7 %, which lowers a Hertzian peak by about 3.5 %. Zero (and 0.0) where
-    fewer than 3 points are loaded. ``surface``: :func:`surface_matrix` of ``s`` if formed."""
+    fewer than 3 points are loaded."""
     on = p > 0
     if np.count_nonzero(on) < 3:
         return np.zeros(len(s)), 0.0
-    rest = elastic - (surface_matrix(s, E_star) if surface is None else surface) @ p
+    rest = elastic - surface @ p
     lo, hi = s[on].min(), s[on].max()
     inside = (s >= lo) & (s <= hi)
     fit = np.polyfit(s[inside], rest[inside], 2)

@@ -28,6 +28,7 @@ from ...fe import (
     solve_submodels,
 )
 from ...planar import rotate, wrap
+from ..segments import gear2_polar
 from .influence import RingContact
 from .model import RingModel
 from .side import GearSide
@@ -250,16 +251,9 @@ def contact_submodel(model: RingModel, contact: RingContact, pressure: np.ndarra
         point = model.shape.point
         x = contact.x[i]
         angles = contact.grids[k].phi
-    else:
-        curve2 = model.curve2
-
-        def point(theta):   # a mesh's input: no table (Cycloid.xi_at_angle)
-            r = curve2.radius_at_angle(theta, tabled=False)
-            return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
-
-        def foot(y):   # along the normal: a near-radial flank (h1 0.2, f1 0.6) inverted
-            return curve2.closest(y, tabled=False)[0]
-
+    else:   # the template's own: along the normal (a near-radial flank, h1 0.2, f1 0.6,
+        # inverted along the polar angle), no table (a mesh's input: Cycloid.xi_at_angle)
+        point, foot = gear2_polar(model.curve2)
         x = contact.facing[0][i]
         angles = np.unwrap(np.arctan2(contact.facing[0][blk, 1], contact.facing[0][blk, 0]))
     centre = float(np.arctan2(x[1], x[0]))
