@@ -11,7 +11,7 @@ A light pair (25/24 teeth) at 20 N·m, coarse, without the error estimate:
 >>> r = fegear.solve(z2=25, z1=24, torque=20, quality="coarse", no_estimate=True)
 >>> r.headline[["root_stress_gear1_MPa", "contact_pressure_MPa"]].round(1)
 root_stress_gear1_MPa     74.5
-contact_pressure_MPa     804.7
+contact_pressure_MPa     804.8
 Name: headline, dtype: float64
 >>> r.teeth.loc[r.teeth.load_N > 0, "load_share"].round(2).to_dict()
 {5: 0.44, 6: 0.56}

@@ -33,6 +33,16 @@ from ..segments import (
 )
 
 
+#: how precisely gmsh places the nodes along the templates' curves (its
+#: Mesh.LcIntegrationPrecision; :data:`fegear.fe.mesh.CURVE_PRECISION` is gmsh's own 1e-9): gear
+#: 1's template meshed in 0.25 s at 1e-9, 0.06 s at 1e-7, another mesh as good as the first.
+#: Five such meshes (1e-9 … 1e-5) of six designs moved the pressures and the von Mises stress by
+#: up to 0.6 % at every level, the root stresses by up to 0.2 %: the error estimate's floor
+#: (:data:`~fegear.toothpair.estimate.MESH_SCATTER_PCT`). At 1e-7 the baseline's `coarse`
+#: template is the one gmsh's default gives
+CURVE_PRECISION = 1e-7
+
+
 @dataclass(frozen=True)
 class TemplateSizes:
     """Element sizes of the templates (mm): root zones, flanks, gear 1's rounds and their
@@ -110,7 +120,7 @@ def gear1_template(p: PairParameters, shape: RoundedProfile, sizes: TemplateSize
         Refinement(("g1_flank",), sizes.flank, sizes.growth),
         *([Refinement(("g1_round",), sizes.round, sizes.growth),
            Refinement(("g1_junction",), sizes.junction, sizes.growth)] if rounds else [])),
-        periodic=(Periodic("g1_cut_b", "g1_cut_a", pitch),))
+        periodic=(Periodic("g1_cut_b", "g1_cut_a", pitch),), curve_precision=CURVE_PRECISION)
     band = (r_min, r_min + ROOT_BAND * (r_max - r_min))
     return Template(geo, names, a, pitch, "g1_bore", "g1_cut_b", band)
 
@@ -137,7 +147,7 @@ def gear2_template(p: PairParameters, curve: Cycloid, sizes: TemplateSizes,
         Refinement(("g2_root",), sizes.root, sizes.growth),
         Refinement(("g2_flank",), sizes.flank, sizes.growth),
         *([Refinement(("g2_bend",), bent, sizes.growth)] if marks else [])),
-        periodic=(Periodic("g2_cut_b", "g2_cut_a", pitch),))
+        periodic=(Periodic("g2_cut_b", "g2_cut_a", pitch),), curve_precision=CURVE_PRECISION)
     band = (r_max - ROOT_BAND * (r_max - r_min), r_max)
     return Template(geo, names, a, pitch, "g2_rim", "g2_cut_b", band)
 
