@@ -32,7 +32,6 @@ from ..segments import (
     root_half_angle,
 )
 
-
 #: how precisely gmsh places the nodes along the templates' curves (its
 #: Mesh.LcIntegrationPrecision; :data:`fegear.fe.mesh.CURVE_PRECISION` is gmsh's own 1e-9): gear
 #: 1's template meshed in 0.25 s at 1e-9, 0.06 s at 1e-7, another mesh as good as the first.
