@@ -22,13 +22,13 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 from scipy.sparse.linalg import splu
-from skfem import Basis, ElementTriP2, ElementVector, asm
-from skfem.models.elasticity import linear_elasticity
+from skfem import Basis, ElementTriP2, ElementVector
 
 from ..errors import FegearError
 from ..planar import rotate
 from .dofs import facet_nodes, node_dofs
 from .flexibility import WindowFlexibility
+from .forms import stiffness
 from .material import Material
 from .mesh import BodyMesh
 
@@ -176,7 +176,7 @@ def assemble_body(body_mesh: BodyMesh, material: Material, fixed: tuple[str, ...
     if basis.N != 2 * nnodes or not np.array_equal(basis.nodal_dofs[:, :2],
                                                    np.array([[0, 2], [1, 3]])):
         raise FegearError("unexpected scikit-fem dof numbering (expected node k ↔ dofs 2k, 2k+1)")
-    K = (material.thickness * asm(linear_elasticity(*material.lame), basis)).tocsr()
+    K = stiffness(mesh, *material.lame, material.thickness)
 
     def boundary_dofs(name: str) -> np.ndarray:
         if name not in mesh.boundaries:

@@ -30,6 +30,7 @@ import scipy.sparse as sp
 
 from ..errors import FegearError
 from .dofs import facet_nodes, node_dofs
+from .forms import stiffness
 from .material import Material
 from .mesh import BodyMesh
 from .solvers import Factor
@@ -52,7 +53,6 @@ class CyclicBody:
     name: str
     mesh_data: BodyMesh
     material: Material
-    basis: object = field(repr=False)
     count: int
     pitch: float
     K: sp.csr_matrix = field(repr=False)
@@ -193,7 +193,7 @@ class CyclicBody:
 
 
 #: what :func:`cyclic_parts` gives and :func:`restore_cyclic` takes back: the arrays of a
-#: cyclic body that cost a factorisation to form (its basis and factor are rebuilt from them)
+#: cyclic body that cost a factorisation to form (its factor is formed again from them)
 PARTS = ("count", "pitch", "K", "interior", "face_a", "face_b", "fixed", "psi", "ring")
 
 
@@ -207,14 +207,11 @@ def cyclic_parts(body: CyclicBody) -> dict:
 
 
 def restore_cyclic(mesh: BodyMesh, material: Material, parts: dict) -> CyclicBody:
-    """The cyclic body of template ``mesh`` from its :func:`cyclic_parts`: its basis built and
-    its interior factorised again (0.03-0.06 s on a baseline template; the static modes and
-    the ring's flexibility, which cost the solves, come from ``parts``)."""
-    from skfem import Basis, ElementTriP2, ElementVector
-
-    basis = Basis(mesh.mesh, ElementVector(ElementTriP2()))
+    """The cyclic body of template ``mesh`` from its :func:`cyclic_parts`: its interior
+    factorised again (0.03-0.06 s on a baseline template; the static modes and the ring's
+    flexibility, which cost the solves, come from ``parts``)."""
     K, interior = parts["K"], parts["interior"]
-    return CyclicBody(mesh.name, mesh, material, basis, parts["count"], parts["pitch"], K,
+    return CyclicBody(mesh.name, mesh, material, parts["count"], parts["pitch"], K,
                       interior, parts["face_a"], parts["face_b"], parts["fixed"],
                       Factor(K[interior][:, interior]), parts["psi"], parts["ring"],
                       dict(parts.get("cache", {})))
@@ -225,16 +222,10 @@ def assemble_cyclic(mesh: BodyMesh, material: Material, count: int, cut: str,
     """Assemble the template ``mesh`` (one sector; its periodic pair named by the slave segment
     ``cut``), hold the ``fixed`` boundaries, factorise the interior once, condense onto the
     cuts and form the ring's flexibility between cut faces for ``count`` sectors."""
-    from skfem import Basis, ElementTriP2, ElementVector, asm
-    from skfem.models.elasticity import linear_elasticity
-
     if cut not in mesh.periodic:
         raise FegearError(f"body {mesh.name!r} has no periodic segment {cut!r}")
     m = mesh.mesh
-    basis = Basis(m, ElementVector(ElementTriP2()))
-    if basis.N != 2 * m.doflocs.shape[1]:
-        raise FegearError("unexpected scikit-fem dof numbering")
-    K = (material.thickness * asm(linear_elasticity(*material.lame), basis)).tocsr()
+    K = stiffness(m, *material.lame, material.thickness)
     held = np.unique(np.concatenate([facet_nodes(m, m.boundaries[n]).ravel() for n in fixed]))
     pairs = mesh.periodic[cut]
     keep = ~(np.isin(pairs[:, 0], held) | np.isin(pairs[:, 1], held))
@@ -262,7 +253,7 @@ def assemble_cyclic(mesh: BodyMesh, material: Material, count: int, cut: str,
     for d in range(count):
         g0, gp, gm = ring[d % count], ring[(d + 1) % count], ring[(d - 1) % count]
         W[d] = np.block([[g0, gp @ R.T], [R @ gm, R @ g0 @ R.T]])
-    return CyclicBody(mesh.name, mesh, material, basis, count, pitch, K, interior, face_a, face_b,
+    return CyclicBody(mesh.name, mesh, material, count, pitch, K, interior, face_a, face_b,
                       fixed_dofs, factor, psi, W)
 
 

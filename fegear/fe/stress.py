@@ -12,8 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.sparse.linalg import splu
-from skfem import Basis, BilinearForm, ElementTriP2, asm
 
+from . import forms
 from .assembly import Body
 from .solvers import Factor
 
@@ -119,20 +119,6 @@ def pickled_cache(cache: dict) -> dict:
 
 
 def _projector(body: Body):
-    """The mass matrix and the three mixed matrices C_xx, C_yy, C_xy (nodes × dofs)."""
-    lam, mu = body.material.lame
-    scalar = Basis(body.mesh, ElementTriP2(), quadrature=body.basis.quadrature)
-    mass = asm(BilinearForm(lambda a, b, w: a * b), scalar).tocsc()
-
-    def part(component):
-        @BilinearForm
-        def form(v, q, w):   # v: the vector trial (displacement), q: the scalar test
-            g = v.grad
-            tr = g[0, 0] + g[1, 1]
-            return q * component(g, tr)
-        return asm(form, body.basis, scalar).tocsr()
-
-    parts = (part(lambda g, tr: lam * tr + 2 * mu * g[0, 0]),
-             part(lambda g, tr: lam * tr + 2 * mu * g[1, 1]),
-             part(lambda g, tr: mu * (g[0, 1] + g[1, 0])))
-    return mass, parts
+    """The mass matrix (CSC) and the three mixed matrices C_xx, C_yy, C_xy (nodes × dofs)."""
+    mass, parts = forms.projection(body.mesh, *body.material.lame)
+    return mass.tocsc(), parts

@@ -23,6 +23,7 @@ import numpy as np
 
 from ..errors import FegearError
 from .dofs import facet_nodes, node_dofs
+from .forms import stiffness
 from .material import Material
 from .mesh import BodyGeometry, BodyMesh, Refinement, Segment, halved, mesh_bodies
 from .stress import StressField, pickled_cache, recover
@@ -89,7 +90,6 @@ class _Piece:
     """What :func:`~fegear.fe.stress.recover` needs of a body."""
 
     mesh: object
-    basis: object
     material: Material
     cache: dict
 
@@ -190,19 +190,15 @@ def _prepare(mesh: BodyMesh, centre, angles, material: Material, K=None,
              cache: dict | None = None) -> _Prepared:
     """Assemble (unless its stiffness ``K`` is given) and factorise a submodel's mesh;
     ``cache``: its stress recovery's matrices, if kept."""
-    from skfem import Basis, ElementTriP2, ElementVector, asm
-    from skfem.models.elasticity import linear_elasticity
-
     from .solvers import Factor
 
     m = mesh.mesh
-    basis = Basis(m, ElementVector(ElementTriP2()))
     if K is None:
-        K = (material.thickness * asm(linear_elasticity(*material.lame), basis)).tocsr()
+        K = stiffness(m, *material.lame, material.thickness)
     cut = np.unique(facet_nodes(m, m.boundaries["cut"]))
     fixed = node_dofs(cut).ravel()
-    free = np.setdiff1d(np.arange(basis.N), fixed)
-    return _Prepared(mesh, centre, angles, _Piece(m, basis, material, dict(cache or {})), cut,
+    free = np.setdiff1d(np.arange(2 * m.doflocs.shape[1]), fixed)
+    return _Prepared(mesh, centre, angles, _Piece(m, material, dict(cache or {})), cut,
                      fixed, free, K, K[free][:, fixed], Factor(K[free][:, free]))
 
 
