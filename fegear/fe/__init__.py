@@ -36,7 +36,7 @@ from ..exports import lazy
 __getattr__, __dir__, __all__ = lazy(__name__, {
     "mesh": ("Segment", "Refinement", "Periodic", "BodyGeometry", "BodyMesh", "MeshQuality",
              "MeshError", "mesh_bodies", "mesh_quality", "jiggle", "halved"),
-    "libraries": ("import_libraries",),
+    "libraries": ("import_libraries", "keep_freed_memory"),
     "material": ("Material", "MATERIAL_INPUTS", "ALLOWABLE_INPUTS", "Allowables",
                  "plane_modulus", "contact_modulus", "Plane", "PLANE_MODES", "STEEL_E",
                  "STEEL_NU"),

@@ -39,7 +39,7 @@ from typing import Protocol
 
 from .. import progress
 from ..errors import ContactError, FegearError
-from ..fe import blas_threads
+from ..fe import blas_threads, keep_freed_memory
 from ..geometry import Gear1Profile, ToothContact, gear1_profile
 from .case import PairSolution, SolveCase
 from .teeth import TOOTH_STIFFNESS, choose_teeth, refuse_interference
@@ -153,7 +153,10 @@ def drive(case: SolveCase, betas, solver: PositionModel,
     (:data:`~fegear.fe.BLAS_THREADS`). ``beside`` (a second core free): a cycle's second
     chain is solved in a forked process (module docstring); should that fail in any way, it
     is solved here. ``ahead``: called with every position solved, before the model
-    completes them (:meth:`PositionModel.complete`), to start beside what needs only them."""
+    completes them (:meth:`PositionModel.complete`), to start beside what needs only them.
+    The process's allocator keeps the memory a solve frees
+    (:func:`~fegear.fe.keep_freed_memory`)."""
+    keep_freed_memory()
     with blas_threads():
         return _drive(case, betas, solver, profile, beside, ahead)
 
