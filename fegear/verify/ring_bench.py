@@ -62,7 +62,7 @@ def _child(task: dict) -> dict:
     are "after import"), then time the task: one position (with the estimate and outputs if
     asked), or a whole mesh cycle from nothing (``cycle``: its total is the cycle's)."""
     from ..fe import import_libraries
-    from ..geometry import Gear1Profile
+    from ..geometry import gear1_profile
     from ..toothpair import (
         SolveCase,
         cycle_positions,
@@ -81,7 +81,9 @@ def _child(task: dict) -> dict:
     p = PairParameters(**task["params"])
     case = SolveCase(p, torque=task["torque"], quality=task["quality"])
     t0 = time.perf_counter()
-    profile = Gear1Profile(p)
+    # as `fegear solve` builds it: kept for the templates' rims (their root radius), which
+    # would otherwise build it again
+    profile = gear1_profile(p)
     t_profile = time.perf_counter() - t0
     if task.get("cycle"):  # the whole cycle from nothing: its first position builds the model
         # as `fegear solve --positions` solves it: its second chain on a second core if any

@@ -23,7 +23,7 @@ from ...fe import (
     restore_cyclic,
     submodel_meshes,
 )
-from ...geometry import Gear1Profile, PairParameters, RoundedProfile, gear2_curve
+from ...geometry import Gear1Profile, PairParameters, RoundedProfile, gear1_profile, gear2_curve
 from ..case import SolveCase
 from . import disk
 from .grid import ToothSamples, sample_tooth
@@ -195,7 +195,7 @@ def build_ring(case: SolveCase, profile: Gear1Profile | None = None,
 def _shapes(case: SolveCase, profile: Gear1Profile | None):
     """Gear 1's exact and rounded profiles and tooth 0 sampled, and the time they took."""
     t0 = time.perf_counter()
-    profile = profile if profile is not None else Gear1Profile(case.params)
+    profile = profile if profile is not None else gear1_profile(case.params)
     shape = RoundedProfile(profile, case.edge_radius)
     samples = sample_tooth(shape)
     return profile, shape, samples, {"profile": time.perf_counter() - t0}
@@ -206,7 +206,7 @@ def _templates(case: SolveCase, shape: RoundedProfile, meshed: PairParameters):
     ``case``'s own rounded profile ``shape`` where the two pairs have the same shape (a tip
     clearance given as its default, the shift, is no other shape)."""
     same = _shape_of(meshed) == _shape_of(case.params)
-    base = shape if same else RoundedProfile(Gear1Profile(meshed), case.edge_radius)
+    base = shape if same else RoundedProfile(gear1_profile(meshed), case.edge_radius)
     return build_templates(replace(case, params=meshed), base)
 
 
