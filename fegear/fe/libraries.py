@@ -6,24 +6,23 @@ from __future__ import annotations
 import ctypes
 import sys
 
-#: glibc's mallopt parameters: M_TRIM_THRESHOLD, M_TOP_PAD, M_MMAP_THRESHOLD
-_TRIM, _TOP_PAD, _MMAP = -1, -2, -3
-#: what they are set to for a solve (bytes): freed memory is kept by the process for the next
-#: array rather than handed back to the system, and arrays up to 32 MB (glibc's largest) come
-#: from that kept memory rather than each from a fresh mapping
-_KEPT = {_TRIM: 1 << 40, _TOP_PAD: 256 << 20, _MMAP: 32 << 20}
+#: glibc's mallopt parameter M_TOP_PAD, and what it is set to for a solve (bytes): the heap
+#: grows, and is handed back, in steps this large
+_TOP_PAD, _PAD = -2, 256 << 20
 _set = False
 
 
 def keep_freed_memory() -> None:
     """Let the allocator keep the memory a solve frees (glibc; elsewhere nothing changes).
 
-    A solve allocates and frees the same large numpy temporaries over and over (scikit-fem's
-    assembly: a few hundred arrays of 0.1-1 MB a template). By default glibc serves each from
-    a fresh mapping, or hands the top of its heap back once 128 kB lie free, and every page is
-    then faulted in again at its first touch: 0.08 s of the baseline's 0.38 s of template
-    assembly and factorisation (docs/benchmark.md, "Freed memory kept"). Kept, the process's
-    resident memory stays at its peak (which does not grow) until it ends. Once a process."""
+    A solve allocates and frees the same numpy temporaries over and over; by default glibc
+    grows its heap by what each asks for and hands the top back once 128 kB of it lie free,
+    and every page handed back is faulted in again at its next use. With the heap grown and
+    kept in 256 MB steps (M_TOP_PAD), alternated runs of the baseline, each from a fresh
+    process (docs/benchmark.md, "Memory, blocks and forms"): a 24-position cycle 2.28-2.30 s
+    against 2.37-2.41 s, one position 0.99 s either way (1.22 s once without). Setting the
+    trim and mmap thresholds as well gained nothing more. The process's resident memory
+    stays near its peak until it ends. Once a process."""
     global _set
     if _set or not sys.platform.startswith("linux"):
         return
@@ -32,8 +31,7 @@ def keep_freed_memory() -> None:
         mallopt = ctypes.CDLL(None).mallopt
     except (OSError, AttributeError):   # not glibc (musl has no mallopt)
         return
-    for param, value in _KEPT.items():
-        mallopt(ctypes.c_int(param), ctypes.c_int(min(value, 2**31 - 1)))
+    mallopt(ctypes.c_int(_TOP_PAD), ctypes.c_int(_PAD))
 
 
 def import_libraries() -> None:

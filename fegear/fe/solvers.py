@@ -21,7 +21,7 @@ BLAS_THREADS = 1
 #: right-hand sides a CHOLMOD solve takes at once: its workspace, the block and the solution
 #: are then a few MB that stay in cache and are allocated once, where 476 columns on gear 1's
 #: 12 560-dof template made three blocks of 48 MB each, faulted in page by page: 0.23 s for
-#: that first solve, 0.11 s in blocks of 64 (docs/benchmark.md, "Freed memory kept")
+#: that first solve, 0.11 s in blocks of 64 (docs/benchmark.md, "Memory, blocks and forms")
 CHUNK = 64
 
 
