@@ -8,43 +8,24 @@ import numpy as np
 import pytest
 
 from fegear.fe import Material, forms
-from fegear.fe.mesh import BodyGeometry, Segment, mesh_bodies
 
 MAT = Material(E=206e3, nu=0.3, thickness=3.0)  # plane stress
-
-
-@pytest.fixture(scope="module")
-def ring():
-    """A ring 6 < r < 10 mm, coarse: its boundary elements are curved (P2, snapped)."""
-    def circle(r, reverse=False):
-        t = np.linspace(0.0, 2 * math.pi, 60)[:-1]
-        t = t[::-1] if reverse else t
-        return r * np.column_stack([np.cos(t), np.sin(t)])
-
-    def snap(r):
-        return lambda x: r * x / np.linalg.norm(x, axis=1)[:, None]
-
-    outer, inner = circle(10.0), circle(6.0, reverse=True)
-    geo = BodyGeometry("ring", (Segment("outer", np.vstack([outer, outer[:1]]), snap(10.0)),),
-                       size=1.2, holes=((Segment("inner", np.vstack([inner, inner[:1]]),
-                                                 snap(6.0)),),))
-    return mesh_bodies([geo])[0].mesh
 
 
 def _close(a, b, rel):
     return abs(a - b).max() <= rel * abs(b).max()
 
 
-def test_the_forms_are_scikit_fems_on_curved_elements(ring):
+def test_the_forms_are_scikit_fems_on_curved_elements(annulus):
     from skfem import Basis, BilinearForm, ElementTriP2, ElementVector, asm
     from skfem.models.elasticity import linear_elasticity
 
     lam, mu = MAT.lame
-    vector = Basis(ring, ElementVector(ElementTriP2()))
-    scalar = Basis(ring, ElementTriP2(), quadrature=vector.quadrature)
+    vector = Basis(annulus, ElementVector(ElementTriP2()))
+    scalar = Basis(annulus, ElementTriP2(), quadrature=vector.quadrature)
     K = MAT.thickness * asm(linear_elasticity(lam, mu), vector)
-    assert _close(forms.stiffness(ring, lam, mu, MAT.thickness), K, 1e-11)
-    mass, parts = forms.projection(ring, lam, mu)
+    assert _close(forms.stiffness(annulus, lam, mu, MAT.thickness), K, 1e-11)
+    mass, parts = forms.projection(annulus, lam, mu)
     assert _close(mass, asm(BilinearForm(lambda a, b, w: a * b), scalar), 1e-12)
     sigma = (lambda g: lam * (g[0, 0] + g[1, 1]) + 2 * mu * g[0, 0],
              lambda g: lam * (g[0, 0] + g[1, 1]) + 2 * mu * g[1, 1],
@@ -54,11 +35,11 @@ def test_the_forms_are_scikit_fems_on_curved_elements(ring):
         assert _close(C, asm(form, vector, scalar), 1e-12)
 
 
-def test_rigid_motions_strain_nothing_and_the_mass_is_the_area(ring):
+def test_rigid_motions_strain_nothing_and_the_mass_is_the_area(annulus):
     lam, mu = MAT.lame
-    x = ring.doflocs.T
-    K = forms.stiffness(ring, lam, mu, MAT.thickness)
-    mass, parts = forms.projection(ring, lam, mu)
+    x = annulus.doflocs.T
+    K = forms.stiffness(annulus, lam, mu, MAT.thickness)
+    mass, parts = forms.projection(annulus, lam, mu)
     scale = abs(K).max() * 10.0
     for motion in (np.tile([1.0, 0.0], len(x)), np.tile([0.0, 1.0], len(x)),
                    np.column_stack([-x[:, 1], x[:, 0]]).ravel()):
