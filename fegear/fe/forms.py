@@ -51,10 +51,10 @@ def _shape(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return values, grads.transpose(2, 0, 1)
 
 
-def _geometry(mesh) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def _geometry(mesh) -> tuple[np.ndarray, ...]:
     """Per element and quadrature point: the weight times the map's Jacobian determinant
-    (nel, nq), the shape functions' x and y gradients (nel, nq, 6) each, and the shape
-    values (6, nq); the elements' nodes (nel, 6)."""
+    (nel, nq), the shape functions' x and y gradients (nel, nq, 6) each; the shape values
+    (6, nq); the elements' nodes (nel, 6)."""
     points, weights = _rule()
     values, grads = _shape(points)
     nodes = mesh.dofs.element_dofs.T                      # (nel, 6)

@@ -36,10 +36,9 @@ from ..segments import (
 #: Mesh.LcIntegrationPrecision; :data:`fegear.fe.mesh.CURVE_PRECISION` is gmsh's own 1e-9): gear
 #: 1's template meshed in 0.25 s at 1e-9, 0.06 s at 1e-7, another mesh as good as the first.
 #: Five such meshes (1e-9 … 1e-5) of six designs moved the pressures and the von Mises stress by
-#: up to 0.6 % at every level, the root stresses by up to 0.2 % (a seventh, 0.7 and 0.3 %): the
-#: error estimate's floor
-#: (:data:`~fegear.toothpair.estimate.MESH_SCATTER_PCT`). At 1e-7 the baseline's `coarse`
-#: template is the one gmsh's default gives
+#: up to 0.6 % at every level, the root stresses by up to 0.2 % (a seventh design, 0.7 and
+#: 0.3 %): the error estimate's floor (:data:`~fegear.toothpair.estimate.MESH_SCATTER_PCT`).
+#: At 1e-7 the baseline's `coarse` template is the one gmsh's default gives
 CURVE_PRECISION = 1e-7
 
 
