@@ -19,6 +19,8 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
+from .probe import p2_grad, p2_shape
+
 #: the quadrature order (scikit-fem's default for P2: twice the degree)
 ORDER = 4
 
@@ -32,31 +34,12 @@ def _rule() -> tuple[np.ndarray, np.ndarray]:
     return get_quadrature(RefTri, ORDER)
 
 
-def _shape(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The six P2 shape functions (6, nq) and their reference gradients (nq, 6, 2) at
-    ``points`` (2, nq): corners 0, 1, 2, then the edges 01, 12, 02."""
-    x, y = points
-    l0 = 1.0 - x - y
-    values = np.stack([l0 * (2 * l0 - 1), x * (2 * x - 1), y * (2 * y - 1),
-                       4 * l0 * x, 4 * x * y, 4 * l0 * y])
-    zero = np.zeros_like(x)
-    grads = np.stack([
-        np.stack([1 - 4 * l0, 1 - 4 * l0]),
-        np.stack([4 * x - 1, zero]),
-        np.stack([zero, 4 * y - 1]),
-        np.stack([4 * (l0 - x), -4 * x]),
-        np.stack([4 * y, 4 * x]),
-        np.stack([-4 * y, 4 * (l0 - y)]),
-    ])                                    # (6, 2, nq)
-    return values, grads.transpose(2, 0, 1)
-
-
 def _geometry(mesh) -> tuple[np.ndarray, ...]:
     """Per element and quadrature point: the weight times the map's Jacobian determinant
     (nel, nq), the shape functions' x and y gradients (nel, nq, 6) each; the shape values
     (6, nq); the elements' nodes (nel, 6)."""
-    points, weights = _rule()
-    values, grads = _shape(points)
+    (x_ref, y_ref), weights = _rule()
+    values, grads = p2_shape(x_ref, y_ref).T, p2_grad(x_ref, y_ref)   # (6, nq), (nq, 6, 2)
     nodes = mesh.dofs.element_dofs.T                      # (nel, 6)
     x = mesh.doflocs.T[nodes]                             # (nel, 6, 2)
     jac = np.einsum("ekd,qkj->eqdj", x, grads)            # dx_d / dξ_j

@@ -26,6 +26,7 @@ from skfem import MeshTri2
 
 from ..errors import FegearError
 from .dofs import facet_nodes
+from .probe import p2_grad
 
 log = logging.getLogger(__name__)
 
@@ -438,7 +439,7 @@ def mesh_quality(mesh: MeshTri2) -> MeshQuality:
     ref = np.array([[0, 0], [1, 0], [0, 1], [0.5, 0], [0.5, 0.5], [0, 0.5], [1 / 3, 1 / 3]])
     dets = []
     for xi, eta in ref:
-        dn = _p2_grad(xi, eta)  # (6, 2)
+        dn = p2_grad(xi, eta)  # (6, 2)
         jac = np.einsum("din,ij->ndj", x, dn)
         dets.append(jac[:, 0, 0] * jac[:, 1, 1] - jac[:, 0, 1] * jac[:, 1, 0])
     dets = np.array(dets)
@@ -446,16 +447,3 @@ def mesh_quality(mesh: MeshTri2) -> MeshQuality:
     h = np.sqrt(lsq)
     return MeshQuality(mesh.t.shape[1], mesh.doflocs.shape[1], float(shape.min()),
                        float(ratio.min()), float(h.min()), float(h.max()))
-
-
-def _p2_grad(xi: float, eta: float) -> np.ndarray:
-    """Gradients of the P2 shape functions, ordered corners 0,1,2 then edges 01, 12, 02."""
-    l0 = 1.0 - xi - eta
-    return np.array([
-        [-(4 * l0 - 1), -(4 * l0 - 1)],
-        [4 * xi - 1, 0.0],
-        [0.0, 4 * eta - 1],
-        [4 * (l0 - xi), -4 * xi],
-        [4 * eta, 4 * xi],
-        [-4 * eta, 4 * (l0 - eta)],
-    ])

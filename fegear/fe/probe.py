@@ -101,11 +101,11 @@ class Probe:
         n = len(nodes)
         d = np.asarray(direction, dtype=float)
         if not strain:
-            N = _shape(at.xi, at.eta)                            # (n, 6)
+            N = p2_shape(at.xi, at.eta)                            # (n, 6)
             vx, vy = N * d[:, :1], N * d[:, 1:]
         else:
             X = self.mesh.doflocs.T[nodes]                       # (n, 6, 2)
-            dN = _grad(at.xi, at.eta)                            # (n, 6, 2) reference
+            dN = p2_grad(at.xi, at.eta)                            # (n, 6, 2) reference
             J = np.einsum("nkd,nkr->ndr", X, dN)                 # dx_d/dξ_r
             G = np.einsum("nkr,nrd->nkd", dN, np.linalg.inv(J))  # ∂N/∂x
             dNd = np.einsum("nkd,nd->nk", G, d)
@@ -124,15 +124,16 @@ class Probe:
                                 self.rows(points, np.column_stack([zeros, ones])) @ u])
 
 
-def _shape(xi: np.ndarray, eta: np.ndarray) -> np.ndarray:
-    """P2 shape functions, corners 0, 1, 2 then the midside nodes of edges 01, 12, 02."""
+def p2_shape(xi: np.ndarray, eta: np.ndarray) -> np.ndarray:
+    """P2 shape functions (…, 6) at reference coordinates ``xi``, ``eta``: corners 0, 1, 2 then
+    the midside nodes of edges 01, 12, 02 (the order of ``mesh.dofs.element_dofs``)."""
     l0 = 1.0 - xi - eta
     return np.stack([l0 * (2 * l0 - 1), xi * (2 * xi - 1), eta * (2 * eta - 1),
                      4 * xi * l0, 4 * xi * eta, 4 * eta * l0], axis=-1)
 
 
-def _grad(xi: np.ndarray, eta: np.ndarray) -> np.ndarray:
-    """Reference gradients (…, 6, 2) of :func:`_shape`."""
+def p2_grad(xi: np.ndarray, eta: np.ndarray) -> np.ndarray:
+    """Reference gradients (…, 6, 2) of :func:`p2_shape`."""
     l0 = 1.0 - xi - eta
     z = np.zeros_like(xi)
     g = [(-(4 * l0 - 1), -(4 * l0 - 1)), (4 * xi - 1, z), (z, 4 * eta - 1),
@@ -166,8 +167,8 @@ def _invert(X: np.ndarray, y: np.ndarray) -> np.ndarray:
     # square, below the rounding of the coordinates (1e-12 of an element at 40 mm from the
     # centre); two or three steps, not six
     for _ in range(NEWTON):
-        N = _shape(ref[..., 0], ref[..., 1])
-        dN = _grad(ref[..., 0], ref[..., 1])
+        N = p2_shape(ref[..., 0], ref[..., 1])
+        dN = p2_grad(ref[..., 0], ref[..., 1])
         r = np.einsum("...k,...kd->...d", N, X) - y
         J = np.einsum("...kd,...kr->...dr", X, dN)
         det = J[..., 0, 0] * J[..., 1, 1] - J[..., 0, 1] * J[..., 1, 0]
