@@ -213,8 +213,7 @@ class GearSide:
         f = {t: v for t, v in f.items() if np.any(v)}
         # the cut loads from the responses formed for the loads' few dofs (a product over the
         # whole template's Ψ a sector, which two processes read at once in a mesh cycle, else)
-        rho = {t: self.cut_loads(loads[t].dofs) @ (loads[t].matrix @ values[loads[t].columns])
-               for t in f}
+        rho = {t: self.cut_loads(loads[t].dofs) @ v[loads[t].dofs] for t, v in f.items()}
         return self.body.displacement(f, sectors, rho)
 
     def displacement_at(self, x: np.ndarray, fields: dict[int, np.ndarray]) -> np.ndarray:
