@@ -60,10 +60,13 @@ def rigid_gap(model: RingModel, x: np.ndarray, beta: float, turn: float,
 
 
 def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float, theta: float,
-                       guess: float | None = None) -> RingContactSolution | None:
+                       guess: float | None = None, start: np.ndarray | None = None
+                       ) -> RingContactSolution | None:
     """Solve the contact under ``torque_nmm`` (N·mm on gear 1) from the rotation ``theta``
-    (rad); the iterations start from the points the rigid teeth overlap at the rotation
-    ``guess`` (rad; else from the point of least gap). On a contact whose probe columns are
+    (rad); the iterations start from the points ``start`` (a mask over the points: where the
+    position before carried pressure, say), else from those the rigid teeth overlap at the
+    rotation ``guess`` (rad), else from the point of least gap. Where they start changes how
+    many iterations the solve takes, not its solution. On a contact whose probe columns are
     not formed (:func:`~.influence.assemble_contact`), the points of the formed columns are
     solved and the others kept open; that is the solution if none of them then overlaps
     (their pressures zero, their columns act on nothing), else None: the caller forms them."""
@@ -74,7 +77,9 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
     feet = contact.feet[on]
     g0, a = rigid_gap(model, x, contact.beta, alpha + theta, feet)
     active = g0 <= g0.min() + 1e-12
-    if guess is not None:
+    if start is not None and start[on].any():
+        active = start[on].copy()
+    elif guess is not None:
         overlap = rigid_gap(model, x, contact.beta, alpha + guess, feet.copy())[0] < 0
         active = overlap if overlap.any() else active
     pressure = np.zeros(len(g0))

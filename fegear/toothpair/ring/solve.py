@@ -17,6 +17,8 @@ import math
 import time
 from dataclasses import replace
 
+import numpy as np
+
 from ... import progress
 from ...errors import ContactError, FegearError
 from ...fe import contact_modulus, submodel_meshes
@@ -29,7 +31,7 @@ from .grid import ToothGrid, tooth_grids, windows
 from .influence import RingContact, assemble_contact
 from .model import RingModel, keep_on_disk, ring_model
 from .results import RingDetail, tooth_results
-from .stresses import ring_stresses, with_submodels
+from .stresses import ring_stresses, submodel_keys, with_submodels
 
 REACH = 1.5          # grids reach where the rigid gap is within this many expected elastic
                      # approaches of closing (3 gave the same values within 6e-5 with a third
@@ -49,6 +51,8 @@ PEAK_MARGIN = 0.02   # a cycle's position gets its submodels where its von Mises
                      # estimate is within 0.6 % of the submodel at `standard`, 1 % at
                      # `coarse`, on the baseline's cycles, edge and relieved alike:
                      # docs/model.md, "Submodels over a cycle")
+DISK_S = 0.07        # a contact submodel's disk meshed, assembled and factorised (s, baseline)
+SUBMODEL_S = 0.007   # a position's submodels solved on disks meshed before (s, baseline)
 #: the one-off stages a solve reports: the model built (profile, mesh, assembly and
 #: factorisation), read back from the disk cache, or kept from an earlier solve
 MODEL_STAGES = ("profile", "mesh", "assemble_factor", "disk", "model (kept)")
@@ -114,6 +118,7 @@ class RingSolver:
         # expected rotation, or nearly (CANDIDATES); all of them where a point left out closes
         sol, probe_columns = None, False
         within = None if predict else CANDIDATES * elastic_um * 1e-3
+        start = None if near is None else _loaded_before(near.detail, grids)
         while sol is None:
             t0 = time.perf_counter()
             contact = assemble_contact(model, grids, case.beta, p.ratio * case.beta + theta,
@@ -122,7 +127,7 @@ class RingSolver:
             t0 = time.perf_counter()
             try:
                 sol = solve_ring_contact(model, contact, torque, p.turn_of(first_um),
-                                         guess=theta)
+                                         guess=theta, start=start)
             except ContactError:
                 if within is not None:    # the candidates alone cannot carry the torque
                     sol = None
@@ -196,10 +201,13 @@ class RingSolver:
         where each headline stress is largest (the job pictures and estimates the largest
         gear-1 root stress's), and wherever the von Mises estimate comes within
         :data:`PEAK_MARGIN` of the largest von Mises stress solved, until no other does. A
-        single position is its own peak. The others keep the surface estimate
-        (``von_mises_estimated``); everything else a position reports does not depend on
-        submodels. ``beside``: the first peaks are shared with a forked copy of this process
-        (their disks are meshed where they are solved: the same disks, the same numbers).
+        single position is its own peak. The first round takes, besides each headline's
+        peak, every position whose estimate is within the margin of the largest estimate (on
+        the baseline's cycle, one round of 8 instead of 2 and then 5). The others keep the
+        surface estimate (``von_mises_estimated``); everything else a position reports does
+        not depend on submodels. ``beside``: each round's peaks are shared with a forked copy
+        of this process (their disks are meshed where they are solved: the same disks, the
+        same numbers).
         The model is then kept on disk if the cache is on (:func:`~.model.keep_on_disk`)."""
         out = self._complete(sols, beside)
         if self.model is not None:
@@ -224,9 +232,15 @@ class RingSolver:
         keys = ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa",
                 "flank_contact_pressure_MPa", "von_mises_max_MPa")
         want = {max(range(len(sols)), key=lambda i: sols[i].headline()[k]) for k in keys}
+        # and from the start where the estimate comes within the margin of the largest
+        # estimate: the submodels lift the estimate by a few tenths of a per cent, so these are
+        # mostly the positions the rule below would add one round later, one at a time
+        estimated = max(s.von_mises_max for s in sols)
+        want |= {i for i, s in enumerate(sols)
+                 if s.von_mises_max >= (1.0 - PEAK_MARGIN) * estimated}
         done: set[int] = set()
         while want:
-            self._with_submodels(out, sorted(want), beside and not done)
+            self._with_submodels(out, sorted(want), beside)
             done |= want
             solved = [s.von_mises_max for s in out if not s.von_mises_estimated]
             if not solved:   # no peak a submodel could take (no surface stress anywhere)
@@ -237,9 +251,12 @@ class RingSolver:
 
     def _with_submodels(self, out: list[PairSolution], which: list[int],
                         beside: bool) -> None:
-        """``out[i]`` with its submodels for each of ``which``; ``beside``: every other one in
-        a forked copy of this process (should that fail in any way, here)."""
-        theirs = which[1::2] if beside else []
+        """``out[i]`` with its submodels for each of ``which``; ``beside``: a share of them
+        in a forked copy of this process (should that fail in any way, here), split by
+        :func:`_shares`."""
+        mine, theirs = _shares(self.model, [out[i] for i in which]) if beside else \
+            (list(range(len(which))), [])
+        mine, theirs = [which[j] for j in mine], [which[j] for j in theirs]
         child = None
         if theirs:
             from ...workers import Forked
@@ -252,7 +269,7 @@ class RingSolver:
 
             child = Forked(there)
         try:
-            for i in which[0::2] if theirs else which:
+            for i in mine:
                 out[i] = _with_submodels(out[i])
             got = child.result() if child is not None else None
         finally:
@@ -267,6 +284,27 @@ class RingSolver:
             self.model.submodels.setdefault(key, mesh)
         for i, sol in zip(theirs, solved, strict=True):
             out[i] = self.attach(sol)
+
+
+def _shares(model: RingModel, sols: list[PairSolution]) -> tuple[list[int], list[int]]:
+    """``sols`` (their indices) in two shares of about equal cost, this process's and a forked
+    copy's: a disk not meshed yet costs :data:`DISK_S`, a position's submodels on meshed disks
+    :data:`SUBMODEL_S`, and a disk meshed for one position serves every other in the same
+    share. The positions needing most new disks are placed first, each where it adds least;
+    the forked share is the one with fewer positions (each crosses back through a pipe). On
+    the baseline's cycle, the position with three disks of its own goes beside the seven
+    that share two."""
+    have = set(model.submodels)
+    need = [submodel_keys(model, s.detail.contact, s.detail.solution.pressure,
+                          s.detail.stresses) - have for s in sols]
+    shares = [([], set(), 0.0), ([], set(), 0.0)]
+    for j in sorted(range(len(sols)), key=lambda j: -len(need[j])):
+        added = [cost + DISK_S * len(need[j] - keys) + SUBMODEL_S for _, keys, cost in shares]
+        k = int(np.argmin(added))
+        shares[k][0].append(j)
+        shares[k] = (shares[k][0], shares[k][1] | need[j], added[k])
+    mine, theirs = sorted((sorted(s[0]) for s in shares), key=len, reverse=True)
+    return mine, theirs
 
 
 def _with_submodels(sol: PairSolution) -> PairSolution:
@@ -285,6 +323,25 @@ def _kept(contact: RingContact) -> RingContact:
     """What a solved position keeps of its contact: all but A (:class:`~.influence
     .RingContact`)."""
     return replace(contact, A=None)
+
+
+def _loaded_before(before: RingDetail, grids: tuple[ToothGrid, ...]) -> np.ndarray | None:
+    """The points of ``grids`` that lie where the position ``before`` carried pressure on the
+    same tooth (the active set's start: the contact moves a little from one position of a
+    cycle to the next, and the solve then takes 3-5 active-set iterations instead of 13-14
+    from the rigid overlap); None where ``before`` holds no such tooth."""
+    old = {g.tooth: (g, before.solution.pressure[before.contact.block(k)])
+           for k, g in enumerate(before.contact.grids)}
+    if not any(g.tooth in old for g in grids):
+        return None
+    out = []
+    for g in grids:
+        if g.tooth in old:
+            prev, p = old[g.tooth]
+            out.append(np.interp(g.phi, prev.phi, p, left=0.0, right=0.0) > 0.0)
+        else:
+            out.append(np.zeros(len(g), dtype=bool))
+    return np.concatenate(out)
 
 
 def _expected(state, closure_um: float) -> set[int]:

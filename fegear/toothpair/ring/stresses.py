@@ -113,6 +113,13 @@ def with_submodels(model: RingModel, contact: RingContact, pressure: np.ndarray,
     return replace(stresses, submodels=subs)
 
 
+def submodel_keys(model: RingModel, contact: RingContact, pressure: np.ndarray,
+                  stresses: RingStresses) -> set:
+    """The disks (:func:`contact_submodel`'s keys) that :func:`with_submodels` solves on."""
+    return {contact_submodel(model, contact, pressure, stresses.fields, g, i)[0].key
+            for g, i in _peaks(contact, pressure, stresses.surface)}
+
+
 def _bulk_von_mises(side: GearSide, stresses: dict, loaded: np.ndarray) -> float:
     """The template's largest von Mises stress farther than SUB_FACETS of its largest facet
     under the ``loaded`` points (gear frame) from them: nearer, the contact is not resolved
