@@ -53,6 +53,7 @@ PEAK_MARGIN = 0.02   # a cycle's position gets its submodels where its von Mises
                      # docs/model.md, "Submodels over a cycle")
 DISK_S = 0.07        # a contact submodel's disk meshed, assembled and factorised (s, baseline)
 SUBMODEL_S = 0.007   # a position's submodels solved on disks meshed before (s, baseline)
+FORK_S = 0.05        # a forked copy's start and its solutions back through the pipe (s)
 #: the one-off stages a solve reports: the model built (profile, mesh, assembly and
 #: factorisation), read back from the disk cache, or kept from an earlier solve
 MODEL_STAGES = ("profile", "mesh", "assemble_factor", "disk", "model (kept)")
@@ -197,17 +198,17 @@ class RingSolver:
 
     def complete(self, sols: tuple[PairSolution, ...], beside: bool = False
                  ) -> tuple[PairSolution, ...]:
-        """With ``submodels`` "peaks", the submodels of the positions that decide a cycle:
-        where each headline stress is largest (the job pictures and estimates the largest
-        gear-1 root stress's), and wherever the von Mises estimate comes within
-        :data:`PEAK_MARGIN` of the largest von Mises stress solved, until no other does. A
-        single position is its own peak. The first round takes, besides each headline's
-        peak, every position whose estimate is within the margin of the largest estimate (on
-        the baseline's cycle, one round of 8 instead of 2 and then 5). The others keep the
-        surface estimate (``von_mises_estimated``); everything else a position reports does
-        not depend on submodels. ``beside``: each round's peaks are shared with a forked copy
-        of this process (their disks are meshed where they are solved: the same disks, the
-        same numbers).
+        """With ``submodels`` "peaks", the submodels of the positions that decide a cycle's
+        von Mises stress: where the largest gear-1 root stress is (the position the job
+        pictures and estimates), where the von Mises estimate is largest, and wherever it
+        comes within :data:`PEAK_MARGIN` of the largest von Mises stress solved, until no
+        other does. A single position is its own peak. The first round takes every position
+        whose estimate is within the margin of the largest estimate (on the baseline's cycle,
+        one round of 7 instead of 2 and then 5). The others keep the surface estimate
+        (``von_mises_estimated``); everything else a position reports, the other headline
+        stresses included, does not depend on submodels. ``beside``: each round's peaks may
+        be shared with a forked copy of this process (:func:`_shares`; their disks are meshed
+        where they are solved: the same disks, the same numbers).
         The model is then kept on disk if the cache is on (:func:`~.model.keep_on_disk`)."""
         out = self._complete(sols, beside)
         if self.model is not None:
@@ -229,12 +230,11 @@ class RingSolver:
         if self.submodels != "peaks" or not sols:
             return sols
         out = list(sols)
-        keys = ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa",
-                "flank_contact_pressure_MPa", "von_mises_max_MPa")
+        keys = ("root_stress_gear1_MPa", "von_mises_max_MPa")
         want = {max(range(len(sols)), key=lambda i: sols[i].headline()[k]) for k in keys}
         # and from the start where the estimate comes within the margin of the largest
         # estimate: the submodels lift the estimate by a few tenths of a per cent, so these are
-        # mostly the positions the rule below would add one round later, one at a time
+        # mostly the positions the rule below would add a round later
         estimated = max(s.von_mises_max for s in sols)
         want |= {i for i, s in enumerate(sols)
                  if s.von_mises_max >= (1.0 - PEAK_MARGIN) * estimated}
@@ -289,22 +289,21 @@ class RingSolver:
 def _shares(model: RingModel, sols: list[PairSolution]) -> tuple[list[int], list[int]]:
     """``sols`` (their indices) in two shares of about equal cost, this process's and a forked
     copy's: a disk not meshed yet costs :data:`DISK_S`, a position's submodels on meshed disks
-    :data:`SUBMODEL_S`, and a disk meshed for one position serves every other in the same
-    share. The positions needing most new disks are placed first, each where it adds least;
-    the forked share is the one with fewer positions (each crosses back through a pipe). On
-    the baseline's cycle, the position with three disks of its own goes beside the seven
-    that share two."""
+    :data:`SUBMODEL_S`, the fork and its answer through the pipe :data:`FORK_S`, and a disk
+    meshed for one position serves every other in the same share. The positions needing most
+    new disks are placed first, each where it adds least. On the baseline's cycle every
+    position of the first round needs the same two disks: they stay in one share, and no
+    copy is forked."""
     have = set(model.submodels)
     need = [submodel_keys(model, s.detail.contact, s.detail.solution.pressure,
                           s.detail.stresses) - have for s in sols]
-    shares = [([], set(), 0.0), ([], set(), 0.0)]
+    shares = [([], set(), 0.0), ([], set(), FORK_S)]
     for j in sorted(range(len(sols)), key=lambda j: -len(need[j])):
         added = [cost + DISK_S * len(need[j] - keys) + SUBMODEL_S for _, keys, cost in shares]
         k = int(np.argmin(added))
         shares[k][0].append(j)
         shares[k] = (shares[k][0], shares[k][1] | need[j], added[k])
-    mine, theirs = sorted((sorted(s[0]) for s in shares), key=len, reverse=True)
-    return mine, theirs
+    return sorted(shares[0][0]), sorted(shares[1][0])
 
 
 def _with_submodels(sol: PairSolution) -> PairSolution:
