@@ -2,7 +2,7 @@
 search (:class:`LocalPool`: all three end their workers the same way), and the Dask client of
 the first and the last; and one function run in a forked copy of this process
 (:class:`Forked`: the error estimate's second solve, a mesh cycle's clearance states, its
-second chain of positions on the model built here and every other peak's submodels).
+second chain of positions on the model built here and a share of its peaks' submodels).
 
 Pool workers are spawned, not forked (the parent may hold threads: the progress bar's). All
 leave Ctrl-C to the parent and end when it does: a parent killed outright (SIGKILL) leaves no

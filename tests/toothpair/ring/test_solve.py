@@ -443,3 +443,48 @@ def test_a_cycle_s_second_chain_solved_beside_is_the_one_solved_here(baseline_ri
         assert len(beside[k].detail.stresses.submodels) == len(here[k].detail.stresses.submodels)
     later = beside[-1]
     assert {f.name for f in later.detail.body_fields(around=1)} == {"gear1", "gear2"}
+
+
+def test_a_later_position_starts_its_contact_from_the_one_before_with_the_same_solution(
+        monkeypatch, baseline_ring):
+    # the active set starts where the position before carried pressure: the iterations go,
+    # the solution stays, to the bit
+    import fegear.toothpair.ring.solve as ring_solve
+
+    p = baseline_ring.case.params
+    case = replace(baseline_ring.case, torque=200.0)
+    betas = tuple(np.linspace(0.0, 2 * math.pi / p.z2, 24, endpoint=False)[:4])
+    warm = solve_positions(case, betas, model=baseline_ring, submodels="none")
+    monkeypatch.setattr(ring_solve, "_loaded_before", lambda before, grids: None)
+    cold = solve_positions(case, betas, model=baseline_ring, submodels="none")
+    for a, b in zip(warm, cold, strict=True):
+        np.testing.assert_array_equal(a.detail.solution.pressure, b.detail.solution.pressure)
+        assert a.rotation == b.rotation and a.headline() == b.headline()
+    assert warm[0].checks.iterations == cold[0].checks.iterations   # nothing before it
+    for a, b in zip(warm[1:], cold[1:]):
+        assert a.checks.iterations < 0.7 * b.checks.iterations
+
+
+def test_the_peaks_submodels_are_shared_by_the_disks_they_mesh(monkeypatch):
+    # a disk meshed for one position serves the others of its share: positions needing the
+    # same disks stay together, and a fork is worth only the disks it saves
+    from types import SimpleNamespace
+
+    import fegear.toothpair.ring.solve as ring_solve
+
+    needs = {}
+    monkeypatch.setattr(ring_solve, "submodel_keys", lambda model, contact, p, s: needs[contact])
+
+    def sol(i):
+        return SimpleNamespace(detail=SimpleNamespace(contact=i, solution=SimpleNamespace(
+            pressure=None), stresses=None))
+
+    model = SimpleNamespace(submodels={"kept": object()})
+    needs.update({i: {"a", "b"} for i in range(7)})
+    assert ring_solve._shares(model, [sol(i) for i in range(7)]) == (list(range(7)), [])
+    needs[7] = {"c", "d", "e"}
+    mine, theirs = ring_solve._shares(model, [sol(i) for i in range(8)])
+    assert (mine, theirs) in (([7], list(range(7))), (list(range(7)), [7]))
+    # disks meshed before cost nothing: those positions go where they add least
+    needs.update({i: {"kept"} for i in range(8)})
+    assert ring_solve._shares(model, [sol(i) for i in range(8)]) == (list(range(8)), [])
