@@ -327,8 +327,9 @@ def _kept(contact: RingContact) -> RingContact:
 def _loaded_before(before: RingDetail, grids: tuple[ToothGrid, ...]) -> np.ndarray | None:
     """The points of ``grids`` that lie where the position ``before`` carried pressure on the
     same tooth (the active set's start: the contact moves a little from one position of a
-    cycle to the next, and the solve then takes 3-5 active-set iterations instead of 13-14
-    from the rigid overlap); None where ``before`` holds no such tooth."""
+    cycle to the next, and on the baseline's cycle the solve then takes 5-12 active-set
+    iterations, 7 on most, instead of 12-18 from the rigid overlap); None where ``before``
+    holds no such tooth."""
     old = {g.tooth: (g, before.solution.pressure[before.contact.block(k)])
            for k, g in enumerate(before.contact.grids)}
     if not any(g.tooth in old for g in grids):
