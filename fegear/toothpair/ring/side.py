@@ -189,7 +189,8 @@ class GearSide:
         for start, block in self._X:
             sel = np.flatnonzero((cols >= start) & (cols < start + block.shape[1]))
             if len(sel):
-                X[:, sel] = block[np.ix_(place, cols[sel] - start)]
+                # rows, then columns: a gather each (np.ix_ took up to four times as long)
+                X[:, sel] = np.take(np.take(block, place, axis=0), cols[sel] - start, axis=1)
         return np.asarray(rows[:, used] @ X)
 
     def cut_loads(self, dofs: np.ndarray) -> np.ndarray:
