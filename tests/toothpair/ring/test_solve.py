@@ -488,3 +488,24 @@ def test_the_peaks_submodels_are_shared_by_the_disks_they_mesh(monkeypatch):
     # disks meshed before cost nothing: those positions go where they add least
     needs.update({i: {"kept"} for i in range(8)})
     assert ring_solve._shares(model, [sol(i) for i in range(8)]) == (list(range(8)), [])
+
+
+def test_a_solution_crosses_from_a_fork_with_its_loads_sparse_and_comes_back_the_same(
+        baseline_200):
+    import pickle
+
+    from fegear.toothpair.ring.solve import RingSolver
+
+    solver = RingSolver(baseline_200.detail.model)
+    crossing = solver.detach(baseline_200)
+    assert crossing.detail.model is None
+    assert len(pickle.dumps(crossing.detail.contact)) < \
+        0.5 * len(pickle.dumps(baseline_200.detail.contact))
+    back = solver.attach(pickle.loads(pickle.dumps(crossing)))
+    assert back.detail.model is baseline_200.detail.model
+    for a, b in zip(baseline_200.detail.contact.loads, back.detail.contact.loads, strict=True):
+        assert a.keys() == b.keys()
+        for t in a:
+            assert isinstance(b[t].matrix, np.ndarray)
+            assert np.array_equal(a[t].matrix, b[t].matrix)
+            assert np.array_equal(a[t].dofs, b[t].dofs)
