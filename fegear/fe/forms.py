@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
+from .dofs import node_dofs
 from .probe import p2_grad, p2_shape
 
 #: the quadrature order (scikit-fem's default for P2: twice the degree)
@@ -66,11 +67,6 @@ def _sparse(blocks: np.ndarray, rows: np.ndarray, cols: np.ndarray, shape) -> sp
     return sp.coo_matrix((blocks.ravel(), (i, j)), shape=shape).tocsr()
 
 
-def _vector_dofs(nodes: np.ndarray) -> np.ndarray:
-    """An element's twelve displacement dofs (nel, 12): node by node, x then y."""
-    return (2 * nodes[:, :, None] + np.arange(2)).reshape(len(nodes), -1)
-
-
 def stiffness(mesh, lam: float, mu: float, thickness: float = 1.0) -> sp.csr_matrix:
     """t ∫ σ(u):ε(v) on the P2 ``mesh`` with Lamé's ``lam`` and ``mu`` (the plane
     assumption's), (2 n, 2 n) for the n nodes."""
@@ -82,7 +78,7 @@ def stiffness(mesh, lam: float, mu: float, thickness: float = 1.0) -> sp.csr_mat
     k[:, :, 1, :, 1] = (lam + 2 * mu) * yy + mu * xx
     k[:, :, 0, :, 1] = lam * xy + mu * xy.transpose(0, 2, 1)
     k[:, :, 1, :, 0] = k[:, :, 0, :, 1].transpose(0, 2, 1)
-    dofs = _vector_dofs(nodes)
+    dofs = node_dofs(nodes).reshape(len(nodes), 12)   # node by node, x then y
     n = 2 * mesh.doflocs.shape[1]
     return _sparse(thickness * k.reshape(nel, 12, 12), dofs, dofs, (n, n))
 
@@ -97,7 +93,7 @@ def projection(mesh, lam: float, mu: float) -> tuple[sp.csr_matrix, tuple]:
     mass = _sparse(_pair(wd, v, v), nodes, nodes, (n, n))
     vx, vy = _pair(wd, v, gx), _pair(wd, v, gy)           # (nel, 6 test, 6 trial)
     nel = len(nodes)
-    dofs = _vector_dofs(nodes)
+    dofs = node_dofs(nodes).reshape(len(nodes), 12)   # node by node, x then y
     parts = []
     for ax, ay in (((lam + 2 * mu) * vx, lam * vy),       # σxx of u = ψ ex, ψ ey
                    (lam * vx, (lam + 2 * mu) * vy),       # σyy

@@ -17,7 +17,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ...contact import FacetLocator, p2_edge_shape
-from ...fe import Cells, CyclicBody, Probe, facet_nodes
+from ...fe import Cells, CyclicBody, Probe, facet_nodes, node_dofs
 from ...planar import rotate
 from .template import Template
 
@@ -111,8 +111,7 @@ class GearSide:
             sel = where.sector == k
             m, c = int(sel.sum()), column.shape[1]
             # (point, facet node, direction, unknown): dof, force per unit value, unknown
-            rows = np.broadcast_to((2 * nodes[sel])[:, :, None, None]
-                                   + np.arange(2)[None, None, :, None], (m, 3, 2, c)).ravel()
+            rows = np.broadcast_to(node_dofs(nodes[sel])[:, :, :, None], (m, 3, 2, c)).ravel()
             vals = (shape[sel][:, :, None, None] * d_local[sel][:, None, :, None]
                     * size[sel][:, None, None, :]).ravel()
             cols = np.broadcast_to(column[sel][:, None, None, :], (m, 3, 2, c)).ravel()

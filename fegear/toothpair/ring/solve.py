@@ -235,12 +235,12 @@ class RingSolver:
         if self.submodels != "peaks" or not sols:
             return sols
         out = list(sols)
-        keys = ("root_stress_gear1_MPa", "von_mises_max_MPa")
-        want = {max(range(len(sols)), key=lambda i: sols[i].headline()[k]) for k in keys}
-        # and from the start where the estimate comes within the margin of the largest
-        # estimate: the submodels lift the estimate by a few tenths of a per cent, so these are
-        # mostly the positions the rule below would add a round later
+        # the pictured position, and from the start every position whose estimate comes
+        # within the margin of the largest (that one among them): the submodels lift the
+        # estimate by a few tenths of a per cent, so these are mostly the positions the rule
+        # below would add a round later
         estimated = max(s.von_mises_max for s in sols)
+        want = {max(range(len(sols)), key=lambda i: sols[i].root_stress[0])}
         want |= {i for i, s in enumerate(sols)
                  if s.von_mises_max >= (1.0 - PEAK_MARGIN) * estimated}
         done: set[int] = set()
@@ -302,13 +302,14 @@ def _shares(model: RingModel, sols: list[PairSolution]) -> tuple[list[int], list
     have = set(model.submodels)
     need = [submodel_keys(model, s.detail.contact, s.detail.solution.pressure,
                           s.detail.stresses) - have for s in sols]
-    shares = [([], set(), 0.0), ([], set(), FORK_S)]
+    members, meshed, cost = ([], []), (set(), set()), [0.0, FORK_S]
     for j in sorted(range(len(sols)), key=lambda j: -len(need[j])):
-        added = [cost + DISK_S * len(need[j] - keys) + SUBMODEL_S for _, keys, cost in shares]
+        added = [cost[k] + DISK_S * len(need[j] - meshed[k]) + SUBMODEL_S for k in (0, 1)]
         k = int(np.argmin(added))
-        shares[k][0].append(j)
-        shares[k] = (shares[k][0], shares[k][1] | need[j], added[k])
-    return sorted(shares[0][0]), sorted(shares[1][0])
+        members[k].append(j)
+        meshed[k].update(need[j])
+        cost[k] = added[k]
+    return sorted(members[0]), sorted(members[1])
 
 
 def _with_submodels(sol: PairSolution) -> PairSolution:
