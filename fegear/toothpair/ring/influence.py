@@ -90,7 +90,8 @@ class RingContact:
 
 def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float,
                      turn: float, probe_columns: bool = True,
-                     within: float | None = None) -> RingContact:
+                     within: float | None = None,
+                     columns: np.ndarray | None = None) -> RingContact:
     """The contact of the ``grids`` with gear 2 turned by β and gear 1 by ``turn`` (rad, its
     kinematic angle included, about its centre). Without ``probe_columns`` (and with a fine
     grid among the ``grids``), A's columns of the probe grids' hats are not formed: the
@@ -101,7 +102,9 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     that can carry pressure there (pressure separates the surfaces everywhere, so a loaded
     point overlaps rigidly: on the baseline's cycle, by a fifth of the elastic approach or
     more at the expected turn); the rows of every point are, so that the solve can tell
-    whether a point left out would close."""
+    whether a point left out would close. ``columns`` (a mask over the points): only these
+    points' columns are formed, of those the other rules form (where the position before
+    carried pressure, say); all of those where none is among them."""
     p, case = model.case.params, model.case
     g1, g2 = model.gears
     offsets = np.cumsum([0] + [len(g) for g in grids])
@@ -116,6 +119,8 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     formed = np.repeat([every or not g.probe for g in grids], np.diff(offsets))
     if within is not None and (formed & (cp.distance < within)).any():
         formed &= cp.distance < within
+    if columns is not None and (formed & columns).any():
+        formed &= columns
 
     xq, nq, size, col = _hat_loads(model, grids, offsets, case.thickness, formed)
     loads1 = g1.nodal_loads(xq, -nq, col, size)

@@ -47,6 +47,11 @@ CANDIDATES = 0.1     # A's columns first on the points whose rigid gap at the ex
                      # is below this many expected elastic approaches (a rotation off by
                      # PLACEMENT gets new grids anyway; loaded points overlap by a fifth of the
                      # approach or more on the baseline's cycle): 0.55 of the fine grids' points
+BEFORE_MARGIN = 0.15 # a later position of a cycle forms them only on the points within this
+BEFORE_POINTS = 4    # fraction of its loaded stretch, and this many points, of where the
+                     # position before carried pressure on the same tooth (on the baseline's
+                     # cycle a stretch's ends move by 0.23 of it from one position to the next
+                     # at most, 0.05 on most): 0.6 of the candidates' columns
 PEAK_MARGIN = 0.02   # a cycle's position gets its submodels where its von Mises estimate is
                      # within this fraction of the cycle's largest von Mises stress (the
                      # estimate is within 0.6 % of the submodel at `standard`, 1 % at
@@ -117,14 +122,20 @@ class RingSolver:
         # A's columns first only where pressure can act: not the probes' (where one closes,
         # the attempt is made again with that tooth's fine grid: once in 24 positions of the
         # baseline's cycle), and on the fine grids the points that overlap rigidly at the
-        # expected rotation, or nearly (CANDIDATES); all of them where a point left out closes
-        sol, probe_columns = None, False
+        # expected rotation, or nearly (CANDIDATES); in a cycle's later position, of those, the
+        # ones about where the position before carried pressure (_columns_before). Where a
+        # point left out closes, the candidates', and then every column
         within = None if predict else CANDIDATES * elastic_um * 1e-3
         start = None if near is None else _loaded_before(near.detail, grids)
-        while sol is None:
+        columns = None if near is None else _columns_before(near.detail, grids)
+        tries = [(False, within, columns), (False, within, None), (True, None, None)]
+        tries = [t for k, t in enumerate(tries)
+                 if not any(_same(t, u) for u in tries[:k])]
+        sol = None
+        for probe_columns, within, columns in tries:
             t0 = time.perf_counter()
             contact = assemble_contact(model, grids, case.beta, p.ratio * case.beta + theta,
-                                       probe_columns, within)
+                                       probe_columns, within, columns)
             times["assemble"] += time.perf_counter() - t0
             t0 = time.perf_counter()
             try:
@@ -139,7 +150,8 @@ class RingSolver:
                     return Attempt(None, replace(trial, own={"reach": reach}),
                                    "probe grids did not settle", times)
             times["contact"] += time.perf_counter() - t0
-            probe_columns, within = True, None
+            if sol is not None:
+                break
         formed = sum(g.response_s for g in model.gears) - formed
         times["assemble"] -= formed
         times["responses"] = formed
@@ -356,6 +368,38 @@ def _loaded_before(before: RingDetail, grids: tuple[ToothGrid, ...]) -> np.ndarr
         else:
             out.append(np.zeros(len(g), dtype=bool))
     return np.concatenate(out)
+
+
+def _same(a: tuple, b: tuple) -> bool:
+    """Whether two of :meth:`RingSolver.attempt`'s tries (probe columns, within, columns)
+    form the same columns."""
+    return a[:2] == b[:2] and (a[2] is b[2] or (a[2] is not None and b[2] is not None
+                                                and np.array_equal(a[2], b[2])))
+
+
+def _columns_before(before: RingDetail, grids: tuple[ToothGrid, ...]) -> np.ndarray | None:
+    """The points of ``grids`` whose columns of A a later position forms first: on a tooth
+    that carried pressure in the position ``before``, those within :data:`BEFORE_MARGIN` of
+    that stretch and :data:`BEFORE_POINTS` points of it (the contact moves a little from one
+    position to the next; should a point left out close, every column is formed:
+    :meth:`RingSolver.attempt`); every point of the other teeth. None where ``before`` holds
+    no such tooth."""
+    old = {g.tooth: (g, before.solution.pressure[before.contact.block(k)])
+           for k, g in enumerate(before.contact.grids)}
+    out, narrowed = [], False
+    for g in grids:
+        keep = np.full(len(g), g.tooth not in old)
+        if g.tooth in old and old[g.tooth][1].max() > 0.0:
+            prev, p = old[g.tooth]
+            loaded = prev.phi[p > 0.0]
+            margin = BEFORE_MARGIN * (loaded[-1] - loaded[0])
+            on = np.flatnonzero((g.phi >= loaded[0] - margin) & (g.phi <= loaded[-1] + margin))
+            keep[:] = False
+            if len(on):
+                keep[max(on[0] - BEFORE_POINTS, 0):on[-1] + BEFORE_POINTS + 1] = True
+            narrowed = True
+        out.append(keep)
+    return np.concatenate(out) if narrowed else None
 
 
 def _expected(state, closure_um: float) -> set[int]:
