@@ -116,7 +116,6 @@ class ToothContact:
         self.gear1 = profile if profile is not None else Gear1Profile(params)
         self.gear2: Cycloid = gear2_curve(params)
         self.k = params.ratio
-        self._seg_cache = None
 
     # --- gear-1 tooth flanks (body frame, tooth 0) -----------------------------------------
     @cached_property
@@ -157,59 +156,76 @@ class ToothContact:
         return out
 
     # --- gear-2 crossings with circles about O1 ---------------------------------------------
-    def _gear2_segments(self, beta: float):
-        """Monotone stretches of d(ξ) = |P(ξ) − O1'| on the whole gear-2 curve (gear-2 frame).
-
-        Cached per rolling angle (the last one), as every tooth and refinement step reuses it.
-        """
-        if self._seg_cache is not None and self._seg_cache[0] == beta:
-            return self._seg_cache[1]
-        seg = self._compute_segments(beta)
-        self._seg_cache = (beta, seg)
-        return seg
-
-    def _compute_segments(self, beta: float):
-        o1 = _rotate(np.array([[0.0, self.params.e]]), -beta)[0]
+    def _segments(self, betas) -> list[tuple]:
+        """Monotone stretches of d(ξ) = |P(ξ) − O1'| on the whole gear-2 curve (gear-2 frame)
+        at each rolling angle of ``betas``: gear 1's centre O1' there, the stretches' ends and
+        their distances from it. All angles in one search (element by element the same
+        numbers as one angle at a time: 60 bisection steps a search, not 60 an angle)."""
+        e = self.params.e
+        o1s = [_rotate(np.array([[0.0, e]]), -beta)[0] for beta in betas]
         n = self.params.z2 * GEAR2_SAMPLES_PER_TOOTH
         xi = np.linspace(0.0, 2 * np.pi, n + 1)
-
-        def dd(x):
-            p, d1 = self.gear2.derivatives(x, 1)
-            r = p - o1
-            return np.einsum("ij,ij->i", r, d1)
-
-        f = dd(xi)
-        idx = np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) < 0)[0]
-        lo, hi = xi[idx], xi[idx + 1]
-        flo = f[idx]
+        p, d1 = self.gear2.derivatives(xi, 1)
+        lo, hi, flo, owner = [], [], [], []
+        for k, o1 in enumerate(o1s):
+            f = np.einsum("ij,ij->i", p - o1, d1)
+            idx = np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) < 0)[0]
+            lo.append(xi[idx])
+            hi.append(xi[idx + 1])
+            flo.append(f[idx])
+            owner.append(np.full(len(idx), k))
+        lo, hi, flo, owner = (np.concatenate(c) for c in (lo, hi, flo, owner))
+        centre = np.array(o1s)[owner] if len(owner) else np.zeros((0, 2))
         for _ in range(60):  # vectorized bisection on d'(ξ) = 0
             mid = 0.5 * (lo + hi)
-            fm = dd(mid)
+            pm, dm = self.gear2.derivatives(mid, 1)
+            fm = np.einsum("ij,ij->i", pm - centre, dm)
             left = np.sign(fm) == np.sign(flo)
             lo = np.where(left, mid, lo)
             flo = np.where(left, fm, flo)
             hi = np.where(left, hi, mid)
         ext = 0.5 * (lo + hi)
-        cuts = np.concatenate([ext, [ext[0] + 2 * np.pi]]) if len(ext) else np.array([0, 2 * np.pi])
-        a, b = cuts[:-1], cuts[1:]
-        da = np.hypot(*(self.gear2.point(a) - o1).T)
-        db = np.hypot(*(self.gear2.point(b) - o1).T)
-        return o1, a, b, da, db
+        out, ends = [], []
+        for k, o1 in enumerate(o1s):
+            e_k = ext[owner == k]
+            cuts = (np.concatenate([e_k, [e_k[0] + 2 * np.pi]]) if len(e_k)
+                    else np.array([0, 2 * np.pi]))
+            out.append((o1, cuts[:-1], cuts[1:]))
+            ends.append(cuts)
+        # the stretches' end distances, every angle's in one evaluation
+        sizes = [len(c) - 1 for c in ends]
+        a_all = np.concatenate([c[:-1] for c in ends])
+        b_all = np.concatenate([c[1:] for c in ends])
+        o_all = np.repeat(np.array(o1s), sizes, axis=0)
+        da = np.split(np.hypot(*(self.gear2.point(a_all) - o_all).T), np.cumsum(sizes)[:-1])
+        db = np.split(np.hypot(*(self.gear2.point(b_all) - o_all).T), np.cumsum(sizes)[:-1])
+        return [(o1, a, b, da_k, db_k) for (o1, a, b), da_k, db_k in zip(out, da, db)]
 
-    def _crossings(self, beta: float, rho: np.ndarray):
-        """Angles (gear-1 body frame) where gear 2 crosses the circles of radii ``rho`` about O1.
-
-        Returns (angles, valid) of shape (len(rho), n_segments) and the segment data.
-        """
-        o1, a, b, da, db = seg = self._gear2_segments(beta)
-        lo_d, hi_d = np.minimum(da, db), np.maximum(da, db)
-        valid = (rho[:, None] >= lo_d[None, :]) & (rho[:, None] <= hi_d[None, :])
-        qi, si = np.nonzero(valid)
-        xi = self._invert_segment(o1, a[si], b[si], da[si], db[si], rho[qi])
+    def _crossings(self, betas, segments, rho: np.ndarray) -> list[tuple]:
+        """Angles (gear-1 body frame) where gear 2 crosses the circles of radii ``rho`` about
+        O1, at each rolling angle of ``betas`` with its stretches ``segments``
+        (:meth:`_segments`): per angle (angles, valid) of shape (len(rho), n_segments) and
+        its stretches. The crossings of every angle are found in one search."""
+        picks, entries = [], []
+        for seg in segments:
+            o1, a, b, da, db = seg
+            lo_d, hi_d = np.minimum(da, db), np.maximum(da, db)
+            valid = (rho[:, None] >= lo_d[None, :]) & (rho[:, None] <= hi_d[None, :])
+            qi, si = np.nonzero(valid)
+            picks.append((valid, qi, si))
+            entries.append((np.broadcast_to(o1, (len(si), 2)), a[si], b[si], da[si], db[si],
+                            rho[qi]))
+        sizes = [len(qi) for _, qi, _ in picks]
+        o1, a, b, da, db, r = (np.concatenate(c) for c in zip(*entries))
+        xi = self._invert_segment(o1, a, b, da, db, r)
         p = self.gear2.point(xi) - o1
-        ang = np.full(valid.shape, np.nan)
-        ang[qi, si] = np.arctan2(p[:, 1], p[:, 0]) + beta - self.k * beta
-        return ang, valid, seg
+        angles = np.split(np.arctan2(p[:, 1], p[:, 0]), np.cumsum(sizes)[:-1])
+        out = []
+        for beta, seg, (valid, qi, si), found in zip(betas, segments, picks, angles):
+            ang = np.full(valid.shape, np.nan)
+            ang[qi, si] = found + beta - self.k * beta
+            out.append((ang, valid, seg))
+        return out
 
     def _invert_segment(self, o1, a, b, da, db, rho):
         """ξ in [a, b] with |P(ξ) − O1'| = ρ (d monotone on [a, b]); safeguarded Newton."""
@@ -291,14 +307,14 @@ class ToothContact:
         betas = [float(b) for b in np.atleast_1d(betas)]
         nt = len(teeth)
         coarse = {+1: [], -1: []}
-        for beta in betas:   # β outside: gear 2's stretches are formed once per angle
-            for direction in directions:
-                ids, pars, pts = self._flanks[direction]
-                rho = np.hypot(pts[:, 0], pts[:, 1])
-                phi0 = np.arctan2(pts[:, 1], pts[:, 0])
-                # all teeth at once: (tooth, point)
-                phi = (phi0[None, :] + teeth[:, None] * g.pitch).ravel()
-                ang, valid, seg = self._crossings(beta, rho)
+        segments = self._segments(betas)   # gear 2's stretches, once per angle
+        for direction in directions:
+            ids, pars, pts = self._flanks[direction]
+            rho = np.hypot(pts[:, 0], pts[:, 1])
+            phi0 = np.arctan2(pts[:, 1], pts[:, 0])
+            # all teeth at once: (tooth, point)
+            phi = (phi0[None, :] + teeth[:, None] * g.pitch).ravel()
+            for beta, (ang, valid, seg) in zip(betas, self._crossings(betas, segments, rho)):
                 vals, cross = self._signed_angles(beta, np.tile(rho, nt), phi, ang, valid,
                                                   direction, np.tile(np.arange(len(rho)), nt))
                 coarse[direction].append((vals.reshape(nt, len(rho)),
@@ -371,7 +387,7 @@ class ToothContact:
         """Vectorized golden-section minimisation of the rotation to the crossing on a fixed
         gear-2 stretch, over flank parameters ``[a, b]`` (one search per entry, each with its
         rolling angle ``beta`` and its stretch ``segment``: gear 1's centre in gear 2's frame
-        and the stretch's ends and distances, as :meth:`_gear2_segments` gives them)."""
+        and the stretch's ends and distances, as :meth:`_segments` gives them)."""
         g = self.gear1
         o1, sa, sb, da, db = segment
         lo_d, hi_d = np.minimum(da, db), np.maximum(da, db)

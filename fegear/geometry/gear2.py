@@ -72,8 +72,9 @@ class Cycloid:
         if not 0 <= order <= 3:
             raise ValueError("order must be 0..3")
         xi = np.atleast_1d(np.asarray(xi, dtype=float))
-        er = np.stack([np.cos(xi), np.sin(xi)], axis=-1)
-        et = np.stack([-np.sin(xi), np.cos(xi)], axis=-1)
+        c, s = np.cos(xi), np.sin(xi)
+        er = np.stack([c, s], axis=-1)
+        et = np.stack([-s, c], axis=-1)
         return [a[:, None] * er + b[:, None] * et for a, b in self._rotating(xi, order)]
 
     def _rotating(self, xi: np.ndarray, order: int) -> list[tuple[np.ndarray, np.ndarray]]:

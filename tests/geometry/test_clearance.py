@@ -145,7 +145,7 @@ def test_the_nearest_crossings_are_those_of_every_crossing_compared(params):
             _, _, pts = tca._flanks[direction]
             rho, phi0 = np.hypot(*pts.T), np.arctan2(pts[:, 1], pts[:, 0])
             phi = (phi0[None, :] + teeth[:, None] * tca.gear1.pitch).ravel()
-            ang, valid, _ = tca._crossings(beta, rho)
+            (ang, valid, _), = tca._crossings((beta,), tca._segments((beta,)), rho)
             n = len(teeth)
             want = _every_crossing(tca, beta, np.tile(rho, n), phi, np.tile(ang, (n, 1)),
                                    np.tile(valid, (n, 1)), direction)
