@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 import pickle
+import select
 import signal
 import sys
 import threading
@@ -142,6 +143,14 @@ class Forked:
         except Exception:   # cut short: the child died before writing all of it
             return None
         return value if ok else None
+
+    def running(self) -> bool:
+        """Whether the child is still at its work: nothing of its answer in the pipe yet (a
+        child that failed or never ran is not)."""
+        if self._pipe is None:
+            return False
+        ready, _, _ = select.select([self._pipe], [], [], 0.0)
+        return not ready
 
     def stop(self) -> None:
         """End the child if it still runs (the caller stopped or failed meanwhile)."""

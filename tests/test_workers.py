@@ -54,3 +54,12 @@ def test_stop_ends_a_child_still_running():
         alive = False
     assert not alive
     assert f.result() is None
+
+
+def test_it_runs_until_its_answer_is_in_the_pipe():
+    f = Forked(lambda: time.sleep(0.3) or 7)
+    assert f.running()
+    time.sleep(0.6)
+    assert not f.running()              # answered: what result() reads is there
+    assert f.result() == 7
+    assert not f.running()              # read: nothing runs

@@ -50,5 +50,5 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "cyclic": ("CyclicBody", "assemble_cyclic", "cyclic_parts", "restore_cyclic"),
     "probe": ("Probe", "Cells"),
     "submodel": ("StarCurve", "Submodel", "SubmodelProblem", "SubmodelMesh", "solve_submodels",
-                 "submodel_meshes"),
+                 "submodel_meshes", "prepare_submodels"),
 })

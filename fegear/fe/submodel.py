@@ -158,18 +158,7 @@ def solve_submodels(problems: list[SubmodelProblem], material: Material,
     :class:`SubmodelMesh` there is assembled and factorised first); new ones are kept
     there."""
     kept = {} if kept is None else kept
-    todo, keys = [], set()
-    for pb in problems:   # a key asked for twice is meshed once
-        if pb.key is None or (pb.key not in kept and pb.key not in keys):
-            todo.append(pb)
-            keys.add(pb.key)
-    shapes = [_geometry(pb) for pb in todo]
-    meshes = mesh_bodies([geo for geo, _, _ in shapes]) if shapes else ()
-    fresh = {id(pb): _prepare(mesh, centre, angles, material)
-             for pb, (_, centre, angles), mesh in zip(todo, shapes, meshes)}
-    for pb in todo:
-        if pb.key is not None:
-            kept[pb.key] = fresh[id(pb)]
+    fresh = prepare_submodels(problems, material, kept)
     out = []
     for pb in problems:
         prep = fresh.get(id(pb)) or kept[pb.key]
@@ -184,6 +173,28 @@ def solve_submodels(problems: list[SubmodelProblem], material: Material,
         out.append(Submodel(prep.mesh, u, recover(prep.piece, u), prep.centre, float(pb.radius),
                             prep.angles))
     return out
+
+
+def prepare_submodels(problems: list[SubmodelProblem], material: Material,
+                      kept: dict) -> dict:
+    """Mesh, assemble and factorise the submodels of ``problems`` whose key is not in
+    ``kept`` (a key asked for twice once), keep them there under their keys, and return them
+    by the problem's id (a problem without a key is kept only there): what
+    :func:`solve_submodels` solves on, prepared ahead where the caller has a moment (a mesh
+    cycle's disks, while its other chain runs)."""
+    todo, keys = [], set()
+    for pb in problems:
+        if pb.key is None or (pb.key not in kept and pb.key not in keys):
+            todo.append(pb)
+            keys.add(pb.key)
+    shapes = [_geometry(pb) for pb in todo]
+    meshes = mesh_bodies([geo for geo, _, _ in shapes]) if shapes else ()
+    fresh = {id(pb): _prepare(mesh, centre, angles, material)
+             for pb, (_, centre, angles), mesh in zip(todo, shapes, meshes)}
+    for pb in todo:
+        if pb.key is not None:
+            kept[pb.key] = fresh[id(pb)]
+    return fresh
 
 
 def _prepare(mesh: BodyMesh, centre, angles, material: Material, K=None,

@@ -100,6 +100,11 @@ class PositionModel(Protocol):
     def finish(self, case: SolveCase, state, attempt: Attempt) -> PairSolution:
         """Stresses and per-tooth results of a settled attempt (timings in the solution)."""
 
+    def prepare(self, sols: list[PairSolution], busy: Callable[[], bool]) -> None:
+        """While ``busy()`` (a cycle's other chain still runs beside): what :meth:`complete`
+        will most likely need, from the positions ``sols`` solved here, done ahead (the same
+        numbers as done there)."""
+
     def complete(self, sols: tuple[PairSolution, ...], beside: bool = False
                  ) -> tuple[PairSolution, ...]:
         """The solutions of all positions, with what the model leaves until the cycle is
@@ -199,6 +204,8 @@ def _drive(case: SolveCase, betas, solver: PositionModel, profile: Gear1Profile 
     try:
         sols = _chain(case, states, range(cut), solver)
         if cut < len(states):
+            if other is not None:   # the wait for the other chain, used
+                solver.prepare(sols, other.running)
             got = other.result() if other is not None else None
             if got is None:
                 sols += _chain(case, states, range(cut, len(states)), solver)

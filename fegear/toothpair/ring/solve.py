@@ -22,7 +22,7 @@ import scipy.sparse as sp
 
 from ... import progress
 from ...errors import ContactError, FegearError
-from ...fe import contact_modulus, submodel_meshes
+from ...fe import contact_modulus, prepare_submodels, submodel_meshes
 from ...geometry import Gear1Profile
 from ..case import ContactChecks, PairSolution, SolveCase
 from ..positions import SHARE_GUESS, Attempt, Trial, expected_elastic_um
@@ -32,7 +32,7 @@ from .grid import ToothGrid, tooth_grids, windows
 from .influence import RingContact, assemble_contact
 from .model import RingModel, keep_on_disk, ring_model
 from .results import RingDetail, tooth_results
-from .stresses import ring_stresses, submodel_keys, with_submodels
+from .stresses import ring_stresses, submodel_keys, submodel_problems, with_submodels
 
 REACH = 1.5          # grids reach where the rigid gap is within this many expected elastic
                      # approaches of closing (3 gave the same values within 6e-5 with a third
@@ -227,6 +227,28 @@ class RingSolver:
         if self.model is not None:
             keep_on_disk(self.model)
         return out
+
+    def prepare(self, sols: list[PairSolution], busy) -> None:
+        """While ``busy()`` (a cycle's other chain still runs beside), the disks of the
+        submodels that :meth:`complete` most likely solves, meshed and factorised ahead one at
+        a time, from the positions ``sols`` solved here: those of the largest gear-1 root
+        stress among them and of the largest von Mises estimate. They are the same disks
+        as meshed later (the same numbers); on the baseline's cycle every peak's submodels
+        solve on these two, and the wait meshes them."""
+        if self.submodels != "peaks" or not sols:
+            return
+        picks = dict.fromkeys([max(range(len(sols)), key=lambda i: sols[i].root_stress[0]),
+                               max(range(len(sols)), key=lambda i: sols[i].von_mises_max)])
+        kept = self.model.submodels
+        for i in picks:
+            d = sols[i].detail
+            for problem, _ in submodel_problems(self.model, d.contact, d.solution.pressure,
+                                                d.stresses):
+                if problem.key in kept:
+                    continue
+                if not busy():
+                    return
+                prepare_submodels([problem], self.model.case.material, kept)
 
     def detach(self, sol: PairSolution) -> PairSolution:
         """``sol`` without its model, to cross from a chain solved beside (the fields of its

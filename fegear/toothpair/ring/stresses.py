@@ -106,18 +106,24 @@ def with_submodels(model: RingModel, contact: RingContact, pressure: np.ndarray,
     """``stresses`` with the submodels at the contact peaks solved (a mesh cycle adds them
     only where its von Mises peak is: :meth:`~.solve.RingSolver.complete`)."""
     peaks = _peaks(contact, pressure, stresses.surface)
-    problems = [contact_submodel(model, contact, pressure, stresses.fields, g, i)
-                for g, i in peaks]
+    problems = submodel_problems(model, contact, pressure, stresses)
     solved = solve_submodels([pb for pb, _ in problems], model.case.material, model.submodels)
     subs = tuple((g, turn, sm) for (g, _), (_, turn), sm in zip(peaks, problems, solved))
     return replace(stresses, submodels=subs)
 
 
+def submodel_problems(model: RingModel, contact: RingContact, pressure: np.ndarray,
+                      stresses: RingStresses) -> list[tuple[SubmodelProblem, float]]:
+    """The submodels (:func:`contact_submodel`: each problem and its turn) that
+    :func:`with_submodels` solves, one a contact peak."""
+    return [contact_submodel(model, contact, pressure, stresses.fields, g, i)
+            for g, i in _peaks(contact, pressure, stresses.surface)]
+
+
 def submodel_keys(model: RingModel, contact: RingContact, pressure: np.ndarray,
                   stresses: RingStresses) -> set:
     """The disks (:func:`contact_submodel`'s keys) that :func:`with_submodels` solves on."""
-    return {contact_submodel(model, contact, pressure, stresses.fields, g, i)[0].key
-            for g, i in _peaks(contact, pressure, stresses.surface)}
+    return {pb.key for pb, _ in submodel_problems(model, contact, pressure, stresses)}
 
 
 def _bulk_von_mises(side: GearSide, stresses: dict, loaded: np.ndarray) -> float:

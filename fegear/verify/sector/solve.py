@@ -164,6 +164,9 @@ class SectorSolver:
         """Every position is complete when solved."""
         return sols
 
+    def prepare(self, sols, busy) -> None:
+        """Nothing is left for :meth:`complete` to do, so nothing to do ahead."""
+
     def finish(self, case: SectorCase, state, attempt: Attempt) -> PairSolution:
         return attempt.result
 

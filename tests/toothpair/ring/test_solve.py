@@ -465,6 +465,78 @@ def test_a_later_position_starts_its_contact_from_the_one_before_with_the_same_s
         assert a.checks.iterations < 0.7 * b.checks.iterations
 
 
+def test_a_later_position_forms_the_columns_about_where_the_one_before_carried_pressure(
+        monkeypatch, baseline_ring):
+    # in a cycle, A's columns first only about where the position before carried pressure:
+    # fewer columns, the same solution to rounding; where a point left out closes (a margin
+    # of none), the candidates' columns are formed and the position solves as before
+    import fegear.toothpair.ring.influence as influence
+    import fegear.toothpair.ring.solve as ring_solve
+
+    p = baseline_ring.case.params
+    case = replace(baseline_ring.case, torque=200.0)
+    betas = tuple(np.linspace(0.0, 2 * math.pi / p.z2, 24, endpoint=False)[:4])
+    formed = []
+    assemble = influence.assemble_contact
+
+    def counted(*args, **kwargs):
+        contact = assemble(*args, **kwargs)
+        formed.append((kwargs.get("columns", args[6] if len(args) > 6 else None) is not None,
+                       int(contact.formed.sum())))
+        return contact
+
+    monkeypatch.setattr(ring_solve, "assemble_contact", counted)
+    narrow = solve_positions(case, betas, model=baseline_ring, submodels="none")
+    used = formed[:]
+    monkeypatch.setattr(ring_solve, "_columns_before", lambda before, grids: None)
+    formed.clear()
+    wide = solve_positions(case, betas, model=baseline_ring, submodels="none")
+    for a, b in zip(narrow, wide, strict=True):
+        assert a.rotation == pytest.approx(b.rotation, rel=1e-12)
+        for key, value in b.headline().items():
+            assert a.headline()[key] == pytest.approx(value, rel=1e-9), key
+    narrowed = [n for masked, n in used if masked]
+    assert len(narrowed) == 3                     # each later position, once
+    assert sum(narrowed) < 0.85 * sum(n for _, n in formed[-3:])
+    monkeypatch.undo()
+    monkeypatch.setattr(ring_solve, "BEFORE_MARGIN", -1.0)   # every loaded point left out
+    monkeypatch.setattr(ring_solve, "BEFORE_POINTS", 0)
+    again = solve_positions(case, betas, model=baseline_ring, submodels="none")
+    for a, b in zip(again, wide, strict=True):
+        for key, value in b.headline().items():
+            assert a.headline()[key] == pytest.approx(value, rel=1e-9), key
+
+
+def test_the_wait_for_the_other_chain_meshes_the_disks_the_peaks_solve_on(baseline_ring):
+    # while the second chain still runs, the first meshes the disks of its pictured
+    # position's and its largest estimate's submodels; the peaks then solve on them, the same
+    # numbers as meshed at the end
+    from fegear.toothpair.ring import RingSolver
+    from fegear.toothpair.ring.stresses import submodel_keys
+
+    p = baseline_ring.case.params
+    case = replace(baseline_ring.case, torque=200.0)
+    betas = tuple(np.linspace(0.0, 2 * math.pi / p.z2, 8, endpoint=False))
+    plain = solve_positions(case, betas, model=baseline_ring, submodels="none")
+    d = max(plain, key=lambda s: s.root_stress[0]).detail
+    keys = submodel_keys(baseline_ring, d.contact, d.solution.pressure, d.stresses)
+    assert keys
+    for k in keys:                                      # not meshed by an earlier test
+        baseline_ring.submodels.pop(k, None)
+    solver = RingSolver(baseline_ring)
+    solver.prepare(list(plain), lambda: False)          # the other chain already answered
+    assert not keys & set(baseline_ring.submodels)
+    solver.prepare(list(plain), lambda: True)
+    assert keys <= set(baseline_ring.submodels)
+    ahead = solver.complete(plain)
+    for k in keys:                                      # meshed at the end instead
+        baseline_ring.submodels.pop(k)
+    late = RingSolver(baseline_ring).complete(plain)
+    for a, b in zip(ahead, late, strict=True):
+        assert a.von_mises_estimated == b.von_mises_estimated
+        assert a.von_mises_max == b.von_mises_max
+
+
 def test_the_peaks_submodels_are_shared_by_the_disks_they_mesh(monkeypatch):
     # a disk meshed for one position serves the others of its share: positions needing the
     # same disks stay together, and a fork is worth only the disks it saves
