@@ -54,6 +54,9 @@ class StandIn:
         self.completed, self.completed_beside = sols, beside
         return sols
 
+    def prepare(self, sols, busy):
+        self.prepared = (len(sols), busy)
+
     def finish(self, case, state, attempt):
         p = case.params
         first = p.turn_of(state.closest(+1).plus_um)
@@ -151,6 +154,19 @@ def test_a_long_cycle_is_two_chains_each_from_the_first_guess(profile, beside):
         with pytest.raises(ChildProcessError):
             os.waitpid(solvers[cut], os.WNOHANG)
     assert "model" in sols[0].timings_s and "model" not in sols[cut].timings_s
+
+
+def test_the_wait_for_the_second_chain_is_the_models_to_prepare_in(profile):
+    # beside, once the first chain is solved, the model may prepare what completing will
+    # need while the other chain runs; solved here, there is no wait
+    betas = tuple(2 * math.pi / 45 * k / CHAINED for k in range(CHAINED))
+    model = StandIn(again=0)
+    drive(CASE, betas, model, profile, beside=True)
+    count, busy = model.prepared
+    assert count == CHAINED // 2 and callable(busy) and not busy()   # that chain has answered
+    model = StandIn(again=0)
+    drive(CASE, betas, model, profile)
+    assert not hasattr(model, "prepared")
 
 
 def test_a_chain_that_fails_beside_is_solved_here(profile):
