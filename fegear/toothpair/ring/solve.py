@@ -403,9 +403,10 @@ def _columns_before(before: RingDetail, grids: tuple[ToothGrid, ...]) -> np.ndar
     """The points of ``grids`` whose columns of A a later position forms first: on a tooth
     that carried pressure in the position ``before``, those within :data:`BEFORE_MARGIN` of
     that stretch and :data:`BEFORE_POINTS` points of it (the contact moves a little from one
-    position to the next; should a point left out close, every column is formed:
-    :meth:`RingSolver.attempt`); every point of the other teeth. None where ``before`` holds
-    no such tooth."""
+    position to the next); none on a tooth that had a grid there but carried nothing; every
+    point of a tooth new to the grids. Should a point left out close, the candidates'
+    columns are formed, then every column (:meth:`RingSolver.attempt`). None where
+    ``before`` holds no loaded tooth of ``grids``."""
     old = {g.tooth: (g, before.solution.pressure[before.contact.block(k)])
            for k, g in enumerate(before.contact.grids)}
     out, narrowed = [], False
