@@ -139,8 +139,13 @@ def windows(samples: ToothSamples, curve2, teeth, turn: float, beta: float, e: f
     out: list[Window | None] = [None] * len(teeth)
     if not found:
         return out
+    # the fine pass's foot searches start from the coarse feet, interpolated (a sample's foot
+    # is a tenth of a coarse step from its neighbours': two Newton steps, not the polar
+    # start's three and four more)
+    start = np.concatenate([np.interp(np.arange(lo, hi + 1), coarse, np.unwrap(gaps[k][2]))
+                            for k, lo, hi in found])
     fine = _split(_gaps(np.vstack([points[k][lo:hi + 1] for k, lo, hi in found]), curve2,
-                        turn, beta, e), [hi + 1 - lo for _, lo, hi in found])
+                        turn, beta, e, start), [hi + 1 - lo for _, lo, hi in found])
     for (k, lo, _), (gap, closing, xi) in zip(found, fine):
         near = np.flatnonzero((gap < reaches[k]) & closing)
         if len(near) == 0:
@@ -158,13 +163,14 @@ def _split(parts, sizes) -> list[tuple]:
     return list(zip(*(np.split(p, cuts) for p in parts)))
 
 
-def _gaps(x: np.ndarray, curve2, turn: float, beta: float, e: float):
+def _gaps(x: np.ndarray, curve2, turn: float, beta: float, e: float,
+          start: np.ndarray | None = None):
     """Rigid gap (mm) of gear-1 points ``x`` to gear 2, whether a positive turn closes it, and
-    gear 2's curve parameter ξ at the feet."""
+    gear 2's curve parameter ξ at the feet (searched from ``start`` where given)."""
     o1 = np.array([0.0, e])
     fixed = rotate(x, turn) + o1
     y = rotate(fixed, -beta)
-    xi = curve2.feet(y)
+    xi = curve2.feet(y, start=start)
     _, normal, gap = curve2.at_feet(y, xi)
     r = rotate(fixed - o1, -beta)
     closing = np.einsum("ij,ij->i", normal, np.column_stack([-r[:, 1], r[:, 0]])) < 0
