@@ -486,6 +486,7 @@ def test_a_later_position_forms_the_columns_about_where_the_one_before_carried_p
         return contact
 
     monkeypatch.setattr(ring_solve, "assemble_contact", counted)
+    _columns_before = ring_solve._columns_before
     narrow = solve_positions(case, betas, model=baseline_ring, submodels="none")
     used = formed[:]
     monkeypatch.setattr(ring_solve, "_columns_before", lambda before, grids: None)
@@ -498,10 +499,15 @@ def test_a_later_position_forms_the_columns_about_where_the_one_before_carried_p
     narrowed = [n for masked, n in used if masked]
     assert len(narrowed) == 3                     # each later position, once
     assert sum(narrowed) < 0.85 * sum(n for _, n in formed[-3:])
-    monkeypatch.undo()
-    monkeypatch.setattr(ring_solve, "BEFORE_MARGIN", -1.0)   # every loaded point left out
+    # the middle fifth of each loaded stretch only: a point left out closes, and the
+    # candidates' columns are formed at every later position
+    monkeypatch.setattr(ring_solve, "_columns_before", _columns_before)
+    monkeypatch.setattr(ring_solve, "BEFORE_MARGIN", -0.4)
     monkeypatch.setattr(ring_solve, "BEFORE_POINTS", 0)
+    formed.clear()
     again = solve_positions(case, betas, model=baseline_ring, submodels="none")
+    masked = [k for k, (m, _) in enumerate(formed) if m]
+    assert len(masked) == 3 and all(not formed[k + 1][0] for k in masked)   # then candidates
     for a, b in zip(again, wide, strict=True):
         for key, value in b.headline().items():
             assert a.headline()[key] == pytest.approx(value, rel=1e-9), key
