@@ -128,9 +128,8 @@ class RingSolver:
         within = None if predict else CANDIDATES * elastic_um * 1e-3
         start = None if near is None else _loaded_before(near.detail, grids)
         columns = None if near is None else _columns_before(near.detail, grids)
-        tries = [(False, within, columns), (False, within, None), (True, None, None)]
-        tries = [t for k, t in enumerate(tries)
-                 if not any(_same(t, u) for u in tries[:k])]
+        tries = [(False, within, columns)] if columns is not None else []
+        tries += [(False, within, None), (True, None, None)]
         sol = None
         for probe_columns, within, columns in tries:
             t0 = time.perf_counter()
@@ -372,14 +371,19 @@ def _kept(contact: RingContact) -> RingContact:
     return replace(contact, A=None)
 
 
+def _by_tooth(before: RingDetail) -> dict:
+    """The grids of a solved position by tooth, each with its pressures."""
+    return {g.tooth: (g, before.solution.pressure[before.contact.block(k)])
+            for k, g in enumerate(before.contact.grids)}
+
+
 def _loaded_before(before: RingDetail, grids: tuple[ToothGrid, ...]) -> np.ndarray | None:
     """The points of ``grids`` that lie where the position ``before`` carried pressure on the
     same tooth (the active set's start: the contact moves a little from one position of a
     cycle to the next, and on the baseline's cycle the solve then takes 5-12 active-set
     iterations, 7 on most, instead of 12-18 from the rigid overlap); None where ``before``
     holds no such tooth."""
-    old = {g.tooth: (g, before.solution.pressure[before.contact.block(k)])
-           for k, g in enumerate(before.contact.grids)}
+    old = _by_tooth(before)
     if not any(g.tooth in old for g in grids):
         return None
     out = []
@@ -392,13 +396,6 @@ def _loaded_before(before: RingDetail, grids: tuple[ToothGrid, ...]) -> np.ndarr
     return np.concatenate(out)
 
 
-def _same(a: tuple, b: tuple) -> bool:
-    """Whether two of :meth:`RingSolver.attempt`'s tries (probe columns, within, columns)
-    form the same columns."""
-    return a[:2] == b[:2] and (a[2] is b[2] or (a[2] is not None and b[2] is not None
-                                                and np.array_equal(a[2], b[2])))
-
-
 def _columns_before(before: RingDetail, grids: tuple[ToothGrid, ...]) -> np.ndarray | None:
     """The points of ``grids`` whose columns of A a later position forms first: on a tooth
     that carried pressure in the position ``before``, those within :data:`BEFORE_MARGIN` of
@@ -407,8 +404,7 @@ def _columns_before(before: RingDetail, grids: tuple[ToothGrid, ...]) -> np.ndar
     point of a tooth new to the grids. Should a point left out close, the candidates'
     columns are formed, then every column (:meth:`RingSolver.attempt`). None where
     ``before`` holds no loaded tooth of ``grids``."""
-    old = {g.tooth: (g, before.solution.pressure[before.contact.block(k)])
-           for k, g in enumerate(before.contact.grids)}
+    old = _by_tooth(before)
     out, narrowed = [], False
     for g in grids:
         keep = np.full(len(g), g.tooth not in old)
