@@ -185,21 +185,21 @@ class ToothContact:
             flo = np.where(left, fm, flo)
             hi = np.where(left, hi, mid)
         ext = 0.5 * (lo + hi)
-        out, ends = [], []
-        for k, o1 in enumerate(o1s):
+        cuts = []
+        for k in range(len(o1s)):
             e_k = ext[owner == k]
-            cuts = (np.concatenate([e_k, [e_k[0] + 2 * np.pi]]) if len(e_k)
-                    else np.array([0, 2 * np.pi]))
-            out.append((o1, cuts[:-1], cuts[1:]))
-            ends.append(cuts)
+            cuts.append(np.concatenate([e_k, [e_k[0] + 2 * np.pi]]) if len(e_k)
+                        else np.array([0, 2 * np.pi]))
         # the stretches' end distances, every angle's in one evaluation
-        sizes = [len(c) - 1 for c in ends]
-        a_all = np.concatenate([c[:-1] for c in ends])
-        b_all = np.concatenate([c[1:] for c in ends])
+        sizes = [len(c) - 1 for c in cuts]
         o_all = np.repeat(np.array(o1s), sizes, axis=0)
-        da = np.split(np.hypot(*(self.gear2.point(a_all) - o_all).T), np.cumsum(sizes)[:-1])
-        db = np.split(np.hypot(*(self.gear2.point(b_all) - o_all).T), np.cumsum(sizes)[:-1])
-        return [(o1, a, b, da_k, db_k) for (o1, a, b), da_k, db_k in zip(out, da, db)]
+
+        def distances(ends):   # from gear 1's centre, per angle
+            return np.split(np.hypot(*(self.gear2.point(ends) - o_all).T), np.cumsum(sizes)[:-1])
+
+        da = distances(np.concatenate([c[:-1] for c in cuts]))
+        db = distances(np.concatenate([c[1:] for c in cuts]))
+        return [(o1, c[:-1], c[1:], da_k, db_k) for o1, c, da_k, db_k in zip(o1s, cuts, da, db)]
 
     def _crossings(self, betas, segments, rho: np.ndarray) -> list[tuple]:
         """Angles (gear-1 body frame) where gear 2 crosses the circles of radii ``rho`` about
