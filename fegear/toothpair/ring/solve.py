@@ -126,8 +126,9 @@ class RingSolver:
         # ones about where the position before carried pressure (_columns_before). Where a
         # point left out closes, the candidates', and then every column
         within = None if predict else CANDIDATES * elastic_um * 1e-3
-        start = None if near is None else _loaded_before(near.detail, grids)
-        columns = None if near is None else _columns_before(near.detail, grids)
+        old = None if near is None else _by_tooth(near.detail)
+        start = None if old is None else _loaded_before(old, grids)
+        columns = None if old is None else _columns_before(old, grids)
         tries = [(False, within, columns)] if columns is not None else []
         tries += [(False, within, None), (True, None, None)]
         sol = None
@@ -372,18 +373,18 @@ def _kept(contact: RingContact) -> RingContact:
 
 
 def _by_tooth(before: RingDetail) -> dict:
-    """The grids of a solved position by tooth, each with its pressures."""
+    """The grids of a solved position by tooth, each with its pressures (a later position's
+    start and columns read them)."""
     return {g.tooth: (g, before.solution.pressure[before.contact.block(k)])
             for k, g in enumerate(before.contact.grids)}
 
 
-def _loaded_before(before: RingDetail, grids: tuple[ToothGrid, ...]) -> np.ndarray | None:
-    """The points of ``grids`` that lie where the position ``before`` carried pressure on the
-    same tooth (the active set's start: the contact moves a little from one position of a
-    cycle to the next, and on the baseline's cycle the solve then takes 5-12 active-set
-    iterations, 7 on most, instead of 12-18 from the rigid overlap); None where ``before``
-    holds no such tooth."""
-    old = _by_tooth(before)
+def _loaded_before(old: dict, grids: tuple[ToothGrid, ...]) -> np.ndarray | None:
+    """The points of ``grids`` that lie where the position before (its grids by tooth,
+    :func:`_by_tooth`) carried pressure on the same tooth (the active set's start: the
+    contact moves a little from one position of a cycle to the next, and on the baseline's
+    cycle the solve then takes 5-12 active-set iterations, 7 on most, instead of 12-18 from
+    the rigid overlap); None where it holds no such tooth."""
     if not any(g.tooth in old for g in grids):
         return None
     out = []
@@ -396,15 +397,14 @@ def _loaded_before(before: RingDetail, grids: tuple[ToothGrid, ...]) -> np.ndarr
     return np.concatenate(out)
 
 
-def _columns_before(before: RingDetail, grids: tuple[ToothGrid, ...]) -> np.ndarray | None:
+def _columns_before(old: dict, grids: tuple[ToothGrid, ...]) -> np.ndarray | None:
     """The points of ``grids`` whose columns of A a later position forms first: on a tooth
-    that carried pressure in the position ``before``, those within :data:`BEFORE_MARGIN` of
-    that stretch and :data:`BEFORE_POINTS` points of it (the contact moves a little from one
-    position to the next); none on a tooth that had a grid there but carried nothing; every
-    point of a tooth new to the grids. Should a point left out close, the candidates'
-    columns are formed, then every column (:meth:`RingSolver.attempt`). None where
-    ``before`` holds no loaded tooth of ``grids``."""
-    old = _by_tooth(before)
+    that carried pressure in the position before (its grids by tooth, :func:`_by_tooth`),
+    those within :data:`BEFORE_MARGIN` of that stretch and :data:`BEFORE_POINTS` points of it
+    (the contact moves a little from one position to the next); none on a tooth that had a
+    grid there but carried nothing; every point of a tooth new to the grids. Should a point
+    left out close, the candidates' columns are formed, then every column
+    (:meth:`RingSolver.attempt`). None where it holds no loaded tooth of ``grids``."""
     out, narrowed = [], False
     for g in grids:
         keep = np.full(len(g), g.tooth not in old)
