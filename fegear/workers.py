@@ -103,7 +103,11 @@ def connect(address: str, error: type[FegearError] = FegearError):
 class Forked:
     """``fn()`` run in a forked copy of this process, which shares everything built so far
     (a ring model's meshes and factors) without copying it; :meth:`result` is its return
-    value, pickled back through a pipe. The child touches none of the parent's streams or
+    value, pickled back into an anonymous in-memory file made before the fork (a pipe only says
+    when it is there: a mesh cycle's second chain, 15 MB, crossed a pipe, which holds 64 kB,
+    only as the parent read it, in 40 ms after its own chain; read from memory, 10 ms), or
+    through the pipe
+    where no such file can be made. The child touches none of the parent's streams or
     locks (another thread of the parent, the progress bar's, may hold one at the fork): its
     output goes nowhere and the progress is not reported. Anywhere but Linux (no ``os.fork``
     on Windows; on macOS a fork after Apple's BLAS has run may crash, and multiprocessing
@@ -113,18 +117,24 @@ class Forked:
     def __init__(self, fn) -> None:
         self.pid = None
         self._pipe = None
+        self._memory = None
         if not sys.platform.startswith("linux"):   # pragma: no cover - not Linux
             return
+        try:
+            self._memory = os.memfd_create("fegear-forked", os.MFD_CLOEXEC)
+        except (AttributeError, OSError):   # pragma: no cover - a kernel before 3.17
+            self._memory = None
         r, w = os.pipe()
         try:
             pid = os.fork()
         except OSError:
             os.close(r)
             os.close(w)
+            self._close_memory()
             return
         if pid == 0:
             os.close(r)
-            _forked_child(fn, w)      # never returns
+            _forked_child(fn, w, self._memory)      # never returns
         os.close(w)
         self.pid, self._pipe = pid, os.fdopen(r, "rb")
 
@@ -134,15 +144,19 @@ class Forked:
             return None
         try:
             data = self._pipe.read()
+            if self._memory is not None and data == _IN_MEMORY:
+                return _loaded(self._memory)
+            return _loaded(data)
         finally:
             self._pipe.close()
             self._pipe = None
+            self._close_memory()
             self._reap()
-        try:
-            ok, value = pickle.loads(data)
-        except Exception:   # cut short: the child died before writing all of it
-            return None
-        return value if ok else None
+
+    def _close_memory(self) -> None:
+        if self._memory is not None:
+            os.close(self._memory)
+            self._memory = None
 
     def running(self) -> bool:
         """Whether the child is still at its work: nothing of its answer in the pipe yet (a
@@ -163,6 +177,7 @@ class Forked:
         if self._pipe is not None:
             self._pipe.close()
             self._pipe = None
+        self._close_memory()
         self._reap()
 
     def _reap(self) -> None:
@@ -174,9 +189,30 @@ class Forked:
             self.pid = None
 
 
-def _forked_child(fn, fd: int) -> None:
+#: what the pipe says when the answer is in the in-memory file
+_IN_MEMORY = b"m"
+
+
+def _loaded(answer: bytes | int):
+    """The value of a child's ``answer``: its pickled (ok, value), or the in-memory file that
+    holds them, read in place; None if the child failed or was cut short."""
+    import mmap
+
+    try:
+        if isinstance(answer, bytes):
+            ok, value = pickle.loads(answer)
+        else:
+            with mmap.mmap(answer, os.fstat(answer).st_size, access=mmap.ACCESS_READ) as m:
+                ok, value = pickle.loads(m)
+    except Exception:   # cut short: the child died before writing all of it
+        return None
+    return value if ok else None
+
+
+def _forked_child(fn, fd: int, memory: int | None) -> None:
     """The forked child: Ctrl-C left to the parent, SIGTERM ending it, its output discarded;
-    it ends with the parent, and writes (ok, value) to ``fd``."""
+    it ends with the parent, and writes (ok, value) into the in-memory file ``memory`` and
+    then :data:`_IN_MEMORY` to ``fd`` (without that file, the value itself to ``fd``)."""
     import logging
 
     from . import progress
@@ -196,6 +232,10 @@ def _forked_child(fn, fd: int) -> None:
     except BaseException:   # any failure: the parent does the work itself
         data = pickle.dumps((False, None))
     try:
+        if memory is not None:
+            with os.fdopen(memory, "wb") as f:
+                f.write(data)
+            data = _IN_MEMORY
         with os.fdopen(fd, "wb") as f:
             f.write(data)
     finally:

@@ -63,3 +63,21 @@ def test_it_runs_until_its_answer_is_in_the_pipe():
     assert not f.running()              # answered: what result() reads is there
     assert f.result() == 7
     assert not f.running()              # read: nothing runs
+
+
+def test_a_large_answer_waits_for_nobody():
+    # 16 MB, far more than a pipe holds: the child leaves it in memory and ends without
+    # waiting for the parent to read (through the pipe it would wait at its write)
+    data = np.arange(2_000_000.0)
+    f = Forked(lambda: data * 2.0)
+    pid = f.pid
+    deadline = time.monotonic() + 10.0
+    while f.running() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    ended = 0
+    while not ended and time.monotonic() < deadline:
+        ended, _ = os.waitpid(pid, os.WNOHANG)
+        time.sleep(0.01)
+    assert ended == pid                 # it ended with its answer unread
+    f.pid = None                        # reaped here
+    assert np.array_equal(f.result(), data * 2.0)

@@ -18,13 +18,12 @@ here.
 A cycle of :data:`CHAINED` positions or more is solved as two chains, its halves, each from a
 first guess of its own. With ``beside`` (a second core free) the second chain is solved in a
 forked copy of this process (:class:`~fegear.workers.Forked`) while this one solves the first
-(on the baseline's 24 positions it ends 0.1-0.15 s after the first: it forms the unit
-responses again and sends its solutions back through a pipe); and, where the model's build
-does not read the clearance states, they are found in another fork while this process builds
-the model (an interference is then refused after the build). Without it the chains run one
-after the other. The numbers are the same either way, to rounding: a chain starts from its
-own first guess, whichever process solves it (the unit responses it forms, formed there in
-other batches, differ in the last bits).
+(it forms the unit responses again, and leaves its solutions in memory for this one to read);
+and, where the model's build does not read the clearance states, they are found in another
+fork while this process builds the model (an interference is then refused after the build).
+Without it the chains run one after the other. The numbers are the same either way, to
+rounding: a chain starts from its own first guess, whichever process solves it (the unit
+responses it forms, formed there in other batches, differ in the last bits).
 """
 
 from __future__ import annotations

@@ -59,7 +59,7 @@ PEAK_MARGIN = 0.02   # a cycle's position gets its submodels where its von Mises
                      # docs/model.md, "Submodels over a cycle")
 DISK_S = 0.07        # a contact submodel's disk meshed, assembled and factorised (s, baseline)
 SUBMODEL_S = 0.007   # a position's submodels solved on disks meshed before (s, baseline)
-FORK_S = 0.05        # a forked copy's start and its solutions back through the pipe (s)
+FORK_S = 0.05        # a forked copy's start and its solutions read back (s)
 #: the one-off stages a solve reports: the model built (profile, mesh, assembly and
 #: factorisation), read back from the disk cache, or kept from an earlier solve
 MODEL_STAGES = ("profile", "mesh", "assemble_factor", "disk", "model (kept)")
@@ -328,7 +328,7 @@ class RingSolver:
 def _shares(model: RingModel, sols: list[PairSolution]) -> tuple[list[int], list[int]]:
     """``sols`` (their indices) in two shares of about equal cost, this process's and a forked
     copy's: a disk not meshed yet costs :data:`DISK_S`, a position's submodels on meshed disks
-    :data:`SUBMODEL_S`, the fork and its answer through the pipe :data:`FORK_S`, and a disk
+    :data:`SUBMODEL_S`, the fork and its answer read back :data:`FORK_S`, and a disk
     meshed for one position serves every other in the same share. The positions needing most
     new disks are placed first, each where it adds least. On the baseline's cycle every
     position of the first round needs the same two disks: they stay in one share, and no
