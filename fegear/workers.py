@@ -106,10 +106,9 @@ class Forked:
     value, pickled back into an anonymous in-memory file made before the fork (a pipe only says
     when it is there: a mesh cycle's second chain, 15 MB, crossed a pipe, which holds 64 kB,
     only as the parent read it, in 40 ms after its own chain; read from memory, 10 ms), or
-    through the pipe
-    where no such file can be made. The child touches none of the parent's streams or
-    locks (another thread of the parent, the progress bar's, may hold one at the fork): its
-    output goes nowhere and the progress is not reported. Anywhere but Linux (no ``os.fork``
+    through the pipe where no such file can be made. The child touches none of the parent's
+    streams or locks (another thread of the parent, the progress bar's, may hold one at the
+    fork): its output goes nowhere and the progress is not reported. Anywhere but Linux (no ``os.fork``
     on Windows; on macOS a fork after Apple's BLAS has run may crash, and multiprocessing
     spawns there for that reason), or the child failing in any way, the result is None: the
     caller then does the work itself, and raises whatever error it meets there."""
