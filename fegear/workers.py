@@ -108,10 +108,10 @@ class Forked:
     only as the parent read it, in 40 ms after its own chain; read from memory, 10 ms), or
     through the pipe where no such file can be made. The child touches none of the parent's
     streams or locks (another thread of the parent, the progress bar's, may hold one at the
-    fork): its output goes nowhere and the progress is not reported. Anywhere but Linux (no ``os.fork``
-    on Windows; on macOS a fork after Apple's BLAS has run may crash, and multiprocessing
-    spawns there for that reason), or the child failing in any way, the result is None: the
-    caller then does the work itself, and raises whatever error it meets there."""
+    fork): its output goes nowhere and the progress is not reported. Anywhere but Linux (no
+    ``os.fork`` on Windows; on macOS a fork after Apple's BLAS has run may crash, and
+    multiprocessing spawns there for that reason), or the child failing in any way, the result
+    is None: the caller then does the work itself, and raises whatever error it meets there."""
 
     def __init__(self, fn) -> None:
         self.pid = None

@@ -50,6 +50,7 @@ class ToothGrid:
     curvature: np.ndarray
     on_round: np.ndarray
     probe: bool = False   # a coarse grid on a tooth not expected to carry load
+    coarse: np.ndarray | None = None   # its window's coarse feet (:class:`Window`)
 
     def __len__(self) -> int:
         return len(self.s)
@@ -105,6 +106,7 @@ class Window:
     hi: int
     kappa2: np.ndarray
     anchor: int
+    coarse: np.ndarray | None = None   # gear 2's ξ at the feet of every COARSE-th sample
 
 
 def window(samples: ToothSamples, curve2, tooth: int, turn: float, beta: float, e: float,
@@ -116,16 +118,21 @@ def window(samples: ToothSamples, curve2, tooth: int, turn: float, beta: float, 
 
 
 def windows(samples: ToothSamples, curve2, teeth, turn: float, beta: float, e: float,
-            reaches) -> list[Window | None]:
+            reaches, start: dict | None = None) -> list[Window | None]:
     """:func:`window` of each of ``teeth`` with its own reach (mm): every COARSE-th sample
     first, then every sample where that found the gap within reach of the threshold. The
     teeth's samples go to gear 2's closest-point search together, one call a pass (the points
-    are independent: the same windows as one call a tooth, a tenth of the calls)."""
+    are independent: the same windows as one call a tooth, a tenth of the calls). ``start``:
+    the coarse feet found before for some teeth (tooth → :attr:`Window.coarse`: the position
+    before in a cycle), the coarse search's start there (two or three Newton steps, not the
+    polar start's inversion and four to fifty steps)."""
     if not teeth:
         return []
     coarse = np.arange(0, len(samples.x), COARSE)
     points = [samples.turned(tooth)[1] for tooth in teeth]
-    gaps = _split(_gaps(np.vstack([x[coarse] for x in points]), curve2, turn, beta, e),
+    before = start or {}
+    first = np.concatenate([before.get(t, np.full(len(coarse), np.nan)) for t in teeth])
+    gaps = _split(_gaps(np.vstack([x[coarse] for x in points]), curve2, turn, beta, e, first),
                   [len(coarse)] * len(teeth))
     ranges = []
     for (gap, closing, _), reach in zip(gaps, reaches):
@@ -153,7 +160,7 @@ def windows(samples: ToothSamples, curve2, teeth, turn: float, beta: float, e: f
         a, b = max(int(near.min()) - 1, 0), min(int(near.max()) + 1, len(gap) - 1)
         anchor = lo + int(near[np.argmin(gap[near])])
         out[k] = Window(teeth[k], lo + a, lo + b, 1.0 / curve2.curvature_radius(xi[a:b + 1]),
-                        anchor)
+                        anchor, gaps[k][2])
     return out
 
 
@@ -225,7 +232,7 @@ def tooth_grids(samples: ToothSamples, wins, load: float, E_star: float, per_b: 
         xg, ng, kappa, phi0 = xg[keep], ng[keep], kappa[keep], phi0[keep]
         sg = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xg, axis=0).T))])  # exact chords
         out.append(ToothGrid(win.tooth, sg, phi0 + turn, xg, ng, kappa, shape.on_round(phi0),
-                             probe))
+                             probe, win.coarse))
     return tuple(out)
 
 

@@ -34,12 +34,14 @@ GAUSS = 2   # Gauss points per grid interval for the hats' loads on the template
 class Matching:
     """Where one gear's finite elements are read for each grid point: the point at depth
     (located in the template, and the template element holding it), the direction of the
-    approach there (template frame) and the depth (mm)."""
+    approach there (template frame), the depth (mm) and the length of the template's profile
+    facet under the grid point (mm)."""
 
     at: Located
     cells: Cells
     direction: np.ndarray
     depth: np.ndarray
+    facet: np.ndarray
 
 
 @dataclass(eq=False)
@@ -197,13 +199,14 @@ def _matching(side: GearSide, x: np.ndarray, normal: np.ndarray, depth: float,
     ``depth`` local facets and changes no faster than the arc along each grid: the smallest
     such function, d(s) = max_j (depth h_j − |s − s_j|). (Taken point by point, it jumped
     where the facets do, at a round's ends, and the peak pressure with it by 0.5 %.)"""
-    h = depth * side.facet_size(side.locate(x).local)
+    facet = side.facet_size(side.locate(x).local)
+    h = depth * facet
     d = np.empty_like(h)
     for k, g in enumerate(grids):
         blk = slice(int(offsets[k]), int(offsets[k + 1]))
         d[blk] = np.max(h[blk][None, :] - np.abs(g.s[:, None] - g.s[None, :]), axis=1)
     at = side.locate(x - d[:, None] * normal)
-    return Matching(at, side.cells(at.local), rotate(-normal, -at.turn), d)
+    return Matching(at, side.cells(at.local), rotate(-normal, -at.turn), d, facet)
 
 
 def _fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,

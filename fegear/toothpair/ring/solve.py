@@ -117,7 +117,9 @@ class RingSolver:
         formed = sum(g.response_s for g in model.gears)
         theta = p.turn_of(first_um + elastic_um)
         t0 = time.perf_counter()
-        grids = _grids(model, case, trial.teeth, full, theta, elastic_um, reach)
+        coarse = None if near is None else {g.tooth: g.coarse for g in near.detail.contact.grids
+                                            if g.coarse is not None}
+        grids = _grids(model, case, trial.teeth, full, theta, elastic_um, reach, coarse)
         times["grids"] += time.perf_counter() - t0
         # A's columns first only where pressure can act: not the probes' (where one closes,
         # the attempt is made again with that tooth's fine grid: once in 24 positions of the
@@ -429,10 +431,12 @@ def _expected(state, closure_um: float) -> set[int]:
 
 
 def _grids(model: RingModel, case: SolveCase, teeth, full: set[int], theta: float,
-           elastic_um: float, reach: dict) -> tuple[ToothGrid, ...]:
+           elastic_um: float, reach: dict, coarse: dict | None = None
+           ) -> tuple[ToothGrid, ...]:
     """A grid on each of ``teeth`` whose profile a rotation θ (rad, from the kinematic
     position) brings within reach of gear 2 (``reach``: extra factors per tooth); fine on the
-    ``full`` ones, a probe on the others."""
+    ``full`` ones, a probe on the others. ``coarse``: the windows' coarse feet found before
+    by tooth (:func:`~.grid.windows`' start)."""
     p = case.params
     base = REACH * elastic_um * 1e-3 + REACH_FLOOR * p.m
     turn = p.ratio * case.beta + theta - p.turn_of(elastic_um)   # at the first touch
@@ -443,7 +447,7 @@ def _grids(model: RingModel, case: SolveCase, teeth, full: set[int], theta: floa
     canonical = REACH * expected_elastic_um(case) * 1e-3 + REACH_FLOOR * p.m
     while True:
         wins = [w for w in windows(model.samples, model.curve2, tuple(teeth), turn, case.beta,
-                                   p.e, [base * reach.get(t, 1.0) for t in teeth])
+                                   p.e, [base * reach.get(t, 1.0) for t in teeth], coarse)
                 if w is not None]
         if wins:
             return tooth_grids(model.samples, wins, load, E_star, model.level.per_b,

@@ -95,8 +95,10 @@ def ring_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
                      if f else {} for side, f in zip(model.gears, fields))
     roots = tuple(_root_zone(side, s) for side, s in zip(model.gears, stresses))
     surface = surface_von_mises(model, contact, pressure, fields)
-    bulk = max(_bulk_von_mises(side, s, pts[pressure > 0])
-               for side, s, pts in zip(model.gears, stresses, (contact.x, contact.facing[0])))
+    loaded = pressure > 0
+    bulk = max(_bulk_von_mises(side, s, pts[loaded], m.facet[loaded])
+               for side, s, pts, m in zip(model.gears, stresses, (contact.x, contact.facing[0]),
+                                          contact.matching))
     out = RingStresses(fields, roots, surface, (), bulk)
     return with_submodels(model, contact, pressure, out) if submodels else out
 
@@ -126,16 +128,17 @@ def submodel_keys(model: RingModel, contact: RingContact, pressure: np.ndarray,
     return {pb.key for pb, _ in submodel_problems(model, contact, pressure, stresses)}
 
 
-def _bulk_von_mises(side: GearSide, stresses: dict, loaded: np.ndarray) -> float:
+def _bulk_von_mises(side: GearSide, stresses: dict, loaded: np.ndarray,
+                    facets: np.ndarray) -> float:
     """The template's largest von Mises stress farther than SUB_FACETS of its largest facet
-    under the ``loaded`` points (gear frame) from them: nearer, the contact is not resolved
-    (the submodels cover it). The nodes are tried from the most stressed down, a block at a
-    time, until one lies far enough (the first far one is the largest)."""
+    under the ``loaded`` points (gear frame; ``facets``: the facets' lengths there) from them:
+    nearer, the contact is not resolved (the submodels cover it). The nodes are tried from the
+    most stressed down, a block at a time, until one lies far enough (the first far one is the
+    largest)."""
     from scipy.spatial import cKDTree
 
     x = side.body.mesh.doflocs.T
-    reach = SUB_FACETS * float(side.facet_size(side.locate(loaded).local).max()) \
-        if len(loaded) else 0.0
+    reach = SUB_FACETS * float(facets.max()) if len(loaded) else 0.0
     tree = cKDTree(loaded) if len(loaded) else None
     out = 0.0
     for k, s in stresses.items():

@@ -103,6 +103,32 @@ def test_the_windows_of_several_teeth_found_together_are_each_found_alone(model)
         assert np.array_equal(a.kappa2, b.kappa2)
 
 
+def test_windows_searched_from_the_feet_of_the_position_before_are_the_polar_searchs(model):
+    # a cycle's later position starts its coarse foot searches at the position before's
+    # feet: the same windows, and feet and gear-2 curvature to rounding
+    from fegear.toothpair.ring.grid import windows
+
+    p = model.case.params
+    teeth, reaches = (9, 10, 11, 12), (0.02,) * 4
+    step = 2.0 * math.pi / p.z2 / 24
+    before = windows(model.samples, model.curve2, teeth, 135e-6, 0.0, p.e, reaches)
+    start = {w.tooth: w.coarse for w in before if w is not None}
+    assert len(start) >= 3
+    turn = p.ratio * step + 135e-6
+    polar = windows(model.samples, model.curve2, teeth, turn, step, p.e, reaches)
+    started = windows(model.samples, model.curve2, teeth, turn, step, p.e, reaches, start)
+    assert sum(w is not None for w in polar) >= 3
+    for a, b in zip(started, polar):
+        if b is None:
+            assert a is None
+            continue
+        assert (a.tooth, a.lo, a.hi, a.anchor) == (b.tooth, b.lo, b.hi, b.anchor)
+        np.testing.assert_allclose(a.kappa2, b.kappa2, rtol=1e-9)
+        near = np.abs(b.coarse - start[b.tooth]) < 0.1    # the feet that moved with the tooth
+        assert near.mean() > 0.9
+        np.testing.assert_allclose(a.coarse[near], b.coarse[near], rtol=0, atol=1e-12)
+
+
 def test_grids_follow_the_local_hertz_width_and_refine_at_the_tip_round(model):
     from fegear.fe import contact_modulus
     from fegear.toothpair.ring.grid import tooth_grid, window
