@@ -156,11 +156,13 @@ class CyclicBody:
         return self.cache[key]
 
     def displacement(self, loads: dict[int, np.ndarray], sectors,
-                     rho: dict[int, np.ndarray] | None = None) -> dict[int, np.ndarray]:
+                     rho: dict[int, np.ndarray] | None = None,
+                     clamped: dict[int, np.ndarray] | None = None) -> dict[int, np.ndarray]:
         """Template-frame fields (ndofs,) of the ``sectors`` under ``loads`` (sector → template
         load vector): the sectors' cut motions and the loaded ones' clamped fields each in one
         block (a solve and a product for all, not one a sector). ``rho``: the loads' cut loads
-        (:meth:`cut_loads`) where the caller has them."""
+        (:meth:`cut_loads`) where the caller has them; ``clamped``: the clamped fields
+        (:meth:`clamped`) of some loaded sectors, formed before."""
         sectors = list(sectors)
         loaded = list(loads)
         if not loaded:
@@ -172,7 +174,11 @@ class CyclicBody:
             for i, t in enumerate(loaded):
                 cuts[:, j] += self.coupling(t - s) @ rho[:, i]
         U = self.from_cuts(cuts)
-        own = [j for j, s in enumerate(sectors) if s in loads]
+        kept = clamped or {}
+        for j, s in enumerate(sectors):
+            if s in loads and s in kept:
+                U[:, j] += kept[s]
+        own = [j for j, s in enumerate(sectors) if s in loads and s not in kept]
         if own:
             U[:, own] += self.clamped(np.column_stack([loads[sectors[j]] for j in own]))
         U = np.ascontiguousarray(U.T)

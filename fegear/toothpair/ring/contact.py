@@ -10,14 +10,14 @@ settles (the rigid gap is nonlinear in θ only through the turn, a µrad here).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ...errors import ContactError
 from ...planar import rotate
 from ..teeth import Gear2Master
-from .influence import RingContact
+from .influence import RingContact, approach_open
 from .model import RingModel
 
 MAX_ACTIVE_SET = 80     # active-set changes per linearisation
@@ -34,7 +34,10 @@ class RingContactError(ContactError):
 class RingContactSolution:
     """The converged contact: pressure per grid point (MPa), gap (mm), gear 1's rotation θ
     from its kinematic position (rad), active-set iterations, linearisations, torque-balance
-    error (relative) and the largest overlap (mm) left where pressure acts."""
+    error (relative) and the largest overlap (mm) left where pressure acts. ``clamped``:
+    each gear's clamped fields of its loaded sectors under the pressure (sector → template
+    field), where the open points' check formed them (:func:`~.influence.approach_open`):
+    the stresses' fields take them; not kept in a solved position's record."""
 
     pressure: np.ndarray
     gap: np.ndarray
@@ -43,6 +46,7 @@ class RingContactSolution:
     turns: int
     balance_error: float
     max_penetration: float
+    clamped: tuple | None = field(default=None, repr=False, compare=False)
 
 
 def rigid_gap(model: RingModel, x: np.ndarray, beta: float, turn: float,
@@ -72,7 +76,7 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
     (their pressures zero, their columns act on nothing), else None: the caller forms them."""
     alpha = model.case.params.ratio * contact.beta
     on = np.flatnonzero(contact.formed)
-    A = contact.A if contact.complete else contact.A[np.ix_(on, on)]
+    A = contact.A
     x, w = contact.x[on], contact.weight[on] * model.case.thickness
     feet = contact.feet[on]
     g0, a = rigid_gap(model, x, contact.beta, alpha + theta, feet)
@@ -108,13 +112,20 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
                                    "linearisations")
     full = np.zeros(contact.npoints)
     full[on] = pressure
-    gap = g0 + contact.A @ full
-    if not contact.complete and (gap[~contact.formed] < 0).any():
-        return None
+    gap = g0.copy()
+    gap[on] += A @ pressure
+    clamped = None
+    if not contact.complete:
+        open_ = np.flatnonzero(~contact.formed)
+        approach, clamped = approach_open(model, contact, full, open_)
+        gap[open_] += approach
+        if (gap[open_] < 0).any():
+            return None
     balance = abs(-(w * pressure) @ a[on] - torque_nmm) / torque_nmm
     loaded = full > 0
     overlap = float(max(0.0, -gap[loaded].min())) if loaded.any() else 0.0
-    return RingContactSolution(full, gap, float(theta), total, turns, float(balance), overlap)
+    return RingContactSolution(full, gap, float(theta), total, turns, float(balance), overlap,
+                               clamped)
 
 
 def _active_set(A, w, g0, a, torque_nmm, active, arm_rate=0.0):
@@ -231,7 +242,9 @@ def tangent_stiffness(model: RingModel, contact: RingContact,
     arm_rate = (w[idx] * sol.pressure[idx]) @ (ahead - a[idx]) / ARM_STEP
     rhs = np.zeros(len(idx) + 1)
     rhs[-1] = -1.0                     # one N·mm more on gear 1
-    rate = np.linalg.solve(_bordered(contact.A, w, a, idx, arm_rate), rhs)[-1]  # rad per N·mm
+    rows = (np.cumsum(contact.formed) - 1)[idx]     # the active points' rows of A
+    rate = np.linalg.solve(_bordered(contact.A[np.ix_(rows, rows)], w[idx], a[idx],
+                                     np.arange(len(idx)), arm_rate), rhs)[-1]  # rad per N·mm
     return float(1e-3 / rate)
 
 

@@ -9,7 +9,10 @@ the surface relative to that depth (:mod:`fegear.contact.halfplane`), so the mes
 resolve the contact width at any load. The finite-element part is the clamped field of the
 loaded sector plus the ring's response through the cut faces (:class:`~fegear.fe.cyclic
 .CyclicBody`); every sector's loads reach only its own few hats and template dofs, and the
-products are formed on those alone.
+products are formed on those alone. A is formed only between the points that can carry
+pressure (``formed``: its rows and columns); whether a point left out closes is read from the
+fields under the solved pressure at its matching points (:func:`approach_open`: one load, not
+a column a hat), the same numbers as its row of A times the pressure.
 """
 
 from __future__ import annotations
@@ -43,6 +46,12 @@ class Matching:
     depth: np.ndarray
     facet: np.ndarray
 
+    def take(self, index: np.ndarray) -> Matching:
+        """The grid points ``index`` of these."""
+        at = Located(self.at.sector[index], self.at.local[index], self.at.turn[index])
+        return Matching(at, self.cells.take(index), self.direction[index], self.depth[index],
+                        self.facet[index])
+
 
 @dataclass(eq=False)
 class RingContact:
@@ -52,9 +61,10 @@ class RingContact:
     (sector → :class:`LoadBlock`) and matching points; gear 2's points facing the grid and its
     outward normals there (its own frame) and its curve's parameter ξ there, the foot last
     found (the rigid gap's searches at nearby rotations start from it:
-    :func:`~.contact.rigid_gap`); A (mm/MPa), which only the solve reads: a solved
-    position's record (:class:`~.results.RingDetail`) is without it (38 MB at the baseline's
-    2 200 points, 0.9 GB over a 24-position cycle)."""
+    :func:`~.contact.rigid_gap`); A (mm/MPa) between the ``formed`` points (rows and
+    columns in the points' order), which only the solve reads: a solved position's record
+    (:class:`~.results.RingDetail`) is without it (38 MB at the baseline's 2 200 points, 0.9 GB
+    over a 24-position cycle)."""
 
     beta: float
     turn: float
@@ -67,7 +77,7 @@ class RingContact:
     matching: tuple[Matching, Matching] = field(repr=False)
     facing: tuple[np.ndarray, np.ndarray] = field(repr=False)
     A: np.ndarray | None = field(repr=False)
-    formed: np.ndarray = field(repr=False)   # which columns of A (hats) are formed
+    formed: np.ndarray = field(repr=False)   # the points whose rows and columns A holds
     feet: np.ndarray = field(repr=False)     # gear 2's parameter ξ at each point's foot, the
                                              # last found: the next search's start
 
@@ -103,8 +113,10 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     the columns of the points whose rigid gap at ``turn`` is below it are formed, the hats
     that can carry pressure there (pressure separates the surfaces everywhere, so a loaded
     point overlaps rigidly: on the baseline's cycle, by a fifth of the elastic approach or
-    more at the expected turn); the rows of every point are, so that the solve can tell
-    whether a point left out would close. ``columns`` (a mask over the points): only these
+    more at the expected turn). A's rows are formed at those points alone (they were three
+    in five of its products at a cycle's later position, read only to tell whether a point
+    left out closes: :func:`approach_open` tells that from the solved pressure's fields).
+    ``columns`` (a mask over the points): only these
     points' columns are formed, of those the other rules form (where the position before
     carried pressure, say); all of those where none is among them."""
     p, case = model.case.params, model.case
@@ -132,19 +144,26 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     x2, n2 = rotate(cp.foot, -beta), rotate(cp.normal, -beta)   # n2 out of gear 2's material
     match = (_matching(g1, x, n1, model.level.depth, grids, offsets),
              _matching(g2, x2, n2, model.level.depth, grids, offsets))
-    nh = int(offsets[-1])
-    A = np.zeros((nh, nh))
+    on = np.flatnonzero(formed)
+    place = np.full(len(x), -1)
+    place[on] = np.arange(len(on))
+    A = np.zeros((len(on), len(on)))
     for side, loads, m in zip((g1, g2), (loads1, loads2), match):
-        _fe_part(side, loads, m, A)
+        _fe_part(side, loads, m.take(on), place, A)
     for k, g in enumerate(grids):
         blk = slice(int(offsets[k]), int(offsets[k + 1]))
+        rows = np.flatnonzero(formed[blk])
+        if not len(rows):
+            continue
+        first = place[blk.start + rows[0]]
         for lo, hi in _true_runs(formed[blk]):
             # the hats lo … hi − 1 on the grid's points from lo − 1 to hi: the same integrals
             # as over the whole grid (each hat's two intervals), for the formed ones alone
             a, b = max(lo - 1, 0), min(hi + 1, len(g))
+            c = place[blk.start + lo]
             for m in match:
-                A[blk, blk.start + lo:blk.start + hi] += approach_matrix(
-                    g.s, m.depth[blk], g.s[a:b], case.E, case.nu)[:, lo - a:hi - a]
+                A[first:first + len(rows), c:c + hi - lo] += approach_matrix(
+                    g.s[rows], m.depth[blk][rows], g.s[a:b], case.E, case.nu)[:, lo - a:hi - a]
     return RingContact(beta, turn, tuple(grids), offsets, x, n1, weight, (loads1, loads2), match,
                        (x2, n2), A, formed, feet)
 
@@ -209,10 +228,73 @@ def _matching(side: GearSide, x: np.ndarray, normal: np.ndarray, depth: float,
     return Matching(at, side.cells(at.local), rotate(-normal, -at.turn), d, facet)
 
 
+def approach_open(model: RingModel, contact: RingContact, pressure: np.ndarray,
+                  rows: np.ndarray) -> tuple[np.ndarray, tuple[dict, dict]]:
+    """(A p)[rows] for the points ``rows`` whose rows of A are not formed (``pressure`` p on
+    the formed hats, zero elsewhere): each gear's field under p read at their matching points
+    (the cut motions of their sectors through Ψ, the clamped field of p's loads where they
+    share a loaded sector) and the half-plane's approach on their grids. Also each gear's
+    clamped fields of its loaded sectors (sector → template field), which the stresses'
+    fields then take (:class:`~.contact.RingContactSolution`)."""
+    case = model.case
+    out = np.zeros(len(rows))
+    clamped = []
+    for side, loads, m in zip(model.gears, contact.loads, contact.matching):
+        part, fields = _fe_approach(side, loads, m.take(rows), pressure)
+        out += part
+        clamped.append(fields)
+    grid = contact.grid_index[rows]
+    for k in np.unique(grid):
+        g, blk = contact.grids[k], contact.block(k)
+        loaded = np.flatnonzero(pressure[blk])
+        if not len(loaded):
+            continue
+        # the hats from the first loaded point's neighbour to the last's: the same integrals
+        # as over the whole grid, where the others carry nothing
+        a, b = max(loaded[0] - 1, 0), min(loaded[-1] + 2, len(g))
+        r = np.flatnonzero(grid == k)
+        local = rows[r] - blk.start
+        for m in contact.matching:
+            out[r] += approach_matrix(g.s[local], m.depth[blk][local], g.s[a:b], case.E,
+                                      case.nu) @ pressure[blk][a:b]
+    return out, tuple(clamped)
+
+
+def _fe_approach(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
+                 pressure: np.ndarray) -> tuple[np.ndarray, dict]:
+    """n · u_FE at the matching points under the hats' ``pressure`` (one load, not a column
+    per hat: :func:`_fe_part` times p), and the clamped fields of the loaded sectors."""
+    at = match.at
+    N = side.rows_at(match.cells, match.direction)
+    NQ = np.asarray(N @ side.cut_field)
+    rho = {t: side.cut_loads(blk.dofs) @ (blk.matrix @ pressure[blk.columns])
+           for t, blk in loads.items()}
+    f = {t: blk.vector(pressure, side.body.ndofs) for t, blk in loads.items()}
+    own = [t for t, v in f.items() if v.any()]
+    clamped = dict(zip(own, side.body.clamped(np.column_stack([f[t] for t in own])).T)) \
+        if own else {}
+    out = np.zeros(len(at.sector))
+    for k in np.unique(at.sector):
+        r = np.flatnonzero(at.sector == k)
+        cut = np.zeros(NQ.shape[1])
+        for t, v in rho.items():
+            factors = side.body.coupling_factors(t - k)
+            if factors is None:
+                cut += side.body.coupling(t - k) @ v
+            else:
+                U, V = factors
+                cut += U @ (V @ v)
+        out[r] = NQ[r] @ cut
+        if k in clamped:
+            out[r] += (N @ clamped[k])[r]
+    return out, clamped
+
+
 def _fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
-             out: np.ndarray) -> None:
+             place: np.ndarray, out: np.ndarray) -> None:
     """Add n · u_FE at the matching points per unit pressure of each hat (see module
-    docstring) to ``out`` (points × hats): for the points in sector k and the hats loading
+    docstring) to ``out`` (points × formed hats; ``place``: each hat's column there): for
+    the points in sector k and the hats loading
     sector t, the clamped field if t = k plus N Ψ W(t − k) ρ, the product taken through the
     thin factors of W where the sectors are far apart (:meth:`~fegear.fe.cyclic.CyclicBody
     .coupling_factors`). A sector's points and a sector's hats are each one run of rows and of
@@ -223,7 +305,7 @@ def _fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
     dofs = np.unique(np.concatenate([blk.dofs for blk in loads.values()]))
     clamped = side.clamped_rows(N, dofs)                     # (points, loaded dofs)
     rho = {t: side.cut_loads(blk.dofs) @ blk.matrix for t, blk in loads.items()}
-    columns = {t: _run(blk.columns) for t, blk in loads.items()}
+    columns = {t: _run(place[blk.columns]) for t, blk in loads.items()}
     for k in np.unique(at.sector):
         r = np.flatnonzero(at.sector == k)
         rows = _run(r)
@@ -242,7 +324,7 @@ def _fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
             if isinstance(rows, slice) or isinstance(columns[t], slice):
                 out[rows, columns[t]] += block
             else:
-                out[np.ix_(r, blk.columns)] += block
+                out[np.ix_(r, place[blk.columns])] += block
 
 
 def _run(index: np.ndarray) -> slice | np.ndarray:

@@ -206,15 +206,15 @@ class GearSide:
 
     # --- fields ------------------------------------------------------------------------------
     def fields(self, loads: dict[int, LoadBlock], values: np.ndarray,
-               sectors) -> dict[int, np.ndarray]:
+               sectors, clamped: dict | None = None) -> dict[int, np.ndarray]:
         """Template-frame displacement (ndofs,) of each of ``sectors`` under the ``loads`` at
-        the unknowns' ``values``."""
+        the unknowns' ``values`` (``clamped``: loaded sectors' clamped fields formed before)."""
         f = {t: b.vector(values, self.body.ndofs) for t, b in loads.items()}
         f = {t: v for t, v in f.items() if np.any(v)}
         # the cut loads from the responses formed for the loads' few dofs (a product over the
         # whole template's Ψ a sector, which two processes read at once in a mesh cycle, else)
         rho = {t: self.cut_loads(loads[t].dofs) @ v[loads[t].dofs] for t, v in f.items()}
-        return self.body.displacement(f, sectors, rho)
+        return self.body.displacement(f, sectors, rho, clamped)
 
     def displacement_at(self, x: np.ndarray, fields: dict[int, np.ndarray]) -> np.ndarray:
         """Displacement (n, 2, gear frame) at points ``x`` of the gear from per-sector

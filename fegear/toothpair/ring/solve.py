@@ -182,6 +182,8 @@ class RingSolver:
     def finish(self, case: SolveCase, state, attempt: Attempt) -> PairSolution:
         model, p = self.model, case.params
         contact, sol, grids, first_um = attempt.result
+        # the stresses take the clamped fields the contact's check formed; not kept
+        clamped, sol = sol.clamped, replace(sol, clamped=None)
         t0 = time.perf_counter()
         touch = touch_rotation(model, contact, p.turn_of(first_um))
         tangent = tangent_stiffness(model, contact, sol)
@@ -196,7 +198,8 @@ class RingSolver:
                 timings_s={"stresses": time.perf_counter() - t0},
                 detail=RingDetail(model, case, _kept(contact), sol, None), von_mises_estimated=True,
                 tangent_stiffness=tangent)
-        stresses = ring_stresses(model, contact, sol.pressure, self.submodels == "all")
+        stresses = ring_stresses(model, contact, sol.pressure, self.submodels == "all",
+                                 clamped)
         cands = candidate_data(p, model.shape, state, tuple(g.tooth for g in grids), case.beta)
         teeth_out = tooth_results(model, case, contact, sol, stresses, state, cands)
         times = {"stresses": time.perf_counter() - t0}

@@ -83,13 +83,15 @@ class RingStresses:
 
 
 def ring_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
-                  submodels: bool = True) -> RingStresses:
+                  submodels: bool = True, clamped: tuple | None = None) -> RingStresses:
     """Fields of the loaded sectors and one on each side, their stresses, root zones, the
     surface estimate and (``submodels``) the submodels at the contact peaks: without them
     the von Mises stress at a contact is the surface estimate, for a caller that reads only
-    contact pressures and root stresses (the tip-relief search)."""
-    fields = tuple(_fields(side, loads, pressure)
-                   for side, loads in zip(model.gears, contact.loads))
+    contact pressures and root stresses (the tip-relief search). ``clamped``: each gear's
+    clamped fields of its loaded sectors under ``pressure``, formed before (the contact's
+    check), else solved here."""
+    fields = tuple(_fields(side, loads, pressure, c)
+                   for side, loads, c in zip(model.gears, contact.loads, clamped or ({}, {})))
     stresses = tuple(dict(zip(f, recover_many(side.body, np.column_stack(list(f.values())),
                                               reused=True)))
                      if f else {} for side, f in zip(model.gears, fields))
@@ -158,10 +160,11 @@ def _bulk_von_mises(side: GearSide, stresses: dict, loaded: np.ndarray,
     return out
 
 
-def _fields(side: GearSide, loads, pressure: np.ndarray) -> dict[int, np.ndarray]:
+def _fields(side: GearSide, loads, pressure: np.ndarray,
+            clamped: dict) -> dict[int, np.ndarray]:
     loaded = [t for t, b in loads.items() if np.any(pressure[b.columns] > 0)]
     sectors = sorted({(t + k) % side.count for t in loaded for k in (-1, 0, 1)})
-    return side.fields(loads, pressure, sectors)
+    return side.fields(loads, pressure, sectors, clamped)
 
 
 def _root_zone(side: GearSide, stresses: dict) -> RootZone:
