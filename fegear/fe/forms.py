@@ -67,6 +67,11 @@ def _sparse(blocks: np.ndarray, rows: np.ndarray, cols: np.ndarray, shape) -> sp
     return sp.coo_matrix((blocks.ravel(), (i, j)), shape=shape).tocsr()
 
 
+def _element_dofs(nodes: np.ndarray) -> np.ndarray:
+    """Each element's 12 displacement dofs (nel, 12), node by node, x then y."""
+    return node_dofs(nodes).reshape(len(nodes), 12)
+
+
 def stiffness(mesh, lam: float, mu: float, thickness: float = 1.0) -> sp.csr_matrix:
     """t ∫ σ(u):ε(v) on the P2 ``mesh`` with Lamé's ``lam`` and ``mu`` (the plane
     assumption's), (2 n, 2 n) for the n nodes."""
@@ -78,7 +83,7 @@ def stiffness(mesh, lam: float, mu: float, thickness: float = 1.0) -> sp.csr_mat
     k[:, :, 1, :, 1] = (lam + 2 * mu) * yy + mu * xx
     k[:, :, 0, :, 1] = lam * xy + mu * xy.transpose(0, 2, 1)
     k[:, :, 1, :, 0] = k[:, :, 0, :, 1].transpose(0, 2, 1)
-    dofs = node_dofs(nodes).reshape(len(nodes), 12)   # node by node, x then y
+    dofs = _element_dofs(nodes)
     n = 2 * mesh.doflocs.shape[1]
     return _sparse(thickness * k.reshape(nel, 12, 12), dofs, dofs, (n, n))
 
@@ -93,7 +98,7 @@ def projection(mesh, lam: float, mu: float) -> tuple[sp.csr_matrix, tuple]:
     mass = _sparse(_pair(wd, v, v), nodes, nodes, (n, n))
     vx, vy = _pair(wd, v, gx), _pair(wd, v, gy)           # (nel, 6 test, 6 trial)
     nel = len(nodes)
-    dofs = node_dofs(nodes).reshape(len(nodes), 12)   # node by node, x then y
+    dofs = _element_dofs(nodes)
     parts = []
     for ax, ay in (((lam + 2 * mu) * vx, lam * vy),       # σxx of u = ψ ex, ψ ey
                    (lam * vx, (lam + 2 * mu) * vy),       # σyy
