@@ -116,10 +116,10 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
     gap[on] += A @ pressure
     clamped = None
     if not contact.complete:
-        open_ = np.flatnonzero(~contact.formed)
-        approach, clamped = approach_open(model, contact, full, open_)
-        gap[open_] += approach
-        if (gap[open_] < 0).any():
+        rest = np.flatnonzero(~contact.formed)
+        approach, clamped = approach_open(model, contact, full, rest)
+        gap[rest] += approach
+        if (gap[rest] < 0).any():
             return None
     balance = abs(-(w * pressure) @ a[on] - torque_nmm) / torque_nmm
     loaded = full > 0

@@ -116,9 +116,9 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     more at the expected turn). A's rows are formed at those points alone (they were three
     in five of its products at a cycle's later position, read only to tell whether a point
     left out closes: :func:`approach_open` tells that from the solved pressure's fields).
-    ``columns`` (a mask over the points): only these
-    points' columns are formed, of those the other rules form (where the position before
-    carried pressure, say); all of those where none is among them."""
+    ``columns`` (a mask over the points): only these points' columns are formed, of those the
+    other rules form (where the position before carried pressure, say); all of those where
+    none is among them."""
     p, case = model.case.params, model.case
     g1, g2 = model.gears
     offsets = np.cumsum([0] + [len(g) for g in grids])
@@ -293,12 +293,12 @@ def _fe_approach(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
 def _fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
              place: np.ndarray, out: np.ndarray) -> None:
     """Add n · u_FE at the matching points per unit pressure of each hat (see module
-    docstring) to ``out`` (points × formed hats; ``place``: each hat's column there): for
-    the points in sector k and the hats loading
-    sector t, the clamped field if t = k plus N Ψ W(t − k) ρ, the product taken through the
-    thin factors of W where the sectors are far apart (:meth:`~fegear.fe.cyclic.CyclicBody
-    .coupling_factors`). A sector's points and a sector's hats are each one run of rows and of
-    columns but where a grid straddles two sectors."""
+    docstring) to ``out`` (points × formed hats; ``place``: each hat's column there): for the
+    points in sector k and the hats loading sector t, the clamped field if t = k plus
+    N Ψ W(t − k) ρ, the product taken through the thin factors of W where the sectors are far
+    apart (:meth:`~fegear.fe.cyclic.CyclicBody.coupling_factors`). A sector's points and a
+    sector's hats are each one run of rows and of columns but where a grid straddles two
+    sectors."""
     at = match.at
     N = side.rows_at(match.cells, match.direction)
     NQ = np.asarray(N @ side.cut_field)
