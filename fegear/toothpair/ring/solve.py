@@ -141,7 +141,11 @@ class RingSolver:
             times["assemble"] += time.perf_counter() - t0
             t0 = time.perf_counter()
             try:
-                sol = solve_ring_contact(model, contact, torque, p.turn_of(first_um),
+                # the rotation's linearisations start at the expected rotation after a
+                # solved position (its elastic part off by a few per cent: three, not four),
+                # else at the first touch
+                sol = solve_ring_contact(model, contact, torque,
+                                         theta if near is not None else p.turn_of(first_um),
                                          guess=theta, start=start)
             except ContactError:
                 if within is not None:    # the candidates alone cannot carry the torque

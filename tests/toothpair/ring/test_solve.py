@@ -136,6 +136,23 @@ def test_columns_formed_only_where_points_overlap_give_the_solution_of_all_colum
     assert solve_ring_contact(d.model, deepest, torque, start, guess=turn) is None
 
 
+def test_the_rotation_started_near_its_solution_settles_sooner_to_the_same_contact(
+        baseline_200):
+    # a cycle's later position starts the rotation's linearisations at the expected rotation
+    # (the position before's elastic part, a few per cent off), not at the first touch
+    from fegear.toothpair.ring.contact import solve_ring_contact
+
+    d = baseline_200.detail
+    turn, torque, touch = d.contact.turn, d.case.torque * 1e3, baseline_200.first_touch
+    contact = assemble_contact(d.model, d.contact.grids, 0.0, turn)
+    far = solve_ring_contact(d.model, contact, torque, touch, guess=turn)
+    expected = touch + 1.03 * (far.rotation - touch)
+    near = solve_ring_contact(d.model, contact, torque, expected, guess=turn)
+    assert near.turns < far.turns
+    assert near.rotation == pytest.approx(far.rotation, rel=1e-12)
+    assert np.abs(near.pressure - far.pressure).max() < 1e-9 * far.pressure.max()
+
+
 @pytest.mark.parametrize("candidates", [-0.3, -1e3])
 def test_candidate_columns_that_miss_a_loaded_point_are_formed_again_whole(
         monkeypatch, baseline_ring, baseline_200, candidates):
