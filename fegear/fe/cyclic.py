@@ -139,6 +139,15 @@ class CyclicBody:
         u[self.interface] = u_cut
         return u
 
+    def cut_motions(self, rho: dict[int, np.ndarray], sectors) -> np.ndarray:
+        """Cut-face displacements (2 n_f, len(sectors)) of the ``sectors`` under the cut loads
+        ``rho`` (loaded sector → its loads carried to the cuts, :meth:`cut_loads`)."""
+        cuts = np.zeros((len(self.interface), len(sectors)))
+        for j, s in enumerate(sectors):
+            for t, r in rho.items():
+                cuts[:, j] += self.coupling(t - s) @ r
+        return cuts
+
     def coupling(self, delta: int) -> np.ndarray:
         """W(Δ): cut displacements of sector s per unit cut loads ρ of sector s + Δ."""
         return self.ring[delta % self.count]
@@ -167,13 +176,10 @@ class CyclicBody:
         loaded = list(loads)
         if not loaded:
             return {s: np.zeros(self.ndofs) for s in sectors}
-        rho = (self.cut_loads(np.column_stack([loads[t] for t in loaded])) if rho is None
-               else np.column_stack([rho[t] for t in loaded]))
-        cuts = np.zeros((len(self.interface), len(sectors)))
-        for j, s in enumerate(sectors):
-            for i, t in enumerate(loaded):
-                cuts[:, j] += self.coupling(t - s) @ rho[:, i]
-        U = self.from_cuts(cuts)
+        if rho is None:
+            block = self.cut_loads(np.column_stack([loads[t] for t in loaded]))
+            rho = {t: block[:, i] for i, t in enumerate(loaded)}
+        U = self.from_cuts(self.cut_motions({t: rho[t] for t in loaded}, sectors))
         kept = clamped or {}
         for j, s in enumerate(sectors):
             if s in loads and s in kept:

@@ -274,17 +274,11 @@ def _fe_approach(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
     clamped = dict(zip(own, side.body.clamped(np.column_stack([f[t] for t in own])).T)) \
         if own else {}
     out = np.zeros(len(at.sector))
-    for k in np.unique(at.sector):
+    sectors = np.unique(at.sector)
+    cuts = side.body.cut_motions(rho, sectors)
+    for j, k in enumerate(sectors):
         r = np.flatnonzero(at.sector == k)
-        cut = np.zeros(NQ.shape[1])
-        for t, v in rho.items():
-            factors = side.body.coupling_factors(t - k)
-            if factors is None:
-                cut += side.body.coupling(t - k) @ v
-            else:
-                U, V = factors
-                cut += U @ (V @ v)
-        out[r] = NQ[r] @ cut
+        out[r] = NQ[r] @ cuts[:, j]
         if k in clamped:
             out[r] += (N @ clamped[k])[r]
     return out, clamped
