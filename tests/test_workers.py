@@ -81,3 +81,23 @@ def test_a_large_answer_waits_for_nobody():
     assert ended == pid                 # it ended with its answer unread
     f.pid = None                        # reaped here
     assert np.array_equal(f.result(), data * 2.0)
+
+
+def test_arrays_come_back_read_in_place_and_writable():
+    import mmap
+
+    big = np.arange(300_000.0).reshape(1000, 300)
+    parts = {"big": big, "fortran": np.asfortranarray(big[:, :7]), "strided": big[::3, ::2],
+             "empty": np.zeros((0, 4)), "ints": np.arange(5, dtype=np.int64), "text": "x" * 9}
+    got = Forked(lambda: parts).result()
+    for k, v in parts.items():
+        assert np.array_equal(got[k], v) if k != "text" else got[k] == v
+    # the large contiguous ones are the in-memory file's pages, not a copy of them
+    base = got["big"]
+    while not isinstance(base, mmap.mmap) and getattr(base, "base", None) is not None:
+        base = base.base
+    owner = base.obj if isinstance(base, memoryview) else base
+    assert isinstance(owner, mmap.mmap)
+    assert got["big"].ctypes.data % 64 == 0          # aligned
+    got["big"][0, 0] = -1.0                          # private pages: writable here alone
+    assert got["big"][0, 0] == -1.0 and big[0, 0] == 0.0
