@@ -94,9 +94,7 @@ def recover_many(body: Body, U: np.ndarray, reused: bool = False) -> list[Stress
     against SuperLU's 4.7 ms; else by SuperLU, which factorises it in half CHOLMOD's time
     (13 against 26 ms on gear 1's template, 3 against 5 ms on a submodel)."""
     if "projector" not in body.cache:
-        if "projector matrices" not in body.cache:
-            body.cache["projector matrices"] = _projector(body)
-        mass, parts = body.cache["projector matrices"]
+        mass, parts = projection_matrices(body)
         body.cache["projector"] = (Factor(mass) if reused else splu(mass), parts)
     factor, parts = body.cache["projector"]
     k = U.shape[1]
@@ -116,6 +114,14 @@ def pickled_cache(cache: dict) -> dict:
     """The entries of a body's ``cache`` that pickle: all but the projector's factorisation
     (its matrices stay, :func:`recover` factorises them again)."""
     return {k: v for k, v in cache.items() if k != "projector"}
+
+
+def projection_matrices(body: Body):
+    """The projection's mass matrix (CSC) and its three mixed matrices C_xx, C_yy, C_xy (nodes
+    × dofs), assembled once per mesh and kept in ``body.cache`` (:func:`recover`)."""
+    if "projector matrices" not in body.cache:
+        body.cache["projector matrices"] = _projector(body)
+    return body.cache["projector matrices"]
 
 
 def _projector(body: Body):

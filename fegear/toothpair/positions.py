@@ -18,9 +18,11 @@ here.
 A cycle of :data:`CHAINED` positions or more is solved as two chains, its halves, each from a
 first guess of its own. With ``beside`` (a second core free) the second chain is solved in a
 forked copy of this process (:class:`~fegear.workers.Forked`) while this one solves the first
-(it forms the unit responses again, and leaves its solutions in memory for this one to read);
-and, where the model's build does not read the clearance states, they are found in another
-fork while this process builds the model (an interference is then refused after the build).
+(it forms the unit responses the build did not, and leaves its solutions in memory for this
+one to read); and, where the model's build does not read the clearance states, they are found
+in another fork while this process builds the model (an interference is then refused after
+the build). The build itself may leave work beside (the ring model, gear 1's responses), which
+the model takes in before a chain is forked (:meth:`PositionModel.settle`).
 Without it the chains run one after the other. The numbers are the same either way, to
 rounding: a chain starts from its own first guess, whichever process solves it (the unit
 responses it forms, formed there in other batches, differ in the last bits).
@@ -82,14 +84,21 @@ class PositionModel(Protocol):
     #: ring model's templates do not: for it a cycle's states may be found beside the build)
     reads_states: bool
 
-    def build(self, case: SolveCase, profile: Gear1Profile, states: list | None) -> None:
+    def build(self, case: SolveCase, profile: Gear1Profile, states: list | None,
+              beside: bool = False) -> None:
         """Everything the positions share (meshes, factors, condensed responses), for the
         clearance states ``states`` ((β, state) pairs; None where :attr:`reads_states` is
-        false and they are found beside); timings in :attr:`timings_s`."""
+        false and they are found beside); timings in :attr:`timings_s`. ``beside``: a second
+        core is free meanwhile for part of it (:meth:`settle` takes that in before this
+        process forks)."""
 
     @property
     def timings_s(self) -> dict:
         """The one-off stages' timings (s) of :meth:`build`."""
+
+    def settle(self) -> dict:
+        """What :meth:`build` left running beside, taken in: the driver calls it before it
+        forks (a forked copy must not read it). The time it took, by stage."""
 
     def attempt(self, case: SolveCase, state, trial: Trial,
                 near: PairSolution | None) -> Attempt:
@@ -185,7 +194,7 @@ def _drive(case: SolveCase, betas, solver: PositionModel, profile: Gear1Profile 
         refuse_interference(states)
     t_tca = time.perf_counter() - t0
     try:
-        solver.build(case, profile, states)
+        solver.build(case, profile, states, beside)
         if states is None:
             t0 = time.perf_counter()
             got = found.result()
@@ -196,8 +205,9 @@ def _drive(case: SolveCase, betas, solver: PositionModel, profile: Gear1Profile 
         if found is not None:
             found.stop()
     cut = len(states) // 2 if chained else len(states)
-    other = None
+    other, waited = None, {}
     if beside and cut < len(states):
+        waited = solver.settle()
         other = Forked(lambda: [solver.detach(s) for s in _chain(
             case, states, range(cut, len(states)), solver, announce=False)])
     try:
@@ -215,9 +225,10 @@ def _drive(case: SolveCase, betas, solver: PositionModel, profile: Gear1Profile 
     finally:
         if other is not None:
             other.stop()
-    # the first position carries the one-off stages
-    sols[0] = replace(sols[0], timings_s={**solver.timings_s, "clearance": t_tca,
-                                          **sols[0].timings_s})
+    # the first position carries the one-off stages, and the wait for what was built beside
+    first = Counter(sols[0].timings_s)
+    first.update(waited)
+    sols[0] = replace(sols[0], timings_s={**solver.timings_s, "clearance": t_tca, **first})
     if ahead is not None:
         ahead(sols)
     # the second core shares the completion unless what ``ahead`` started holds it

@@ -41,8 +41,11 @@ class StandIn:
         self.trials: list[tuple[float, Trial]] = []
         self.timings_s = {}
 
-    def build(self, case, profile, states):
+    def build(self, case, profile, states, beside=False):
         self.timings_s = {"model": 1.0}
+
+    def settle(self):
+        return {}
 
     def attempt(self, case, state, trial, near):
         self.trials.append((case.beta, trial))
@@ -206,9 +209,9 @@ class Templates(StandIn):
 
     reads_states = False
 
-    def build(self, case, profile, states):
+    def build(self, case, profile, states, beside=False):
         self.built_with = states
-        super().build(case, profile, states)
+        super().build(case, profile, states, beside)
 
     def attempt(self, case, state, trial, near):
         self.states = getattr(self, "states", []) + [state]

@@ -63,6 +63,9 @@ THIN = 0.1               # a tip relief or tip trim thinner than this many flank
                          # without it (a relief search's trials then share one model)
 GROWN = 1.25            # a model is kept on disk again once it holds this many times the
                         # responses of its entry (or new submodels)
+BESIDE_SHARE = 0.6       # of gear 1's loaded flank, the share of responses formed beside (the
+                         # rest here, once the first load needs them: on the baseline both are
+                         # then done about together)
 #: the case fields a ring model depends on (not torque, position or the sector model's inputs)
 GEOMETRY_KEYS = ("params", "thickness", "E", "nu", "quality", "rim1", "rim2", "tip_round")
 
@@ -110,12 +113,14 @@ _KEPT: OrderedDict = OrderedDict()
 KEEP = 4
 
 
-def ring_model(case: SolveCase, profile: Gear1Profile | None = None) -> RingModel:
+def ring_model(case: SolveCase, profile: Gear1Profile | None = None,
+               beside: bool = False) -> RingModel:
     """The ring model for ``case``: one kept from an earlier case of the same geometry,
     material and quality; or one that shares the templates (meshes, factors and responses) of
     a kept model meshed for the same pair (:func:`meshed_params`); or, with the disk cache on
-    (:mod:`.disk`), one read back from it; or a new one. It is kept in memory (on disk once
-    solved: :func:`keep_on_disk`)."""
+    (:mod:`.disk`), one read back from it; or a new one (``beside``: a second core is free for
+    part of it, :func:`build_ring`). It is kept in memory (on disk once solved:
+    :func:`keep_on_disk`)."""
     key = tuple(getattr(case, k) for k in GEOMETRY_KEYS)
     model = _KEPT.pop(key, None)
     if model is None:
@@ -125,7 +130,7 @@ def ring_model(case: SolveCase, profile: Gear1Profile | None = None) -> RingMode
         if kin is None and disk.enabled():
             model = _from_disk(case, profile)
         if model is None:
-            model = build_ring(case, profile, kin)
+            model = build_ring(case, profile, kin, beside)
         while len(_KEPT) >= KEEP:
             _KEPT.popitem(last=False)
     _KEPT[key] = model
@@ -170,10 +175,13 @@ def build_templates(case: SolveCase, shape: RoundedProfile) -> tuple[Template, T
 
 
 def build_ring(case: SolveCase, profile: Gear1Profile | None = None,
-               kin: RingModel | None = None) -> RingModel:
+               kin: RingModel | None = None, beside: bool = False) -> RingModel:
     """Mesh both templates (for :func:`meshed_params`), assemble, factorise and condense them:
     once per geometry. With ``kin``, a model whose templates serve ``case`` too, they are
-    shared (responses formed for one serve both)."""
+    shared (responses formed for one serve both). ``beside``: a second core is free, and gear
+    1's responses on its loaded flank are formed there (:meth:`~.side.GearSide.form_beside`)
+    while this process builds gear 2 and goes on to the first position: on the baseline they
+    are 0.2 s of the first position's 0.5 s, gear 2's 0.03 s."""
     p = case.params
     level = LEVELS[case.quality]
     profile, shape, samples, times = _shapes(case, profile)
@@ -186,8 +194,12 @@ def build_ring(case: SolveCase, profile: Gear1Profile | None = None,
     times["mesh"] = time.perf_counter() - t0
     t0 = time.perf_counter()
     mat = Material(case.E, case.nu, case.thickness, "stress")
-    sides = (GearSide(assemble_cyclic(m1, mat, p.z1, t1.cut, (t1.held,)), t1),
-             GearSide(assemble_cyclic(m2, mat, p.z2, t2.cut, (t2.held,)), t2))
+    side1 = GearSide(assemble_cyclic(m1, mat, p.z1, t1.cut, (t1.held,)), t1)
+    if beside:
+        loaded = side1.loaded_half()
+        cut = int(BESIDE_SHARE * len(loaded))
+        side1.form_beside(loaded[:cut], loaded[cut:])
+    sides = (side1, GearSide(assemble_cyclic(m2, mat, p.z2, t2.cut, (t2.held,)), t2))
     times["assemble_factor"] = time.perf_counter() - t0
     return RingModel(case, profile, shape, samples, sides, level, times, meshed=meshed)
 

@@ -5,11 +5,13 @@ Sector k of a gear is its template turned by k pitches about the gear's centre; 
 gear (its own frame) is carried into the template by turning it back. The template's unit-load
 responses (a clamped field and the loads carried to the cuts) are formed once per template dof
 when a load first reaches it, and kept for every later position, torque and tooth: every tooth
-loads the same template dofs.
+loads the same template dofs. With a second core free, gear 1's are formed ahead beside, while
+this process builds gear 2 and places the first grids (:meth:`GearSide.form_beside`).
 """
 
 from __future__ import annotations
 
+import os
 import time
 from dataclasses import dataclass, field
 
@@ -17,7 +19,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ...contact import FacetLocator, p2_edge_shape
-from ...fe import Cells, CyclicBody, Probe, facet_nodes, node_dofs
+from ...fe import Cells, CyclicBody, Probe, facet_nodes, node_dofs, projection_matrices
 from ...planar import rotate
 from .template import Template
 
@@ -65,6 +67,9 @@ class GearSide:
     _rho: np.ndarray = field(init=False, repr=False)        # cut loads, by column
     _used: int = 0
     _cut_field: np.ndarray | None = field(default=None, repr=False)
+    _beside: tuple | None = field(default=None, repr=False)    # forming some ahead: the
+                                                            # Forked, its parent, our share …
+    _awaited: np.ndarray | None = field(default=None, repr=False)   # … and its dofs (mask)
 
     def __post_init__(self) -> None:
         m = self.body.mesh
@@ -139,9 +144,78 @@ class GearSide:
         return self.probe.locate(local)
 
     # --- responses to unit loads ------------------------------------------------------------
+    def loaded_half(self) -> np.ndarray:
+        """The dofs of the template's profile nodes within half a pitch of its start: gear 1's
+        tooth 0's leading flank, the one the + torque loads, down to the root's middle (the
+        baseline's cycle loads 494 of these 558 dofs and 4 beyond; f1 0.3 loads its root's
+        other half too: 142 more, formed when first loaded)."""
+        m = self.body.mesh
+        nodes = np.unique(facet_nodes(m, self.facets))
+        x = m.doflocs[:, nodes]
+        turn = np.mod(np.arctan2(x[1], x[0]) - self.template.start, 2.0 * np.pi)
+        return node_dofs(nodes[turn < 0.5 * self.pitch]).ravel()
+
+    def form_beside(self, theirs: np.ndarray, ours: np.ndarray) -> None:
+        """Form the responses of the template dofs ``theirs`` in a forked copy of this process
+        (:class:`~fegear.workers.Forked`), with the field per unit cut displacement and the
+        stress projection's matrices, while this one goes on; those of ``ours`` are formed
+        here once a load needs one of ``theirs``, or the cut field, and then theirs are taken
+        in (:meth:`settle`): the same numbers as formed here, their time here what forming
+        ours and the wait took. Should the copy fail in any way, they are formed here as they
+        are needed."""
+        from ...workers import Forked
+
+        def ahead():
+            self._form(theirs)
+            return {"responses": self.responses(), "cut_field": self.cut_field,
+                    "projection": projection_matrices(self.body)}
+
+        self._beside = (Forked(ahead), os.getpid(), np.asarray(ours))
+        self._awaited = np.zeros(self.body.ndofs, dtype=bool)
+        self._awaited[theirs] = True
+
+    def settle(self) -> None:
+        """Form the dofs :meth:`form_beside` left here, then take in what it formed beside
+        once that is there (nothing if it was not asked for or failed; in a forked copy of
+        this process, nothing: not its to read)."""
+        if self._beside is None:
+            return
+        (helper, owner, ours), self._beside = self._beside, None
+        if os.getpid() != owner:
+            return
+        t0 = time.perf_counter()
+        formed = self.response_s
+        try:
+            self._form(ours)
+            got = helper.result()
+        finally:
+            helper.stop()
+        if got is not None:
+            self._adopt(got["responses"])
+            if self._cut_field is None:
+                self._cut_field = got["cut_field"]
+            self.body.cache.setdefault("projector matrices", got["projection"])
+        self.response_s = formed + time.perf_counter() - t0
+
+    def _adopt(self, parts: dict) -> None:
+        """The :meth:`responses` of a copy of this side, formed there from none, joined to the
+        ones formed here meanwhile (theirs for the dofs not formed here)."""
+        column, X = parts["column"], parts["X"]
+        theirs = np.flatnonzero(column >= 0)
+        theirs = theirs[self._column[theirs] < 0]
+        if not len(theirs):
+            return
+        self._X.append((self._used, X))
+        self._rho = np.hstack([self._rho, parts["rho"]])
+        self._column[theirs] = self._used + column[theirs]
+        self._used += X.shape[1]
+
     def _form(self, dofs: np.ndarray) -> np.ndarray:
         """Response columns of template ``dofs``, forming those not formed yet."""
         new = np.unique(dofs[self._column[dofs] < 0])
+        if self._beside is not None and self._awaited[new].any():
+            self.settle()
+            new = np.unique(dofs[self._column[dofs] < 0])
         if len(new):
             t0 = time.perf_counter()
             need = self._used + len(new)
@@ -164,6 +238,7 @@ class GearSide:
         """The responses formed so far (a disk cache's): template dof → column, the clamped
         fields' interior rows as one block (interior dofs, formed) and the cut loads (2 n_f,
         formed)."""
+        self.settle()
         X = (np.hstack([block for _, block in self._X]) if len(self._X) > 1
              else self._X[0][1] if self._X else np.zeros((len(self.body.interior), 0)))
         return {"column": self._column, "X": X, "rho": self._rho}
@@ -200,6 +275,7 @@ class GearSide:
     @property
     def cut_field(self) -> np.ndarray:
         """Template field (ndofs, 2 n_f) per unit cut displacement: interior by Ψ."""
+        self.settle()
         if self._cut_field is None:
             self._cut_field = self.body.from_cuts(np.eye(len(self.body.interface)))
         return self._cut_field

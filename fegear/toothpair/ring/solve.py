@@ -88,11 +88,12 @@ class RingSolver:
         self.contact_only = contact_only
         self.timings_s: dict = {}
 
-    def build(self, case: SolveCase, profile: Gear1Profile, states) -> None:
+    def build(self, case: SolveCase, profile: Gear1Profile, states,
+              beside: bool = False) -> None:
         t0 = time.perf_counter()
         if self.model is None or not self.model.fits(case):
             progress.stage(f"model: both gears meshed and condensed at quality {case.quality}")
-            self.model = ring_model(case, profile)
+            self.model = ring_model(case, profile, beside)
         # a model's own stages count once, where it was built or read back; the same stages
         # on every solve (zero where not run), so that a study's table has the same columns
         # whichever way its cases found their models
@@ -100,6 +101,14 @@ class RingSolver:
                  else {"model (kept)": time.perf_counter() - t0})
         self.model.served += 1
         self.timings_s = {k: times.get(k, 0.0) for k in MODEL_STAGES}
+
+    def settle(self) -> dict:
+        """Gear 1's responses formed beside the build (:func:`~.model.build_ring`), taken in;
+        the time, as the responses'."""
+        t0 = time.perf_counter()
+        for side in self.model.gears:
+            side.settle()
+        return {"responses": time.perf_counter() - t0}
 
     def attempt(self, case: SolveCase, state, trial: Trial,
                 near: PairSolution | None) -> Attempt:

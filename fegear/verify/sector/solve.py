@@ -127,11 +127,15 @@ class SectorSolver:
         self.timings_s: dict = {}
         self.reach: dict[int, float] = {}
 
-    def build(self, case: SectorCase, profile: Gear1Profile, states) -> None:
+    def build(self, case: SectorCase, profile: Gear1Profile, states,
+              beside: bool = False) -> None:
         self.profile, self.states = profile, states
         elastic = expected_elastic_um(case)
         self._scene(case, _union(first_teeth(case, st, elastic) for _, st in states))
         self.timings_s = dict(self.model.timings_s)
+
+    def settle(self) -> dict:
+        return {}   # its build leaves nothing beside
 
     def _scene(self, case: SectorCase, teeth: tuple[int, ...]) -> None:
         progress.stage(f"model: sector meshes of both gears at quality {case.quality}")

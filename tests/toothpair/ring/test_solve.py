@@ -610,3 +610,33 @@ def test_a_solution_crosses_from_a_fork_with_its_loads_sparse_and_comes_back_the
             assert isinstance(b[t].matrix, np.ndarray)
             assert np.array_equal(a[t].matrix, b[t].matrix)
             assert np.array_equal(a[t].dofs, b[t].dofs)
+
+
+def test_gear_1_s_responses_formed_beside_the_build_are_the_ones_formed_here(baseline_ring):
+    # `fegear solve` on two cores: a forked copy forms most of gear 1's loaded flank while
+    # this process builds gear 2 and places the first grids; the same columns to rounding (a
+    # solve in other batches), the same cut field and projection, the same position
+    import scipy.sparse as sp
+
+    from fegear.workers import Forked
+
+    case = replace(baseline_ring.case, torque=200.0)
+    model = build_ring(case, beside=True)
+    there, here = model.gears[0], baseline_ring.gears[0]
+    # a forked copy of this process leaves it alone (not its to read) …
+    assert Forked(lambda: (there.settle(), there.formed)[1]).result() == 0
+    dofs = there.loaded_half()
+    rows = sp.csr_matrix((np.ones(40), (np.arange(40), here.body.interior[::97][:40])),
+                         shape=(40, here.body.ndofs))
+    # … and this one forms its own share, then takes in the copy's
+    got = there.clamped_rows(rows, dofs)
+    assert there.formed >= len(dofs) and there.response_s > 0.0
+    want = here.clamped_rows(rows, dofs)
+    assert np.abs(got - want).max() <= 1e-12 * np.abs(want).max()
+    want = here.cut_loads(dofs)
+    assert np.abs(there.cut_loads(dofs) - want).max() <= 1e-12 * np.abs(want).max()
+    assert np.abs(there.cut_field - here.cut_field).max() <= 1e-12 * np.abs(here.cut_field).max()
+    alone = solve_pair(case, model=baseline_ring)
+    sol = solve_pair(case, model=model)
+    for key, value in alone.headline().items():
+        assert sol.headline()[key] == pytest.approx(value, rel=1e-9), key
