@@ -146,7 +146,10 @@ def solve_job(job: Job, beside: bool = False) -> Solved:
     try:
         progress.stage("gear 1's profile")
         profile = gear1_profile(job.case.params)
-        sols = solve_positions(job.case, job.betas, profile, beside=beside, ahead=ahead)
+        # the estimate's solve holds the second core while one position is solved here
+        sols = solve_positions(job.case, job.betas, profile,
+                               beside=beside and (worker is None or ahead is not None),
+                               ahead=ahead)
         cycle_s = time.perf_counter() - t0
         sol = _pictured(sols)
         estimate, other, estimate_s = None, None, None

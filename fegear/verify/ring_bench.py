@@ -71,6 +71,7 @@ def _child(task: dict) -> dict:
         solve_positions,
         write_pair_outputs,
     )
+    from ..workers import second_core
 
     if task.get("disk"):   # the disk cache on, in the folder given
         import os
@@ -87,8 +88,6 @@ def _child(task: dict) -> dict:
     t_profile = time.perf_counter() - t0
     if task.get("cycle"):  # the whole cycle from nothing: its first position builds the model
         # as `fegear solve --positions` solves it: its second chain on a second core if any
-        from ..workers import second_core
-
         sols = solve_positions(case, cycle_positions(0.0, task["cycle"], p.z2), profile,
                                beside=second_core())
         cycle_s = time.perf_counter() - t0
@@ -97,7 +96,8 @@ def _child(task: dict) -> dict:
                  "cycle_later_s": {k: sum(s.timings_s.get(k, 0.0) for s in later) / len(later)
                                    for k in later[0].timings_s}}
         return _record(sols[0], t_profile, cycle_s, extra)
-    sol = solve_positions(case, (0.0,), profile)[0]
+    # as `fegear solve --no-estimate` solves it: part of its build on a second core if any
+    sol = solve_positions(case, (0.0,), profile, beside=second_core())[0]
     total = time.perf_counter() - t0
     extra = {}
     if task.get("estimate"):
