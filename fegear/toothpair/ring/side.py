@@ -157,26 +157,24 @@ class GearSide:
 
     def form_beside(self, theirs: np.ndarray, ours: np.ndarray) -> None:
         """Form the responses of the template dofs ``theirs`` in a forked copy of this process
-        (:class:`~fegear.workers.Forked`), with the field per unit cut displacement and the
-        stress projection's matrices, while this one goes on; those of ``ours`` are formed
-        here once a load needs one of ``theirs``, or the cut field, and then theirs are taken
-        in (:meth:`settle`): the same numbers as formed here, their time here what forming
-        ours and the wait took. Should the copy fail in any way, they are formed here as they
-        are needed."""
+        (:class:`~fegear.workers.Forked`) while this one goes on. Once a load needs one of
+        them, those of ``ours``, the field per unit cut displacement and the stress
+        projection's matrices are formed here, and then theirs taken in (:meth:`settle`): the
+        same numbers as formed here, their time here what that took and the wait. Should the
+        copy fail in any way, they are formed here as they are needed."""
         from ...workers import Forked
 
         def ahead():
             self._form(theirs)
-            return {"responses": self.responses(), "cut_field": self.cut_field,
-                    "projection": projection_matrices(self.body)}
+            return self.responses()
 
         self._beside = (Forked(ahead), os.getpid(), np.asarray(ours))
         self._awaited = np.zeros(self.body.ndofs, dtype=bool)
         self._awaited[theirs] = True
 
     def settle(self) -> None:
-        """Form the dofs :meth:`form_beside` left here, then take in what it formed beside
-        once that is there (nothing if it was not asked for or failed; in a forked copy of
+        """Form what :meth:`form_beside` left here, then take in what it formed beside once
+        that is there (nothing if it was not asked for or failed; in a forked copy of
         this process, nothing: not its to read)."""
         if self._beside is None:
             return
@@ -187,14 +185,13 @@ class GearSide:
         formed = self.response_s
         try:
             self._form(ours)
+            self._cut_field = self.cut_field    # formed here while the copy finishes …
+            projection_matrices(self.body)      # … with the projection's matrices
             got = helper.result()
         finally:
             helper.stop()
         if got is not None:
-            self._adopt(got["responses"])
-            if self._cut_field is None:
-                self._cut_field = got["cut_field"]
-            self.body.cache.setdefault("projector matrices", got["projection"])
+            self._adopt(got)
         self.response_s = formed + time.perf_counter() - t0
 
     def _adopt(self, parts: dict) -> None:
@@ -275,7 +272,6 @@ class GearSide:
     @property
     def cut_field(self) -> np.ndarray:
         """Template field (ndofs, 2 n_f) per unit cut displacement: interior by Ψ."""
-        self.settle()
         if self._cut_field is None:
             self._cut_field = self.body.from_cuts(np.eye(len(self.body.interface)))
         return self._cut_field
