@@ -10,7 +10,7 @@ from dataclasses import replace
 from ..geometry import Gear1Profile
 from .case import HEADLINE, PairSolution, SolveCase
 from .inputs import QUALITY
-from .pair import solve_pair
+from .pair import solve_pair, solve_positions
 
 GCI_FS = 3.0  # safety factor of the grid convergence index from two mesh levels (Roache)
 #: the least error (%) the ring model's estimate gives a headline stress: the scatter between
@@ -91,7 +91,9 @@ def _two_levels(sol: PairSolution, profile: Gear1Profile | None, solve: Callable
     return {key: r ** 2 * v * second[key] / own[key] for key, v in finer.items()}, other
 
 
-def second_headline(case: SolveCase) -> dict[str, float]:
+def second_headline(case: SolveCase, beside: bool = False) -> dict[str, float]:
     """The headline of ``case`` solved at its :func:`second_quality`: the estimate's second
-    solve, for a worker process (its profile built there)."""
-    return solve_pair(replace(case, quality=second_quality(case.quality))).headline()
+    solve, for a worker process (its profile built there); ``beside``: a second core is free
+    for part of it (:func:`~.pair.solve_positions`)."""
+    second = replace(case, quality=second_quality(case.quality))
+    return solve_positions(second, (second.beta,), beside=beside)[0].headline()

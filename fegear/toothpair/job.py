@@ -142,7 +142,8 @@ def solve_job(job: Job, beside: bool = False) -> Solved:
             def ahead(sols) -> None:   # a cycle's positions solved, not yet completed
                 nonlocal worker
                 worst = _pictured(sols)
-                worker = Forked(lambda: second_headline(worst.case))
+                # this process only completes the submodels meanwhile, then waits
+                worker = Forked(lambda: second_headline(worst.case, beside=True))
     try:
         progress.stage("gear 1's profile")
         profile = gear1_profile(job.case.params)
