@@ -12,7 +12,13 @@ LIBRARIES = ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pyvista", "matpl
 
 
 def library_versions(names=LIBRARIES) -> dict[str, str | None]:
-    """Installed version of each library (None if it is not installed)."""
+    """Installed version of each library (None if it is not installed), read once a process
+    (5 ms a time: a study's worker records them with every case)."""
+    return dict(_versions(tuple(names)))
+
+
+@functools.cache
+def _versions(names: tuple[str, ...]) -> dict[str, str | None]:
     out = {}
     for name in names:
         try:
