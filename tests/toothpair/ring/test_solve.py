@@ -640,3 +640,19 @@ def test_gear_1_s_responses_formed_beside_the_build_are_the_ones_formed_here(bas
     sol = solve_pair(case, model=model)
     for key, value in alone.headline().items():
         assert sol.headline()[key] == pytest.approx(value, rel=1e-9), key
+
+
+def test_gear_1_s_responses_are_formed_here_where_the_copy_beside_fails(baseline_ring,
+                                                                        monkeypatch):
+    from fegear.toothpair.ring import side as ring_side
+
+    case = replace(baseline_ring.case, torque=200.0)
+    monkeypatch.setattr(ring_side.GearSide, "responses", lambda self: 1 / 0)
+    model = build_ring(case, beside=True)     # the copy forked with the failing method …
+    monkeypatch.undo()                        # … which this process no longer has
+    sol = solve_pair(case, model=model)
+    side = model.gears[0]
+    assert side.formed == np.count_nonzero(side.responses()["column"] >= 0)   # none twice
+    alone = solve_pair(case, model=baseline_ring)
+    for key, value in alone.headline().items():
+        assert sol.headline()[key] == pytest.approx(value, rel=1e-9), key
