@@ -52,7 +52,7 @@ class RoundedProfile:
         self.tooth_center = profile.tooth_center
         self.kinks = tuple(k for k in (self._kink(pc.phi0) for pc in profile.pieces[1:]) if k)
         try:
-            self.fillets = self._fillets() if self.radius_mm > 0 else ()
+            self.fillets = _fillets_of(profile, self.radius_mm) if self.radius_mm > 0 else ()
         except _NoFit:
             largest = largest_round(profile, self.radius_mm)
             raise ParameterError("tip-round", radius, f"0 <= tip-round <= "
@@ -206,14 +206,22 @@ class _NoFit(Exception):
 
 def fits(profile: Gear1Profile, radius: float) -> bool:
     """Whether a round of ``radius`` (mm) fits every tip edge of ``profile``."""
-    shape = RoundedProfile.__new__(RoundedProfile)
-    shape.profile, shape.radius_mm, shape.pitch = profile, float(radius), profile.pitch
-    shape.kinks = tuple(k for k in (shape._kink(pc.phi0) for pc in profile.pieces[1:]) if k)
     try:
-        shape._fillets()
+        _fillets_of(profile, float(radius))
     except _NoFit:
         return False
     return True
+
+
+@lru_cache(maxsize=64)
+def _fillets_of(profile: Gear1Profile, radius: float) -> tuple[Fillet, ...]:
+    """The rounds of radius ``radius`` (mm) on ``profile``'s tip edges (raises ``_NoFit``),
+    kept for the last few: a solve's checks ask whether the default round fits, and its model
+    then rounds the same edges (18 ms at the baseline)."""
+    shape = RoundedProfile.__new__(RoundedProfile)
+    shape.profile, shape.radius_mm, shape.pitch = profile, radius, profile.pitch
+    shape.kinks = tuple(k for k in (shape._kink(pc.phi0) for pc in profile.pieces[1:]) if k)
+    return shape._fillets()
 
 
 def largest_round(profile: Gear1Profile, upper: float) -> float:
