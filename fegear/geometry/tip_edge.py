@@ -242,7 +242,8 @@ def default_round(profile: Gear1Profile, nominal: float) -> float:
     """The tip round a solve takes when none is given: ``nominal`` (mm), or half the largest
     round that fits where ``nominal`` does not (docs/cli.md). Kept for the last few profiles
     (:func:`~.gear1.gear1_profile` keeps them): a study's cases of one pair at other torques
-    each ask (21 ms of a 0.3 s `coarse` solve)."""
+    each ask, and where ``nominal`` does not fit, the answer is a bisection of fillets (the
+    fillets of a round that fits are kept anyway: :func:`_fillets_of`)."""
     if fits(profile, nominal):
         return nominal
     return 0.5 * largest_round(profile, nominal)

@@ -50,6 +50,18 @@ class LoadBlock:
         return f
 
 
+@dataclass(frozen=True)
+class _Beside:
+    """Responses formed in a forked ``copy`` (:class:`~fegear.workers.Forked`) of the process
+    ``owner`` (its pid): the dofs left to that process (``ours``) and a mask over the template
+    dofs of those the copy forms (:meth:`GearSide.form_beside`)."""
+
+    copy: object
+    owner: int
+    ours: np.ndarray
+    awaited: np.ndarray
+
+
 @dataclass(eq=False)
 class GearSide:
     """A gear of the ring: ``body`` (the cyclic template) and its ``template``; ``count``
@@ -67,9 +79,7 @@ class GearSide:
     _rho: np.ndarray = field(init=False, repr=False)        # cut loads, by column
     _used: int = 0
     _cut_field: np.ndarray | None = field(default=None, repr=False)
-    _beside: tuple | None = field(default=None, repr=False)    # forming some ahead: the
-                                                            # Forked, its parent, our share …
-    _awaited: np.ndarray | None = field(default=None, repr=False)   # … and its dofs (mask)
+    _beside: _Beside | None = field(default=None, repr=False)  # responses formed ahead
 
     def __post_init__(self) -> None:
         m = self.body.mesh
@@ -168,9 +178,9 @@ class GearSide:
             self._form(theirs)
             return self.responses()
 
-        self._beside = (Forked(ahead), os.getpid(), np.asarray(ours))
-        self._awaited = np.zeros(self.body.ndofs, dtype=bool)
-        self._awaited[theirs] = True
+        awaited = np.zeros(self.body.ndofs, dtype=bool)
+        awaited[theirs] = True
+        self._beside = _Beside(Forked(ahead), os.getpid(), np.asarray(ours), awaited)
 
     def settle(self) -> None:
         """Form what :meth:`form_beside` left here, then take in what it formed beside once
@@ -178,18 +188,18 @@ class GearSide:
         this process, nothing: not its to read)."""
         if self._beside is None:
             return
-        (helper, owner, ours), self._beside = self._beside, None
-        if os.getpid() != owner:
+        beside, self._beside = self._beside, None
+        if os.getpid() != beside.owner:
             return
         t0 = time.perf_counter()
         formed = self.response_s
         try:
-            self._form(ours)
+            self._form(beside.ours)
             self._cut_field = self.cut_field    # formed here while the copy finishes …
             projection_matrices(self.body)      # … with the projection's matrices
-            got = helper.result()
+            got = beside.copy.result()
         finally:
-            helper.stop()
+            beside.copy.stop()
         if got is not None:
             self._adopt(got)
         self.response_s = formed + time.perf_counter() - t0
@@ -210,7 +220,7 @@ class GearSide:
     def _form(self, dofs: np.ndarray) -> np.ndarray:
         """Response columns of template ``dofs``, forming those not formed yet."""
         new = np.unique(dofs[self._column[dofs] < 0])
-        if self._beside is not None and self._awaited[new].any():
+        if self._beside is not None and self._beside.awaited[new].any():
             self.settle()
             new = np.unique(dofs[self._column[dofs] < 0])
         if len(new):
