@@ -300,6 +300,17 @@ class Gear1Profile:
                 x -= 2 * np.pi * np.round((x - p0) / (2 * np.pi))
                 if p0 <= x <= p1:
                     ends.append(x)
+        # … unless both runs reach past that end and still cross beyond it: where the new run
+        # starts above the old one (a branch leaving a fold), the two meet at a crossing
+        # after its start, not at the start itself
+        inset = 1e-9 * (p1 - p0)
+        for end in ends:
+            after, before = end + inset, end - inset
+            f_after, f_before = diff(after), diff(before)
+            if np.isfinite(f_after) and np.isfinite(f1) and f_after * f1 < 0:
+                return self._crossing(ra, la[1], rb, lb[1], after, p1, f_after, f1)
+            if np.isfinite(f_before) and np.isfinite(f0) and f0 * f_before < 0:
+                return self._crossing(ra, la[1], rb, lb[1], p0, before, f0, f_before)
         if ends and max(ends) - min(ends) <= 1e-12:
             return float(min(ends))
         a, b = p0, p1
