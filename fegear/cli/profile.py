@@ -74,7 +74,7 @@ def _profile_table(geo) -> str:
     rows.sort(key=lambda t: t.position_deg)
 
     def f(v):
-        return "   none" if v is None else f"{v:8.3f}"
+        return "   none" if v is None else f"{v:z8.3f}"
 
     lines = [f"gear 1 tip radius {geo.tip_radius:.6f} mm, root radius {geo.root_radius:.6f} mm"]
     for side, c in zip(("first", "second"), geo.relief_chart):
@@ -90,7 +90,8 @@ def _profile_table(geo) -> str:
                      f"{f(t.minus_um)} |")
     if geo.backlash is not None:
         b = geo.backlash
-        lines += ["", f"backlash over one mesh cycle: + {b.plus_um:.3f} µm, − {b.minus_um:.3f} µm"]
+        lines += ["", f"backlash over one mesh cycle: + {b.plus_um:z.3f} µm, "
+                      f"− {b.minus_um:z.3f} µm"]
     if geo.contact.interference:
         worst = max(geo.contact.interference, key=lambda i: i.depth_um)
         lines += [f"INTERFERENCE: {len(geo.contact.interference)} teeth, worst tooth "

@@ -18,9 +18,8 @@ import numpy as np
 
 from ..errors import ParameterError
 from .admissible import (
-    CLEARANCE,
     _built,
-    clearance,
+    clearance_margin,
     curves_defect,
     defect,
     profile_defect,
@@ -61,17 +60,16 @@ SEARCHED = ("h1", "f1", "rotation", "shift", "tip-clearance", "relief", "relief-
 #: values of each input to start the search from, tried first (then a grid over its span)
 ANCHORS = {"h1": (0.3, 0.2, 0.1, 0.5), "f1": (0.15, 0.1, 0.0, 0.3), "relief": (0.0,),
            "rotation": (0.0,), "tip-clearance": (0.016,), "shift": (0.016,)}
-RESOLUTION = 2e-4       # an input's interval is found to this fraction of its span, and
-CHECKS = 2              # checked at this many designs inside it
+CHECKS = 2              # an input's interval is checked at this many designs inside it
 
 
 _MARGINS: dict[tuple, float] = {}   # margin of each design asked for, in this process
 
 
 def margin(values: Mapping[str, object]) -> float:
-    """How far the design given by input values is inside the admissible set: its least
-    clearance before any load less :data:`CLEARANCE` (mm, continuous in the modifications),
-    or ``-inf`` for any other defect. Kept for the designs asked for before (a refusal's
+    """How far the design given by input values is inside the admissible set: its
+    :func:`~.admissible.clearance_margin` (mm, continuous in the modifications), or ``-inf``
+    for any other defect. Kept for the designs asked for before (a refusal's
     searches ask for many, and several refusals of one design for the same)."""
     key = tuple(sorted((k, v) for k, v in values.items() if v is not None))
     if key not in _MARGINS:
@@ -91,7 +89,7 @@ def _margin(values: Mapping[str, object]) -> float:
     g = _built(p)
     if g is None or profile_defect(g) is not None:
         return -math.inf
-    return clearance(g) - CLEARANCE
+    return clearance_margin(g)
 
 
 def _curves_ok(values: Mapping[str, object]) -> bool:
@@ -109,11 +107,12 @@ def _curves_ok(values: Mapping[str, object]) -> bool:
     return curves_defect(p) is None
 
 
-def _edge(f, good: float, bad: float, tol: float) -> float:
-    """The last admissible value from ``good`` (f >= 0) towards ``bad`` (f < 0), to ``tol``:
-    regula falsi with the Illinois step where both ends have finite margins (the clearance
-    is smooth in the modifications), a bisection elsewhere and after any step that did not
-    halve the bracket (a margin can jump where a default's rule starts)."""
+def _edge(f, good: float, bad: float, tol: float) -> tuple[float, float]:
+    """The last admissible value from ``good`` (f >= 0) towards ``bad`` (f < 0), to ``tol``,
+    and the first refused value past it: regula falsi with the Illinois step where both ends
+    have finite margins (the clearance is smooth in the modifications), a bisection elsewhere
+    and after any step that did not halve the bracket (a margin can jump where a default's
+    rule starts)."""
     fg, fb = f(good), f(bad)
     side, width = 0, abs(bad - good)
     for _ in range(BISECT):
@@ -132,30 +131,40 @@ def _edge(f, good: float, bad: float, tol: float) -> float:
             if side == +1 and math.isfinite(fb):
                 fb *= 0.5       # Illinois: the end kept twice has its value halved
             side = +1
-            if fx < 1e-2 * CLEARANCE:   # on the boundary, on its admissible side
-                break
         else:
             bad, fb = x, fx
             if side == -1 and math.isfinite(fg):
                 fg *= 0.5
             side = -1
-    return good
+    return good, bad
 
 
-def interval(values: Mapping[str, object], name: str, resolution: float = RESOLUTION,
-             checks: int = CHECKS) -> tuple[float, float] | None:
+def _snapped(ok, good: float, bad: float, step: float) -> float:
+    """The last value of the grid of ``step`` from ``good`` towards ``bad`` that is admissible
+    (``ok``): the edge as it is printed, decided by the designs on the grid themselves, so
+    that every search that brackets the edge to less than a step prints the same digits."""
+    toward = 1.0 if bad > good else -1.0
+    edge = (math.floor if toward > 0 else math.ceil)(good / step + 1e-9 * toward) * step
+    while toward * (edge + toward * step - bad) < 0 and ok(edge + toward * step):
+        edge += toward * step
+    return edge
+
+
+def interval(values: Mapping[str, object], name: str, checks: int = CHECKS
+             ) -> tuple[float, float] | None:
     """The interval of input ``name``, at the other inputs' values, in which the design is
-    admissible, nearest the value given (``None`` if there is none in the input's span). From
-    an admissible value, each end is found towards the given value (a known bad one) or the
-    span's end: first with the cheap test alone, then with the whole one from where that
-    stopped (the admissible values of one input are taken to be one interval, as every test
-    and the sweeps of docs/geometry.md find them), to ``resolution`` of the span, and checked
-    at ``checks`` designs inside."""
+    admissible, nearest the value given (``None`` if there is none in the input's span), with
+    its ends as they are printed (:func:`_snapped`, :func:`step_of`). From an admissible value,
+    each end is found towards the given value (a known bad one) or the span's end: first with
+    the cheap test alone, then with the whole one from where that stopped (the admissible
+    values of one input are one interval, as the sweeps of docs/geometry.md and the map's test
+    find them), to the printed step, and checked at ``checks`` designs inside."""
     span = _span(name, values)
     if span is None:
         return None
     lo, hi = span
-    tol = resolution * (hi - lo)
+    step = step_of(name)
+    tol = step
     memo: dict[float, float] = {}
 
     def full(x: float) -> float:
@@ -169,6 +178,15 @@ def interval(values: Mapping[str, object], name: str, resolution: float = RESOLU
     def ok(x: float) -> bool:
         return cheap(x) >= 0 and full(x) >= 0
 
+    def edge_towards(end: float) -> float:
+        if cheap(end) >= 0:
+            good, bad = end, end
+        else:
+            good, bad = _edge(cheap, anchor, end, tol)
+        if full(good) < 0:
+            good, bad = _edge(full, anchor, good, tol)
+        return _snapped(ok, good, bad, step)
+
     given = values.get(name)
     target = float(given) if isinstance(given, (int, float)) else None
     grid = sorted(np.linspace(lo, hi, 9), key=lambda a: abs(a - (target or 0.0)))
@@ -181,32 +199,38 @@ def interval(values: Mapping[str, object], name: str, resolution: float = RESOLU
     for end in (lo, hi):
         if target is not None and min(anchor, end) <= target <= max(anchor, end) and \
                 not ok(target):
-            end = target            # the given value is refused: the edge lies before it
-        elif ok(end):
-            ends.append(end)
-            continue
-        edge = end if cheap(end) >= 0 else _edge(cheap, anchor, end, tol)
-        ends.append(edge if full(edge) >= 0 else _edge(full, anchor, edge, tol))
+            ends.append(edge_towards(target))   # the given value is refused: the edge
+        elif ok(end):                            # lies before it
+            inward = math.ceil if end == lo else math.floor
+            ends.append(inward(end / step - 1e-9 * (1 if end == lo else -1)) * step)
+        else:
+            ends.append(edge_towards(end))
     # the interval is checked at a few designs inside it; one that is refused (a pocket the
     # search stepped over) shortens it to the edge before that design
     for x in np.linspace(ends[0], ends[1], checks + 2)[1:-1]:
         if ends[0] < x < ends[1] and not ok(x):
-            side = 0 if x < anchor else 1
-            ends[side] = _edge(full, anchor, x, tol)
+            ends[0 if x < anchor else 1] = edge_towards(x)
     return ends[0], ends[1]
 
 
+def step_of(name: str) -> float:
+    """The step an interval of input ``name`` is printed to: 1e-4 of a coefficient, 10 nm of
+    a modification that sets a clearance (shift, rotation, tip clearance, relief) and 0.1 µm
+    of a length along the flank (the relief's extent or start)."""
+    return _STEPS.get(name, 1e-4)
+
+
+_UNITS = {"shift": " mm", "rotation": " mm", "tip-clearance": " mm", "relief": " µm",
+          "relief-extent": " mm", "relief-start": " mm"}
+_STEPS = {"shift": 1e-5, "rotation": 1e-5, "tip-clearance": 1e-5, "relief": 1e-2}
+
+
 def _range_text(name: str, bounds: tuple[float, float], values: Mapping[str, object]) -> str:
-    """``lo <= name <= hi unit``, rounded inwards so that both ends hold."""
-    unit = {"shift": " mm", "rotation": " mm", "tip-clearance": " mm", "relief": " µm",
-            "relief-extent": " mm", "relief-start": " mm"}.get(name, "")
+    """``lo <= name <= hi unit``, the ends as :func:`interval` found them on the printed
+    step."""
+    digits = round(-math.log10(step_of(name)))
     lo, hi = bounds
-    digits = 4 if unit in ("", " µm") else 5
-    scale = 10.0 ** digits
-    lo_t = math.ceil(lo * scale - 1e-9) / scale
-    hi_t = math.floor(hi * scale + 1e-9) / scale
-    fmt = f"{{:.{digits}f}}"
-    return f"{fmt.format(lo_t)} <= {name} <= {fmt.format(hi_t)}{unit}"
+    return f"{lo:.{digits}f} <= {name} <= {hi:.{digits}f}{_UNITS.get(name, '')}"
 
 
 def _others(values: Mapping[str, object], name: str) -> str:
@@ -243,9 +267,9 @@ def check_design(values: Mapping[str, object], given: Iterable[str] | None = Non
     given = set(values if given is None else given)
     candidates = [f for f in found.fixes if f in given] or list(found.fixes)
     ranges = {}
-    for name in found.fixes:   # the alternatives only roughly (the printed digits hold)
-        bounds = interval(values, name) if name in candidates[:1] or found.kind in (
-            "undercut", "no conjugate") else interval(values, name, 10 * RESOLUTION, 0)
+    for name in found.fixes:   # the alternatives unchecked inside (their edges are exact)
+        bounds = interval(values, name, CHECKS if name in candidates[:1] or found.kind in (
+            "undercut", "no conjugate") else 0)
         if bounds is not None:
             ranges[name] = bounds
     usable = [c for c in candidates if c in ranges]

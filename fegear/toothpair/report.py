@@ -171,7 +171,7 @@ def pair_table(summary: dict, beside: bool = False) -> str:
         ref = t.get("halfplane_flank_MPa")
         ref = f"{ref:6.0f}" if ref else "     -"
         coarse = " " if t.get("resolved", True) else "u"
-        lines.append(f"| {t['tooth']:5d} | {t['clearance_um']:8.2f} | {t['load_N']:6.0f} | "
+        lines.append(f"| {t['tooth']:5d} | {t['clearance_um']:z8.2f} | {t['load_N']:6.0f} | "
                      f"{t['load_share']:.3f} | {t['p_max_MPa']:8.1f}{edge} | "
                      f"{t['flank_pressure_MPa']:7.1f} | {ref} | {p_edge} | {n_edge} | "
                      f"{t['half_width_mm']:.3f}{coarse} "

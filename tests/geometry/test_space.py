@@ -2,14 +2,16 @@
 ones refusals state."""
 
 import doctest
+import re
 
+import numpy as np
 import pytest
 
 import fegear.geometry.space as space
 from fegear.cli import main
 from fegear.errors import ParameterError
 from fegear.geometry.admissible import design_defect
-from fegear.geometry.refusal import check_design
+from fegear.geometry.refusal import check_design, step_of
 
 
 def test_the_module_example():
@@ -18,14 +20,39 @@ def test_the_module_example():
     assert all(doctest.DocTestRunner().run(t).failed == 0 for t in tests)
 
 
-def test_a_row_is_what_the_check_and_a_refusal_say():
-    row = space.map_row({}, "h1", "f1", 0.3, [0.2, 0.5])
-    assert row.kinds == ("", "loop")
-    assert design_defect({"h1": 0.2, "f1": 0.3}) is None
-    with pytest.raises(ParameterError) as exc:
-        check_design({"h1": 0.5, "f1": 0.3}, given={"h1"})
-    stated = float(exc.value.admissible.split("<= h1 <=")[1].split()[0])
-    assert row.upper == pytest.approx(stated, abs=5e-4) and row.upper_reason == "loop"
+def _stated(err: ParameterError) -> tuple[float, float]:
+    m = re.match(rf"(-?[\d.]+) <= {err.name} <= (-?[\d.]+)", err.admissible)
+    assert m, err.admissible
+    return float(m.group(1)), float(m.group(2))
+
+
+@pytest.mark.parametrize("x, y, y_value", [
+    ("h1", "f1", 0.15), ("h1", "f1", 0.6), ("h1", "f1", 0.45), ("f1", "h1", 0.3)])
+def test_a_map_row_and_the_refusals_give_one_answer(x, y, y_value):
+    """Along a row of the map every grid design inside the row's interval is admissible and
+    every one outside refused; both ends are admissible and a printed step past an end that
+    is not the span's is refused; and refusing a design past the interval states the row's
+    interval to the digit, from a value just past it and from one far off (at f1 0.6 the map
+    once showed h1 0.05-0.2081 while bands inside it were refused, and the same edge was
+    printed 0.8308, 0.8309 and 0.8310)."""
+    span = space.map_span(x, {})
+    xs = np.linspace(*span, 20)
+    row = space.map_row({}, x, y, y_value, xs)
+    for xv, kind in zip(xs, row.kinds):
+        assert (kind == "") == (row.lower <= xv <= row.upper), (xv, kind)
+    step = step_of(x)
+    at = {y: y_value}
+    for end, past, reason in ((row.lower, row.lower - step, row.lower_reason),
+                              (row.upper, row.upper + step, row.upper_reason)):
+        assert design_defect({**at, x: end}) is None
+        if reason is not None:
+            assert design_defect({**at, x: past}).kind == reason
+    refused = [row.upper + step, *[xv for xv in xs if xv > row.upper][-1:]]
+    for xv in refused:
+        with pytest.raises(ParameterError) as exc:
+            check_design({**at, x: float(xv)}, given={x})
+        assert exc.value.name == x
+        assert _stated(exc.value) == (round(row.lower, 4), round(row.upper, 4)), xv
 
 
 def test_profile_map_writes_the_picture_and_its_tables(tmp_path, capsys):

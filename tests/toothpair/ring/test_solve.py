@@ -656,3 +656,20 @@ def test_gear_1_s_responses_are_formed_here_where_the_copy_beside_fails(baseline
     alone = solve_pair(case, model=baseline_ring)
     for key, value in alone.headline().items():
         assert sol.headline()[key] == pytest.approx(value, rel=1e-9), key
+
+
+def test_the_exact_conjugate_loads_its_line_of_action():
+    """The textbook pair (no shift, no rotation, no tip clearance) is admitted and solves: its
+    flanks touch before any load on every tooth of the line of action (near the pitch point
+    and, by the far-side branch, the tips of the teeth across the gear), and under load each
+    touching tooth carries a share (it was refused for a rounding overlap of 7e-12 µm)."""
+    import fegear
+
+    r = fegear.solve(shift=0.0, rotation=0.0, tip_clearance=0.0, quality="coarse",
+                     no_estimate=True)
+    teeth = r.teeth
+    touching = set(teeth.index[teeth.clearance_um.abs() < 0.01])
+    loaded = set(teeth.index[teeth.load_N > 0])
+    assert len(touching) >= 8 and touching <= loaded
+    assert teeth.load_share.sum() == pytest.approx(1.0, abs=1e-9)
+    assert r.summary["torque_balance_error"] < 1e-9
