@@ -279,3 +279,29 @@ def test_the_legends_of_root_stress_and_cycle_cover_no_data(cycle, solved, summa
     for ax in fig.axes:
         assert legend_cover(ax, ax.get_legend()) == 0
 
+
+def test_the_zoom_window_on_pair_png_cuts_no_tooth_number(baseline, plt):
+    """Its dashed outline passes between the overview's numbers (it cut "13"), and the
+    legend covers no gear."""
+    from fegear.geometry import build_geometry
+    from fegear.geometry.plot import pair_figure
+    from fegear.placement import legend_cover
+
+    geo = build_geometry(baseline, backlash_positions=None)
+    fig = pair_figure(geo.gear1, geo.gear2, baseline.e, baseline.r0, "pair",
+                      6.5 * baseline.m, teeth=[(t.tooth, t.position_deg)
+                                               for t in geo.contact.teeth],
+                      tip_radius=geo.tip_radius)
+    overview = fig.axes[0]
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    window, = [p for p in overview.patches if not p.get_fill()]
+    x0, y0, x1, y1 = window.get_window_extent(renderer).extents
+    for t in overview.texts:
+        b = t.get_window_extent(renderer)
+        inside = x0 < b.x0 and b.x1 < x1 and y0 < b.y0 and b.y1 < y1
+        outside = b.x1 < x0 or b.x0 > x1 or b.y1 < y0 or b.y0 > y1
+        assert inside or outside, t.get_text()
+    legend = overview.get_legend()
+    assert (legend_cover(overview, legend) == 0
+            or legend.get_window_extent(renderer).x0 > overview.get_window_extent(renderer).x1)
