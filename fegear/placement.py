@@ -22,7 +22,8 @@ import numpy as np
 FAULT = 1e6
 #: a leader through a marker or a text: drawn over it, better avoided
 GRAZE = 1e4
-#: a covered sample of a drawn line (sampled every SAMPLE_PX), and the whole box over data
+#: a sample of a drawn line (every SAMPLE_PX) under a box or a leader, and a box wholly
+#: over the data
 LINE_COST, DATA_COST = 300.0, 3000.0
 #: a label in the direction opposite to the one it prefers costs as much as this many px
 #: further away
@@ -30,28 +31,32 @@ PREFER_COST = 60.0
 #: pixels between the samples of a line, the cells of the data grid, a box's clear margin
 SAMPLE_PX, CELL_PX, MARGIN_PX = 3.0, 5.0, 3.0
 #: gaps (px) between a point and its label's nearest edge tried, and the directions
-GAPS_PX = (14.0, 28.0, 48.0, 75.0, 110.0, 160.0)
+GAPS_PX = (14.0, 28.0, 48.0, 75.0, 110.0, 160.0, 230.0)
 DIRECTIONS = 24
 
 
 @dataclass(frozen=True)
 class Callout:
     """A label of a point: its text, the point (data coordinates), the direction it would
-    rather sit in from it (data coordinates; None: any) and matplotlib's ``annotate``
-    keywords (font, box, leader)."""
+    rather sit in from it (data coordinates; None: any), matplotlib's ``annotate`` keywords
+    (font, box, leader) and the points of what it names that it should lie over ((n, 2),
+    data coordinates; None: anywhere), for a name written on a body."""
 
     text: str
     anchor: tuple[float, float]
     prefer: tuple[float, float] | None = None
     style: Mapping = field(default_factory=dict)
+    on: np.ndarray | None = field(default=None, repr=False)
 
 
 def place_callouts(ax, callouts: Sequence[Callout], data: np.ndarray | None = None) -> list:
     """Annotate ``ax`` with ``callouts``, each box where it covers none of the markers, texts
     and other boxes, its leader crossing no other, and the least of the drawn lines and of
     ``data`` ((n, 2) points, data coordinates: what the boxes should leave in view, such as a
-    field's high values). Call it once the axes' limits and place are final. Returns the
-    annotations, in the order of ``callouts``; their gid is "callout"."""
+    field's high values). A callout without ``arrowprops`` has no leader: it is placed over
+    its point or near it (a name written on what it names). Call it once the axes' limits
+    and place are final. Returns the annotations, in the order of ``callouts``; their gid is
+    "callout"."""
     _settle(ax)
     renderer = ax.figure.canvas.get_renderer()
     frame = _box_of(ax.get_window_extent(renderer))
@@ -68,22 +73,56 @@ def place_callouts(ax, callouts: Sequence[Callout], data: np.ndarray | None = No
         box = _box_of((patch if patch is not None else note).get_window_extent(renderer))
         sizes.append((box[2] - box[0], box[3] - box[1]))
         notes.append(note)
-    prefer = [_direction(ax, c) for c in callouts]
-    placed: list = [None] * len(callouts)      # (box, leader) of each label placed so far
-    for _ in range(4):
-        moved = False
-        for i in range(len(callouts)):
-            others = [p for j, p in enumerate(placed) if j != i and p is not None]
-            rest = np.delete(anchors, i, axis=0)
-            best = _best(anchors[i], sizes[i], prefer[i], others, rest, scene, frame)
-            moved |= placed[i] is None or not np.allclose(best[0], placed[i][0])
-            placed[i] = best
-        if not moved:
+    labels = [_Label(a, size, _direction(ax, c), bool(c.style.get("arrowprops")),
+                     None if c.on is None or not len(c.on) else
+                     _Cells.of(to_px(np.asarray(c.on, dtype=float)), frame, 2))
+              for c, a, size in zip(callouts, anchors, sizes)]
+    placed, cost = _arrange(labels, range(len(labels)), scene, frame)
+    last = cost
+    for _ in range(3):      # the labels a round left with a fault placed first, the next
+        faulty = [i for i, c in enumerate(last) if c >= FAULT]
+        if not faulty:
             break
+        again, last = _arrange(labels, faulty + [i for i in range(len(labels))
+                                                 if i not in faulty], scene, frame)
+        if sum(last) < sum(cost):
+            placed, cost = again, last
     to_data = ax.transData.inverted().transform
     for note, (box, _) in zip(notes, placed):
         note.xyann = tuple(to_data([(box[0] + box[2]) / 2, (box[1] + box[3]) / 2]))
     return notes
+
+
+@dataclass(frozen=True)
+class _Label:
+    """A callout in pixels: its point, its box's size, the direction it would rather take
+    (a unit vector, or None), whether it has a leader and the cells it should lie over."""
+
+    anchor: np.ndarray
+    size: tuple[float, float]
+    prefer: np.ndarray | None
+    leader: bool
+    on: _Cells | None
+
+
+def _arrange(labels: list[_Label], order, scene, frame):
+    """Each label placed in ``order`` among those placed before, then again among all the
+    others until none moves (at most four rounds): the (box, leader) of each and its cost."""
+    placed: list = [None] * len(labels)
+    cost = [0.0] * len(labels)
+    for _ in range(4):
+        moved = False
+        for i in order:
+            others = [p for j, p in enumerate(placed) if j != i and p is not None]
+            # a label without a leader sits on its point: the others may cover that point
+            rest = np.array([labels[j].anchor for j in range(len(labels))
+                             if j != i and labels[j].leader]).reshape(-1, 2)
+            box, line, cost[i] = _best(labels[i], others, rest, scene, frame)
+            moved |= placed[i] is None or not np.allclose(box, placed[i][0])
+            placed[i] = (box, line)
+        if not moved:
+            break
+    return placed, cost
 
 
 LEGEND_PLACES = ("upper right", "upper left", "lower right", "lower left", "center right",
@@ -215,83 +254,139 @@ def _cover(drawn: _Drawn, boxes: np.ndarray) -> np.ndarray:
 
 
 @dataclass(frozen=True)
+class _Cells:
+    """Where a set of points lies, as cells of CELL_PX over a frame (px): a summed-area
+    table, so that the share of a box's cells that hold a point is four look-ups."""
+
+    table: np.ndarray
+    frame: np.ndarray
+
+    @classmethod
+    def of(cls, xy: np.ndarray, frame, dilation: int) -> _Cells:
+        """``xy`` (px) binned, each filled cell grown by ``dilation`` cells: a coarse mesh
+        leaves empty cells between its nodes."""
+        nx = int(np.ceil((frame[2] - frame[0]) / CELL_PX))
+        ny = int(np.ceil((frame[3] - frame[1]) / CELL_PX))
+        counts, _, _ = np.histogram2d(xy[:, 0], xy[:, 1], bins=(nx, ny),
+                                      range=((frame[0], frame[0] + nx * CELL_PX),
+                                             (frame[1], frame[1] + ny * CELL_PX)))
+        full = counts > 0
+        for _ in range(dilation):
+            full[1:] |= full[:-1].copy()
+            full[:-1] |= full[1:].copy()
+            full[:, 1:] |= full[:, :-1].copy()
+            full[:, :-1] |= full[:, 1:].copy()
+        table = np.zeros((nx + 1, ny + 1))
+        table[1:, 1:] = full.cumsum(axis=0).cumsum(axis=1)
+        return cls(table, np.asarray(frame, dtype=float))
+
+    def share(self, boxes: np.ndarray) -> np.ndarray:
+        """The share of each box's cells that hold a point."""
+        nx, ny = self.table.shape[0] - 1, self.table.shape[1] - 1
+        f = self.frame
+        i0 = np.clip(((boxes[:, 0] - f[0]) / CELL_PX).astype(int), 0, nx)
+        i1 = np.clip(np.ceil((boxes[:, 2] - f[0]) / CELL_PX).astype(int), 0, nx)
+        j0 = np.clip(((boxes[:, 1] - f[1]) / CELL_PX).astype(int), 0, ny)
+        j1 = np.clip(np.ceil((boxes[:, 3] - f[1]) / CELL_PX).astype(int), 0, ny)
+        t = self.table
+        full = t[i1, j1] - t[i0, j1] - t[i1, j0] + t[i0, j0]
+        return full / np.maximum((i1 - i0) * (j1 - j0), 1)
+
+
+@dataclass(frozen=True)
 class _Scene:
     """What a label must not cover or cross, and the data it should rather leave in view, in
-    display pixels: markers (x, y, r), text boxes, line samples and a grid of the data."""
+    display pixels: markers (x, y, r), text boxes, line samples and the data's cells."""
 
     markers: np.ndarray
     texts: np.ndarray
     samples: np.ndarray
-    grid: np.ndarray | None      # summed-area table of the data cells over the frame
+    data: _Cells | None
 
     @classmethod
     def of(cls, ax, renderer, frame, data) -> _Scene:
         drawn = _Drawn.of(ax, renderer)
-        grid = None
-        if data is not None and len(data):
-            xy = ax.transData.transform(np.asarray(data, dtype=float))
-            nx = int(np.ceil((frame[2] - frame[0]) / CELL_PX))
-            ny = int(np.ceil((frame[3] - frame[1]) / CELL_PX))
-            counts, _, _ = np.histogram2d(xy[:, 0], xy[:, 1], bins=(nx, ny),
-                                          range=((frame[0], frame[0] + nx * CELL_PX),
-                                                 (frame[1], frame[1] + ny * CELL_PX)))
-            hot = counts > 0
-            hot[1:] |= hot[:-1].copy()          # one cell of dilation: coarse meshes leave
-            hot[:, 1:] |= hot[:, :-1].copy()    # empty cells between their nodes
-            grid = np.zeros((nx + 1, ny + 1))
-            grid[1:, 1:] = hot.cumsum(axis=0).cumsum(axis=1)
-        return cls(drawn.markers, drawn.texts, drawn.samples, grid)
-
-    def data_share(self, boxes: np.ndarray, frame) -> np.ndarray:
-        """The share of each box's cells that hold data (0 without data)."""
-        if self.grid is None:
-            return np.zeros(len(boxes))
-        nx, ny = self.grid.shape[0] - 1, self.grid.shape[1] - 1
-        i0 = np.clip(((boxes[:, 0] - frame[0]) / CELL_PX).astype(int), 0, nx)
-        i1 = np.clip(np.ceil((boxes[:, 2] - frame[0]) / CELL_PX).astype(int), 0, nx)
-        j0 = np.clip(((boxes[:, 1] - frame[1]) / CELL_PX).astype(int), 0, ny)
-        j1 = np.clip(np.ceil((boxes[:, 3] - frame[1]) / CELL_PX).astype(int), 0, ny)
-        g = self.grid
-        hot = g[i1, j1] - g[i0, j1] - g[i1, j0] + g[i0, j0]
-        return hot / np.maximum((i1 - i0) * (j1 - j0), 1)
+        cells = (_Cells.of(ax.transData.transform(np.asarray(data, dtype=float)), frame, 1)
+                 if data is not None and len(data) else None)
+        return cls(drawn.markers, drawn.texts, drawn.samples, cells)
 
 
-def _best(anchor, size, prefer, placed, others, scene: _Scene, frame):
-    """The (box, leader) of the candidate of least cost for a label of ``size`` at
-    ``anchor`` among the ``placed`` labels and the ``others``' anchors."""
+def _candidates(anchor, size, prefer, leader: bool):
+    """Boxes (k, 4) a label of ``size`` may take about ``anchor``, where each one's leader
+    leaves it (None for a label without one) and the cost of its distance and direction.
+    With a leader: a ring of directions at each of GAPS_PX; without: the label over its point
+    or shifted a little from it."""
     w, h = size
-    angles = np.linspace(0.0, 2 * np.pi, DIRECTIONS, endpoint=False)
-    u = np.column_stack([np.cos(angles), np.sin(angles)])
-    reach = np.abs(u[:, 0]) * w / 2 + np.abs(u[:, 1]) * h / 2
-    gaps = np.array(GAPS_PX)
-    centres = (anchor[None, None, :] + u[:, None, :] * (gaps[None, :, None]
-                                                        + reach[:, None, None])).reshape(-1, 2)
-    steps = np.repeat(u, len(gaps), axis=0)
+    if leader:
+        angles = np.linspace(0.0, 2 * np.pi, DIRECTIONS, endpoint=False)
+        u = np.column_stack([np.cos(angles), np.sin(angles)])
+        reach = np.abs(u[:, 0]) * w / 2 + np.abs(u[:, 1]) * h / 2
+        gaps = np.array(GAPS_PX)
+        centres = (anchor + u[:, None, :] * (gaps[None, :, None]
+                                             + reach[:, None, None])).reshape(-1, 2)
+        steps = np.repeat(u, len(gaps), axis=0)
+        exits = centres - steps * np.repeat(reach, len(gaps))[:, None]
+        cost = np.tile(gaps, DIRECTIONS) + (0.0 if prefer is None
+                                            else PREFER_COST * (1.0 - steps @ prefer))
+    else:
+        dx, dy = np.meshgrid(np.arange(-8, 9) * 30.0, np.arange(-6, 7) * 20.0)
+        centres = anchor + np.column_stack([dx.ravel(), dy.ravel()])
+        exits, cost = None, 0.5 * np.hypot(dx, dy).ravel()
     boxes = np.column_stack([centres - [w / 2, h / 2], centres + [w / 2, h / 2]])
-    exits = centres - steps * np.repeat(reach, len(gaps))[:, None]     # the leader's start
-    cost = np.tile(gaps, DIRECTIONS) + (0.0 if prefer is None
-                                        else PREFER_COST * (1.0 - steps @ prefer))
+    return boxes, exits, cost
+
+
+def _best(label: _Label, placed, others, scene: _Scene, frame):
+    """The box, leader (or None) and cost of the candidate of least cost for ``label`` among
+    the ``placed`` labels and the ``others``' anchors."""
+    anchor, on = label.anchor, label.on
+    boxes, exits, cost = _candidates(anchor, label.size, label.prefer, label.leader)
     inner = frame + np.array([MARGIN_PX, MARGIN_PX, -MARGIN_PX, -MARGIN_PX])
     cost += FAULT * ~((boxes[:, :2] >= inner[:2]) & (boxes[:, 2:] <= inner[2:])).all(axis=1)
     grown = boxes + np.array([-MARGIN_PX, -MARGIN_PX, MARGIN_PX, MARGIN_PX])
     if len(scene.markers):
         cost += FAULT * _discs_hit(scene.markers, grown).sum(axis=1)
-        far = np.hypot(*(scene.markers[:, :2] - anchor).T) > scene.markers[:, 2] + 4.0
-        for m in scene.markers[far]:
-            cost += GRAZE * _segment_near(exits, anchor, m[:2], m[2])
     if len(others):
         cost += FAULT * _inside(others, grown).sum(axis=1)
     for t in scene.texts:
-        cost += FAULT * (_overlap(grown, t) > 0) + GRAZE * _segment_hits_box(exits, anchor, t)
-    for box, (start, end) in placed:
-        cost += FAULT * ((_overlap(grown, box) > 0)
-                         + segments_cross(exits, anchor, start, end)
-                         + _segment_hits_box(exits, anchor, box)
-                         + _segment_hits_boxes(start, end, boxes))
+        cost += FAULT * (_overlap(grown, t) > 0)
+    for box, line in placed:
+        cost += FAULT * (_overlap(grown, box) > 0)
+        if line is not None:
+            cost += FAULT * _segment_hits_boxes(*line, boxes)
+    if exits is not None:
+        cost += _leader_cost(exits, anchor, placed, scene)
     cost += LINE_COST * _inside(scene.samples, boxes).sum(axis=1)
-    cost += DATA_COST * scene.data_share(boxes, frame)
+    if scene.data is not None:
+        cost += DATA_COST * scene.data.share(boxes)
+    if on is not None:                      # off what it names: as bad as over the data
+        cost += DATA_COST * (1.0 - on.share(boxes))
     k = int(np.argmin(cost))
-    return boxes[k], (exits[k], anchor)
+    return boxes[k], None if exits is None else (exits[k], anchor), float(cost[k])
+
+
+def _leader_cost(exits, anchor, placed, scene: _Scene) -> np.ndarray:
+    """The cost of leaders from ``exits`` to ``anchor``: crossing a placed leader or running
+    through a placed label (faults), grazing a marker, a text or a drawn line."""
+    cost = np.zeros(len(exits))
+    for box, line in placed:
+        cost += FAULT * _segment_hits_box(exits, anchor, box)
+        if line is not None:
+            cost += FAULT * segments_cross(exits, anchor, *line)
+    if len(scene.markers):
+        far = np.hypot(*(scene.markers[:, :2] - anchor).T) > scene.markers[:, 2] + 4.0
+        for m in scene.markers[far]:
+            cost += GRAZE * _segment_near(exits, anchor, m[:2], m[2])
+    for t in scene.texts:
+        cost += GRAZE * _segment_hits_box(exits, anchor, t)
+    if len(scene.samples):
+        d = anchor - exits                                  # (k, 2)
+        rel = scene.samples[None, :, :] - exits[:, None, :]
+        t = np.clip((rel * d[:, None, :]).sum(axis=2)
+                    / np.maximum((d * d).sum(axis=1), 1e-12)[:, None], 0.0, 1.0)
+        near = np.hypot(*(rel - t[..., None] * d[:, None, :]).transpose(2, 0, 1)) < SAMPLE_PX
+        cost += LINE_COST * near.sum(axis=1)
+    return cost
 
 
 def _settle(ax) -> None:

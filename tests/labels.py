@@ -8,9 +8,9 @@ import numpy as np
 from fegear.placement import segments_cross
 
 
-def label_boxes(ax) -> list[tuple[np.ndarray, np.ndarray]]:
-    """(box x0, y0, x1, y1 in px, the point it names in px) of each placed label of ``ax``,
-    as drawn."""
+def label_boxes(ax) -> list[tuple[np.ndarray, np.ndarray | None]]:
+    """(box x0, y0, x1, y1 in px, the point its leader names in px, None without a leader)
+    of each placed label of ``ax``, as drawn."""
     ax.figure.canvas.draw()
     renderer = ax.figure.canvas.get_renderer()
     out = []
@@ -18,7 +18,8 @@ def label_boxes(ax) -> list[tuple[np.ndarray, np.ndarray]]:
         if t.get_gid() != "callout":
             continue
         b = t.get_bbox_patch().get_window_extent(renderer)
-        out.append((np.array([b.x0, b.y0, b.x1, b.y1]), ax.transData.transform(t.xy)))
+        out.append((np.array([b.x0, b.y0, b.x1, b.y1]),
+                    None if t.arrow_patch is None else ax.transData.transform(t.xy)))
     return out
 
 
@@ -53,6 +54,6 @@ def label_faults(ax) -> list[str]:
             if min(a[2], b[2]) > max(a[0], b[0]) and min(a[3], b[3]) > max(a[1], b[1]):
                 faults.append(f"labels {j} and {i} overlap")
             ca, cb = (a[:2] + a[2:]) / 2, (b[:2] + b[2:]) / 2
-            if segments_cross(ca, pa, cb, pb):
+            if pa is not None and pb is not None and segments_cross(ca, pa, cb, pb):
                 faults.append(f"the leaders of labels {j} and {i} cross")
     return faults

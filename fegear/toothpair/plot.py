@@ -11,6 +11,7 @@ from ..figures import margins, pyplot, save_png
 from ..placement import Callout, place_callouts, place_legend
 from .case import PairSolution
 from .marks import Verdict, field_max, pressure_curve, root_hot_spots
+from .report import factor_cell
 
 #: the verdict drawn on a cycle's stress panels: safety factor key, its stress, its label
 CYCLE_VERDICT = {1: (("safety_bending_gear1", "root_stress_gear1_MPa", "S_F gear 1"),
@@ -120,7 +121,10 @@ def von_mises_figure(sol: PairSolution, summary: dict, bodies, peaks=()):
     # where the submodels resolve the peak, the bodies' nodes under them are not the answer
     peak_at, peak = field_max(fine or list(bodies), "von_mises")
     contact = [f.points[f.pressure > 0] for f in flanks] or [np.array([peak_at])]
-    box = _box(np.vstack([*contact, *[sp.point for sp in spots]]), pad=1.2 * p.m)
+    marks = np.vstack([*contact, *[sp.point for sp in spots]])
+    # room about the marks for their labels: 1.2 m, or on a long arc of loaded teeth a
+    # tenth of its extent
+    box = _box(marks, pad=max(1.2 * p.m, 0.1 * np.ptp(marks, axis=0).max()))
     zone = sol.detail.contact_zone()
     if fine:
         near = max(np.ptp(b.points, axis=0).max() for b in fine)
@@ -134,25 +138,20 @@ def von_mises_figure(sol: PairSolution, summary: dict, bodies, peaks=()):
     ax.set_title(f"von Mises, T {case.torque:g} N·m, β {np.degrees(case.beta):.3g}°: the loaded "
                  f"teeth\ncolours clipped at {clip:.0f} MPa (twice the largest root stress); "
                  f"the maximum, {peak:.0f} MPa, is at the contact (right)", fontsize=10)
-    c1 = np.array([0.0, p.e])
     mid = np.array([(box[0] + box[1]) / 2, (box[2] + box[3]) / 2])
-    out = (mid - c1) / np.linalg.norm(mid - c1)         # from gear 1 towards gear 2
-    span = box[3] - box[2]
-    ax.text(*(mid - 0.36 * span * out), f"gear 1 (external, z1 = {p.z1})", ha="center",
-            va="center", fontsize=11, color="white", weight="bold")
-    ax.text(*(mid + 0.36 * span * out), f"gear 2 (internal, z2 = {p.z2})", ha="center",
-            va="center", fontsize=11, color="white", weight="bold")
+    out = (mid - [0.0, p.e]) / np.linalg.norm(mid - [0.0, p.e])   # gear 1 towards gear 2
     for sp in spots:
         ax.plot(*sp.point, "o", ms=11, mfc="none", mec="white", mew=2)
     ax.plot(*peak_at, "x", ms=10, mew=2.5, color="white")
-    _scale_bar(ax, box, "mm")
+    hot = np.vstack([b.points[(b.data["von_mises"] > 0.4 * clip)] for b in bodies])
+    _scale_bar(ax, box, "mm", avoid=np.vstack([hot, *contact]))
     fig.colorbar(im, ax=ax, orientation="horizontal", fraction=0.05, pad=0.03,
                  label="von Mises [MPa], clipped", extend="max")
 
     im = _draw(az, list(bodies) + fine, zbox, (0.0, peak))
     az.plot(*peak_at, "x", ms=12, mew=2.5, color="white")
     what = "submodels resolve the peak" if fine else "the mesh resolves the contact"
-    az.set_title(f"the contact peak ({zone.label}), ±{zoom * 1e3:.3g} µm: {what}\n"
+    az.set_title(f"the contact peak ({zone.label}), ±{_round(zoom * 1e3)} µm: {what}\n"
                  f"full range, max {peak:.0f} MPa", fontsize=10)
     _scale_bar(az, zbox, "µm")
     fig.colorbar(im, ax=az, orientation="horizontal", fraction=0.05, pad=0.03,
@@ -162,8 +161,8 @@ def von_mises_figure(sol: PairSolution, summary: dict, bodies, peaks=()):
     margins(fig, left=0.25, right=0.25, bottom=0.55, top=1.1, wspace=0.4)
 
     # the labels last, once the axes are placed: they are placed in the picture's pixels
-    hot = np.vstack([b.points[(b.data["von_mises"] > 0.4 * clip)] for b in bodies])
-    place_callouts(ax, [*_tooth_callouts(sol, flanks, -out), *_spot_callouts(spots, summary, out)],
+    place_callouts(ax, [*_gear_names(sol, bodies, box, out),
+                        *_tooth_callouts(sol, flanks, -out), *_spot_callouts(spots, summary, out)],
                    data=hot)
     place_callouts(az, [Callout(f"von Mises max {peak:.0f} MPa", tuple(peak_at), (1.0, -1.0),
                                 {"fontsize": 10, "bbox": LABEL_BOX,
@@ -172,8 +171,36 @@ def von_mises_figure(sol: PairSolution, summary: dict, bodies, peaks=()):
     return fig
 
 
-#: the box of a label on a field
+#: the box of a label on a field, and of a gear's name (white on a dark veil: it reads on
+#: the dark, calm material it is written over and on the background where it must cross it)
 LABEL_BOX = {"boxstyle": "round,pad=0.2", "fc": "white", "alpha": 0.85}
+NAME_BOX = {"boxstyle": "round,pad=0.25", "fc": "#14143c", "alpha": 0.45, "ec": "none"}
+
+
+def _gear_names(sol, bodies, box, out) -> list[Callout]:
+    """Each gear's name, written over its own material near 0.3 of the picture's height from
+    its middle towards that gear (``out``: from gear 1 towards gear 2)."""
+    p = sol.case.params
+    mid = np.array([(box[0] + box[1]) / 2, (box[2] + box[3]) / 2])
+    names = []
+    for b in bodies:
+        if b.name not in ("gear1", "gear2"):
+            continue
+        side, text = ((-1.0, f"gear 1 (external, z1 = {p.z1})") if b.name == "gear1" else
+                      (1.0, f"gear 2 (internal, z2 = {p.z2})"))
+        spot = mid + side * 0.3 * (box[3] - box[2]) * out
+        own = b.points[((b.points > [box[0], box[2]]) & (b.points < [box[1], box[3]]))
+                       .all(axis=1)]
+        at = own[np.argmin(np.hypot(*(own - spot).T))] if len(own) else spot
+        names.append(Callout(text, tuple(at), style={"fontsize": 11, "color": "white",
+                                                     "weight": "bold", "bbox": NAME_BOX},
+                             on=own))
+    return names
+
+
+def _round(v: float) -> str:
+    """A length for a title: three significant digits, no exponent."""
+    return f"{v:.3g}" if v < 100 else f"{v:.0f}"
 
 
 def _tooth_callouts(sol, flanks, towards) -> list[Callout]:
@@ -234,16 +261,29 @@ def _draw(ax, bodies, box, clim):
     return im
 
 
-def _scale_bar(ax, box, unit: str) -> None:
-    """A length scale in the lower left: a round length about a fifth of the width."""
-    width = box[1] - box[0]
+def _scale_bar(ax, box, unit: str, avoid=None) -> None:
+    """A length scale, a round length about a fifth of the width, in the corner where it
+    covers the fewest of the points ``avoid`` ((n, 2); the lower left among equals)."""
+    width, height = box[1] - box[0], box[3] - box[2]
     scale = 1e3 if unit == "µm" else 1.0
     raw = 0.2 * width * scale
     nice = max(v for v in (1, 2, 5, 10, 20, 50, 100, 200, 500, 1000) if v <= max(raw, 1))
     length = nice / scale
-    x0, y0 = box[0] + 0.05 * width, box[2] + 0.06 * (box[3] - box[2])
+    corners = [(box[0] + 0.05 * width, box[2] + 0.06 * height),
+               (box[1] - 0.05 * width - length, box[2] + 0.06 * height),
+               (box[0] + 0.05 * width, box[3] - 0.12 * height),
+               (box[1] - 0.05 * width - length, box[3] - 0.12 * height)]
+    if avoid is not None and len(avoid):
+        def covered(c):
+            x, y = avoid.T
+            return np.count_nonzero((x > c[0] - 0.02 * width) & (x < c[0] + length + 0.02 * width)
+                                    & (y > c[1] - 0.03 * height) & (y < c[1] + 0.09 * height))
+        x0, y0 = min(corners, key=covered)
+    else:
+        x0, y0 = corners[0]
     ax.plot([x0, x0 + length], [y0, y0], color="black", lw=4, solid_capstyle="butt")
-    ax.text(x0 + length / 2, y0 + 0.02 * (box[3] - box[2]), f"{nice:g} {unit}", ha="center",
+    words = f"{nice / 1000:g} mm" if unit == "µm" and nice >= 1000 else f"{nice:g} {unit}"
+    ax.text(x0 + length / 2, y0 + 0.02 * (box[3] - box[2]), words, ha="center",
             va="bottom", fontsize=10, bbox={"boxstyle": "round,pad=0.15", "fc": "white",
                                             "alpha": 0.8, "ec": "none"})
 
@@ -336,12 +376,14 @@ def root_stress_figure(sol: PairSolution, summary: dict):
     loaded = [t for t in sol.teeth if t.load_N > 0]
     allow = summary["inputs"].get("allowable_bending_MPa")
     x = np.arange(len(loaded))
-    fig, ax = plt.subplots(figsize=(max(6.0, 1.3 * len(loaded) + 2.5), 4.6))
+    # 0.8 in a bar: its value and S_F over it stay apart from the next bar's
+    fig, ax = plt.subplots(figsize=(max(6.0, 1.6 * len(loaded) + 2.5), 4.6))
     for k, (key, label) in enumerate((("root1_MPa", "gear 1"), ("root2_MPa", "gear 2"))):
         v = np.array([getattr(t, key) for t in loaded])
         bars = ax.bar(x + (k - 0.5) * 0.38, v, 0.36, label=f"root σ1, {label}")
         for b, value in zip(bars, v):
-            text = f"{value:.0f}" + (f"\nS_F {allow / value:.2f}" if allow and value > 0 else "")
+            text = f"{value:.0f}" + (f"\nS_F {factor_cell(allow / value)}"
+                                     if allow and value > 0 else "")
             ax.text(b.get_x() + b.get_width() / 2, value, text, ha="center", va="bottom",
                     fontsize=8)
     if allow:

@@ -206,9 +206,9 @@ def plt():
 
 def test_the_von_mises_labels_cover_no_mark_and_their_leaders_do_not_cross(solved, summary,
                                                                            plt):
-    """Read off the drawn picture: every loaded tooth and both root hot spots labelled, no
-    label over a marker (the hot spots, the maximum) or another label, no leaders crossing;
-    the verdict above it names each factor and its allowable."""
+    """Read off the drawn picture: both gears named, every loaded tooth and both root hot
+    spots labelled, no label over a marker (the hot spots, the maximum) or another label, no
+    leaders crossing; the verdict above it names each factor and its allowable."""
     from labels import label_boxes, label_faults
 
     from fegear.toothpair.plot import von_mises_figure
@@ -217,7 +217,7 @@ def test_the_von_mises_labels_cover_no_mark_and_their_leaders_do_not_cross(solve
                            solved.detail.peak_fields())
     left, zoom = fig.axes[:2]
     loaded = sum(t.load_N > 0 for t in solved.teeth)
-    assert len(label_boxes(left)) == loaded + 2 and len(label_boxes(zoom)) == 1
+    assert len(label_boxes(left)) == 2 + loaded + 2 and len(label_boxes(zoom)) == 1
     assert label_faults(left) == [] and label_faults(zoom) == []
     verdict = fig.get_suptitle()
     for key in ("safety_bending_gear1", "safety_bending_gear2", "safety_contact"):
