@@ -17,8 +17,8 @@ from fegear import provenance
 PACKAGE = Path(__file__).parents[1] / "fegear"
 MAP = PACKAGE.parent / "docs" / "architecture.md"
 #: modules allowed beside the stages: entry points and shared helpers
-SHARED = {"__init__", "__main__", "checks", "errors", "exports", "figures", "files", "planar",
-          "progress", "provenance", "workers"}
+SHARED = {"__init__", "__main__", "checks", "errors", "exports", "figures", "files", "pixels",
+          "placement", "planar", "progress", "provenance", "workers"}
 #: which stages each stage may import (the shared helpers are open to all)
 ALLOWED = {
     "geometry": set(),

@@ -2,16 +2,25 @@
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from ..figures import pyplot, save_png
+from ..placement import place_legend
 
 
 def pair_png(path: Path, gear1: np.ndarray, gear2: np.ndarray, e: float, r0: float,
              title: str, zoom_half_width: float, relief=(), teeth=(),
              tip_radius: float | None = None) -> Path:
+    """:func:`pair_figure` written to ``path``."""
+    return save_png(pair_figure(gear1, gear2, e, r0, title, zoom_half_width, relief, teeth,
+                                tip_radius), path, 130)
+
+
+def pair_figure(gear1: np.ndarray, gear2: np.ndarray, e: float, r0: float, title: str,
+                zoom_half_width: float, relief=(), teeth=(), tip_radius: float | None = None):
     """Draw the assembled pair at β = 0 (fixed frame) with a zoom on the pitch-point teeth,
     and with a tip relief (``relief``: :meth:`~.gear1.Gear1Profile.relief_chart`) its profile
     chart.
@@ -54,32 +63,73 @@ def pair_png(path: Path, gear1: np.ndarray, gear2: np.ndarray, e: float, r0: flo
     ax.set_ylim(-lim, lim)
     ax.plot([0, 0], [0, e], "k+", ms=8)
     ax.set_title(title, fontsize=9)
-    ax.legend(loc="lower right", fontsize=8)
     # every tooth of gear 1 numbered a little inside its tip, as the solve's tables count them
-    for number, x in tooth_labels(teeth, e, tip_radius or r0, 0.09 * r0):
-        ax.text(*x, str(number), ha="center", va="center", fontsize=5.5, color="#a34a16",
-                zorder=3)
+    numbers = [ax.text(*x, str(number), ha="center", va="center", fontsize=5.5,
+                       color="#a34a16", zorder=3)
+               for number, x in tooth_labels(teeth, e, tip_radius or r0, 0.09 * r0)]
     # the zoom window reaches deeper into gear 1 than out into the ring: the rim ends the ring
-    below, above = r0 - 0.75 * zoom_half_width, r0 + 0.4 * zoom_half_width
-    ax.add_patch(plt.Rectangle((-zoom_half_width, below), 2 * zoom_half_width, above - below,
-                               fill=False, ls="--", color="k", lw=0.7))
-    az.set_xlim(-zoom_half_width, zoom_half_width)
-    az.set_ylim(below, above)
+    window = ZoomWindow(zoom_half_width, r0 - 0.75 * zoom_half_width,
+                        r0 + 0.4 * zoom_half_width)
     az.plot([0], [r0], "k.", ms=5)
     az.annotate("pitch point", (0, r0), textcoords="offset points", xytext=(6, 6), fontsize=8)
     az.set_title("zoom on the teeth about the pitch point (β = 0), gear 1's teeth numbered",
                  fontsize=9)
-    for number, x in tooth_labels(teeth, e, tip_radius or r0, 0.35 * zoom_half_width / 4):
-        if abs(x[0]) < 0.95 * zoom_half_width and below < x[1] < above:
-            az.text(*x, str(number), ha="center", va="center", fontsize=9, color="#a34a16",
-                    weight="bold", zorder=3, clip_on=True)
     az.text(0.02, 0.04, "gear 1 (external)", transform=az.transAxes, fontsize=9,
             color="#a34a16")
     az.text(0.02, 0.94, "gear 2 (internal)", transform=az.transAxes, fontsize=9,
             color="#1f4e8c")
+    az.set_xlim(-window.half_width, window.half_width)
+    az.set_ylim(window.below, window.above)
     fig.tight_layout()
+    # the window's outline passes between the numbers, not through one: it grows to take in
+    # a number it would cut; the legend in a corner clear of the gears, once laid out
+    window = window.clear_of(ax, numbers)
+    ax.add_patch(plt.Rectangle((-window.half_width, window.below), 2 * window.half_width,
+                               window.above - window.below, fill=False, ls="--", color="k",
+                               lw=0.7))
+    az.set_xlim(-window.half_width, window.half_width)
+    az.set_ylim(window.below, window.above)
+    for number, x in tooth_labels(teeth, e, tip_radius or r0, 0.35 * zoom_half_width / 4):
+        if abs(x[0]) < 0.95 * window.half_width and window.below < x[1] < window.above:
+            az.text(*x, str(number), ha="center", va="center", fontsize=9, color="#a34a16",
+                    weight="bold", zorder=3, clip_on=True)
+    place_legend(ax, fallback="outside", fontsize=8)
+    return fig
 
-    return save_png(fig, path, 130)
+
+@dataclass(frozen=True)
+class ZoomWindow:
+    """The zoom's window on the overview (mm, fixed frame): x within ± ``half_width``, y from
+    ``below`` to ``above``."""
+
+    half_width: float
+    below: float
+    above: float
+
+    def clear_of(self, ax, texts) -> ZoomWindow:
+        """This window grown until its outline cuts none of ``texts`` (drawn in ``ax``, laid
+        out) with a margin of 2 px: a side moves out past a number it cuts, the bottom and
+        top move past one they cut."""
+        ax.apply_aspect()
+        renderer = ax.figure.canvas.get_renderer()
+        to_data = ax.transData.inverted().transform
+        margin = abs(to_data([2.0, 0.0])[0] - to_data([0.0, 0.0])[0])
+        boxes = [to_data(t.get_window_extent(renderer).get_points()) for t in texts]
+        w, lo, hi = self.half_width, self.below, self.above
+        for _ in range(8):
+            moved = False
+            for (x0, y0), (x1, y1) in boxes:
+                x0, y0, x1, y1 = x0 - margin, y0 - margin, x1 + margin, y1 + margin
+                across = x1 > -w and x0 < w
+                if y1 > lo and y0 < hi and (x0 < w < x1 or x0 < -w < x1):
+                    w, moved = max(abs(x0), abs(x1)), True
+                elif across and y0 < lo < y1:
+                    lo, moved = y0, True
+                elif across and y0 < hi < y1:
+                    hi, moved = y1, True
+            if not moved:
+                break
+        return ZoomWindow(w, lo, hi)
 
 
 def tooth_labels(teeth, e: float, tip_radius: float, depth: float):

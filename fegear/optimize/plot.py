@@ -7,6 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..figures import pyplot, save_png
+from ..placement import place_legend
 from .design import OBJECTIVES
 
 #: the objectives' axis labels
@@ -30,8 +31,8 @@ def search_pngs(table, variables: list[str], objectives: list[str], out: Path,
     best = (ok.loc[ok[col].idxmax()] if OBJECTIVES[o] == "maximize" else ok.loc[ok[col].idxmin()]
             ) if len(ok) else None
     n, rows = len(variables), len(objectives)
-    fig, axes = plt.subplots(rows, n, figsize=(3.4 * n + 0.6, 3.2 * rows + 0.4), squeeze=False,
-                             sharey="row")
+    fig, axes = plt.subplots(rows, n, figsize=(3.4 * n + 0.6, 3.2 * rows + 0.7), squeeze=False,
+                             sharey="row", layout="constrained")
     for row, objective in enumerate(objectives):
         c = f"objective_{objective}"
         for ax, v in zip(axes[row], variables):
@@ -47,13 +48,14 @@ def search_pngs(table, variables: list[str], objectives: list[str], out: Path,
             ax.set_xlabel(v)
             ax.grid(alpha=0.3)
         axes[row][0].set_ylabel(LABELS[objective])
-    axes[0][-1].legend(fontsize=7, loc="best")
+    # one legend for every panel, under them: inside a panel it covers its points
+    fig.legend(*axes[0][-1].get_legend_handles_labels(), loc="outside lower center",
+               ncol=5, fontsize=8, frameon=False)
     fig.suptitle(title, fontsize=9)
-    fig.tight_layout()
     files["variables_png"] = save_png(fig, out / "variables.png", 120)
     plt.close(fig)
 
-    fig, ax = plt.subplots(figsize=(6.4, 3.6))
+    fig, ax = plt.subplots(figsize=(8.4, 3.6))
     ax.scatter(bad["trial"], [0.0] * len(bad), s=12, facecolors="none", edgecolors="0.6",
                label="infeasible (at 0)")
     ax.scatter(ok["trial"], ok[col], s=12, color="C0", label="feasible")
@@ -65,7 +67,7 @@ def search_pngs(table, variables: list[str], objectives: list[str], out: Path,
     ax.set_xlabel("trial")
     ax.set_ylabel(LABELS[o])
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, loc="best")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # beside the trials
     ax.set_title(title, fontsize=9)
     fig.tight_layout()
     files["history_png"] = save_png(fig, out / "history.png", 120)
@@ -83,10 +85,10 @@ def search_pngs(table, variables: list[str], objectives: list[str], out: Path,
         ax.plot(on[a], on[b], "o-", color="C3", ms=5, label="Pareto front")
         ax.set_xlabel(LABELS[objectives[0]])
         ax.set_ylabel(LABELS[objectives[1]])
-        ax.legend(fontsize=7, loc="best")
         ax.grid(alpha=0.3)
         ax.set_title(title, fontsize=9)
         fig.tight_layout()
+        place_legend(ax, fallback="headroom", fontsize=7)
         files["front_png"] = save_png(fig, out / "front.png", 120)
         plt.close(fig)
     return files

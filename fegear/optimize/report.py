@@ -84,6 +84,8 @@ def final_table(rows: Mapping[str, dict], space: Space) -> str:
     safety factors over the cycle, the largest estimate of the stresses behind them, the load on
     the tip rounds, the transmission error's peak to peak and the mean mesh stiffness over the
     cycle, and what limits it."""
+    from ..toothpair import stiffness_cell
+
     names = [v.name for v in space.variables]
     head = ("| design | " + " | ".join(names) + " | S_F1 | S_F2 | S_H flank | S_H | smallest "
             "| gain % | est. % | tip rounds N | TE p-p µrad | k N·m/rad | limited by |")
@@ -105,7 +107,7 @@ def final_table(rows: Mapping[str, dict], space: Space) -> str:
                      + f" | {_f(r['S_F1'])} | {_f(r['S_F2'])} | {_f(r['S_H_flank'])} | "
                        f"{_f(r['S_H'])} | **{_f(r['safety'])}** | {gain} | {worst:.1f} | "
                        f"{r['edge_load_N']:.1f} | {r['te_p2p_urad']:.1f} | "
-                       f"{r['stiffness_Nm_per_rad']:.4g} | {where} |")
+                       f"{stiffness_cell(r['stiffness_Nm_per_rad'])} | {where} |")
     return "\n".join(lines)
 
 

@@ -63,7 +63,7 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
         for b in (*bodies, *peaks):
             files[b.name] = write_vtu(out / f"{b.name}.vtu", b.points, b.cells, b.data)
     if pictures:
-        files["png"] = von_mises_png(out / "von_mises.png", sol, bodies, peaks)
+        files["png"] = von_mises_png(out / "von_mises.png", sol, summary, bodies, peaks)
         flank = flank_pressure_png(out / "flank_pressure.png", sol, summary)
         if flank is not None:
             files["flank_png"] = flank

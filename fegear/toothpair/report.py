@@ -93,9 +93,37 @@ SAFETY_LABELS = {"safety_bending_gear1": "S_F gear 1 (root σ1)",
 TABLE_SAFETY = ("safety_bending_gear1", "safety_bending_gear2", "safety_contact")
 
 
-def _factor(s: float | None, width: int = 5) -> str:
-    """A safety factor for a table: two decimals, '-' where there is none (no load)."""
-    return f"{s:{width}.2f}" if s is not None else " " * (width - 1) + "-"
+def factor_cell(s: float | None) -> str:
+    """A safety factor in at most four characters, so that its column keeps its width: two
+    decimals below 10, one below 100, none below 1000, ">999" above (a tooth that barely
+    carries load; summary.json keeps the value); "-" where there is none (no load)."""
+    if s is None:
+        return "-"
+    for decimals, below in ((2, 10), (1, 100), (0, 1000)):
+        if round(s, decimals) < below:
+            return f"{s:.{decimals}f}"
+    return ">999"
+
+
+def stiffness_cell(k: float) -> str:
+    """A mesh stiffness (N·m/rad) in one format whatever its value: four significant digits
+    and the exponent (``5.500e+05``, not ``5.5e+05`` beside ``5.676e+05``)."""
+    return f"{k:.3e}"
+
+
+def aligned_table(head: list[str], rows: list[list[str]], labels: int = 0) -> list[str]:
+    """A markdown table whose columns stay aligned on a terminal for any value: each column
+    as wide as its widest cell or header, the first ``labels`` columns left-aligned, the
+    others (numbers) right-aligned."""
+    widths = [max(len(c) for c in column) for column in zip(head, *rows)]
+
+    def line(cells):
+        return "| " + " | ".join(c.ljust(w) if k < labels else c.rjust(w)
+                                 for k, (c, w) in enumerate(zip(cells, widths))) + " |"
+
+    rule = "|" + "|".join("-" * (w + 2) if k < labels else "-" * (w + 1) + ":"
+                          for k, w in enumerate(widths)) + "|"
+    return [line(head), rule, *(line(r) for r in rows)]
 
 
 def safety_table(summary: dict) -> list[str]:
@@ -103,14 +131,15 @@ def safety_table(summary: dict) -> list[str]:
     line where the tip round's pressure sets S_H or a factor is below 1."""
     i = summary["inputs"]
     allowable = {w: i[k] for w, k in ALLOWABLE_KEYS.items()}
-    lines = ["| safety factor [-]       |     S | allowable MPa | stress MPa |",
-             "|-------------------------|------:|--------------:|-----------:|"]
     edge = summary["contact_peak_on_tip_round"]
+    rows = []
     for k, label in SAFETY_LABELS.items():
         which, stress = SAFETY[k]
         mark = "e" if edge and k == "safety_contact" else " "
-        lines.append(f"| {label:23s} | {_factor(summary[k])} | {allowable[which]:13.0f} | "
-                     f"{summary[stress]:9.1f}{mark} |")
+        rows.append([label, factor_cell(summary[k]), f"{allowable[which]:.0f}",
+                     f"{summary[stress]:.1f}{mark}"])
+    lines = aligned_table(["safety factor [-]      ", "    S", "allowable MPa", "stress MPa"],
+                          rows, labels=1)
     notes = []
     if edge:
         notes.append("e: the peak pressure, and so S_H, sits on a tip round (EDGE CONTACT "
@@ -137,10 +166,6 @@ def pair_table(summary: dict, beside: bool = False) -> str:
     estimate's second solve ran in a worker beside the first (its time is the wait for it)."""
     i = summary["inputs"]
     est = summary["error_estimate_by_stress_pct"] or {}
-
-    def e(k):
-        return f"{est[k]:6.2f}" if k in est else "     -"
-
     lines = [
         f"pair m {i['m']:g}, z {i['z2']}/{i['z1']}, h1 {i['h1']:g}, f1 {i['f1']:g}, "
         f"shift {i['shift']:g}, rotation {i['rotation']:g} mm; T {i['torque_Nm']:g} N·m at "
@@ -150,35 +175,13 @@ def pair_table(summary: dict, beside: bool = False) -> str:
            + (f" over {i['relief_extent_mm']:g} mm" if i["relief_extent_mm"] else
               f" from r {i['relief_start_mm']:g} mm") if i["relief_um"] else ""),
         "",
-        "| headline [MPa]          |      FE | err est % |",
-        "|-------------------------|--------:|----------:|",
+        *aligned_table(["headline [MPa]         ", "     FE", "err est %"],
+                       [[label, f"{summary[k]:.1f}", f"{est[k]:.2f}" if k in est else "-"]
+                        for k, label in HEADLINE.items()], labels=1),
+        "", *safety_table(summary), "",
+        *aligned_table(list(TOOTH_HEAD), [_tooth_cells(t) for t in summary["teeth"]
+                                          if t["load_N"] > 0]),
     ]
-    for k, label in HEADLINE.items():
-        lines.append(f"| {label:23s} | {summary[k]:7.1f} |    {e(k)} |")
-    lines += ["", *safety_table(summary), "",
-              "| tooth | clear. µm | load N | share | p_max MPa | p flank | p ref  | p edge "
-              "| edge N | b mm   | Hertz p0 | b/R*   | root1 | root2 | S_F1  | S_F2  | S_H   |",
-              "|------:|---------:|-------:|------:|----------:|--------:|-------:|-------:"
-              "|-------:|-------:|---------:|-------:|------:|------:|------:|------:|------:|"]
-    for t in summary["teeth"]:
-        if t["load_N"] <= 0:
-            continue
-        hz = f"{t['hertz_p0_MPa']:8.1f}" if t["hertz_p0_MPa"] else "       -"
-        br = f"{t['b_over_R']:.4f}" if t["b_over_R"] else "     -"
-        edge = "e" if t["peak_on_tip_round"] else " "
-        p_edge = f"{t['edge_pressure_MPa']:6.0f}" if t["edge_contact"] else "     -"
-        n_edge = f"{t['edge_load_N']:6.1f}" if t["edge_contact"] else "     -"
-        ref = t.get("halfplane_flank_MPa")
-        ref = f"{ref:6.0f}" if ref else "     -"
-        coarse = " " if t.get("resolved", True) else "u"
-        lines.append(f"| {t['tooth']:5d} | {t['clearance_um']:z8.2f} | {t['load_N']:6.0f} | "
-                     f"{t['load_share']:.3f} | {t['p_max_MPa']:8.1f}{edge} | "
-                     f"{t['flank_pressure_MPa']:7.1f} | {ref} | {p_edge} | {n_edge} | "
-                     f"{t['half_width_mm']:.3f}{coarse} "
-                     f"| {hz} | {br} | {t['root_stress_gear1_MPa']:5.0f} | "
-                     f"{t['root_stress_gear2_MPa']:5.0f} | "
-                     + " | ".join(_factor(t.get(k)) for k in TABLE_SAFETY)
-                     + " |")
     unloaded = [t["tooth"] for t in summary["teeth"] if t["load_N"] <= 0]
     edge = summary["edge_contact"]
     if edge["teeth"]:
@@ -205,7 +208,7 @@ def pair_table(summary: dict, beside: bool = False) -> str:
               f"{summary['torque_balance_error']:.1e}",
               f"transmission error {summary['transmission_error_urad']:.1f} µrad (rotation "
               f"{summary['rotation_urad']:.1f}, first touch {summary['first_touch_urad']:.1f}); "
-              f"mesh stiffness {summary['mesh_stiffness_Nm_per_rad']:.4g} N·m/rad"
+              f"mesh stiffness {stiffness_cell(summary['mesh_stiffness_Nm_per_rad'])} N·m/rad"
               + _tangent(summary),
               f"DOFs {summary['dofs']}, contact points {summary['contact_points']}, "
               f"iterations {summary['iterations']}, max penetration "
@@ -216,6 +219,29 @@ def pair_table(summary: dict, beside: bool = False) -> str:
     return "\n".join(lines)
 
 
+#: the per-tooth table's headers, each as wide as its column's usual values
+TOOTH_HEAD = ("tooth", "clear. µm", "load N", "share", "p_max MPa", "p flank", "p ref ",
+              "p edge", "edge N", "b mm  ", "Hertz p0", "b/R*  ", "root1", "root2", "S_F1 ",
+              "S_F2 ", "S_H  ")
+
+
+def _tooth_cells(t: dict) -> list[str]:
+    """One loaded tooth's row of the per-tooth table: ``e`` after a peak on the tip round,
+    ``u`` after an under-resolved half-width, "-" where a value does not apply."""
+    ref = t.get("halfplane_flank_MPa")
+    return [str(t["tooth"]), f"{t['clearance_um']:z.2f}", f"{t['load_N']:.0f}",
+            f"{t['load_share']:.3f}",
+            f"{t['p_max_MPa']:.1f}" + ("e" if t["peak_on_tip_round"] else " "),
+            f"{t['flank_pressure_MPa']:.1f}", f"{ref:.0f}" if ref else "-",
+            f"{t['edge_pressure_MPa']:.0f}" if t["edge_contact"] else "-",
+            f"{t['edge_load_N']:.1f}" if t["edge_contact"] else "-",
+            f"{t['half_width_mm']:.3f}" + (" " if t.get("resolved", True) else "u"),
+            f"{t['hertz_p0_MPa']:.1f}" if t["hertz_p0_MPa"] else "-",
+            f"{t['b_over_R']:.4f}" if t["b_over_R"] else "-",
+            f"{t['root_stress_gear1_MPa']:.0f}", f"{t['root_stress_gear2_MPa']:.0f}",
+            *(factor_cell(t.get(k)) for k in TABLE_SAFETY)]
+
+
 def _number(v: float) -> float | None:
     """``v``, or None for NaN (a value the model did not compute; JSON has no NaN)."""
     return None if math.isnan(v) else v
@@ -223,7 +249,8 @@ def _number(v: float) -> float | None:
 
 def _tangent(summary: dict) -> str:
     k = summary.get("tangent_stiffness_Nm_per_rad")
-    return "" if k is None else f" secant, {k:.4g} tangent (dT/dθ, the contact set kept)"
+    return ("" if k is None else
+            f" secant, {stiffness_cell(k)} tangent (dT/dθ, the contact set kept)")
 
 
 def _estimate_time(summary: dict, beside: bool = False) -> str:
@@ -287,22 +314,17 @@ def cycle_table(rows: list[dict]) -> str:
     safety factors over it."""
     share_keys = [k for k in rows[0] if k.startswith("share_")]
     shown = [k for k in share_keys if any(r[k] > 0 for r in rows)]
-    head = ("| β [deg] | root1 | root2 | p_max | p flank | edge N | vM max | S_F1 | S_F2 | "
-            "S_H | TE µrad | k N·m/rad | teeth | "
-            + " | ".join(f"tooth {k[6:]}" for k in shown) + " |")
-    lines = [head, "|" + "---:|" * (13 + len(shown))]
-    for r in rows:
-        von_mises = ("~" if r.get("von_mises_estimated") else "") + f"{r['von_mises_max_MPa']:.0f}"
-        lines.append(
-            f"| {r['position_deg']:7.3f} | {r['root_stress_gear1_MPa']:5.1f} | "
-            f"{r['root_stress_gear2_MPa']:5.1f} | {r['contact_pressure_MPa']:6.0f} | "
-            f"{r['flank_contact_pressure_MPa']:6.0f} | {r['edge_load_N']:6.1f} | "
-            f"{von_mises:>6} | "
-            + "".join(f"{_factor(r.get(k), 4)} | " for k in TABLE_SAFETY)
-            + f"{r['transmission_error_urad']:7.1f} | "
-            f"{r['mesh_stiffness_Nm_per_rad']:.4g} | {r['teeth_in_contact']} | "
-            + " | ".join(f"{r[k]:.3f}" if abs(r[k]) >= 5e-4 else "0.000"
-                         for k in shown) + " |")
+    head = ["β [deg]", "root1", "root2", "p_max", "p flank", "edge N", "vM max", "S_F1", "S_F2",
+            "S_H", "TE µrad", "k N·m/rad", "teeth", *(f"tooth {k[6:]}" for k in shown)]
+    lines = aligned_table(head, [[
+        f"{r['position_deg']:.3f}", f"{r['root_stress_gear1_MPa']:.1f}",
+        f"{r['root_stress_gear2_MPa']:.1f}", f"{r['contact_pressure_MPa']:.0f}",
+        f"{r['flank_contact_pressure_MPa']:.0f}", f"{r['edge_load_N']:.1f}",
+        ("~" if r.get("von_mises_estimated") else "") + f"{r['von_mises_max_MPa']:.0f}",
+        *(factor_cell(r.get(k)) for k in TABLE_SAFETY),
+        f"{r['transmission_error_urad']:.1f}", stiffness_cell(r["mesh_stiffness_Nm_per_rad"]),
+        str(r["teeth_in_contact"]),
+        *(f"{r[k]:.3f}" if abs(r[k]) >= 5e-4 else "0.000" for k in shown)] for r in rows])
     if any(r.get("von_mises_estimated") for r in rows):
         lines += ["", "~ von Mises from the surface estimate: the contact submodels are solved "
                   "where the cycle's stresses peak (the estimate is within 1 % of them)"]

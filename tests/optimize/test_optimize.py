@@ -223,3 +223,33 @@ def test_a_search_runs_on_a_dask_cluster_as_on_the_local_pool(tmp_path):
         report = run_search(SPACE, tmp_path, trials=3, seed=7,
                             scheduler=cluster.scheduler_address)
     assert report.solved == 3 and len(_params(tmp_path)) == 3
+
+
+# --- the pictures ---------------------------------------------------------------------------
+def test_the_legends_of_the_search_pictures_lie_outside_the_points(tmp_path, monkeypatch):
+    """variables.png: one legend under every panel (inside one it covered that panel's
+    points); history.png: beside the trials."""
+    import pandas as pd
+
+    import fegear.optimize.plot as plot
+
+    boxes = {}
+
+    def measure(fig, path, dpi):      # the boxes as drawn, in place of the file
+        fig.canvas.draw()
+        r = fig.canvas.get_renderer()
+        boxes[path.name] = ([ax.get_window_extent(r) for ax in fig.axes],
+                            [ax.get_legend().get_window_extent(r) for ax in fig.axes
+                             if ax.get_legend()],
+                            [leg.get_window_extent(r) for leg in fig.legends])
+        return path
+
+    monkeypatch.setattr(plot, "save_png", measure)
+    rows = [{"trial": k, "state": "COMPLETE", "feasible": str(k % 3 != 0), "h1": 0.25 + k / 200,
+             "relief": k / 3, "objective_safety": 0.5 + (k % 7) / 10} for k in range(20)]
+    plot.search_pngs(pd.DataFrame(rows), ["h1", "relief"], ["safety"], tmp_path, "search",
+                     0.39, 0.97)
+    panels, inside, (below,) = boxes["variables.png"]
+    assert inside == [] and below.y1 < min(b.y0 for b in panels)
+    (panel,), (beside,), _ = boxes["history.png"]
+    assert beside.x0 > panel.x1

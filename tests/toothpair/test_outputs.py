@@ -78,7 +78,7 @@ def solved(baseline, baseline_ring):
 
 def test_the_root_hot_spots_are_the_reported_root_stresses(solved):
     """The marks on the von Mises picture sit where each gear's reported root stress is."""
-    from fegear.toothpair.plot import root_hot_spots
+    from fegear.toothpair.marks import root_hot_spots
 
     spots = root_hot_spots(solved, solved.detail.body_fields())
     assert [s.gear for s in spots] == [1, 2]
@@ -87,7 +87,7 @@ def test_the_root_hot_spots_are_the_reported_root_stresses(solved):
 
 
 def test_the_flank_curves_peak_at_the_reported_pressures(solved):
-    from fegear.toothpair.plot import pressure_curve
+    from fegear.toothpair.marks import pressure_curve
 
     teeth = {t.tooth: t for t in solved.teeth}
     flanks = solved.detail.flank_pressures()
@@ -186,3 +186,122 @@ def test_the_cycle_picture_carries_the_allowable_and_the_smallest_factors():
                for line in far.lines)
     plt.close(fig)
     plt.close(fig2)
+
+
+@pytest.fixture(scope="module")
+def summary(solved):
+    from fegear.toothpair import pair_summary
+
+    return pair_summary(solved)
+
+
+@pytest.fixture
+def plt():
+    from fegear.figures import pyplot
+
+    p = pyplot()
+    yield p
+    p.close("all")
+
+
+def test_the_von_mises_labels_cover_no_mark_and_their_leaders_do_not_cross(solved, summary,
+                                                                           plt):
+    """Read off the drawn picture: both gears named, every loaded tooth and both root hot
+    spots labelled, no label over a marker (the hot spots, the maximum) or another label, no
+    leaders crossing; the verdict above it names each factor and its allowable."""
+    from labels import label_boxes, label_faults
+
+    from fegear.toothpair.plot import von_mises_figure
+
+    fig = von_mises_figure(solved, summary, solved.detail.body_fields(),
+                           solved.detail.peak_fields())
+    left, zoom = fig.axes[:2]
+    loaded = sum(t.load_N > 0 for t in solved.teeth)
+    assert len(label_boxes(left)) == 2 + loaded + 2 and len(label_boxes(zoom)) == 1
+    assert label_faults(left) == [] and label_faults(zoom) == []
+    verdict = fig.get_suptitle()
+    for key in ("safety_bending_gear1", "safety_bending_gear2", "safety_contact"):
+        assert f"{summary[key]:.2f}" in verdict
+    assert "σ_FP 558 MPa" in verdict and "σ_HP 745 MPa" in verdict
+    texts = [t.get_text() for t in left.texts]
+    assert any(f"S_F {summary['safety_bending_gear1']:.2f}" in t for t in texts)
+
+
+def test_the_verdict_names_the_smallest_factor_and_whether_it_passes():
+    from fegear.toothpair.marks import Verdict
+
+    s = {"inputs": {"allowable_bending_MPa": 558.0, "allowable_contact_MPa": 745.0},
+         "safety_bending_gear1": 1.95, "safety_bending_gear2": 2.09, "safety_contact": 0.40,
+         "safety_contact_flank": 1.19, "contact_peak_on_tip_round": True,
+         "contact_pressure_MPa": 1880.0, "flank_contact_pressure_MPa": 624.0}
+    fails = Verdict.of(s)
+    assert fails.text.endswith("S_H 0.40 below 1: the stress exceeds the allowable")
+    assert "S_H flank 1.19 at 624 MPa" in fails.text
+    passes = Verdict.of({**s, "safety_contact": 1.19, "contact_peak_on_tip_round": False,
+                         "contact_pressure_MPa": 624.0})
+    assert "every safety factor at least 1" in passes.text and "S_H flank" not in passes.text
+    assert passes.colour != fails.colour
+
+
+def test_the_flank_panels_share_one_legend_above_them(solved, summary, plt):
+    """No legend inside a panel (it covered the p ref line); the one legend lies above every
+    panel; each panel's values in its title; the edge peak's label covers no curve."""
+    from labels import label_faults
+
+    from fegear.toothpair.plot import flank_pressure_figure
+
+    fig = flank_pressure_figure(solved, summary)
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    panels = [a for a in fig.axes if a.get_visible()]
+    assert all(a.get_legend() is None for a in panels)
+    legend, = fig.legends
+    assert legend.get_window_extent(renderer).y0 > max(
+        a.get_tightbbox(renderer).y1 for a in panels)
+    teeth = {t.tooth: t for t in solved.teeth}
+    for a in panels:
+        tooth = teeth[int(a.get_title().split(":")[0].split()[1])]
+        if tooth.halfplane_flank_MPa:
+            assert f"p ref {tooth.halfplane_flank_MPa:.0f}" in a.get_title()
+        assert label_faults(a) == []
+
+
+def test_the_legends_of_root_stress_and_cycle_cover_no_data(cycle, solved, summary, plt):
+    from fegear.placement import legend_cover
+    from fegear.toothpair import DEFAULT_ALLOWABLES, HEADLINE
+    from fegear.toothpair.plot import cycle_figure, root_stress_figure
+
+    fig = root_stress_figure(solved, summary)
+    ax, = fig.axes
+    assert legend_cover(ax, ax.get_legend()) == 0
+    _, result = cycle
+    fig = cycle_figure(result.rows, "cycle", HEADLINE, DEFAULT_ALLOWABLES)
+    for ax in fig.axes:
+        assert legend_cover(ax, ax.get_legend()) == 0
+
+
+def test_the_zoom_window_on_pair_png_cuts_no_tooth_number(baseline, plt):
+    """Its dashed outline passes between the overview's numbers (it cut "13"), and the
+    legend covers no gear."""
+    from fegear.geometry import build_geometry
+    from fegear.geometry.plot import pair_figure
+    from fegear.placement import legend_cover
+
+    geo = build_geometry(baseline, backlash_positions=None)
+    fig = pair_figure(geo.gear1, geo.gear2, baseline.e, baseline.r0, "pair",
+                      6.5 * baseline.m, teeth=[(t.tooth, t.position_deg)
+                                               for t in geo.contact.teeth],
+                      tip_radius=geo.tip_radius)
+    overview = fig.axes[0]
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    window, = [p for p in overview.patches if not p.get_fill()]
+    x0, y0, x1, y1 = window.get_window_extent(renderer).extents
+    for t in overview.texts:
+        b = t.get_window_extent(renderer)
+        inside = x0 < b.x0 and b.x1 < x1 and y0 < b.y0 and b.y1 < y1
+        outside = b.x1 < x0 or b.x0 > x1 or b.y1 < y0 or b.y0 > y1
+        assert inside or outside, t.get_text()
+    legend = overview.get_legend()
+    assert (legend_cover(overview, legend) == 0
+            or legend.get_window_extent(renderer).x0 > overview.get_window_extent(renderer).x1)

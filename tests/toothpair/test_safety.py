@@ -156,3 +156,42 @@ def test_a_cycle_table_marks_the_von_mises_estimates(cycle):
     assert any(line.startswith("~ von Mises from the surface estimate") for line in lines)
     assert not any(line.startswith("~") for line in cycle_table(
         [{**r, "von_mises_estimated": False} for r in rows]).splitlines())
+
+
+@pytest.mark.parametrize("s, cell", [(0.4, "0.40"), (1.954, "1.95"), (9.996, "10.0"),
+                                     (43.45, "43.5"), (151.95, "152"), (999.4, "999"),
+                                     (999.6, ">999"), (16381.83, ">999"), (None, "-")])
+def test_a_safety_factor_takes_at_most_four_characters(s, cell):
+    from fegear.toothpair.report import factor_cell
+
+    assert factor_cell(s) == cell
+
+
+def _columns(table: str) -> set[tuple[int, ...]]:
+    """The positions of the column bars of each table line (one set member: aligned)."""
+    return {tuple(i for i, c in enumerate(line) if c == "|")
+            for line in table.splitlines() if line.startswith("|")}
+
+
+def test_the_solve_tables_keep_their_columns_aligned_for_any_value(cycle, summary):
+    """A lightly loaded tooth's S of 16381.83 or 151.95, a stress past 10000 MPa, stiffnesses
+    of 5.5e5 and 5.676e5: every line of each table has its bars where its header has them,
+    and the stiffness is written in one format."""
+    teeth = [dict(t) for t in summary["teeth"]]
+    loaded = [t for t in teeth if t["load_N"] > 0]
+    loaded[0].update(safety_bending_gear1=151.95, safety_bending_gear2=16381.83)
+    loaded[-1].update(p_max_MPa=12345.6, safety_contact=0.06)
+    wild = {**summary, "teeth": teeth, "safety_bending_gear2": 16381.83,
+            "contact_pressure_MPa": 12345.6}
+    table = pair_table(wild)
+    for block in table.split("\n\n"):
+        if block.startswith("|"):
+            assert len(_columns(block)) == 1, block
+    assert ">999" in table and "152" in table
+    rows = [dict(r) for r in cycle_rows(cycle)]
+    rows[0].update(mesh_stiffness_Nm_per_rad=5.5e5, safety_bending_gear2=16381.83,
+                   contact_pressure_MPa=12345.6)
+    rows[1].update(mesh_stiffness_Nm_per_rad=5.676e5, safety_bending_gear1=151.95)
+    table = cycle_table(rows)
+    assert len(_columns(table.split("\n\n")[0])) == 1
+    assert "| 5.500e+05 |" in table and "| 5.676e+05 |" in table
