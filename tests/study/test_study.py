@@ -38,9 +38,8 @@ torque = [5, 10, 15, 20]
 torque = 10
 position = 1.5
 """
-#: the environment of a study process whose 10 N·m case at β = 1.5° fails in its solve
-FAILING = {**os.environ, "PYTHONPATH": os.pathsep.join(
-    [str(Path(__file__).parent / "failing"), *filter(None, [os.environ.get("PYTHONPATH")])])}
+#: the folder whose sitecustomize makes the 10 N·m case at β = 1.5° fail in its solve
+FAILING = Path(__file__).parent / "failing"
 N_SMALL = 5
 # columns that say when, where and how fast, not what
 VOLATILE = ("wall_s", "case_wall_s", "solve_s", "host", "pid", "finished_utc", "timings_s.",
@@ -101,10 +100,19 @@ def _wait_for(cond, proc, what: str, timeout: float = 300.0) -> None:
         time.sleep(0.1)
 
 
+def _failing_env() -> dict:
+    """The environment of a study process whose 10 N·m case at β = 1.5° fails in its solve:
+    this process's as it is now (the session's disk cache, tests/conftest.py), not as it was
+    when this module was imported."""
+    return {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [str(FAILING), *filter(None, [os.environ.get("PYTHONPATH")])])}
+
+
 def _start(toml: Path, out: Path) -> subprocess.Popen:
     return subprocess.Popen([sys.executable, "-m", "fegear", "study", str(toml), "--workers",
-                             "1", "--out", str(out), "--no-progress"], cwd=ROOT, env=FAILING,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                             "1", "--out", str(out), "--no-progress"], cwd=ROOT,
+                            env=_failing_env(), stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
 
 
 # --- the study file ---------------------------------------------------------------------------
@@ -255,8 +263,8 @@ def pool_run(tmp_path_factory):
                        "table": _table(out) if (out / "results.csv").exists() else [],
                        "lock": (out / ".lock").exists()})
     final = subprocess.run([sys.executable, "-m", "fegear", "study", str(toml), "--workers",
-                            "1", "--out", str(out), "--no-progress"], cwd=ROOT, env=FAILING,
-                           capture_output=True, text=True, timeout=600)
+                            "1", "--out", str(out), "--no-progress"], cwd=ROOT,
+                           env=_failing_env(), capture_output=True, text=True, timeout=600)
     assert final.returncode == 0, final.stderr
     return {"out": out, "stages": stages, "final": final, "records": _records(out)}
 
@@ -326,7 +334,7 @@ def test_dask_cluster_gives_the_local_pool_table(pool_run, tmp_path, monkeypatch
     from fegear.study.runner import run_study
 
     study = load_study(pool_run["out"] / ".." / "small.toml")
-    monkeypatch.setenv("PYTHONPATH", FAILING["PYTHONPATH"])   # the workers' failing case
+    monkeypatch.setenv("PYTHONPATH", _failing_env()["PYTHONPATH"])   # the workers' failing case
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   dashboard_address=None) as cluster:
         report = run_study(study, tmp_path / "dask", scheduler=cluster.scheduler_address,
