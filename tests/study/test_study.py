@@ -290,8 +290,52 @@ def test_killed_study_restarts_without_losing_duplicating_or_recomputing(pool_ru
     table = _table(pool_run["out"])
     assert len(table) == N_SMALL and len({r["key"] for r in table}) == N_SMALL
     assert [int(r["case"]) for r in table] == list(range(N_SMALL))
-    assert not list((pool_run["out"] / "cases" / ".running").iterdir())
-    assert not (pool_run["out"] / ".lock").exists()   # the lock goes with the run
+    assert not (pool_run["out"] / "cases" / ".running").exists()   # the markers go with
+    assert not (pool_run["out"] / ".lock").exists()                # the run, as the lock
+
+
+def _tree(root: Path) -> dict[str, tuple[bytes, int] | None]:
+    """Every folder (None) and file (bytes, mtime) below ``root``, by relative path."""
+    return {str(p.relative_to(root)): (p.read_bytes(), p.stat().st_mtime_ns) if p.is_file()
+            else None for p in root.rglob("*")}
+
+
+def _stop_in_first_case(toml: Path, out: Path, sig: int) -> subprocess.CompletedProcess:
+    """Start the study, stop it with ``sig`` while its 7 N·m case solves (it never finishes:
+    failing/sitecustomize.py), and wait for it."""
+    proc = _start(toml, out)
+    running = out / "cases" / ".running"
+    _wait_for(lambda: running.is_dir() and any(running.iterdir()), proc, "a case started")
+    proc.send_signal(sig)
+    stdout, stderr = proc.communicate(timeout=60)
+    return subprocess.CompletedProcess(proc.args, proc.returncode, stdout, stderr)
+
+
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
+def test_a_study_stopped_before_its_first_case_finished_leaves_no_folder(tmp_path, sig):
+    toml = tmp_path / "hang.toml"
+    toml.write_text(SMALL.split("[[sweep]]")[0] + "[[sweep]]\ntorque = [7, 20]\n")
+    done = _stop_in_first_case(toml, tmp_path / "new" / "out", sig)
+    assert done.returncode == 128 + sig, done.stderr
+    assert (f"stopped by {signal.Signals(sig).name} before any case finished; nothing was "
+            "kept") in done.stderr
+    assert "Traceback" not in done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["hang.toml"]   # nor its parent
+
+
+def test_a_resumed_study_stopped_before_a_case_finished_is_left_as_it_was(pool_run,
+                                                                          tmp_path):
+    import shutil
+
+    out = tmp_path / "out"
+    shutil.copytree(pool_run["out"], out)
+    toml = tmp_path / "small.toml"
+    toml.write_text(SMALL + "[[sweep]]\ntorque = 7\n")
+    before = _tree(out)
+    done = _stop_in_first_case(toml, out, signal.SIGTERM)
+    assert done.returncode == 128 + signal.SIGTERM, done.stderr
+    assert "the finished cases are kept" in done.stderr and "Traceback" not in done.stderr
+    assert _tree(out) == before   # no marker, no study.json, no table rewritten
 
 
 def test_failed_case_is_recorded_with_its_reason(pool_run):
