@@ -59,9 +59,10 @@ class StudyInterrupted(FegearError):
 
 @dataclass(frozen=True)
 class StudyReport:
-    """What a run did: cases in the study, found finished on disk, computed now (ok and
-    failed), and times (s): the whole run, the solves summed, the workers' start-up (from the
-    first submission to the first case starting) and writing the table and plots."""
+    """What a run did: cases in the study that run, found finished on disk, computed now (ok
+    and failed), and times (s): the whole run, the solves summed, the workers' start-up (from
+    the first submission to the first case starting) and writing the table and plots; and the
+    cases refused before anything ran."""
 
     cases: int
     found: int
@@ -72,6 +73,7 @@ class StudyReport:
     startup_s: float
     table_s: float
     files: dict
+    refused: int = 0
 
     @property
     def overhead_per_case_s(self) -> float:
@@ -165,7 +167,7 @@ def _run(study: Study, out: Path, workers: int | None, client, retry_failed: boo
     return StudyReport(cases=len(study.cases), found=len(done), computed=stats["computed"],
                        failed=stats["failed"], wall_s=time.perf_counter() - t0,
                        solve_s=stats["solve_s"], startup_s=startup, table_s=table_s,
-                       files=files)
+                       files=files, refused=len(study.refused))
 
 
 def _missing(out: Path) -> list[Path]:

@@ -177,8 +177,8 @@ def test_cases_apart_in_allowables_alone_share_a_key_not_a_row(tmp_path):
     ("[base]\nno-estimate = 1", ["[base] no-estimate", "true or false"]),
     ("[outputs]\nvtk = true", ["[outputs]", "'vtk'", "did you mean 'vtu'"]),
     ("[sweeps]\nm = [1]", ["unknown section 'sweeps'", "did you mean 'sweep'"]),
-    ("[[sweep]]\nh1 = [0.3, 0.9]", ["[[sweep]] 1", "h1 = 0.9", "h1 = 0.9 is not admissible",
-                                    "admissible: "]),
+    ("[[sweep]]\nh1 = [0.85, 0.9]", ["all 2 cases are refused; the first, [[sweep]] 1 "
+                                     "(h1 = 0.85): h1 = 0.85 is not admissible", "admissible: "]),
     ("[[sweep]]\nm = []", ["[[sweep]] 1 m", "at least one value"]),
     ("[[sweep]]\nm = {start = 1, stop = 2}", ["[[sweep]] 1 m", "{start, stop, step}"]),
     ("[[sweep]]\nm = {start = 1, stop = 2, step = -1}", ["[[sweep]] 1 m.step", "non-zero"]),
@@ -201,6 +201,19 @@ def test_bad_study_file_names_file_key_and_reason(tmp_path, text, words):
         assert w in msg
 
 
+def test_an_inadmissible_case_is_set_aside_with_its_reason_and_the_others_kept(tmp_path):
+    s = _study(tmp_path, "[[sweep]]\nh1 = [0.3, 0.9, 0.35]\n", "x.toml")
+    assert [(c.index, c.swept) for c in s.cases] == [(0, {"h1": 0.3}), (2, {"h1": 0.35})]
+    (refused,) = s.refused
+    assert (refused.index, refused.swept, refused.block) == (1, {"h1": 0.9}, "[[sweep]] 1")
+    assert refused.values["h1"] == 0.9 and s.varied == ("h1",)
+    # the line a study refused whole for it gave before: the input, its value, the range
+    line = refused.describe(s.path)
+    assert line.startswith(f"{tmp_path / 'x.toml'}: [[sweep]] 1 (h1 = 0.9): h1 = 0.9 is not "
+                           "admissible (the gear-2 curve folds back")
+    assert "; admissible: 0.0500 <= h1 <= 0.83" in line and "\n" not in line
+
+
 def test_cli_bad_study_is_one_line_and_creates_nothing(tmp_path, capsys):
     (tmp_path / "bad.toml").write_text("[[sweep]]\nf1 = [0.5]\n")
     out = tmp_path / "out"
@@ -212,6 +225,11 @@ def test_cli_bad_study_is_one_line_and_creates_nothing(tmp_path, capsys):
     assert "cannot be read" in capsys.readouterr().err
     assert main(["study", str(tmp_path / "bad.toml"), "--workers", "0"]) == 2
     assert "workers = 0 is not admissible" in capsys.readouterr().err
+    (tmp_path / "all.toml").write_text("[[sweep]]\nh1 = [0.85, 0.9]\nm = [1.5, 2]\n")
+    assert main(["study", str(tmp_path / "all.toml"), "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"fegear: error: {tmp_path / 'all.toml'}: all 4 cases are refused")
+    assert "\n" not in err and not out.exists()
 
 
 def test_shipped_studies_load():
@@ -418,6 +436,35 @@ def test_unreachable_scheduler_is_one_line_and_creates_nothing(tmp_path, capsys)
     assert code == 2 and len(err) == 1
     assert err[0].startswith("fegear: error: --scheduler 'tcp://127.0.0.1:9': cannot connect")
     assert not out.exists()
+
+
+def test_a_study_runs_its_admissible_cases_and_lists_the_refused_ones(tmp_path, capsys):
+    """h1 0.95 folds gear 2's curve back: that case is said at the start, listed under the
+    table and in it (status refused, the reason in `error`) and in study.json; the other
+    runs."""
+    from fegear.study import load_results
+
+    toml, out = tmp_path / "s.toml", tmp_path / "out"
+    toml.write_text(SMALL.split("[[sweep]]")[0] + "[[sweep]]\ntorque = 20\nh1 = [0.3, 0.95]\n")
+    assert main(["study", str(toml), "--workers", "1", "--out", str(out)]) == 0
+    std = capsys.readouterr()
+    reason = "h1 = 0.95 is not admissible (the gear-2 curve folds back"
+    head = std.err.splitlines()
+    assert "2 cases, varying h1 (0 finished before, 1 to compute, 1 refused)" in head[0]
+    assert head[1].startswith(f"refused: {toml}: [[sweep]] 1 (torque = 20.0, h1 = 0.95): "
+                              + reason)
+    assert "admissible: 0.0500 <= h1 <= 0.8259 at f1=0.15, m=2, z2=25, z1=24" in head[1]
+    assert "| 0.95 | – |" in std.out and "refused (below)" in std.out
+    assert f"* case 1 (h1 = 0.95): {reason}" in std.out
+    assert "2 cases: 0 found finished, 1 computed (0 failed), 1 refused" in std.out
+    df = load_results(out)
+    assert list(df["status"]) == ["ok", "refused"] and list(df["h1"]) == [0.3, 0.95]
+    assert df["error"][1].startswith(reason) and df["key"].isna().tolist() == [False, True]
+    assert df["root_stress_gear1_MPa"].isna().tolist() == [False, True]
+    (refused,) = json.loads((out / "study.json").read_text())["refused"]
+    assert refused["swept"] == {"torque": 20.0, "h1": 0.95} and refused["reason"] == \
+        df["error"][1]
+    assert (out / "results.md").read_text() in std.out
 
 
 def test_second_run_into_the_same_directory_is_refused(tmp_path):
