@@ -295,6 +295,8 @@ def test_killed_study_restarts_without_losing_duplicating_or_recomputing(pool_ru
     # SIGTERM leaves a table of exactly the finished cases
     assert {r["key"] + ".json" for r in term["table"]} == set(term["records"])
     assert kill["returncode"] == -signal.SIGKILL
+    # its workers removed the pool's semaphores: no resource tracker warning
+    assert "leaked" not in kill["stderr"] and "Traceback" not in kill["stderr"]
     assert len(term["records"]) < len(kill["records"]) < N_SMALL
     final = pool_run["records"]
     assert len(final) == N_SMALL
