@@ -39,6 +39,19 @@ class LocalPool(ProcessPoolExecutor):
         # read when the workers are spawned, at the first submission
         self._initargs = (_semaphores(self),)
 
+    def submit(self, fn, /, *args, **kwargs):
+        """As the pool's, with SIGINT held back from the workers it spawns: they are born
+        with it blocked and ignore it once set up (:func:`init_worker`), so that a Ctrl-C
+        to the whole process group while they still import is not a traceback of theirs
+        and a broken pool. Here it waits the few milliseconds of the spawn."""
+        if not hasattr(signal, "pthread_sigmask"):   # pragma: no cover - Windows
+            return super().submit(fn, *args, **kwargs)
+        held = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+        try:
+            return super().submit(fn, *args, **kwargs)
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, held)
+
     def stop(self) -> None:
         """Shut down without waiting for the tasks under way: terminate the workers, the
         children of this process that multiprocessing's spawn started since the pool was
@@ -95,6 +108,8 @@ def init_worker(semaphores: tuple[str, ...] = ()) -> None:
     """A local pool's worker: Ctrl-C is left to the parent, and it ends with the parent,
     removing the ``semaphores`` of the pool's queues if the parent could not."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if hasattr(signal, "pthread_sigmask"):   # blocked since its spawn
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
     threading.Thread(target=_exit_with_parent, args=(os.getppid(), semaphores),
                      daemon=True).start()
 
