@@ -94,8 +94,8 @@ def _children() -> set[int]:
 
 
 def _semaphores(pool: ProcessPoolExecutor) -> tuple[str, ...]:
-    """The names of the semaphores that the pool's call and result queues hold (five, in
-    CPython 3.11-3.13), registered with the resource tracker by this process."""
+    """The names of the semaphores that the pool's call and result queues hold (five in
+    CPython 3.11), registered with the resource tracker by this process."""
     from multiprocessing.synchronize import SemLock
 
     queues = (getattr(pool, "_call_queue", None), getattr(pool, "_result_queue", None))

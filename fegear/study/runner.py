@@ -91,7 +91,8 @@ def run_study(study: Study, out: str | Path, workers: int | None = None,
     With ``scheduler``, on that Dask cluster; else on ``workers`` local processes (default:
     one per core). ``on_start(found, todo)`` is called once the finished cases are known.
     Raises :class:`StudyInterrupted` on SIGTERM or SIGINT, after writing the table of the
-    finished cases. A run that leaves no finished case in ``out`` leaves no folder it made."""
+    finished cases; stopped before it finished a case, it leaves ``out`` as it found it (a
+    folder it made, its parents too, removed)."""
     t0 = time.perf_counter()
     # a bad address creates no output
     client = connect(scheduler, StudyError) if scheduler else None
