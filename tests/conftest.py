@@ -1,6 +1,8 @@
 """Shared cases, built once per test session: the seed paper's baseline pair and its variants,
 their exact gear 1, and the small solved cases that several test modules read."""
 
+import os
+import subprocess
 import sys
 from pathlib import Path
 
@@ -10,24 +12,70 @@ sys.path.insert(0, str(Path(__file__).parent))  # draws: a test helper
 sys.path.insert(0, str(Path(__file__).parent / "geometry"))  # swept_reference, a test helper
 
 
+#: where fegear would keep its models for the user running the tests (FEGEAR_CACHE_DIR, else
+#: $XDG_CACHE_HOME/fegear, else ~/.cache/fegear), read before the session changes anything
+USER_CACHES = {Path(p).expanduser().absolute() for p in (
+    os.environ.get("FEGEAR_CACHE_DIR") or None,
+    Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "fegear") if p}
+
+
+def cache_of(env) -> Path:
+    """The disk cache a fegear process started with the environment ``env`` would use (as
+    :func:`fegear.toothpair.ring.disk.directory` finds it)."""
+    if env.get("FEGEAR_CACHE_DIR"):
+        return Path(env["FEGEAR_CACHE_DIR"]).expanduser().absolute()
+    home = Path(env["HOME"]) if env.get("HOME") else Path.home()
+    return Path(env.get("XDG_CACHE_HOME") or home / ".cache").absolute() / "fegear"
+
+
 @pytest.fixture(scope="session", autouse=True)
 def _disk_cache_of_the_session(tmp_path_factory):
     """The disk cache of ring models in a folder of this session's, off unless a test turns
     it on: the tests neither read what the user's runs kept nor write into their cache. The
-    environment is set here, so the workers the tests spawn inherit it."""
-    import os
-
+    environment is set here, so the workers the tests spawn inherit it; a process started
+    with an environment of its own must carry a cache that is not the user's (one copied from
+    ``os.environ`` before this ran does not: :func:`_no_process_with_the_users_cache`). A run
+    that made the user's cache folder fails at its end."""
     saved = {k: os.environ.get(k) for k in ("FEGEAR_CACHE", "FEGEAR_CACHE_DIR",
                                             "FEGEAR_CACHE_GB")}
+    made = {p for p in USER_CACHES if not p.exists()}
     os.environ["FEGEAR_CACHE_DIR"] = str(tmp_path_factory.mktemp("fegear-cache"))
     os.environ.pop("FEGEAR_CACHE", None)
     os.environ.pop("FEGEAR_CACHE_GB", None)
-    yield
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(subprocess.Popen, "__init__", _checked_popen(subprocess.Popen.__init__))
+        yield os.environ["FEGEAR_CACHE_DIR"]
     for k, v in saved.items():
         if v is None:
             os.environ.pop(k, None)
         else:
             os.environ[k] = v
+    made = [str(p) for p in made if p.exists()]
+    assert not made, f"the test run made the user's fegear cache {', '.join(made)}"
+
+
+@pytest.fixture(autouse=True)
+def _no_process_with_the_users_cache(_disk_cache_of_the_session):
+    """Each test leaves the session's cache in the environment (what the workers it and the
+    tests after it start inherit)."""
+    yield
+    assert os.environ.get("FEGEAR_CACHE_DIR") == _disk_cache_of_the_session, (
+        "a test left FEGEAR_CACHE_DIR changed: "
+        f"{os.environ.get('FEGEAR_CACHE_DIR')!r}, not the session's")
+
+
+def _checked_popen(popen_init):
+    """Popen.__init__ that refuses a child whose environment would have it use the user's
+    fegear cache (an environment copied before the session set its own, say)."""
+    def init(self, args, *rest, **kw):
+        env = kw.get("env", rest[9] if len(rest) > 9 else None)   # Popen's 11th parameter
+        if env is not None and cache_of(env) in USER_CACHES:
+            raise AssertionError(f"{args!r} would be started with the user's fegear cache "
+                                 f"{cache_of(env)}: build its environment from os.environ "
+                                 "when it is started, not at import")
+        popen_init(self, args, *rest, **kw)
+
+    return init
 
 
 @pytest.fixture(scope="session")

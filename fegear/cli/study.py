@@ -9,6 +9,9 @@ from ..checks import require_range
 from ..errors import FegearError
 from .cache import add_switch, apply_switch
 
+#: refused cases listed one by one when a study starts; the rest are counted
+SHOWN = 20
+
 
 def add_parser(sub) -> None:
     p = sub.add_parser("study", help="run a parameter study (TOML file): table and plots")
@@ -40,10 +43,18 @@ def run(a: argparse.Namespace) -> int:
     apply_switch(a, default=True)   # before the workers start: they inherit it
     out = a.out or f"out/study/{study.name}"
 
+    refused = study.refused
+
     def started(found: int, todo: int) -> None:
         varied = f", varying {', '.join(study.varied)}" if study.varied else ""
-        print(f"{study.name}: {len(study.cases)} cases{varied} ({found} finished before, "
-              f"{todo} to compute); results in {out}", file=sys.stderr, flush=True)
+        aside = f", {len(refused)} refused" if refused else ""
+        lines = [f"{study.name}: {len(study.cases) + len(refused)} cases{varied} ({found} "
+                 f"finished before, {todo} to compute{aside}); results in {out}"]
+        lines += [f"refused: {r.describe(study.path)}" for r in refused[:SHOWN]]
+        if len(refused) > SHOWN:
+            lines.append(f"refused: {len(refused) - SHOWN} more (results.md and study.json "
+                         "list them all)")
+        print("\n".join(lines), file=sys.stderr, flush=True)
 
     try:
         report = run_study(study, out, workers=a.workers, scheduler=a.scheduler,
@@ -56,8 +67,10 @@ def run(a: argparse.Namespace) -> int:
     md = report.files.get("md")
     if md is not None:
         print(md.read_text(), end="")
-    print(f"\n{report.cases} cases: {report.found} found finished, {report.computed} computed "
-          f"({report.failed} failed) in {report.wall_s:.1f} s")
+    aside = f", {report.refused} refused (listed under the table)" if report.refused else ""
+    print(f"\n{report.cases + report.refused} cases: {report.found} found finished, "
+          f"{report.computed} computed ({report.failed} failed){aside} in "
+          f"{report.wall_s:.1f} s")
     for k, v in report.files.items():
         print(f"{k:12s} {v}")
     return 0

@@ -11,9 +11,10 @@ and constraint values.
   several writers). Only this process writes it: it asks, the workers solve, it tells. A
   stop by SIGTERM or Ctrl-C finishes no trial half-way: the trials under way are marked
   failed and queued again with the same design. So are those a killed worker (or a killed
-  search, SIGKILL, found RUNNING at the next start) leaves behind. A search started again
-  on the same directory resumes: finished trials count toward its budget and are never
-  solved again, queued ones are solved first.
+  search, SIGKILL, found RUNNING at the next start) leaves behind. The queued copy keeps
+  why (``cut_by``), and the trials table says it for both: the one cut short and its copy.
+  A search started again on the same directory resumes: finished trials count toward its
+  budget and are never solved again, queued ones are solved first.
 * **Cheap levels first.** Trials are screened at ``coarse``; the best are solved again at
   ``standard`` with the error estimate (:mod:`.report`).
 """
@@ -137,7 +138,7 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
                       len(space.objectives))
     stale = study.get_trials(deepcopy=False, states=(TrialState.RUNNING,))
     for t in stale:                      # a search killed outright left these running
-        _requeue(study, t.number, t.params)
+        _requeue(study, t.number, t.params, "the search ended while it ran (killed outright)")
     found = sum(t.state == TrialState.COMPLETE for t in study.get_trials(deepcopy=False))
     done, solved = found, 0
     stop: list[int] = []
@@ -167,15 +168,16 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
                     rec = f.result()
                 except BrokenProcessPool:      # a worker died: every trial under way again
                     for t, p in [(trial, params), *running.values()]:
-                        _requeue(study, t.number, p)
+                        _requeue(study, t.number, p, "a worker process of the pool died")
                     running.clear()
                     pool.stop()
                     pool = local_pool(workers)
                     break
-                except Exception:  # noqa: BLE001  the cluster lost it (KilledWorker …)
+                except Exception as exc:  # noqa: BLE001  the cluster lost it (KilledWorker …)
                     if client is None:
                         raise
-                    _requeue(study, trial.number, params)
+                    _requeue(study, trial.number, params,
+                             f"the cluster lost it ({type(exc).__name__})")
                     continue
                 _tell(study, trial, rec, space)
                 done += 1
@@ -185,7 +187,7 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
                                      time.perf_counter() - t_start))
         if stop:
             for t, p in running.values():
-                _requeue(study, t.number, p)
+                _requeue(study, t.number, p, f"stopped by {signal.Signals(stop[0]).name}")
             running.clear()
     finally:
         if client is None:
@@ -209,12 +211,13 @@ def _failed() -> Future:
     return f
 
 
-def _requeue(study, number: int, params: dict) -> None:
-    """Mark trial ``number`` failed (it did not finish) and queue its design again."""
+def _requeue(study, number: int, params: dict, why: str) -> None:
+    """Mark trial ``number`` failed (it did not finish) and queue its design again; the copy
+    keeps which trial it redoes and ``why`` that one was cut short."""
     from optuna.trial import TrialState
 
     study.tell(number, state=TrialState.FAIL)
-    study.enqueue_trial(params, user_attrs={"requeued_from": number})
+    study.enqueue_trial(params, user_attrs={"requeued_from": number, "cut_by": why})
 
 
 def _clean(value):
@@ -293,9 +296,12 @@ def write_trials(study, space: Space, out: Path) -> Path:
     names = [v.name for v in space.variables]
     header = ["trial", "state", "feasible", *names, *(f"violation_{c}" for c in CONSTRAINTS),
               *TABLE_COLUMNS]
+    trials = study.get_trials(deepcopy=False)
+    copies = {t.user_attrs["requeued_from"]: t for t in trials
+              if "requeued_from" in t.user_attrs}
     rows = []
-    for t in study.get_trials(deepcopy=False):
-        a = t.user_attrs
+    for t in trials:
+        a = {**t.user_attrs, **_unfinished(t, copies)}
         cons = _constraints(t) if t.state.name == "COMPLETE" else [None] * len(CONSTRAINTS)
         rows.append([t.number, t.state.name, feasible(t), *(t.params.get(n) for n in names),
                      *cons, *(a.get(c) for c in TABLE_COLUMNS)])
@@ -310,6 +316,24 @@ def write_trials(study, space: Space, out: Path) -> Path:
         "best": [{"trial": t.number, "params": t.params, "values": t.values,
                   **{k: _clean(t.user_attrs.get(k)) for k in TABLE_COLUMNS}} for t in best]})
     return path
+
+
+def _unfinished(t, copies: dict) -> dict:
+    """The status and reason of a trial that did not finish: one cut short (FAIL) and the
+    queued copy that redoes it (WAITING, or RUNNING while solved)."""
+    if t.state.name == "FAIL" and not t.user_attrs.get("status"):
+        copy = copies.get(t.number)
+        if copy is None:
+            return {"status": "cut", "reason": "did not finish"}
+        why = copy.user_attrs.get("cut_by") or "cut short"
+        return {"status": "cut", "reason": f"{why}; its design queued again as trial "
+                                           f"{copy.number}"}
+    if t.state.name in ("WAITING", "RUNNING") and "requeued_from" in t.user_attrs:
+        why = t.user_attrs.get("cut_by") or "cut short"
+        return {"status": "queued", "reason": f"the design of trial "
+                f"{t.user_attrs['requeued_from']} ({why}), solved first when the search "
+                "goes on"}
+    return {}
 
 
 def load_trials(out):

@@ -21,7 +21,10 @@ A study file is data, never code::
 
 A scalar in a block sets that input for the block's cases only. A case that two blocks both
 produce is run once. Every case is checked as ``fegear solve`` would check it before anything
-runs; an error names the file, the block, the key and the reason.
+runs. A case it refuses (a value outside its range, a design that cannot be built) is kept
+aside with its reason (:class:`RefusedCase`) and the others run; a study none of whose cases
+can run is an error. An error in the file itself names the file, the block, the key and the
+reason.
 """
 
 from __future__ import annotations
@@ -72,9 +75,32 @@ class StudyCase:
 
 
 @dataclass(frozen=True)
+class RefusedCase:
+    """A case of the file that ``fegear solve`` refuses: its number in the study, its inputs,
+    the values its sweep block set, where it comes from (``[[sweep]] 2``, ``[base]``) and
+    the refusal (the input, its value and the admissible range)."""
+
+    index: int
+    values: dict
+    swept: dict
+    block: str
+    reason: str
+
+    @property
+    def where(self) -> str:
+        """The block and the values it set: ``[[sweep]] 1 (h1 = 0.95)``."""
+        return f"{self.block} ({_describe(self.swept) or 'base'})"
+
+    def describe(self, path: Path) -> str:
+        """One line: the file, the block, the case's values and the reason."""
+        return f"{path}: {self.where}: {self.reason}"
+
+
+@dataclass(frozen=True)
 class Study:
-    """A checked study: name, source file, kept outputs, the base inputs, the cases in the
-    order of the file, and the inputs that differ between cases (the plots' axes)."""
+    """A checked study: name, source file, kept outputs, the base inputs, the cases that run
+    and those refused (:class:`RefusedCase`), each numbered in the order of the file, and the
+    inputs that differ between all of them (the plots' axes)."""
 
     name: str
     path: Path
@@ -83,6 +109,7 @@ class Study:
     base: dict
     cases: tuple[StudyCase, ...]
     varied: tuple[str, ...]
+    refused: tuple[RefusedCase, ...] = ()
 
 
 def load_study(path: str | Path) -> Study:
@@ -121,14 +148,14 @@ def build_study(data: dict, path: Path) -> Study:
         raise StudyError(f"{where}: sweep must be an array of tables, written [[sweep]]")
     combos = []
     for i, block in enumerate(blocks, start=1):
-        combos.extend(_expand(block, inputs, f"{where}: [[sweep]] {i}"))
+        combos.extend(_expand(block, inputs, f"{where}: [[sweep]] {i}", f"[[sweep]] {i}"))
         if len(combos) > MAX_CASES:
             raise StudyError(f"{where}: more than {MAX_CASES} cases")
     if not combos:
-        combos = [("", {})]
+        combos = [("[base]", {})]
     code = code_version()
-    cases, seen = [], set()
-    for label, swept in combos:
+    cases, refused, seen = [], [], set()
+    for block, swept in combos:
         values = {**base, **swept}
         key = case_key(values, outputs, code)
         # cases that differ in an allowable stress alone share a key (one solve) but not a row
@@ -136,11 +163,20 @@ def build_study(data: dict, path: Path) -> Study:
         if same in seen:
             continue
         seen.add(same)
-        _check_case(values, f"{label or where + ': [base]'} ({_describe(swept) or 'base'})")
-        cases.append(StudyCase(len(cases), key, values, swept))
-    full = [SOLVE_INPUTS.complete(c.values) for c in cases]
+        index = len(cases) + len(refused)
+        reason = _refusal(values)
+        if reason is None:
+            cases.append(StudyCase(index, key, values, swept))
+        else:
+            refused.append(RefusedCase(index, values, swept, block, reason))
+    if not cases:
+        first = refused[0]
+        raise StudyError(first.describe(path) if len(refused) == 1 else
+                         f"{where}: all {len(refused)} cases are refused; the first, "
+                         f"{first.where}: {first.reason}")
+    full = [SOLVE_INPUTS.complete(c.values) for c in (*cases, *refused)]
     varied = tuple(n for n in inputs if len({json.dumps(f[n]) for f in full}) > 1)
-    return Study(name, path, description, outputs, base, tuple(cases), varied)
+    return Study(name, path, description, outputs, base, tuple(cases), varied, tuple(refused))
 
 
 #: inputs renamed since studies were first stored, hashed under their earlier names so that
@@ -158,8 +194,8 @@ def case_key(values: dict, outputs: Outputs, code: str) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
-def _expand(block: dict, inputs, where: str) -> list[tuple[str, dict]]:
-    """The cases of one [[sweep]] block: (its label, the values it sets)."""
+def _expand(block: dict, inputs, where: str, label: str) -> list[tuple[str, dict]]:
+    """The cases of one [[sweep]] block: (``label``, the values it sets)."""
     combine = _string(block.get("combine", "product"), f"{where} combine")
     if combine not in ("product", "zip"):
         raise StudyError(f"{where} combine = {combine!r}: admissible: \"product\" or \"zip\"")
@@ -188,7 +224,7 @@ def _expand(block: dict, inputs, where: str) -> list[tuple[str, dict]]:
         rows = [[v[j] if len(v) > 1 else v[0] for v in swept.values()] for j in range(n)]
     else:
         rows = itertools.product(*swept.values())
-    return [(where, dict(zip(names, row))) for row in rows]
+    return [(label, dict(zip(names, row))) for row in rows]
 
 
 def _range(spec: dict, kind: str, where: str) -> list:
@@ -276,9 +312,10 @@ def _describe(values: dict) -> str:
     return ", ".join(f"{k} = {v!r}" for k, v in values.items())
 
 
-def _check_case(values: dict, where: str) -> None:
-    """Check a case as ``fegear solve`` would (parameters, geometry); no meshing."""
+def _refusal(values: dict) -> str | None:
+    """Why ``fegear solve`` refuses a case (parameters, geometry; no meshing), or None."""
     try:
         prepare_job(values)
     except FegearError as exc:
-        raise StudyError(f"{where}: {exc}") from None
+        return str(exc)
+    return None

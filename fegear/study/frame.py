@@ -10,8 +10,9 @@ from .file import StudyError
 
 def load_results(path: str | Path):
     """The results table of a study as a :class:`pandas.DataFrame`: one row per finished
-    case in the study's order, failed ones too (``status`` "ok" or "failed", ``error`` the
-    reason; their result columns are empty). The columns are those of ``results.parquet``:
+    case in the study's order, failed ones too, and one per case refused before anything ran
+    (``status`` "ok", "failed" or "refused", ``error`` the reason; the result columns of the
+    last two are empty). The columns are those of ``results.parquet``:
     ``case`` and ``key``, every ``fegear solve`` input by its option name (``torque``,
     ``tip-clearance``, ``allowable-bending``), every value of the solve's summary with its
     unit in the name (``root_stress_gear1_MPa``, ``transmission_error_urad``; nested keys

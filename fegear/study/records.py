@@ -33,7 +33,9 @@ def study_json(study: Study) -> dict:
             "outputs": {"vtu": study.outputs.vtu, "png": study.outputs.png},
             "base": study.base, "varied": list(study.varied),
             "cases": [{"index": c.index, "key": c.key, "swept": c.swept, "values": c.values}
-                      for c in study.cases]}
+                      for c in study.cases],
+            "refused": [{"index": c.index, "block": c.block, "swept": c.swept,
+                         "values": c.values, "reason": c.reason} for c in study.refused]}
 
 
 def store(out: Path, case: StudyCase, record: dict, files: dict[str, bytes]) -> None:

@@ -22,7 +22,7 @@ from pathlib import Path
 
 from ..files import write_atomic
 from ..toothpair import HEADLINE, SOLVE_INPUTS, allowables_of, with_safety
-from .file import Study
+from .file import RefusedCase, Study
 from .plot import Line, StudyPlot
 
 #: headline stresses in the study table's head
@@ -39,13 +39,21 @@ _TRAILER = ("case_wall_s", "solve_s", "fegear", "code_version", "host", "pid", "
 
 
 def rows(study: Study, out: Path) -> list[dict]:
-    """One flat row per finished case, in the study's order."""
+    """One flat row per finished case, in the study's order, and one per refused case
+    (``status`` "refused", ``error`` the refusal) once any case has finished."""
     from .records import finished
 
     done = finished(study, out)
+    if not done:
+        return []
     inputs = SOLVE_INPUTS
     table = []
-    for case in study.cases:
+    for case in sorted((*study.cases, *study.refused), key=lambda c: c.index):
+        if isinstance(case, RefusedCase):
+            table.append({"case": case.index, "key": None, "status": "refused",
+                          "error": case.reason,
+                          **{n: case.values.get(n, i.default) for n, i in inputs.items()}})
+            continue
         rec = done.get(case.key)
         if rec is None:
             continue
@@ -170,10 +178,19 @@ def markdown(study: Study, table: list[dict]) -> str:
         if cycled:
             cells += _cycle_cells(r)
         est = r.get("error_estimate_pct")
+        status = {"ok": "ok", "refused": "refused (below)"}.get(r["status"],
+                                                                 f"failed: {r['error']}")
         cells += [f"{est:.2f}" if ok and est is not None else "–", _teeth(r) if ok else "–",
-                  "ok" if ok else f"failed: {r['error']}",
-                  f"{r['case_wall_s']:.1f}" if r.get("case_wall_s") is not None else "–"]
+                  status, f"{r['case_wall_s']:.1f}" if r.get("case_wall_s") is not None
+                  else "–"]
         lines.append("| " + " | ".join(cells) + " |")
+    refused = [r for r in table if r["status"] == "refused"]
+    if refused:
+        lines += ["", f"Not solved: `fegear solve` refuses the inputs of {len(refused)} "
+                  f"case{'s' if len(refused) > 1 else ''}:", ""]
+        lines += [f"* case {r['case']} ("
+                  + ", ".join(f"{x} = {_cell(r.get(x))}" for x in study.varied)
+                  + f"): {r['error']}" for r in refused]
     if cycled:
         lines += ["", "Stresses in MPa. With positions, the first columns are at the cycle's "
                   "first position β0 (the study's position); \"cycle\": the largest stress "
@@ -296,11 +313,12 @@ def _tied(study: Study, rows: list[dict], x: str) -> list[str]:
     """The varied inputs that sweep blocks set together with ``x`` and that ``x`` determines
     in every such case."""
     tied = []
+    swept = {c.index: c.swept for c in study.cases}
     for o in study.varied:
         if o == x:
             continue
         seen: dict = {}
-        both = [study.cases[r["case"]].swept for r in rows]
+        both = [swept[r["case"]] for r in rows]
         both = [s for s in both if x in s and o in s]
         if both and all(seen.setdefault(s[x], s[o]) == s[o] for s in both):
             tied.append(o)

@@ -5,7 +5,9 @@ inputs, the kept outputs and the code version) and written atomically by this pr
 case has finished, after its kept files (``cases/<key>/``). A study that is killed and started
 again finds the finished cases on disk and computes only the missing ones; a case that was
 running when the study died left nothing and runs again. A case that fails is stored with its
-reason and does not stop the study (``retry_failed`` runs such cases again).
+reason and does not stop the study (``retry_failed`` runs such cases again). A run stopped
+before it finished a case leaves ``out`` as it found it: no folder it made, no marker, no
+table rewritten.
 """
 
 from __future__ import annotations
@@ -42,19 +44,25 @@ _SOLVE_LOCK = threading.Lock()  # gmsh keeps one global session per process
 
 
 class StudyInterrupted(FegearError):
-    """SIGTERM or SIGINT stopped the study; the finished cases are on disk."""
+    """SIGTERM or SIGINT stopped the study; the finished cases (``finished``, None: not
+    counted yet) are on disk."""
 
-    def __init__(self, signum: int) -> None:
-        self.signum = signum
-        super().__init__(f"stopped by {signal.Signals(signum).name}; the finished cases are "
-                         "kept: run the same command again to compute the rest")
+    def __init__(self, signum: int, finished: int | None = None) -> None:
+        self.signum, self.finished = signum, finished
+        name = signal.Signals(signum).name
+        if finished == 0:
+            super().__init__(f"stopped by {name} before any case finished; nothing was kept")
+        else:
+            super().__init__(f"stopped by {name}; the finished cases are kept: run the same "
+                             "command again to compute the rest")
 
 
 @dataclass(frozen=True)
 class StudyReport:
-    """What a run did: cases in the study, found finished on disk, computed now (ok and
-    failed), and times (s): the whole run, the solves summed, the workers' start-up (from the
-    first submission to the first case starting) and writing the table and plots."""
+    """What a run did: cases in the study that run, found finished on disk, computed now (ok
+    and failed), and times (s): the whole run, the solves summed, the workers' start-up (from
+    the first submission to the first case starting) and writing the table and plots; and the
+    cases refused before anything ran."""
 
     cases: int
     found: int
@@ -65,6 +73,7 @@ class StudyReport:
     startup_s: float
     table_s: float
     files: dict
+    refused: int = 0
 
     @property
     def overhead_per_case_s(self) -> float:
@@ -82,10 +91,12 @@ def run_study(study: Study, out: str | Path, workers: int | None = None,
     With ``scheduler``, on that Dask cluster; else on ``workers`` local processes (default:
     one per core). ``on_start(found, todo)`` is called once the finished cases are known.
     Raises :class:`StudyInterrupted` on SIGTERM or SIGINT, after writing the table of the
-    finished cases."""
+    finished cases; stopped before it finished a case, it leaves ``out`` as it found it (a
+    folder it made, its parents too, removed)."""
     t0 = time.perf_counter()
     # a bad address creates no output
     client = connect(scheduler, StudyError) if scheduler else None
+    made = _missing(Path(out))
     try:
         out = prepare_dir(out)
         with _exclusive(out):
@@ -93,6 +104,11 @@ def run_study(study: Study, out: str | Path, workers: int | None = None,
     finally:
         if client is not None:
             client.close()
+        for folder in made:   # deepest first; one that holds anything stays
+            try:
+                folder.rmdir()
+            except OSError:
+                break
 
 
 def _run(study: Study, out: Path, workers: int | None, client, retry_failed: bool,
@@ -101,7 +117,6 @@ def _run(study: Study, out: Path, workers: int | None, client, retry_failed: boo
 
     running = out / "cases" / ".running"
     running.mkdir(parents=True, exist_ok=True)
-    write_json(out / "study.json", study_json(study))
     done = finished(study, out, retry_failed)
     solves: dict[str, StudyCase] = {}  # one per key: cases apart in allowables alone share it
     for c in study.cases:
@@ -113,6 +128,7 @@ def _run(study: Study, out: Path, workers: int | None, client, retry_failed: boo
     code = code_version()
     stats = {"computed": 0, "failed": 0, "solve_s": 0.0, "first_start": None}
     started = time.time()
+    files, table_s, ended = {}, 0.0, False
     try:
         with _signals_raise():
             results = (_dask_results(todo, study, client) if client is not None
@@ -125,6 +141,8 @@ def _run(study: Study, out: Path, workers: int | None, client, retry_failed: boo
                             f"the worker ran other code ({record['code_version']}) than this "
                             f"study ({code}): install the same fegear on every worker"))
                         files = {}
+                    if not stats["computed"]:
+                        write_json(out / "study.json", study_json(study))
                     store(out, case, record, files)
                     stats["computed"] += 1
                     stats["failed"] += record["status"] != "ok"
@@ -133,15 +151,46 @@ def _run(study: Study, out: Path, workers: int | None, client, retry_failed: boo
                         stats["first_start"] = record["started_unix"]
                     bar.update(1)
                     bar.set_postfix(failed=stats["failed"], refresh=False)
-    finally:  # the table always shows what is on disk, also after an interruption
-        t1 = time.perf_counter()
-        files = write_results(study, out)
-        table_s = time.perf_counter() - t1
+        ended = True
+    except StudyInterrupted as exc:
+        raise StudyInterrupted(exc.signum, len(finished(study, out))) from None
+    finally:
+        _clear(running)
+        # the table shows what is on disk, also after an interruption; a run stopped before
+        # it finished a case leaves the folder as it found it
+        if ended or stats["computed"]:
+            t1 = time.perf_counter()
+            files = write_results(study, out)
+            if files:
+                write_json(out / "study.json", study_json(study))
+            table_s = time.perf_counter() - t1
     startup = 0.0 if stats["first_start"] is None else max(stats["first_start"] - started, 0.0)
     return StudyReport(cases=len(study.cases), found=len(done), computed=stats["computed"],
                        failed=stats["failed"], wall_s=time.perf_counter() - t0,
                        solve_s=stats["solve_s"], startup_s=startup, table_s=table_s,
-                       files=files)
+                       files=files, refused=len(study.refused))
+
+
+def _missing(out: Path) -> list[Path]:
+    """``out`` and those of its parents that do not exist yet, deepest first."""
+    missing = []
+    for folder in (out.absolute(), *out.absolute().parents):
+        if folder.exists():
+            break
+        missing.append(folder)
+    return missing
+
+
+def _clear(running: Path) -> None:
+    """Remove the run's markers (those of workers that were stopped while solving) and their
+    folder, and ``cases/`` if no case is in it."""
+    for mark in running.glob("*"):
+        mark.unlink(missing_ok=True)
+    for folder in (running, running.parent):
+        try:
+            folder.rmdir()
+        except OSError:
+            return
 
 
 class _exclusive:

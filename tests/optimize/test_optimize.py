@@ -153,19 +153,68 @@ def _check_resumed(out: Path) -> None:
     assert cut and set(cut) <= set(done)
 
 
-def test_a_search_stopped_by_sigterm_resumes_with_no_trial_lost_or_repeated(tmp_path):
+def _cut(out: Path, why: str) -> None:
+    """Every trial cut short says ``why`` and which trial redoes its design; that one says
+    which it redoes."""
+    table = load_trials(out).set_index("trial")
+    cut = table[table["state"] == "FAIL"]
+    assert len(cut) and set(cut["status"]) == {"cut"}
+    for number, row in cut.iterrows():
+        head, copy = row["reason"].split("; its design queued again as trial ")
+        assert head == why, row["reason"]
+        redo = table.loc[int(copy)]
+        assert redo["state"] == "COMPLETE" or redo["reason"].startswith(
+            f"the design of trial {number} ({why})")
+
+
+def _clean_exit(err: str) -> None:
+    """Nothing on stderr but fegear's own lines: no traceback, and no resource tracker
+    warning of semaphores the search's pool left behind."""
+    assert "Traceback" not in err and "leaked" not in err and "Warning" not in err, err
+
+
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
+def test_a_search_stopped_by_a_signal_resumes_with_no_trial_lost_or_repeated(tmp_path, sig):
     out = tmp_path / "search"
     proc = subprocess.Popen([*FEGEAR, *ARGV, "--out", str(out)], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     _wait_for(out, 2, proc)
-    proc.send_signal(signal.SIGTERM)
+    proc.send_signal(sig)
     _, err = proc.communicate(timeout=60)
-    assert proc.returncode == 128 + signal.SIGTERM, err
+    assert proc.returncode == 128 + sig, err
     assert "queued again" in err
+    _clean_exit(err)
+    name = signal.Signals(sig).name
+    _cut(out, f"stopped by {name}")
+    queued = load_trials(out).query("state == 'WAITING'")
+    assert len(queued) and set(queued["status"]) == {"queued"}
+    assert all(f"(stopped by {name}), solved first" in r for r in queued["reason"])
     again = subprocess.run([*FEGEAR, *ARGV, "--out", str(out)], capture_output=True, text=True,
                            timeout=300)
     assert again.returncode == 0, again.stderr
+    _clean_exit(again.stderr)
     _check_resumed(out)
+    _cut(out, f"stopped by {name}")
+
+
+def test_a_search_killed_outright_leaves_no_semaphore_and_says_what_it_cut(tmp_path):
+    """SIGKILL leaves no time to clean up: the pool's workers remove its queues' semaphores
+    (else multiprocessing's resource tracker does, with a warning on the terminal), and the
+    next start marks the trials it finds running as cut by the kill."""
+    out = tmp_path / "search"
+    proc = subprocess.Popen([*FEGEAR, *ARGV, "--out", str(out)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    _wait_for(out, 1, proc)
+    proc.kill()
+    _, err = proc.communicate(timeout=60)   # until the workers and the tracker have ended
+    assert proc.returncode == -signal.SIGKILL
+    _clean_exit(err)
+    again = subprocess.run([*FEGEAR, *ARGV, "--out", str(out)], capture_output=True, text=True,
+                           timeout=300)
+    assert again.returncode == 0, again.stderr
+    _clean_exit(again.stderr)
+    _check_resumed(out)
+    _cut(out, "the search ended while it ran (killed outright)")
 
 
 def test_a_killed_worker_costs_its_trial_a_second_start_and_nothing_else(tmp_path):

@@ -38,9 +38,8 @@ torque = [5, 10, 15, 20]
 torque = 10
 position = 1.5
 """
-#: the environment of a study process whose 10 N·m case at β = 1.5° fails in its solve
-FAILING = {**os.environ, "PYTHONPATH": os.pathsep.join(
-    [str(Path(__file__).parent / "failing"), *filter(None, [os.environ.get("PYTHONPATH")])])}
+#: the folder whose sitecustomize makes the 10 N·m case at β = 1.5° fail in its solve
+FAILING = Path(__file__).parent / "failing"
 N_SMALL = 5
 # columns that say when, where and how fast, not what
 VOLATILE = ("wall_s", "case_wall_s", "solve_s", "host", "pid", "finished_utc", "timings_s.",
@@ -101,10 +100,19 @@ def _wait_for(cond, proc, what: str, timeout: float = 300.0) -> None:
         time.sleep(0.1)
 
 
+def _failing_env() -> dict:
+    """The environment of a study process whose 10 N·m case at β = 1.5° fails in its solve:
+    this process's as it is now (the session's disk cache, tests/conftest.py), not as it was
+    when this module was imported."""
+    return {**os.environ, "PYTHONPATH": os.pathsep.join(
+        [str(FAILING), *filter(None, [os.environ.get("PYTHONPATH")])])}
+
+
 def _start(toml: Path, out: Path) -> subprocess.Popen:
     return subprocess.Popen([sys.executable, "-m", "fegear", "study", str(toml), "--workers",
-                             "1", "--out", str(out), "--no-progress"], cwd=ROOT, env=FAILING,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+                             "1", "--out", str(out), "--no-progress"], cwd=ROOT,
+                            env=_failing_env(), stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
 
 
 # --- the study file ---------------------------------------------------------------------------
@@ -169,8 +177,8 @@ def test_cases_apart_in_allowables_alone_share_a_key_not_a_row(tmp_path):
     ("[base]\nno-estimate = 1", ["[base] no-estimate", "true or false"]),
     ("[outputs]\nvtk = true", ["[outputs]", "'vtk'", "did you mean 'vtu'"]),
     ("[sweeps]\nm = [1]", ["unknown section 'sweeps'", "did you mean 'sweep'"]),
-    ("[[sweep]]\nh1 = [0.3, 0.9]", ["[[sweep]] 1", "h1 = 0.9", "h1 = 0.9 is not admissible",
-                                    "admissible: "]),
+    ("[[sweep]]\nh1 = [0.85, 0.9]", ["all 2 cases are refused; the first, [[sweep]] 1 "
+                                     "(h1 = 0.85): h1 = 0.85 is not admissible", "admissible: "]),
     ("[[sweep]]\nm = []", ["[[sweep]] 1 m", "at least one value"]),
     ("[[sweep]]\nm = {start = 1, stop = 2}", ["[[sweep]] 1 m", "{start, stop, step}"]),
     ("[[sweep]]\nm = {start = 1, stop = 2, step = -1}", ["[[sweep]] 1 m.step", "non-zero"]),
@@ -193,6 +201,19 @@ def test_bad_study_file_names_file_key_and_reason(tmp_path, text, words):
         assert w in msg
 
 
+def test_an_inadmissible_case_is_set_aside_with_its_reason_and_the_others_kept(tmp_path):
+    s = _study(tmp_path, "[[sweep]]\nh1 = [0.3, 0.9, 0.35]\n", "x.toml")
+    assert [(c.index, c.swept) for c in s.cases] == [(0, {"h1": 0.3}), (2, {"h1": 0.35})]
+    (refused,) = s.refused
+    assert (refused.index, refused.swept, refused.block) == (1, {"h1": 0.9}, "[[sweep]] 1")
+    assert refused.values["h1"] == 0.9 and s.varied == ("h1",)
+    # the line a study refused whole for it gave before: the input, its value, the range
+    line = refused.describe(s.path)
+    assert line.startswith(f"{tmp_path / 'x.toml'}: [[sweep]] 1 (h1 = 0.9): h1 = 0.9 is not "
+                           "admissible (the gear-2 curve folds back")
+    assert "; admissible: 0.0500 <= h1 <= 0.83" in line and "\n" not in line
+
+
 def test_cli_bad_study_is_one_line_and_creates_nothing(tmp_path, capsys):
     (tmp_path / "bad.toml").write_text("[[sweep]]\nf1 = [0.5]\n")
     out = tmp_path / "out"
@@ -204,6 +225,11 @@ def test_cli_bad_study_is_one_line_and_creates_nothing(tmp_path, capsys):
     assert "cannot be read" in capsys.readouterr().err
     assert main(["study", str(tmp_path / "bad.toml"), "--workers", "0"]) == 2
     assert "workers = 0 is not admissible" in capsys.readouterr().err
+    (tmp_path / "all.toml").write_text("[[sweep]]\nh1 = [0.85, 0.9]\nm = [1.5, 2]\n")
+    assert main(["study", str(tmp_path / "all.toml"), "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"fegear: error: {tmp_path / 'all.toml'}: all 4 cases are refused")
+    assert "\n" not in err and not out.exists()
 
 
 def test_shipped_studies_load():
@@ -255,8 +281,8 @@ def pool_run(tmp_path_factory):
                        "table": _table(out) if (out / "results.csv").exists() else [],
                        "lock": (out / ".lock").exists()})
     final = subprocess.run([sys.executable, "-m", "fegear", "study", str(toml), "--workers",
-                            "1", "--out", str(out), "--no-progress"], cwd=ROOT, env=FAILING,
-                           capture_output=True, text=True, timeout=600)
+                            "1", "--out", str(out), "--no-progress"], cwd=ROOT,
+                           env=_failing_env(), capture_output=True, text=True, timeout=600)
     assert final.returncode == 0, final.stderr
     return {"out": out, "stages": stages, "final": final, "records": _records(out)}
 
@@ -269,6 +295,8 @@ def test_killed_study_restarts_without_losing_duplicating_or_recomputing(pool_ru
     # SIGTERM leaves a table of exactly the finished cases
     assert {r["key"] + ".json" for r in term["table"]} == set(term["records"])
     assert kill["returncode"] == -signal.SIGKILL
+    # its workers removed the pool's semaphores: no resource tracker warning
+    assert "leaked" not in kill["stderr"] and "Traceback" not in kill["stderr"]
     assert len(term["records"]) < len(kill["records"]) < N_SMALL
     final = pool_run["records"]
     assert len(final) == N_SMALL
@@ -282,8 +310,52 @@ def test_killed_study_restarts_without_losing_duplicating_or_recomputing(pool_ru
     table = _table(pool_run["out"])
     assert len(table) == N_SMALL and len({r["key"] for r in table}) == N_SMALL
     assert [int(r["case"]) for r in table] == list(range(N_SMALL))
-    assert not list((pool_run["out"] / "cases" / ".running").iterdir())
-    assert not (pool_run["out"] / ".lock").exists()   # the lock goes with the run
+    assert not (pool_run["out"] / "cases" / ".running").exists()   # the markers go with
+    assert not (pool_run["out"] / ".lock").exists()                # the run, as the lock
+
+
+def _tree(root: Path) -> dict[str, tuple[bytes, int] | None]:
+    """Every folder (None) and file (bytes, mtime) below ``root``, by relative path."""
+    return {str(p.relative_to(root)): (p.read_bytes(), p.stat().st_mtime_ns) if p.is_file()
+            else None for p in root.rglob("*")}
+
+
+def _stop_in_first_case(toml: Path, out: Path, sig: int) -> subprocess.CompletedProcess:
+    """Start the study, stop it with ``sig`` while its 7 N·m case solves (it never finishes:
+    failing/sitecustomize.py), and wait for it."""
+    proc = _start(toml, out)
+    running = out / "cases" / ".running"
+    _wait_for(lambda: running.is_dir() and any(running.iterdir()), proc, "a case started")
+    proc.send_signal(sig)
+    stdout, stderr = proc.communicate(timeout=60)
+    return subprocess.CompletedProcess(proc.args, proc.returncode, stdout, stderr)
+
+
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
+def test_a_study_stopped_before_its_first_case_finished_leaves_no_folder(tmp_path, sig):
+    toml = tmp_path / "hang.toml"
+    toml.write_text(SMALL.split("[[sweep]]")[0] + "[[sweep]]\ntorque = [7, 20]\n")
+    done = _stop_in_first_case(toml, tmp_path / "new" / "out", sig)
+    assert done.returncode == 128 + sig, done.stderr
+    assert (f"stopped by {signal.Signals(sig).name} before any case finished; nothing was "
+            "kept") in done.stderr
+    assert "Traceback" not in done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["hang.toml"]   # nor its parent
+
+
+def test_a_resumed_study_stopped_before_a_case_finished_is_left_as_it_was(pool_run,
+                                                                          tmp_path):
+    import shutil
+
+    out = tmp_path / "out"
+    shutil.copytree(pool_run["out"], out)
+    toml = tmp_path / "small.toml"
+    toml.write_text(SMALL + "[[sweep]]\ntorque = 7\n")
+    before = _tree(out)
+    done = _stop_in_first_case(toml, out, signal.SIGTERM)
+    assert done.returncode == 128 + signal.SIGTERM, done.stderr
+    assert "the finished cases are kept" in done.stderr and "Traceback" not in done.stderr
+    assert _tree(out) == before   # no marker, no study.json, no table rewritten
 
 
 def test_failed_case_is_recorded_with_its_reason(pool_run):
@@ -326,7 +398,7 @@ def test_dask_cluster_gives_the_local_pool_table(pool_run, tmp_path, monkeypatch
     from fegear.study.runner import run_study
 
     study = load_study(pool_run["out"] / ".." / "small.toml")
-    monkeypatch.setenv("PYTHONPATH", FAILING["PYTHONPATH"])   # the workers' failing case
+    monkeypatch.setenv("PYTHONPATH", _failing_env()["PYTHONPATH"])   # the workers' failing case
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   dashboard_address=None) as cluster:
         report = run_study(study, tmp_path / "dask", scheduler=cluster.scheduler_address,
@@ -366,6 +438,35 @@ def test_unreachable_scheduler_is_one_line_and_creates_nothing(tmp_path, capsys)
     assert code == 2 and len(err) == 1
     assert err[0].startswith("fegear: error: --scheduler 'tcp://127.0.0.1:9': cannot connect")
     assert not out.exists()
+
+
+def test_a_study_runs_its_admissible_cases_and_lists_the_refused_ones(tmp_path, capsys):
+    """h1 0.95 folds gear 2's curve back: that case is said at the start, listed under the
+    table and in it (status refused, the reason in `error`) and in study.json; the other
+    runs."""
+    from fegear.study import load_results
+
+    toml, out = tmp_path / "s.toml", tmp_path / "out"
+    toml.write_text(SMALL.split("[[sweep]]")[0] + "[[sweep]]\ntorque = 20\nh1 = [0.3, 0.95]\n")
+    assert main(["study", str(toml), "--workers", "1", "--out", str(out)]) == 0
+    std = capsys.readouterr()
+    reason = "h1 = 0.95 is not admissible (the gear-2 curve folds back"
+    head = std.err.splitlines()
+    assert "2 cases, varying h1 (0 finished before, 1 to compute, 1 refused)" in head[0]
+    assert head[1].startswith(f"refused: {toml}: [[sweep]] 1 (torque = 20.0, h1 = 0.95): "
+                              + reason)
+    assert "admissible: 0.0500 <= h1 <= 0.8259 at f1=0.15, m=2, z2=25, z1=24" in head[1]
+    assert "| 0.95 | – |" in std.out and "refused (below)" in std.out
+    assert f"* case 1 (h1 = 0.95): {reason}" in std.out
+    assert "2 cases: 0 found finished, 1 computed (0 failed), 1 refused" in std.out
+    df = load_results(out)
+    assert list(df["status"]) == ["ok", "refused"] and list(df["h1"]) == [0.3, 0.95]
+    assert df["error"][1].startswith(reason) and df["key"].isna().tolist() == [False, True]
+    assert df["root_stress_gear1_MPa"].isna().tolist() == [False, True]
+    (refused,) = json.loads((out / "study.json").read_text())["refused"]
+    assert refused["swept"] == {"torque": 20.0, "h1": 0.95} and refused["reason"] == \
+        df["error"][1]
+    assert (out / "results.md").read_text() in std.out
 
 
 def test_second_run_into_the_same_directory_is_refused(tmp_path):
