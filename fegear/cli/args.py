@@ -14,28 +14,39 @@ EXIT_USAGE = 2
 
 class Parser(argparse.ArgumentParser):
     """An argument parser whose usage errors are one line (no usage dump), exit code 2; an
-    unknown option gets the nearest known one ("did you mean …?")."""
+    unknown option gets the nearest one of the command it was given to ("did you mean …?")."""
+
+    def parse_known_args(self, args=None, namespace=None):
+        # argparse leaves a command's unknown words to the top parser, which cannot tell
+        # whose they were: each parser refuses its own, hinting from its own options
+        # (`fegear solve --module-mm 2` is not told about `drive reducer`'s --module-mm)
+        namespace, extras = super().parse_known_args(args, namespace)
+        if extras:
+            self.error(f"unrecognized arguments: {' '.join(extras)}")
+        return namespace, extras
 
     def error(self, message: str) -> None:
         if message.startswith("unrecognized arguments:"):
             words = message.split(":", 1)[1].split()
             unknown = next((w.split("=")[0] for w in words if w.startswith("--")), None)
-            close = difflib.get_close_matches(unknown, sorted(_option_strings(self)), n=1,
-                                              cutoff=0.6) if unknown else []
+            close = self._nearest(unknown) if unknown else None
             if close:
-                message += f" (did you mean {close[0]}?)"
+                message += f" (did you mean {close}?)"
         self.exit(EXIT_USAGE, f"fegear: error: {message}\n")
 
-
-def _option_strings(parser: argparse.ArgumentParser) -> set[str]:
-    """Every ``--option`` of ``parser`` and of its subcommands."""
-    found = set()
-    for action in parser._actions:
-        found.update(s for s in action.option_strings if s.startswith("--"))
-        if isinstance(action, argparse._SubParsersAction):
-            for sub in action.choices.values():
-                found |= _option_strings(sub)
-    return found
+    def _nearest(self, unknown: str) -> str | None:
+        """This parser's option nearest ``unknown`` by its name or by the first word of its
+        help (``--modul`` → ``--m``, "module"), or None."""
+        words = {}
+        # argparse's table of this parser's option strings, its groups' included
+        for option, action in self._option_string_actions.items():
+            if option.startswith("--"):
+                first = (action.help or "").split(" ", 1)[0].strip(",:;").lower()
+                words.setdefault(first, option)
+                words[option[2:].lower()] = option
+        words.pop("", None)
+        close = difflib.get_close_matches(unknown[2:].lower(), words, n=1, cutoff=0.7)
+        return words[close[0]] if close else None
 
 
 def add_inputs(parser: argparse.ArgumentParser, rows: Iterable[Input],
