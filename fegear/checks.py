@@ -8,31 +8,43 @@ from __future__ import annotations
 
 import difflib
 import math
+import numbers
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
 
 from .errors import ParameterError
 
 
-def require_finite(name: str, value: float) -> float:
-    """Return ``value`` as float or raise :class:`ParameterError` if it is not a finite number."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(name, value, "a finite number") from None
-    if not math.isfinite(x):
-        raise ParameterError(name, value, "a finite number")
+def number(value: object) -> float | None:
+    """``value`` as a float if it is a real number, else None: a bool is no number (True
+    would be 1), nor is text ("2" is the command line's to read), nor a complex."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        return None      # numpy's bool_ is no numbers.Real either; its floats and ints are
+    return float(value)
+
+
+def require_finite(name: str, value: object, admissible: str = "a finite number") -> float:
+    """Return ``value`` as float or raise :class:`ParameterError` (stating ``admissible``) if
+    it is not a finite number (:func:`number`)."""
+    x = number(value)
+    if x is None or not math.isfinite(x):
+        raise ParameterError(name, value, admissible)
     return x
 
 
-def require_range(name: str, value: float, lo: float | None, hi: float | None,
-                  lo_open: bool = False, hi_open: bool = False, unit: str = "") -> float:
-    """Check ``lo (<|<=) value (<|<=) hi``; raise a :class:`ParameterError` naming the range."""
-    x = require_finite(name, value)
-    ok_lo = lo is None or (x > lo if lo_open else x >= lo)
-    ok_hi = hi is None or (x < hi if hi_open else x <= hi)
-    if not (ok_lo and ok_hi):
-        raise ParameterError(name, value, describe_range(name, lo, hi, lo_open, hi_open, unit))
+def require_range(name: str, value: object, lo: float | None, hi: float | None,
+                  lo_open: bool = False, hi_open: bool = False, unit: str = "",
+                  reason: str = "") -> float:
+    """Check ``lo (<|<=) value (<|<=) hi``; raise a :class:`ParameterError` naming the range
+    (and ``reason``, what bounds it), whatever is wrong with the value (no number, not
+    finite, outside)."""
+    admissible = (describe_range(name, lo, hi, lo_open, hi_open, unit)
+                  if lo is not None or hi is not None else "a finite number")
+    x = number(value)
+    ok = x is not None and math.isfinite(x)
+    ok = ok and (lo is None or (x > lo if lo_open else x >= lo))
+    if not (ok and (hi is None or (x < hi if hi_open else x <= hi))):
+        raise ParameterError(name, value, admissible, reason)
     return x
 
 
@@ -41,21 +53,25 @@ def describe_range(name: str, lo: float | None, hi: float | None,
     """Human-readable interval such as ``0 < h1 <= 0.412``."""
     u = f" {unit}" if unit else ""
     name = name.replace("_", "-")
-    left = "" if lo is None else f"{lo:.6g} {'<' if lo_open else '<='} "
-    right = "" if hi is None else f" {'<' if hi_open else '<='} {hi:.6g}{u}"
+    left = "" if lo is None else f"{_figure(lo)} {'<' if lo_open else '<='} "
+    right = "" if hi is None else f" {'<' if hi_open else '<='} {_figure(hi)}{u}"
     return f"{left}{name}{right}"
 
 
-def require_int(name: str, value: object, lo: int) -> int:
-    """Return ``value`` as int (an integral float is accepted) or raise a
-    :class:`ParameterError` naming the bound."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ParameterError(name, value, f"an integer >= {lo}")
-    if isinstance(value, float) and (not math.isfinite(value) or value != int(value)):
-        raise ParameterError(name, value, f"an integer >= {lo}")
-    if int(value) < lo:
-        raise ParameterError(name, value, f"an integer >= {lo}")
-    return int(value)
+def _figure(x: float) -> str:
+    """A bound as a range states it: an integer in full, else to six figures."""
+    return str(x) if isinstance(x, int) else f"{x:.6g}"
+
+
+def require_int(name: str, value: object, lo: int, hi: int | None = None) -> int:
+    """Return ``value`` as int (an integral float is accepted, a bool is not) or raise a
+    :class:`ParameterError` naming the range ``lo <= value (<= hi)``."""
+    admissible = f"an integer {describe_range(name, lo, hi)}"
+    x = number(value)
+    if x is None or not math.isfinite(x) or x != int(x) or not lo <= x <= (
+            math.inf if hi is None else hi):
+        raise ParameterError(name, value, admissible)
+    return int(x)
 
 
 @dataclass(frozen=True)
@@ -119,11 +135,11 @@ class Input:
             if self.choices and value not in self.choices:
                 raise ParameterError(name, value, " / ".join(self.choices))
             return value
-        if self.kind is int and self.low is not None and self.high is None:
-            return require_int(name, value, int(self.low))
-        x = require_range(name, value, self.low, self.high, self.low_open, self.high_open,
-                          self.unit)
-        return int(x) if self.kind is int else x
+        if self.kind is int:
+            return require_int(name, value, int(self.low), None if self.high is None
+                               else int(self.high))
+        return require_range(name, value, self.low, self.high, self.low_open, self.high_open,
+                             self.unit)
 
 
 class InputTable(Mapping[str, Input]):

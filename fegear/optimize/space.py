@@ -8,6 +8,7 @@ import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
+from ..checks import number
 from ..errors import FegearError, ParameterError
 from .design import OBJECTIVES, centre_distance, outer_diameter
 
@@ -62,7 +63,6 @@ class Space:
 def parse_variables(texts: Sequence[str]) -> tuple[Variable, ...]:
     """``name=low:high`` each (``--vary``), checked: a known variable, once, finite bounds
     with low < high, each inside the input's own range."""
-    from ..toothpair import SOLVE_INPUTS
 
     out: dict[str, Variable] = {}
     for text in texts:
@@ -80,13 +80,27 @@ def parse_variables(texts: Sequence[str]) -> tuple[Variable, ...]:
             raise ParameterError("vary", text, f"{name}=low:high with finite low < high")
         if name in out:
             raise ParameterError("vary", text, f"{name} once (it is given twice)")
-        row = SOLVE_INPUTS[name]
-        for bound in (lo, hi):
-            row.check(bound)   # outside the input's own range: refused by the input's name
-        out[name] = Variable(name, lo, hi)
+        out[name] = check_variable(Variable(name, lo, hi))
     if not out:
         raise ParameterError("vary", "", "at least one name=low:high")
     return tuple(out.values())
+
+
+def check_variable(v: Variable) -> Variable:
+    """``v`` with its bounds checked: numbers (a bool is none), low < high, each inside the
+    input's own range (refused by the input's name)."""
+    from ..toothpair import SOLVE_INPUTS
+
+    if v.name not in VARIABLES:
+        raise ParameterError("vary", v.name, "one of " + ", ".join(VARIABLES),
+                             f"unknown variable {v.name!r}")
+    lo, hi = number(v.low), number(v.high)
+    if lo is None or hi is None or not (math.isfinite(lo) and math.isfinite(hi)) or lo >= hi:
+        raise ParameterError("vary", f"{v.name}={v.low!r}:{v.high!r}",
+                             f"{v.name}=low:high with finite numbers low < high")
+    for bound in (lo, hi):
+        SOLVE_INPUTS[v.name].check(bound)   # outside the input's range: refused by its name
+    return Variable(v.name, lo, hi)
 
 
 def check_space(space: Space) -> None:
@@ -100,6 +114,7 @@ def check_space(space: Space) -> None:
         if value is not None:
             SOLVE_INPUTS[name].check(value)
     for v in space.variables:
+        check_variable(v)
         if v.name in space.fixed and space.fixed[v.name] is not None:
             raise FegearError(f"--{v.name} is given and also varied (--vary {v.name}=...): "
                               "one or the other")

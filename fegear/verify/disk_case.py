@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..checks import require_finite, require_range
+from ..checks import number, require_finite, require_range
 from ..contact import ContactSettings
 from ..errors import ParameterError
 from ..fe import STEEL_E, STEEL_NU, HertzLine, Material, Plane, line_contact
@@ -36,7 +36,7 @@ class DiskCase:
         Material(self.E, self.nu, self.thickness, self.plane)  # validates E, ν, t, plane
         if isinstance(self.quality, str) and self.quality not in DISK_QUALITY:
             raise ParameterError("quality", self.quality, " / ".join(DISK_QUALITY))
-        if not isinstance(self.quality, str) and not 1 <= float(self.quality) <= 200:
+        if not isinstance(self.quality, str) and not 1 <= (number(self.quality) or 0) <= 200:
             raise ParameterError("quality", self.quality, "1 <= elements across b <= 200")
         require_range("penalty_factor", self.penalty_factor, 0.0, 1e6, lo_open=True)
         h = self.hertz  # validates r2, load, thickness, E, plane

@@ -172,7 +172,7 @@ def test_outputs_are_written_atomically_with_ordinary_permissions(tmp_path):
         "torque": [0.0, -1.0, 1e300], "beta": [7.0, -7.0], "thickness": [0.0, -5.0, 1e300],
         "E": [0.0, -1.0, 1e300], "nu": [-0.1, 0.5], "quality": ["best", 3],
         "rim1": [0.0, -1.0, 1e300], "rim2": [0.0, 1e300],
-        "extra_pairs": [-1, 1000], "tip_round": [-0.1, 100.0]}.items()
+        "extra_pairs": [-1, 1000, True], "tip_round": [-0.1, 100.0, True]}.items()
     for v in values + ([float("nan"), float("inf")] if f not in ("quality",) else [])])
 def test_solve_case_rejects_bad_fields(field, value):
     from fegear.errors import ParameterError
@@ -187,9 +187,10 @@ def test_solve_case_rejects_bad_fields(field, value):
 
 @pytest.mark.parametrize("field,value", [
     (f, v) for f, values in {
-        "r1": [0.0, -1.0, 1e300], "r2": [0.0, 1e300, -5.0], "load": [0.0, -1.0, 1e300],
-        "thickness": [0.0, 1e300], "E": [0.0, 1e300], "nu": [0.5, -1.0],
-        "quality": ["best", 0, 1e9], "penalty_factor": [0.0, 1e300]}.items()
+        "r1": [0.0, -1.0, 1e300, True], "r2": [0.0, 1e300, -5.0],
+        "load": [0.0, -1.0, 1e300, False], "thickness": [0.0, 1e300], "E": [0.0, 1e300],
+        "nu": [0.5, -1.0], "quality": ["best", 0, 1e9, True],
+        "penalty_factor": [0.0, 1e300, True]}.items()
     for v in values + ([float("nan"), float("-inf")] if f != "quality" else [])])
 def test_disk_case_rejects_bad_fields(field, value):
     from fegear.errors import ParameterError
