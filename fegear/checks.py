@@ -79,14 +79,16 @@ class Input:
     """One user input of a command: a row of its schema.
 
     ``name`` as on the command line without ``--`` (``dest`` is the Python name), ``kind``
-    (``float``, ``int``, ``str``, or ``bool`` for an on/off flag), ``default`` (``None``: derived
-    from other inputs, as ``help`` says), ``unit``, ``help``, and the admissible range where it
-    does not depend on other inputs: ``low``/``high`` (open or closed) for numbers, ``choices``
-    for strings. Ranges that depend on other inputs (a shift against the tooth height, say) are
-    checked by the object the inputs build, with a message naming the range at those values.
-    ``post``: the input only reads the results (an allowable stress): it changes no number of
-    the solve, so a cache key leaves it out (:meth:`InputTable.keyed`). ``aliases``: other
-    names the command line and study files take for it (an earlier name, say).
+    (``float``, ``int``, ``str``, or ``bool`` for an on/off flag), ``default``, ``unit``,
+    ``help``, and the admissible range: ``low``/``high`` (open or closed) for numbers,
+    ``choices`` for strings. Where the range depends on other inputs (a shift against the
+    tooth height, say), ``limits`` says it in words (``0 <= shift <= m h1/4 …``) and the
+    object the inputs build checks it, stating it at those inputs' values; ``low``/``high``
+    then give its static part. Where the default is derived from other inputs, or means
+    "none" (``default`` None), ``rule`` says how (``0.008 m, at most m h1/4``). ``post``: the
+    input only reads the results (an allowable stress): it changes no number of the solve, so
+    a cache key leaves it out (:meth:`InputTable.keyed`). ``aliases``: other names the command
+    line and study files take for it (an earlier name, say).
     """
 
     name: str
@@ -101,10 +103,14 @@ class Input:
     choices: tuple[str, ...] = ()
     post: bool = False
     aliases: tuple[str, ...] = ()
+    limits: str = ""
+    rule: str = ""
 
     def __post_init__(self) -> None:
         if self.kind not in (float, int, str, bool):
             raise TypeError(f"input {self.name!r}: kind must be float, int, str or bool")
+        if self.kind is int and self.low is None:
+            raise TypeError(f"input {self.name!r}: an integer input needs its lowest value")
 
     @property
     def dest(self) -> str:
@@ -113,17 +119,34 @@ class Input:
 
     @property
     def range_text(self) -> str:
-        """The static admissible range, e.g. ``0 < torque <= 100000 N·m`` ('' if none)."""
+        """The admissible range as a refusal and ``--help`` state it, e.g. ``0 < m <= 100
+        mm``, ``an integer 2 <= positions <= 360``, ``coarse / fast`` or the ``limits`` in
+        words ('' for an on/off flag, or a text input that takes any text)."""
         if self.choices:
             return " / ".join(self.choices)
+        if self.limits:
+            return self.limits
+        if self.kind is int:
+            return f"an integer {describe_range(self.name, self.low, self.high)}"
         if self.low is None and self.high is None:
-            return ""
-        return describe_range(self.dest, self.low, self.high, self.low_open, self.high_open,
+            return "a finite number" if self.kind is float else ""
+        return describe_range(self.name, self.low, self.high, self.low_open, self.high_open,
                               self.unit)
+
+    @property
+    def default_text(self) -> str:
+        """The default as ``--help`` states it: the value, or its rule where derived."""
+        if self.default is None:
+            return self.rule
+        if self.kind is bool:
+            return "on" if self.default else "off"
+        return f"{self.default:g}" if self.kind in (float, int) else str(self.default)
 
     def check(self, value: object, name: str | None = None) -> object:
         """``value`` checked against the static range (``None`` passes where the default is
-        derived); raises :class:`ParameterError` naming ``name`` (default: ``dest``)."""
+        None); raises :class:`ParameterError` naming ``name`` (default: ``dest``) and
+        :attr:`range_text`, whatever is wrong with the value (a bool or text for a number,
+        NaN, outside)."""
         name = name or self.dest
         if value is None and self.default is None:
             return None
@@ -132,14 +155,17 @@ class Input:
                 raise ParameterError(name, value, "true or false")
             return value
         if self.kind is str:
-            if self.choices and value not in self.choices:
-                raise ParameterError(name, value, " / ".join(self.choices))
+            if not isinstance(value, str) or self.choices and value not in self.choices:
+                raise ParameterError(name, value, self.range_text or "text")
             return value
-        if self.kind is int:
-            return require_int(name, value, int(self.low), None if self.high is None
-                               else int(self.high))
-        return require_range(name, value, self.low, self.high, self.low_open, self.high_open,
-                             self.unit)
+        try:
+            if self.kind is int:
+                return require_int(name, value, int(self.low), None if self.high is None
+                                   else int(self.high))
+            return require_range(name, value, self.low, self.high, self.low_open,
+                                 self.high_open, self.unit)
+        except ParameterError:
+            raise ParameterError(name, value, self.range_text) from None
 
 
 class InputTable(Mapping[str, Input]):

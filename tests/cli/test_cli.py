@@ -50,7 +50,7 @@ def test_profile_table_output(tmp_path):
     ("profile", ["--f1", "0.7"], "f1 = 0.7 is not admissible"),
     ("profile", ["--h1", "0.9"], "admissible: 0.0500 <= h1 <= 0.83"),
     ("profile", ["--chord-error", "0"], "--chord-error"),
-    ("profile", ["--m", "abc"], "invalid float value"),
+    ("profile", ["--m", "abc"], "--m = 'abc' is not admissible; admissible: 0 < m <= 100 mm"),
     ("hertz", ["--r2", "-5"], "r2 = -5.0 is not admissible"),
     ("hertz", ["--r1", "0"], "r1 = 0.0 is not admissible"),
     ("hertz", ["--load", "nan"], "load = nan is not admissible"),
