@@ -29,6 +29,7 @@ def add_parser(sub) -> None:
 
 def run(a: argparse.Namespace) -> int:
 
+    from ..files import check_dir
     from ..study import StudyInterrupted, load_study, run_study
 
     if a.workers is not None:
@@ -38,7 +39,7 @@ def run(a: argparse.Namespace) -> int:
         WORKERS.check(a.workers)
     study = load_study(a.file)
     apply_switch(a, default=True)   # before the workers start: they inherit it
-    out = a.out or f"out/study/{study.name}"
+    out = check_dir(a.out or f"out/study/{study.name}")   # before the workers start
 
     def started(found: int, todo: int) -> None:
         varied = f", varying {', '.join(study.varied)}" if study.varied else ""

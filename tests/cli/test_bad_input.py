@@ -5,6 +5,7 @@ directory is made.
 The commands run in-process with their work replaced by a function that fails the test, so an
 accepted value shows up as that failure instead of as a long solve."""
 
+import os
 from pathlib import Path
 
 import pytest
@@ -306,3 +307,61 @@ def test_contact_peer_without_calculix_is_one_line_and_writes_nothing(tmp_path, 
     assert code != 0
     assert len(lines) == 1 and "ccx" in lines[0] and "calculix-ccx" in lines[0], lines
     assert not out.exists()
+
+
+def test_the_hertz_penalty_default_is_the_contact_models():
+    from fegear.contact import ContactSettings
+    from fegear.verify.disk_inputs import PENALTY_FACTOR
+
+    assert PENALTY_FACTOR == ContactSettings.penalty_factor
+
+
+#: every command that writes into --out, with the words it needs beside it
+WRITERS = [["solve"], ["solve", "--positions", "24"], ["profile"], ["profile", "--map", "h1,f1"],
+           ["hertz"], ["bench"], ["optimize"], ["study", *BESIDE[("study",)]],
+           ["drive", "bearings"], ["drive", "dynamics", *BESIDE[("drive", "dynamics")]],
+           ["drive", "reducer"]]
+
+
+def _unwritable(tmp_path) -> list[Path]:
+    """--out paths that cannot be made: under a regular file, and as root (whom os.access
+    lets write anywhere) in /proc."""
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    paths = [blocker / "a" / "b"]
+    if os.geteuid() == 0:
+        paths.append(Path("/proc/fegear-out-test"))
+    return paths
+
+
+@pytest.mark.parametrize("argv", WRITERS, ids=" ".join)
+def test_an_out_that_cannot_be_made_is_refused_before_any_work(argv, tmp_path, capsys,
+                                                               no_work, monkeypatch):
+    import fegear.drive
+    import fegear.drive.reducer_report
+
+    def accepted(*args, **kwargs):
+        raise AssertionError("the work started before --out was checked")
+
+    monkeypatch.setattr(fegear.drive, "bearings_summary", accepted)
+    monkeypatch.setattr(fegear.drive.reducer_report, "reducer_summary", accepted)
+    for out in _unwritable(tmp_path):
+        assert main([*argv, "--out", str(out)]) == 2
+        lines = capsys.readouterr().err.strip().splitlines()
+        assert len(lines) == 1 and lines[0].startswith(f"fegear: error: --out '{out}'"), lines
+    assert not Path("/proc/fegear-out-test").exists()
+
+
+def test_checking_an_out_leaves_nothing_behind(tmp_path):
+    from fegear.files import OutputError, check_dir, prepare_dir
+
+    assert check_dir(tmp_path / "new" / "deeper") == tmp_path / "new" / "deeper"
+    assert check_dir(tmp_path) == tmp_path
+    assert list(tmp_path.iterdir()) == []        # neither the probe nor the new folders
+    made = prepare_dir(tmp_path / "made")
+    assert made.is_dir() and list(made.iterdir()) == []
+    (tmp_path / "made" / "file").write_text("x")
+    with pytest.raises(OutputError, match="is a file, not a directory"):
+        check_dir(tmp_path / "made" / "file")
+    with pytest.raises(OutputError, match="'.*file' is a file, not a directory"):
+        check_dir(tmp_path / "made" / "file" / "sub")
