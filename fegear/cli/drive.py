@@ -78,7 +78,6 @@ REDUCER_RUN = (
 
 
 def _add_reducer(sub) -> None:
-
     r = sub.add_parser("reducer", help="seed 003: natural frequencies and unbalance response "
                                        "of the three-axis internal-gear reducer (1, 2, 3 plates)")
     add_inputs(r, REDUCER_RUN)
