@@ -8,31 +8,43 @@ from __future__ import annotations
 
 import difflib
 import math
+import numbers
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass
 
 from .errors import ParameterError
 
 
-def require_finite(name: str, value: float) -> float:
-    """Return ``value`` as float or raise :class:`ParameterError` if it is not a finite number."""
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(name, value, "a finite number") from None
-    if not math.isfinite(x):
-        raise ParameterError(name, value, "a finite number")
+def number(value: object) -> float | None:
+    """``value`` as a float if it is a real number, else None: a bool is no number (True
+    would be 1), nor is text ("2" is the command line's to read), nor a complex."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        return None      # numpy's bool_ is no numbers.Real either; its floats and ints are
+    return float(value)
+
+
+def require_finite(name: str, value: object, admissible: str = "a finite number") -> float:
+    """Return ``value`` as float or raise :class:`ParameterError` (stating ``admissible``) if
+    it is not a finite number (:func:`number`)."""
+    x = number(value)
+    if x is None or not math.isfinite(x):
+        raise ParameterError(name, value, admissible)
     return x
 
 
-def require_range(name: str, value: float, lo: float | None, hi: float | None,
-                  lo_open: bool = False, hi_open: bool = False, unit: str = "") -> float:
-    """Check ``lo (<|<=) value (<|<=) hi``; raise a :class:`ParameterError` naming the range."""
-    x = require_finite(name, value)
-    ok_lo = lo is None or (x > lo if lo_open else x >= lo)
-    ok_hi = hi is None or (x < hi if hi_open else x <= hi)
-    if not (ok_lo and ok_hi):
-        raise ParameterError(name, value, describe_range(name, lo, hi, lo_open, hi_open, unit))
+def require_range(name: str, value: object, lo: float | None, hi: float | None,
+                  lo_open: bool = False, hi_open: bool = False, unit: str = "",
+                  reason: str = "") -> float:
+    """Check ``lo (<|<=) value (<|<=) hi``; raise a :class:`ParameterError` naming the range
+    (and ``reason``, what bounds it), whatever is wrong with the value (no number, not
+    finite, outside)."""
+    admissible = (describe_range(name, lo, hi, lo_open, hi_open, unit)
+                  if lo is not None or hi is not None else "a finite number")
+    x = number(value)
+    ok = x is not None and math.isfinite(x)
+    ok = ok and (lo is None or (x > lo if lo_open else x >= lo))
+    if not (ok and (hi is None or (x < hi if hi_open else x <= hi))):
+        raise ParameterError(name, value, admissible, reason)
     return x
 
 
@@ -41,21 +53,25 @@ def describe_range(name: str, lo: float | None, hi: float | None,
     """Human-readable interval such as ``0 < h1 <= 0.412``."""
     u = f" {unit}" if unit else ""
     name = name.replace("_", "-")
-    left = "" if lo is None else f"{lo:.6g} {'<' if lo_open else '<='} "
-    right = "" if hi is None else f" {'<' if hi_open else '<='} {hi:.6g}{u}"
+    left = "" if lo is None else f"{_figure(lo)} {'<' if lo_open else '<='} "
+    right = "" if hi is None else f" {'<' if hi_open else '<='} {_figure(hi)}{u}"
     return f"{left}{name}{right}"
 
 
-def require_int(name: str, value: object, lo: int) -> int:
-    """Return ``value`` as int (an integral float is accepted) or raise a
-    :class:`ParameterError` naming the bound."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ParameterError(name, value, f"an integer >= {lo}")
-    if isinstance(value, float) and (not math.isfinite(value) or value != int(value)):
-        raise ParameterError(name, value, f"an integer >= {lo}")
-    if int(value) < lo:
-        raise ParameterError(name, value, f"an integer >= {lo}")
-    return int(value)
+def _figure(x: float) -> str:
+    """A bound as a range states it: an integer in full, else to six figures."""
+    return str(x) if isinstance(x, int) else f"{x:.6g}"
+
+
+def require_int(name: str, value: object, lo: int, hi: int | None = None) -> int:
+    """Return ``value`` as int (an integral float is accepted, a bool is not) or raise a
+    :class:`ParameterError` naming the range ``lo <= value (<= hi)``."""
+    admissible = f"an integer {describe_range(name, lo, hi)}"
+    x = number(value)
+    if x is None or not math.isfinite(x) or x != int(x) or not lo <= x <= (
+            math.inf if hi is None else hi):
+        raise ParameterError(name, value, admissible)
+    return int(x)
 
 
 @dataclass(frozen=True)
@@ -63,14 +79,16 @@ class Input:
     """One user input of a command: a row of its schema.
 
     ``name`` as on the command line without ``--`` (``dest`` is the Python name), ``kind``
-    (``float``, ``int``, ``str``, or ``bool`` for an on/off flag), ``default`` (``None``: derived
-    from other inputs, as ``help`` says), ``unit``, ``help``, and the admissible range where it
-    does not depend on other inputs: ``low``/``high`` (open or closed) for numbers, ``choices``
-    for strings. Ranges that depend on other inputs (a shift against the tooth height, say) are
-    checked by the object the inputs build, with a message naming the range at those values.
-    ``post``: the input only reads the results (an allowable stress): it changes no number of
-    the solve, so a cache key leaves it out (:meth:`InputTable.keyed`). ``aliases``: other
-    names the command line and study files take for it (an earlier name, say).
+    (``float``, ``int``, ``str``, or ``bool`` for an on/off flag), ``default``, ``unit``,
+    ``help``, and the admissible range: ``low``/``high`` (open or closed) for numbers,
+    ``choices`` for strings. Where the range depends on other inputs (a shift against the
+    tooth height, say), ``limits`` says it in words (``0 <= shift <= m h1/4 …``) and the
+    object the inputs build checks it, stating it at those inputs' values; ``low``/``high``
+    then give its static part. Where the default is derived from other inputs, or means
+    "none" (``default`` None), ``rule`` says how (``0.008 m, at most m h1/4``). ``post``: the
+    input only reads the results (an allowable stress): it changes no number of the solve, so
+    a cache key leaves it out (:meth:`InputTable.keyed`). ``aliases``: other names the command
+    line and study files take for it (an earlier name, say).
     """
 
     name: str
@@ -85,10 +103,14 @@ class Input:
     choices: tuple[str, ...] = ()
     post: bool = False
     aliases: tuple[str, ...] = ()
+    limits: str = ""
+    rule: str = ""
 
     def __post_init__(self) -> None:
         if self.kind not in (float, int, str, bool):
             raise TypeError(f"input {self.name!r}: kind must be float, int, str or bool")
+        if self.kind is int and self.low is None:
+            raise TypeError(f"input {self.name!r}: an integer input needs its lowest value")
 
     @property
     def dest(self) -> str:
@@ -97,17 +119,34 @@ class Input:
 
     @property
     def range_text(self) -> str:
-        """The static admissible range, e.g. ``0 < torque <= 100000 N·m`` ('' if none)."""
+        """The admissible range as a refusal and ``--help`` state it, e.g. ``0 < m <= 100
+        mm``, ``an integer 2 <= positions <= 360``, ``coarse / fast`` or the ``limits`` in
+        words ('' for an on/off flag, or a text input that takes any text)."""
         if self.choices:
             return " / ".join(self.choices)
+        if self.limits:
+            return self.limits
+        if self.kind is int:
+            return f"an integer {describe_range(self.name, self.low, self.high)}"
         if self.low is None and self.high is None:
-            return ""
-        return describe_range(self.dest, self.low, self.high, self.low_open, self.high_open,
+            return "a finite number" if self.kind is float else ""
+        return describe_range(self.name, self.low, self.high, self.low_open, self.high_open,
                               self.unit)
+
+    @property
+    def default_text(self) -> str:
+        """The default as ``--help`` states it: the value, or its rule where derived."""
+        if self.default is None:
+            return self.rule
+        if self.kind is bool:
+            return "on" if self.default else "off"
+        return f"{self.default:g}" if self.kind in (float, int) else str(self.default)
 
     def check(self, value: object, name: str | None = None) -> object:
         """``value`` checked against the static range (``None`` passes where the default is
-        derived); raises :class:`ParameterError` naming ``name`` (default: ``dest``)."""
+        None); raises :class:`ParameterError` naming ``name`` (default: ``dest``) and
+        :attr:`range_text`, whatever is wrong with the value (a bool or text for a number,
+        NaN, outside)."""
         name = name or self.dest
         if value is None and self.default is None:
             return None
@@ -116,14 +155,17 @@ class Input:
                 raise ParameterError(name, value, "true or false")
             return value
         if self.kind is str:
-            if self.choices and value not in self.choices:
-                raise ParameterError(name, value, " / ".join(self.choices))
+            if not isinstance(value, str) or self.choices and value not in self.choices:
+                raise ParameterError(name, value, self.range_text or "text")
             return value
-        if self.kind is int and self.low is not None and self.high is None:
-            return require_int(name, value, int(self.low))
-        x = require_range(name, value, self.low, self.high, self.low_open, self.high_open,
-                          self.unit)
-        return int(x) if self.kind is int else x
+        try:
+            if self.kind is int:
+                return require_int(name, value, int(self.low), None if self.high is None
+                                   else int(self.high))
+            return require_range(name, value, self.low, self.high, self.low_open,
+                                 self.high_open, self.unit)
+        except ParameterError:
+            raise ParameterError(name, value, self.range_text) from None
 
 
 class InputTable(Mapping[str, Input]):

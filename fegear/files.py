@@ -18,34 +18,38 @@ class OutputError(FegearError):
 
 
 def prepare_dir(path: str | os.PathLike) -> Path:
-    """Create ``path`` (and parents) and check it is writable; raise :class:`OutputError`."""
-    out = Path(path)
+    """Prove ``path`` can be a writable directory (:func:`check_dir`), then create it (and
+    its parents); raise :class:`OutputError`."""
+    out = check_dir(path)
     try:
         out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
         raise OutputError(f"--out {str(out)!r} cannot be created: {exc.strerror}") from None
-    if not os.access(out, os.W_OK | os.X_OK):
-        raise OutputError(f"--out {str(out)!r} is not writable")
     return out
 
 
 def check_dir(path: str | os.PathLike) -> Path:
-    """Check that ``path`` can be made (or is) a writable directory, creating nothing: raise
-    :class:`OutputError` if not. A command checks its ``--out`` with this before it computes,
-    and makes the directory with :func:`prepare_dir` only when it has results to write."""
+    """Check that ``path`` is, or can be made, a writable directory, and leave nothing behind:
+    raise :class:`OutputError` if not. A command checks its ``--out`` with this before it
+    computes, and makes the directory with :func:`prepare_dir` only when it has results to
+    write. The check is proof, not permission bits (``os.access`` says yes to root on /proc
+    and on a read-only mount): a probe directory is made and removed in ``path``, or in its
+    nearest existing ancestor, where the directory would be made."""
     out = Path(path)
-    if out.exists():
-        if not out.is_dir():
-            raise OutputError(f"--out {str(out)!r} is a file, not a directory")
-        if not os.access(out, os.W_OK | os.X_OK):
-            raise OutputError(f"--out {str(out)!r} is not writable")
-        return out
-    parent = out.absolute().parent
-    while not parent.exists():
-        parent = parent.parent
-    if not parent.is_dir() or not os.access(parent, os.W_OK | os.X_OK):
-        raise OutputError(f"--out {str(out)!r} cannot be created: {str(parent)!r} is not a "
-                          "writable directory")
+    base = out.absolute()
+    while not base.exists() and base != base.parent:
+        base = base.parent
+    if not base.is_dir():
+        what = "is a file, not a directory" if base == out.absolute() else (
+            f"cannot be created: {str(base)!r} is a file, not a directory")
+        raise OutputError(f"--out {str(out)!r} {what}")
+    try:
+        probe = tempfile.mkdtemp(prefix=".fegear-probe-", dir=base)
+    except OSError as exc:
+        where = "is not writable" if base == out.absolute() else (
+            f"cannot be created in {str(base)!r}")
+        raise OutputError(f"--out {str(out)!r} {where}: {exc.strerror or exc}") from None
+    os.rmdir(probe)
     return out
 
 

@@ -53,6 +53,12 @@ def test_a_cycle_reports_its_worst_where_it_occurs():
     ({"tip_clearence": 0.01}, "tip-clearence", "did you mean tip_clearance?"),
     ({"tip_clearance": -5.0}, "tip-clearance", "tip_clearance = -5.0 is not admissible"),
     ({"h1": 0.9}, "h1", "h1 = 0.9 is not admissible"),
+    # a bool is no number: m=True was solved at m = 1 mm
+    ({"m": True}, "m", "m = True is not admissible; admissible: 0 < m <= 100 mm"),
+    ({"torque": True}, "torque", "torque = True is not admissible"),
+    ({"face_width": False}, "face-width", "face_width = False is not admissible"),
+    ({"z1": True}, "z1", "z1 = True is not admissible"),
+    ({"position": True}, "position", "position = True is not admissible"),
 ])
 def test_a_refused_design_raises_before_any_work(inputs, name, text, monkeypatch):
     import fegear.toothpair

@@ -14,48 +14,90 @@ EXIT_USAGE = 2
 
 class Parser(argparse.ArgumentParser):
     """An argument parser whose usage errors are one line (no usage dump), exit code 2; an
-    unknown option gets the nearest known one ("did you mean …?")."""
+    unknown option gets the nearest one of the command it was given to ("did you mean …?")."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self.inputs: list[Input] = []   # the schema rows of its options (add_inputs)
+
+    def parse_known_args(self, args=None, namespace=None):
+        # argparse leaves a command's unknown words to the top parser, which cannot tell
+        # whose they were: each parser refuses its own, hinting from its own options
+        # (`fegear solve --module-mm 2` is not told about `drive reducer`'s --module-mm)
+        namespace, extras = super().parse_known_args(args, namespace)
+        if extras:
+            self.error(f"unrecognized arguments: {' '.join(extras)}")
+        return namespace, extras
 
     def error(self, message: str) -> None:
         if message.startswith("unrecognized arguments:"):
             words = message.split(":", 1)[1].split()
             unknown = next((w.split("=")[0] for w in words if w.startswith("--")), None)
-            close = difflib.get_close_matches(unknown, sorted(_option_strings(self)), n=1,
-                                              cutoff=0.6) if unknown else []
+            close = self._nearest(unknown) if unknown else None
             if close:
-                message += f" (did you mean {close[0]}?)"
+                message += f" (did you mean {close}?)"
         self.exit(EXIT_USAGE, f"fegear: error: {message}\n")
 
-
-def _option_strings(parser: argparse.ArgumentParser) -> set[str]:
-    """Every ``--option`` of ``parser`` and of its subcommands."""
-    found = set()
-    for action in parser._actions:
-        found.update(s for s in action.option_strings if s.startswith("--"))
-        if isinstance(action, argparse._SubParsersAction):
-            for sub in action.choices.values():
-                found |= _option_strings(sub)
-    return found
+    def _nearest(self, unknown: str) -> str | None:
+        """This parser's option nearest ``unknown`` by its name or by the first word of its
+        help (``--modul`` → ``--m``, "module"), or None."""
+        words = {}
+        # argparse's table of this parser's option strings, its groups' included
+        for option, action in self._option_string_actions.items():
+            if option.startswith("--"):
+                first = (action.help or "").split(" ", 1)[0].strip(",:;").lower()
+                words.setdefault(first, option)
+                words[option[2:].lower()] = option
+        words.pop("", None)
+        close = difflib.get_close_matches(unknown[2:].lower(), words, n=1, cutoff=0.7)
+        return words[close[0]] if close else None
 
 
 def add_inputs(parser: argparse.ArgumentParser, rows: Iterable[Input],
-               title: str | None = None) -> None:
+               title: str | None = None, into=None) -> None:
     """One ``--name`` option per schema row: its type, default, and a help text with the
-    unit, the static range or choices, and the default."""
-    group = parser.add_argument_group(title) if title else parser
+    unit, the admissible range (:attr:`~fegear.checks.Input.range_text`) and the default or
+    its rule; in a new group ``title``, or in the group ``into`` of ``parser``."""
+    group = into or (parser.add_argument_group(title) if title else parser)
+    rows = list(rows)
+    if isinstance(parser, Parser):
+        parser.inputs += rows
     for row in rows:
-        text = row.help + (f" [{row.unit}]" if row.unit else "")
         names = [f"--{row.name}", *(f"--{a}" for a in row.aliases)]
         if row.kind is bool:
-            group.add_argument(*names, action="store_true", help=text, dest=row.dest)
+            group.add_argument(*names, action="store_true", help=row.help, dest=row.dest)
             continue
-        if row.choices:
-            text += ": " + " / ".join(row.choices)
-        if row.default is not None:
-            default = f"{row.default:g}" if row.kind in (float, int) else row.default
-            text += f" (default {default})"
-        group.add_argument(*names, type=row.kind, default=row.default, dest=row.dest,
+        text = row.help + (f" [{row.unit}]" if row.unit else "")
+        text += f"; admissible: {row.range_text}" if row.range_text else ""
+        text += f"; default: {row.default_text}"
+        group.add_argument(*names, type=_Read(row.kind), default=row.default, dest=row.dest,
                            help=text.replace("%", "%%"))
+
+
+class _Read:
+    """argparse's ``type`` of an input: the text as a number where it reads as one, else as
+    typed, for the input's check to refuse with its range (argparse's own refusal, "invalid
+    float value: 'abc'", says neither the range nor the default). Text inputs stay text."""
+
+    def __init__(self, kind: type) -> None:
+        self.kind = kind
+        self.__name__ = kind.__name__    # argparse names the type in its messages
+
+    def __call__(self, text: str) -> object:
+        if self.kind is str:
+            return text
+        for read in (int, float) if self.kind is int else (float,):
+            try:
+                return read(text)
+            except ValueError:
+                pass
+        return text
+
+
+def checked(a: argparse.Namespace, rows: Iterable[Input]) -> dict[str, object]:
+    """The parsed values of the schema rows' options, each checked against its range
+    (:meth:`~fegear.checks.Input.check`: a refusal states it), by Python name."""
+    return {row.dest: row.check(getattr(a, row.dest), row.name) for row in rows}
 
 
 def input_values(a: argparse.Namespace, rows: Iterable[Input]) -> dict[str, object]:
@@ -69,3 +111,11 @@ def given_values(a: argparse.Namespace, rows: Iterable[Input]) -> dict[str, obje
     others take their defaults from the schema)."""
     return {row.name: getattr(a, row.dest) for row in rows
             if getattr(a, row.dest) != row.default}
+
+
+def workers_input(text: str, rule: str) -> Input:
+    """The ``--workers`` row of a command that solves in a local pool: 1 to four times this
+    machine's cores, ``text`` its help and ``rule`` its default."""
+    import os
+
+    return Input("workers", int, None, text, low=1, high=4 * (os.cpu_count() or 1), rule=rule)

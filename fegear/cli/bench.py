@@ -4,39 +4,44 @@ from __future__ import annotations
 
 import argparse
 
-from ..checks import require_range
+from ..checks import Input, number
+from ..errors import ParameterError
 from ..geometry.parameters import PAIR_INPUTS
-from .args import add_inputs, given_values
-from .hertz import number
+from ..toothpair.inputs import QUALITY, SOLVE_INPUTS, check_torque
+from .args import add_inputs, checked, given_values
+
+#: the bench's own inputs beside the pair's (its torque is the solve's row)
+BENCH_INPUTS = (
+    Input("repeat", int, 3, "repetitions (the best is kept)", low=1, high=100),
+    Input("pair-quality", str, "standard", "quality of the estimate, cycle and scaling runs "
+          "(the default of fegear solve)", choices=QUALITY),
+    Input("cycle", int, 24, "positions in the benchmarked mesh cycle (0: skip)", low=0,
+          high=360, limits="an integer 0 (skip) or 2 <= cycle <= 360"),
+    Input("disk-levels", str, "2,4,8,16,32", "Hertz-case ladder: elements across b, "
+          "comma-separated", limits="two or more numbers 1 <= n <= 200"),
+    Input("pair-levels", str, "coarse,fast,standard,fine", "tooth-pair (ring model) ladder: "
+          "quality levels, comma-separated", limits="two or more of " + " / ".join(QUALITY)),
+    Input("sector-levels", str, None, "also the sector model at these levels, with CalculiX "
+          "on its meshes (e.g. coarse,fast; minutes each)",
+          limits="some of " + " / ".join(QUALITY), rule="none"),
+    SOLVE_INPUTS["torque"],
+    Input("scaling", str, "45,90,180", "teeth of gear 2 for the cost-growth runs, module "
+          "scaled to keep the pitch radius (empty: skip)",
+          limits="numbers of teeth 12 <= z2 <= 400, comma-separated, or none"),
+    Input("study-cases", int, 6, "solves in the study-runner overhead benchmark (0: skip)",
+          low=0, high=1000, limits="an integer 0 (skip) or 2 <= study-cases <= 1000"),
+)
+_ROW = {row.name: row for row in BENCH_INPUTS}
 
 
 def add_parser(sub) -> None:
     p = sub.add_parser("bench", help="time the pipeline stages and print a table")
     add_inputs(p, PAIR_INPUTS, "pair")
-    p.add_argument("--repeat", type=int, default=3, help="repetitions (best is kept)")
-    p.add_argument("--pair-quality", default="standard",
-                   help="quality of the estimate, cycle and scaling runs (coarse / fast / "
-                        "standard / fine; default standard, the default of fegear solve)")
-    p.add_argument("--cycle", type=int, default=24,
-                   help="positions in the benchmarked mesh cycle (default 24; 0: skip)")
-    p.add_argument("--disk-levels", default="2,4,8,16,32",
-                   help="Hertz-case ladder: elements across b, comma-separated (>= 2)")
-    p.add_argument("--pair-levels", default="coarse,fast,standard,fine",
-                   help="tooth-pair (ring model) ladder: quality levels, comma-separated (>= 2)")
-    p.add_argument("--sector-levels", default="",
-                   help="also the sector model at these levels, with CalculiX on its meshes "
-                        "(e.g. coarse,fast; minutes each; default: none)")
-    p.add_argument("--torque", type=float, default=200.0,
-                   help="tooth-pair torque on gear 1 [N·m] (default 200)")
-    p.add_argument("--scaling", default="45,90,180",
-                   help="teeth of gear 2 for the cost-growth runs, module scaled to keep the "
-                        "pitch radius (comma-separated; empty: skip)")
+    add_inputs(p, BENCH_INPUTS)
     p.add_argument("--paper-study", action="store_true",
                    help="also time studies/paper_trends.toml on 2 workers (about a minute)")
     p.add_argument("--no-peer", action="store_true",
                    help="do not run CalculiX beside the ladders even if ccx is installed")
-    p.add_argument("--study-cases", type=int, default=6,
-                   help="solves in the study-runner overhead benchmark (default 6; 0: skip)")
     p.add_argument("--study-only", action="store_true",
                    help="run only the study-runner overhead benchmark")
     p.add_argument("--contact-peer", action="store_true",
@@ -52,52 +57,67 @@ def add_parser(sub) -> None:
                    help="directory for bench.json and the plots (default out/bench)")
 
 
-def _levels(name: str, text: str, allowed, least: int) -> list[str]:
-    from ..errors import ParameterError
-
-    levels = [q.strip() for q in text.split(",") if q.strip()]
-    if (text.strip() or least) and (len(levels) < least or any(q not in allowed
-                                                               for q in levels)):
-        raise ParameterError(name, text, f"{'two or more' if least > 1 else 'some'} of "
-                             + " / ".join(allowed) + ", comma-separated")
+def _levels(name: str, text: str | None, allowed, least: int) -> list[str]:
+    levels = [q.strip() for q in (text or "").split(",") if q.strip()]
+    if ((text or "").strip() or least) and (len(levels) < least or any(q not in allowed
+                                                                       for q in levels)):
+        raise ParameterError(name, text, _ROW[name].range_text)
     return levels
 
 
-def run(a: argparse.Namespace) -> int:
-    from ..errors import ParameterError
-    from ..geometry import admissible_pair
-    from ..toothpair import QUALITY
+def _numbers(name: str, text: str) -> list[float]:
+    """The comma-separated numbers of option ``name``; text that is none is refused with
+    the option's range."""
+    values = [number(_read(x)) for x in text.split(",") if x.strip()]
+    if any(v is None for v in values):
+        raise ParameterError(name, text, _ROW[name].range_text)
+    return values
 
-    repeat = int(require_range("repeat", a.repeat, 1, 100))
-    cycle = int(a.cycle)
-    if cycle != 0:
-        require_range("cycle", cycle, 2, 360)
-    torque = require_range("torque", a.torque, 0.0, 1e4, lo_open=True, unit="N·m")
-    if a.pair_quality not in QUALITY:
-        raise ParameterError("pair_quality", a.pair_quality, " / ".join(QUALITY))
-    pair_levels = _levels("pair_levels", a.pair_levels, QUALITY, 2)
-    sector_levels = _levels("sector_levels", a.sector_levels, QUALITY, 0)
-    disk_levels = [number("disk_levels", x) for x in a.disk_levels.split(",")]
+
+def _read(text: str) -> object:
+    try:
+        return float(text)
+    except ValueError:
+        return text
+
+
+def _skip_or(name: str, value: int, skip: bool = True) -> int:
+    """A count that is 0 (skip, where ``skip``) or at least 2."""
+    if value == 1 or value == 0 and not skip:
+        raise ParameterError(name, value, _ROW[name].range_text)
+    return value
+
+
+def run(a: argparse.Namespace) -> int:
+    from ..files import check_dir
+    from ..geometry import admissible_pair
+
+    own = checked(a, [row for row in BENCH_INPUTS if not row.limits or row.kind is int])
+    repeat = own["repeat"]
+    cycle = _skip_or("cycle", own["cycle"])
+    pair_levels = _levels("pair-levels", a.pair_levels, QUALITY, 2)
+    sector_levels = _levels("sector-levels", a.sector_levels, QUALITY, 0)
+    disk_levels = _numbers("disk-levels", a.disk_levels)
     if len(disk_levels) < 2 or not all(1 <= n <= 200 for n in disk_levels):
-        raise ParameterError("disk_levels", a.disk_levels,
-                             "two or more numbers 1 <= elements across b <= 200")
-    teeth = [number("scaling", x) for x in a.scaling.split(",") if x.strip()]
+        raise ParameterError("disk-levels", a.disk_levels, _ROW["disk-levels"].range_text)
+    teeth = _numbers("scaling", a.scaling)
     if not all(float(z).is_integer() and 12 <= z <= 400 for z in teeth):
-        raise ParameterError("scaling", a.scaling, "teeth of gear 2, 12 ... 400, "
-                             "comma-separated")
-    study_cases = int(a.study_cases)
-    if study_cases != 0 or a.study_only:
-        require_range("study_cases", study_cases, 2, 1000)
+        raise ParameterError("scaling", a.scaling, _ROW["scaling"].range_text)
+    study_cases = _skip_or("study-cases", own["study_cases"], skip=not a.study_only)
     params = admissible_pair(given_values(a, PAIR_INPUTS))
+    material = {k: SOLVE_INPUTS[k].default for k in ("E", "face-width")}
+    torque = check_torque(a.torque, material["E"], params.m, material["face-width"],
+                          params.r1)
+    out = check_dir(a.out)         # before any work: --sector writes nothing, the rest do
     if a.study_only:
         return _study_bench(params, study_cases)
     if a.contact_peer:
-        return _contact_peer(sector_levels, a.out)
+        return _contact_peer(sector_levels, out)
     if a.sector:
         return _sector_check(params, torque, a.pair_quality)
     from ..files import prepare_dir
 
-    out = prepare_dir(a.out)
+    out = prepare_dir(out)
     return _bench(a, params, torque, repeat, cycle, pair_levels, sector_levels, disk_levels,
                   [int(z) for z in teeth], study_cases, out)
 

@@ -7,22 +7,17 @@ import json
 import math
 
 from ..fe.material import MATERIAL_INPUTS, PLANE_MODES
+from ..verify.disk_inputs import DISK_INPUTS
 from .args import add_inputs
 
 
 def add_parser(sub) -> None:
     p = sub.add_parser("hertz", help="FE line contact of two disks (or disk in bore) vs Hertz")
-    p.add_argument("--r1", type=float, default=10.0, help="disk 1 radius [mm] (default 10)")
-    p.add_argument("--r2", type=float, default=10.0,
-                   help="disk 2 radius [mm]; negative = a bore holding disk 1 (default 10)")
-    p.add_argument("--load", type=float, default=1000.0, help="normal load [N] (default 1000)")
+    add_inputs(p, DISK_INPUTS[:3])
     add_inputs(p, MATERIAL_INPUTS)
     p.add_argument("--plane", choices=PLANE_MODES, default="stress",
                    help="plane assumption (default stress)")
-    p.add_argument("--quality", default="standard",
-                   help="coarse / standard / fine = 4 / 8 / 16 elements across b, or a number")
-    p.add_argument("--penalty-factor", type=float, default=None,
-                   help="penalty κ = factor·E*/h (default 300)")
+    add_inputs(p, DISK_INPUTS[3:])
     p.add_argument("--out", default=None, help="write VTU files and summary.json here")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
 
@@ -30,18 +25,18 @@ def add_parser(sub) -> None:
 def run(a: argparse.Namespace) -> int:
     import time
 
-    from ..files import prepare_dir
+    from ..files import check_dir, prepare_dir
     from ..verify import DISK_QUALITY, DiskCase
 
-    quality = a.quality if a.quality in DISK_QUALITY else number("quality", a.quality)
-    kw = {} if a.penalty_factor is None else {"penalty_factor": a.penalty_factor}
+    quality = a.quality if a.quality in DISK_QUALITY else _number(a.quality)
     case = DiskCase(r1=a.r1, r2=a.r2, load=a.load, thickness=a.face_width, E=a.E, nu=a.nu,
-                    plane=a.plane, quality=quality, **kw)
-    out = prepare_dir(a.out) if a.out else None
+                    plane=a.plane, quality=quality, penalty_factor=a.penalty_factor)
+    out = None if a.out is None else check_dir(a.out)
     from ..verify import solve_disks, write_disk_outputs  # the FE stack, once the case is sound
     result = solve_disks(case)
     summary = result.summary()
     if out is not None:
+        out = prepare_dir(out)
         t0 = time.perf_counter()
         files = write_disk_outputs(result, out)
         result.timings_s["output"] = time.perf_counter() - t0
@@ -57,13 +52,13 @@ def run(a: argparse.Namespace) -> int:
     return 0
 
 
-def number(name: str, text: str) -> float:
-    from ..errors import ParameterError
-
+def _number(text: str) -> float | str:
+    """A number of elements as typed, read as a number where it is one (else the text, for
+    the case to refuse with the range)."""
     try:
         return float(text)
     except ValueError:
-        raise ParameterError(name, text, "coarse / standard / fine or a number") from None
+        return text
 
 
 def _hertz_table(r) -> str:

@@ -10,16 +10,29 @@ import sys
 import time
 from pathlib import Path
 
-from ..checks import require_range
+from ..checks import Input
 from ..errors import FegearError
+from ..optimize.space import CONSTRAINT_INPUTS
 from ..toothpair.inputs import QUALITY, SOLVE_INPUTS
-from .args import add_inputs, given_values
+from .args import add_inputs, checked, given_values, workers_input
 
 #: the solve inputs a search holds fixed by option (the cycle, the estimate and the screening
 #: quality are its own options)
 TAKEN = [row for name, row in SOLVE_INPUTS.items()
          if name not in ("position", "positions", "no-estimate", "quality")]
 WORKERS = 2
+#: the search's own inputs (its constraints are :data:`~fegear.optimize.space.
+#: CONSTRAINT_INPUTS`)
+SEARCH_INPUTS = (
+    Input("trials", int, 200, "finished trials in all, a resumed search's included", low=1,
+          high=100_000),
+    Input("positions", int, 12, "rolling angles of each trial's mesh cycle", low=2,
+          high=360),
+    Input("seed", int, 0, "the sampler's seed", low=0, high=2**32 - 1),
+    workers_input("worker processes", f"the machine's cores, at most {WORKERS}"),
+    Input("best", int, 3, "best designs solved again at standard with the estimate", low=0,
+          high=20),
+)
 
 
 def add_parser(sub) -> None:
@@ -39,39 +52,23 @@ def add_parser(sub) -> None:
                         "transmission error's peak to peak: minimised), stiffness (the mean "
                         "mesh stiffness: maximised); two or more, comma-separated, give a "
                         "Pareto front (default safety)")
-    g.add_argument("--max-outer-diameter", type=float, default=None,
-                   help="largest outer diameter of gear 2 (root circle and rim) [mm]")
-    g.add_argument("--max-centre-distance", type=float, default=None,
-                   help="largest centre distance m (z2 - z1) / 2 [mm]")
-    g.add_argument("--min-backlash", type=float, default=None,
-                   help="smallest backlash over the cycle, both directions together [µm] "
-                        "(costs a backlash scan a trial, about 3 s)")
-    g.add_argument("--max-backlash", type=float, default=None,
-                   help="largest backlash over the cycle [µm] (as --min-backlash)")
-    g.add_argument("--trials", type=int, default=200,
-                   help="finished trials in all, a resumed search's included (default 200)")
-    g.add_argument("--positions", type=int, default=12,
-                   help="rolling angles of each trial's mesh cycle (default 12)")
+    add_inputs(p, SEARCH_INPUTS, into=g)
     g.add_argument("--quality", default="coarse", choices=QUALITY,
                    help="the trials' mesh quality (default coarse; the best are solved again "
                         "at standard)")
     g.add_argument("--sampler", default="tpe", choices=("tpe", "random"),
                    help="tpe: 40 trials from a scrambled Sobol sequence, then Optuna's TPE "
                         "with the constraints (default); random: for comparison")
-    g.add_argument("--seed", type=int, default=0, help="the sampler's seed (default 0)")
-    g.add_argument("--workers", type=int, default=None,
-                   help="worker processes (default: the machine's cores, at most 2)")
     g.add_argument("--scheduler", default=None,
                    help="solve the trials on this Dask distributed scheduler (e.g. "
                         "tcp://host:8786; its workers need fegear) instead of the local pool")
-    g.add_argument("--best", type=int, default=3,
-                   help="best designs solved again at standard with the estimate (default 3)")
     g.add_argument("--no-baselines", action="store_true",
                    help="leave the baseline and the relieved baseline out of the final table")
     g.add_argument("--out", default="out/optimize",
                    help="the search's directory: journal, trials, plots, the best design's "
                         "files (default out/optimize; a search there is resumed)")
     g.add_argument("--json", action="store_true", help="print the final table as JSON")
+    add_inputs(p, CONSTRAINT_INPUTS, "constraints")
 
 
 def run(a: argparse.Namespace) -> int:
@@ -94,25 +91,20 @@ def run(a: argparse.Namespace) -> int:
         search_pngs,
     )
 
-    cores = os.cpu_count() or 1
     if a.workers is not None and a.scheduler:
         raise FegearError("--workers sets the local pool; with --scheduler the cluster's "
                           "workers solve the trials (leave --workers out)")
-    workers = int(require_range("workers", a.workers, 1, 4 * cores)
-                  if a.workers is not None else min(cores, WORKERS))
-    trials = int(require_range("trials", a.trials, 1, 100_000))
-    positions = int(require_range("positions", a.positions, 2, 360))
-    best_count = int(require_range("best", a.best, 0, 20))
-    seed = int(require_range("seed", a.seed, 0, 2**32 - 1))
+    own = checked(a, SEARCH_INPUTS)
+    workers = own["workers"] or min(os.cpu_count() or 1, WORKERS)
+    trials, positions, best_count, seed = (own[k] for k in ("trials", "positions", "best",
+                                                            "seed"))
     fixed = given_values(a, TAKEN)
     # without --vary, the default variables less those given a value
     variables = parse_variables(a.vary or [f"{k}={lo}:{hi}" for k, (lo, hi)
                                            in DEFAULT_RANGES.items() if k not in fixed])
     fixed.setdefault("torque", SOLVE_INPUTS["torque"].default)
-    constraints = {k: v for k, v in (("max_outer_diameter", a.max_outer_diameter),
-                                     ("max_centre_distance", a.max_centre_distance),
-                                     ("min_backlash", a.min_backlash),
-                                     ("max_backlash", a.max_backlash)) if v is not None}
+    constraints = {row.dest: getattr(a, row.dest) for row in CONSTRAINT_INPUTS
+                   if getattr(a, row.dest) is not None}
     space = Space(variables, fixed, positions, a.quality, constraints,
                   tuple(o.strip() for o in a.objectives.split(",") if o.strip()))
     check_space(space)

@@ -5,18 +5,24 @@ from __future__ import annotations
 import argparse
 import json
 
-from ..checks import require_range
+from ..checks import Input
 from ..geometry.parameters import PAIR_INPUTS
-from .args import add_inputs, given_values
+from .args import add_inputs, checked, given_values
+
+#: the command's own inputs (the pair's are :data:`~fegear.geometry.PAIR_INPUTS`)
+PROFILE_INPUTS = (
+    Input("chord-error", float, 1e-4, "max chord error of the written polylines", "mm",
+          low=1e-7, high=0.1),
+    Input("positions", int, 16, "rolling positions scanned for the backlash", low=4,
+          high=360),
+    Input("map-size", int, 21, "designs along each axis of --map", low=5, high=101),
+)
 
 
 def add_parser(sub) -> None:
     p = sub.add_parser("profile", help="generate both tooth profiles and the clearance table")
     add_inputs(p, PAIR_INPUTS, "pair")
-    p.add_argument("--chord-error", type=float, default=1e-4,
-                   help="max chord error of the written polylines [mm] (default 1e-4)")
-    p.add_argument("--positions", type=int, default=16,
-                   help="rolling positions scanned for the backlash (default 16)")
+    add_inputs(p, PROFILE_INPUTS[:2])
     p.add_argument("--out", default=None, help="output directory for gear1.csv, gear2.csv, "
                    "pair.png and summary.json (default: none, the table only)")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
@@ -26,20 +32,18 @@ def add_parser(sub) -> None:
                         "as h1=0.1:0.8,f1=0:0.4 (default spans: h1 0.05-1, f1 0-0.6, the "
                         "input's range for the others); with --out writes map.png, "
                         "map_grid.csv and map_edges.csv")
-    p.add_argument("--map-size", type=int, default=21,
-                   help="designs along each axis of the map (default 21)")
+    add_inputs(p, PROFILE_INPUTS[2:])
 
 
 def run(a: argparse.Namespace) -> int:
     from ..files import check_dir, prepare_dir, write_json, write_points_csv
     from ..geometry import admissible_pair
 
-    require_range("map_size", a.map_size, 5, 101)
+    own = checked(a, PROFILE_INPUTS)
     if a.map is not None:
-        return _map(a)
+        return _map(a, own["map_size"])
     params = admissible_pair(given_values(a, PAIR_INPUTS))
-    chord = require_range("chord_error", a.chord_error, 1e-7, 0.1, unit="mm")
-    positions = int(require_range("positions", a.positions, 4, 360))
+    chord, positions = own["chord_error"], own["positions"]
     out = None if a.out is None else check_dir(a.out)
     from ..geometry import build_geometry, pair_png  # the envelope needs scipy
     geo = build_geometry(params, chord, positions)
@@ -106,7 +110,7 @@ PAPER_BOX = ((0.2, 0.4), (0.1, 0.2), "the seed paper's ranges")
 MAPPED = ("h1", "f1", "shift", "rotation", "tip-clearance", "relief", "relief-extent")
 
 
-def _map(a: argparse.Namespace) -> int:
+def _map(a: argparse.Namespace, size: int) -> int:
     """``fegear profile --map X,Y``: the design-space map and its tables."""
     import os
     from concurrent.futures import ProcessPoolExecutor
@@ -133,7 +137,6 @@ def _map(a: argparse.Namespace) -> int:
         axes.append((name, bounds))
     if len(axes) != 2 or axes[0][0] == axes[1][0]:
         raise ParameterError("map", a.map, "two different inputs, as X,Y (e.g. h1,f1)")
-    size = int(require_range("map_size", a.map_size, 5, 101))
     values = given_values(a, PAIR_INPUTS)
     (x, x_span), (y, y_span) = axes
     x_span, y_span = x_span or map_span(x, values), y_span or map_span(y, values)

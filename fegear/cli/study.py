@@ -5,10 +5,11 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..checks import require_range
 from ..errors import FegearError
+from .args import add_inputs, workers_input
 from .cache import add_switch, apply_switch
 
+WORKERS = workers_input("local worker processes", "all cores")
 #: refused cases listed one by one when a study starts; the rest are counted
 SHOWN = 20
 
@@ -16,8 +17,7 @@ SHOWN = 20
 def add_parser(sub) -> None:
     p = sub.add_parser("study", help="run a parameter study (TOML file): table and plots")
     p.add_argument("file", help="study file (TOML), e.g. studies/paper_trends.toml")
-    p.add_argument("--workers", type=int, default=None,
-                   help="local worker processes (default: all cores)")
+    add_inputs(p, [WORKERS])
     p.add_argument("--scheduler", default=None,
                    help="run on this Dask distributed scheduler (e.g. tcp://host:8786) "
                         "instead of the local pool")
@@ -30,18 +30,18 @@ def add_parser(sub) -> None:
 
 
 def run(a: argparse.Namespace) -> int:
-    import os
 
+    from ..files import check_dir
     from ..study import StudyInterrupted, load_study, run_study
 
     if a.workers is not None:
         if a.scheduler:
             raise FegearError("--workers sets the local pool; with --scheduler the cluster's "
                               "workers run the cases (leave --workers out)")
-        require_range("workers", a.workers, 1, 4 * (os.cpu_count() or 1))
+        WORKERS.check(a.workers)
     study = load_study(a.file)
     apply_switch(a, default=True)   # before the workers start: they inherit it
-    out = a.out or f"out/study/{study.name}"
+    out = check_dir(a.out or f"out/study/{study.name}")   # before the workers start
 
     refused = study.refused
 

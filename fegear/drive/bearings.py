@@ -31,8 +31,11 @@ from types import MappingProxyType
 
 import numpy as np
 
-from ..checks import require_finite, require_int, require_range
+from ..checks import number, require_finite, require_int, require_range
 from ..errors import ParameterError
+from .inputs import BEARING_INPUTS
+
+_ROW = {row.dest: row for row in BEARING_INPUTS}
 
 #: Load cases of the paper's table, ``case -> (gravity, inertia)``: 1 neglects gravity and
 #: inertia, 2 neglects gravity, 3 includes both.
@@ -108,25 +111,24 @@ class RingDrive:
 
     def __post_init__(self) -> None:
         set_ = object.__setattr__
-        set_(self, "z1", require_int("z1", self.z1, 1))
-        set_(self, "z2", require_int("z2", self.z2, 2))
-        if self.z2 <= self.z1:
-            raise ParameterError("z2", self.z2, f"an integer z2 > z1 = {self.z1}",
+        z1, z2 = _ROW["z1"], _ROW["z2"]
+        two = number(self.z2)      # z1 below a sound z2, else below the largest z2
+        sound = two is not None and z2.low <= two <= z2.high and two == int(two)
+        one = require_int("z1", self.z1, int(z1.low), int(z1.high))
+        if sound and two <= one:
+            raise ParameterError("z2", self.z2, f"an integer {one + 1} <= z2 <= "
+                                 f"{z2.high:g} (z2 > z1 = {one})",
                                  "the internal ring needs more teeth than the centre gear")
-        set_(self, "rings", require_int("rings", self.rings, 1))
-        positive = {"m": "mm", "torque": "N·m", "base_radius": "mm", "ring_weight": "N",
-                    "load_factor": "", "half_span": "mm", "eccentric_spacing": "mm",
-                    "support_span": "mm", "g": "m/s²"}
-        for name, unit in positive.items():
-            set_(self, name, require_range(name, getattr(self, name), 0.0, None,
-                                           lo_open=True, unit=unit))
-        non_negative = {"speed": "r/min", "bearing_weight": "N", "inertia_force": "N",
-                        "bearing_inertia": "N"}
-        for name, unit in non_negative.items():
-            if getattr(self, name) is not None:  # None: the optional forces are computed
-                set_(self, name, require_range(name, getattr(self, name), 0.0, None, unit=unit))
-        for name in ("pressure_angle", "working_angle"):
-            set_(self, name, _require_angle(name, getattr(self, name)))
+        set_(self, "z1", one)
+        set_(self, "z2", require_int("z2", self.z2, one + 1, int(z2.high)))
+        for row in BEARING_INPUTS[2:]:
+            value = getattr(self, row.dest)
+            if value is not None or row.dest != "inertia_force":   # None: from eq. (2)
+                set_(self, row.dest, row.check(value))
+        for name in ("bearing_inertia", "g"):
+            if getattr(self, name) is not None:
+                set_(self, name, require_range(name, getattr(self, name), 0.0, None,
+                                               lo_open=name == "g"))
 
     @property
     def eccentricity(self) -> float:

@@ -34,7 +34,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..checks import require_range
+from ..errors import ParameterError
 from ..toothpair import MeshStiffness
+from .inputs import DYNAMICS_INPUTS
+
+_ROW = {row.dest: row for row in DYNAMICS_INPUTS}
 
 STEEL_DENSITY = 7850.0  # kg/m³, for the default inertias
 
@@ -63,9 +67,13 @@ class TorsionalPair:
     zeta: float = 0.05
 
     def __post_init__(self) -> None:
-        for name in ("J1", "J2", "ratio", "stiffness"):
+        for name in ("J1", "J2", "zeta"):   # each given: their defaults are the command's
+            row = _ROW[name]
+            if getattr(self, name) is None:
+                raise ParameterError(name, None, row.range_text)
+            row.check(getattr(self, name))
+        for name in ("ratio", "stiffness"):
             require_range(name, getattr(self, name), 0.0, None, lo_open=True)
-        require_range("zeta", self.zeta, 0.0, 1.0, hi_open=True)
 
     @property
     def equivalent_inertia(self) -> float:

@@ -20,11 +20,13 @@ way); speeds positive in one chosen sense.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
-from ..checks import require_range
+from ..checks import require_finite
 from ..errors import ParameterError
+from .inputs import RATIO_INPUTS
+
+_ROW = {row.dest: row for row in RATIO_INPUTS}
 
 
 @dataclass(frozen=True)
@@ -74,9 +76,10 @@ def two_kh(i_ab_h: float, fixed: str = "b") -> Ratio:
     """General 2K-H train given its transformed ratio i_ab^H (sign included): central gear b
     fixed, a in, carrier out (``i_aH^b = 1 − i_ab^H``); or ``fixed = "a"``: b in, H out
     (``i_bH^a = 1 − 1/i_ab^H``)."""
-    i = float(i_ab_h)
-    if not math.isfinite(i) or i == 0.0 or i == 1.0:
-        raise ParameterError("i_ab_H", i_ab_h, "a finite transformed ratio, not 0 or 1")
+    row = _ROW["i_ab_h"]
+    i = require_finite(row.name, i_ab_h, row.range_text)
+    if i in (0.0, 1.0):
+        raise ParameterError(row.name, i_ab_h, row.range_text)
     if fixed == "b":
         return Ratio("2K-H", carrier_ratio(i), i, "b", "a", "H")
     if fixed == "a":
@@ -124,9 +127,9 @@ def meshing_efficiency(i: float, eta_h: float, carrier_drives: bool) -> float:
     * H drives (H → X): ``1 − 1/i > 0``: ``i η^H/[η^H − (1 − i)]``; else ``i/[1 − η^H(1 − i)]``
 
     A result ≤ 0 means the train self-locks in that direction (only with H driven)."""
-    eta = require_range("eta_H", eta_h, 0.0, 1.0, lo_open=True)
-    i = float(i)
-    if not math.isfinite(i) or i == 0.0:
+    eta = _ROW["eta_h"].check(eta_h)
+    i = require_finite("ratio", i, "finite and non-zero")
+    if i == 0.0:
         raise ParameterError("ratio", i, "finite and non-zero")
     if i == 1.0:
         return 1.0  # the train turns as a block: no meshing power, no mesh loss

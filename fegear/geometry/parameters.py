@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..checks import Input, require_range
+from ..checks import Input, require_int, require_range
 from ..errors import ParameterError
 
 #: the lowest tooth-height coefficient: teeth 4 m h1 = 0.2 m high (the solve stopped settling
@@ -34,26 +34,35 @@ RENAMED = {"tip-relief": "tip-clearance (the radial clearance at gear 1's tip; t
 #: :class:`PairParameters` and :func:`~fegear.geometry.refusal.check_admissible`
 PAIR_INPUTS = (
     Input("m", float, 2.0, "module", "mm", low=0.0, high=100.0, low_open=True),
-    Input("z2", int, 45, "teeth of the internal gear (gear 2), z1 < z2 <= 2000", low=4),
-    Input("z1", int, 44, "teeth of the external gear (gear 1)", low=3),
-    Input("h1", float, 0.30, f"tooth-height coefficient (e1 = m h1), {H1_MIN:g} <= h1 < z2/4 "
-          "and admissible"),
-    Input("f1", float, 0.15, "tooth-shape coefficient (e2 = f1 e1)", low=0.0, high=1.0),
+    Input("z2", int, 45, "teeth of the internal gear (gear 2)", low=4, high=2000,
+          limits="an integer z1 < z2 <= 2000"),
+    Input("z1", int, 44, "teeth of the external gear (gear 1)", low=3, high=1999,
+          limits="an integer 3 <= z1 < z2"),
+    Input("h1", float, 0.30, "tooth-height coefficient (e1 = m h1)", low=H1_MIN,
+          limits=f"{H1_MIN:g} <= h1 < z2/4 and the design admissible"),
+    Input("f1", float, 0.15, "tooth-shape coefficient (e2 = f1 e1)", low=0.0, high=1.0,
+          limits="0 <= f1 <= 1 and the design admissible"),
     Input("shift", float, None, "Δ1 negative shift: gear 1 generated at centre distance "
-          "e + shift, 0 <= shift <= m h1/4 (default 0.008 m, the seed paper's 0.016 mm at "
-          "m = 2)", "mm"),
-    Input("rotation", float, None, "Δ2 rotation modification of the generating tool, "
-          "|rotation| <= m h1/4 and the pair clear before any load (default 0.001 m, the seed "
-          "paper's 0.002 mm at m = 2, halved until the pair is clear)", "mm"),
+          "e + shift", "mm", limits="0 <= shift <= m h1/4 and the pair clear before any load",
+          rule="0.008 m (the seed paper's 0.016 mm at m = 2), at most m h1/4"),
+    Input("rotation", float, None, "Δ2 rotation modification of the generating tool", "mm",
+          limits="|rotation| <= m h1/4 and the pair clear before any load",
+          rule="0.001 m (the seed paper's 0.002 mm at m = 2), at most m h1/4, halved until "
+               "the pair is clear before any load (at most six times, then 0)"),
     Input("tip-clearance", float, None, "radial clearance of gear 1's tip to the far side of "
-          "gear 2, tip-clearance <= m h1 and the tip clear before any load (default: = shift, "
-          "at least 0.001 m)", "mm"),
+          "gear 2", "mm", limits="-shift <= tip-clearance <= m h1 and the tip clear before "
+          "any load", rule="= shift, at least 0.001 m"),
     Input("relief", float, 0.0, "tip relief of gear 1's flanks: depth cut normal to the "
-          "profile at the tip end, 0 <= relief <= 50 m µm (0: none)", "µm"),
+          "profile at the tip end (0: none)", "µm", low=0.0,
+          limits="0 <= relief <= 50 m µm and fitting the flank"),
     Input("relief-extent", float, None, "length of the tip relief along the flank from the "
-          "tip end (default 0.25 m)", "mm"),
+          "tip end", "mm", low=0.0, low_open=True,
+          limits="0 < relief-extent < the working flank's length",
+          rule=f"{EXTENT_DEFAULT:g} m where there is a relief"),
     Input("relief-start", float, None, "or: the radius where the tip relief starts, instead "
-          "of relief-extent", "mm"),
+          "of relief-extent", "mm", low=0.0, low_open=True,
+          limits="gear 1's root radius < relief-start < its working flank's tip end",
+          rule="none (relief-extent sets the start)"),
     Input("relief-shape", str, "parabolic", "shape of the tip relief", choices=SHAPES),
 )
 _ROW = {row.name: row for row in PAIR_INPUTS}
@@ -67,6 +76,24 @@ def built_modification(name: str, m: float, h1: float) -> float:
     """The default of ``shift`` or ``rotation`` [mm] for module ``m`` and height ``h1``:
     :data:`BUILT` times m, at most the m h1/4 the pair admits."""
     return min(BUILT[name] * m, 0.25 * m * h1)
+
+
+def teeth_range(name: str, other: int | None) -> str:
+    """The admissible teeth of gear 1 (``name`` z1) or gear 2 (z2) where the other gear has
+    ``other`` teeth (None: not a sound number), as a refusal states them."""
+    if name == "z1":
+        top = _ROW["z1"].high if other is None else other - 1
+        why = "" if other is None else f" (z1 < z2 = {other})"
+        return f"an integer {_ROW['z1'].low} <= z1 <= {top}{why}"
+    return f"an integer {other + 1} <= z2 <= {_ROW['z2'].high} (z2 > z1 = {other})"
+
+
+def _whole(value: object, low: int, high: int) -> int | None:
+    """``value`` as an int if it is a whole number from ``low`` to ``high``, else None."""
+    try:
+        return require_int("", value, low, high)
+    except ParameterError:
+        return None
 
 
 @dataclass(frozen=True)
@@ -112,15 +139,9 @@ class PairParameters:
     def __post_init__(self) -> None:
         set_ = object.__setattr__
         set_(self, "m", _ROW["m"].check(self.m))
-        set_(self, "z1", _ROW["z1"].check(self.z1))
-        set_(self, "z2", _ROW["z2"].check(self.z2))
-        if self.z2 <= self.z1:
-            raise ParameterError("z2", self.z2, f"an integer z2 > z1 = {self.z1}",
-                                 "the internal gear needs more teeth than the external gear")
-        if self.z2 > 2000:
-            raise ParameterError("z2", self.z2, f"an integer with {self.z1} < z2 <= 2000")
+        self._check_teeth()
         set_(self, "h1", require_range("h1", self.h1, H1_MIN, self.z2 / 4.0, hi_open=True))
-        set_(self, "f1", _ROW["f1"].check(self.f1))
+        set_(self, "f1", require_range("f1", self.f1, 0.0, 1.0))
         e1 = self.m * self.h1
         set_(self, "shift", require_range("shift", self.shift, 0.0, 0.25 * e1, unit="mm"))
         set_(self, "rotation", require_range("rotation", self.rotation, -0.25 * e1, 0.25 * e1,
@@ -130,6 +151,23 @@ class PairParameters:
                                                       -self.shift, e1, unit="mm"))
         self._check_relief()
 
+    def _check_teeth(self) -> None:
+        """z1 and z2, each in its range at the other's value where that is a sound one; a pair
+        whose gear 2 has no more teeth than gear 1 is refused as z2 (:func:`~.refusal.
+        check_design` names z1 instead where only z1 was set)."""
+        set_ = object.__setattr__
+        two = _whole(self.z2, _ROW["z2"].low, _ROW["z2"].high)
+        one = _whole(self.z1, _ROW["z1"].low, _ROW["z1"].high)
+        if one is None:
+            raise ParameterError("z1", self.z1, teeth_range("z1", two))
+        if two is not None and two <= one:
+            raise ParameterError("z2", self.z2, teeth_range("z2", one),
+                                 "the internal gear needs more teeth than the external gear")
+        if two is None:
+            raise ParameterError("z2", self.z2, teeth_range("z2", one))
+        set_(self, "z1", one)
+        set_(self, "z2", two)
+
     def _check_relief(self) -> None:
         set_ = object.__setattr__
         set_(self, "relief", require_range("relief", self.relief, 0.0, 50.0 * self.m,
@@ -138,12 +176,9 @@ class PairParameters:
         if self.relief_extent is not None and self.relief_start is not None:
             raise ParameterError("relief_start", self.relief_start, "unset when relief-extent "
                                  "is given (one or the other)")
-        if self.relief_extent is not None:
-            set_(self, "relief_extent", require_range("relief_extent", self.relief_extent, 0.0,
-                                                      None, lo_open=True, unit="mm"))
-        if self.relief_start is not None:
-            set_(self, "relief_start", require_range("relief_start", self.relief_start, 0.0,
-                                                     None, lo_open=True, unit="mm"))
+        for name in ("relief-extent", "relief-start"):   # their fit: where the flank is built
+            dest = _ROW[name].dest
+            set_(self, dest, _ROW[name].check(getattr(self, dest)))
         if self.relief > 0 and self.relief_extent is None and self.relief_start is None:
             set_(self, "relief_extent", EXTENT_DEFAULT * self.m)
 

@@ -16,6 +16,7 @@ from collections.abc import Iterable, Mapping
 
 import numpy as np
 
+from ..checks import number
 from ..errors import ParameterError
 from .admissible import (
     _built,
@@ -25,15 +26,16 @@ from .admissible import (
     profile_defect,
     resolve,
 )
-from .parameters import H1_MIN, PAIR_INPUTS, PairParameters, built_modification
+from .parameters import H1_MIN, PAIR_INPUTS, PairParameters, built_modification, teeth_range
 
+PAIR_ROWS = {row.name: row for row in PAIR_INPUTS}
 BISECT = 60             # bisection steps at most
 
 
 def _span(name: str, values: Mapping[str, object]) -> tuple[float, float] | None:
     """The static bounds of input ``name`` at the other inputs' values (``None`` for an input
     a refusal does not search, or where m, z or h1 are themselves out of range)."""
-    p = _loose(values)
+    p = _loose({k: v for k, v in values.items() if k != name})   # its own value may be bad
     if p is None:
         return None
     e1 = p.m * p.h1
@@ -187,8 +189,9 @@ def interval(values: Mapping[str, object], name: str, checks: int = CHECKS
             good, bad = _edge(full, anchor, good, tol)
         return _snapped(ok, good, bad, step)
 
-    given = values.get(name)
-    target = float(given) if isinstance(given, (int, float)) else None
+    target = number(values.get(name))
+    if target is not None and not math.isfinite(target):
+        target = None
     grid = sorted(np.linspace(lo, hi, 9), key=lambda a: abs(a - (target or 0.0)))
     first = [a * (values.get("m") or 2.0) / 2.0 if name in ("tip-clearance", "shift") else a
              for a in ANCHORS.get(name, ())]
@@ -234,7 +237,7 @@ def _range_text(name: str, bounds: tuple[float, float], values: Mapping[str, obj
 
 
 def _others(values: Mapping[str, object], name: str) -> str:
-    p = _loose(values)
+    p = _loose({k: v for k, v in values.items() if k != name})
     keys = [k for k in ("h1", "f1", "m", "z2", "z1") if k != name]
     text = ", ".join(f"{k}={getattr(p, k):g}" for k in keys) if p else ""
     relieved = bool(values.get("relief"))
@@ -252,11 +255,12 @@ def check_design(values: Mapping[str, object], given: Iterable[str] | None = Non
     the defect, with its admissible interval at the other inputs' values and another input's
     as an alternative."""
     values = {k: v for k, v in values.items() if v is not None}
+    given = set(values if given is None else given)
     try:
         p = resolve(values)
     except ParameterError as exc:   # a static range: told as the admissible interval
-        finite = isinstance(exc.value, (int, float)) and math.isfinite(exc.value)
-        bounds = interval(values, exc.name) if exc.name in ANCHORS and finite else None
+        _teeth_set(exc, values, given)
+        bounds = interval(values, exc.name) if exc.name in ANCHORS else None
         if bounds is None:
             raise
         raise ParameterError(exc.name, exc.value, f"{_range_text(exc.name, bounds, values)} "
@@ -264,7 +268,6 @@ def check_design(values: Mapping[str, object], given: Iterable[str] | None = Non
     found = defect(p)
     if found is None:
         return p
-    given = set(values if given is None else given)
     candidates = [f for f in found.fixes if f in given] or list(found.fixes)
     ranges = {}
     for name in found.fixes:   # the alternatives unchecked inside (their edges are exact)
@@ -291,6 +294,15 @@ def check_design(values: Mapping[str, object], given: Iterable[str] | None = Non
         alternatives) else ""
     raise ParameterError(name, _value(p, name), f"{_range_text(name, ranges[name], values)} "
                          f"at {_others(values, name)}{extra}", found.reason)
+
+
+def _teeth_set(exc: ParameterError, values: Mapping[str, object], given: set[str]) -> None:
+    """A pair refused for z2 <= z1 is refused as z2 (:class:`PairParameters`); where only z1
+    was set, as z1, with its range at z2: raised here, else nothing."""
+    if exc.name != "z2" or "z2" in given or "z1" not in given or not exc.reason:
+        return
+    z2 = values.get("z2", PAIR_ROWS["z2"].default)
+    raise ParameterError("z1", values["z1"], teeth_range("z1", int(z2)), exc.reason) from None
 
 
 def _value(p: PairParameters, name: str) -> float:

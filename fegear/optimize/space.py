@@ -8,6 +8,7 @@ import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
+from ..checks import Input, number, require_range
 from ..errors import FegearError, ParameterError
 from .design import OBJECTIVES, centre_distance, outer_diameter
 
@@ -22,6 +23,23 @@ PAPER_RANGES = {"m": (1.0, 2.5), "h1": (0.2, 0.4), "f1": (0.1, 0.2)}
 #: ranges loads its rounds at the seed pair's torque, and none is feasible)
 DEFAULT_RANGES = {**PAPER_RANGES, "relief": (0.0, 10.0), "tip-clearance": (0.01, 0.04)}
 SAMPLERS = ("tpe", "random")
+#: the constraints a search respects (``fegear optimize``'s options; None: no constraint)
+CONSTRAINT_INPUTS = (
+    Input("max-outer-diameter", float, None, "largest outer diameter of gear 2 (root circle "
+          "and rim)", "mm", low=0.0, high=1e5, low_open=True,
+          limits="the smallest gear 2 inside the bounds <= max-outer-diameter <= 100000 mm",
+          rule="none"),
+    Input("max-centre-distance", float, None, "largest centre distance m (z2 - z1) / 2",
+          "mm", low=0.0, high=1e5, low_open=True,
+          limits="the pair's at the least m <= max-centre-distance <= 100000 mm", rule="none"),
+    Input("min-backlash", float, None, "smallest backlash over the cycle, both directions "
+          "together (costs a backlash scan a trial, about 3 s)", "µm", low=0.0, high=1e4,
+          rule="none"),
+    Input("max-backlash", float, None, "largest backlash over the cycle (as --min-backlash)",
+          "µm", low=0.0, high=1e4, limits="min-backlash < max-backlash <= 10000 µm",
+          rule="none"),
+)
+_CONSTRAINT = {row.dest: row for row in CONSTRAINT_INPUTS}
 
 
 @dataclass(frozen=True)
@@ -62,7 +80,6 @@ class Space:
 def parse_variables(texts: Sequence[str]) -> tuple[Variable, ...]:
     """``name=low:high`` each (``--vary``), checked: a known variable, once, finite bounds
     with low < high, each inside the input's own range."""
-    from ..toothpair import SOLVE_INPUTS
 
     out: dict[str, Variable] = {}
     for text in texts:
@@ -80,13 +97,27 @@ def parse_variables(texts: Sequence[str]) -> tuple[Variable, ...]:
             raise ParameterError("vary", text, f"{name}=low:high with finite low < high")
         if name in out:
             raise ParameterError("vary", text, f"{name} once (it is given twice)")
-        row = SOLVE_INPUTS[name]
-        for bound in (lo, hi):
-            row.check(bound)   # outside the input's own range: refused by the input's name
-        out[name] = Variable(name, lo, hi)
+        out[name] = check_variable(Variable(name, lo, hi))
     if not out:
         raise ParameterError("vary", "", "at least one name=low:high")
     return tuple(out.values())
+
+
+def check_variable(v: Variable) -> Variable:
+    """``v`` with its bounds checked: numbers (a bool is none), low < high, each inside the
+    input's own range (refused by the input's name)."""
+    from ..toothpair import SOLVE_INPUTS
+
+    if v.name not in VARIABLES:
+        raise ParameterError("vary", v.name, "one of " + ", ".join(VARIABLES),
+                             f"unknown variable {v.name!r}")
+    lo, hi = number(v.low), number(v.high)
+    if lo is None or hi is None or not (math.isfinite(lo) and math.isfinite(hi)) or lo >= hi:
+        raise ParameterError("vary", f"{v.name}={v.low!r}:{v.high!r}",
+                             f"{v.name}=low:high with finite numbers low < high")
+    for bound in (lo, hi):
+        SOLVE_INPUTS[v.name].check(bound)   # outside the input's range: refused by its name
+    return Variable(v.name, lo, hi)
 
 
 def check_space(space: Space) -> None:
@@ -96,28 +127,27 @@ def check_space(space: Space) -> None:
     from ..toothpair import SOLVE_INPUTS
 
     SOLVE_INPUTS.complete(space.fixed)    # an unknown input: refused by its name
-    for name, value in space.fixed.items():
-        if value is not None:
+    for name, value in space.fixed.items():   # those with limits: by prepare_job, below
+        if value is not None and not SOLVE_INPUTS[name].limits:
             SOLVE_INPUTS[name].check(value)
     for v in space.variables:
+        check_variable(v)
         if v.name in space.fixed and space.fixed[v.name] is not None:
             raise FegearError(f"--{v.name} is given and also varied (--vary {v.name}=...): "
                               "one or the other")
     for o in space.objectives:
         if o not in OBJECTIVES:
             raise ParameterError("objectives", o, "one or more of " + ", ".join(OBJECTIVES))
-    most = space.constraints.get("max_outer_diameter")
-    if most is not None:
-        if not (math.isfinite(most) and most > 0):
-            raise ParameterError("max-outer-diameter", most, "a finite size > 0 mm")
-        bounds = {v.name: v for v in space.variables}
-        smallest = {n: bounds[n].low for n in ("m", "h1", "rim2") if n in bounds}
-        least = outer_diameter({**space.fixed, **smallest})
-        if least > most:
-            raise ParameterError("max-outer-diameter", most,
-                                 f"at least {least:.4g} mm, the smallest gear 2 inside the "
-                                 "bounds (its root circle and rim at the least m, h1, rim2)",
-                                 "no design fits")
+    for name in space.constraints:
+        if name not in _CONSTRAINT:
+            raise ParameterError(name, space.constraints[name], "one of "
+                                 + ", ".join(_CONSTRAINT), "unknown constraint")
+    lo, hi = space.constraints.get("min_backlash"), space.constraints.get("max_backlash")
+    _CONSTRAINT["min_backlash"].check(lo)
+    if hi is not None:
+        require_range("max-backlash", hi, 0.0 if lo is None else number(lo), 1e4,
+                      lo_open=lo is not None, unit="µm" if lo is None else "µm (above "
+                      "min-backlash)")
     from ..toothpair import prepare_job
 
     # the fixed pair itself (with the varied inputs at their defaults) must be one fegear
@@ -125,20 +155,16 @@ def check_space(space: Space) -> None:
     varied = {v.name for v in space.variables}
     prepare_job({**{k: v for k, v in space.fixed.items() if k not in varied},
                  "quality": space.quality, "no-estimate": True})
+    bounds = {v.name: v for v in space.variables}
+    most = space.constraints.get("max_outer_diameter")
+    if most is not None:
+        smallest = {n: bounds[n].low for n in ("m", "h1", "rim2") if n in bounds}
+        least = outer_diameter({**space.fixed, **smallest})
+        require_range("max-outer-diameter", most, least, 1e5, unit="mm (the smallest gear 2 "
+                      "inside the bounds: its root circle and rim at the least m, h1, rim2)")
     far = space.constraints.get("max_centre_distance")
     if far is not None:
-        if not (math.isfinite(far) and far > 0):
-            raise ParameterError("max-centre-distance", far, "a finite distance > 0 mm")
-        bounds = {v.name: v for v in space.variables}
         least = centre_distance({**space.fixed, **({"m": bounds["m"].low} if "m" in bounds
                                                    else {})})
-        if least > far:
-            raise ParameterError("max-centre-distance", far,
-                                 f"at least {least:.4g} mm, the pair's at the least m",
-                                 "no design fits")
-    lo, hi = space.constraints.get("min_backlash"), space.constraints.get("max_backlash")
-    for name, value in (("min-backlash", lo), ("max-backlash", hi)):
-        if value is not None and not (math.isfinite(value) and value >= 0):
-            raise ParameterError(name, value, "a finite backlash >= 0 µm")
-    if lo is not None and hi is not None and lo >= hi:
-        raise ParameterError("max-backlash", hi, f"more than --min-backlash {lo:g} µm")
+        require_range("max-centre-distance", far, least, 1e5,
+                      unit="mm (the pair's at the least m)")

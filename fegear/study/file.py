@@ -38,6 +38,7 @@ import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..checks import Input
 from ..errors import FegearError
 from ..provenance import code_version
 from ..toothpair import RENAMED, SOLVE_INPUTS, prepare_job
@@ -140,7 +141,7 @@ def build_study(data: dict, path: Path) -> Study:
     _known(out, _OUTPUT_KEYS, f"{where}: [outputs]", "key")
     outputs = Outputs(**{k: _bool(out[k], f"{where}: [outputs] {k}") for k in out})
     inputs = SOLVE_INPUTS
-    base = {k: _value(v, inputs[k].kind.__name__, f"{where}: [base] {k}")
+    base = {k: _value(v, inputs[k].kind.__name__, f"{where}: [base] {k}", inputs[k])
             for k, v in _known(_table(data, "base", where), inputs, f"{where}: [base]",
                                "fegear solve input").items()}
     blocks = data.get("sweep", [])
@@ -208,9 +209,9 @@ def _expand(block: dict, inputs, where: str, label: str) -> list[tuple[str, dict
         elif isinstance(v, list):
             if not v:
                 raise StudyError(f"{where} {k} = []: give at least one value")
-            values = [_value(x, kind, f"{where} {k}[{j}]") for j, x in enumerate(v)]
+            values = [_value(x, kind, f"{where} {k}[{j}]", inputs[k]) for j, x in enumerate(v)]
         else:
-            values = [_value(v, kind, f"{where} {k}")]
+            values = [_value(v, kind, f"{where} {k}", inputs[k])]
         swept[k] = values
     if not swept:
         raise StudyError(f"{where}: sweeps nothing (give at least one input)")
@@ -260,20 +261,23 @@ def _range(spec: dict, kind: str, where: str) -> list:
     return [round(v, 12) for v in values]  # 0.2 + 2 × 0.05 is 0.30000000000000004
 
 
-def _value(v, kind: str, where: str):
+def _value(v, kind: str, where: str, row: Input | None = None):
+    """``v`` as an input of ``kind`` takes it (a bool is no number); a refusal states the
+    input's range where ``row`` is given."""
     if kind == "bool":
         return _bool(v, where)
     if kind == "str":
         return _string(v, where)
+    span = f"; admissible: {row.range_text}" if row is not None and row.range_text else ""
     if isinstance(v, bool) or not isinstance(v, (int, float)):
         what = "an integer" if kind == "int" else "a number"
-        raise StudyError(f"{where} = {v!r}: must be {what}")
+        raise StudyError(f"{where} = {v!r}: must be {what}{span}")
     if kind == "int":
         if isinstance(v, float):
-            raise StudyError(f"{where} = {v!r}: must be an integer")
+            raise StudyError(f"{where} = {v!r}: must be an integer{span}")
         return v
     if not math.isfinite(v):
-        raise StudyError(f"{where} = {v!r}: must be a finite number")
+        raise StudyError(f"{where} = {v!r}: must be a finite number{span}")
     return float(v)
 
 

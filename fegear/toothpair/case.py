@@ -16,7 +16,14 @@ from ..checks import require_range
 from ..fe import Material
 from ..geometry import PairParameters
 from ..planar import wrap
-from .inputs import LOAD_LIMIT, SOLVE_INPUTS, TIP_ROUND, Quality
+from .inputs import (
+    SOLVE_INPUTS,
+    TIP_ROUND,
+    Quality,
+    check_tip_round,
+    check_torque,
+    torque_limit,
+)
 
 #: headline stresses: JSON key (MPa) → label in the table and the cycle plot
 HEADLINE = {"root_stress_gear1_MPa": "root σ1, gear 1", "root_stress_gear2_MPa": "root σ1, gear 2",
@@ -47,12 +54,9 @@ class SolveCase:
     tip_round: float | None = None
 
     def __post_init__(self) -> None:
-        SOLVE_INPUTS["torque"].check(self.torque)
         require_range("position", self.beta, -math.pi, math.pi, unit="rad")
         Material(self.E, self.nu, self.thickness)  # validates E, nu, thickness
-        require_range("torque", self.torque, 0.0, self.torque_limit, lo_open=True,
-                      unit=f"N·m (0.05 E m b r1 at E={self.E:g} MPa, m={self.params.m:g}, "
-                           f"b={self.thickness:g}, r1={self.params.r1:g} mm)")
+        check_torque(self.torque, self.E, self.params.m, self.thickness, self.params.r1)
         SOLVE_INPUTS["quality"].check(self.quality)
         m = self.params.m
         if self.rim1 is not None:
@@ -64,12 +68,12 @@ class SolveCase:
             require_range("rim2", self.rim2, 0.5 * m, 20 * m, unit="mm")
         SOLVE_INPUTS["extra-pairs"].check(self.extra_pairs)
         if self.tip_round is not None:
-            require_range("tip_round", self.tip_round, 0.0, 0.5 * self.params.m, unit="mm")
+            check_tip_round(self.tip_round, m)
 
     @property
     def torque_limit(self) -> float:
         """The largest torque the solve takes (N·m): :data:`~.inputs.LOAD_LIMIT` E m b r1."""
-        return LOAD_LIMIT * self.E * self.params.m * self.thickness * self.params.r1 * 1e-3
+        return torque_limit(self.E, self.params.m, self.thickness, self.params.r1)
 
     @property
     def material(self) -> Material:

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from typing import Literal, get_args
 
-from ..checks import Input, InputTable
+from ..checks import Input, InputTable, require_range
 from ..fe import ALLOWABLE_INPUTS, MATERIAL_INPUTS
 from ..geometry import PAIR_INPUTS, RENAMED  # noqa: F401  (RENAMED: for study files)
 
@@ -26,24 +26,26 @@ TIP_ROUND = 0.125        # default tip-edge round of gear 1, in modules (0.25 mm
 LOAD_LIMIT = 0.05
 
 LOAD_INPUTS = (
-    Input("torque", float, 200.0, "torque on gear 1, at most 0.05 E m b r1 (a load per face "
-          "width at gear 1's pitch circle of 5 % of E m: 4530 N·m for the seed paper's pair, "
-          "where its roots carry about 1.7 GPa)", "N·m", low=0.0, low_open=True),
+    Input("torque", float, 200.0, "torque on gear 1 (the upper limit is a load per face width "
+          "at gear 1's pitch circle of 5 % of E m: 4532 N·m for the seed paper's pair, where "
+          "its roots carry about 1.7 GPa)", "N·m", low=0.0, low_open=True,
+          limits="0 < torque <= 0.05 E m b r1"),
     Input("position", float, 0.0, "rolling angle β of gear 2", "deg", low=-180.0, high=180.0),
     Input("positions", int, None, "solve N rolling angles across one tooth pitch from "
           "--position on one mesh; writes cycle.csv, cycle.png and mesh_stiffness.json/.csv",
-          low=2, high=360),
+          low=2, high=360, rule="none (one position)"),
 )
 
 MODEL_INPUTS = (
     Input("quality", str, "standard", "mesh quality", choices=QUALITY),
-    Input("tip-round", float, None, f"gear-1 tip-edge round radius, 0 <= tip-round <= m/2 "
-          f"and fitting the tip edges (default {TIP_ROUND:g} m, or half the largest round that "
-          "fits where that does not)", "mm"),
-    Input("rim1", float, None, "gear-1 rim below the roots, to the bore, m/2 ... 20 m "
-          "and at most 0.6 of gear 1's root radius (default 3 m, or that where less)", "mm"),
-    Input("rim2", float, None, "gear-2 rim beyond the roots, to the fixed rim, m/2 ... 20 m "
-          "(default 3 m)", "mm"),
+    Input("tip-round", float, None, "gear-1 tip-edge round radius", "mm", low=0.0,
+          limits="0 <= tip-round <= m/2 and fitting the tip edges",
+          rule=f"{TIP_ROUND:g} m, or half the largest round that fits where that does not"),
+    Input("rim1", float, None, "gear-1 rim below the roots, to the bore", "mm", low=0.0,
+          low_open=True, limits="m/2 <= rim1 <= 20 m and at most 0.6 of gear 1's root radius",
+          rule="3 m, at most 0.6 of gear 1's root radius"),
+    Input("rim2", float, None, "gear-2 rim beyond the roots, to the fixed rim", "mm", low=0.0,
+          low_open=True, limits="m/2 <= rim2 <= 20 m", rule="3 m"),
     Input("extra-pairs", int, 0, "pair this many more teeth on each side than the closure "
           "needs (a safety check)", low=0, high=5),
     Input("no-estimate", bool, False, "skip the second mesh level (no discretisation-error "
@@ -53,3 +55,23 @@ MODEL_INPUTS = (
 #: every input of ``fegear solve`` (and of a study case), in the order of ``--help``
 SOLVE_INPUTS = InputTable(PAIR_INPUTS, LOAD_INPUTS[:2], LOAD_INPUTS[2:], MATERIAL_INPUTS,
                           ALLOWABLE_INPUTS, MODEL_INPUTS)
+
+
+def torque_limit(E: float, m: float, face_width: float, r1: float) -> float:
+    """The largest torque a solve takes (N·m): :data:`LOAD_LIMIT` E m b r1, with E in MPa, the
+    module, face width and gear 1's pitch radius in mm."""
+    return LOAD_LIMIT * E * m * face_width * r1 * 1e-3
+
+
+def check_torque(torque: object, E: float, m: float, face_width: float, r1: float) -> float:
+    """``torque`` (N·m) checked against ``0 < torque <= 0.05 E m b r1`` at the given E, m, b
+    and r1 (checked already), which a refusal states whatever is wrong with the value."""
+    return require_range("torque", torque, 0.0, torque_limit(E, m, face_width, r1),
+                         lo_open=True, unit=f"N·m (0.05 E m b r1 at E={E:g} MPa, m={m:g}, "
+                                            f"b={face_width:g}, r1={r1:g} mm)")
+
+
+def check_tip_round(radius: object, m: float) -> float:
+    """A tip round (mm) checked against ``0 <= tip-round <= m/2`` at the module ``m`` (whether
+    it fits the tip edges is the rounded profile's check)."""
+    return require_range("tip_round", radius, 0.0, 0.5 * m, unit="mm (m/2)")

@@ -17,7 +17,7 @@ from .. import progress
 from ..fe import Allowables
 from ..geometry import admissible_pair
 from .case import SolveCase, cycle_positions
-from .inputs import PAIR_INPUTS, SOLVE_INPUTS, TIP_ROUND
+from .inputs import PAIR_INPUTS, SOLVE_INPUTS, TIP_ROUND, check_tip_round
 from .safety import DEFAULT_ALLOWABLES, allowables_of
 
 PAIR_NAMES = {row.name for row in PAIR_INPUTS}
@@ -41,8 +41,8 @@ def prepare_job(values: Mapping[str, object]) -> Job:
     meshing, no output."""
     v = SOLVE_INPUTS.complete(values)
     for name, row in SOLVE_INPUTS.items():   # every static range first: they answer at once
-        if name not in PAIR_NAMES:
-            row.check(v[name])
+        if name not in PAIR_NAMES and not row.limits:   # those with limits: at the others'
+            row.check(v[name])                          # values, by the case they build
     params = admissible_pair(v, given=values)
     v["tip-round"] = _tip_round(params, v["tip-round"])
     position = SOLVE_INPUTS["position"].check(v["position"])
@@ -65,8 +65,7 @@ def _tip_round(params, given: float | None) -> float | None:
     nominal = TIP_ROUND * params.m
     profile = gear1_profile(params)          # built by the admissibility check, kept
     if given is not None:
-        SOLVE_INPUTS["tip-round"].check(given)
-        if 0 < given <= 0.5 * params.m:
+        if check_tip_round(given, params.m) > 0:
             RoundedProfile(profile, given)   # a round that does not fit is refused by name
         return given
     chosen = default_round(profile, nominal)

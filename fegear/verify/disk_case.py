@@ -5,13 +5,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from ..checks import require_finite, require_range
+from ..checks import number, require_finite, require_range
 from ..contact import ContactSettings
 from ..errors import ParameterError
 from ..fe import STEEL_E, STEEL_NU, HertzLine, Material, Plane, line_contact
+from .disk_inputs import DISK_INPUTS, DISK_QUALITY
 
-#: elements across the Hertz half-width b in the contact windows, per quality level
-DISK_QUALITY = {"coarse": 4, "standard": 8, "fine": 16}
+_ROW = {row.name: row for row in DISK_INPUTS}
+
 
 @dataclass(frozen=True)
 class DiskCase:
@@ -30,18 +31,25 @@ class DiskCase:
     penalty_factor: float = ContactSettings.penalty_factor
 
     def __post_init__(self) -> None:
-        require_range("r1", self.r1, 0.0, 1e4, lo_open=True, unit="mm")
-        if not abs(require_finite("r2", self.r2)) <= 1e4:
-            raise ParameterError("r2", self.r2, "0 < |r2| <= 10000 mm (negative: a bore)")
+        r1 = _ROW["r1"].check(self.r1)
+        bore = f"0 < r2 <= 10000 mm, or a bore: -10000 <= r2 < {-r1:g} mm"
+        r2 = require_finite("r2", self.r2, bore)
+        if not (0 < r2 <= 1e4 or -1e4 <= r2 < -r1):
+            raise ParameterError("r2", self.r2, bore)
         Material(self.E, self.nu, self.thickness, self.plane)  # validates E, ν, t, plane
-        if isinstance(self.quality, str) and self.quality not in DISK_QUALITY:
-            raise ParameterError("quality", self.quality, " / ".join(DISK_QUALITY))
-        if not isinstance(self.quality, str) and not 1 <= float(self.quality) <= 200:
-            raise ParameterError("quality", self.quality, "1 <= elements across b <= 200")
-        require_range("penalty_factor", self.penalty_factor, 0.0, 1e6, lo_open=True)
-        h = self.hertz  # validates r2, load, thickness, E, plane
-        if h.b >= 0.5 * min(self.r1, abs(self.r2)):
-            raise ParameterError("load", self.load, f"load giving b < r/2 (b = {h.b:.3g} mm)")
+        if not (isinstance(self.quality, str) and self.quality in DISK_QUALITY
+                or 1 <= (number(self.quality) or 0) <= 200):
+            raise ParameterError("quality", self.quality, _ROW["quality"].range_text)
+        _ROW["penalty-factor"].check(self.penalty_factor)
+        top = self._largest_load()
+        require_range("load", self.load, 0.0, top, lo_open=True, hi_open=True,
+                      unit=f"N (the Hertz half-width b below r/2 at r1={r1:g}, r2={r2:g} mm)")
+
+    def _largest_load(self) -> float:
+        """The load (N) at which the Hertz half-width b reaches half the smaller radius."""
+        unit = line_contact(self.r1, self.r2, 1.0, self.thickness, self.E, self.nu,
+                            plane=self.plane)     # b grows as the load's square root
+        return (0.5 * min(self.r1, abs(self.r2)) / unit.b) ** 2
 
     @property
     def material(self) -> Material:

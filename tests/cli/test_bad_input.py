@@ -5,6 +5,7 @@ directory is made.
 The commands run in-process with their work replaced by a function that fails the test, so an
 accepted value shows up as that failure instead of as a long solve."""
 
+import os
 from pathlib import Path
 
 import pytest
@@ -134,16 +135,110 @@ def test_bad_value_exits_2_with_one_line_naming_the_parameter(command, option, v
     assert not out.exists()
 
 
-def test_every_numeric_option_is_covered():
-    # a new option must come with its bad values here
+def _commands():
+    """(argv of the command, its parser) of every command and subcommand."""
+    import argparse
+
     from fegear.cli import build_parser
 
-    sub = build_parser()._subparsers._group_actions[0].choices
-    for command, parser in sub.items():
-        numeric = {a.option_strings[0] for a in parser._actions
-                   if a.type in (int, float) or (a.dest.endswith("quality"))}
-        assert numeric <= set(OPTIONS[command]), (command, numeric - set(OPTIONS[command]))
+    def walk(parser, argv):
+        subs = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
+        if not subs:
+            yield argv, parser
+        for action in subs:
+            for name, sub in action.choices.items():
+                yield from walk(sub, [*argv, name])
 
+    return list(walk(build_parser(), []))
+
+
+def _numeric(parser):
+    """The parser's options that take a number (argparse's type named int or float)."""
+    return [a for a in parser._actions if a.option_strings
+            and getattr(a.type, "__name__", None) in ("int", "float")]
+
+
+def test_every_numeric_option_comes_from_a_schema_and_its_help_gives_range_and_default():
+    # a new numeric option must be a schema row (fegear.checks.Input), so that its help, its
+    # refusals and its checks come from one place
+    rows = 0
+    for argv, parser in _commands():
+        schema = {row.dest: row for row in parser.inputs}
+        for action in _numeric(parser):
+            row = schema.get(action.dest)
+            assert row is not None, (argv, action.option_strings, "not from add_inputs")
+            assert row.range_text and f"; admissible: {row.range_text}" in action.help, (
+                argv, action.help)
+            assert row.default_text and f"; default: {row.default_text}" in action.help, (
+                argv, action.help)
+            rows += 1
+    assert rows > 100
+
+
+#: the words a command needs beside the option tried (a missing stiffness file is read only
+#: once every option has passed)
+BESIDE = {("study",): [str(Path(__file__).resolve().parents[2] / "studies"
+                           / "paper_trends.toml")],
+          ("drive", "ratio"): ["--train", "2kh"],
+          ("drive", "dynamics"): ["--stiffness", "missing.json"]}
+
+
+def _walk_cases():
+    for argv, parser in _commands():
+        schema = {row.dest: row for row in parser.inputs}
+        for action in _numeric(parser):
+            row = schema[action.dest]
+            # relief refuses a pair input after a search over relieved profiles: slow
+            slow = argv == ["relief"] and f"--{row.name}" in PAIR
+            out = any("--out" in a.option_strings for a in parser._actions)
+            yield pytest.param(argv, row, out, id=f"{' '.join(argv)} --{row.name}",
+                               marks=[pytest.mark.slow] if slow else [])
+
+
+def _outside(row) -> list[str]:
+    """Values just outside the row's static range."""
+    step = 1 if row.kind is int else 1e-3 * max(1.0, abs(row.low or 0), abs(row.high or 0))
+    out = []
+    if row.low is not None:
+        out.append(repr(row.low if row.low_open else row.low - step))
+    if row.high is not None:
+        out.append(repr(row.high if row.high_open else row.high + step))
+    return out
+
+
+@pytest.mark.parametrize("argv,row,has_out", list(_walk_cases()))
+def test_a_numeric_option_refuses_text_nan_and_outside_with_one_line_naming_its_range(
+        argv, row, has_out, tmp_path, capsys, no_work):
+    out = tmp_path / "out"
+    told = {}
+    for value in ["abc", "True", "nan", *_outside(row)]:
+        words = [*argv, *BESIDE.get(tuple(argv), []), f"--{row.name}", value]
+        if has_out:
+            words += ["--out", str(out)]
+        try:
+            code = main(words)
+        except SystemExit as exc:
+            code = exc.code
+        lines = capsys.readouterr().err.strip().splitlines()
+        assert code == 2 and len(lines) == 1, (words, lines)
+        head = f"fegear: error: --{row.name} = "
+        assert lines[0].startswith(head) and " is not admissible" in lines[0], (words, lines)
+        told[value] = lines[0].split("; admissible: ", 1)[-1]
+        assert row.name in told[value], (words, lines)      # the range names the input
+        assert not out.exists()
+    # the same range whatever is wrong with the value; the schema's own where it is static
+    assert len(set(told.values())) == 1, told
+    if not row.limits:
+        assert set(told.values()) == {row.range_text}, told
+
+
+def test_the_torque_is_refused_with_its_upper_limit_at_the_given_inputs(capsys):
+    # issue 54: `--torque abc`, `nan` and `-5` left out the 0.05 E m b r1 that 1e9 stated
+    for value in ("abc", "nan", "-5", "0", "1e9"):
+        assert main(["solve", "--torque", value, "--m", "1", "--face-width", "10"]) == 2
+        line = capsys.readouterr().err.strip()
+        assert line.endswith("admissible: 0 < torque <= 2266 N·m (0.05 E m b r1 at "
+                             "E=206000 MPa, m=1, b=10, r1=22 mm)"), line
 
 
 def test_outputs_are_written_atomically_with_ordinary_permissions(tmp_path):
@@ -172,7 +267,7 @@ def test_outputs_are_written_atomically_with_ordinary_permissions(tmp_path):
         "torque": [0.0, -1.0, 1e300], "beta": [7.0, -7.0], "thickness": [0.0, -5.0, 1e300],
         "E": [0.0, -1.0, 1e300], "nu": [-0.1, 0.5], "quality": ["best", 3],
         "rim1": [0.0, -1.0, 1e300], "rim2": [0.0, 1e300],
-        "extra_pairs": [-1, 1000], "tip_round": [-0.1, 100.0]}.items()
+        "extra_pairs": [-1, 1000, True], "tip_round": [-0.1, 100.0, True]}.items()
     for v in values + ([float("nan"), float("inf")] if f not in ("quality",) else [])])
 def test_solve_case_rejects_bad_fields(field, value):
     from fegear.errors import ParameterError
@@ -187,9 +282,10 @@ def test_solve_case_rejects_bad_fields(field, value):
 
 @pytest.mark.parametrize("field,value", [
     (f, v) for f, values in {
-        "r1": [0.0, -1.0, 1e300], "r2": [0.0, 1e300, -5.0], "load": [0.0, -1.0, 1e300],
+        "r1": [0.0, -1.0, 1e300, True], "r2": [0.0, 1e300, -5.0],
+        "load": [0.0, -1.0, 1e300, False],
         "thickness": [0.0, 1e300], "E": [0.0, 1e300], "nu": [0.5, -1.0],
-        "quality": ["best", 0, 1e9], "penalty_factor": [0.0, 1e300]}.items()
+        "quality": ["best", 0, 1e9, True], "penalty_factor": [0.0, 1e300, True]}.items()
     for v in values + ([float("nan"), float("-inf")] if f != "quality" else [])])
 def test_disk_case_rejects_bad_fields(field, value):
     from fegear.errors import ParameterError
@@ -211,3 +307,61 @@ def test_contact_peer_without_calculix_is_one_line_and_writes_nothing(tmp_path, 
     assert code != 0
     assert len(lines) == 1 and "ccx" in lines[0] and "calculix-ccx" in lines[0], lines
     assert not out.exists()
+
+
+def test_the_hertz_penalty_default_is_the_contact_models():
+    from fegear.contact import ContactSettings
+    from fegear.verify.disk_inputs import PENALTY_FACTOR
+
+    assert PENALTY_FACTOR == ContactSettings.penalty_factor
+
+
+#: every command that writes into --out, with the words it needs beside it
+WRITERS = [["solve"], ["solve", "--positions", "24"], ["profile"], ["profile", "--map", "h1,f1"],
+           ["hertz"], ["bench"], ["optimize"], ["study", *BESIDE[("study",)]],
+           ["drive", "bearings"], ["drive", "dynamics", *BESIDE[("drive", "dynamics")]],
+           ["drive", "reducer"]]
+
+
+def _unwritable(tmp_path) -> list[Path]:
+    """--out paths that cannot be made: under a regular file, and as root (whom os.access
+    lets write anywhere) in /proc."""
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    paths = [blocker / "a" / "b"]
+    if os.geteuid() == 0:
+        paths.append(Path("/proc/fegear-out-test"))
+    return paths
+
+
+@pytest.mark.parametrize("argv", WRITERS, ids=" ".join)
+def test_an_out_that_cannot_be_made_is_refused_before_any_work(argv, tmp_path, capsys,
+                                                               no_work, monkeypatch):
+    import fegear.drive
+    import fegear.drive.reducer_report
+
+    def accepted(*args, **kwargs):
+        raise AssertionError("the work started before --out was checked")
+
+    monkeypatch.setattr(fegear.drive, "bearings_summary", accepted)
+    monkeypatch.setattr(fegear.drive.reducer_report, "reducer_summary", accepted)
+    for out in _unwritable(tmp_path):
+        assert main([*argv, "--out", str(out)]) == 2
+        lines = capsys.readouterr().err.strip().splitlines()
+        assert len(lines) == 1 and lines[0].startswith(f"fegear: error: --out '{out}'"), lines
+    assert not Path("/proc/fegear-out-test").exists()
+
+
+def test_checking_an_out_leaves_nothing_behind(tmp_path):
+    from fegear.files import OutputError, check_dir, prepare_dir
+
+    assert check_dir(tmp_path / "new" / "deeper") == tmp_path / "new" / "deeper"
+    assert check_dir(tmp_path) == tmp_path
+    assert list(tmp_path.iterdir()) == []        # neither the probe nor the new folders
+    made = prepare_dir(tmp_path / "made")
+    assert made.is_dir() and list(made.iterdir()) == []
+    (tmp_path / "made" / "file").write_text("x")
+    with pytest.raises(OutputError, match="is a file, not a directory"):
+        check_dir(tmp_path / "made" / "file")
+    with pytest.raises(OutputError, match="'.*file' is a file, not a directory"):
+        check_dir(tmp_path / "made" / "file" / "sub")

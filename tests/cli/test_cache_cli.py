@@ -54,3 +54,15 @@ def test_a_bad_cap_does_not_keep_the_cache_from_being_cleared(folder, monkeypatc
     assert "removed 1 entries" in capsys.readouterr().out and disk.entries() == []
     assert main(["cache"]) == 2
     assert "FEGEAR_CACHE_GB = 'lots'" in capsys.readouterr().err
+
+
+def test_the_help_states_the_cap_the_cache_holds():
+    from fegear.cli import build_parser
+    from fegear.cli.cache import CAP_TEXT
+
+    assert CAP_TEXT == f"{disk.ENV_CAP} ({disk.CAP_GB:g} GB unless set)"
+    for command in ("solve", "relief", "study"):
+        parser = build_parser()
+        help_text = " ".join(parser._subparsers._group_actions[0].choices[command]
+                             .format_help().split())
+        assert f"held under {CAP_TEXT}" in help_text and "220 MB" in help_text, command

@@ -50,7 +50,7 @@ def test_profile_table_output(tmp_path):
     ("profile", ["--f1", "0.7"], "f1 = 0.7 is not admissible"),
     ("profile", ["--h1", "0.9"], "admissible: 0.0500 <= h1 <= 0.83"),
     ("profile", ["--chord-error", "0"], "--chord-error"),
-    ("profile", ["--m", "abc"], "invalid float value"),
+    ("profile", ["--m", "abc"], "--m = 'abc' is not admissible; admissible: 0 < m <= 100 mm"),
     ("hertz", ["--r2", "-5"], "r2 = -5.0 is not admissible"),
     ("hertz", ["--r1", "0"], "r1 = 0.0 is not admissible"),
     ("hertz", ["--load", "nan"], "load = nan is not admissible"),
@@ -147,3 +147,29 @@ def test_solve_positions_writes_cycle_csv_and_plot(tmp_path):
     assert (tmp_path / "cycle.png").stat().st_size > 10_000
     for name in ("gear1.vtu", "gear2.vtu", "von_mises.png", "summary.json"):
         assert (tmp_path / name).stat().st_size > 0
+
+
+@pytest.mark.parametrize("argv,hint", [
+    (["solve", "--modul", "2"], "--m"),             # by the first word of its help, "module"
+    (["solve", "--module-mm", "2"], "--m"),         # drive reducer's option, not solve's
+    (["profile", "--modul", "2"], "--m"),
+    (["solve", "--tip-clearence", "6"], "--tip-clearance"),
+    (["drive", "reducer", "--modlue-mm", "2"], "--module-mm"),
+    (["drive", "reducer", "--torqe", "5"], None),   # solve's --torque is no option here
+    (["drive", "bearings", "--rigns", "3"], "--rings"),
+    (["optimize", "--trails", "5"], "--trials"),
+    (["relief", "--cycle-positons", "6"], "--cycle-positions"),
+    (["hertz", "--loda", "5"], "--load"),
+])
+def test_an_unknown_option_is_told_the_nearest_of_its_own_command(argv, hint, capsys):
+    from fegear.cli import main
+
+    with pytest.raises(SystemExit) as exc:
+        main(argv)
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert exc.value.code == 2 and len(lines) == 1, lines
+    assert lines[0].startswith(f"fegear: error: unrecognized arguments: {argv[-2]} ")
+    if hint is None:
+        assert "did you mean" not in lines[0], lines[0]
+    else:
+        assert lines[0].endswith(f"(did you mean {hint}?)"), lines[0]

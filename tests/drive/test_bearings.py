@@ -208,6 +208,7 @@ def test_support_reactions_only_for_three_rings():
     ("working_angle", 90.0), ("pressure_angle", 0.0), ("half_span", 0.0),
     ("support_span", float("nan")), ("ring_weight", 0.0), ("inertia_force", -1.0),
     ("bearing_inertia", "x"), ("speed", -1.0), ("load_factor", 0.0),
+    ("m", True), ("torque", True), ("speed", False), ("rings", True),   # a bool is no number
 ])
 def test_bad_input_names_the_field(field, value):
     with pytest.raises(ParameterError) as info:

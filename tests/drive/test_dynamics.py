@@ -114,6 +114,8 @@ def test_bad_model_input_names_the_parameter():
         TorsionalPair(1e-3, 0.0, 1.0, 1e5)
     with pytest.raises(ParameterError, match="zeta"):
         TorsionalPair(1e-3, 1e-3, 1.0, 1e5, zeta=1.5)
+    with pytest.raises(ParameterError, match="J1"):   # a bool is no number
+        TorsionalPair(True, 1e-3, 1.0, 1e5)
     with pytest.raises(ParameterError, match="stiffness"):
         MeshStiffness(np.array([0.0, 0.5]), np.array([1.0, -1.0]), np.zeros(2), 1, 44, 45, 2, 5)
 

@@ -85,9 +85,9 @@ def test_meshing_phase():
 
 @pytest.mark.parametrize("call, name", [
     (lambda: drive.ngw(0, 70), "za"), (lambda: drive.internal_teeth(45, 44), "z2"),
-    (lambda: drive.khv(44, 44), "zb"), (lambda: drive.meshing_efficiency(4.5, 1.2, True), "eta_H"),
+    (lambda: drive.khv(44, 44), "zb"), (lambda: drive.meshing_efficiency(4.5, 1.2, True), "eta_h"),
     (lambda: drive.meshing_efficiency(0.0, 0.9, True), "ratio"),
-    (lambda: drive.meshing_phase(0), "rings"), (lambda: drive.two_kh(1.0), "i_ab_H"),
+    (lambda: drive.meshing_phase(0), "rings"), (lambda: drive.two_kh(1.0), "i_ab_h"),
 ])
 def test_bad_input_names_the_parameter(call, name):
     with pytest.raises(ParameterError) as exc:

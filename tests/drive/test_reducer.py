@@ -285,3 +285,11 @@ def test_fegears_own_mesh_stiffness_in_the_loop(capsys):
     for row in s["mesh_comparison"]["builds"].values():
         t, f = np.array(row["table"]["rad_s"]), np.array(row["tangent"]["rad_s"])
         assert np.all(f >= t * (1 - 1e-9)) and np.all(f / t - 1 < 0.1)
+
+
+@pytest.mark.parametrize("field", ["power_kW", "module_mm", "z_gear", "plate_mass",
+                                   "motor_inertia", "elements"])
+def test_a_bool_is_no_reducer_input(field):
+    with pytest.raises(ParameterError) as err:
+        ReducerInputs(**{field: True})
+    assert err.value.name == field.replace("_", "-")

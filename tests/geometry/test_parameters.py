@@ -13,14 +13,16 @@ from fegear.geometry.refusal import check_design
 @pytest.mark.parametrize("kw,name,fragment", [
     (dict(m=0), "m", "0 < m"),
     (dict(m=-2), "m", "0 < m"),
-    (dict(m=math.nan), "m", "finite"),
-    (dict(m=math.inf), "m", "finite"),
-    (dict(h1=math.nan), "h1", "finite"),
-    (dict(f1=-math.inf), "f1", "finite"),
-    (dict(z2=44, z1=44), "z2", "z2 > z1"),
+    (dict(m=math.nan), "m", "0 < m <= 100 mm"),        # the range, whatever is wrong
+    (dict(m=math.inf), "m", "0 < m <= 100 mm"),
+    (dict(m=True), "m", "0 < m <= 100 mm"),             # a bool is no number (not 1 mm)
+    (dict(h1=math.nan), "h1", "0.05 <= h1 < 11.25"),
+    (dict(f1=-math.inf), "f1", "0 <= f1 <= 1"),
+    (dict(z2=44, z1=44), "z2", "45 <= z2 <= 2000 (z2 > z1 = 44)"),
     (dict(z2=40, z1=44), "z2", "z2 > z1 = 44"),
-    (dict(z1=2, z2=5), "z1", "integer >= 3"),
-    (dict(z1=44.5), "z1", "integer"),
+    (dict(z1=2, z2=5), "z1", "an integer 3 <= z1 <= 4"),
+    (dict(z1=44.5), "z1", "an integer 3 <= z1 <= 44"),
+    (dict(z1=True), "z1", "an integer 3 <= z1 <= 44"),
     (dict(h1=0), "h1", "0.05 <= h1"),
     (dict(h1=0.01), "h1", "0.05 <= h1"),
     (dict(h1=20), "h1", "h1 < 11.25"),

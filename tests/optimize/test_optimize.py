@@ -44,6 +44,11 @@ def test_variables_are_parsed_and_bad_ones_refused_by_name():
         assert err.value.name == name, text
     with pytest.raises(ParameterError, match="once"):
         parse_variables(["m=1:2", "m=1.5:2.5"])
+    # a space built in Python has its bounds checked too: a bool is no number
+    for bounds in ((True, 2.0), (1.0, "2"), (math.nan, 2.0), (2.0, 1.0)):
+        with pytest.raises(ParameterError) as err:
+            check_space(Space((Variable("m", *bounds),), BASE))
+        assert err.value.name == "vary", bounds
 
 
 def test_a_constraint_no_design_inside_the_bounds_meets_is_refused():

@@ -455,7 +455,7 @@ def test_a_study_runs_its_admissible_cases_and_lists_the_refused_ones(tmp_path, 
     assert "2 cases, varying h1 (0 finished before, 1 to compute, 1 refused)" in head[0]
     assert head[1].startswith(f"refused: {toml}: [[sweep]] 1 (torque = 20.0, h1 = 0.95): "
                               + reason)
-    assert "admissible: 0.0500 <= h1 <= 0.8259 at f1=0.15, m=2, z2=25, z1=24" in head[1]
+    assert "admissible: 0.0500 <= h1 <= 0.8260 at f1=0.15, m=2, z2=25, z1=24" in head[1]
     assert "| 0.95 | – |" in std.out and "refused (below)" in std.out
     assert f"* case 1 (h1 = 0.95): {reason}" in std.out
     assert "2 cases: 0 found finished, 1 computed (0 failed), 1 refused" in std.out

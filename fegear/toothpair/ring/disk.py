@@ -5,7 +5,8 @@ formed so far and the contact submodels' meshes (docs/model.md, "The disk cache"
 A new baseline model at ``standard`` costs about 1.1 s (meshing 0.4 s, assembling and
 condensing 0.3 s, the responses of its first position 0.3-0.5 s) and its submodels' meshes
 0.2-0.3 s more; read back it costs 0.15-0.25 s (the factors do not pickle: each template's
-interior is factorised again). An entry is about 120 MB at the baseline.
+interior is factorised again). An entry is about 140 MB at the baseline at ``standard`` (60,
+90 and 430 MB at ``coarse``, ``fast`` and ``fine``; docs/model.md, "The disk cache").
 
 On where the environment variable :data:`ENV` says "on": ``fegear study`` and ``fegear
 relief`` set it for themselves and their workers unless ``--no-cache``; ``fegear solve
