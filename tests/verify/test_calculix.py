@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from system import installed, why_not
 
 from fegear.contact.model import ContactPair
 from fegear.fe.assembly import RigidLink, assemble_body, facet_nodes
@@ -24,7 +25,16 @@ from fegear.verify.calculix_pair import (
 from fegear.verify.ccx_files import PeerConvergenceError, PeerError, contact_forces
 from fegear.verify.sector import SectorCase
 
-needs_ccx = pytest.mark.skipif(not ccx_available(), reason="CalculiX (ccx) is not installed")
+
+@pytest.fixture
+def ccx():
+    """CalculiX, installed from Debian's calculix-ccx where it is missing and can be."""
+    if installed("ccx", "calculix-ccx") is None:
+        pytest.skip(f"CalculiX: {why_not('ccx', 'calculix-ccx')}")
+    assert ccx_available()
+
+
+needs_ccx = pytest.mark.usefixtures("ccx")
 
 #: ccx's p_max against Hertz on the coarse disks: measured +0.22 % (fegear: +0.18 %)
 P_TOL = 0.01
