@@ -54,6 +54,17 @@ def _disk_cache_of_the_session(tmp_path_factory):
     assert not made, f"the test run made the user's fegear cache {', '.join(made)}"
 
 
+@pytest.fixture(scope="session", autouse=True)
+def _strict_workers():
+    """A task that fails in a worker process raises in the tests (in use, a warning is logged
+    and the task runs again in the process that gave it): a change that stops something
+    pickling must fail a test, not pass as lost speed. Set in the environment, so the
+    processes the tests start inherit it."""
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv("FEGEAR_STRICT_WORKERS", "1")
+        yield
+
+
 @pytest.fixture(autouse=True)
 def _no_process_with_the_users_cache(_disk_cache_of_the_session):
     """Each test leaves the session's cache in the environment (what the workers it and the

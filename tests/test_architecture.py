@@ -16,9 +16,9 @@ from fegear import provenance
 
 PACKAGE = Path(__file__).parents[1] / "fegear"
 MAP = PACKAGE.parent / "docs" / "architecture.md"
-#: modules allowed beside the stages: entry points and shared helpers
+#: modules and packages allowed beside the stages: entry points and shared helpers
 SHARED = {"__init__", "__main__", "checks", "errors", "exports", "figures", "files", "pixels",
-          "placement", "planar", "progress", "provenance", "workers"}
+          "placement", "planar", "progress", "provenance", "running", "timing"}
 #: which stages each stage may import (the shared helpers are open to all)
 ALLOWED = {
     "geometry": set(),
@@ -86,8 +86,23 @@ def _stage(name: str) -> str:
 def test_top_level_holds_only_the_stages_entry_points_and_shared_helpers():
     top = {p.stem for p in PACKAGE.glob("*.py")}
     assert top <= SHARED | FACES, top - SHARED - FACES
-    stages = {p.name for p in PACKAGE.iterdir() if (p / "__init__.py").exists()}
+    stages = {p.name for p in PACKAGE.iterdir() if (p / "__init__.py").exists()} - SHARED
     assert stages == set(ALLOWED) - FACES
+
+
+#: what names processes (the pattern of issue 55's acceptance)
+PROCESSES = re.compile(r"getpid|Forked|os\.fork|multiprocessing|ProcessPool|"
+                       r"concurrent\.futures|beside\s*[:=,)]")
+
+
+def test_the_solver_knows_nothing_of_processes():
+    """Parallel work lives in one layer (fegear/running): the solving stages hand an executor
+    on, at most one module of theirs (the job that is handed one) names processes at all."""
+    naming = sorted(str(path.relative_to(PACKAGE)) for stage in ("geometry", "fe", "contact",
+                                                                 "toothpair")
+                    for path in (PACKAGE / stage).rglob("*.py")
+                    if PROCESSES.search(path.read_text()))
+    assert len(naming) <= 1, naming
 
 
 def test_no_import_cycle():

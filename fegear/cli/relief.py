@@ -44,16 +44,17 @@ def add_parser(sub) -> None:
 
 def run(a: argparse.Namespace) -> int:
     from .. import progress
-    from ..toothpair.relief_rule import size_relief, sizing_table
+    from ..running import pool_or_serial
+    from ..toothpair.relief_rule import ReliefSearch, size_relief, sizing_table
 
     values = given_values(a, TAKEN)
     own = checked(a, RELIEF_INPUTS)
-    positions, margin = own["cycle_positions"], own["margin"]
+    search = ReliefSearch(positions=own["cycle_positions"], margin=own["margin"],
+                          clearance=not a.keep_tip_clearance)
     workers = own["workers"] or min(os.cpu_count() or 1, WORKERS)
     apply_switch(a, default=True)   # before the workers start: they inherit it
-    result = size_relief(values, positions=positions, margin=margin,
-                         clearance=not a.keep_tip_clearance,
-                         report=progress.stage,  # each relief tried: a stage on the bar
-                         workers=workers)
+    with pool_or_serial(workers) as executor:   # a guess still running is not waited for
+        result = size_relief(values, search, executor,
+                             report=progress.stage)  # each relief tried: a stage on the bar
     print(json.dumps(result.summary(), indent=2) if a.json else sizing_table(result))
     return 0

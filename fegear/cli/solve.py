@@ -26,8 +26,8 @@ def run(a: argparse.Namespace) -> int:
     import shutil
 
     from ..files import check_dir
+    from ..running import spare_core
     from ..toothpair import cycle_table, pair_table, prepare_job, run_job
-    from ..workers import second_core
     from .terminal import command_wall_s
 
     job = prepare_job(given_values(a, SOLVE_INPUTS.values()))
@@ -35,7 +35,8 @@ def run(a: argparse.Namespace) -> int:
     out = None if a.out is None else check_dir(a.out)
     made = out is not None and not out.exists()
     try:
-        result = run_job(job, out, beside=second_core())
+        with spare_core() as executor:
+            result = run_job(job, out, executor=executor)
     except BaseException:
         if made and out.exists():  # made by this run: nothing half-written stays
             shutil.rmtree(out, ignore_errors=True)
@@ -49,7 +50,7 @@ def run(a: argparse.Namespace) -> int:
         print(f"\n{len(result.rows)} positions on one mesh in "
               f"{result.summary['cycle']['solve_s']:.1f} s; the details below are at the "
               "position of the largest gear-1 root stress\n")
-    print(pair_table(result.summary, result.beside))
+    print(pair_table(result.summary))
     for k, v in files.items():
         print(f"{k:10s} {v}")
     if out is None:

@@ -3,13 +3,13 @@ reaches a point."""
 
 from __future__ import annotations
 
-import time
 from collections.abc import Sequence
 
 import numpy as np
 import scipy.sparse as sp
 
 from ..fe import WindowFlexibility
+from ..timing import timed
 
 
 class PointFlexibility:
@@ -20,30 +20,29 @@ class PointFlexibility:
     Only the columns of points that carry a force are ever used (G λ and G_AA on the active
     set), so a column is formed when first asked for and kept: column j needs the rows of F_b
     at the dofs of row j of C_b, and those are formed (one solve each) only then, once per
-    body frame, whichever position first asks. ``seconds`` is the time spent forming columns."""
+    body frame, whichever position first asks. Forming columns is the stage "condense" of a
+    solve's times."""
 
     def __init__(self, parts: Sequence[tuple[sp.csr_matrix, WindowFlexibility]], n: int):
         self._parts = tuple(parts)  # (C_b over the window's dofs, F_b)
         self.shape = (n, n)
         self._slot = np.full(n, -1, dtype=np.int64)
         self._columns = np.empty((n, 0))
-        self.seconds = 0.0
 
     def columns(self, idx) -> np.ndarray:
         """G[:, idx], (n, len(idx))."""
         idx = np.asarray(idx, dtype=np.int64)
         new = np.unique(idx[self._slot[idx] < 0])
         if len(new):
-            t0 = time.perf_counter()
-            block = np.zeros((self.shape[0], len(new)))
-            for C, F in self._parts:
-                rows = C[new]
-                dofs = np.unique(rows.indices)
-                X = rows[:, dofs] @ F.rows(dofs)  # C[new] F, with F symmetric
-                block += C @ np.ascontiguousarray(X.T)
-            self._slot[new] = self._columns.shape[1] + np.arange(len(new))
-            self._columns = np.hstack([self._columns, block])
-            self.seconds += time.perf_counter() - t0
+            with timed("condense"):
+                block = np.zeros((self.shape[0], len(new)))
+                for C, F in self._parts:
+                    rows = C[new]
+                    dofs = np.unique(rows.indices)
+                    X = rows[:, dofs] @ F.rows(dofs)  # C[new] F, with F symmetric
+                    block += C @ np.ascontiguousarray(X.T)
+                self._slot[new] = self._columns.shape[1] + np.arange(len(new))
+                self._columns = np.hstack([self._columns, block])
         return self._columns[:, self._slot[idx]]
 
     @property

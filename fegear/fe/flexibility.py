@@ -3,11 +3,11 @@ body's one factorisation."""
 
 from __future__ import annotations
 
-import time
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..timing import timed
 from .dofs import node_dofs
 
 if TYPE_CHECKING:
@@ -32,7 +32,6 @@ class WindowFlexibility:
         self._free_pos = np.where(self._is_free, pos, -1)
         self._F = np.empty((len(dofs), len(dofs)))  # pages are committed as rows are written
         self._have = np.zeros(len(dofs), dtype=bool)
-        self.seconds = 0.0  # spent in solves
 
     @property
     def size(self) -> int:
@@ -48,18 +47,20 @@ class WindowFlexibility:
         c = np.asarray(c, dtype=np.int64)
         missing = np.unique(c[~self._have[c]])
         if len(missing):
-            t0 = time.perf_counter()
-            body, free = self._body, self._is_free
-            self._F[missing[~free[missing]]] = 0.0
-            loaded = missing[free[missing]]
-            for start in range(0, len(loaded), FLEX_CHUNK):
-                cols = loaded[start:start + FLEX_CHUNK]
-                rhs = np.zeros((len(body.free), len(cols)))
-                rhs[self._free_pos[cols], np.arange(len(cols))] = 1.0
-                response = body.factor.solve(rhs)
-                block = np.zeros((len(cols), self.size))
-                block[:, free] = response[self._free_pos[free]].T
-                self._F[cols] = block
-            self._have[missing] = True
-            self.seconds += time.perf_counter() - t0
+            with timed("condense"):
+                self._form(missing)
         return self._F[c]
+
+    def _form(self, missing: np.ndarray) -> None:
+        body, free = self._body, self._is_free
+        self._F[missing[~free[missing]]] = 0.0
+        loaded = missing[free[missing]]
+        for start in range(0, len(loaded), FLEX_CHUNK):
+            cols = loaded[start:start + FLEX_CHUNK]
+            rhs = np.zeros((len(body.free), len(cols)))
+            rhs[self._free_pos[cols], np.arange(len(cols))] = 1.0
+            response = body.factor.solve(rhs)
+            block = np.zeros((len(cols), self.size))
+            block[:, free] = response[self._free_pos[free]].T
+            self._F[cols] = block
+        self._have[missing] = True

@@ -33,7 +33,7 @@ from pathlib import Path
 
 from ..errors import FegearError
 from ..files import write_csv, write_json
-from ..workers import connect, local_pool
+from ..running import connect, local_pool
 from .design import OBJECTIVES, evaluate
 from .space import SAMPLERS, Space
 

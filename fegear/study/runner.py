@@ -32,7 +32,7 @@ from pathlib import Path
 from ..errors import FegearError
 from ..files import prepare_dir, write_json
 from ..provenance import code_version
-from ..workers import connect, local_pool
+from ..running import connect, local_pool
 from .file import Study, StudyCase, StudyError
 from .records import finished, store, study_json
 

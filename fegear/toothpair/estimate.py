@@ -7,7 +7,6 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import replace
 
-from ..geometry import Gear1Profile
 from .case import HEADLINE, PairSolution, SolveCase
 from .inputs import QUALITY
 from .pair import solve_pair, solve_positions
@@ -55,8 +54,7 @@ def second_quality(quality: str) -> str:
     return levels[k - 1] if k > 0 else levels[1]
 
 
-def second_level_estimate(sol: PairSolution, profile: Gear1Profile | None = None,
-                          solve: Callable = solve_pair,
+def second_level_estimate(sol: PairSolution, solve: Callable = solve_pair,
                           ratio: Callable[[str, str], float] = mesh_ratio,
                           second: dict[str, float] | None = None,
                           floor: dict[str, float] | None = None
@@ -66,14 +64,14 @@ def second_level_estimate(sol: PairSolution, profile: Gear1Profile | None = None
     :data:`MESH_SCATTER_PCT`, by default). Returns the estimate and the other quality.
     ``solve``, ``ratio`` and ``floor``: the model's solve, its mesh ratio between two qualities
     and its mesh scatter (the product's by default; a peer passes its own); ``second``: the
-    headline of that second solve if it is solved already (:func:`second_headline`, in
-    another process beside the first)."""
+    headline of that second solve if it is solved already (:func:`second_headline`, a task
+    of its own)."""
     floor = MESH_SCATTER_PCT if floor is None else floor
-    estimate, other = _two_levels(sol, profile, solve, ratio, second)
+    estimate, other = _two_levels(sol, solve, ratio, second)
     return {k: max(v, floor.get(k, 0.0)) for k, v in estimate.items()}, other
 
 
-def _two_levels(sol: PairSolution, profile: Gear1Profile | None, solve: Callable,
+def _two_levels(sol: PairSolution, solve: Callable,
                 ratio: Callable[[str, str], float], second: dict[str, float] | None
                 ) -> tuple[dict[str, float], str]:
     """:func:`second_level_estimate` without its floor."""
@@ -81,7 +79,7 @@ def _two_levels(sol: PairSolution, profile: Gear1Profile | None, solve: Callable
     k = levels.index(sol.case.quality)
     other = second_quality(sol.case.quality)
     if second is None:
-        second = solve(replace(sol.case, quality=other), profile).headline()
+        second = solve(replace(sol.case, quality=other)).headline()
     own = sol.headline()
     if k > 0:
         return error_estimate(own, second, ratio(other, levels[k])), other
@@ -91,9 +89,8 @@ def _two_levels(sol: PairSolution, profile: Gear1Profile | None, solve: Callable
     return {key: r ** 2 * v * second[key] / own[key] for key, v in finer.items()}, other
 
 
-def second_headline(case: SolveCase, beside: bool = False) -> dict[str, float]:
+def second_headline(case: SolveCase) -> dict[str, float]:
     """The headline of ``case`` solved at its :func:`second_quality`: the estimate's second
-    solve, for a worker process (its profile built there); ``beside``: a second core is free
-    for part of it (:func:`~.pair.solve_positions`)."""
+    solve, as a task of its own (:func:`~.job.solve_job` hands it to an executor)."""
     second = replace(case, quality=second_quality(case.quality))
-    return solve_positions(second, (second.beta,), beside=beside)[0].headline()
+    return solve_positions(second, (second.beta,))[0].headline()

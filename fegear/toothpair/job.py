@@ -8,7 +8,6 @@ the same checks, the same JSON summary.
 from __future__ import annotations
 
 import math
-import time
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -16,6 +15,8 @@ from pathlib import Path
 from .. import progress
 from ..fe import Allowables
 from ..geometry import admissible_pair
+from ..running import SERIAL, Executor
+from ..timing import Stopwatch
 from .case import SolveCase, cycle_positions
 from .inputs import PAIR_INPUTS, SOLVE_INPUTS, TIP_ROUND, check_tip_round
 from .safety import DEFAULT_ALLOWABLES, allowables_of
@@ -76,8 +77,8 @@ def _tip_round(params, given: float | None) -> float | None:
 class Solved:
     """A solved job before any file is written: the solutions at every position, the one the
     pictures, VTUs and the error estimate take (the largest gear-1 root stress), the JSON
-    summary (``fegear solve --json``), the cycle rows (None for one position), the time of
-    the solve (s) and whether the estimate's second solve ran beside the first."""
+    summary (``fegear solve --json``), the cycle rows (None for one position) and the time of
+    the solve (s)."""
 
     job: Job
     solutions: tuple
@@ -85,94 +86,72 @@ class Solved:
     summary: dict
     rows: list[dict] | None
     solve_s: float
-    beside: bool = False   # the estimate's second solve came from a worker beside the first
 
 
 @dataclass(frozen=True)
 class JobResult:
     """What a solve produced: the JSON summary (``fegear solve --json``), the files written
-    (name → path), the cycle rows (``--positions``; else None), the time of the solve
-    itself (s, without writing files) and whether the estimate's second solve ran beside
-    the first (:func:`solve_job`)."""
+    (name → path), the cycle rows (``--positions``; else None) and the time of the solve
+    itself (s, without writing files)."""
 
     summary: dict
     files: dict[str, Path]
     rows: list[dict] | None
     solve_s: float
-    beside: bool = False     # the estimate's second solve ran in a worker beside the first
 
 
-def run_job(job: Job, out: Path | None, fields: bool = True,
-            pictures: bool = True, beside: bool = False) -> JobResult:
-    """Solve ``job``; write summary.json, and the VTUs (``fields``) and pictures
-    (``pictures``) into ``out`` unless it is None. ``out`` is made only after the solve, so a
-    solve that fails leaves nothing behind. ``beside``: see :func:`solve_job`."""
+def run_job(job: Job, out: Path | None, fields: bool = True, pictures: bool = True,
+            executor: Executor = SERIAL) -> JobResult:
+    """Solve ``job`` (on ``executor``: :func:`solve_job`); write summary.json, and the VTUs
+    (``fields``) and pictures (``pictures``) into ``out`` unless it is None. ``out`` is made
+    only after the solve, so a solve that fails leaves nothing behind."""
     progress.plan(2 + len(job.betas) + job.estimate + (out is not None))
-    solved = solve_job(job, beside)
+    solved = solve_job(job, executor)
     files = {} if out is None else write_job(solved, out, fields, pictures)
-    return JobResult(solved.summary, files, solved.rows, solved.solve_s, solved.beside)
+    return JobResult(solved.summary, files, solved.rows, solved.solve_s)
 
 
-def solve_job(job: Job, beside: bool = False) -> Solved:
-    """Solve ``job`` at its positions, with its error estimate; no file written. ``beside``
-    (a one-off command on a machine with a second core): the estimate's second solve of one
-    position runs in a forked copy of this process (:class:`~fegear.workers.Forked`, made
-    once the libraries are imported: spawned, importing them again, it slowed the command by
-    0.15 s) while this one solves. A cycle's second chain of positions is solved in one
-    (:func:`~.positions.drive`); its estimate, at the cycle's worst position (the largest
-    gear-1 root stress, which the submodels do not change), in another once every position
-    is solved, while this process solves the submodels where the cycle peaks. Should a
-    worker fail in any way, its work is done here, as without it."""
+def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
+    """Solve ``job`` at its positions, with its error estimate; no file written. The job hands
+    ``executor`` the work that can run in parallel: the estimate's second solve of one position
+    (submitted before the first starts: on a one-off command's second core it is solved in a
+    forked copy of this process meanwhile, the libraries imported once for both), and a
+    cycle's chains of positions (:func:`~.positions.drive`). A cycle's estimate is solved
+    after it, at its worst position (the largest gear-1 root stress, which the submodels do
+    not change)."""
+    from ..fe import import_libraries
     from ..geometry import gear1_profile
     from .estimate import second_headline, second_level_estimate, second_quality
     from .pair import solve_positions
     from .report import cycle_rows, cycle_summary, pair_summary
 
-    t0 = time.perf_counter()
-    worker = headline = ahead = None
-    if beside and job.estimate:
-        from ..fe import import_libraries
-        from ..workers import Forked
-
-        import_libraries()    # once, for both processes
-        if len(job.betas) == 1:
-            worker = Forked(lambda: second_headline(job.case))
-        else:
-            def ahead(sols) -> None:   # a cycle's positions solved, not yet completed
-                nonlocal worker
-                worst = _pictured(sols)
-                # this process only completes the submodels meanwhile, then waits
-                worker = Forked(lambda: second_headline(worst.case, beside=True))
-    try:
-        progress.stage("gear 1's profile")
-        profile = gear1_profile(job.case.params)
-        # the estimate's solve holds the second core while one position is solved here
-        sols = solve_positions(job.case, job.betas, profile,
-                               beside=beside and (worker is None or ahead is not None),
-                               ahead=ahead)
-        cycle_s = time.perf_counter() - t0
-        sol = _pictured(sols)
-        estimate, other, estimate_s = None, None, None
-        if job.estimate:
-            t1 = time.perf_counter()
-            progress.stage("error estimate: the same case again at quality "
-                           f"{second_quality(job.case.quality)}")
-            headline = worker.result() if worker is not None else None
-            with progress.reporting(None):  # one stage, however the second solve goes
-                estimate, other = second_level_estimate(sol, profile, second=headline)
-            estimate_s = time.perf_counter() - t1
-    finally:
-        if worker is not None:
-            worker.stop()
-    summary = pair_summary(sol, estimate, time.perf_counter() - t0, other, job.allowables)
+    watch = Stopwatch()
+    second = None
+    if job.estimate and len(job.betas) == 1:
+        import_libraries()
+        second = executor.submit(second_headline, job.case)
+    progress.stage("gear 1's profile")
+    gear1_profile(job.case.params)
+    sols = solve_positions(job.case, job.betas, executor=executor)
+    cycle_s = watch.s
+    sol = _pictured(sols)
+    estimate, other, estimate_s = None, None, None
+    if job.estimate:
+        after = Stopwatch()
+        progress.stage("error estimate: the same case again at quality "
+                       f"{second_quality(job.case.quality)}")
+        with progress.reporting(None):  # one stage, however the second solve goes
+            headline = None if second is None else second.result()
+            estimate, other = second_level_estimate(sol, second=headline)
+        estimate_s = after.s
+    summary = pair_summary(sol, estimate, watch.s, other, job.allowables)
     summary["estimate_s"] = estimate_s
     rows = None
     if len(sols) > 1:
         rows = cycle_rows(sols, job.allowables)
         summary["cycle"] = {"positions": len(sols), "solve_s": cycle_s,
                             **cycle_summary(rows), "rows": rows}
-    return Solved(job, tuple(sols), sol, summary, rows, time.perf_counter() - t0,
-                  headline is not None)
+    return Solved(job, tuple(sols), sol, summary, rows, watch.s)
 
 
 def _pictured(sols):

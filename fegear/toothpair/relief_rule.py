@@ -18,18 +18,13 @@ peak pressure, transmission error and load sharing over the cycle.
 
 from __future__ import annotations
 
-import logging
 import math
 from collections.abc import Callable, Mapping
-from concurrent.futures import Executor, Future
-from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 
 from ..errors import FegearError, ParameterError
 from ..planar import wrap
-from ..workers import local_pool
-
-log = logging.getLogger(__name__)
+from ..running import SERIAL, Executor, Task
 
 FIRST_UM = 2.0       # the scan's first amount
 MARGIN = 0.2         # torque overload the relief must cover
@@ -104,10 +99,8 @@ def cycle_result(values: Mapping, amount_um: float, torque: float, positions: in
     job = prepare_job({**values, "relief": amount_um, "torque": torque,
                        "positions": positions, "no-estimate": True})
     profile = gear1_profile(job.case.params)
-    # the search reads contact loads and pressures only: no stresses (the submodels were
-    # 3.7 s of a 9.6 s trial at `coarse`; the templates' stresses and the teeth's Hertz and
-    # half-plane references a fifth of what was left)
-    sols = solve_positions(job.case, job.betas, profile, contact_only=True)
+    # the search reads contact loads and pressures only: no stresses, no submodels
+    sols = solve_positions(job.case, job.betas, contact_only=True)
     edge = [(t, s.case.beta) for s in sols for t in s.teeth if t.edge_contact]
     p = job.case.params
     angles = {t.tooth: math.degrees(wrap(profile.tooth_center + t.tooth * profile.pitch
@@ -129,16 +122,28 @@ def cycle_result(values: Mapping, amount_um: float, torque: float, positions: in
         tip_clearance_mm=p.radial_tip_clearance)
 
 
+@dataclass(frozen=True)
+class ReliefSearch:
+    """How the search runs: ``positions`` rolling angles a trial, the torque ``margin`` the
+    relief must cover, the bisection's ``tolerance_um`` and whether a far-side tip on its
+    round raises the radial tip clearance (``clearance``) or ends the search."""
+
+    positions: int = POSITIONS
+    margin: float = MARGIN
+    tolerance_um: float = TOLERANCE_UM
+    clearance: bool = True
+
+
 class _Ahead:
     """Trials by key (amount µm, torque, tip clearance mm or None for the one given), solved
-    by ``solve`` on ``executor`` (None: one at a time, here), a guessed next one beside a
-    needed one while a worker is free. A trial's error is raised where it is needed."""
+    by ``solve`` on ``executor``, a guessed next one beside a needed one while a worker is
+    free. A trial's error is raised where it is needed."""
 
     def __init__(self, solve: Callable[..., CycleResult], values: Mapping, positions: int,
-                 executor: Executor | None, workers: int) -> None:
-        self.solve, self.values, self.positions = solve, values, positions
-        self.executor, self.workers = executor, workers
-        self.futures: dict[tuple, Future] = {}
+                 executor: Executor) -> None:
+        self.solve, self.values, self.positions, self.executor = solve, values, positions, \
+            executor
+        self.tasks: dict[tuple, Task] = {}
 
     def _args(self, key: tuple) -> tuple:
         amount, torque, tip = key
@@ -146,80 +151,71 @@ class _Ahead:
         return values, amount, torque, self.positions
 
     def get(self, key: tuple, guess: tuple | None = None) -> CycleResult:
-        if self.executor is None:
-            return self.solve(*self._args(key))
         # a guess goes beside a trial submitted now, not beside one already under way (it
         # was itself a guess; guessing past it kept a worker from the next needed trial)
-        if key not in self.futures:
-            busy = sum(not f.done() for f in self.futures.values())
-            self.futures[key] = self.executor.submit(self.solve, *self._args(key))
-            if guess is not None and guess not in self.futures and busy + 1 < self.workers:
-                self.futures[guess] = self.executor.submit(self.solve, *self._args(guess))
-        try:
-            return self.futures[key].result()
-        except BrokenProcessPool:   # a worker died (killed, out of memory): on alone, here
-            log.warning("a relief trial's worker process died; the search goes on in this one")
-            self.executor = None
-            return self.solve(*self._args(key))
+        if key not in self.tasks:
+            busy = sum(not t.done() for t in self.tasks.values())
+            self.tasks[key] = self.executor.submit(self.solve, *self._args(key))
+            if guess is not None and guess not in self.tasks and \
+                    busy + 1 < self.executor.workers:
+                self.tasks[guess] = self.executor.submit(self.solve, *self._args(guess))
+        return self.tasks[key].result()
 
 
-def size_relief(values: Mapping, positions: int = POSITIONS, margin: float = MARGIN,
-                tolerance_um: float = TOLERANCE_UM, clearance: bool = True,
-                solve: Callable[..., CycleResult] | None = None,
-                report: Callable[[str], None] | None = None,
-                executor: Executor | None = None, workers: int = 1) -> ReliefSizing:
+def size_relief(values: Mapping, search: ReliefSearch = ReliefSearch(),
+                executor: Executor = SERIAL, solve: Callable[..., CycleResult] | None = None,
+                report: Callable[[str], None] | None = None) -> ReliefSizing:
     """The smallest relief (module docstring) for the pair, torque, extent and shape of
-    ``values``. With ``clearance`` a far-side tip that lands on its round raises the radial tip
-    clearance in steps of ``CLEARANCE_STEP`` · m (the search then goes on at the new value);
-    without, it ends the search. ``solve`` evaluates one trial (values, amount µm, torque,
+    ``values``, as ``search`` says. ``executor`` solves trials, the next one guessed ahead
+    where it has a worker free. ``solve`` evaluates one trial (values, amount µm, torque,
     positions) → :class:`CycleResult` (default :func:`cycle_result`), ``report`` is told of
-    each trial. ``executor`` with ``workers`` workers solves ahead (module docstring); without
-    one, ``workers`` > 1 starts a local process pool of that many."""
+    each trial."""
     from .job import prepare_job
 
-    solve = solve or cycle_result
     # every input checked before any solve, the extent and shape with a relief in place
-    params = prepare_job({**values, "relief": FIRST_UM, "positions": positions,
+    params = prepare_job({**values, "relief": FIRST_UM, "positions": search.positions,
                           "no-estimate": True}).case.params
-    if executor is None and workers > 1:
-        pool = local_pool(workers)
-        try:
-            out = size_relief(values, positions, margin, tolerance_um, clearance, solve,
-                              report, pool, workers)
-        finally:   # a guess still running is not waited for: its worker is ended
-            pool.stop()
-        return out
-    torque = float(values.get("torque", 200.0))
-    raised = torque * (1.0 + margin)
-    limit = 50.0 * params.m                                     # the relief input's range
-    given = params.radial_tip_clearance
-    most = params.m * params.h1                                 # the tip_clearance input's range
-    trials: list[CycleResult] = []
-    tip = given
-    tip_note = "a larger tip_clearance keeps them off"
-    ahead = _Ahead(solve, values, positions, executor, workers)
+    ahead = _Ahead(solve or cycle_result, values, search.positions, executor)
+    return _Sizing(params, float(values.get("torque", 200.0)), search, ahead, report).run()
 
-    def trial(amount: float, guess: tuple | None = None) -> CycleResult:
-        r = ahead.get((amount, raised, tip), guess)
-        trials.append(r)
-        if report:
+
+class _Sizing:
+    """One search's state: the trials so far at the torque raised by the margin, and the tip
+    clearance it stands at."""
+
+    def __init__(self, params, torque: float, search: ReliefSearch, ahead: _Ahead,
+                 report: Callable[[str], None] | None) -> None:
+        self.params, self.torque, self.search, self.ahead, self.report = \
+            params, torque, search, ahead, report
+        self.raised = torque * (1.0 + search.margin)
+        self.limit = 50.0 * params.m                       # the relief input's range
+        self.most = params.m * params.h1                    # the tip_clearance input's range
+        self.tip = params.radial_tip_clearance
+        self.trials: list[CycleResult] = []
+        self.tip_note = "a larger tip_clearance keeps them off"
+
+    def trial(self, amount: float, guess: tuple | None = None) -> CycleResult:
+        r = self.ahead.get((amount, self.raised, self.tip), guess)
+        self.trials.append(r)
+        if self.report:
             where = (f"rounds of teeth {list(r.edge_teeth)} carry {r.edge_load_N:.1f} N"
                      if not r.off_the_rounds else "off the rounds")
-            report(f"relief {amount:7.3f} µm, tip clearance {1e3 * tip:5.1f} µm at "
-                   f"{raised:g} N·m: {where}; flank {r.flank_MPa:.0f} MPa")
+            self.report(f"relief {amount:7.3f} µm, tip clearance {1e3 * self.tip:5.1f} µm at "
+                        f"{self.raised:g} N·m: {where}; flank {r.flank_MPa:.0f} MPa")
         return r
 
-    def near_side(low: float) -> float | None:
+    def near_side(self, low: float) -> float | None:
         """The smallest amount above ``low`` (which fails, or is 0) whose near-side rounds stay
         unloaded at the present tip clearance, to the tolerance; None if none up to the
         limit. The trials' far-side teeth are left to the caller."""
-        if low == 0.0 and not near(trial(0.0, (0.0, torque, None))):
+        if low == 0.0 and not near(self.trial(0.0, (0.0, self.torque, None))):
             return 0.0
         amount, high = max(FIRST_UM, 2.0 * low), None
-        while amount <= limit:
+        while amount <= self.limit:
+            guess = (2.0 * amount, self.raised, self.tip) if 2.0 * amount <= self.limit \
+                else None
             try:
-                passed = not near(trial(amount, (2.0 * amount, raised, tip)
-                                        if 2.0 * amount <= limit else None))
+                passed = not near(self.trial(amount, guess))
             except ParameterError as exc:   # deeper than the extent can take: the scan ends
                 if exc.name != "relief":
                     raise
@@ -228,43 +224,52 @@ def size_relief(values: Mapping, positions: int = POSITIONS, margin: float = MAR
                 high = amount
                 break
             low, amount = amount, 2.0 * amount
-        if high is None:
-            return None
-        while high - low > tolerance_um:
+        while high is not None and high - low > self.search.tolerance_um:
             mid = 0.5 * (low + high)
-            if near(trial(mid, (0.5 * (low + mid), raised, tip))):
+            if near(self.trial(mid, (0.5 * (low + mid), self.raised, self.tip))):
                 low = mid
             else:
                 high = mid
         return high
 
-    low = 0.0
-    while True:
-        high = near_side(low)
-        if high is None:
-            raise FegearError(_no_relief(trials, params.relief_extent, raised, tip_note))
-        last = next(t for t in reversed(trials) if t.amount_um == high)
-        if not far(last):
-            break
-        if not clearance:
-            tip_note = ("a larger tip_clearance keeps them off: without --keep-tip-clearance "
-                        "fegear relief raises it")
-            raise FegearError(_no_relief(trials, params.relief_extent, raised, tip_note))
-        while far(last):                      # raise the tip clearance until the far side is
-            tip += CLEARANCE_STEP * params.m  # off, at the amount found
-            if tip > most:
-                tip_note = (f"they still do with the tip clearance raised to "
-                            f"{1e3 * (tip - CLEARANCE_STEP * params.m):.0f} µm, the most "
-                            f"this pair takes is {1e3 * most:.0f} µm")
-                raise FegearError(_no_relief(trials, params.relief_extent, raised, tip_note))
-            last = trial(high, (high, torque, tip))
-        if not near(last):
-            break
-        low = high                            # the trimmed tips need a little more
-    without = ahead.get((0.0, torque, None))
-    found = ahead.get((high, torque, tip))
-    return ReliefSizing(params.relief_extent, params.relief_shape, margin, positions,
-                        tuple(trials), high, given, tip, without, found)
+    def refused(self) -> FegearError:
+        return FegearError(_no_relief(self.trials, self.params.relief_extent, self.raised,
+                                      self.tip_note))
+
+    def far_side_off(self, high: float) -> CycleResult:
+        """The trial at ``high`` once the tip clearance is raised until its far-side rounds
+        are off (the search's ``clearance``), in steps of ``CLEARANCE_STEP`` · m."""
+        last = next(t for t in reversed(self.trials) if t.amount_um == high)
+        if far(last) and not self.search.clearance:
+            self.tip_note = ("a larger tip_clearance keeps them off: without "
+                             "--keep-tip-clearance fegear relief raises it")
+            raise self.refused()
+        step = CLEARANCE_STEP * self.params.m
+        while far(last):
+            self.tip += step
+            if self.tip > self.most:
+                self.tip_note = (f"they still do with the tip clearance raised to "
+                                 f"{1e3 * (self.tip - step):.0f} µm, the most this pair "
+                                 f"takes is {1e3 * self.most:.0f} µm")
+                raise self.refused()
+            last = self.trial(high, (high, self.torque, self.tip))
+        return last
+
+    def run(self) -> ReliefSizing:
+        low = 0.0
+        while True:
+            high = self.near_side(low)
+            if high is None:
+                raise self.refused()
+            if not near(self.far_side_off(high)):
+                break
+            low = high                            # the trimmed tips need a little more
+        p = self.params
+        return ReliefSizing(p.relief_extent, p.relief_shape, self.search.margin,
+                            self.search.positions, tuple(self.trials), high,
+                            p.radial_tip_clearance, self.tip,
+                            self.ahead.get((0.0, self.torque, None)),
+                            self.ahead.get((high, self.torque, self.tip)))
 
 
 def near(r: CycleResult) -> list[int]:

@@ -161,9 +161,8 @@ def _edge_summary(loaded) -> dict:
             "max_pressure_MPa": max((t.edge_p_MPa for t in edge), default=0.0)}
 
 
-def pair_table(summary: dict, beside: bool = False) -> str:
-    """Short plain-text report of a summary (the `fegear solve` output); ``beside``: the
-    estimate's second solve ran in a worker beside the first (its time is the wait for it)."""
+def pair_table(summary: dict) -> str:
+    """Short plain-text report of a summary (the `fegear solve` output)."""
     i = summary["inputs"]
     est = summary["error_estimate_by_stress_pct"] or {}
     lines = [
@@ -214,7 +213,7 @@ def pair_table(summary: dict, beside: bool = False) -> str:
               f"iterations {summary['iterations']}, max penetration "
               f"{summary['max_penetration_um']:.3g} µm",
               "time [s]: " + ", ".join(f"{k} {v:.2f}" for k, v in summary["timings_s"].items() if v)
-              + _estimate_time(summary, beside)
+              + _estimate_time(summary)
               + (f"; solve wall {summary['wall_s']:.1f}" if summary["wall_s"] else "")]
     return "\n".join(lines)
 
@@ -253,16 +252,13 @@ def _tangent(summary: dict) -> str:
             f" secant, {stiffness_cell(k)} tangent (dT/dθ, the contact set kept)")
 
 
-def _estimate_time(summary: dict, beside: bool = False) -> str:
-    """The error estimate's second solve in the time line, if there was one."""
+def _estimate_time(summary: dict) -> str:
+    """The error estimate's time after the solve (its second solve may have run beside the
+    first) in the time line, if there was one."""
     if not summary.get("estimate_s"):
         return ""
-    if beside:
-        what = "the cycle's submodels" if "cycle" in summary else "the solve"
-        return (f"; error estimate (the case again at {summary['error_estimate_from']}, beside "
-                f"{what} in a second process) waited for {summary['estimate_s']:.2f}")
     return (f"; error estimate (the case again at {summary['error_estimate_from']}) "
-            f"{summary['estimate_s']:.2f}")
+            f"{summary['estimate_s']:.2f} after the solve")
 
 
 def cycle_rows(sols, allowables: Allowables = DEFAULT_ALLOWABLES) -> list[dict]:

@@ -10,7 +10,6 @@ origin. Contact windows of a few Hertz half-widths are refined to b / ``elements
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -43,6 +42,7 @@ from ..fe import (
     write_vtu,
 )
 from ..files import write_json
+from ..timing import clocked, timed
 from .disk_case import DiskCase
 
 SLAVE_WINDOW = 3.0   # slave contact window half-length, in Hertz half-widths
@@ -154,38 +154,28 @@ def disk_geometries(case: DiskCase) -> tuple[BodyGeometry, BodyGeometry, Circle,
 
 def solve_disks(case: DiskCase) -> DiskResult:
     """Mesh, assemble, condense and solve the disk case; compare with Hertz."""
-    times = {}
-    t0 = time.perf_counter()
-    g1, g2, _, circle2 = disk_geometries(case)
-    m1, m2 = mesh_bodies([g1, g2])
-    times["mesh"] = time.perf_counter() - t0
-
-    t0 = time.perf_counter()
-    mat = case.material
-    link = RigidLink("cut", "translation", direction=(0.0, -1.0))
-    b1 = assemble_body(m1, mat, link=link)
-    fixed = ("cut",) if case.r2 > 0 else ("rim",)
-    b2 = assemble_body(m2, mat, fixed=fixed)
-    times["assemble_factor"] = time.perf_counter() - t0
-
-    t0 = time.perf_counter()
-    settings = ContactSettings(penalty_factor=case.penalty_factor)
-    pair = ContactPair("disk1/disk2", 0, "contact", 1, "contact", circle2)
-    model = build_contact([b1, b2], [pair], settings)
-    times["condense"] = time.perf_counter() - t0
-
-    t0 = time.perf_counter()
-    sol = solve_contact(model, load=case.load)
-    # flexibility columns are formed as the active set reaches them: book that as condensing
-    times["contact"] = time.perf_counter() - t0 - model.G.seconds
-    times["condense"] += model.G.seconds
-    if len(sol.patches) != 1:
-        raise ContactError(f"expected one contact zone, found {len(sol.patches)}")
-    patch = sol.patches[0]
-
-    t0 = time.perf_counter()
-    stresses = tuple(recover(b, u) for b, u in zip((b1, b2), sol.displacements))
-    times["recovery"] = time.perf_counter() - t0
+    with clocked() as clock:
+        with timed("mesh"):
+            g1, g2, _, circle2 = disk_geometries(case)
+            m1, m2 = mesh_bodies([g1, g2])
+        with timed("assemble_factor"):
+            mat = case.material
+            link = RigidLink("cut", "translation", direction=(0.0, -1.0))
+            b1 = assemble_body(m1, mat, link=link)
+            fixed = ("cut",) if case.r2 > 0 else ("rim",)
+            b2 = assemble_body(m2, mat, fixed=fixed)
+        with timed("condense"):
+            settings = ContactSettings(penalty_factor=case.penalty_factor)
+            pair = ContactPair("disk1/disk2", 0, "contact", 1, "contact", circle2)
+            model = build_contact([b1, b2], [pair], settings)
+        with timed("contact"):   # the flexibility columns it forms meanwhile: "condense"
+            sol = solve_contact(model, load=case.load)
+        if len(sol.patches) != 1:
+            raise ContactError(f"expected one contact zone, found {len(sol.patches)}")
+        patch = sol.patches[0]
+        with timed("recovery"):
+            stresses = tuple(recover(b, u) for b, u in zip((b1, b2), sol.displacements))
+    times = dict(clock.stages)
     surface = _surface_peak(b1, stresses[0], case.r1)
     return DiskResult(case=case, hertz=case.hertz, p_max=patch.p_max,
                       half_width=patch.half_width, load_fe=sol.total_load,

@@ -63,6 +63,7 @@ def _child(task: dict) -> dict:
     asked), or a whole mesh cycle from nothing (``cycle``: its total is the cycle's)."""
     from ..fe import import_libraries
     from ..geometry import gear1_profile
+    from ..running import spare_core
     from ..toothpair import (
         SolveCase,
         cycle_positions,
@@ -71,7 +72,6 @@ def _child(task: dict) -> dict:
         solve_positions,
         write_pair_outputs,
     )
-    from ..workers import second_core
 
     if task.get("disk"):   # the disk cache on, in the folder given
         import os
@@ -82,27 +82,27 @@ def _child(task: dict) -> dict:
     p = PairParameters(**task["params"])
     case = SolveCase(p, torque=task["torque"], quality=task["quality"])
     t0 = time.perf_counter()
-    # as `fegear solve` builds it: kept for the templates' rims (their root radius), which
-    # would otherwise build it again
-    profile = gear1_profile(p)
+    # as `fegear solve` builds it (kept, for the solve to take)
+    gear1_profile(p)
     t_profile = time.perf_counter() - t0
     if task.get("cycle"):  # the whole cycle from nothing: its first position builds the model
         # as `fegear solve --positions` solves it: its second chain on a second core if any
-        sols = solve_positions(case, cycle_positions(0.0, task["cycle"], p.z2), profile,
-                               beside=second_core())
+        with spare_core() as executor:
+            sols = solve_positions(case, cycle_positions(0.0, task["cycle"], p.z2),
+                                   executor=executor)
         cycle_s = time.perf_counter() - t0
         later = sols[1:]
         extra = {"cycle_s": cycle_s,
                  "cycle_later_s": {k: sum(s.timings_s.get(k, 0.0) for s in later) / len(later)
                                    for k in later[0].timings_s}}
         return _record(sols[0], t_profile, cycle_s, extra)
-    # as `fegear solve --no-estimate` solves it: part of its build on a second core if any
-    sol = solve_positions(case, (0.0,), profile, beside=second_core())[0]
+    # as `fegear solve --no-estimate` solves it
+    sol = solve_positions(case, (0.0,))[0]
     total = time.perf_counter() - t0
     extra = {}
     if task.get("estimate"):
         t1 = time.perf_counter()
-        estimate, other = second_level_estimate(sol, profile)
+        estimate, other = second_level_estimate(sol)
         extra["estimate_s"] = total + time.perf_counter() - t1
         extra["estimate_pct"] = estimate
         extra["estimate_from"] = other

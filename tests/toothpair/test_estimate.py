@@ -3,13 +3,14 @@ taller tooth pressing on its round at 3.4 GPa, a smaller module with fatter teet
 headline stress at `fine` lies inside the estimate `standard` prints for it (slow: three
 `standard` solves with their estimates and three `fine` ones, about 1.5 minutes); it is never
 below the scatter between equally good meshes, and that scatter, measured again on the two
-designs that scattered most, lies within it (slow); and its second solve, made in a worker
-beside the first, gives the same numbers."""
+designs that scattered most, lies within it (slow); and its second solve, made in a forked
+copy of the process beside the first, gives the same numbers."""
 
 from types import SimpleNamespace
 
 import pytest
 
+from fegear.running import Forks
 from fegear.toothpair import pair_table
 from fegear.toothpair.estimate import MESH_SCATTER_PCT, second_level_estimate
 from fegear.toothpair.job import prepare_job, solve_job
@@ -70,43 +71,41 @@ def _numbers(summary: dict) -> dict:
 
 
 def test_the_second_solve_beside_the_first_gives_the_same_estimate(monkeypatch):
-    # `fegear solve` on a second core: the estimate's second solve runs in a forked worker
-    # process while this one solves, each building its model (none kept before the fork);
-    # the numbers are the same
+    # `fegear solve` on a second core: the estimate's second solve is a task that runs in a
+    # forked copy of this process while this one solves, each building its model (none kept
+    # before the fork); the numbers are the same
     from collections import OrderedDict
 
     import fegear.toothpair.ring.model as ring_model
 
     job = prepare_job({"quality": "coarse", "torque": 150})
     monkeypatch.setattr(ring_model, "_KEPT", OrderedDict())
-    beside = solve_job(job, beside=True)
+    with Forks(2) as forks:
+        beside = solve_job(job, forks)
     alone = solve_job(job)
-    assert "beside the solve in a second process) waited for" in pair_table(beside.summary,
-                                                                           beside.beside)
-    assert beside.beside and not alone.beside
+    assert "error estimate (the case again at fast)" in pair_table(beside.summary)
     assert _numbers(beside.summary) == _numbers(alone.summary)
 
 
-def test_a_cycle_s_estimate_beside_its_submodels_gives_the_same_numbers():
-    # a cycle's estimate is forked once its positions are solved, at its worst one, while
-    # this process solves the submodels where it peaks; its second chain was forked too
+def test_a_cycle_s_estimate_is_at_its_worst_position_whichever_the_executor():
+    # its second chain runs in a forked copy; the estimate after the cycle, at its worst
     from fegear.toothpair import CHAINED
 
     job = prepare_job({"quality": "coarse", "torque": 150, "positions": CHAINED})
-    beside, alone = solve_job(job, beside=True), solve_job(job)
-    assert beside.beside and not alone.beside
+    with Forks(2) as forks:
+        beside = solve_job(job, forks)
+    alone = solve_job(job)
     assert beside.summary["error_estimate_by_stress_pct"] == pytest.approx(
         alone.summary["error_estimate_by_stress_pct"], rel=1e-6)
     assert beside.solution.case.beta == alone.solution.case.beta
-    assert "beside the cycle's submodels in a second process) waited for" in pair_table(
-        beside.summary, beside.beside)
 
 
-def test_a_worker_that_fails_leaves_the_second_solve_to_this_process(monkeypatch):
+def test_a_second_solve_that_fails_in_its_worker_is_solved_here_in_use(monkeypatch, caplog):
     import os
 
     import fegear.toothpair.estimate as estimate
 
+    monkeypatch.delenv("FEGEAR_STRICT_WORKERS")
     home, real = os.getpid(), estimate.second_headline
 
     def failing(case):   # fails in the forked worker, solves here
@@ -116,7 +115,8 @@ def test_a_worker_that_fails_leaves_the_second_solve_to_this_process(monkeypatch
 
     monkeypatch.setattr(estimate, "second_headline", failing)
     job = prepare_job({"quality": "coarse", "torque": 150})
-    solved = solve_job(job, beside=True)
-    assert not solved.beside   # solved here after all
+    with Forks(2) as forks:
+        solved = solve_job(job, forks)
+    assert "RuntimeError: stand-in: the worker died" in caplog.text
     assert _numbers(solved.summary) == _numbers(solve_job(job).summary)
     assert solved.summary["error_estimate_by_stress_pct"]

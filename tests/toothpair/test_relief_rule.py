@@ -7,10 +7,17 @@ from concurrent.futures import ThreadPoolExecutor
 import pytest
 
 from fegear.errors import FegearError
-from fegear.toothpair.relief_rule import CycleResult, size_relief, sizing_table
+from fegear.toothpair.relief_rule import CycleResult, ReliefSearch, size_relief, sizing_table
 
 BASE = {"shift": 0.016, "rotation": 0.002, "torque": 200.0, "relief-extent": 0.5,
         "quality": "coarse"}
+
+
+class Threads(ThreadPoolExecutor):
+    """An executor (fegear.running's protocol) on threads, so that the fake solves below
+    record their calls where the test reads them."""
+
+    workers = 2
 
 
 def _fake(needed_um: float, far_from_um: float | None = None, far_off_mm: float = 1.0,
@@ -38,7 +45,7 @@ def _fake(needed_um: float, far_from_um: float | None = None, far_off_mm: float 
 
 def test_the_search_finds_the_smallest_amount_within_its_tolerance_at_the_raised_torque():
     solve, calls = _fake(7.3)
-    s = size_relief(BASE, positions=6, margin=0.2, tolerance_um=0.25, solve=solve)
+    s = size_relief(BASE, ReliefSearch(positions=6, margin=0.2, tolerance_um=0.25), solve=solve)
     assert 7.3 <= s.amount_um < 7.3 + 0.25
     assert [t.amount_um for t in s.trials[:4]] == [0.0, 2.0, 4.0, 8.0]   # scan, then bisect
     assert all(torque == pytest.approx(240.0) for _, torque, _, _ in calls[:len(s.trials)])
@@ -56,7 +63,7 @@ def test_no_relief_is_needed_where_the_rounds_stay_unloaded():
 
 def test_a_far_side_tip_on_its_round_raises_the_tip_clearance_in_steps_until_it_is_off():
     solve, calls = _fake(7.3, far_from_um=4.0, far_off_mm=0.021)
-    s = size_relief(BASE, tolerance_um=0.25, solve=solve)
+    s = size_relief(BASE, ReliefSearch(tolerance_um=0.25), solve=solve)
     assert 7.3 <= s.amount_um < 7.3 + 0.25
     assert s.given_tip_clearance_mm == 0.016
     assert s.tip_clearance_mm == pytest.approx(0.024)    # 16 µm + 2 steps of 4 µm (m = 2)
@@ -69,7 +76,7 @@ def test_a_far_side_tip_on_its_round_raises_the_tip_clearance_in_steps_until_it_
 
 def test_trimmed_tips_that_need_more_relief_send_the_search_on_from_the_amount_found():
     solve, _ = _fake(7.3, far_from_um=4.0, far_off_mm=0.021, trimmed_um=1.0)
-    s = size_relief(BASE, tolerance_um=0.25, solve=solve)
+    s = size_relief(BASE, ReliefSearch(tolerance_um=0.25), solve=solve)
     assert 8.3 <= s.amount_um < 8.3 + 0.25
     assert s.tip_clearance_mm == pytest.approx(0.024)
     assert s.with_relief.off_the_rounds
@@ -78,7 +85,7 @@ def test_trimmed_tips_that_need_more_relief_send_the_search_on_from_the_amount_f
 def test_a_relief_that_only_trades_near_for_far_side_edges_is_refused_when_told_to_keep_the_tip():
     solve, _ = _fake(7.3, far_from_um=4.0)
     with pytest.raises(FegearError) as err:
-        size_relief(BASE, clearance=False, solve=solve)
+        size_relief(BASE, ReliefSearch(clearance=False), solve=solve)
     text = str(err.value)
     assert "far-side teeth [23]" in text and "without --keep-tip-clearance" in text
     assert "no tip relief over 0.5 mm" in text
@@ -105,9 +112,9 @@ def test_solving_ahead_on_two_workers_finds_what_the_search_finds_alone(kind):
     trials it needs (more solves than trials, fewer rounds)."""
     alone, alone_calls = _fake(**kind)
     ahead, ahead_calls = _fake(**kind)
-    s1 = size_relief(BASE, tolerance_um=0.25, solve=alone)
-    with ThreadPoolExecutor(2) as pool:
-        s2 = size_relief(BASE, tolerance_um=0.25, solve=ahead, executor=pool, workers=2)
+    s1 = size_relief(BASE, ReliefSearch(tolerance_um=0.25), solve=alone)
+    with Threads(2) as threads:
+        s2 = size_relief(BASE, ReliefSearch(tolerance_um=0.25), threads, solve=ahead)
     assert s2 == s1
     assert not Counter(alone_calls) - Counter(ahead_calls)   # every needed solve, …
     assert all(n == Counter(alone_calls)[c] for c, n in Counter(ahead_calls).items()
@@ -121,7 +128,7 @@ def test_the_baseline_gets_a_relief_and_tip_clearance_that_keep_it_off_its_round
     """Over a 6-position cycle at `coarse`: the baseline pair needs a relief, and its far-side
     tooth 23 a larger tip clearance than the default 16 µm; with both no round carries load
     at 200 N·m, the flank pressure is the peak and the transmission error grows."""
-    s = size_relief(BASE, positions=6)
+    s = size_relief(BASE, ReliefSearch(positions=6))
     assert 0.0 < s.amount_um < 50.0
     assert s.tip_clearance_mm > s.given_tip_clearance_mm == 0.016
     assert s.with_relief.off_the_rounds and not s.without.off_the_rounds

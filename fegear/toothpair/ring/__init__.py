@@ -4,13 +4,15 @@ half-plane (docs/model.md, "The ring model").
 
 :mod:`.template` meshes one tooth pitch of each gear with matching cut faces; :mod:`.model`
 assembles them as cyclic bodies (:class:`~fegear.fe.cyclic.CyclicBody`) for a quality level;
-:mod:`.side` carries points and loads between a gear and its template; :mod:`.grid` places the
-pressure grids on the teeth that can touch; :mod:`.influence` assembles how each grid point
+:mod:`.side` carries points and loads between a gear and its template; :mod:`.grid` makes the
+pressure grids and :mod:`.placement` places them on the teeth that can touch (and starts a
+cycle's later position from the one before); :mod:`.influence` assembles how each grid point
 approaches gear 2 under each pressure hat; :mod:`.contact` solves the contact under the torque;
 :mod:`.stresses` reads the root stresses from the templates and the contact stresses from a
-submodel at each peak; :mod:`.results` gives per-tooth results and the rings' fields;
-:mod:`.solve` is the model's part of a position (:class:`RingSolver`) for the driver of
-:mod:`fegear.toothpair.positions`, which loops over the positions.
+submodel at each peak, which :mod:`.peaks` solves where a cycle's stresses peak;
+:mod:`.results` gives per-tooth results and the rings' fields; :mod:`.solver` is the model's
+part of a position (:class:`RingSolver`) for the driver of :mod:`fegear.toothpair.positions`,
+which loops over the positions.
 
 The baseline pair at 200 N·m, coarse:
 
@@ -40,6 +42,6 @@ from ...exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
     "model": ("RingModel", "RingLevel", "LEVELS", "build_ring", "build_templates"),
-    "solve": ("RingSolver",),
+    "solver": ("RingSolver", "RingAttempt"),
     "results": ("RingDetail",),
 })

@@ -30,6 +30,7 @@ import hashlib
 import logging
 import os
 import pickle
+import tempfile
 from pathlib import Path
 
 from ...errors import FegearError
@@ -140,18 +141,20 @@ def keep(key: str, data: dict) -> None:
     """Write ``data`` under ``key`` (atomically: a reader sees the old entry or the new one,
     never half of one), then hold the directory under its cap. A failure to write is a
     warning, not an error: the result it would have sped up is already computed."""
-    path = entry(key)
-    tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
+    path, tmp = entry(key), None
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
-        with open(tmp, "wb") as f:
+        fd, name = tempfile.mkstemp(prefix=path.name + ".", suffix=".tmp", dir=path.parent)
+        tmp = Path(name)
+        with os.fdopen(fd, "wb") as f:
             pickle.dump({**data, "format": FORMAT, "key": key}, f,
                         protocol=pickle.HIGHEST_PROTOCOL)
         os.replace(tmp, path)
     except OSError as err:
         log.warning("could not keep the model in the cache %s (%s)", path.parent, err)
-        with contextlib.suppress(OSError):
-            tmp.unlink(missing_ok=True)
+        if tmp is not None:
+            with contextlib.suppress(OSError):
+                tmp.unlink(missing_ok=True)
         return
     log.info("kept %s (%.0f MB)", path, path.stat().st_size / 1e6)
     try:

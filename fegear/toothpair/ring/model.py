@@ -11,7 +11,8 @@ Hertz half-width). Each level halves the sizes of the one before.
 
 from __future__ import annotations
 
-import time
+import itertools
+import weakref
 from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 
@@ -24,6 +25,7 @@ from ...fe import (
     submodel_meshes,
 )
 from ...geometry import Gear1Profile, PairParameters, RoundedProfile, gear1_profile, gear2_curve
+from ...timing import timed
 from ..case import SolveCase
 from . import disk
 from .grid import ToothSamples, sample_tooth
@@ -63,9 +65,6 @@ THIN = 0.1               # a tip relief or tip trim thinner than this many flank
                          # without it (a relief search's trials then share one model)
 GROWN = 1.25            # a model is kept on disk again once it holds this many times the
                         # responses of its entry (or new submodels)
-BESIDE_SHARE = 0.6       # of gear 1's loaded flank, the share of responses formed beside (the
-                         # rest here, once the first load needs them: on the baseline both are
-                         # then done about together)
 #: the case fields a ring model depends on (not torque, position or the sector model's inputs)
 GEOMETRY_KEYS = ("params", "thickness", "E", "nu", "quality", "rim1", "rim2", "tip_round")
 
@@ -74,8 +73,12 @@ GEOMETRY_KEYS = ("params", "thickness", "E", "nu", "quality", "rim1", "rim2", "t
 class RingModel:
     """Both gears of a pair as rings of template sectors (any torque, any rolling position):
     the case it was built for, gear 1's exact and rounded profiles, tooth 0 sampled, gear 2's
-    curve, the two :class:`GearSide` s, the level, the time (s) each stage took and the
-    contact submodels prepared so far (:func:`~fegear.fe.solve_submodels`)."""
+    curve, the two :class:`GearSide` s, the level and the contact submodels prepared so far
+    (:func:`~fegear.fe.solve_submodels`).
+
+    A model is too big to copy: pickled, it is a reference to the model it is in the process
+    that unpickles it (the solutions of a copy of this process come back to this one, which
+    holds the same model; :func:`_live`)."""
 
     case: SolveCase
     profile: Gear1Profile
@@ -83,14 +86,17 @@ class RingModel:
     samples: ToothSamples
     gears: tuple[GearSide, GearSide]
     level: RingLevel
-    timings_s: dict
     submodels: dict = field(default_factory=dict, repr=False)   # prepared, by key
-    served: int = 0                         # solves it has served (its timings go to the first)
     meshed: PairParameters | None = None    # the pair the templates were meshed for
+    token: int = field(default_factory=lambda: next(_TOKENS), repr=False)
 
     def __post_init__(self) -> None:
         if self.meshed is None:
             self.meshed = self.case.params
+        _LIVE[self.token] = self
+
+    def __reduce__(self):
+        return _live, (self.token,)
 
     @property
     def curve2(self):
@@ -107,20 +113,33 @@ class RingModel:
         return all(getattr(case, k) == getattr(self.case, k) for k in GEOMETRY_KEYS)
 
 
+#: every model of this process by its token, while it lives
+_LIVE: weakref.WeakValueDictionary = weakref.WeakValueDictionary()
+_TOKENS = itertools.count()
+
+
+def _live(token: int) -> RingModel:
+    """The model of ``token`` in this process (:class:`RingModel` pickles as its token)."""
+    try:
+        return _LIVE[token]
+    except KeyError:
+        raise LookupError("a ring model pickles as a reference to a model of the process "
+                          "that unpickles it, and this process has none by that "
+                          "reference") from None
+
+
 #: ring models kept per process, most recent last: a study's cases that differ only in torque
 #: or position, and the error estimate's second level, find theirs here
 _KEPT: OrderedDict = OrderedDict()
 KEEP = 4
 
 
-def ring_model(case: SolveCase, profile: Gear1Profile | None = None,
-               beside: bool = False) -> RingModel:
+def ring_model(case: SolveCase, profile: Gear1Profile | None = None) -> RingModel:
     """The ring model for ``case``: one kept from an earlier case of the same geometry,
     material and quality; or one that shares the templates (meshes, factors and responses) of
     a kept model meshed for the same pair (:func:`meshed_params`); or, with the disk cache on
-    (:mod:`.disk`), one read back from it; or a new one (``beside``: a second core is free for
-    part of it, :func:`build_ring`). It is kept in memory (on disk once solved:
-    :func:`keep_on_disk`)."""
+    (:mod:`.disk`), one read back from it; or a new one (:func:`build_ring`). It is kept in
+    memory (on disk once solved: :func:`keep_on_disk`)."""
     key = tuple(getattr(case, k) for k in GEOMETRY_KEYS)
     model = _KEPT.pop(key, None)
     if model is None:
@@ -130,7 +149,7 @@ def ring_model(case: SolveCase, profile: Gear1Profile | None = None,
         if kin is None and disk.enabled():
             model = _from_disk(case, profile)
         if model is None:
-            model = build_ring(case, profile, kin, beside)
+            model = build_ring(case, profile, kin)
         while len(_KEPT) >= KEEP:
             _KEPT.popitem(last=False)
     _KEPT[key] = model
@@ -175,42 +194,33 @@ def build_templates(case: SolveCase, shape: RoundedProfile) -> tuple[Template, T
 
 
 def build_ring(case: SolveCase, profile: Gear1Profile | None = None,
-               kin: RingModel | None = None, beside: bool = False) -> RingModel:
+               kin: RingModel | None = None) -> RingModel:
     """Mesh both templates (for :func:`meshed_params`), assemble, factorise and condense them:
-    once per geometry. With ``kin``, a model whose templates serve ``case`` too, they are
-    shared (responses formed for one serve both). ``beside``: a second core is free, and gear
-    1's responses on its loaded flank are formed there (:meth:`~.side.GearSide.form_beside`)
-    while this process builds gear 2 and goes on to the first position: on the baseline they
-    are 0.2 s of the first position's 0.5 s, gear 2's 0.03 s."""
+    once per geometry (the stages "profile", "mesh" and "assemble_factor" of a solve's
+    times). With ``kin``, a model whose templates serve ``case`` too, they are shared
+    (responses formed for one serve both)."""
     p = case.params
     level = LEVELS[case.quality]
-    profile, shape, samples, times = _shapes(case, profile)
+    profile, shape, samples = _shapes(case, profile)
     meshed = meshed_params(case)
     if kin is not None:
-        return RingModel(case, profile, shape, samples, kin.gears, level, times, meshed=meshed)
-    t0 = time.perf_counter()
-    t1, t2 = _templates(case, shape, meshed)
-    m1, m2 = mesh_bodies([t1.geometry, t2.geometry])
-    times["mesh"] = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    mat = Material(case.E, case.nu, case.thickness, "stress")
-    side1 = GearSide(assemble_cyclic(m1, mat, p.z1, t1.cut, (t1.held,)), t1)
-    if beside:
-        loaded = side1.loaded_half()
-        cut = int(BESIDE_SHARE * len(loaded))
-        side1.form_beside(loaded[:cut], loaded[cut:])
-    sides = (side1, GearSide(assemble_cyclic(m2, mat, p.z2, t2.cut, (t2.held,)), t2))
-    times["assemble_factor"] = time.perf_counter() - t0
-    return RingModel(case, profile, shape, samples, sides, level, times, meshed=meshed)
+        return RingModel(case, profile, shape, samples, kin.gears, level, meshed=meshed)
+    with timed("mesh"):
+        t1, t2 = _templates(case, shape, meshed)
+        m1, m2 = mesh_bodies([t1.geometry, t2.geometry])
+    with timed("assemble_factor"):
+        mat = Material(case.E, case.nu, case.thickness, "stress")
+        sides = (GearSide(assemble_cyclic(m1, mat, p.z1, t1.cut, (t1.held,)), t1),
+                 GearSide(assemble_cyclic(m2, mat, p.z2, t2.cut, (t2.held,)), t2))
+    return RingModel(case, profile, shape, samples, sides, level, meshed=meshed)
 
 
 def _shapes(case: SolveCase, profile: Gear1Profile | None):
-    """Gear 1's exact and rounded profiles and tooth 0 sampled, and the time they took."""
-    t0 = time.perf_counter()
-    profile = profile if profile is not None else gear1_profile(case.params)
-    shape = RoundedProfile(profile, case.edge_radius)
-    samples = sample_tooth(shape)
-    return profile, shape, samples, {"profile": time.perf_counter() - t0}
+    """Gear 1's exact and rounded profiles and tooth 0 sampled."""
+    with timed("profile"):
+        profile = profile if profile is not None else gear1_profile(case.params)
+        shape = RoundedProfile(profile, case.edge_radius)
+        return profile, shape, sample_tooth(shape)
 
 
 def _templates(case: SolveCase, shape: RoundedProfile, meshed: PairParameters):
@@ -257,22 +267,23 @@ def _grown(held: tuple, entry: tuple | None) -> bool:
 
 def _from_disk(case: SolveCase, profile: Gear1Profile | None) -> RingModel | None:
     """``case``'s model read back from the disk cache, or None."""
-    t0 = time.perf_counter()
     key = _disk_key(case)
-    data = disk.load(key)
+    if not disk.entry(key).exists():
+        return None
+    with timed("disk"):
+        data = disk.load(key)
     if data is None:
         return None
-    profile, shape, samples, times = _shapes(case, profile)
-    meshed = meshed_params(case)
-    mat = Material(case.E, case.nu, case.thickness, "stress")
-    sides = []
-    for part in data["gears"]:
-        side = GearSide(restore_cyclic(part["mesh"], mat, part["body"]), part["template"])
-        side.restore_responses(part["responses"])
-        sides.append(side)
-    times["disk"] = time.perf_counter() - t0 - times["profile"]
-    model = RingModel(case, profile, shape, samples, tuple(sides), LEVELS[case.quality], times,
-                      meshed=meshed)
+    profile, shape, samples = _shapes(case, profile)
+    with timed("disk"):
+        mat = Material(case.E, case.nu, case.thickness, "stress")
+        sides = []
+        for part in data["gears"]:
+            side = GearSide(restore_cyclic(part["mesh"], mat, part["body"]), part["template"])
+            side.restore_responses(part["responses"])
+            sides.append(side)
+    model = RingModel(case, profile, shape, samples, tuple(sides), LEVELS[case.quality],
+                      meshed=meshed_params(case))
     pair, meshes = data["submodels"]
     if pair == repr(case.params):   # cut from this pair's own profile (a thin relief's too)
         model.submodels.update(meshes)

@@ -5,22 +5,20 @@ Sector k of a gear is its template turned by k pitches about the gear's centre; 
 gear (its own frame) is carried into the template by turning it back. The template's unit-load
 responses (a clamped field and the loads carried to the cuts) are formed once per template dof
 when a load first reaches it, and kept for every later position, torque and tooth: every tooth
-loads the same template dofs. With a second core free, gear 1's are formed ahead beside, while
-this process builds gear 2 and places the first grids (:meth:`GearSide.form_beside`).
+loads the same template dofs (the stage "responses" of a solve's times).
 """
 
 from __future__ import annotations
 
-import os
-import time
 from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
 
 from ...contact import FacetLocator, p2_edge_shape
-from ...fe import Cells, CyclicBody, Probe, facet_nodes, node_dofs, projection_matrices
+from ...fe import Cells, CyclicBody, Probe, facet_nodes, node_dofs
 from ...planar import rotate
+from ...timing import timed
 from .template import Template
 
 
@@ -51,15 +49,14 @@ class LoadBlock:
 
 
 @dataclass(frozen=True)
-class _Beside:
-    """Responses formed in a forked ``copy`` (:class:`~fegear.workers.Forked`) of the process
-    ``owner`` (its pid): the dofs left to that process (``ours``) and a mask over the template
-    dofs of those the copy forms (:meth:`GearSide.form_beside`)."""
+class Responses:
+    """A side's unit-load responses formed so far: template dof → response column (-1: not
+    formed), the clamped fields' interior rows (interior dofs, columns) and the loads they
+    carry to the cuts (2 n_f, columns)."""
 
-    copy: object
-    owner: int
-    ours: np.ndarray
-    awaited: np.ndarray
+    column: np.ndarray
+    X: np.ndarray
+    rho: np.ndarray
 
 
 @dataclass(eq=False)
@@ -72,14 +69,12 @@ class GearSide:
     facets: np.ndarray = field(init=False, repr=False)      # the template's profile facets
     on_facets: FacetLocator = field(init=False, repr=False)  # … and their search tree
     probe: Probe = field(init=False, repr=False)
-    response_s: float = 0.0                                 # time spent forming responses
     _column: np.ndarray = field(init=False, repr=False)     # template dof → response column
     _X: list = field(init=False, repr=False)                # clamped fields (interior rows):
                                                             # column blocks
     _rho: np.ndarray = field(init=False, repr=False)        # cut loads, by column
     _used: int = 0
     _cut_field: np.ndarray | None = field(default=None, repr=False)
-    _beside: _Beside | None = field(default=None, repr=False)  # responses formed ahead
 
     def __post_init__(self) -> None:
         m = self.body.mesh
@@ -154,86 +149,19 @@ class GearSide:
         return self.probe.locate(local)
 
     # --- responses to unit loads ------------------------------------------------------------
-    def loaded_half(self) -> np.ndarray:
-        """The dofs of the template's profile nodes within half a pitch of its start: gear 1's
-        tooth 0's leading flank, the one the + torque loads, down to the root's middle (the
-        baseline's cycle loads 494 of these 558 dofs and 4 beyond; f1 0.3 loads its root's
-        other half too: 142 more, formed when first loaded)."""
-        m = self.body.mesh
-        nodes = np.unique(facet_nodes(m, self.facets))
-        x = m.doflocs[:, nodes]
-        turn = np.mod(np.arctan2(x[1], x[0]) - self.template.start, 2.0 * np.pi)
-        return node_dofs(nodes[turn < 0.5 * self.pitch]).ravel()
-
-    def form_beside(self, theirs: np.ndarray, ours: np.ndarray) -> None:
-        """Form the responses of the template dofs ``theirs`` in a forked copy of this process
-        (:class:`~fegear.workers.Forked`) while this one goes on. Once a load needs one of
-        them, those of ``ours``, the field per unit cut displacement and the stress
-        projection's matrices are formed here, and then theirs taken in (:meth:`settle`): the
-        same numbers as formed here, their time here what that took and the wait. Should the
-        copy fail in any way, they are formed here as they are needed."""
-        from ...workers import Forked
-
-        def ahead():
-            self._form(theirs)
-            return self.responses()
-
-        awaited = np.zeros(self.body.ndofs, dtype=bool)
-        awaited[theirs] = True
-        self._beside = _Beside(Forked(ahead), os.getpid(), np.asarray(ours), awaited)
-
-    def settle(self) -> None:
-        """Form what :meth:`form_beside` left here, then take in what it formed beside once
-        that is there (nothing if it was not asked for or failed; in a forked copy of
-        this process, nothing: not its to read)."""
-        if self._beside is None:
-            return
-        beside, self._beside = self._beside, None
-        if os.getpid() != beside.owner:
-            return
-        t0 = time.perf_counter()
-        formed = self.response_s
-        try:
-            self._form(beside.ours)
-            self._cut_field = self.cut_field    # formed here while the copy finishes …
-            projection_matrices(self.body)      # … with the projection's matrices
-            got = beside.copy.result()
-        finally:
-            beside.copy.stop()
-        if got is not None:
-            self._adopt(got)
-        self.response_s = formed + time.perf_counter() - t0
-
-    def _adopt(self, parts: dict) -> None:
-        """The :meth:`responses` of a copy of this side, formed there from none, joined to the
-        ones formed here meanwhile (theirs for the dofs not formed here)."""
-        column, X = parts["column"], parts["X"]
-        theirs = np.flatnonzero(column >= 0)
-        theirs = theirs[self._column[theirs] < 0]
-        if not len(theirs):
-            return
-        self._X.append((self._used, X))
-        self._rho = np.hstack([self._rho, parts["rho"]])
-        self._column[theirs] = self._used + column[theirs]
-        self._used += X.shape[1]
-
     def _form(self, dofs: np.ndarray) -> np.ndarray:
         """Response columns of template ``dofs``, forming those not formed yet."""
         new = np.unique(dofs[self._column[dofs] < 0])
-        if self._beside is not None and self._beside.awaited[new].any():
-            self.settle()
-            new = np.unique(dofs[self._column[dofs] < 0])
         if len(new):
-            t0 = time.perf_counter()
-            need = self._used + len(new)
-            # the fields are kept as the blocks they were formed in (growing one array copied
-            # it whole every time), their interior rows alone (the cut's are zero); the cut
-            # loads are small
-            self._X.append((self._used, self.body.unit_clamped(new, interior=True)))
-            self._rho = np.hstack([self._rho, self.body.unit_cut_loads(new)])
-            self._column[new] = np.arange(self._used, need)
-            self._used = need
-            self.response_s += time.perf_counter() - t0
+            with timed("responses"):
+                need = self._used + len(new)
+                # the fields are kept as the blocks they were formed in (growing one array
+                # copied it whole every time), their interior rows alone (the cut's are
+                # zero); the cut loads are small
+                self._X.append((self._used, self.body.unit_clamped(new, interior=True)))
+                self._rho = np.hstack([self._rho, self.body.unit_cut_loads(new)])
+                self._column[new] = np.arange(self._used, need)
+                self._used = need
         return self._column[dofs]
 
     @property
@@ -241,21 +169,18 @@ class GearSide:
         """How many template dofs have their responses formed."""
         return self._used
 
-    def responses(self) -> dict:
-        """The responses formed so far (a disk cache's): template dof → column, the clamped
-        fields' interior rows as one block (interior dofs, formed) and the cut loads (2 n_f,
-        formed)."""
-        self.settle()
+    def responses(self) -> Responses:
+        """The responses formed so far, for the model cache."""
         X = (np.hstack([block for _, block in self._X]) if len(self._X) > 1
              else self._X[0][1] if self._X else np.zeros((len(self.body.interior), 0)))
-        return {"column": self._column, "X": X, "rho": self._rho}
+        return Responses(self._column, X, self._rho)
 
-    def restore_responses(self, parts: dict) -> None:
+    def restore_responses(self, parts: Responses) -> None:
         """Take back the :meth:`responses` of a side of the same template."""
-        self._column = np.array(parts["column"], dtype=np.int64)
-        self._X = [(0, parts["X"])] if parts["X"].shape[1] else []
-        self._rho = parts["rho"]
-        self._used = int(parts["X"].shape[1])
+        self._column = np.array(parts.column, dtype=np.int64)
+        self._X = [(0, parts.X)] if parts.X.shape[1] else []
+        self._rho = parts.rho
+        self._used = int(parts.X.shape[1])
 
     def clamped_rows(self, rows: sp.csr_matrix, dofs: np.ndarray) -> np.ndarray:
         """``rows`` applied to the clamped fields of unit loads at template ``dofs``:

@@ -16,7 +16,7 @@ def cross_check(case: SolveCase, profile: Gear1Profile | None = None, **sector: 
     from .solve import solve_pair as sector_pair
 
     profile = profile if profile is not None else gear1_profile(case.params)
-    return solve_pair(case, profile), sector_pair(SectorCase.of(case, **sector), profile)
+    return solve_pair(case), sector_pair(SectorCase.of(case, **sector), profile)
 
 
 def cross_table(ring: PairSolution, sector: PairSolution) -> str:

@@ -16,7 +16,6 @@ solves the small contact problem.
 from __future__ import annotations
 
 import logging
-import time
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -42,6 +41,7 @@ from ...fe import (
 )
 from ...geometry import Gear1Profile
 from ...planar import wrap
+from ...timing import timed
 from ...toothpair import (
     Attempt,
     BodyField,
@@ -70,26 +70,22 @@ class PairModel:
     scene: Scene = field(repr=False)
     bodies: tuple[Body, Body] = field(repr=False)
     root_zones: tuple[np.ndarray, np.ndarray] = field(repr=False)
-    timings_s: dict
 
 
 def build_model(case: SectorCase, profile: Gear1Profile, positions, teeth,
                 reach: dict[int, float] | None = None) -> PairModel:
     """Mesh and factorise the sector for the paired ``teeth`` over ``positions`` (β, state);
     ``reach``: factors on some teeth's contact windows (:func:`~.scene.build_scene`)."""
-    times = {}
-    t0 = time.perf_counter()
-    scene = build_scene(case, profile, positions, teeth, reach=reach)
-    m1, m2 = mesh_bodies([scene.gear1, scene.gear2])
-    times["mesh"] = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    mat = case.material
-    g1 = assemble_body(m1, mat, link=RigidLink("g1_bore", "rotation", (0.0, 0.0)))
-    g2 = assemble_body(m2, mat, fixed=("g2_rim",))
-    times["assemble_factor"] = time.perf_counter() - t0
+    with timed("mesh"):
+        scene = build_scene(case, profile, positions, teeth, reach=reach)
+        m1, m2 = mesh_bodies([scene.gear1, scene.gear2])
+    with timed("assemble_factor"):
+        mat = case.material
+        g1 = assemble_body(m1, mat, link=RigidLink("g1_bore", "rotation", (0.0, 0.0)))
+        g2 = assemble_body(m2, mat, fixed=("g2_rim",))
     zones = (root_nodes(g1, scene.profile1, scene.root_band1),
              root_nodes(g2, scene.profile2, scene.root_band2))
-    return PairModel(case, scene, (g1, g2), zones, times)
+    return PairModel(case, scene, (g1, g2), zones)
 
 
 def solve_positions(case: SectorCase, betas, profile: Gear1Profile | None = None
@@ -120,22 +116,14 @@ class SectorSolver:
     than the contact: a near-conformal flank) on a scene with that window twice as long (the
     positions before keep theirs: they settled on theirs)."""
 
-    reads_states = True    # its scene covers every position's contact path
-
     def __init__(self) -> None:
         self.model: PairModel | None = None
-        self.timings_s: dict = {}
         self.reach: dict[int, float] = {}
 
-    def build(self, case: SectorCase, profile: Gear1Profile, states,
-              beside: bool = False) -> None:
+    def build(self, case: SectorCase, profile: Gear1Profile, states) -> None:
         self.profile, self.states = profile, states
         elastic = expected_elastic_um(case)
         self._scene(case, _union(first_teeth(case, st, elastic) for _, st in states))
-        self.timings_s = dict(self.model.timings_s)
-
-    def settle(self) -> dict:
-        return {}   # its build leaves nothing beside
 
     def _scene(self, case: SectorCase, teeth: tuple[int, ...]) -> None:
         progress.stage(f"model: sector meshes of both gears at quality {case.quality}")
@@ -163,24 +151,8 @@ class SectorSolver:
         return Attempt(sol, again, f"teeth {sorted(more - set(self.model.scene.paired))} "
                                    f"would close, windows of teeth {ends} too short")
 
-    def complete(self, sols: tuple[PairSolution, ...], beside: bool = False
-                 ) -> tuple[PairSolution, ...]:
-        """Every position is complete when solved."""
-        return sols
-
-    def prepare(self, sols, busy) -> None:
-        """Nothing is left for :meth:`complete` to do, so nothing to do ahead."""
-
     def finish(self, case: SectorCase, state, attempt: Attempt) -> PairSolution:
-        return attempt.result
-
-    def detach(self, sol: PairSolution) -> PairSolution:
-        """Whole: the peer is never solved beside (its scene changes from position to
-        position, which a forked chain would not see)."""
-        return sol
-
-    def attach(self, sol: PairSolution) -> PairSolution:
-        return sol
+        return attempt.solved
 
 
 def _window_ends(sol: PairSolution) -> list[int]:
@@ -211,32 +183,24 @@ def solve_position(model: PairModel, beta: float, state,
     solution on the same model at a nearby β, starts the contact iterations from its rotation
     and loaded nodes (if that start fails, they start from the first touch)."""
     case = replace(model.case, beta=beta)
-    times: dict[str, float] = {}
-    t0 = time.perf_counter()
-    bodies = place(model, beta)
-    contact = pair_contact(model.scene, bodies, beta, case.penalty_factor)
-    times["condense"] = time.perf_counter() - t0
-
-    t0 = time.perf_counter()
-    sol = _solve_loaded(contact, case.torque * 1e3, near, beta)
-    # flexibility columns are formed as the active set reaches them: book that as condensing
-    times["contact"] = time.perf_counter() - t0 - contact.G.seconds
-    times["condense"] += contact.G.seconds
-
-    t0 = time.perf_counter()
-    stresses = tuple(recover(b, u) for b, u in zip(bodies, sol.displacements))
-    cands = candidate_data(case.params, model.scene.shape, state, model.scene.paired, beta)
-    teeth = tooth_results(case, model.scene, bodies, contact, sol, stresses, model.root_zones,
-                          cands)
-    roots = root_stresses(stresses, model.root_zones)
-    vm = float(max(s.von_mises.max() for s in stresses))
-    times["recovery"] = time.perf_counter() - t0
+    with timed("condense"):
+        bodies = place(model, beta)
+        contact = pair_contact(model.scene, bodies, beta, case.penalty_factor)
+    with timed("contact"):   # the flexibility columns it forms meanwhile: "condense"
+        sol = _solve_loaded(contact, case.torque * 1e3, near, beta)
+    with timed("recovery"):
+        stresses = tuple(recover(b, u) for b, u in zip(bodies, sol.displacements))
+        cands = candidate_data(case.params, model.scene.shape, state, model.scene.paired, beta)
+        teeth = tooth_results(case, model.scene, bodies, contact, sol, stresses,
+                              model.root_zones, cands)
+        roots = root_stresses(stresses, model.root_zones)
+        vm = float(max(s.von_mises.max() for s in stresses))
     checks = ContactChecks(sol.balance_error, sol.max_penetration, sol.iterations,
                            tuple(sol.residuals), int(contact.npoints))
     return PairSolution(
         case=case, teeth=teeth, root_stress=roots, von_mises_max=vm,
         rotation=sol.link_value, first_touch=_touch_rotation(contact),
-        dofs=sum(b.ndofs for b in bodies), checks=checks, timings_s=times,
+        dofs=sum(b.ndofs for b in bodies), checks=checks, timings_s={},
         detail=SectorDetail(model.scene, bodies, contact, sol, stresses, model.root_zones))
 
 

@@ -8,7 +8,7 @@ import math
 import time
 
 from fegear.errors import GeometryError
-from fegear.toothpair.ring.solve import RingSolver
+from fegear.toothpair.ring.solver import RingSolver
 
 _attempt = RingSolver.attempt
 

@@ -158,9 +158,9 @@ def test_candidate_columns_that_miss_a_loaded_point_are_formed_again_whole(
         monkeypatch, baseline_ring, baseline_200, candidates):
     # too few candidates (a loaded point left out closes) or none at all: the attempt forms
     # every column and solves the position as before
-    import fegear.toothpair.ring.solve as ring_solve
+    import fegear.toothpair.ring.solver as solver
 
-    monkeypatch.setattr(ring_solve, "CANDIDATES", candidates)
+    monkeypatch.setattr(solver, "CANDIDATES", candidates)
     sol = solve_pair(replace(baseline_ring.case, torque=200.0), model=baseline_ring)
     for key, value in baseline_200.headline().items():
         assert sol.headline()[key] == pytest.approx(value, rel=1e-9), key
@@ -376,10 +376,10 @@ def test_a_probe_solve_that_does_not_settle_falls_back_to_fine_grids(monkeypatch
     # without a solution before, a first solve on probe grids finds the rotation; should it
     # not settle (a contact far narrower than a probe's spacing), the fine grids are placed at
     # the stiffness estimate instead, and the position comes out the same
-    import fegear.toothpair.ring.solve as ring_solve
+    import fegear.toothpair.ring.solver as solver
     from fegear.errors import ContactError
 
-    real, probes = ring_solve.solve_ring_contact, []
+    real, probes = solver.solve_ring_contact, []
 
     def refusing(model, contact, *args, **kwargs):
         probes.append(all(g.probe for g in contact.grids))
@@ -387,7 +387,7 @@ def test_a_probe_solve_that_does_not_settle_falls_back_to_fine_grids(monkeypatch
             raise ContactError("stand-in: probe grids do not settle")
         return real(model, contact, *args, **kwargs)
 
-    monkeypatch.setattr(ring_solve, "solve_ring_contact", refusing)
+    monkeypatch.setattr(solver, "solve_ring_contact", refusing)
     case = baseline_200.case
     sol = solve_pair(case, model=baseline_200.detail.model)
     assert probes[0] and not any(probes[1:])
@@ -443,18 +443,19 @@ def test_the_tangent_stiffness_is_the_slope_of_two_solves(baseline_ring, torque)
     assert sol.tangent_stiffness > 1.05 * sol.mesh_stiffness
 
 
-def test_a_cycle_s_second_chain_solved_beside_is_the_one_solved_here(baseline_ring):
-    # `fegear solve --positions 16` on two cores: the second half in a forked process, and
-    # every other peak's submodels; the same positions to rounding (the responses formed
-    # there are formed in other batches), each joined to this model again (its fields and
-    # submodels read from it)
+def test_a_cycle_s_second_chain_solved_in_a_fork_is_the_one_solved_here(baseline_ring):
+    # `fegear solve --positions 16` on two cores: the second half in a forked copy of the
+    # process; the same positions to rounding (the responses formed there are formed in other
+    # batches), each on this process's model again (its fields and submodels read from it)
+    from fegear.running import Forks
     from fegear.toothpair import CHAINED
 
     p = baseline_ring.case.params
     case = replace(baseline_ring.case, torque=200.0)
     betas = tuple(np.linspace(0.0, 2 * math.pi / p.z2, CHAINED, endpoint=False))
     here = solve_positions(case, betas, model=baseline_ring)
-    beside = solve_positions(case, betas, model=baseline_ring, beside=True)
+    with Forks(2) as forks:
+        beside = solve_positions(case, betas, model=baseline_ring, executor=forks)
     for a, b in zip(here, beside, strict=True):
         assert b.detail.model is baseline_ring and b.detail.contact.A is None
         for key, value in a.headline().items():
@@ -468,17 +469,39 @@ def test_a_cycle_s_second_chain_solved_beside_is_the_one_solved_here(baseline_ri
     assert {f.name for f in later.detail.body_fields(around=1)} == {"gear1", "gear2"}
 
 
+def test_a_solution_pickles_with_its_model_as_a_reference(baseline_200):
+    # a model is too big to copy: a solution crosses from a forked copy with a reference to
+    # the model both processes hold, and one with no such model here is told so
+    import pickle
+
+    from fegear.toothpair.ring.model import RingModel
+
+    data = pickle.dumps(baseline_200)
+    assert len(data) < 20e6
+    back = pickle.loads(data)
+    assert back.detail.model is baseline_200.detail.model
+    assert back.headline() == baseline_200.headline()
+    model = baseline_200.detail.model
+    foreign = pickle.dumps(RingModel(model.case, model.profile, model.shape, model.samples,
+                                     model.gears, model.level))
+    import gc
+
+    gc.collect()
+    with pytest.raises(LookupError, match="reference to a model"):
+        pickle.loads(foreign)
+
+
 def test_a_later_position_starts_its_contact_from_the_one_before_with_the_same_solution(
         monkeypatch, baseline_ring):
     # the active set starts where the position before carried pressure: the iterations go,
     # the solution stays, to the bit
-    import fegear.toothpair.ring.solve as ring_solve
+    import fegear.toothpair.ring.solver as solver
 
     p = baseline_ring.case.params
     case = replace(baseline_ring.case, torque=200.0)
     betas = tuple(np.linspace(0.0, 2 * math.pi / p.z2, 24, endpoint=False)[:4])
     warm = solve_positions(case, betas, model=baseline_ring, submodels="none")
-    monkeypatch.setattr(ring_solve, "_loaded_before", lambda before, grids: None)
+    monkeypatch.setattr(solver, "loaded_before", lambda before, grids: None)
     cold = solve_positions(case, betas, model=baseline_ring, submodels="none")
     for a, b in zip(warm, cold, strict=True):
         np.testing.assert_array_equal(a.detail.solution.pressure, b.detail.solution.pressure)
@@ -494,7 +517,8 @@ def test_a_later_position_forms_the_columns_about_where_the_one_before_carried_p
     # fewer columns, the same solution to rounding; where a point left out closes (a margin
     # of none), the candidates' columns are formed and the position solves as before
     import fegear.toothpair.ring.influence as influence
-    import fegear.toothpair.ring.solve as ring_solve
+    import fegear.toothpair.ring.placement as placement
+    import fegear.toothpair.ring.solver as solver
 
     p = baseline_ring.case.params
     case = replace(baseline_ring.case, torque=200.0)
@@ -508,11 +532,11 @@ def test_a_later_position_forms_the_columns_about_where_the_one_before_carried_p
                        int(contact.formed.sum())))
         return contact
 
-    monkeypatch.setattr(ring_solve, "assemble_contact", counted)
-    _columns_before = ring_solve._columns_before
+    monkeypatch.setattr(solver, "assemble_contact", counted)
+    columns_before = solver.columns_before
     narrow = solve_positions(case, betas, model=baseline_ring, submodels="none")
     used = formed[:]
-    monkeypatch.setattr(ring_solve, "_columns_before", lambda before, grids: None)
+    monkeypatch.setattr(solver, "columns_before", lambda before, grids: None)
     formed.clear()
     wide = solve_positions(case, betas, model=baseline_ring, submodels="none")
     for a, b in zip(narrow, wide, strict=True):
@@ -524,9 +548,9 @@ def test_a_later_position_forms_the_columns_about_where_the_one_before_carried_p
     assert sum(narrowed) < 0.85 * sum(n for _, n in formed[-3:])
     # the middle fifth of each loaded stretch only: a point left out closes, and the
     # candidates' columns are formed at every later position
-    monkeypatch.setattr(ring_solve, "_columns_before", _columns_before)
-    monkeypatch.setattr(ring_solve, "BEFORE_MARGIN", -0.4)
-    monkeypatch.setattr(ring_solve, "BEFORE_POINTS", 0)
+    monkeypatch.setattr(solver, "columns_before", columns_before)
+    monkeypatch.setattr(placement, "BEFORE_MARGIN", -0.4)
+    monkeypatch.setattr(placement, "BEFORE_POINTS", 0)
     formed.clear()
     again = solve_positions(case, betas, model=baseline_ring, submodels="none")
     masked = [k for k, (m, _) in enumerate(formed) if m]
@@ -534,142 +558,3 @@ def test_a_later_position_forms_the_columns_about_where_the_one_before_carried_p
     for a, b in zip(again, wide, strict=True):
         for key, value in b.headline().items():
             assert a.headline()[key] == pytest.approx(value, rel=1e-9), key
-
-
-def test_the_wait_for_the_other_chain_meshes_the_disks_the_peaks_solve_on(baseline_ring):
-    # while the second chain still runs, the first meshes the disks of its pictured
-    # position's and its largest estimate's submodels; the peaks then solve on them, the same
-    # numbers as meshed at the end
-    from fegear.toothpair.ring import RingSolver
-    from fegear.toothpair.ring.stresses import submodel_keys
-
-    p = baseline_ring.case.params
-    case = replace(baseline_ring.case, torque=200.0)
-    betas = tuple(np.linspace(0.0, 2 * math.pi / p.z2, 8, endpoint=False))
-    plain = solve_positions(case, betas, model=baseline_ring, submodels="none")
-    d = max(plain, key=lambda s: s.root_stress[0]).detail
-    keys = submodel_keys(baseline_ring, d.contact, d.solution.pressure, d.stresses)
-    assert keys
-    for k in keys:                                      # not meshed by an earlier test
-        baseline_ring.submodels.pop(k, None)
-    solver = RingSolver(baseline_ring)
-    solver.prepare(list(plain), lambda: False)          # the other chain already answered
-    assert not keys & set(baseline_ring.submodels)
-    solver.prepare(list(plain), lambda: True)
-    assert keys <= set(baseline_ring.submodels)
-    ahead = solver.complete(plain)
-    for k in keys:                                      # meshed at the end instead
-        baseline_ring.submodels.pop(k)
-    late = RingSolver(baseline_ring).complete(plain)
-    for a, b in zip(ahead, late, strict=True):
-        assert a.von_mises_estimated == b.von_mises_estimated
-        assert a.von_mises_max == b.von_mises_max
-
-
-def test_the_peaks_submodels_are_shared_by_the_disks_they_mesh(monkeypatch):
-    # a disk meshed for one position serves the others of its share: positions needing the
-    # same disks stay together, and a fork is worth only the disks it saves
-    from types import SimpleNamespace
-
-    import fegear.toothpair.ring.solve as ring_solve
-
-    needs = {}
-    monkeypatch.setattr(ring_solve, "submodel_keys", lambda model, contact, p, s: needs[contact])
-
-    def sol(i):
-        return SimpleNamespace(detail=SimpleNamespace(contact=i, solution=SimpleNamespace(
-            pressure=None), stresses=None))
-
-    model = SimpleNamespace(submodels={"kept": object()})
-    needs.update({i: {"a", "b"} for i in range(7)})
-    assert ring_solve._shares(model, [sol(i) for i in range(7)]) == (list(range(7)), [])
-    needs[7] = {"c", "d", "e"}
-    mine, theirs = ring_solve._shares(model, [sol(i) for i in range(8)])
-    assert (mine, theirs) in (([7], list(range(7))), (list(range(7)), [7]))
-    # disks meshed before cost nothing: those positions go where they add least
-    needs.update({i: {"kept"} for i in range(8)})
-    assert ring_solve._shares(model, [sol(i) for i in range(8)]) == (list(range(8)), [])
-
-
-def test_a_solution_crosses_from_a_fork_with_its_loads_sparse_and_comes_back_the_same(
-        baseline_200):
-    import pickle
-
-    from fegear.toothpair.ring.solve import RingSolver
-
-    solver = RingSolver(baseline_200.detail.model)
-    crossing = solver.detach(baseline_200)
-    assert crossing.detail.model is None
-    assert len(pickle.dumps(crossing.detail.contact)) < \
-        0.5 * len(pickle.dumps(baseline_200.detail.contact))
-    back = solver.attach(pickle.loads(pickle.dumps(crossing)))
-    assert back.detail.model is baseline_200.detail.model
-    for a, b in zip(baseline_200.detail.contact.loads, back.detail.contact.loads, strict=True):
-        assert a.keys() == b.keys()
-        for t in a:
-            assert isinstance(b[t].matrix, np.ndarray)
-            assert np.array_equal(a[t].matrix, b[t].matrix)
-            assert np.array_equal(a[t].dofs, b[t].dofs)
-
-
-def test_gear_1_s_responses_formed_beside_the_build_are_the_ones_formed_here(baseline_ring):
-    # `fegear solve` on two cores: a forked copy forms most of gear 1's loaded flank while
-    # this process builds gear 2 and places the first grids; the same columns to rounding (a
-    # solve in other batches), the same cut field and projection, the same position
-    import scipy.sparse as sp
-
-    from fegear.workers import Forked
-
-    case = replace(baseline_ring.case, torque=200.0)
-    model = build_ring(case, beside=True)
-    there, here = model.gears[0], baseline_ring.gears[0]
-    # a forked copy of this process leaves it alone (not its to read) …
-    assert Forked(lambda: (there.settle(), there.formed)[1]).result() == 0
-    dofs = there.loaded_half()
-    rows = sp.csr_matrix((np.ones(40), (np.arange(40), here.body.interior[::97][:40])),
-                         shape=(40, here.body.ndofs))
-    # … and this one forms its own share, then takes in the copy's
-    got = there.clamped_rows(rows, dofs)
-    assert there.formed >= len(dofs) and there.response_s > 0.0
-    want = here.clamped_rows(rows, dofs)
-    assert np.abs(got - want).max() <= 1e-12 * np.abs(want).max()
-    want = here.cut_loads(dofs)
-    assert np.abs(there.cut_loads(dofs) - want).max() <= 1e-12 * np.abs(want).max()
-    assert np.abs(there.cut_field - here.cut_field).max() <= 1e-12 * np.abs(here.cut_field).max()
-    alone = solve_pair(case, model=baseline_ring)
-    sol = solve_pair(case, model=model)
-    for key, value in alone.headline().items():
-        assert sol.headline()[key] == pytest.approx(value, rel=1e-9), key
-
-
-def test_gear_1_s_responses_are_formed_here_where_the_copy_beside_fails(baseline_ring,
-                                                                        monkeypatch):
-    from fegear.toothpair.ring import side as ring_side
-
-    case = replace(baseline_ring.case, torque=200.0)
-    monkeypatch.setattr(ring_side.GearSide, "responses", lambda self: 1 / 0)
-    model = build_ring(case, beside=True)     # the copy forked with the failing method …
-    monkeypatch.undo()                        # … which this process no longer has
-    sol = solve_pair(case, model=model)
-    side = model.gears[0]
-    assert side.formed == np.count_nonzero(side.responses()["column"] >= 0)   # none twice
-    alone = solve_pair(case, model=baseline_ring)
-    for key, value in alone.headline().items():
-        assert sol.headline()[key] == pytest.approx(value, rel=1e-9), key
-
-
-def test_the_exact_conjugate_loads_its_line_of_action():
-    """The textbook pair (no shift, no rotation, no tip clearance) is admitted and solves: its
-    flanks touch before any load on every tooth of the line of action (near the pitch point
-    and, by the far-side branch, the tips of the teeth across the gear), and under load each
-    touching tooth carries a share (it was refused for a rounding overlap of 7e-12 µm)."""
-    import fegear
-
-    r = fegear.solve(shift=0.0, rotation=0.0, tip_clearance=0.0, quality="coarse",
-                     no_estimate=True)
-    teeth = r.teeth
-    touching = set(teeth.index[teeth.clearance_um.abs() < 0.01])
-    loaded = set(teeth.index[teeth.load_N > 0])
-    assert len(touching) >= 8 and touching <= loaded
-    assert teeth.load_share.sum() == pytest.approx(1.0, abs=1e-9)
-    assert r.summary["torque_balance_error"] < 1e-9

@@ -1,5 +1,6 @@
-"""One function in a forked copy of the process (fegear/workers.py, Forked): its value back,
-None for any failure, its output discarded, and ended when the caller stops it."""
+"""One function in a forked copy of the process (fegear/running/forks.py, Forked): its value
+back in place, a failure or a death as WorkerFailed with what happened, its output discarded,
+and ended when the caller stops it."""
 
 import os
 import signal
@@ -7,8 +8,9 @@ import sys
 import time
 
 import numpy as np
+import pytest
 
-from fegear.workers import Forked
+from fegear.running.forks import Forked, WorkerFailed
 
 
 def test_the_value_comes_back_from_another_process():
@@ -18,19 +20,27 @@ def test_the_value_comes_back_from_another_process():
     assert pid != os.getpid()
     assert total == data.sum()
     assert np.array_equal(rest["a"], data[:3])
-    assert f.result() is None           # read once; the child reaped
+    with pytest.raises(WorkerFailed, match="stopped before it answered"):
+        f.result()                      # read once; the child reaped
     f.stop()
 
 
-def test_a_failure_there_gives_none():
+def test_a_failure_there_is_told_here_with_its_traceback():
     def fails():
         raise ValueError("nothing to see")
 
-    assert Forked(fails).result() is None
+    with pytest.raises(WorkerFailed, match="ValueError: nothing to see"):
+        Forked(fails).result()
 
 
-def test_a_child_killed_gives_none():
-    assert Forked(lambda: os.kill(os.getpid(), signal.SIGKILL)).result() is None
+def test_a_value_that_does_not_pickle_is_a_failure():
+    with pytest.raises(WorkerFailed, match="pickle"):
+        Forked(lambda: (lambda: 1)).result()
+
+
+def test_a_child_killed_is_a_failure():
+    with pytest.raises(WorkerFailed, match="died before it answered"):
+        Forked(lambda: os.kill(os.getpid(), signal.SIGKILL)).result()
 
 
 def test_its_output_goes_nowhere(capfd):
@@ -53,16 +63,8 @@ def test_stop_ends_a_child_still_running():
     except ProcessLookupError:
         alive = False
     assert not alive
-    assert f.result() is None
-
-
-def test_it_runs_until_its_answer_is_in_the_pipe():
-    f = Forked(lambda: time.sleep(0.3) or 7)
-    assert f.running()
-    time.sleep(0.6)
-    assert not f.running()              # answered: what result() reads is there
-    assert f.result() == 7
-    assert not f.running()              # read: nothing runs
+    with pytest.raises(WorkerFailed):
+        f.result()
 
 
 def test_a_large_answer_waits_for_nobody():
@@ -72,8 +74,6 @@ def test_a_large_answer_waits_for_nobody():
     f = Forked(lambda: data * 2.0)
     pid = f.pid
     deadline = time.monotonic() + 10.0
-    while f.running() and time.monotonic() < deadline:
-        time.sleep(0.01)
     ended = 0
     while not ended and time.monotonic() < deadline:
         ended, _ = os.waitpid(pid, os.WNOHANG)
@@ -101,36 +101,3 @@ def test_arrays_come_back_read_in_place_and_writable():
     assert got["big"].ctypes.data % 64 == 0          # aligned
     got["big"][0, 0] = -1.0                          # private pages: writable here alone
     assert got["big"][0, 0] == -1.0 and big[0, 0] == 0.0
-
-
-def _pid() -> int:
-    return os.getpid()
-
-
-def test_a_pool_worker_hit_by_ctrl_c_while_it_starts_lives_and_says_nothing(capfd):
-    """Ctrl-C on a terminal signals the whole process group: the pool's workers too, which
-    leave it to the parent, also while they still import (a KeyboardInterrupt's traceback
-    there and a broken pool, before)."""
-    import psutil
-
-    from fegear.workers import local_pool
-
-    pool = local_pool(1)
-    try:
-        before = {p.pid for p in psutil.Process().children()}
-        future = pool.submit(_pid)
-        deadline = time.monotonic() + 60
-        hit = set()
-        while not future.done() and time.monotonic() < deadline:
-            for p in psutil.Process().children():
-                try:
-                    if p.pid not in before and any("spawn_main" in c for c in p.cmdline()):
-                        os.kill(p.pid, signal.SIGINT)
-                        hit.add(p.pid)
-                except (psutil.Error, ProcessLookupError):   # it died of it
-                    continue
-            time.sleep(0.005)
-        assert future.result(timeout=1) in hit
-    finally:
-        pool.stop()
-    assert "Traceback" not in capfd.readouterr().err

@@ -1,0 +1,25 @@
+"""Running work: the one layer that knows about processes.
+
+A command makes an executor where it starts (:func:`spare_core` for a one-off command,
+:class:`Pool` for independent jobs, :data:`SERIAL` for none) and hands it to the code that has
+work to share, which submits tasks and reads their results without knowing where they ran. The
+study runner and the design search keep pools of their own (:mod:`.pools`, with a Dask cluster
+as the alternative), with what they do when a worker dies.
+
+>>> from fegear.running import SERIAL, Forks
+>>> task = SERIAL.submit(pow, 2, 10)     # serial: run when its result is read
+>>> task.done(), task.result(), task.done()
+(False, 1024, True)
+>>> with Forks(2) as forks:              # a forked copy of this process beside it
+...     forks.map(abs, [-1, -2, -3])
+[1, 2, 3]
+"""
+
+from ..exports import lazy
+
+__getattr__, __dir__, __all__ = lazy(__name__, {
+    "executors": ("Executor", "Task", "Serial", "SERIAL", "Forks", "Pool", "spare_core",
+                  "pool_or_serial", "strict", "STRICT"),
+    "forks": ("WorkerFailed",),
+    "pools": ("LocalPool", "local_pool", "init_worker", "connect"),
+})

@@ -1,0 +1,229 @@
+"""The ring model's part of one rolling position, for the driver of
+:mod:`fegear.toothpair.positions`.
+
+Each chosen tooth gets a pressure grid over the stretch of its profile that the expected
+rotation can close (:mod:`.placement`), and the contact is solved. Then the driver's rule at the
+solved rotation must choose no tooth without a grid, no grid may carry pressure at its ends and
+the rotation the grids were placed at must be the solved one within
+:data:`~.placement.PLACEMENT` of the elastic part; otherwise the grids are placed again
+(:meth:`RingSolver.attempt` returns the new trial). A settled position's stresses come from
+the templates (:mod:`.stresses`); its contact submodels only where a cycle peaks
+(:mod:`.peaks`).
+
+The model (meshes, factors, responses to unit loads) is built once per geometry and quality and
+reused for every torque and position (:class:`~.model.RingModel`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+from ... import progress
+from ...errors import ContactError
+from ...geometry import Gear1Profile
+from ...timing import note, timed
+from ..case import ContactChecks, PairSolution, SolveCase
+from ..positions import Attempt, Trial
+from ..teeth import candidate_data, choose_teeth
+from .contact import RingContactSolution, solve_ring_contact, tangent_stiffness, touch_rotation
+from .grid import ToothGrid
+from .influence import RingContact, assemble_contact
+from .model import RingModel, keep_on_disk, ring_model
+from .peaks import with_peak_submodels
+from .placement import (
+    CANDIDATES,
+    PLACEMENT,
+    Placement,
+    by_tooth,
+    columns_before,
+    expected_teeth,
+    loaded_before,
+    place_grids,
+)
+from .results import RingDetail, tooth_results
+from .stresses import ring_stresses
+
+#: the one-off stages a solve reports: the model built (profile, mesh, assembly and
+#: factorisation), read back from the disk cache, or kept from an earlier solve
+MODEL_STAGES = ("profile", "mesh", "assemble_factor", "disk", "model (kept)")
+#: where the contact submodels are solved: at every position, only where a cycle's von Mises
+#: peak is (and where any other headline stress peaks), or nowhere
+SUBMODELS = ("all", "peaks", "none")
+
+
+@dataclass(frozen=True)
+class RingAttempt:
+    """What an attempt solved (:attr:`~fegear.toothpair.positions.Attempt.solved`): the
+    contact on its grids, its solution, the grids and the rigid rotation to the first touch
+    (µm of arc at r0)."""
+
+    contact: RingContact
+    solution: RingContactSolution
+    grids: tuple[ToothGrid, ...]
+    first_um: float
+
+
+class RingSolver:
+    """The ring model as a :class:`~fegear.toothpair.positions.PositionModel`: ``model``, a
+    ring model built before, is kept if it fits the case; ``submodels`` one of
+    :data:`SUBMODELS` (:meth:`at_peaks`). Without a submodel, a position's von Mises stress at
+    the contacts is the template's surface estimate (:func:`~.stresses.ring_stresses`).
+    ``contact_only``: no stresses at all, for a caller that reads only the contact (loads,
+    shares, pressures, flank and edge apart, rotations: the tip-relief search); the root and
+    von Mises stresses are NaN, the teeth's Hertz values and half-plane references None."""
+
+    def __init__(self, model: RingModel | None = None, submodels: str = "peaks",
+                 contact_only: bool = False) -> None:
+        if submodels not in SUBMODELS:
+            raise ValueError(f"submodels must be one of {SUBMODELS}, not {submodels!r}")
+        self.model = model
+        self.submodels = "none" if contact_only else submodels
+        self.contact_only = contact_only
+
+    def build(self, case: SolveCase, profile: Gear1Profile, states) -> None:
+        # the same stages on every solve (zero where not run), so that a study's table has
+        # the same columns whichever way its cases found their models
+        note(dict.fromkeys(MODEL_STAGES, 0.0))
+        with timed("model (kept)"):   # the stages of a model built or read back: their own
+            if self.model is None or not self.model.fits(case):
+                progress.stage("model: both gears meshed and condensed at quality "
+                               f"{case.quality}")
+                self.model = ring_model(case, profile)
+
+    def attempt(self, case: SolveCase, state, trial: Trial,
+                near: PairSolution | None) -> Attempt:
+        first_um = state.closest(+1).plus_um
+        # without a solution before, the expected rotation is an estimate (20-50 % off): a
+        # first solve on probe grids only finds the rotation to place the fine grids at
+        predict = near is None and trial.own is None
+        placement = trial.own or Placement()
+        if placement.full is None:
+            placement = replace(placement, full=frozenset() if predict else frozenset(
+                expected_teeth(state, first_um + trial.elastic_um)))
+        coarse = None if near is None else {g.tooth: g.coarse for g in near.detail.contact.grids
+                                            if g.coarse is not None}
+        with timed("grids"):
+            grids = place_grids(self.model, case, trial, placement, first_um, coarse)
+        solved = self._contact(case, trial, grids, first_um, near)
+        if solved is None:   # probe grids too coarse for this contact to settle: fine grids
+            return Attempt(None, replace(trial, own=replace(placement, full=None)),
+                           "probe grids did not settle")
+        return _judged(case, state, trial, placement, solved, predict)
+
+    def _contact(self, case: SolveCase, trial: Trial, grids: tuple[ToothGrid, ...],
+                 first_um: float, near: PairSolution | None) -> RingAttempt | None:
+        """The contact on ``grids`` under the torque; None where probe grids alone did not
+        settle it. A's columns are formed first only where pressure can act: not the probes'
+        (where one closes, the attempt is made again with that tooth's fine grid), and on the
+        fine grids the points that overlap rigidly at the expected rotation, or nearly
+        (:data:`~.placement.CANDIDATES`); in a cycle's later position, of those, the ones
+        about where the position before carried pressure
+        (:func:`~.placement.columns_before`). Where a point left out closes, the candidates',
+        and then every column."""
+        p = case.params
+        predict = near is None and trial.own is None
+        theta = p.turn_of(first_um + trial.elastic_um)
+        within = None if predict else CANDIDATES * trial.elastic_um * 1e-3
+        old = None if near is None else by_tooth(near.detail)
+        start = None if old is None else loaded_before(old, grids)
+        columns = None if old is None else columns_before(old, grids)
+        tries = [(False, within, columns)] if columns is not None else []
+        tries += [(False, within, None), (True, None, None)]
+        for probe_columns, within, columns in tries:
+            with timed("assemble"):
+                contact = assemble_contact(self.model, grids, case.beta,
+                                           p.ratio * case.beta + theta, probe_columns, within,
+                                           columns)
+            try:
+                with timed("contact"):
+                    # the rotation's linearisations start at the expected rotation after a
+                    # solved position (its elastic part off by a few per cent: three, not
+                    # four), else at the first touch
+                    sol = solve_ring_contact(self.model, contact, case.torque * 1e3,
+                                             theta if near is not None else p.turn_of(first_um),
+                                             guess=theta, start=start)
+            except ContactError:   # the candidates alone cannot carry the torque: on
+                if within is not None:
+                    continue
+                if not predict:
+                    raise
+                return None
+            if sol is not None:    # None: a point left out closes, its column is wanted
+                return RingAttempt(contact, sol, grids, first_um)
+        raise AssertionError("the last try forms every column")   # pragma: no cover
+
+    def finish(self, case: SolveCase, state, attempt: Attempt) -> PairSolution:
+        model, solved = self.model, attempt.solved
+        contact, first_um = solved.contact, solved.first_um
+        # the stresses take the clamped fields the contact's check formed; not kept
+        clamped, sol = solved.solution.clamped, replace(solved.solution, clamped=None)
+        with timed("stresses"):
+            touch = touch_rotation(model, contact, case.params.turn_of(first_um))
+            tangent = tangent_stiffness(model, contact, sol)
+            if self.contact_only:
+                stresses, cands = None, ()
+            else:
+                stresses = ring_stresses(model, contact, sol.pressure,
+                                         self.submodels == "all", clamped)
+                cands = candidate_data(case.params, model.shape, state,
+                                       tuple(g.tooth for g in solved.grids), case.beta)
+            teeth = tooth_results(model, case, contact, sol, stresses, state, cands)
+        residuals = () if stresses is None else tuple(_residuals(model, contact, sol, stresses))
+        return PairSolution(
+            case=case, teeth=teeth,
+            root_stress=((math.nan, math.nan) if stresses is None else
+                         (stresses.roots[0].max, stresses.roots[1].max)),
+            von_mises_max=math.nan if stresses is None else stresses.von_mises_max,
+            rotation=sol.rotation, first_touch=touch, dofs=model.dofs,
+            checks=ContactChecks(sol.balance_error, sol.max_penetration, sol.iterations,
+                                 residuals, contact.npoints),
+            timings_s={}, detail=RingDetail(model, case, replace(contact, A=None), sol, stresses),
+            von_mises_estimated=stresses is None or not stresses.submodels,
+            tangent_stiffness=tangent)
+
+    def at_peaks(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
+        """``sols`` with their contact submodels where the cycle peaks
+        (:func:`~.peaks.with_peak_submodels`, with ``submodels`` "peaks"); the model is then
+        kept on disk if the cache is on (:func:`~.model.keep_on_disk`)."""
+        out = with_peak_submodels(sols) if self.submodels == "peaks" else sols
+        if self.model is not None:
+            keep_on_disk(self.model)
+        return out
+
+
+def _judged(case: SolveCase, state, trial: Trial, placement: Placement, solved: RingAttempt,
+            predict: bool) -> Attempt:
+    """The attempt settled, or the trial to solve again from: the driver's rule at the solved
+    rotation chooses a tooth without a grid, a grid carries pressure at an end, a probe
+    carries any, or the rotation is not the one placed for (module docstring)."""
+    p, contact, sol, grids = case.params, solved.contact, solved.solution, solved.grids
+    more = set(choose_teeth(state, p.arc_um(sol.rotation), case.extra_pairs))
+    ends = [g.tooth for k, g in enumerate(grids)
+            if sol.pressure[contact.block(k)][[0, -1]].max() > 0]
+    touched = {g.tooth for k, g in enumerate(grids)
+               if g.probe and sol.pressure[contact.block(k)].max() > 0}
+    solved_um = p.arc_um(sol.rotation) - solved.first_um
+    moved = abs(solved_um - trial.elastic_um) > PLACEMENT * max(abs(solved_um), 1e-3)
+    if not predict and more <= set(trial.teeth) and not ends and not moved and not touched:
+        return Attempt(solved, None)
+    reach = dict(placement.reach)
+    for t in ends:
+        reach[t] = 2.0 * reach.get(t, 1.0)
+    full = placement.full | touched | expected_teeth(state, p.arc_um(sol.rotation))
+    again = Trial(tuple(sorted(set(trial.teeth) | more)), max(solved_um, 1e-6),
+                  Placement(frozenset(full), reach))
+    why = ("probe grids first: " if predict else "") + (
+        f"teeth {sorted(more - set(trial.teeth))}, ends {ends}, probes touched "
+        f"{sorted(touched)}, elastic {solved_um:.3g} µm, expected {trial.elastic_um:.3g}")
+    return Attempt(solved, again, why)
+
+
+def _residuals(model: RingModel, contact: RingContact, sol, stresses) -> list[float]:
+    """Each gear's equilibrium residual on its computed sectors (relative to its loads)."""
+    out = []
+    for side, loads, fields in zip(model.gears, contact.loads, stresses.fields):
+        f = {t: b.vector(sol.pressure, side.body.ndofs) for t, b in loads.items()}
+        out.append(side.body.residual(f, fields))
+    return out
+
