@@ -116,29 +116,12 @@ def _map(a: argparse.Namespace, size: int) -> int:
     from concurrent.futures import ProcessPoolExecutor
 
     from .. import progress
-    from ..errors import ParameterError
     from ..files import check_dir, prepare_dir, write_csv
     from ..geometry.plot import map_png
     from ..geometry.space import design_map, map_span, map_tables
 
-    axes = []
-    for part in a.map.split(","):
-        name, _, span = part.partition("=")
-        name = name.strip()
-        if name not in MAPPED:
-            raise ParameterError("map", a.map, "two of " + ", ".join(MAPPED) + ", as X,Y or "
-                                 "X=lo:hi,Y=lo:hi")
-        try:
-            bounds = tuple(float(v) for v in span.split(":")) if span else None
-        except ValueError:
-            bounds = ()
-        if bounds is not None and (len(bounds) != 2 or not bounds[0] < bounds[1]):
-            raise ParameterError("map", a.map, f"a span {name}=lo:hi with lo < hi")
-        axes.append((name, bounds))
-    if len(axes) != 2 or axes[0][0] == axes[1][0]:
-        raise ParameterError("map", a.map, "two different inputs, as X,Y (e.g. h1,f1)")
+    (x, x_span), (y, y_span) = _map_axes(a.map)
     values = given_values(a, PAIR_INPUTS)
-    (x, x_span), (y, y_span) = axes
     x_span, y_span = x_span or map_span(x, values), y_span or map_span(y, values)
     out = None if a.out is None else check_dir(a.out)
     progress.plan(size)
@@ -172,6 +155,29 @@ def _map(a: argparse.Namespace, size: int) -> int:
     for k, v in files.items():
         print(f"{k:10s} {v}")
     return 0
+
+
+def _map_axes(text: str) -> list[tuple[str, tuple[float, float] | None]]:
+    """--map's two inputs, each with its span (lo, hi) where given, else None."""
+    from ..errors import ParameterError
+
+    axes = []
+    for part in text.split(","):
+        name, _, span = part.partition("=")
+        name = name.strip()
+        if name not in MAPPED:
+            raise ParameterError("map", text, "two of " + ", ".join(MAPPED) + ", as X,Y or "
+                                 "X=lo:hi,Y=lo:hi")
+        try:
+            bounds = tuple(float(v) for v in span.split(":")) if span else None
+        except ValueError:
+            bounds = ()
+        if bounds is not None and (len(bounds) != 2 or not bounds[0] < bounds[1]):
+            raise ParameterError("map", text, f"a span {name}=lo:hi with lo < hi")
+        axes.append((name, bounds))
+    if len(axes) != 2 or axes[0][0] == axes[1][0]:
+        raise ParameterError("map", text, "two different inputs, as X,Y (e.g. h1,f1)")
+    return axes
 
 
 def _default(name: str, values: dict) -> float:

@@ -4,7 +4,8 @@ cycle, inside the designer's bounds and constraints (``fegear optimize``, docs/o
 Optuna proposes designs (:mod:`.search`; TPE with constraints, or random for comparison), a
 local pool solves each over a mesh cycle at ``coarse`` (:mod:`.design`), the journal keeps
 every trial across a kill, and the best are solved again at ``standard`` with the error
-estimate beside the baseline and the relieved baseline (:mod:`.report`, :mod:`.plot`).
+estimate beside the baseline and the relieved baseline (:mod:`.report`, :mod:`.plot`);
+:mod:`.job` is one ``fegear optimize`` from its settings to its report's lines.
 :func:`load_trials` reads a search's trials into pandas.
 
 >>> from fegear.optimize import Space, outer_diameter, parse_variables
@@ -29,4 +30,5 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "report": ("resolve", "baselines", "final_table", "headline_table", "solve_command",
                "BASELINE_RELIEF"),
     "plot": ("search_pngs",),
+    "job": ("SearchSettings", "SearchOutcome", "run_optimize"),
 })

@@ -3,7 +3,8 @@ against error), and CalculiX solving the same meshes.
 
 :mod:`.disks` is the FE core's analytic reference (``fegear hertz``); :mod:`.bench` times every
 stage on meshes each twice as fine as the last and measures each level's error against the
-Richardson extrapolation of the finest (``fegear bench``); :mod:`.calculix` and
+Richardson extrapolation of the finest, and :mod:`.bench_run` runs one ``fegear bench`` (what
+runs, its report, its files; the pair's targets in :mod:`.pair_targets`); :mod:`.calculix` and
 :mod:`.calculix_pair` write the very same bodies, supports, penalty and load as CalculiX decks
 and read its answers back; :mod:`.runner_bench` times the study runner.
 
@@ -28,6 +29,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
                    "scaling_runs", "ring_table",
                    "scaling_table", "scaling_png", "paper_study_s", "SECTOR_REFERENCE",
                    "VON_MISES_RESOLVED"),
+    "bench_run": ("BenchPlan", "run_bench"),
     "runner_bench": ("study_overhead", "overhead_table"),
     "calculix": ("CcxDeck", "CcxResult", "ccx_available", "write_deck", "run_ccx", "ccx_disks"),
     "ccx_files": ("PeerError", "PeerConvergenceError"),

@@ -100,8 +100,8 @@ def test_the_peer_is_compared_at_equal_error_on_the_stresses_it_gives():
     larger error; its contact value (a pointwise penalty pressure) is not compared."""
     from types import SimpleNamespace
 
-    from fegear.cli.bench import _targets
     from fegear.verify import ring_bench as rb
+    from fegear.verify.pair_targets import PairRuns, pair_targets
 
     ref = rb.SECTOR_REFERENCE
 
@@ -114,17 +114,17 @@ def test_the_peer_is_compared_at_equal_error_on_the_stresses_it_gives():
     peer["contact_pressure_MPa"] = 2.3 * ref["contact_pressure_MPa"]
     sector = SimpleNamespace(rungs=[SimpleNamespace(level="coarse", peer_s=100.0,
                                                     peer_values=peer)])
-    lines = _targets(rb, ring[1], ring[1], None, sector, ring, None, 20.0)
+    lines = pair_targets(PairRuns(ring[1], ring[1], ring, sector=sector), 20.0)
     (line,) = [x for x in lines if x.startswith("* CalculiX")]
     assert "`standard` (0.10 %), 5.00 s: 20.0×" in line and line.endswith(": met")
     peer.update({k: v * 1.0001 for k, v in ref.items() if k.startswith("root")})
-    lines = _targets(rb, ring[1], ring[1], None, sector, ring, None, 20.0)
+    lines = pair_targets(PairRuns(ring[1], ring[1], ring, sector=sector), 20.0)
     assert [x for x in lines if x.startswith("* CalculiX")][0].endswith("MISSED")
 
 
 def test_the_disk_cache_targets_judge_the_model_read_back_and_the_whole_command():
-    from fegear.cli.bench import _targets
     from fegear.verify import ring_bench as rb
+    from fegear.verify.pair_targets import PairRuns, pair_targets
 
     ref = dict(rb.SECTOR_REFERENCE, von_mises_max_MPa=rb.VON_MISES_RESOLVED)
 
@@ -138,7 +138,7 @@ def test_the_disk_cache_targets_judge_the_model_read_back_and_the_whole_command(
         commands = {"without the cache": 3.9, "models read from disk": command_s}
         cached = rb.DiskRuns(run("read", read_s, 0.3), run("read, estimate", 1.2, 0.3),
                              commands)
-        out = _targets(rb, built, built, None, None, [built], None, 20.0, cached)
+        out = pair_targets(PairRuns(built, built, [built], cached=cached), 20.0)
         return [x for x in out if "disk" in x]
 
     position, command = lines(0.75, 1.8)
