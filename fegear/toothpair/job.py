@@ -116,14 +116,15 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     ``executor`` the work that can run in parallel: the estimate's second solve of one position
     (submitted before the first starts: on a one-off command's second core it is solved in a
     forked copy of this process meanwhile, the libraries imported once for both), and a
-    cycle's chains of positions (:func:`~.positions.drive`). A cycle's estimate is solved
-    after it, at its worst position (the largest gear-1 root stress, which the submodels do
-    not change)."""
+    cycle's chains of positions (:func:`~.positions.drive`), and a cycle's estimate, at its
+    worst position (the largest gear-1 root stress, which the submodels do not change),
+    while this process solves the submodels where the cycle peaks."""
     from ..fe import import_libraries
     from ..geometry import gear1_profile
     from .estimate import second_headline, second_level_estimate, second_quality
-    from .pair import solve_positions
+    from .positions import drive
     from .report import cycle_rows, cycle_summary, pair_summary
+    from .ring.solver import RingSolver
 
     watch = Stopwatch()
     second = None
@@ -132,7 +133,11 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
         second = executor.submit(second_headline, job.case)
     progress.stage("gear 1's profile")
     gear1_profile(job.case.params)
-    sols = solve_positions(job.case, job.betas, executor=executor)
+    solver = RingSolver()
+    sols = drive(job.case, job.betas, solver, executor=executor)
+    if job.estimate and len(job.betas) > 1:   # while the peaks' submodels are solved here
+        second = executor.submit(second_headline, _pictured(sols).case)
+    sols = solver.at_peaks(sols)
     cycle_s = watch.s
     sol = _pictured(sols)
     estimate, other, estimate_s = None, None, None

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Protocol
 
@@ -70,9 +71,11 @@ class PositionModel(Protocol):
     """How a tooth-pair model solves one position; the driver does the rest. Each method's
     stages are timed (:func:`~fegear.timing.timed`) on the driver's clocks."""
 
-    def build(self, case: SolveCase, profile: Gear1Profile, states: list) -> None:
-        """Everything the positions share (meshes, factors, condensed responses), for the
-        clearance states ``states`` ((β, state) pairs)."""
+    def build(self, case: SolveCase, profile: Gear1Profile,
+              states: Callable[[], list]) -> None:
+        """Everything the positions share (meshes, factors, condensed responses); ``states()``
+        gives the positions' clearance states ((β, state) pairs) to a build that needs them
+        (the driver may find them meanwhile)."""
 
     def attempt(self, case: SolveCase, state, trial: Trial,
                 near: PairSolution | None) -> Attempt:
@@ -124,17 +127,38 @@ def drive(case: SolveCase, betas, solver: PositionModel,
     keep_freed_memory()
     with blas_threads(), clocked() as once:
         profile = profile if profile is not None else gear1_profile(case.params)
-        with timed("clearance"):   # the + torque's side, every position in one search
-            states = list(zip(betas, ToothContact(case.params, profile).states(
-                betas, directions=(+1,))))
-            refuse_interference(states)
-        solver.build(case, profile, states)
+        states = _Clearances(case, profile, betas, executor)
+        solver.build(case, profile, states.get)
+        states = states.get()
         cut = len(states) // 2 if len(states) >= CHAINED else len(states)
         spans = [range(cut), range(cut, len(states))] if cut < len(states) else [range(cut)]
         chains = executor.map(lambda span: _chain(case, states, span, solver), spans)
     sols = [sol for chain in chains for sol in chain]
     sols[0] = replace(sols[0], timings_s={**once.stages, **sols[0].timings_s})
     return tuple(sols)
+
+
+class _Clearances:
+    """The clearance states of every position ((β, state) pairs, the + torque's side, one
+    search), a long cycle's found on the executor while the model is built; a pair that
+    interferes before any load is refused when they are first read."""
+
+    def __init__(self, case: SolveCase, profile: Gear1Profile, betas, executor: Executor
+                 ) -> None:
+        self._betas = tuple(betas)
+        self._find = ToothContact(case.params, profile).states
+        self._task = executor.submit(self._find, self._betas, None, True, (+1,)) \
+            if len(self._betas) >= CHAINED else None
+        self._states: list | None = None
+
+    def get(self) -> list:
+        if self._states is None:
+            with timed("clearance"):
+                found = self._task.result() if self._task is not None else \
+                    self._find(self._betas, directions=(+1,))
+                self._states = list(zip(self._betas, found))
+                refuse_interference(self._states)
+        return self._states
 
 
 def _chain(case: SolveCase, states, span: range, solver: PositionModel

@@ -41,7 +41,7 @@ class StandIn:
         self.trials: list[tuple[float, Trial]] = []
 
     def build(self, case, profile, states):
-        self.built_with = states
+        self.built_with = states()
         with timed("model"):
             pass
 

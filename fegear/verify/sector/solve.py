@@ -121,7 +121,7 @@ class SectorSolver:
         self.reach: dict[int, float] = {}
 
     def build(self, case: SectorCase, profile: Gear1Profile, states) -> None:
-        self.profile, self.states = profile, states
+        self.profile, self.states = profile, states()
         elastic = expected_elastic_um(case)
         self._scene(case, _union(first_teeth(case, st, elastic) for _, st in states))
 
