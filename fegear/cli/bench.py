@@ -27,7 +27,8 @@ BENCH_INPUTS = (
           "quality levels, comma-separated", limits="two or more of " + " / ".join(QUALITY)),
     Input("sector-levels", str, None, "also the sector model at these levels, with CalculiX "
           "on its meshes (e.g. coarse,fast; minutes each)",
-          limits="some of " + " / ".join(QUALITY), rule="none"),
+          limits="two or more of " + " / ".join(QUALITY) + " (with --contact-peer, one or "
+          "more)", rule="none"),
     SOLVE_INPUTS["torque"],
     Input("scaling", str, "45,90,180", "teeth of gear 2 for the cost-growth runs, module "
           "scaled to keep the pitch radius (empty: skip)",
@@ -108,7 +109,9 @@ def _plan(a: argparse.Namespace) -> BenchPlan:
     own = checked(a, [row for row in BENCH_INPUTS if not row.limits or row.kind is int])
     cycle = _skip_or("cycle", own["cycle"])
     pair_levels = _levels("pair-levels", a.pair_levels, QUALITY, 2)
-    sector_levels = _levels("sector-levels", a.sector_levels, QUALITY, 0)
+    # a ladder's extrapolation takes two levels or more; the contact comparison takes one
+    sector_levels = _levels("sector-levels", a.sector_levels, QUALITY,
+                            1 if a.contact_peer or not a.sector_levels else 2)
     disk_levels = _numbers("disk-levels", a.disk_levels)
     if len(disk_levels) < 2 or not all(1 <= n <= 200 for n in disk_levels):
         raise ParameterError("disk-levels", a.disk_levels, _ROW["disk-levels"].range_text)

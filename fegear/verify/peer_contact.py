@@ -21,7 +21,7 @@ import tempfile
 from dataclasses import dataclass
 
 from ..geometry import PairParameters
-from ..toothpair import SolveCase
+from .sector import SectorCase
 
 #: (name, torque N·m, β rad): where the peak sits on the tip round, and where none touches it
 CASES = (("edge", 200.0, 0.0), ("flank", 50.0, math.radians(2.0)))
@@ -89,8 +89,7 @@ def contact_peer(name: str, torque: float, beta: float, level: str,
     the loaded teeth; ccx is killed after ``timeout`` s."""
     from .calculix_pair import ccx_pair, facet_reading
 
-    case = SolveCase(params or baseline_pair(), torque=torque, beta=beta, quality=level,
-                     model="sector")
+    case = SectorCase(params or baseline_pair(), torque=torque, beta=beta, quality=level)
     with tempfile.TemporaryDirectory() as tmp:
         ours, c = ccx_pair(case, tmp, timeout=timeout)
     mine = facet_reading(ours, ours.detail.contact.force)

@@ -123,7 +123,7 @@ class SectorSolver:
     def build(self, case: SectorCase, profile: Gear1Profile, states) -> None:
         self.profile, self.states = profile, states()
         elastic = expected_elastic_um(case)
-        self._scene(case, _union(first_teeth(case, st, elastic) for _, st in states))
+        self._scene(case, _union(first_teeth(case, st, elastic) for _, st in self.states))
 
     def _scene(self, case: SectorCase, teeth: tuple[int, ...]) -> None:
         progress.stage(f"model: sector meshes of both gears at quality {case.quality}")
