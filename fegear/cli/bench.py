@@ -111,7 +111,7 @@ def _plan(a: argparse.Namespace) -> BenchPlan:
     pair_levels = _levels("pair-levels", a.pair_levels, QUALITY, 2)
     # a ladder's extrapolation takes two levels or more; the contact comparison takes one
     sector_levels = _levels("sector-levels", a.sector_levels, QUALITY,
-                            1 if a.contact_peer or not a.sector_levels else 2)
+                            0 if not a.sector_levels else 1 if a.contact_peer else 2)
     disk_levels = _numbers("disk-levels", a.disk_levels)
     if len(disk_levels) < 2 or not all(1 <= n <= 200 for n in disk_levels):
         raise ParameterError("disk-levels", a.disk_levels, _ROW["disk-levels"].range_text)
