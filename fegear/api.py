@@ -106,18 +106,18 @@ def solve(cache: bool | None = None, **inputs: object) -> Result:
     (``m``, ``h1``, ``f1``, ``torque``, ``position``, ``face_width``, ``quality``,
     ``no_estimate``, …), every other at its default. Raises
     :class:`~fegear.errors.ParameterError` naming the input and its range for a design fegear
-    refuses. ``cache``: read the meshed and condensed model from the disk cache and keep it
+    refuses. ``cache``: read the meshed and condensed model from the model cache and keep it
     there (``fegear solve --cache``; None: as the FEGEAR_CACHE environment variable says,
     off where it is unset). Within one Python process a design's model is kept in memory
-    anyway: the disk serves the next process, a restarted kernel."""
-    from .toothpair import disk_cache, prepare_job, solve_job
+    anyway: the model cache serves the next process, a restarted kernel."""
+    from .toothpair import model_cache, prepare_job, solve_job
 
     try:
         job = prepare_job(_named(inputs))
     except ParameterError as err:   # the input as the caller spelt it: tip_clearance
         err.args = (err.describe(err.name.replace("-", "_")),)
         raise
-    with disk_cache(cache):
+    with model_cache(cache):
         solved = solve_job(job)
     return Result(solved.summary, solved)
 

@@ -20,8 +20,8 @@ USER_CACHES = {Path(p).expanduser().absolute() for p in (
 
 
 def cache_of(env) -> Path:
-    """The disk cache a fegear process started with the environment ``env`` would use (as
-    :func:`fegear.toothpair.ring.disk.directory` finds it)."""
+    """The model cache a fegear process started with the environment ``env`` would use (as
+    :func:`fegear.toothpair.ring.cache.directory` finds it)."""
     if env.get("FEGEAR_CACHE_DIR"):
         return Path(env["FEGEAR_CACHE_DIR"]).expanduser().absolute()
     home = Path(env["HOME"]) if env.get("HOME") else Path.home()
@@ -29,8 +29,8 @@ def cache_of(env) -> Path:
 
 
 @pytest.fixture(scope="session", autouse=True)
-def _disk_cache_of_the_session(tmp_path_factory):
-    """The disk cache of ring models in a folder of this session's, off unless a test turns
+def _model_cache_of_the_session(tmp_path_factory):
+    """The model cache in a folder of this session's, off unless a test turns
     it on: the tests neither read what the user's runs kept nor write into their cache. The
     environment is set here, so the workers the tests spawn inherit it; a process started
     with an environment of its own must carry a cache that is not the user's (one copied from
@@ -66,11 +66,11 @@ def _strict_workers():
 
 
 @pytest.fixture(autouse=True)
-def _no_process_with_the_users_cache(_disk_cache_of_the_session):
+def _no_process_with_the_users_cache(_model_cache_of_the_session):
     """Each test leaves the session's cache in the environment (what the workers it and the
     tests after it start inherit)."""
     yield
-    assert os.environ.get("FEGEAR_CACHE_DIR") == _disk_cache_of_the_session, (
+    assert os.environ.get("FEGEAR_CACHE_DIR") == _model_cache_of_the_session, (
         "a test left FEGEAR_CACHE_DIR changed: "
         f"{os.environ.get('FEGEAR_CACHE_DIR')!r}, not the session's")
 

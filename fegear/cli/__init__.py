@@ -121,7 +121,7 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_BROKEN_PIPE
     except OSError as exc:
         # an output that passed the early check and still cannot be written (a directory
-        # where a file goes, a full disk): one line, no traceback
+        # where a file goes, a full file system): one line, no traceback
         bar.close()
         target = exc.filename2 or exc.filename
         print(f"fegear: error: cannot write {target}: {exc.strerror or exc}", file=sys.stderr)

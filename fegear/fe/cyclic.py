@@ -207,7 +207,7 @@ PARTS = ("count", "pitch", "K", "interior", "face_a", "face_b", "fixed", "psi", 
 
 
 def cyclic_parts(body: CyclicBody) -> dict:
-    """The arrays of ``body`` :func:`restore_cyclic` rebuilds it from (a disk cache's), with
+    """The arrays of ``body`` :func:`restore_cyclic` rebuilds it from (a model cache's), with
     what its ``cache`` holds that pickles (the stress projector's matrices, the far
     couplings' factors; not a factorisation)."""
     from .stress import pickled_cache

@@ -81,7 +81,7 @@ def recover(body: Body, u: np.ndarray) -> StressField:
     The projection is linear in u: M s = C u per component, with M the scalar P2 mass matrix
     and C the mixed matrix ∫ φ σ(ψ). Both are assembled and M factorised once per mesh (kept in
     ``body.cache``, shared by placed copies; the matrices also as ``"projector matrices"``,
-    which pickle: a disk cache puts them back and only M is factorised again); each call is
+    which pickle: a model cache puts them back and only M is factorised again); each call is
     then a sparse product and a solve (:func:`recover_many` for several fields)."""
     return recover_many(body, np.asarray(u)[:, None])[0]
 

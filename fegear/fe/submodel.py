@@ -132,7 +132,7 @@ class _Prepared:
 @dataclass(frozen=True)
 class SubmodelMesh:
     """A submodel's mesh, centre, boundary angles, stiffness and what its stress recovery
-    keeps (:func:`~.stress.recover`'s matrices), without a factorisation (as a disk cache
+    keeps (:func:`~.stress.recover`'s matrices), without a factorisation (as a model cache
     keeps it): :func:`solve_submodels` factorises it when first asked for it."""
 
     mesh: BodyMesh

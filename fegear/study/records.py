@@ -1,5 +1,5 @@
-"""A study's records on disk: one JSON file per finished case, written atomically after the
-case's kept files, so that a record on disk means a finished case."""
+"""A study's records: one JSON file per finished case, written atomically after the case's kept
+files, so that a record in the folder means a finished case."""
 
 from __future__ import annotations
 

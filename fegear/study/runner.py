@@ -3,7 +3,7 @@
 Resumable by construction. Each case is stored as ``cases/<key>.json`` (the key hashes the
 inputs, the kept outputs and the code version) and written atomically by this process once the
 case has finished, after its kept files (``cases/<key>/``). A study that is killed and started
-again finds the finished cases on disk and computes only the missing ones; a case that was
+again finds the finished cases in its folder and computes only the missing ones; a case that was
 running when the study died left nothing and runs again. A case that fails is stored with its
 reason and does not stop the study (``retry_failed`` runs such cases again). A run stopped
 before it finished a case leaves ``out`` as it found it: no folder it made, no marker, no
@@ -45,7 +45,7 @@ _SOLVE_LOCK = threading.Lock()  # gmsh keeps one global session per process
 
 class StudyInterrupted(FegearError):
     """SIGTERM or SIGINT stopped the study; the finished cases (``finished``, None: not
-    counted yet) are on disk."""
+    counted yet) are kept in the folder."""
 
     def __init__(self, signum: int, finished: int | None = None) -> None:
         self.signum, self.finished = signum, finished
@@ -59,7 +59,7 @@ class StudyInterrupted(FegearError):
 
 @dataclass(frozen=True)
 class StudyReport:
-    """What a run did: cases in the study that run, found finished on disk, computed now (ok
+    """What a run did: cases in the study that run, found finished in the folder, computed now (ok
     and failed), and times (s): the whole run, the solves summed, the workers' start-up (from
     the first submission to the first case starting) and writing the table and plots; and the
     cases refused before anything ran."""
@@ -156,7 +156,7 @@ def _run(study: Study, out: Path, workers: int | None, client, retry_failed: boo
         raise StudyInterrupted(exc.signum, len(finished(study, out))) from None
     finally:
         _clear(running)
-        # the table shows what is on disk, also after an interruption; a run stopped before
+        # the table shows what is in the folder, also after an interruption; a run stopped before
         # it finished a case leaves the folder as it found it
         if ended or stats["computed"]:
             t1 = time.perf_counter()

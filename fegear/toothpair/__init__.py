@@ -74,5 +74,5 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "job": ("Job", "JobResult", "Solved", "prepare_job", "run_job", "solve_job", "write_job"),
     "positions": ("PositionModel", "Trial", "Attempt", "SHARE_GUESS", "ATTEMPTS", "CHAINED",
                   "drive", "expected_elastic_um", "first_teeth"),
-    "ring.disk": ("disk_cache",),
+    "ring.cache": ("model_cache",),
 })

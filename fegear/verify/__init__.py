@@ -25,7 +25,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "bench": ("Ladder", "Rung", "Target", "richardson", "geometry_bench",
               "disk_ladder", "pair_ladder", "ladder_targets", "ladder_table", "ladder_json",
               "peer_speedups", "PEER_TARGET", "machine"),
-    "ring_bench": ("RingRun", "DiskRuns", "disk_runs", "disk_table", "run_fresh", "ring_ladder",
+    "ring_bench": ("RingRun", "CacheRuns", "cache_runs", "cache_table", "run_fresh", "ring_ladder",
                    "scaling_runs", "ring_table",
                    "scaling_table", "scaling_png", "paper_study_s", "SECTOR_REFERENCE",
                    "VON_MISES_RESOLVED"),

@@ -32,8 +32,8 @@ class BenchPlan:
     """What one ``fegear bench`` runs, its options checked by the command line.
 
     ``params`` and ``torque`` (N·m): the pair and its load; ``quality``: the level of the
-    estimate, cycle, disk-cache and scaling runs; ``pair_args``: the pair's options as given,
-    for the whole ``fegear solve`` commands the disk cache's runs time; ``repeat``: repetitions
+    estimate, cycle, model-cache and scaling runs; ``pair_args``: the pair's options as given,
+    for the whole ``fegear solve`` commands the model cache's runs time; ``repeat``: repetitions
     of the in-process runs (the best kept); ``cycle``: positions of the timed mesh cycle (0:
     none); ``disk_levels``: the Hertz case's elements across b; ``pair_levels`` and
     ``sector_levels``: the ring and sector models' quality levels (no sector levels: no sector
@@ -111,9 +111,9 @@ def _disk_ladder(plan: BenchPlan, say: Say) -> Ladder:
 
 def _ring_runs(plan: BenchPlan, say: Say) -> PairRuns:
     """The ring model's ladder, one position at the default quality (from the ladder if it is
-    on it), with the estimate, over a mesh cycle and with the disk cache, each in a fresh
+    on it), with the estimate, over a mesh cycle and with the model cache, each in a fresh
     process; their tables."""
-    from . import disk_runs, disk_table, ring_ladder, ring_table, run_fresh
+    from . import cache_runs, cache_table, ring_ladder, ring_table, run_fresh
     from .pair_targets import PairRuns
 
     params, torque, quality = plan.params, plan.torque, plan.quality
@@ -128,12 +128,12 @@ def _ring_runs(plan: BenchPlan, say: Say) -> PairRuns:
     extra = run_fresh(f"{quality}, with estimate", params, torque, quality, estimate=True)
     cycle = (run_fresh(f"{quality}, {plan.cycle}-position cycle", params, torque, quality,
                        cycle=plan.cycle) if plan.cycle else None)
-    cached = disk_runs(params, torque, quality, list(plan.pair_args))
+    cached = cache_runs(params, torque, quality, list(plan.pair_args))
     say("")
-    say(f"### The disk cache (`--cache`): the model built, or read back (`{quality}`, "
+    say(f"### The model cache (`--cache`): the model built, or read back (`{quality}`, "
         "each in a fresh process)")
     say("")
-    say(disk_table(cached, default, extra))
+    say(cache_table(cached, default, extra))
     return PairRuns(default, extra, ring, cycle=cycle, cached=cached)
 
 
@@ -199,7 +199,7 @@ def _ring_record(runs: PairRuns, scale: list, targets: list[str]) -> dict:
     record = {"ring": [r.__dict__ for r in runs.ring], "default": runs.default.__dict__,
               "extras": runs.extra.__dict__,
               "cycle": runs.cycle.__dict__ if runs.cycle else None,
-              "disk": {"read": cached.read.__dict__,
+              "cache": {"read": cached.read.__dict__,
                        "read_estimate": cached.read_estimate.__dict__,
                        "commands_s": cached.commands_s}}
     if scale:
@@ -225,7 +225,7 @@ def _series(plan: BenchPlan, disks: Ladder, runs: PairRuns) -> list:
               Series("tooth pair, ring model",
                      [(r.total_s, sector_error(r.values), r.label) for r in runs.ring],
                      target=SINGLE_TARGET),
-              Series("tooth pair, ring model read from the disk cache",
+              Series("tooth pair, ring model read from the model cache",
                      [(read.total_s, sector_error(read.values),
                        f"{plan.quality}, read back")])]
     if runs.sector is not None:

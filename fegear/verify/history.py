@@ -20,7 +20,7 @@ HISTORY = "bench_history.jsonl"
 def bench_metrics(record: dict) -> dict[str, float]:
     """The numbers of a ``bench.json`` record that are worth comparing between runs, by a
     readable name: each rung's and level's time, each stage of each ring level, peak memory,
-    the estimate, the cycle and its ratio, the disk cache's rows, the growth with the teeth
+    the estimate, the cycle and its ratio, the model cache's rows, the growth with the teeth
     and the paper study."""
     out: dict[str, float] = {}
     for lad in record.get("ladders", []):
@@ -42,12 +42,12 @@ def bench_metrics(record: dict) -> dict[str, float]:
         out[f"ring `{cycle['label']}` [s]"] = cycle["extra"]["cycle_s"]
         if default:
             out["cycle / one position [×]"] = cycle["extra"]["cycle_s"] / default["total_s"]
-    disk = ring.get("disk")
-    if disk:
-        out[f"ring `{disk['read']['label']}` [s]"] = disk["read"]["total_s"]
-        both = disk["read_estimate"]
+    cached = ring.get("cache")
+    if cached:
+        out[f"ring `{cached['read']['label']}` [s]"] = cached["read"]["total_s"]
+        both = cached["read_estimate"]
         out[f"ring `{both['label']}` [s]"] = both["extra"].get("estimate_s", both["total_s"])
-        out.update({f"`fegear solve`, {k} [s]": v for k, v in disk["commands_s"].items()})
+        out.update({f"`fegear solve`, {k} [s]": v for k, v in cached["commands_s"].items()})
     for r in ring.get("scaling", []):
         out[f"{r['label']}, one position [s]"] = r["total_s"]
         out[f"{r['label']}, peak [MB]"] = r["peak_mb"]

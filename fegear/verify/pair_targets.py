@@ -16,7 +16,7 @@ from .bench import PEER_TARGET
 
 if TYPE_CHECKING:
     from .bench import Ladder
-    from .ring_bench import DiskRuns, RingRun
+    from .ring_bench import CacheRuns, RingRun
 
 #: what CalculiX gives that means what ours means: its largest CSTR is a pointwise penalty
 #: pressure at one integration point, not a contact pressure (docs/benchmark.md)
@@ -30,7 +30,7 @@ class PairRuns:
     """The tooth pair's runs the targets judge: one position at the default quality
     (``default``), the same with the error estimate (``extra``), the ring model's ladder, and
     where they were run the mesh cycle, the sector model's ladder (with CalculiX's times on
-    its meshes), the paper study (s, cases) and the disk cache's runs."""
+    its meshes), the paper study (s, cases) and the model cache's runs."""
 
     default: RingRun
     extra: RingRun
@@ -38,7 +38,7 @@ class PairRuns:
     cycle: RingRun | None = None
     sector: Ladder | None = None
     study: tuple[float, int] | None = None
-    cached: DiskRuns | None = None
+    cached: CacheRuns | None = None
 
 
 def sector_error(values: dict, keys=None) -> float:
@@ -57,7 +57,7 @@ def pair_targets(runs: PairRuns, peer_target: float = PEER_TARGET) -> list[str]:
     ``peer_target``: how many times faster than CalculiX at equal error."""
     lines = ["### Targets", "", _single(runs.default)]
     if runs.cached is not None:
-        lines += _disk_targets(runs.default, runs.cached)
+        lines += _cache_targets(runs.default, runs.cached)
     lines += _estimate(runs.extra) + _cycle(runs.cycle, runs.default)
     peak = max(r.peak_mb for r in (runs.default, runs.extra, runs.cycle)
                if r is not None) / 1024.0
@@ -89,23 +89,23 @@ def _single(default: RingRun) -> str:
             f"{worst} {default.timings_s[worst]:.2f} s)")
 
 
-def _disk_targets(default: RingRun, cached: DiskRuns) -> list[str]:
-    """The targets a model read back from the disk cache meets: one position in the goal's
+def _cache_targets(default: RingRun, cached: CacheRuns) -> list[str]:
+    """The targets a model read back from the model cache meets: one position in the goal's
     second, the whole command in two."""
     read = cached.read
     e_lim = rb.SINGLE_TARGET[0]
     read_err = max(abs(v) for v in read.error_pct(RESOLVED).values())
     cmd = cached.commands_s
-    return [f"* one position with its model read from the disk cache (`--cache`): "
+    return [f"* one position with its model read from the model cache (`--cache`): "
             f"{read.total_s:.2f} s after import, largest error {read_err:.2f} % "
             f"(goal <= {rb.GOAL_S:g} s within {e_lim:g} %): "
             f"{_status(read.total_s <= rb.GOAL_S and read_err <= e_lim)}; built: "
             f"{default.total_s:.2f} s ({default.total_s / rb.GOAL_S:.1f}× the goal)",
             f"* the whole `fegear solve` without `--out` (imports, checks, the estimate): "
-            f"{cmd['without the cache']:.2f} s, {cmd['models read from disk']:.2f} s "
-            f"with the models read from disk (target <= {rb.COMMAND_TARGET_S:g} s): "
+            f"{cmd['without the cache']:.2f} s, {cmd['models read from the cache']:.2f} s "
+            f"with the models read from the cache (target <= {rb.COMMAND_TARGET_S:g} s): "
             f"{_status(cmd['without the cache'] <= rb.COMMAND_TARGET_S)} built, "
-            f"{_status(cmd['models read from disk'] <= rb.COMMAND_TARGET_S)} read back"]
+            f"{_status(cmd['models read from the cache'] <= rb.COMMAND_TARGET_S)} read back"]
 
 
 def _estimate(extra: RingRun) -> list[str]:

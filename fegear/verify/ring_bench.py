@@ -73,11 +73,11 @@ def _child(task: dict) -> dict:
         write_pair_outputs,
     )
 
-    if task.get("disk"):   # the disk cache on, in the folder given
+    if task.get("cache"):   # the model cache on, in the folder given
         import os
 
         os.environ["FEGEAR_CACHE"] = "on"
-        os.environ["FEGEAR_CACHE_DIR"] = task["disk"]
+        os.environ["FEGEAR_CACHE_DIR"] = task["cache"]
     import_libraries()
     p = PairParameters(**task["params"])
     case = SolveCase(p, torque=task["torque"], quality=task["quality"])
@@ -181,8 +181,8 @@ def scaling_runs(params: PairParameters, torque: float, quality: str,
 
 
 @dataclass(frozen=True)
-class DiskRuns:
-    """The disk cache's rows (:func:`disk_runs`): a position read back with and without the
+class CacheRuns:
+    """The model cache's rows (:func:`cache_runs`): a position read back with and without the
     estimate, and the whole ``fegear solve`` command (imports included, no ``--out``)
     without the cache and with its models read back, with and without the estimate (s)."""
 
@@ -191,8 +191,8 @@ class DiskRuns:
     commands_s: dict
 
 
-def disk_runs(params: PairParameters, torque: float, quality: str,
-              pair_args: list[str]) -> DiskRuns:
+def cache_runs(params: PairParameters, torque: float, quality: str,
+               pair_args: list[str]) -> CacheRuns:
     """In a fresh cache folder: one position with its estimate built and kept; then, each in
     a fresh process, one position and one with the estimate read back; and ``fegear solve
     PAIR_ARGS`` timed as a user types it, without the cache and with the models read back
@@ -200,21 +200,22 @@ def disk_runs(params: PairParameters, torque: float, quality: str,
     import tempfile
 
     with tempfile.TemporaryDirectory(prefix="fegear-bench-cache-") as tmp:
-        run_fresh("fill", params, torque, quality, estimate=True, disk=tmp)
-        read = run_fresh(f"{quality}, model read from disk", params, torque, quality, disk=tmp)
-        both = run_fresh(f"{quality}, with estimate, models read from disk", params, torque,
-                         quality, estimate=True, disk=tmp)
+        run_fresh("fill", params, torque, quality, estimate=True, cache=tmp)
+        read = run_fresh(f"{quality}, model read from the cache", params, torque, quality,
+                         cache=tmp)
+        both = run_fresh(f"{quality}, with estimate, models read from the cache", params,
+                         torque, quality, estimate=True, cache=tmp)
         args = [*pair_args, "--torque", f"{torque:g}", "--quality", quality]
         commands = {}
         for name, cache, extra in (("without the cache", "off", []),
                                    ("without the cache, --no-estimate", "off",
                                     ["--no-estimate"]),
-                                   ("models read from disk", "on", []),
-                                   ("models read from disk, --no-estimate", "on",
+                                   ("models read from the cache", "on", []),
+                                   ("models read from the cache, --no-estimate", "on",
                                     ["--no-estimate"])):
             commands[name] = command_s([*args, *extra], {"FEGEAR_CACHE": cache,
                                                          "FEGEAR_CACHE_DIR": tmp})
-    return DiskRuns(read, both, commands)
+    return CacheRuns(read, both, commands)
 
 
 def command_s(args: list[str], env: dict) -> float:
@@ -230,7 +231,7 @@ def command_s(args: list[str], env: dict) -> float:
     return time.perf_counter() - t0
 
 
-def disk_table(runs: DiskRuns, built: RingRun, built_estimate: RingRun) -> str:
+def cache_table(runs: CacheRuns, built: RingRun, built_estimate: RingRun) -> str:
     """Markdown: a position built against read back (stages, total), with the estimate, and
     the whole command."""
     rows = [built, runs.read, built_estimate, runs.read_estimate]
@@ -332,16 +333,16 @@ def scaling_png(path: Path, ladder: list[RingRun], teeth: list[RingRun]) -> Path
 
 def paper_study_s(workers: int = 2) -> tuple[float, int]:
     """Wall time (s) of studies/paper_trends.toml (with estimates) on ``workers`` workers in
-    a temporary directory, and the cases computed; with the disk cache on in an empty folder
+    a temporary directory, and the cases computed; with the model cache on in an empty folder
     of its own, as ``fegear study`` runs it the first time."""
     import tempfile
 
     from ..study import load_study, run_study
-    from ..toothpair import disk_cache
+    from ..toothpair import model_cache
 
     root = Path(__file__).resolve().parents[2] / "studies" / "paper_trends.toml"
     with tempfile.TemporaryDirectory(prefix="fegear-bench-paper-") as tmp, \
-            disk_cache(True, Path(tmp) / "cache"):
+            model_cache(True, Path(tmp) / "cache"):
         t0 = time.perf_counter()
         report = run_study(load_study(root), Path(tmp) / "out", workers=workers,
                            progress=False)

@@ -256,7 +256,7 @@ def test_outputs_are_written_atomically_with_ordinary_permissions(tmp_path):
 
     def fails(tmp):
         tmp.write_text("half")
-        raise OSError("disk full")
+        raise OSError("no space left")
 
     with pytest.raises(OSError):
         write_atomic(tmp_path / "result.csv", fails)

@@ -4,7 +4,7 @@ listing, clearing, and a bad size cap refused in one line before anything is com
 import pytest
 
 from fegear.cli import main
-from fegear.toothpair.ring import disk
+from fegear.toothpair.ring import cache
 from fegear.toothpair.ring.model import _KEPT
 
 LIGHT = ["--z2", "25", "--z1", "24", "--torque", "20", "--quality", "coarse", "--no-estimate",
@@ -13,8 +13,8 @@ LIGHT = ["--z2", "25", "--z1", "24", "--torque", "20", "--quality", "coarse", "-
 
 @pytest.fixture
 def folder(tmp_path, monkeypatch):
-    monkeypatch.setenv(disk.ENV_DIR, str(tmp_path / "cache"))
-    monkeypatch.delenv(disk.ENV, raising=False)
+    monkeypatch.setenv(cache.ENV_DIR, str(tmp_path / "cache"))
+    monkeypatch.delenv(cache.ENV, raising=False)
     _KEPT.clear()
     yield tmp_path / "cache"
     _KEPT.clear()
@@ -23,21 +23,21 @@ def folder(tmp_path, monkeypatch):
 def test_solve_keeps_its_model_only_with_cache_and_the_command_lists_and_clears(folder,
                                                                                 capsys):
     assert main(["solve", *LIGHT]) == 0
-    assert disk.entries() == []                       # off by default for a one-off solve
+    assert cache.entries() == []                       # off by default for a one-off solve
     _KEPT.clear()
     assert main(["solve", *LIGHT, "--cache"]) == 0
-    (entry,) = disk.entries()
+    (entry,) = cache.entries()
     capsys.readouterr()
     assert main(["cache"]) == 0
     listing = capsys.readouterr().out
     assert str(folder) in listing and entry[0].name in listing and "1 entries" in listing
     assert main(["cache", "--clear"]) == 0
     assert "removed 1 entries" in capsys.readouterr().out
-    assert disk.entries() == []
+    assert cache.entries() == []
 
 
 def test_a_bad_cap_is_one_line_before_any_solve(folder, tmp_path, monkeypatch, capsys):
-    monkeypatch.setenv(disk.ENV_CAP, "lots")
+    monkeypatch.setenv(cache.ENV_CAP, "lots")
     out = tmp_path / "never-made"
     assert main(["solve", *LIGHT, "--cache", "--out", str(out)]) == 2
     err = capsys.readouterr().err.strip().splitlines()
@@ -46,12 +46,12 @@ def test_a_bad_cap_is_one_line_before_any_solve(folder, tmp_path, monkeypatch, c
 
 
 def test_a_bad_cap_does_not_keep_the_cache_from_being_cleared(folder, monkeypatch, capsys):
-    from fegear.toothpair.ring import disk
+    from fegear.toothpair.ring import cache
 
-    disk.keep("an entry", {"x": 1})
-    monkeypatch.setenv(disk.ENV_CAP, "lots")
+    cache.keep("an entry", {"x": 1})
+    monkeypatch.setenv(cache.ENV_CAP, "lots")
     assert main(["cache", "--clear"]) == 0
-    assert "removed 1 entries" in capsys.readouterr().out and disk.entries() == []
+    assert "removed 1 entries" in capsys.readouterr().out and cache.entries() == []
     assert main(["cache"]) == 2
     assert "FEGEAR_CACHE_GB = 'lots'" in capsys.readouterr().err
 
@@ -60,7 +60,7 @@ def test_the_help_states_the_cap_the_cache_holds():
     from fegear.cli import build_parser
     from fegear.cli.cache import CAP_TEXT
 
-    assert CAP_TEXT == f"{disk.ENV_CAP} ({disk.CAP_GB:g} GB unless set)"
+    assert CAP_TEXT == f"{cache.ENV_CAP} ({cache.CAP_GB:g} GB unless set)"
     for command in ("solve", "relief", "study"):
         parser = build_parser()
         help_text = " ".join(parser._subparsers._group_actions[0].choices[command]

@@ -136,7 +136,7 @@ def test_far_couplings_are_thin_products_within_their_tolerance():
 def test_unit_loads_reach_the_cuts_as_the_product_says_and_the_body_comes_back_whole():
     """The cut loads of unit loads, gathered from Ψ's rows, are those of ρ = f_I + Ψᵀ f_i to
     the bit (interior, cut and held dofs alike), and so are their clamped fields solved from
-    the interior right-hand sides alone; and a body rebuilt from its parts (a disk cache's)
+    the interior right-hand sides alone; and a body rebuilt from its parts (a model cache's)
     gives the same fields."""
     from fegear.fe import cyclic_parts, restore_cyclic
 

@@ -102,7 +102,7 @@ def _wait_for(cond, proc, what: str, timeout: float = 300.0) -> None:
 
 def _failing_env() -> dict:
     """The environment of a study process whose 10 N·m case at β = 1.5° fails in its solve:
-    this process's as it is now (the session's disk cache, tests/conftest.py), not as it was
+    this process's as it is now (the session's model cache, tests/conftest.py), not as it was
     when this module was imported."""
     return {**os.environ, "PYTHONPATH": os.pathsep.join(
         [str(FAILING), *filter(None, [os.environ.get("PYTHONPATH")])])}
@@ -264,7 +264,7 @@ def test_build_study_accepts_a_parsed_document(tmp_path):
 @pytest.fixture(scope="module")
 def pool_run(tmp_path_factory):
     """The small study killed twice mid-run by a real signal (SIGTERM, then SIGKILL), then run
-    to the end: the on-disk records after each stage, the outputs of the last run."""
+    to the end: the records in the folder after each stage, the outputs of the last run."""
     tmp = tmp_path_factory.mktemp("pool")
     toml, out = tmp / "small.toml", tmp / "out"
     toml.write_text(SMALL)
@@ -510,7 +510,7 @@ def test_kept_vtu_files_arrive_beside_the_record(tmp_path):
 
 def test_new_allowables_recompute_the_factors_not_the_cases(pool_run, tmp_path):
     """The finished study with other allowables in its base and a sweep over the bending one:
-    every case is found on disk, none is solved again, the stresses stay, the factors follow
+    every case is found in the folder, none is solved again, the stresses stay, the factors follow
     the file."""
     import shutil
 

@@ -122,7 +122,7 @@ def test_the_peer_is_compared_at_equal_error_on_the_stresses_it_gives():
     assert [x for x in lines if x.startswith("* CalculiX")][0].endswith("MISSED")
 
 
-def test_the_disk_cache_targets_judge_the_model_read_back_and_the_whole_command():
+def test_the_model_cache_targets_judge_the_model_read_back_and_the_whole_command():
     from fegear.verify import ring_bench as rb
     from fegear.verify.pair_targets import PairRuns, pair_targets
 
@@ -135,11 +135,11 @@ def test_the_disk_cache_targets_judge_the_model_read_back_and_the_whole_command(
     built = run("standard", 2.0, 0.3)
 
     def lines(read_s, command_s):
-        commands = {"without the cache": 3.9, "models read from disk": command_s}
-        cached = rb.DiskRuns(run("read", read_s, 0.3), run("read, estimate", 1.2, 0.3),
-                             commands)
+        commands = {"without the cache": 3.9, "models read from the cache": command_s}
+        cached = rb.CacheRuns(run("read", read_s, 0.3), run("read, estimate", 1.2, 0.3),
+                              commands)
         out = pair_targets(PairRuns(built, built, [built], cached=cached), 20.0)
-        return [x for x in out if "disk" in x]
+        return [x for x in out if "cache" in x]
 
     position, command = lines(0.75, 1.8)
     assert "0.75 s after import" in position and ": met; built: 2.00 s (2.0× the goal)" \
@@ -157,7 +157,7 @@ def test_each_run_is_kept_and_the_last_one_printed_beside_the_next(tmp_path):
     from fegear.verify import history
 
     def record(one, cycle):
-        run = {"label": "standard", "timings_s": {"mesh": 0.3, "disk": 0.0}, "total_s": one,
+        run = {"label": "standard", "timings_s": {"mesh": 0.3, "cache": 0.0}, "total_s": one,
                "peak_mb": 460.0, "extra": {"output_s": 1.0}}
         return {"ladders": [{"name": "disks", "rungs": [{"level": "4 per b", "total_s": 0.15}]}],
                 "ring": {"ring": [run], "default": run, "extras": None,
@@ -168,7 +168,7 @@ def test_each_run_is_kept_and_the_last_one_printed_beside_the_next(tmp_path):
     (tmp_path / "bench.json").write_text(json.dumps(record(2.0, 8.0)))
     old = history.last_run(tmp_path)
     assert old["metrics"]["cycle / one position [×]"] == 4.0
-    assert "ring `standard`, disk [s]" not in old["metrics"]          # a stage not run
+    assert "ring `standard`, cache [s]" not in old["metrics"]          # a stage not run
     history.remember(tmp_path, history.bench_metrics(record(1.0, 3.0)), "0.1.0+abc; numpy 2",
                      {"cpus": 2})
     last = history.last_run(tmp_path)

@@ -27,7 +27,7 @@ from ...fe import (
 from ...geometry import Gear1Profile, PairParameters, RoundedProfile, gear1_profile, gear2_curve
 from ...timing import timed
 from ..case import SolveCase
-from . import disk
+from . import cache
 from .grid import ToothSamples, sample_tooth
 from .side import GearSide
 from .template import Template, TemplateSizes, gear1_template, gear2_template
@@ -63,8 +63,8 @@ ROUND_FLOOR = 0.05       # template sizes at the tip use a round of at least thi
 THIN = 0.1               # a tip relief or tip trim thinner than this many flank elements is
                          # left to the contact's exact geometry: the templates are meshed
                          # without it (a relief search's trials then share one model)
-GROWN = 1.25            # a model is kept on disk again once it holds this many times the
-                        # responses of its entry (or new submodels)
+GROWN = 1.25            # a model is kept in the model cache again once it holds this many
+                        # times the responses of its entry (or new submodels)
 #: the case fields a ring model depends on (not torque, position or the sector model's inputs)
 GEOMETRY_KEYS = ("params", "thickness", "E", "nu", "quality", "rim1", "rim2", "tip_round")
 
@@ -137,17 +137,17 @@ KEEP = 4
 def ring_model(case: SolveCase, profile: Gear1Profile | None = None) -> RingModel:
     """The ring model for ``case``: one kept from an earlier case of the same geometry,
     material and quality; or one that shares the templates (meshes, factors and responses) of
-    a kept model meshed for the same pair (:func:`meshed_params`); or, with the disk cache on
-    (:mod:`.disk`), one read back from it; or a new one (:func:`build_ring`). It is kept in
-    memory (on disk once solved: :func:`keep_on_disk`)."""
+    a kept model meshed for the same pair (:func:`meshed_params`); or, with the model cache on
+    (:mod:`.cache`), one read back from it; or a new one (:func:`build_ring`). It is kept in
+    memory (and in the model cache once solved: :func:`keep_cached`)."""
     key = tuple(getattr(case, k) for k in GEOMETRY_KEYS)
     model = _KEPT.pop(key, None)
     if model is None:
         meshed = meshed_params(case)
         kin = next((m for m in reversed(_KEPT.values())
                     if m.meshed == meshed and _same_body(m.case, case)), None)
-        if kin is None and disk.enabled():
-            model = _from_disk(case, profile)
+        if kin is None and cache.enabled():
+            model = _from_cache(case, profile)
         if model is None:
             model = build_ring(case, profile, kin)
         while len(_KEPT) >= KEEP:
@@ -237,14 +237,14 @@ def _shape_of(p: PairParameters) -> PairParameters:
     return replace(p, tip_clearance=p.radial_tip_clearance)
 
 
-# --- the disk cache (:mod:`.disk`) ---------------------------------------------------------------
-#: per disk entry (its path), what this process last read from it or wrote to it
+# --- the model cache (:mod:`.cache`) --------------------------------------------------------------
+#: per cache entry (its path), what this process last read from it or wrote to it
 #: (:func:`_held`): models that share templates (a relief search's trials) share their entry
-_ON_DISK: dict = {}
+_CACHED: dict = {}
 
 
-def _disk_key(case: SolveCase) -> str:
-    """What a model's disk entry holds, in full: the pair its templates are meshed for, the
+def _cache_key(case: SolveCase) -> str:
+    """What a model's cache entry holds, in full: the pair its templates are meshed for, the
     body's inputs and the code version."""
     from ...provenance import code_version
 
@@ -265,17 +265,17 @@ def _grown(held: tuple, entry: tuple | None) -> bool:
     return held[-1] > entry[-1] or sum(held[:-1]) > GROWN * sum(entry[:-1])
 
 
-def _from_disk(case: SolveCase, profile: Gear1Profile | None) -> RingModel | None:
-    """``case``'s model read back from the disk cache, or None."""
-    key = _disk_key(case)
-    if not disk.entry(key).exists():
+def _from_cache(case: SolveCase, profile: Gear1Profile | None) -> RingModel | None:
+    """``case``'s model read back from the model cache, or None."""
+    key = _cache_key(case)
+    if not cache.entry(key).exists():
         return None
-    with timed("disk"):
-        data = disk.load(key)
+    with timed("cache"):
+        data = cache.load(key)
     if data is None:
         return None
     profile, shape, samples = _shapes(case, profile)
-    with timed("disk"):
+    with timed("cache"):
         mat = Material(case.E, case.nu, case.thickness, "stress")
         sides = []
         for part in data["gears"]:
@@ -287,20 +287,20 @@ def _from_disk(case: SolveCase, profile: Gear1Profile | None) -> RingModel | Non
     pair, meshes = data["submodels"]
     if pair == repr(case.params):   # cut from this pair's own profile (a thin relief's too)
         model.submodels.update(meshes)
-    _ON_DISK[disk.entry(key)] = _held(model)
+    _CACHED[cache.entry(key)] = _held(model)
     return model
 
 
-def keep_on_disk(model: RingModel) -> None:
-    """Keep ``model`` on disk if the cache is on and it holds more than its entry: a new
+def keep_cached(model: RingModel) -> None:
+    """Keep ``model`` in the model cache if the cache is on and it holds more than its entry: a new
     model, more submodels meshed, or :data:`GROWN` more responses formed (a mesh cycle's
     later positions load other template dofs; a relief search's trials add a few each, and
     writing 120 MB for each of them cost its seven trials 0.6-0.8 s)."""
-    if not disk.enabled():
+    if not cache.enabled():
         return
-    key = _disk_key(model.case)
-    path, held = disk.entry(key), _held(model)
-    if path.exists() and not _grown(held, _ON_DISK.get(path)):
+    key = _cache_key(model.case)
+    path, held = cache.entry(key), _held(model)
+    if path.exists() and not _grown(held, _CACHED.get(path)):
         return
     # a template's geometry is only for meshing (and holds the curves' functions, which do
     # not pickle)
@@ -308,5 +308,5 @@ def keep_on_disk(model: RingModel) -> None:
                        "template": replace(g.template, geometry=None),
                        "responses": g.responses()} for g in model.gears],
             "submodels": (repr(model.case.params), submodel_meshes(model.submodels))}
-    disk.keep(key, data)
-    _ON_DISK[path] = held
+    cache.keep(key, data)
+    _CACHED[path] = held

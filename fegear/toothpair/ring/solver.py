@@ -29,7 +29,7 @@ from ..teeth import candidate_data, choose_teeth
 from .contact import RingContactSolution, solve_ring_contact, tangent_stiffness, touch_rotation
 from .grid import ToothGrid
 from .influence import RingContact, assemble_contact
-from .model import RingModel, keep_on_disk, ring_model
+from .model import RingModel, keep_cached, ring_model
 from .peaks import with_peak_submodels
 from .placement import (
     CANDIDATES,
@@ -45,8 +45,8 @@ from .results import RingDetail, tooth_results
 from .stresses import ring_stresses
 
 #: the one-off stages a solve reports: the model built (profile, mesh, assembly and
-#: factorisation), read back from the disk cache, or kept from an earlier solve
-MODEL_STAGES = ("profile", "mesh", "assemble_factor", "disk", "model (kept)")
+#: factorisation), read back from the model cache, or kept from an earlier solve
+MODEL_STAGES = ("profile", "mesh", "assemble_factor", "cache", "model (kept)")
 #: where the contact submodels are solved: at every position, only where a cycle's von Mises
 #: peak is (and where any other headline stress peaks), or nowhere
 SUBMODELS = ("all", "peaks", "none")
@@ -185,10 +185,10 @@ class RingSolver:
     def at_peaks(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
         """``sols`` with their contact submodels where the cycle peaks
         (:func:`~.peaks.with_peak_submodels`, with ``submodels`` "peaks"); the model is then
-        kept on disk if the cache is on (:func:`~.model.keep_on_disk`)."""
+        kept in the model cache if it is on (:func:`~.model.keep_cached`)."""
         out = with_peak_submodels(sols) if self.submodels == "peaks" else sols
         if self.model is not None:
-            keep_on_disk(self.model)
+            keep_cached(self.model)
         return out
 
 

@@ -1,12 +1,12 @@
-"""The ring model's per-geometry work kept on disk, for another process to find: the two
-templates' meshes, stiffness, static modes and ring flexibilities, the unit-load responses
-formed so far and the contact submodels' meshes (docs/model.md, "The disk cache").
+"""The model cache: the ring model's per-geometry work kept in files, for another process to
+find: the two templates' meshes, stiffness, static modes and ring flexibilities, the unit-load
+responses formed so far and the contact submodels' meshes (docs/model.md, "The model cache").
 
 A new baseline model at ``standard`` costs about 1.1 s (meshing 0.4 s, assembling and
 condensing 0.3 s, the responses of its first position 0.3-0.5 s) and its submodels' meshes
 0.2-0.3 s more; read back it costs 0.15-0.25 s (the factors do not pickle: each template's
 interior is factorised again). An entry is about 140 MB at the baseline at ``standard`` (60,
-90 and 430 MB at ``coarse``, ``fast`` and ``fine``; docs/model.md, "The disk cache").
+90 and 430 MB at ``coarse``, ``fast`` and ``fine``; docs/model.md, "The model cache").
 
 On where the environment variable :data:`ENV` says "on": ``fegear study`` and ``fegear
 relief`` set it for themselves and their workers unless ``--no-cache``; ``fegear solve
@@ -53,18 +53,18 @@ def setting() -> bool | None:
 
 
 def enabled() -> bool:
-    """Whether ring models are read from and kept on disk in this process."""
+    """Whether ring models are read from and kept in the model cache in this process."""
     return bool(setting())
 
 
 def use(on: bool) -> None:
-    """Turn the disk cache on or off for this process and the workers it spawns later (they
+    """Turn the model cache on or off for this process and the workers it spawns later (they
     inherit the environment)."""
     os.environ[ENV] = "on" if on else "off"
 
 
 @contextlib.contextmanager
-def disk_cache(on: bool | None, folder: str | Path | None = None):
+def model_cache(on: bool | None, folder: str | Path | None = None):
     """The cache on or off (None: as it was), in ``folder`` if given, within the block (for
     the workers spawned there too); both as they were after."""
     before = {k: os.environ.get(k) for k in (ENV, ENV_DIR)}
