@@ -1,13 +1,14 @@
-"""Submodels: a small disk of a body around a boundary point, meshed finely and solved again
+"""Submodels: a small patch of a body around a boundary point, meshed finely and solved again
 with the displacement of a coarser solution held on its cut and a pressure on its boundary.
 
 A coarse model carries the load paths; the stress where it peaks (a root fillet, a contact only
-µm wide) needs elements far smaller than that model can afford everywhere. The submodel is the
-body inside a circle of ``radius`` about a point of its boundary: the exact boundary curve
-between the two points where the circle cuts it, and the circular arc through the material. The
-arc is held at the coarse model's displacement (rigid motions included: they strain nothing);
-the boundary carries the pressure. Away from the arc, by a fraction of the radius, the
-submodel's stress is the fine solution of the same problem; ``core`` is where it is read.
+µm wide) needs elements far smaller than that model can afford everywhere. The submodel's
+patch is the body inside a circle of ``radius`` about a point of its boundary: the exact
+boundary curve between the two points where the circle cuts it, and the circular arc through
+the material. The arc is held at the coarse model's displacement (rigid motions included:
+they strain nothing); the boundary carries the pressure. Away from the arc, by a fraction of
+the radius, the submodel's stress is the fine solution of the same problem; ``core`` is where
+it is read.
 
 Units: mm, N, MPa. The boundary curve is star-shaped about the body frame's origin: points by
 polar angle, with the material below it (an external gear) or beyond it (an internal gear).
@@ -34,7 +35,7 @@ QUADRATURE = 6      # Gauss points per boundary facet for the pressure
 GROWTH = 0.3        # element growth away from the boundary (mm per mm)
 SNAP_CHORD = 0.1    # boundary polylines stray from the curve by at most this of the finest
 MAX_POINTS = 1000   # element size, with up to this many points a piece
-#: gmsh's precision placing nodes along the disk's curves (Mesh.LcIntegrationPrecision; its
+#: gmsh's precision placing nodes along the patch's curves (Mesh.LcIntegrationPrecision; its
 #: default 1e-9 spent 0.10 s of a submodel's 0.11 s there, the size falling 90-fold towards
 #: the contact): 1e-5 meshes one in 0.02 s and moves the baseline's von Mises stress by 2e-5.
 #: The templates keep the default: meshed at 1e-5, a design's flank pressure at `fine` moved
@@ -61,8 +62,8 @@ class StarCurve:
 
 @dataclass(eq=False)
 class Submodel:
-    """A solved submodel: its mesh (body frame), displacement, nodal stresses, centre (mm),
-    radius (mm) and the boundary's polar-angle range (rad)."""
+    """A solved submodel: its mesh (body frame), displacement, nodal stresses, the patch's
+    centre (mm) and radius (mm), and the boundary's polar-angle range (rad)."""
 
     mesh: BodyMesh
     u: np.ndarray = field(repr=False)
@@ -96,7 +97,7 @@ class _Piece:
 
 @dataclass(frozen=True)
 class SubmodelProblem:
-    """A submodel to solve: the disk of ``radius`` (mm) about the boundary point at polar angle
+    """A submodel to solve: the patch of ``radius`` (mm) about the boundary point at polar angle
     ``angle`` of ``curve``; elements of ``size`` (mm) on the boundary within ``focus`` (mm)
     of that point, growing away from it; ``pressure(x)`` (MPa) on the boundary and
     ``held(x)``, the displacement (n, 2) imposed on the cut arc."""
@@ -154,7 +155,7 @@ def solve_submodels(problems: list[SubmodelProblem], material: Material,
                     kept: dict | None = None) -> list[Submodel]:
     """Solve each submodel (those not prepared yet are meshed, a key asked for twice once).
     A problem whose ``key`` is in ``kept`` reuses that mesh and factorisation (the caller
-    makes the key name one disk of one curve: the same key, the same geometry; a
+    makes the key name one patch of one curve: the same key, the same geometry; a
     :class:`SubmodelMesh` there is assembled and factorised first); new ones are kept
     there."""
     kept = {} if kept is None else kept
@@ -180,8 +181,8 @@ def prepare_submodels(problems: list[SubmodelProblem], material: Material,
     """Mesh, assemble and factorise the submodels of ``problems`` whose key is not in
     ``kept`` (a key asked for twice once), keep them there under their keys, and return them
     by the problem's id (a problem without a key is kept only there): what
-    :func:`solve_submodels` solves on, prepared ahead where the caller has a moment (a mesh
-    cycle's disks, while its other chain runs)."""
+    :func:`solve_submodels` solves on, or what a caller prepares ahead where it has a
+    moment to spare."""
     todo, keys = [], set()
     for pb in problems:
         if pb.key is None or (pb.key not in kept and pb.key not in keys):

@@ -55,7 +55,7 @@ def lame(a, b, p):
 
 
 def test_submodel_at_a_bore_held_at_lame_converges_to_the_hoop_stress():
-    """Gear 2's kind of boundary (material beyond the curve): the disk of radius 1.5 mm about a
+    """Gear 2's kind of boundary (material beyond the curve): the patch of radius 1.5 mm about a
     bore point, pressure p on the bore, the cut held at Lamé's displacement. The bore's hoop
     stress converges as the elements shrink (measured 1.2e-3, 9.8e-4, 3.0e-4, 1.2e-4)."""
     a, b, p = 6.0, 10.0, 100.0

@@ -6,7 +6,7 @@ of the tooth height, from the loaded sectors' template fields (nodal stresses by
 as the sector model reads them). At a contact, σ_nn = −p on the surface and the tangential
 stress is E (ε_tt,FE(y) − ε_tt,half-plane(y)) − p at the matching depth: the template's strain
 with the half-plane's part replaced by its exact surface value. That estimate picks the peak;
-the von Mises stress there is read from a submodel (:mod:`fegear.fe.submodel`), a disk about the
+the von Mises stress there is read from a submodel (:mod:`fegear.fe.submodel`), a patch about the
 peak meshed at a fraction of the local contact width, held at the template field on its cut and
 loaded by the grid pressure: it resolves the stress under and beside a contact µm wide
 (the L2-projected template stress cannot), subsurface included.
@@ -126,7 +126,7 @@ def submodel_problems(model: RingModel, contact: RingContact, pressure: np.ndarr
 
 def submodel_keys(model: RingModel, contact: RingContact, pressure: np.ndarray,
                   stresses: RingStresses) -> set:
-    """The disks (:func:`contact_submodel`'s keys) that :func:`with_submodels` solves on."""
+    """The patches (:func:`contact_submodel`'s keys) that :func:`with_submodels` solves on."""
     return {pb.key for pb, _ in submodel_problems(model, contact, pressure, stresses)}
 
 
@@ -292,7 +292,7 @@ def contact_submodel(model: RingModel, contact: RingContact, pressure: np.ndarra
     size = _quarter_power(max(b / model.level.sub_per_b, SUB_FLOOR * model.case.params.m))
     focus = _quarter_power(SUB_FOCUS * b)
     # the angle's step from the key's numbers alone (not from the point's own radius): a key
-    # names one disk, whichever peak asked for it first
+    # names one patch, whichever peak asked for it first
     step = 0.25 * min(focus, 0.5 * radius) / model.case.params.r0
     local = round((centre - turn) / step)
     key = (gear, local, radius, size, focus)
