@@ -196,7 +196,7 @@ class InputTable(Mapping[str, Input]):
         """Every input's default, by name."""
         return {name: row.default for name, row in self._rows.items()}
 
-    def complete(self, values: Mapping[str, object]) -> dict[str, object]:
+    def with_defaults(self, values: Mapping[str, object]) -> dict[str, object]:
         """``values`` by name with every missing input at its default; an unknown name is a
         :class:`ParameterError` that lists the known ones."""
         unknown = [k for k in values if k not in self]
@@ -209,5 +209,5 @@ class InputTable(Mapping[str, Input]):
 
     def keyed(self, values: Mapping[str, object]) -> dict[str, object]:
         """The inputs that decide a solve's numbers, by name, missing ones at their defaults:
-        :meth:`complete` without the post-processing inputs (``post``), for a cache key."""
-        return {k: v for k, v in self.complete(values).items() if not self._rows[k].post}
+        :meth:`with_defaults` without the post-processing inputs (``post``), for a cache key."""
+        return {k: v for k, v in self.with_defaults(values).items() if not self._rows[k].post}

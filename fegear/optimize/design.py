@@ -32,7 +32,7 @@ def outer_diameter(values: Mapping) -> float:
     (``rim2``, default 3 m), the size the pair takes in a housing."""
     from ..toothpair import SOLVE_INPUTS
 
-    v = SOLVE_INPUTS.complete(values)
+    v = SOLVE_INPUTS.with_defaults(values)
     m, z2, h1 = float(v["m"]), int(v["z2"]), float(v["h1"])
     rim2 = v["rim2"]
     rim2 = 3.0 * m if rim2 is None else float(rim2)
@@ -44,7 +44,7 @@ def centre_distance(values: Mapping) -> float:
     size."""
     from ..toothpair import SOLVE_INPUTS
 
-    v = SOLVE_INPUTS.complete(values)
+    v = SOLVE_INPUTS.with_defaults(values)
     return 0.5 * float(v["m"]) * (int(v["z2"]) - int(v["z1"]))
 
 

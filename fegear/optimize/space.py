@@ -126,7 +126,7 @@ def check_space(space: Space) -> None:
     diameter reachable inside the bounds, the backlash bounds in order."""
     from ..toothpair import SOLVE_INPUTS
 
-    SOLVE_INPUTS.complete(space.fixed)    # an unknown input: refused by its name
+    SOLVE_INPUTS.with_defaults(space.fixed)    # an unknown input: refused by its name
     for name, value in space.fixed.items():   # those with limits: by prepare_job, below
         if value is not None and not SOLVE_INPUTS[name].limits:
             SOLVE_INPUTS[name].check(value)

@@ -160,7 +160,7 @@ def build_study(data: dict, path: Path) -> Study:
         values = {**base, **swept}
         key = case_key(values, outputs, code)
         # cases that differ in an allowable stress alone share a key (one solve) but not a row
-        same = (key, json.dumps(SOLVE_INPUTS.complete(values), sort_keys=True))
+        same = (key, json.dumps(SOLVE_INPUTS.with_defaults(values), sort_keys=True))
         if same in seen:
             continue
         seen.add(same)
@@ -175,7 +175,7 @@ def build_study(data: dict, path: Path) -> Study:
         raise StudyError(first.describe(path) if len(refused) == 1 else
                          f"{where}: all {len(refused)} cases are refused; the first, "
                          f"{first.where}: {first.reason}")
-    full = [SOLVE_INPUTS.complete(c.values) for c in (*cases, *refused)]
+    full = [SOLVE_INPUTS.with_defaults(c.values) for c in (*cases, *refused)]
     varied = tuple(n for n in inputs if len({json.dumps(f[n]) for f in full}) > 1)
     return Study(name, path, description, outputs, base, tuple(cases), varied, tuple(refused))
 

@@ -40,7 +40,7 @@ def prepare_job(values: Mapping[str, object]) -> Job:
     """Check every input of a solve, given by name (missing ones at their defaults); raises
     :class:`~fegear.errors.ParameterError` or :class:`~fegear.errors.GeometryError`. No
     meshing, no output."""
-    v = SOLVE_INPUTS.complete(values)
+    v = SOLVE_INPUTS.with_defaults(values)
     for name, row in SOLVE_INPUTS.items():   # every static range first: they answer at once
         if name not in PAIR_NAMES and not row.limits:   # those with limits: at the others'
             row.check(v[name])                          # values, by the case they build

@@ -108,7 +108,7 @@ def ring_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
 def with_submodels(model: RingModel, contact: RingContact, pressure: np.ndarray,
                    stresses: RingStresses) -> RingStresses:
     """``stresses`` with the submodels at the contact peaks solved (a mesh cycle adds them
-    only where its von Mises peak is: :meth:`~.solve.RingSolver.complete`)."""
+    only where its von Mises peak is: :meth:`~.solver.RingSolver.at_peaks`)."""
     peaks = _peaks(contact, pressure, stresses.surface)
     problems = submodel_problems(model, contact, pressure, stresses)
     solved = solve_submodels([pb for pb, _ in problems], model.case.material, model.submodels)
