@@ -102,7 +102,7 @@ class Cells:
         return full / np.maximum((i1 - i0) * (j1 - j0), 1)
 
 
-def settle(ax) -> None:
+def apply_limits(ax) -> None:
     """The limits and box ``ax`` will be drawn with: matplotlib scales the axes to the data
     and applies an equal aspect only when drawing, or when the limits are read."""
     ax.get_xlim()

@@ -24,6 +24,7 @@ from .pixels import (
     SAMPLE_PX,
     Cells,
     Drawn,
+    apply_limits,
     box_of,
     discs_hit,
     inside,
@@ -33,7 +34,6 @@ from .pixels import (
     segment_hits_boxes,
     segment_near,
     segments_cross,
-    settle,
 )
 
 #: the cost of a fault a label must not have (a covered marker, crossed leaders, …)
@@ -75,7 +75,7 @@ def place_callouts(ax, callouts: Sequence[Callout], data: np.ndarray | None = No
     its point or near it (a name written on what it names). Call it once the axes' limits
     and place are final. Returns the annotations, in the order of ``callouts``; their gid is
     "callout"."""
-    settle(ax)
+    apply_limits(ax)
     renderer = ax.figure.canvas.get_renderer()
     frame = box_of(ax.get_window_extent(renderer))
     scene = _Scene.of(ax, renderer, frame, data)
@@ -153,7 +153,7 @@ def place_legend(ax, fallback: str = "headroom", **kw):
     covers some, ``fallback``: "headroom" extends the y axis upwards until an upper place is
     free (axes whose y starts at a floor, as stresses at 0), "outside" puts the legend to the
     right of the axes. Call it once the axes' place is final; returns the legend."""
-    settle(ax)
+    apply_limits(ax)
     legend = ax.legend(**{"loc": "upper right", **kw})
     renderer = ax.figure.canvas.get_renderer()
     cover = _place_cover(ax, legend, renderer, LEGEND_PLACES)

@@ -88,7 +88,7 @@ def test_parametric_resonance_needs_more_variation_than_four_zeta():
     assert steady_response(p, mesh(eps=0.04), 100.0, speed).multiplier < 1  # 0.04 < 4ζ
 
 
-def test_periodic_start_is_where_brute_force_integration_settles():
+def test_periodic_start_is_where_brute_force_integration_ends_up():
     from scipy.integrate import solve_ivp
 
     m = mesh(eps=0.1, err=2e-6)
