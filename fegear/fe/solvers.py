@@ -16,7 +16,7 @@ from ..errors import FegearError
 #: BLAS threads while a solve runs. The dense products and solves here are of a few thousand
 #: rows: OpenBLAS's threads cost more than they give, and with a second process on the two
 #: cores (a study's other worker) they spin against each other (docs/benchmark.md, "BLAS
-#: threads": a 24-position cycle 95 s with two threads beside another job, 13 s with one)
+#: threads": a 24-position cycle 95 s with two threads and another job running, 13 s with one)
 BLAS_THREADS = 1
 #: right-hand sides a CHOLMOD solve takes at once: its workspace, the block and the solution
 #: are then a few MB that stay in cache and are allocated once, where 476 columns on gear 1's

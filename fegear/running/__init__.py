@@ -10,7 +10,7 @@ as the alternative), with what they do when a worker dies.
 >>> task = SERIAL.submit(pow, 2, 10)     # serial: run when its result is read
 >>> task.done(), task.result(), task.done()
 (False, 1024, True)
->>> with Forks(2) as forks:              # a forked copy of this process beside it
+>>> with Forks(2) as forks:              # a forked copy of this process in parallel
 ...     forks.map(abs, [-1, -2, -3])
 [1, 2, 3]
 """

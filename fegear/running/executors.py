@@ -6,8 +6,8 @@ their results; it never learns where they ran, and the numbers are the same wher
 
 * :class:`Serial`: everything in this process, a submitted task when its result is read.
 * :class:`Forks`: a task in a forked copy of this process, which shares what is built so far
-  (a ring model's meshes and factors), one at a time beside this process: a one-off command's
-  second core (:func:`spare_core`).
+  (a ring model's meshes and factors), one at a time in parallel with this process: a
+  one-off command's second core (:func:`spare_core`).
 * :class:`Pool`: tasks on spawned worker processes that share nothing (a relief search's
   trials, each a mesh cycle of its own).
 
@@ -143,9 +143,9 @@ class _InFork:
 
 class Forks:
     """Tasks in forked copies of this process (where it can fork: :func:`.forks.available`),
-    ``workers - 1`` at once beside it; a task submitted while they are all busy runs here when
-    its result is read. A forked task sees everything this process had built when it was
-    submitted, and what it builds is lost with it: only its return value comes back."""
+    ``workers - 1`` at once in parallel with it; a task submitted while they are all busy runs
+    here when its result is read. A forked task sees everything this process had built when it
+    was submitted, and what it builds is lost with it: only its return value comes back."""
 
     def __init__(self, workers: int = 2) -> None:
         self.workers = workers
@@ -160,12 +160,12 @@ class Forks:
 
     def map(self, fn: Callable, items: Iterable) -> list:
         items = list(items)
-        beside = [self.submit(fn, x) for x in items[1:]]
+        others = [self.submit(fn, x) for x in items[1:]]
         try:
             first = [fn(x) for x in items[:1]]
-            return first + [t.result() for t in beside]
+            return first + [t.result() for t in others]
         finally:
-            for t in beside:
+            for t in others:
                 if isinstance(t, _InFork):
                     t.stop()
 

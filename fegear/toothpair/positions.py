@@ -17,7 +17,7 @@ here.
 
 A cycle of :data:`CHAINED` positions or more is solved as two chains, its halves, each from a
 first guess of its own, handed to the executor the caller gives (``executor``: one chain here
-and one beside it where it has a worker to spare, else one after the other here). The numbers
+and one in parallel where it has a worker to spare, else one after the other here). The numbers
 are the same either way: a chain starts from its own first guess wherever it is solved.
 """
 

@@ -136,7 +136,7 @@ class ReliefSearch:
 
 class _Ahead:
     """Trials by key (amount µm, torque, tip clearance mm or None for the one given), solved
-    by ``solve`` on ``executor``, a guessed next one beside a needed one while a worker is
+    by ``solve`` on ``executor``, a guessed next one with a needed one while a worker is
     free. A trial's error is raised where it is needed."""
 
     def __init__(self, solve: Callable[..., CycleResult], values: Mapping, positions: int,
@@ -151,7 +151,7 @@ class _Ahead:
         return values, amount, torque, self.positions
 
     def get(self, key: tuple, guess: tuple | None = None) -> CycleResult:
-        # a guess goes beside a trial submitted now, not beside one already under way (it
+        # a guess goes with a trial submitted now, not with one already under way (it
         # was itself a guess; guessing past it kept a worker from the next needed trial)
         if key not in self.tasks:
             busy = sum(not t.done() for t in self.tasks.values())

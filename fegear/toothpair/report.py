@@ -253,8 +253,8 @@ def _tangent(summary: dict) -> str:
 
 
 def _estimate_time(summary: dict) -> str:
-    """The error estimate's time after the solve (its second solve may have run beside the
-    first) in the time line, if there was one."""
+    """The error estimate's time after the solve (its second solve may have run in parallel
+    with the first) in the time line, if there was one."""
     if not summary.get("estimate_s"):
         return ""
     return (f"; error estimate (the case again at {summary['error_estimate_from']}) "
