@@ -1,6 +1,6 @@
 """The executors (fegear/running/executors.py): the same results wherever a task runs; a
 serial task runs when its result is read; a forked one sees what was built before and runs
-beside; a task that fails in a worker raises where workers are strict and runs here, with a
+in parallel; a task that fails in a worker raises where workers are strict and runs here, with a
 warning, where they are not."""
 
 import os
@@ -32,7 +32,7 @@ def test_a_serial_task_runs_when_its_result_is_read():
     assert SERIAL.map(_square, [1, 2, 3]) == [1, 4, 9]
 
 
-def test_forks_map_runs_the_first_here_and_the_rest_beside():
+def test_forks_map_runs_the_first_here_and_the_rest_in_parallel():
     with Forks(2) as forks:
         pids = forks.map(_pid_of, range(2))
     assert pids[0] == os.getpid() and pids[1] != os.getpid()
@@ -45,13 +45,13 @@ def test_a_forked_task_sees_what_was_built_before_and_answers_in_place():
         assert task.result() == built[::2].sum()
 
 
-def test_forks_run_one_task_beside_at_once_the_next_here():
+def test_forks_run_one_task_in_parallel_at_once_the_next_here():
     with Forks(2) as forks:
-        beside = forks.submit(os.getpid)
+        forked = forks.submit(os.getpid)
         here = forks.submit(os.getpid)            # the worker is busy: here, when read
         assert here.result() == os.getpid()
-        assert beside.result() != os.getpid()
-        again = forks.submit(os.getpid)           # the worker answered: beside again
+        assert forked.result() != os.getpid()
+        again = forks.submit(os.getpid)           # the worker answered: forked again
         assert again.result() != os.getpid()
 
 

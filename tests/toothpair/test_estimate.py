@@ -4,7 +4,7 @@ headline stress at `fine` lies inside the estimate `standard` prints for it (slo
 `standard` solves with their estimates and three `fine` ones, about 1.5 minutes); it is never
 below the scatter between equally good meshes, and that scatter, measured again on the two
 designs that scattered most, lies within it (slow); and its second solve, made in a forked
-copy of the process beside the first, gives the same numbers."""
+copy of the process in parallel with the first, gives the same numbers."""
 
 from types import SimpleNamespace
 
@@ -70,7 +70,7 @@ def _numbers(summary: dict) -> dict:
     return {k: v for k, v in summary.items() if not k.endswith("_s") and k != "timings_s"}
 
 
-def test_the_second_solve_beside_the_first_gives_the_same_estimate(monkeypatch):
+def test_the_second_solve_in_parallel_with_the_first_gives_the_same_estimate(monkeypatch):
     # `fegear solve` on a second core: the estimate's second solve is a task that runs in a
     # forked copy of this process while this one solves, each building its model (none kept
     # before the fork); the numbers are the same
@@ -81,10 +81,10 @@ def test_the_second_solve_beside_the_first_gives_the_same_estimate(monkeypatch):
     job = prepare_job({"quality": "coarse", "torque": 150})
     monkeypatch.setattr(ring_model, "_KEPT", OrderedDict())
     with Forks(2) as forks:
-        beside = solve_job(job, forks)
+        forked = solve_job(job, forks)
     alone = solve_job(job)
-    assert "error estimate (the case again at fast)" in pair_table(beside.summary)
-    assert _numbers(beside.summary) == _numbers(alone.summary)
+    assert "error estimate (the case again at fast)" in pair_table(forked.summary)
+    assert _numbers(forked.summary) == _numbers(alone.summary)
 
 
 def test_a_cycle_s_estimate_is_at_its_worst_position_whichever_the_executor():
@@ -93,11 +93,11 @@ def test_a_cycle_s_estimate_is_at_its_worst_position_whichever_the_executor():
 
     job = prepare_job({"quality": "coarse", "torque": 150, "positions": CHAINED})
     with Forks(2) as forks:
-        beside = solve_job(job, forks)
+        forked = solve_job(job, forks)
     alone = solve_job(job)
-    assert beside.summary["error_estimate_by_stress_pct"] == pytest.approx(
+    assert forked.summary["error_estimate_by_stress_pct"] == pytest.approx(
         alone.summary["error_estimate_by_stress_pct"], rel=1e-6)
-    assert beside.solution.case.beta == alone.solution.case.beta
+    assert forked.solution.case.beta == alone.solution.case.beta
 
 
 def test_a_second_solve_that_fails_in_its_worker_is_solved_here_in_use(monkeypatch, caplog):
