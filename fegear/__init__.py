@@ -4,7 +4,8 @@ The pipeline, one subpackage per stage (docs/architecture.md):
 
 * :mod:`fegear.geometry`: exact profiles, admissibility, unloaded contact, tip edges;
 * :mod:`fegear.fe`: meshes, plane elasticity, stresses, Hertz;
-* :mod:`fegear.contact`: frictionless penalty contact between linear bodies;
+* :mod:`fegear.contact`: the contact kernels of the product (the half-plane, the facet
+  search, exact curves' closest points);
 * :mod:`fegear.toothpair`: the tooth-pair solve, its error estimate and reports;
 * :mod:`fegear.study`: parameter studies;
 * :mod:`fegear.verify` and :mod:`fegear.drive` beside them: the Hertz case, the benchmark and

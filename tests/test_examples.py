@@ -11,7 +11,7 @@ import pytest
 
 README = Path(__file__).parents[1] / "README.md"
 STAGES = ("geometry", "fe", "contact", "toothpair", "toothpair.ring", "study", "verify",
-          "verify.sector", "drive", "optimize", "cli", "api")
+          "verify.penalty", "verify.sector", "drive", "optimize", "cli", "api")
 FLAGS = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
 
 

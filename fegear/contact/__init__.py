@@ -1,65 +1,51 @@
-"""Contact stage: frictionless penalty contact between linear bodies, condensed on the contact
-nodes.
+"""Contact kernels of the product: what the ring model's contact solve
+(:mod:`fegear.toothpair.ring.contact`) is built on. The contact solve itself lives with the
+ring model; the penalty contact the peers solve with (the Hertz case, the sector model,
+CalculiX's decks) is :mod:`fegear.verify.penalty`.
 
-Small sliding (docs/model.md, "Contact"): every quadrature point x_q of a slave boundary is
-paired once, in the reference configuration, with its closest point y_q on the master's
-*exact* curve and with the master mesh facet under y_q. The pointwise gap
+* :mod:`.halfplane`: the elastic half-plane under a piecewise-linear pressure (Flamant, plane
+  stress), in closed form: the near field of a contact that the finite elements need not
+  resolve (how far a surface point approaches the point at a depth below it, the tangential
+  strain there), and the line contact of two half-planes on any gap.
+* :mod:`.search`: which quadratic facet of a mesh lies under a point, and where on it
+  (:class:`FacetLocator`: the nearest chord, then Newton on the facet curve), with the P2
+  shape functions along a facet.
+* :mod:`.curves`: the closest points on an exact curve (:class:`CurvePoints`), which a gap to
+  gear 2 is measured to.
 
-    g_q = g0_q(θ) + n_q · (v_slave(x_q) − v_master(y_q))
+Hertz's line contact from the half-plane alone: the Hertz case's two 10 mm disks, 1000 N over
+5 mm, their gap the parabola s²/(2R*) on a grid of 16 points per Hertz half-width:
 
-carries the rigid link motion θ exactly (``g0`` is the signed distance of the moved slave point
-from the moved exact master curve) and the elastic displacements v linearly.
+>>> import numpy as np
+>>> from fegear.contact import FacetLocator, gap_contact, p2_edge_shape
+>>> from fegear.fe import BodyGeometry, Segment, facet_nodes, line_contact, mesh_bodies
+>>> hertz = line_contact(10.0, 10.0, 1000.0, 5.0)
+>>> s = np.linspace(-2.0, 2.0, 65) * hertz.b
+>>> p = gap_contact(s, s * s / (2.0 * hertz.R_star), hertz.q, hertz.E_star)  # MPa
+>>> round(float(p.max()), 1), round(hertz.p0, 1)
+(1145.5, 1145.2)
+>>> on = s[p > 0]
+>>> round(float(on.max() - on.min()) / 2, 4), round(hertz.b, 4)   # half-width, mm
+(0.1112, 0.1112)
 
-The penalty acts on *weighted* gaps at the slave corner nodes (a mortar-type,
-segment-to-segment discretisation): with φ_i the linear hat of corner node i on the slave chain,
-D_i = ∫ φ_i t ds (mm²) and g̃_i = ∫ φ_i g t ds / D_i, the node force is λ_i = κ_i D_i max(0, −g̃_i)
-(N) and the pressure κ_i max(0, −g̃_i) (MPa). One constraint per facet, not one per quadrature
-point or per node: with quadratic displacements, pointwise penalties (3 per facet) and hats on
-corner and midside nodes (2 per facet) both over-constrain the interface, and on a tip round
-a few elements wide their tractions oscillated from point to point by up to ±40 % and grew
-with the penalty. The hats are non-negative and sum to one, so a uniform pressure is
-integrated exactly (patch test). Elastically, g̃ = Σ_b C_b v_b through sparse rows C_b.
+The facet of a meshed plate's top under a point just above it, and the point on that facet:
 
-Each body is factorised once (:mod:`fegear.fe`); condensing onto the contact nodes gives
-the flexibility G = Σ_b C_b K_b⁻¹ C_bᵀ (mm/N; a column is formed when the active set first
-reaches its point, :class:`PointFlexibility`), and the contact problem becomes small and dense:
-on the active set A, (G_AA + W_A⁻¹/κ) λ_A + a_A θ = −h_A, with the link balance k θ − aᵀλ = F.
-Active-set (semismooth Newton) iterations stop when A is stable; the link motion is then
-re-evaluated exactly until it changes by less than ``link_tol``.
-
-
-The Hertz case: two 10 mm disks pressed together by 1000 N over 5 mm, coarse (4 elements across
-the Hertz half-width):
-
->>> from fegear.contact import ContactPair, build_contact, solve_contact
->>> from fegear.fe import Material, RigidLink, assemble_body, mesh_bodies
->>> from fegear.verify import DiskCase, disk_geometries
->>> case = DiskCase(quality="coarse")
->>> g1, g2, _, circle2 = disk_geometries(case)   # named windows, disk 2's exact circle
->>> m1, m2 = mesh_bodies([g1, g2])
->>> b1 = assemble_body(m1, Material(), link=RigidLink("cut", "translation",
-...                                                    direction=(0.0, -1.0)))
->>> b2 = assemble_body(m2, Material(), fixed=("cut",))
->>> model = build_contact([b1, b2], [ContactPair("disks", 0, "contact", 1, "contact", circle2)])
->>> solution = solve_contact(model, load=1000.0)
->>> patch = solution.patches[0]
->>> round(patch.p_max, 1), round(case.hertz.p0, 1)   # FE against Hertz, MPa
-(1147.3, 1145.2)
->>> round(patch.half_width, 4), round(case.hertz.b, 4)
-(0.1094, 0.1112)
->>> solution.balance_error < 1e-9
-True
+>>> corners = np.array([[0.0, 0.0], [4.0, 0.0], [4.0, 1.0], [0.0, 1.0]])
+>>> names = ("bottom", "right", "top", "left")
+>>> plate = BodyGeometry("plate", tuple(Segment(name, corners[[i, (i + 1) % 4]])
+...                                     for i, name in enumerate(names)), size=0.5)
+>>> (mesh,) = mesh_bodies([plate])
+>>> facet, at = FacetLocator(mesh.mesh, mesh.mesh.boundaries["top"]).locate([[1.3, 1.02]])
+>>> nodes = mesh.mesh.doflocs.T[facet_nodes(mesh.mesh, facet)[0]]   # corners, midside
+>>> (p2_edge_shape(at)[0] @ nodes).round(6)
+array([1.3, 1. ])
 """
 
 from ..exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
-    "model": ("ContactError", "CurvePoints", "Circle", "ContactPair", "ContactSettings",
-              "ContactModel"),
-    "flexibility": ("PointFlexibility",),
-    "build": ("build_contact",),
-    "solve": ("ContactSolution", "ContactPatch", "solve_contact", "first_touch",
-              "nodal_pressure", "forces_from_body"),
-    "search": ("locate_on_facets", "FacetLocator", "p2_edge_shape"),
+    "curves": ("CurvePoints", "ExactCurve"),
+    "search": ("locate_on_facets", "FacetLocator", "p2_edge_shape", "facet_curve",
+               "ordered_boundary"),
     "halfplane": ("approach_matrix", "strain_matrix", "surface_matrix", "gap_contact"),
 })

@@ -11,8 +11,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
+from ..errors import ContactError
 from ..fe import Body, facet_nodes
-from .model import ContactError
 
 LOCATE_CANDIDATES = 16  # chord pieces tried per point first (then 8×, 64×, … up to all)
 

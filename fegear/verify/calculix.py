@@ -57,7 +57,6 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ..contact import ContactSettings
 from ..fe import Body, contact_modulus, facet_nodes
 from .ccx_files import (
     PeerError,
@@ -69,6 +68,7 @@ from .ccx_files import (
     read_text,
 )
 from .disks import DiskCase, DiskResult, solve_disks
+from .penalty import ContactSettings
 
 #: step-2 convergence controls (see the module docstring)
 CONTROLS = ("*CONTROLS, PARAMETERS=FIELD", "1e-6, 1e-8, , , 1e-6, 1e-5, 1e-3, 1e-8",
@@ -200,7 +200,7 @@ def write_deck(bodies: Sequence[Body], load: float, directory: str | os.PathLike
     ``load``: N for a translation link, N·mm (a torque) for a rotation link.
 
     ``pairs``: objects with ``slave``, ``slave_boundary``, ``master``, ``master_boundary``
-    (such as :class:`~fegear.contact.ContactPair`), optionally ``slave_facets`` (a subset of
+    (such as :class:`~fegear.verify.penalty.ContactPair`), optionally ``slave_facets`` (a subset of
     the slave boundary's facets) and ``penalty`` (K, MPa/mm; default penalty_factor·E*/h̄ of
     the pair's slave facets); default: the disk pair, body 0's "contact" against body 1's.
     ``preload``: step-1 motion of the link, δ0 (mm; default 1e-6 × the link body's size) or

@@ -68,12 +68,12 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ..contact import forces_from_body
 from ..fe import Body, Placement, StressField, contact_modulus
 from ..planar import rotate
 from ..toothpair import PairSolution
 from .calculix import write_deck
 from .ccx_files import PeerError, contact_forces, execute, floats, last_block, read_text
+from .penalty import forces_from_body
 from .sector import SectorCase, contact_split, solve_pair
 
 CCX_PENALTY_FACTOR = 30.0  # CalculiX's K = this · E*/h (penalty_factor=None: the case's)
@@ -305,7 +305,7 @@ def recovered_contact(sol: PairSolution, turned: float,
     """CalculiX's contact per paired tooth, read as :func:`facet_reading` reads ours: gear 1's
     nodal forces K u from ccx's displacements ``disp`` (node → (ux, uy, uz), fixed frame, gear 1
     written turned by ``turned``) and our stiffness, averaged over our contact nodes' hats
-    (:func:`~fegear.contact.forces_from_body`)."""
+    (:func:`~fegear.verify.penalty.forces_from_body`)."""
     g1 = sol.detail.bodies[0]
     nodes = np.arange(g1.mesh.doflocs.shape[1])
     if any(n + 1 not in disp for n in nodes):

@@ -6,10 +6,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..checks import number, require_finite, require_range
-from ..contact import ContactSettings
 from ..errors import ParameterError
 from ..fe import STEEL_E, STEEL_NU, HertzLine, Material, Plane, line_contact
 from .disk_inputs import DISK_INPUTS, DISK_QUALITY
+from .penalty import ContactSettings
 
 _ROW = {row.name: row for row in DISK_INPUTS}
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from ..checks import Input
 
-#: the contact penalty's default factor, :class:`~fegear.contact.ContactSettings`' (tested)
+#: the contact penalty's default factor, :class:`~fegear.verify.penalty.ContactSettings`' (tested)
 PENALTY_FACTOR = 300.0
 #: elements across the Hertz half-width b in the contact windows, per quality level
 DISK_QUALITY = {"coarse": 4, "standard": 8, "fine": 16}

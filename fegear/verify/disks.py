@@ -15,17 +15,6 @@ from pathlib import Path
 
 import numpy as np
 
-from ..contact import (
-    Circle,
-    ContactError,
-    ContactModel,
-    ContactPair,
-    ContactSettings,
-    ContactSolution,
-    build_contact,
-    nodal_pressure,
-    solve_contact,
-)
 from ..fe import (
     Body,
     BodyGeometry,
@@ -44,6 +33,17 @@ from ..fe import (
 from ..files import write_json
 from ..timing import clocked, timed
 from .disk_case import DiskCase
+from .penalty import (
+    Circle,
+    ContactError,
+    ContactModel,
+    ContactPair,
+    ContactSettings,
+    ContactSolution,
+    build_contact,
+    nodal_pressure,
+    solve_contact,
+)
 
 SLAVE_WINDOW = 3.0   # slave contact window half-length, in Hertz half-widths
 MASTER_WINDOW = 4.0  # master window: wider, so that every slave point has a facet under it
@@ -170,15 +170,15 @@ def solve_disks(case: DiskCase) -> DiskResult:
             model = build_contact([b1, b2], [pair], settings)
         with timed("contact"):   # the flexibility columns it forms meanwhile: "condense"
             sol = solve_contact(model, load=case.load)
-        if len(sol.patches) != 1:
-            raise ContactError(f"expected one contact zone, found {len(sol.patches)}")
-        patch = sol.patches[0]
+        if len(sol.zones) != 1:
+            raise ContactError(f"expected one contact zone, found {len(sol.zones)}")
+        zone = sol.zones[0]
         with timed("recovery"):
             stresses = tuple(recover(b, u) for b, u in zip((b1, b2), sol.displacements))
     times = dict(clock.stages)
     surface = _surface_peak(b1, stresses[0], case.r1)
-    return DiskResult(case=case, hertz=case.hertz, p_max=patch.p_max,
-                      half_width=patch.half_width, load_fe=sol.total_load,
+    return DiskResult(case=case, hertz=case.hertz, p_max=zone.p_max,
+                      half_width=zone.half_width, load_fe=sol.total_load,
                       dofs=b1.ndofs + b2.ndofs, contact_points=model.npoints,
                       iterations=sol.iterations, max_penetration=sol.max_penetration,
                       surface_stress=surface, timings_s=times, bodies=(b1, b2), model=model,

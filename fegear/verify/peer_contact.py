@@ -5,8 +5,9 @@ points. In these gear decks about 30 % of the contact area carries no contact sp
 points scatter ±30 % within a facet, so its largest CSTR sits 1.9-3.2× above the pressure
 the contact transmits. Here both codes are read the same way (docs/benchmark.md, "Contact pressure
 beside CalculiX"): ccx's displacements times our stiffness give gear 1's nodal forces, averaged
-over our contact nodes' hats (:func:`~fegear.contact.forces_from_body`); ours are our own node
-forces; both are then read per facet (:func:`~fegear.verify.calculix_pair.facet_reading`).
+over our contact nodes' hats (:func:`~fegear.verify.penalty.forces_from_body`); ours are our
+own node forces; both are then read per facet
+(:func:`~fegear.verify.calculix_pair.facet_reading`).
 
 Two cases on the baseline pair (shift 0.016, rotation 0.002), at ``coarse`` and ``fast``: an
 edge case (200 N·m, β = 0, no relief: the first-touching teeth press on gear 1's tip round) and

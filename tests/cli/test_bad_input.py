@@ -311,8 +311,8 @@ def test_contact_peer_without_calculix_is_one_line_and_writes_nothing(tmp_path, 
 
 
 def test_the_hertz_penalty_default_is_the_contact_models():
-    from fegear.contact import ContactSettings
     from fegear.verify.disk_inputs import PENALTY_FACTOR
+    from fegear.verify.penalty import ContactSettings
 
     assert PENALTY_FACTOR == ContactSettings.penalty_factor
 

@@ -8,11 +8,11 @@ import pytest
 from skfem import ElementTriP2, ElementVector, FacetBasis, LinearForm, asm, condense, solve
 from skfem.helpers import dot
 
-from fegear.contact.model import Circle
 from fegear.fe.assembly import RigidLink, assemble_body, facet_nodes
 from fegear.fe.material import Material
 from fegear.fe.mesh import BodyGeometry, Segment, mesh_bodies
 from fegear.fe.stress import quadrature_stress, recover, recover_many
+from fegear.verify.penalty.model import Circle
 
 E, NU, T = 206000.0, 0.29, 5.0
 

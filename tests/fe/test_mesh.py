@@ -10,7 +10,6 @@ import numpy as np
 import pytest
 from skfem import Basis, ElementTriP2, FacetBasis, LinearForm, asm
 
-from fegear.contact.model import Circle
 from fegear.fe.assembly import facet_nodes
 from fegear.fe.mesh import (
     BodyGeometry,
@@ -21,6 +20,7 @@ from fegear.fe.mesh import (
     mesh_bodies,
     mesh_quality,
 )
+from fegear.verify.penalty.model import Circle
 
 R = 10.0
 C = (0.0, R)

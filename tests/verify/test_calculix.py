@@ -7,7 +7,6 @@ import numpy as np
 import pytest
 from system import installed, why_not
 
-from fegear.contact.model import ContactPair
 from fegear.fe.assembly import RigidLink, assemble_body, facet_nodes
 from fegear.fe.material import contact_modulus
 from fegear.verify import DiskCase
@@ -23,6 +22,7 @@ from fegear.verify.calculix_pair import (
     turned_body,
 )
 from fegear.verify.ccx_files import PeerConvergenceError, PeerError, contact_forces
+from fegear.verify.penalty.model import ContactPair
 from fegear.verify.sector import SectorCase
 
 
@@ -328,7 +328,7 @@ def test_frd_and_force_readers(tmp_path):
 def test_facet_reading_of_our_own_forces(light):
     # per facet, the mean of its corner pressures: the peak a little below the nodal one (by
     # 3 % here, with 1.6 and 3.3 elements across these light contacts' half-widths), the load
-    # the tooth's, the half-width near our patch's
+    # the tooth's, the half-width near our contact zone's
     reading = facet_reading(light, light.detail.contact.force)
     for t, r in zip(light.teeth, reading):
         if t.load_N <= 0:

@@ -1,6 +1,6 @@
 """The sector model of a tooth pair (fegear's first model, now the product's full-FE peer): a meshed
 sector of each gear over the teeth that can touch, refined to resolve every contact width,
-penalty contact between the sectors (:mod:`fegear.contact`).
+penalty contact between the sectors (:mod:`fegear.verify.penalty`).
 
 :mod:`.scene` decides which teeth to mesh and pair and cuts both gears' sectors into refined
 segments; :mod:`.solve` meshes, factorises, places the bodies at each rolling angle and solves

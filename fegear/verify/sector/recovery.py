@@ -13,10 +13,10 @@ import math
 
 import numpy as np
 
-from ...contact import ContactModel, ContactSolution
 from ...fe import Body, StressField, contact_modulus, facet_nodes
 from ...planar import wrap
 from ...toothpair import Candidate, ToothResult, flank_and_edge, tension_fillets
+from ..penalty import ContactModel, ContactSolution
 from .case import SectorCase
 from .scene import SECTOR_LEVELS, Scene
 
@@ -51,15 +51,15 @@ def tooth_results(case: SectorCase, scene: Scene, bodies: tuple[Body, Body],
     g1, g2 = bodies
     pitch1, pitch2 = scene.shape.pitch, 2 * math.pi / p.z2
     torque = case.torque * 1e3
-    patches = {pt.pair: pt for pt in sol.patches}
+    contact_zones = {z.pair: z for z in sol.zones}
     a = contact.gap0(sol.link_value)[1]
     by_tooth = {c.tooth: c for c in cands}
     results = []
     for k, tooth in enumerate(scene.paired):
         c = by_tooth.get(tooth)
         sel = contact.pair_index == k
-        patch = patches.get(contact.pairs[k].name)
-        load = patch.load if patch else 0.0
+        cz = contact_zones.get(contact.pairs[k].name)
+        load = cz.load if cz else 0.0
         hz = (c.hertz(load, case.thickness, case.E, case.nu)
               if load > 0 and c is not None else None)
         fillets = tension_fillets(scene.shape.tooth_center + tooth * pitch1, pitch1,
@@ -69,15 +69,15 @@ def tooth_results(case: SectorCase, scene: Scene, bodies: tuple[Body, Body],
         results.append(ToothResult(
             tooth=tooth, clearance_um=c.clearance_um if c is not None else None, load_N=load,
             load_share=float(-(a[sel] @ sol.force[sel]) / torque),
-            p_max_MPa=patch.p_max if patch else 0.0,
-            half_width_mm=patch.half_width if patch else 0.0,
+            p_max_MPa=cz.p_max if cz else 0.0,
+            half_width_mm=cz.half_width if cz else 0.0,
             hertz_p0_MPa=hz.p0 if hz else None, hertz_b_mm=hz.b if hz else None,
             b_over_R=hz.b_over_R if hz else None,
             root1_MPa=_sector_max(g1, stresses[0], zones[0], fillets[0], pitch1),
             root2_MPa=root2,
             peak_on_round=_peak_on_round(scene.shape, contact.x[sel], sol.pressure[sel]),
             **contact_split(scene.shape, contact.x[sel], sol.pressure[sel], case,
-                          patch.half_width if patch else 0.0)))
+                          cz.half_width if cz else 0.0)))
     return tuple(results)
 
 

@@ -21,16 +21,6 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ... import progress
-from ...contact import (
-    ContactError,
-    ContactModel,
-    ContactPair,
-    ContactSettings,
-    ContactSolution,
-    build_contact,
-    first_touch,
-    solve_contact,
-)
 from ...fe import (
     Body,
     Placement,
@@ -54,6 +44,16 @@ from ...toothpair import (
     drive,
     expected_elastic_um,
     first_teeth,
+)
+from ..penalty import (
+    ContactError,
+    ContactModel,
+    ContactPair,
+    ContactSettings,
+    ContactSolution,
+    build_contact,
+    first_touch,
+    solve_contact,
 )
 from .case import SectorCase
 from .recovery import root_nodes, root_stresses, tooth_results
@@ -220,8 +220,8 @@ class SectorDetail:
         """Both sectors in the fixed frame with displacement, stresses (components turned into
         the fixed frame) and contact pressure (``around``: no effect, the sectors are the
         loaded teeth already)."""
-        from ...contact import nodal_pressure
         from ...fe import vtu_fields
+        from ..penalty import nodal_pressure
 
         out = []
         for i, (b, u, s) in enumerate(zip(self.bodies, self.contact.displacements,
@@ -243,7 +243,7 @@ class SectorDetail:
         return ()
 
     def contact_zone(self) -> ContactZone:
-        loaded = max(self.contact.patches, key=lambda pt: pt.load)
+        loaded = max(self.contact.zones, key=lambda z: z.load)
         return ContactZone(tuple(loaded.center), loaded.half_width, loaded.pair)
 
 

@@ -25,7 +25,7 @@ ALLOWABLE_CONTACT = 745.0  # MPa, 42CrMo (the paper)
 def _check(sol):
     """Converged: torque balanced to 0.1 %, penetration within 1 % of the contact half-width
     (the solver's own bound), every headline stress finite."""
-    widest = max(p.half_width for p in sol.detail.contact.patches)
+    widest = max(z.half_width for z in sol.detail.contact.zones)
     assert sol.checks.balance_error < 1e-3
     assert sol.checks.max_penetration < 0.01 * widest
     assert all(math.isfinite(v) for v in sol.headline().values())

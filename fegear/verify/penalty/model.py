@@ -1,37 +1,25 @@
-"""The contact model: pairs (a slave boundary against a master body's exact curve), the
-penalty settings, and the condensed problem :class:`ContactModel` that :mod:`.solve` solves.
+"""The penalty contact's model: pairs (a slave boundary against a master body's exact curve),
+the penalty settings, and the condensed problem :class:`ContactModel` that :mod:`.solve`
+solves.
 
-The formulation is in the package docstring (:mod:`fegear.contact`).
+The formulation is in the package docstring (:mod:`fegear.verify.penalty`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..errors import ContactError  # noqa: F401  (fegear.contact.ContactError)
+from ...contact import CurvePoints, ExactCurve
+from ...errors import ContactError  # noqa: F401  (fegear.verify.penalty.ContactError)
 
 if TYPE_CHECKING:  # the settings and curves are light; the model's parts come with the solve
     import scipy.sparse as sp
 
-    from ..fe import Body
+    from ...fe import Body
     from .flexibility import PointFlexibility
-
-
-@dataclass(frozen=True)
-class CurvePoints:
-    """Closest points on an exact curve: feet (n, 2), unit normals pointing out of the body's
-    material (n, 2), signed distances (n,) in mm, positive outside the material."""
-
-    foot: np.ndarray
-    normal: np.ndarray
-    distance: np.ndarray
-
-
-class ExactCurve(Protocol):
-    def closest(self, points: np.ndarray) -> CurvePoints: ...
 
 
 @dataclass(frozen=True)

@@ -3,9 +3,9 @@ and their rows over each body's displacements.
 
 Each pair's slave boundary is chained end to end; its quadrature points (``gauss_points`` per
 half facet) are paired once with their closest point on the master's exact curve and the master
-facet under it (:mod:`.search`). The weighted gap of slave corner node i averages the pointwise
-gaps with the linear hat φ_i; its elastic part is a row over the slave facet's and the master
-facet's P2 nodes along the normal at the point.
+facet under it (:mod:`fegear.contact.search`). The weighted gap of slave corner node i averages
+the pointwise gaps with the linear hat φ_i; its elastic part is a row over the slave facet's and
+the master facet's P2 nodes along the normal at the point.
 """
 
 from __future__ import annotations
@@ -16,10 +16,10 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from ..fe import Body, contact_modulus, facet_nodes
+from ...contact import facet_curve, locate_on_facets, ordered_boundary, p2_edge_shape
+from ...fe import Body, contact_modulus, facet_nodes
 from .flexibility import PointFlexibility
 from .model import ContactError, ContactModel, ContactPair, ContactSettings
-from .search import facet_curve, locate_on_facets, ordered_boundary, p2_edge_shape
 
 
 @dataclass(frozen=True)

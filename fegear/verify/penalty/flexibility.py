@@ -8,8 +8,8 @@ from collections.abc import Sequence
 import numpy as np
 import scipy.sparse as sp
 
-from ..fe import WindowFlexibility
-from ..timing import timed
+from ...fe import WindowFlexibility
+from ...timing import timed
 
 
 class PointFlexibility:

@@ -1,4 +1,5 @@
-"""Solving the condensed contact problem (see :mod:`fegear.contact`) and reading it back.
+"""Solving the condensed contact problem (see :mod:`fegear.verify.penalty`) and reading it
+back.
 
 Load control (given the link's generalised force F, find θ) or motion control (given θ, find F).
 Unknowns are the point forces λ ≥ 0 (N) and θ; with P = diag(κ w) the penalty,
@@ -18,7 +19,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..fe import facet_nodes
+from ...fe import facet_nodes
 from .model import ContactError, ContactModel
 
 log = logging.getLogger(__name__)
@@ -37,7 +38,7 @@ GAP_ROUNDING = 1e-14
 
 
 @dataclass(frozen=True)
-class ContactPatch:
+class PairZone:
     """One contact zone of a pair. ``load`` (N); ``p_max`` (MPa), the largest node pressure
     (a parabola through it and its neighbours overshot Hertz by 2 % at 4 elements per b);
     ``half_width`` (mm), twice the standard deviation of the traction along the slave arc (b for
@@ -70,7 +71,7 @@ class ContactSolution:
     balance_error: float
     displacements: tuple[np.ndarray, ...] = field(repr=False)
     residuals: tuple[float, ...]
-    patches: tuple[ContactPatch, ...]
+    zones: tuple[PairZone, ...]
 
     @property
     def total_load(self) -> float:
@@ -153,9 +154,9 @@ def solve_contact(model: ContactModel, load: float | None = None,
     balance = abs(link_force - load) / max(abs(load), 1e-300) if load is not None else 0.0
     displacements, residuals = _displacements(model, lam, theta)
     pressure = model.kappa * np.maximum(-gap, 0.0)
-    patches = _patches(model, lam)
+    zones = _zones(model, lam)
     max_pen = float(max(0.0, -gap.min()))
-    widest = max((p.half_width for p in patches), default=0.0)
+    widest = max((z.half_width for z in zones), default=0.0)
     if widest > 0 and max_pen > st.penetration_tol * widest:
         raise ContactError(f"penalty too soft: penetration {max_pen * 1e3:.3g} µm exceeds "
                            f"{st.penetration_tol:.0%} of the contact half-width "
@@ -163,7 +164,7 @@ def solve_contact(model: ContactModel, load: float | None = None,
     return ContactSolution(link_value=theta, link_force=link_force, force=lam, pressure=pressure,
                            gap=gap, iterations=total_inner, outer_iterations=outer,
                            max_penetration=max_pen, balance_error=balance,
-                           displacements=displacements, residuals=residuals, patches=patches)
+                           displacements=displacements, residuals=residuals, zones=zones)
 
 
 def first_touch(g0: np.ndarray, a: np.ndarray, load: float, k_link: float) -> float:
@@ -211,7 +212,7 @@ def _displacements(model: ContactModel, lam: np.ndarray, theta: float):
     return tuple(us), tuple(res)
 
 
-def _patches(model: ContactModel, lam: np.ndarray) -> tuple[ContactPatch, ...]:
+def _zones(model: ContactModel, lam: np.ndarray) -> tuple[PairZone, ...]:
     out = []
     for k, pair in enumerate(model.pairs):
         sel = (model.pair_index == k) & (lam > 0)
@@ -226,10 +227,9 @@ def _patches(model: ContactModel, lam: np.ndarray) -> tuple[ContactPatch, ...]:
         placed = model.bodies[pair.slave].placement.to_fixed(model.x[sel])
         centre = np.sum(w[:, None] * placed, axis=0) / w.sum()
         p_max = float(np.max(lam[sel] / model.weight[sel]))
-        out.append(ContactPatch(pair=pair.name, load=float(w.sum()), p_max=p_max,
-                                half_width=float(half),
-                                center=(float(centre[0]), float(centre[1])),
-                                points=int(sel.sum())))
+        out.append(PairZone(pair=pair.name, load=float(w.sum()), p_max=p_max,
+                            half_width=float(half), center=(float(centre[0]), float(centre[1])),
+                            points=int(sel.sum())))
     return tuple(out)
 
 
