@@ -60,7 +60,8 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
              "ContactZone", "HEADLINE", "cycle_positions"),
     "pair": ("solve_pair", "solve_positions"),
     "teeth": ("choose_teeth", "candidate_data", "refuse_interference", "Candidate",
-              "Gear2Master", "tension_fillets", "TOOTH_STIFFNESS"),
+              "tension_fillets", "TOOTH_STIFFNESS"),
+    "ring.master": ("Gear2Master",),   # the sector model's master curve too
     "edge": ("flank_and_edge", "FlankEdge", "EDGE_ZONE"),
     "segments": ("ROOT_BAND", "gear2_outline", "gear2_polar", "path_windows",
                  "profile_segments", "root_half_angle", "round_strips", "unwrap_near"),

@@ -5,7 +5,7 @@ analysis says of them: shared by both tooth-pair models.
 and an estimate of the loaded rotation; after a solve the same rule, at the solved rotation,
 tells whether a tooth left out would have closed. :func:`candidate_data` gives each chosen
 tooth's predicted contact point and the curvature radii there (for Hertz beside the FE
-values). :class:`Gear2Master` is gear 2's exact curve placed at a rolling angle.
+values).
 """
 
 from __future__ import annotations
@@ -15,9 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..contact import CurvePoints
 from ..errors import GeometryError
-from ..geometry import Cycloid, PairParameters, RoundedProfile, gear2_curve
+from ..geometry import PairParameters, RoundedProfile, gear2_curve
 from ..planar import rotate
 
 TOOTH_STIFFNESS = 14.0   # N/(mm·µm): ISO 6336 single-pair stiffness c', for the load estimate
@@ -26,25 +25,6 @@ MARGIN_FACTOR = 1.5      # … or below 1.5 × the closure + 3 µm within NEAR_T
 NEAR_TEETH = 2
 INTERFERENCE_UM = 1e-3   # a clearance below −1 nm of arc is an interference (touching teeth
                          # of a conformal pair come out at about −2e-10 µm)
-
-
-@dataclass(frozen=True)
-class Gear2Master:
-    """Gear 2's exact curve at rolling angle β, as an exact master curve (fixed frame)."""
-
-    curve: Cycloid
-    beta: float
-
-    def closest(self, points: np.ndarray, feet: np.ndarray | None = None) -> CurvePoints:
-        """The feet of ``points`` on the curve. ``feet``: the curve's parameters ξ to start
-        each point's search from (NaN: from its polar angle), overwritten with the feet found
-        (:meth:`~fegear.geometry.Cycloid.feet`)."""
-        y = rotate(np.asarray(points, float), -self.beta)
-        xi = self.curve.feet(y, start=feet)
-        if feet is not None:
-            feet[:] = xi
-        foot, normal, dist = self.curve.at_feet(y, xi)
-        return CurvePoints(rotate(foot, self.beta), rotate(normal, self.beta), dist)
 
 
 @dataclass(frozen=True)

@@ -16,8 +16,8 @@ import numpy as np
 
 from ...errors import ContactError
 from ...planar import rotate
-from ..teeth import Gear2Master
 from .influence import RingContact, approach_open
+from .master import Gear2Master
 from .model import RingModel
 
 MAX_ACTIVE_SET = 80     # active-set changes per linearisation

@@ -24,8 +24,8 @@ import numpy as np
 from ...contact import approach_matrix
 from ...fe import Cells
 from ...planar import rotate
-from ..teeth import Gear2Master
 from .grid import ToothGrid
+from .master import Gear2Master
 from .model import RingModel
 from .side import GearSide, LoadBlock, Located
 
