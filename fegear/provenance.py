@@ -31,8 +31,8 @@ def _versions(names: tuple[str, ...]) -> dict[str, str | None]:
 #: the stages that compute a solve's numbers and files, and the shared modules they use;
 #: the others (cli, study, verify, drive) run, schedule, present or compare results, and
 #: editing them keeps a study's finished cases valid
-IN_RESULTS = ("geometry", "fe", "contact", "toothpair", "checks.py", "errors.py", "files.py",
-              "figures.py", "pixels.py", "placement.py", "planar.py")
+IN_RESULTS = ("geometry", "fe", "contact", "toothpair", "figures", "checks.py", "errors.py",
+              "files.py", "planar.py")
 
 
 @functools.cache

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from fegear.pixels import segments_cross
+from fegear.figures.pixels import segments_cross
 
 
 def label_boxes(ax) -> list[tuple[np.ndarray, np.ndarray | None]]:

@@ -17,8 +17,8 @@ from fegear import provenance
 PACKAGE = Path(__file__).parents[1] / "fegear"
 MAP = PACKAGE.parent / "docs" / "architecture.md"
 #: modules and packages allowed beside the stages: entry points and shared helpers
-SHARED = {"__init__", "__main__", "checks", "errors", "exports", "figures", "files", "pixels",
-          "placement", "planar", "progress", "provenance", "running", "timing"}
+SHARED = {"__init__", "__main__", "checks", "errors", "exports", "figures", "files", "planar",
+          "progress", "provenance", "running", "timing"}
 #: which stages each stage may import (the shared helpers are open to all)
 ALLOWED = {
     "geometry": set(),
@@ -176,7 +176,9 @@ def test_heavy_libraries_are_imported_only_where_they_are_used():
             assert rel == "fe/mesh.py", f"{rel} imports gmsh"
         for lib in ("matplotlib", "pyvista"):
             if lib in libs:
-                assert path.stem in ("plot", "figures"), f"{rel} imports {lib}"
+                # figures' face sets them up; its labels and pixels read the artists they are
+                # given through the artists' own methods
+                assert path.stem == "plot" or rel == "figures/__init__.py", f"{rel} imports {lib}"
                 assert not libs[lib], f"{rel} imports {lib} at module level"
 
 

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..figures import pyplot, save_png
-from ..placement import place_legend
+from ..figures.labels import place_legend
 
 
 def pair_png(path: Path, gear1: np.ndarray, gear2: np.ndarray, e: float, r0: float,

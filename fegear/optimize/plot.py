@@ -7,7 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..figures import pyplot, save_png
-from ..placement import place_legend
+from ..figures.labels import place_legend
 from .design import OBJECTIVES
 
 #: the objectives' axis labels

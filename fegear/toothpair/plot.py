@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..figures import margins, pyplot, save_png
-from ..placement import Callout, place_callouts, place_legend
+from ..figures.labels import Callout, place_callouts, place_legend
 from .case import PairSolution
 from .marks import Verdict, field_max, pressure_curve, root_hot_spots
 from .report import factor_cell

@@ -267,7 +267,7 @@ def test_the_flank_panels_share_one_legend_above_them(solved, summary, plt):
 
 
 def test_the_legends_of_root_stress_and_cycle_cover_no_data(cycle, solved, summary, plt):
-    from fegear.placement import legend_cover
+    from fegear.figures.labels import legend_cover
     from fegear.toothpair import DEFAULT_ALLOWABLES, HEADLINE
     from fegear.toothpair.plot import cycle_figure, root_stress_figure
 
@@ -283,9 +283,9 @@ def test_the_legends_of_root_stress_and_cycle_cover_no_data(cycle, solved, summa
 def test_the_zoom_window_on_pair_png_cuts_no_tooth_number(baseline, plt):
     """Its dashed outline passes between the overview's numbers (it cut "13"), and the
     legend covers no gear."""
+    from fegear.figures.labels import legend_cover
     from fegear.geometry import build_geometry
     from fegear.geometry.plot import pair_figure
-    from fegear.placement import legend_cover
 
     geo = build_geometry(baseline, backlash_positions=None)
     fig = pair_figure(geo.gear1, geo.gear2, baseline.e, baseline.r0, "pair",

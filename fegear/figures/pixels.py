@@ -1,5 +1,5 @@
 """What a drawn axes shows, in display pixels, and the geometry of boxes and segments there:
-what :mod:`fegear.placement` places labels and legends among. Boxes are (x0, y0, x1, y1)
+what :mod:`fegear.figures.labels` places labels and legends among. Boxes are (x0, y0, x1, y1)
 arrays, points (x, y); the functions broadcast over rows.
 
 The artists are read through their own methods (window extents, paths, offsets), so this

@@ -5,8 +5,8 @@ import pytest
 from labels import label_faults
 
 from fegear.figures import pyplot
-from fegear.pixels import segments_cross
-from fegear.placement import Callout, legend_cover, place_callouts, place_legend
+from fegear.figures.labels import Callout, legend_cover, place_callouts, place_legend
+from fegear.figures.pixels import segments_cross
 
 
 @pytest.fixture

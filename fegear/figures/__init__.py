@@ -1,13 +1,15 @@
 """Figures: matplotlib and pyvista set up for files (no screen), and PNGs written atomically.
 
 matplotlib is imported here, inside the functions, so that no stage pays for it at import.
+:mod:`.labels` places labels and legends clear of the data, among what :mod:`.pixels` reads
+off a drawn axes; neither imports matplotlib.
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from .files import write_atomic
+from ..files import write_atomic
 
 
 def pyplot():
