@@ -1,12 +1,14 @@
 """Verification stage, beside the pipeline: the Hertz disk case, the benchmark (run time
 against error), and CalculiX solving the same meshes.
 
-:mod:`.disks` is the FE core's analytic reference (``fegear hertz``); :mod:`.bench` times every
-stage on meshes each twice as fine as the last and measures each level's error against the
-Richardson extrapolation of the finest, and :mod:`.bench_run` runs one ``fegear bench`` (what
-runs, its report, its files; the pair's targets in :mod:`.pair_targets`); :mod:`.calculix` and
-:mod:`.calculix_pair` write the very same bodies, supports, penalty and load as CalculiX decks
-and read its answers back; :mod:`.runner_bench` times the study runner.
+:mod:`.disks` is the FE core's analytic reference (``fegear hertz``), solved with the peers'
+penalty contact (:mod:`.penalty`, which the sector model, :mod:`.sector`, uses too);
+:mod:`.bench` times every stage on meshes each twice as fine as the last and measures each
+level's error against the Richardson extrapolation of the finest, and :mod:`.bench_run` runs
+one ``fegear bench`` (what runs, its report, its files; the pair's targets in
+:mod:`.pair_targets`); :mod:`.calculix` and :mod:`.calculix_pair` write the very same bodies,
+supports, penalty and load as CalculiX decks and read its answers back; :mod:`.runner_bench`
+times the study runner.
 
 >>> from fegear.verify import DiskCase, richardson, solve_disks
 >>> result = solve_disks(DiskCase(quality=4))   # 4 elements across the Hertz half-width
