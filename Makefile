@@ -29,7 +29,8 @@ test-all: lint
 
 bench: $(STAMP)
 	# the paper's baseline pair; the sector model and CalculiX beside it, the paper study timed
-	$(BIN)/fegear bench --shift 0.016 --rotation 0.002 --sector-levels coarse,fast --paper-study
+	$(BIN)/fegear bench --shift 0.016 --rotation 0.002 --sector-levels coarse,fast --paper-study \
+		--history docs/bench/history.jsonl
 
 study: $(STAMP)
 	$(BIN)/fegear study studies/paper_trends.toml  # the paper's Tables 4-6, about 15 s

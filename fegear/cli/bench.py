@@ -60,6 +60,17 @@ def add_parser(sub) -> None:
                         "seconds)")
     p.add_argument("--out", default="out/bench",
                    help="directory for bench.json and the plots (default out/bench)")
+    p.add_argument("--history", default=None,
+                   help="the history file this run is appended to and compared with (default: "
+                        "bench_history.jsonl in --out; `make bench` keeps the repository's, "
+                        "docs/bench/history.jsonl)")
+    p.add_argument("--show-history", action="store_true",
+                   help="only print the history (--history) as a table: a column a run")
+    p.add_argument("--against", default=None, metavar="CHECKOUT",
+                   help="only time the user's commands (solve, a cycle, relief, the paper "
+                        "study, a 40-trial search) here and in the fegear checkout CHECKOUT "
+                        "(with its .venv), alternately, --repeat times each, and print both "
+                        "and their ratio (minutes)")
 
 
 def _levels(name: str, text: str | None, allowed, least: int) -> list[str]:
@@ -94,14 +105,34 @@ def _skip_or(name: str, value: int, skip: bool = True) -> int:
 
 
 def run(a: argparse.Namespace) -> int:
+    from pathlib import Path
+
     from ..verify import run_bench
 
-    run_bench(_plan(a), say=lambda text: print(text, flush=True))
+    def say(text: str) -> None:
+        print(text, flush=True)
+
+    if a.show_history:
+        from ..verify.history import HISTORY, history_table, runs
+
+        kept = runs(Path(a.history) if a.history else Path(a.out) / HISTORY)
+        print(history_table(kept) if kept else "(no bench run kept there yet)")
+        return 0
+    if a.against:
+        from ..verify.against import against_table, checkout, time_against
+
+        there = checkout(a.against)
+        repeat = checked(a, [_ROW["repeat"]])["repeat"]
+        say(against_table(time_against(there, repeat), there))
+        return 0
+    run_bench(_plan(a), say=say)
     return 0
 
 
 def _plan(a: argparse.Namespace) -> BenchPlan:
     """The bench's plan from its options, each checked (and --out) before any work."""
+    from pathlib import Path
+
     from ..files import check_dir
     from ..geometry import admissible_pair
     from ..verify import BenchPlan
@@ -132,4 +163,5 @@ def _plan(a: argparse.Namespace) -> BenchPlan:
                      pair_levels=tuple(pair_levels), sector_levels=tuple(sector_levels),
                      scaling=tuple(int(z) for z in teeth), study_cases=study_cases,
                      pair_args=tuple(x for k, v in given.items() for x in (f"--{k}", f"{v}")),
-                     peer=not a.no_peer, paper_study=a.paper_study, only=only)
+                     peer=not a.no_peer, paper_study=a.paper_study, only=only,
+                     history=None if a.history is None else Path(a.history))

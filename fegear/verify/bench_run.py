@@ -41,7 +41,8 @@ class BenchPlan:
     of gear 2 for the cost-growth runs (none: skipped); ``study_cases``: solves of the study
     runner's benchmark (0: skipped); ``peer``: CalculiX beside the ladders; ``paper_study``:
     also time studies/paper_trends.toml; ``only``: one of :data:`ONLY`; ``out``: the directory
-    (checked, made when there is something to write)."""
+    (checked, made when there is something to write); ``history``: the file this run is
+    appended to and compared with (None: :data:`~.history.HISTORY` in ``out``)."""
 
     params: PairParameters
     torque: float
@@ -58,6 +59,7 @@ class BenchPlan:
     peer: bool = True
     paper_study: bool = False
     only: str = ""
+    history: Path | None = None
 
     def __post_init__(self) -> None:
         if self.only not in ONLY:
@@ -180,17 +182,18 @@ def _report(plan: BenchPlan, disks: Ladder, runs: PairRuns, scale: list, say: Sa
     everything = {**ladder_json([disks] + ([runs.sector] if runs.sector else []),
                                 ladder_targets(disks)),
                   "ring": _ring_record(runs, scale, lines)}
-    before = history.last_run(out)
+    kept = plan.history or out / history.HISTORY
+    before = history.last_run(kept)
     write_json(out / "bench.json", everything)
     metrics = history.bench_metrics(everything)
     if before is not None:
         say("")
-        say(f"### Beside the last run in {out}")
+        say(f"### Beside the last run in {kept}")
         say("")
         say(history.beside_table(before, metrics))
-    history.remember(out, metrics, code_version(), everything["machine"])
-    say(f"\nbench.json, bench.png{', bench_scaling.png' if scale else ''}, "
-        f"{history.HISTORY} in {out}")
+    history.remember(kept, metrics, code_version(), everything["machine"])
+    say(f"\nbench.json, bench.png{', bench_scaling.png' if scale else ''} in {out}; this run "
+        f"appended to {kept}")
 
 
 def _ring_record(runs: PairRuns, scale: list, targets: list[str]) -> dict:

@@ -1,11 +1,12 @@
-"""The bench's earlier numbers beside its new ones.
+"""The bench's history: its numbers, run after run, as data.
 
-Every ``fegear bench`` run appends its headline numbers (times in s, memory in MB) to
-``bench_history.jsonl`` in its output folder, one JSON line a run with the date, fegear's code
-version and the machine. The next run prints the last one's numbers beside its own, with the
-ratio, so a change to the code is judged against the run before it on the same machine. A
-folder from before the history existed has its ``bench.json``: that run's numbers are read
-from it instead.
+Every ``fegear bench`` run appends its numbers (times in s, memory in MB) to a history file,
+one JSON line a run with the date, fegear's code version and the machine: ``--history FILE``,
+by default ``bench_history.jsonl`` in its output folder (``make bench`` keeps the repository's,
+docs/bench/history.jsonl). The next run prints the last one's numbers beside its own, with the
+ratio, so a change to the code is judged against the run before it on the same machine; ``fegear
+bench --show-history`` prints the history as a table. A folder from before the history existed
+has its ``bench.json``: that run's numbers are read from it instead.
 """
 
 from __future__ import annotations
@@ -56,18 +57,27 @@ def bench_metrics(record: dict) -> dict[str, float]:
     return out
 
 
-def last_run(folder: Path) -> dict | None:
-    """The last run kept in ``folder``: its history's last line, else what its
-    ``bench.json`` (written before the history existed) says, dated by the file; None if
-    neither is there or readable."""
-    history = folder / HISTORY
+def runs(history: Path) -> list[dict]:
+    """The runs kept in the history file ``history``, oldest first (none if there is none)."""
     try:
         lines = history.read_text().splitlines()
-        return json.loads(lines[-1]) if lines else None
-    except (OSError, ValueError):
+    except OSError:
+        return []
+    return [json.loads(line) for line in lines if line.strip()]
+
+
+def last_run(history: Path) -> dict | None:
+    """The last run kept in the history file ``history``, else what the ``bench.json`` beside
+    it (written before the history existed) says, dated by the file; None if neither is there
+    or readable."""
+    try:
+        kept = runs(history)
+        if kept:
+            return kept[-1]
+    except ValueError:
         pass
     try:
-        path = folder / "bench.json"
+        path = history.parent / "bench.json"
         record = json.loads(path.read_text())
         date = time.strftime("%Y-%m-%d %H:%M", time.gmtime(path.stat().st_mtime))
     except (OSError, ValueError):
@@ -75,13 +85,14 @@ def last_run(folder: Path) -> dict | None:
     return {"date": date, "code": None, "metrics": bench_metrics(record)}
 
 
-def remember(folder: Path, metrics: dict[str, float], code: str, machine: dict) -> dict:
+def remember(history: Path, metrics: dict[str, float], code: str, machine: dict) -> dict:
     """Append this run (its ``metrics``, the date, ``code`` version and ``machine``) to the
-    history in ``folder``; returns the entry."""
+    history file ``history``; returns the entry."""
     entry = {"date": time.strftime("%Y-%m-%d %H:%M", time.gmtime()), "code": code,
              "machine": {k: machine.get(k) for k in ("platform", "cpus", "memory_GiB")},
              "metrics": metrics}
-    with open(folder / HISTORY, "a") as f:
+    history.parent.mkdir(parents=True, exist_ok=True)
+    with open(history, "a") as f:
         f.write(json.dumps(entry) + "\n")
     return entry
 
@@ -98,3 +109,23 @@ def beside_table(before: dict, now: dict[str, float]) -> str:
         ratio = f"{v / b:.2f}" if b else "–"
         lines.append(f"| {k} | {'–' if b is None else f'{b:.3g}'} | {v:.3g} | {ratio} |")
     return "\n".join(lines)
+
+
+def history_table(kept: list[dict], last: int = 8) -> str:
+    """Markdown: the ``last`` runs of a history as columns (date, code version; a run's
+    ``note`` beneath), one row per number any of them measured, in the order first seen."""
+    shown = kept[-last:]
+    names = list(dict.fromkeys(k for run in shown for k in run.get("metrics", {})))
+    head = ["| | " + " | ".join(f"{r['date']}" + (f" {r['code'].split(';')[0][:12]}"
+                                                     if r.get("code") else "")
+                                  for r in shown) + " |",
+            "|---|" + "---:|" * len(shown)]
+    if any(r.get("note") for r in shown):
+        head.append("| note | " + " | ".join(r.get("note", "") for r in shown) + " |")
+    rows = [f"| {k} | " + " | ".join(_cell(r.get("metrics", {}).get(k)) for r in shown) + " |"
+            for k in names]
+    return "\n".join(head + rows)
+
+
+def _cell(v) -> str:
+    return "–" if v is None else f"{v:.3g}"

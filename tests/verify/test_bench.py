@@ -164,14 +164,15 @@ def test_each_run_is_kept_and_the_last_one_printed_beside_the_next(tmp_path):
                          "cycle": {"label": "standard, 24-position cycle",
                                    "extra": {"cycle_s": cycle}}}}
 
-    assert history.last_run(tmp_path) is None
+    kept = tmp_path / history.HISTORY
+    assert history.last_run(kept) is None
     (tmp_path / "bench.json").write_text(json.dumps(record(2.0, 8.0)))
-    old = history.last_run(tmp_path)
+    old = history.last_run(kept)
     assert old["metrics"]["cycle / one position [×]"] == 4.0
     assert "ring `standard`, cache [s]" not in old["metrics"]          # a stage not run
-    history.remember(tmp_path, history.bench_metrics(record(1.0, 3.0)), "0.1.0+abc; numpy 2",
+    history.remember(kept, history.bench_metrics(record(1.0, 3.0)), "0.1.0+abc; numpy 2",
                      {"cpus": 2})
-    last = history.last_run(tmp_path)
+    last = history.last_run(kept)
     assert last["code"].startswith("0.1.0+abc") and last["metrics"]["cycle / one position [×]"] \
         == 3.0
     now = history.bench_metrics(record(0.5, 1.0))
@@ -180,4 +181,35 @@ def test_each_run_is_kept_and_the_last_one_printed_beside_the_next(tmp_path):
     assert "| ring `standard`, one position [s] | 1 | 0.5 | 0.50 |" in table
     assert "| cycle / one position [×] | 3 | 2 | 0.67 |" in table
     assert "| a number the last run did not measure [s] | – | 1 | – |" in table
-    assert len((tmp_path / history.HISTORY).read_text().splitlines()) == 1
+    assert len(kept.read_text().splitlines()) == 1
+    # the history printed as a table: a column a run, a row a number
+    history.remember(kept, now, "0.1.0+def; numpy 2", {"cpus": 2})
+    shown = history.history_table(history.runs(kept))
+    assert shown.splitlines()[0].count("0.1.0+") == 2
+    assert "| cycle / one position [×] | 3 | 2 |" in shown
+    assert "| a number the last run did not measure [s] | – | 1 |" in shown
+
+
+def test_commands_are_timed_here_and_in_another_checkout_alternately(tmp_path):
+    """``fegear bench --against``: each command here and there, as many times each, the
+    ratio of the medians; a checkout without its fegear, or a command failing there, is one
+    line naming it."""
+    import stat
+
+    from fegear.errors import FegearError
+    from fegear.verify.against import against_table, checkout, time_against
+
+    fake = tmp_path / ".venv" / "bin" / "fegear"
+    fake.parent.mkdir(parents=True)
+    fake.write_text("#!/bin/sh\necho \"$@\" >> \"$0.log\"\n")
+    fake.chmod(fake.stat().st_mode | stat.S_IEXEC)
+    rows = time_against(checkout(tmp_path), 3, commands=(("version", ("--version",)),))
+    (row,) = rows
+    assert len(row.here) == len(row.there) == 3 and row.ratio > 0
+    assert (tmp_path / ".venv/bin/fegear.log").read_text().splitlines() == ["-q --version"] * 3
+    assert "| version |" in against_table(rows, tmp_path)
+    with pytest.raises(FegearError, match="no fegear checkout"):
+        checkout(tmp_path / "nowhere")
+    fake.write_text("#!/bin/sh\necho broken >&2\nexit 1\n")
+    with pytest.raises(FegearError, match="`fegear --version` failed in .*: broken"):
+        time_against(checkout(tmp_path), 1, commands=(("version", ("--version",)),))

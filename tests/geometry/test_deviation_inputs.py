@@ -1,0 +1,78 @@
+"""Deviations as a user gives them (fegear/geometry/deviation_inputs.py): the short texts of
+the command line and study files, and a measuring machine's file with units in its header;
+whatever is wrong is one ParameterError naming the option, the line or the column."""
+
+import pytest
+
+from fegear.errors import ParameterError
+from fegear.geometry.deviation_inputs import deviations_of, per_tooth, read_deviations, runouts
+from fegear.geometry.deviations import Runout, ToothDeviation
+
+
+def test_per_tooth_texts():
+    assert per_tooth("pitch-deviation", "1:11=5, 2:30=-3.5") == {(1, 11): 5.0, (2, 30): -3.5}
+    assert per_tooth("pitch-deviation", None) == {}
+    for bad in ("11=5", "3:1=5", "1:x=5", "1:2=abc", "1:2=nan", "1:2=2000", "1:2"):
+        with pytest.raises(ParameterError, match="GEAR:TOOTH=µm") as exc:
+            per_tooth("slope-deviation", bad)
+        assert exc.value.name == "slope-deviation"
+
+
+def test_runout_texts():
+    assert runouts("1=10@90,2=4") == {1: Runout(10.0, 90.0), 2: Runout(4.0, 0.0)}
+    for bad in ("1=-2", "3=2", "1=x@3", "1=2@y", "1:2"):
+        with pytest.raises(ParameterError, match="GEAR=µm@deg"):
+            runouts(bad)
+
+
+def test_the_inputs_of_a_solve_make_one_set_of_deviations(tmp_path):
+    f = tmp_path / "m.csv"
+    f.write_text("# a gear measuring machine's report\ngear, tooth, fp [µm], fHa [um]\n"
+                 "1, 11, 4.0, 1.5\n1, 12, -2, 0\n")
+    d = deviations_of({"deviations": str(f), "pitch-deviation": "1:11=5",
+                       "form-deviation": "2:3=1", "centre-distance-deviation": 10.0,
+                       "runout": "2=8@45"}, 44, 45)
+    assert d.gear1 == {11: ToothDeviation(5.0, 1.5), 12: ToothDeviation(-2.0)}  # the option wins
+    assert d.gear2 == {3: ToothDeviation(form=1.0)}
+    assert d.centre_distance == 10.0 and d.runout2 == Runout(8.0, 45.0) and d
+    assert not deviations_of({}, 44, 45)
+    with pytest.raises(ParameterError, match="a tooth 0 ... 43 of gear 1"):
+        deviations_of({"pitch-deviation": "1:44=5"}, 44, 45)
+
+
+def test_single_pitch_deviations_add_up_to_the_teeth_s_positions(tmp_path):
+    f = tmp_path / "fpt.csv"
+    f.write_text("gear,tooth,fpt [mm]\n" + "".join(f"1,{t},{0.001 if t == 2 else 0}\n"
+                                                     for t in range(6)))
+    got = read_deviations(f, 6, 7)
+    assert {k: v.pitch for k, v in got.items()} == {(1, t): (1.0 if t >= 2 else 0.0)
+                                                   for t in range(6)}
+    f.write_text("gear,tooth,fpt [µm]\n1,0,1\n1,2,1\n")
+    with pytest.raises(ParameterError, match="every tooth 0 ... 5 of gear 1"):
+        read_deviations(f, 6, 7)
+
+
+@pytest.mark.parametrize("text, says", [
+    ("", "a header"),
+    ("gear,tooth\n1,2\n", "at least one deviation column"),
+    ("gear,tooth,fp\n1,2,3\n", r"the unit of column 'fp' in brackets"),
+    ("gear,tooth,fp [in]\n1,2,3\n", r"the unit of column 'fp \[in\]'"),
+    ("gear,tooth,lead [µm]\n1,2,3\n", "not 'lead"),
+    ("gear,tooth,fp [µm]\n1,2\n", "line 2: 3 cells"),
+    ("gear,tooth,fp [µm]\n1,2,x\n", "line 2: a number in column 'fp"),
+    ("gear,tooth,fp [µm]\n1,2.5,1\n", "line 2: a whole number in column 'tooth'"),
+    ("gear,tooth,fp [µm]\n3,2,1\n", "line 2: gear 1"),
+    ("gear,tooth,fp [µm]\n1,50,1\n", "not gear 1 tooth 50"),
+    ("gear,tooth,fp [µm]\n1,5,5000\n", "-1000 <= pitch-deviation <= 1000"),
+])
+def test_a_bad_file_is_one_line_naming_what_is_wrong(tmp_path, text, says):
+    f = tmp_path / "bad.csv"
+    f.write_text(text)
+    with pytest.raises(ParameterError, match=says) as exc:
+        read_deviations(f, 44, 45)
+    assert exc.value.name == "deviations" and "\n" not in str(exc.value)
+
+
+def test_a_missing_file_is_named():
+    with pytest.raises(ParameterError, match="a readable CSV file"):
+        read_deviations("/nonexistent/d.csv", 44, 45)
