@@ -108,7 +108,7 @@ def test_a_far_side_round_that_no_tip_clearance_frees_is_refused_naming_the_limi
                                   dict(needed_um=0.0)])
 def test_solving_ahead_on_two_workers_finds_what_the_search_finds_alone(kind):
     """The guesses change nothing the search reports: the same amount, tip clearance, trials
-    in the same order and the same pair at the design torque; they are solved beside the
+    in the same order and the same pair at the design torque; they are solved in parallel with the
     trials it needs (more solves than trials, fewer rounds)."""
     alone, alone_calls = _fake(**kind)
     ahead, ahead_calls = _fake(**kind)

@@ -29,7 +29,7 @@ PEAK_MARGIN = 0.02   # a cycle's position gets its submodels where its von Mises
 def with_peak_submodels(sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
     """``sols`` with the submodels of the positions that decide the cycle's von Mises stress
     (module docstring); the others keep the surface estimate (``von_mises_estimated``). The
-    first round takes, beside the pictured position, every position whose estimate is within
+    first round takes, besides the pictured position, every position whose estimate is within
     the margin of the largest estimate: the submodels lift an estimate by a few tenths of a per
     cent, so these are mostly the positions a later round would add."""
     if not sols:
