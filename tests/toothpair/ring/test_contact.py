@@ -32,7 +32,7 @@ def _solved(inputs, torque, beta):
     return sol
 
 
-@pytest.mark.slow  # 4 s: _active_set's arm_rate is exercised by every default solve
+@pytest.mark.slow  # 4 s: active_set's arm_rate is exercised by every default solve
 def test_the_rotation_settles_quadratically_at_a_sharp_gear_2_tip(monkeypatch):
     monkeypatch.setattr(contact, "MAX_TURNS", 10)   # it took more than 30 before
     _solved(SHARP_TIP, 6.587005962987897, 0.0006990687571524972)
@@ -58,25 +58,27 @@ def _problem(n, seed):
     w = rng.uniform(0.01, 0.05, n)
     g0 = 1e-3 * (x - 0.4) ** 2 - 2e-5
     a = -rng.uniform(5.0, 20.0, n)
-    return C * w[None, :], w, g0, a
+    return contact.ContactSystem(C * w[None, :], w, g0, a)
 
 
 @pytest.mark.parametrize("seed", range(5))
 @pytest.mark.parametrize("warm", [False, True])
 def test_the_primal_method_meets_the_contact_conditions_and_agrees_with_the_fast_one(seed, warm):
-    A, w, g0, a = _problem(60, seed)
+    system = _problem(60, seed)
+    A, w, g0, a = system.A, system.w, system.g0, system.a
     torque = 5.0
-    fast = contact._active_set(A, w, g0, a, torque, g0 <= g0.min())
-    start = fast[0] * (1.0 + np.random.default_rng(seed).uniform(-0.5, 0.5, len(g0))) - 1.0
-    slow = contact._primal(A, w, g0, a, torque, 0.0, start if warm else np.zeros(len(g0)), 0)
-    for pressure, step, active, _ in (fast, slow):
-        gap = g0 + a * step + A @ pressure
-        assert pressure.min() >= 0.0
+    fast = contact.active_set(system, torque, g0 <= g0.min())
+    start = fast.pressure * (1.0 + np.random.default_rng(seed).uniform(-0.5, 0.5, len(g0))) - 1.0
+    slow = contact.primal_active_set(system, torque, start if warm else np.zeros(len(g0)))
+    for found in (fast, slow):
+        gap = g0 + a * found.step + A @ found.pressure
+        assert found.pressure.min() >= 0.0
         assert gap.min() >= -1e-12 * np.abs(g0).max()
-        assert np.abs(gap[active]).max() <= 1e-12 * np.abs(g0).max()
-        assert -(w * pressure) @ a == pytest.approx(torque, rel=1e-12)
-    np.testing.assert_allclose(slow[0], fast[0], rtol=1e-9, atol=1e-12 * fast[0].max())
-    assert slow[1] == pytest.approx(fast[1], rel=1e-9)
+        assert np.abs(gap[found.active]).max() <= 1e-12 * np.abs(g0).max()
+        assert -(w * found.pressure) @ a == pytest.approx(torque, rel=1e-12)
+    np.testing.assert_allclose(slow.pressure, fast.pressure, rtol=1e-9,
+                               atol=1e-12 * fast.pressure.max())
+    assert slow.step == pytest.approx(fast.step, rel=1e-9)
 
 
 #: z 8/9 at m 3.8 with pointed teeth (h1 0.95, f1 0) under 150 N·m: one tooth at ~10 GPa,
