@@ -87,13 +87,12 @@ def test_nodal_loads_carry_the_force_and_its_moment(model):
 def test_the_windows_of_several_teeth_found_together_are_each_found_alone(model):
     # one closest-point search a pass for all teeth: the points are independent, so every
     # window (its range, anchor and gear-2 curvature) is the one-tooth search's to the bit
-    from fegear.toothpair.ring.grid import window, windows
+    from fegear.toothpair.ring.grid import Facing, window, windows
 
-    p = model.case.params
+    facing = Facing(model.curve2, 135e-6, 0.0, model.case.params.e)
     teeth, reaches = (9, 10, 11, 12, 30, 40), (0.004, 0.02, 0.02, 0.001, 0.02, 0.02)
-    together = windows(model.samples, model.curve2, teeth, 135e-6, 0.0, p.e, reaches)
-    alone = [window(model.samples, model.curve2, t, 135e-6, 0.0, p.e, r)
-             for t, r in zip(teeth, reaches)]
+    together = windows(model.samples, facing, teeth, reaches)
+    alone = [window(model.samples, facing, t, r) for t, r in zip(teeth, reaches)]
     assert together[-1] is None and sum(w is not None for w in together) >= 3
     for a, b in zip(together, alone):
         if b is None:
@@ -106,17 +105,17 @@ def test_the_windows_of_several_teeth_found_together_are_each_found_alone(model)
 def test_windows_searched_from_the_feet_of_the_position_before_are_the_polar_searchs(model):
     # a cycle's later position starts its coarse foot searches at the position before's
     # feet: the same windows, and feet and gear-2 curvature to rounding
-    from fegear.toothpair.ring.grid import windows
+    from fegear.toothpair.ring.grid import Facing, windows
 
     p = model.case.params
     teeth, reaches = (9, 10, 11, 12), (0.02,) * 4
     step = 2.0 * math.pi / p.z2 / 24
-    before = windows(model.samples, model.curve2, teeth, 135e-6, 0.0, p.e, reaches)
+    before = windows(model.samples, Facing(model.curve2, 135e-6, 0.0, p.e), teeth, reaches)
     start = {w.tooth: w.coarse for w in before if w is not None}
     assert len(start) >= 3
-    turn = p.ratio * step + 135e-6
-    polar = windows(model.samples, model.curve2, teeth, turn, step, p.e, reaches)
-    started = windows(model.samples, model.curve2, teeth, turn, step, p.e, reaches, start)
+    later = Facing(model.curve2, p.ratio * step + 135e-6, step, p.e)
+    polar = windows(model.samples, later, teeth, reaches)
+    started = windows(model.samples, later, teeth, reaches, start)
     assert sum(w is not None for w in polar) >= 3
     for a, b in zip(started, polar):
         if b is None:
@@ -131,11 +130,12 @@ def test_windows_searched_from_the_feet_of_the_position_before_are_the_polar_sea
 
 def test_grids_follow_the_local_hertz_width_and_refine_at_the_tip_round(model):
     from fegear.fe import contact_modulus
-    from fegear.toothpair.ring.grid import tooth_grid, window
+    from fegear.toothpair.ring.grid import Facing, GridSpacing, tooth_grid, window
 
-    p = model.case.params
-    win = window(model.samples, model.curve2, 11, 135e-6, 0.0, p.e, 0.02)
-    grid = tooth_grid(model.samples, win, 300.0, contact_modulus(2.06e5, 2.06e5), 8, 2e-5, 0.02)
+    facing = Facing(model.curve2, 135e-6, 0.0, model.case.params.e)
+    win = window(model.samples, facing, 11, 0.02)
+    spacing = GridSpacing(300.0, contact_modulus(2.06e5, 2.06e5), 8, 2e-5, 0.02)
+    grid = tooth_grid(model.samples, win, spacing)
     step = np.diff(grid.s)
     assert grid.on_round.any() and not grid.on_round.all()
     # on the round (radius 0.25 mm) the Hertz width is far smaller than on the flank
@@ -151,12 +151,11 @@ def test_grids_of_two_reaches_share_their_points_but_the_ends(model):
     # cycle: the grid points are counted from the tooth's smallest gap, so the wider window
     # holds every inner point of the narrower one, and the rounds' tangent points
     from fegear.fe import contact_modulus
-    from fegear.toothpair.ring.grid import tooth_grid, window
+    from fegear.toothpair.ring.grid import Facing, GridSpacing, tooth_grid, window
 
-    p = model.case.params
-    E_star = contact_modulus(2.06e5, 2.06e5)
-    grids = [tooth_grid(model.samples, window(model.samples, model.curve2, 11, 135e-6, 0.0,
-                                              p.e, reach), 300.0, E_star, 8, 2e-5, 0.02)
+    facing = Facing(model.curve2, 135e-6, 0.0, model.case.params.e)
+    spacing = GridSpacing(300.0, contact_modulus(2.06e5, 2.06e5), 8, 2e-5, 0.02)
+    grids = [tooth_grid(model.samples, window(model.samples, facing, 11, reach), spacing)
              for reach in (0.01, 0.02)]
     narrow, wide = (g.phi for g in grids)
     assert len(wide) > len(narrow) + 4
