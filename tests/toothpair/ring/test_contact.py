@@ -116,12 +116,12 @@ def test_a_submodel_on_a_pointed_tooth_follows_its_curve():
 
 
 def _assembled(sol, grids, probe_columns):
-    from fegear.toothpair.ring.influence import assemble_contact
+    from fegear.toothpair.ring.influence import ColumnRule, assemble_contact
 
     d = sol.detail
     p = d.case.params
     turn = p.ratio * d.case.beta + d.solution.rotation
-    return assemble_contact(d.model, grids, d.case.beta, turn, probe_columns)
+    return assemble_contact(d.model, grids, d.case.beta, turn, ColumnRule(probes=probe_columns))
 
 
 def _solve(sol, c):

@@ -17,7 +17,7 @@ from fegear.toothpair import solve_pair, solve_positions
 from fegear.toothpair.case import HEADLINE, SolveCase
 from fegear.toothpair.ring import build_ring
 from fegear.toothpair.ring.contact import rigid_gap
-from fegear.toothpair.ring.influence import assemble_contact
+from fegear.toothpair.ring.influence import ColumnRule, assemble_contact
 from fegear.verify.sector import SectorCase
 from fegear.verify.sector import solve_pair as sector_pair
 
@@ -114,7 +114,8 @@ def test_columns_formed_only_where_points_overlap_give_the_solution_of_all_colum
     torque, start = d.case.torque * 1e3, baseline_200.first_touch
     every = assemble_contact(d.model, d.contact.grids, 0.0, turn)
     elastic_mm = p.arc_um(baseline_200.rotation - start) * 1e-3
-    some = assemble_contact(d.model, d.contact.grids, 0.0, turn, within=0.1 * elastic_mm)
+    some = assemble_contact(d.model, d.contact.grids, 0.0, turn,
+                            ColumnRule(within=0.1 * elastic_mm))
     assert 0.3 * every.npoints < some.formed.sum() < 0.7 * every.npoints
     on = np.flatnonzero(some.formed)
     assert np.allclose(some.A, every.A[np.ix_(on, on)], rtol=0,   # the formed points'
@@ -131,7 +132,7 @@ def test_columns_formed_only_where_points_overlap_give_the_solution_of_all_colum
     assert np.abs(part.gap - full.gap).max() < 1e-12
     gap = rigid_gap(d.model, every.x, 0.0, turn)[0]
     half = float(np.median(gap[full.pressure > 0]))      # half the loaded points left out
-    deepest = assemble_contact(d.model, d.contact.grids, 0.0, turn, within=half)
+    deepest = assemble_contact(d.model, d.contact.grids, 0.0, turn, ColumnRule(within=half))
     assert 0 < deepest.formed.sum() < (full.pressure > 0).sum()
     assert solve_ring_contact(d.model, deepest, torque, start, guess=turn) is None
 
@@ -528,8 +529,8 @@ def test_a_later_position_forms_the_columns_about_where_the_one_before_carried_p
 
     def counted(*args, **kwargs):
         contact = assemble(*args, **kwargs)
-        formed.append((kwargs.get("columns", args[6] if len(args) > 6 else None) is not None,
-                       int(contact.formed.sum())))
+        rule = kwargs.get("rule", args[4] if len(args) > 4 else None)
+        formed.append((rule is not None and rule.mask is not None, int(contact.formed.sum())))
         return contact
 
     monkeypatch.setattr(solver, "assemble_contact", counted)
