@@ -167,7 +167,8 @@ class RingSolver:
                                          self.submodels == "all", clamped)
                 cands = candidate_data(case.params, model.shape, state,
                                        tuple(g.tooth for g in solved.grids), case.beta)
-            teeth = tooth_results(model, case, contact, sol, stresses, state, cands)
+            detail = RingDetail(model, case, replace(contact, A=None), sol, stresses)
+            teeth = tooth_results(detail, state, cands)
         residuals = () if stresses is None else tuple(_residuals(model, contact, sol, stresses))
         return PairSolution(
             case=case, teeth=teeth,
@@ -177,7 +178,7 @@ class RingSolver:
             rotation=sol.rotation, first_touch=touch, dofs=model.dofs,
             checks=ContactChecks(sol.balance_error, sol.max_penetration, sol.iterations,
                                  residuals, contact.npoints),
-            timings_s={}, detail=RingDetail(model, case, replace(contact, A=None), sol, stresses),
+            timings_s={}, detail=detail,
             von_mises_estimated=stresses is None or not stresses.submodels,
             tangent_stiffness=tangent)
 
