@@ -325,3 +325,12 @@ def test_no_test_reaches_a_private_name_of_fegear():
     found = [f"{path.relative_to(TESTS.parent)}:{use}" for path in sorted(TESTS.rglob("*.py"))
              for use in _private_uses(path.read_text())]
     assert not found, "\n".join(found)
+
+
+def test_each_module_of_the_ring_model_has_its_own_tests():
+    """The tests mirror the modules: fegear/toothpair/ring/x.py is tested in
+    tests/toothpair/ring/test_x.py."""
+    ring = PACKAGE / "toothpair" / "ring"
+    missing = [m.name for m in sorted(ring.glob("*.py")) if m.stem != "__init__"
+               and not (TESTS / "toothpair" / "ring" / f"test_{m.stem}.py").exists()]
+    assert not missing, missing
