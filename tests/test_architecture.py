@@ -258,3 +258,82 @@ def test_the_map_has_a_row_for_every_subpackage_naming_each_of_its_modules():
         for module in package.glob("*.py"):
             if module.stem != "__init__":
                 assert f"`{module.stem}`" in rows[name], f"{name}.{module.stem} is not on the map"
+
+
+TESTS = Path(__file__).parent
+
+
+def _private_uses(source: str) -> list[str]:
+    """The private names of fegear a test's ``source`` reaches: imported from a fegear module
+    (``from fegear.x import _name``), read off a fegear module it imported (``module._name``,
+    ``fegear.x._name``) or patched on one by name (``monkeypatch.setattr(module, "_name",
+    …)``). Dunder names are not private."""
+    tree = ast.parse(source)
+    bound: dict[str, str] = {}       # a name of this file → the fegear module it is
+    out = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for a in node.names:
+                if a.name.split(".")[0] == "fegear":
+                    bound[a.asname or "fegear"] = a.name if a.asname else "fegear"
+        elif isinstance(node, ast.ImportFrom) and (node.module or "").split(".")[0] == "fegear":
+            for a in node.names:
+                if _private(a.name):
+                    out.append(f"{node.lineno}: from {node.module} import {a.name}")
+                elif f"{node.module}.{a.name}" in MODULES:
+                    bound[a.asname or a.name] = f"{node.module}.{a.name}"
+
+    def module(node) -> str | None:
+        if isinstance(node, ast.Name):
+            return bound.get(node.id)
+        if isinstance(node, ast.Attribute):
+            above = module(node.value)
+            dotted = f"{above}.{node.attr}"
+            return dotted if above and dotted in MODULES else None
+        return None
+
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Attribute) and _private(node.attr) and module(node.value):
+            out.append(f"{node.lineno}: {ast.unparse(node)}")
+        elif (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+              and node.func.attr == "setattr" and len(node.args) >= 2
+              and module(node.args[0]) and isinstance(node.args[1], ast.Constant)
+              and isinstance(node.args[1].value, str) and _private(node.args[1].value)):
+            out.append(f"{node.lineno}: {ast.unparse(node.func)} of {node.args[1].value}")
+    return out
+
+
+def _private(name: str) -> bool:
+    return name.startswith("_") and not name.endswith("__")
+
+
+def test_the_private_name_check_finds_each_way_a_test_can_reach_one():
+    source = ("import fegear.toothpair.ring.model as ring_model\n"
+              "import fegear.toothpair.ring.contact\n"
+              "from fegear.toothpair.ring import grid\n"
+              "from fegear.toothpair.plot import CYCLE_VERDICT, _verdict\n"
+              "def test(monkeypatch):\n"
+              "    ring_model.KEPT.clear(), ring_model.RingModel.__name__, grid.windows\n"
+              "    grid._split, fegear.toothpair.ring.contact._on\n"
+              "    monkeypatch.setattr(ring_model, '_LIVE', {})\n"
+              "    monkeypatch.setattr(ring_model, 'KEEP', 1)\n")
+    found = _private_uses(source)
+    assert sorted(f.split(":")[0] for f in found) == ["4", "7", "7", "8"], found
+
+
+def test_no_test_reaches_a_private_name_of_fegear():
+    """A test checks what a module offers (docs/architecture.md, "Public faces"): a piece
+    worth testing on its own is a public name, else it is tested through the public function
+    that uses it."""
+    found = [f"{path.relative_to(TESTS.parent)}:{use}" for path in sorted(TESTS.rglob("*.py"))
+             for use in _private_uses(path.read_text())]
+    assert not found, "\n".join(found)
+
+
+def test_each_module_of_the_ring_model_has_its_own_tests():
+    """The tests mirror the modules: fegear/toothpair/ring/x.py is tested in
+    tests/toothpair/ring/test_x.py."""
+    ring = PACKAGE / "toothpair" / "ring"
+    missing = [m.name for m in sorted(ring.glob("*.py")) if m.stem != "__init__"
+               and not (TESTS / "toothpair" / "ring" / f"test_{m.stem}.py").exists()]
+    assert not missing, missing

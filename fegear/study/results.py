@@ -258,7 +258,7 @@ def study_plot(study: Study, table: list[dict], x: str) -> StudyPlot | None:
     and does not split the lines; an allowable splits none (it changes no stress: cases apart
     in allowables alone are one point). None if no such line exists."""
     ok = [r for r in table if r["status"] == "ok"]
-    tied = _tied(study, ok, x)
+    tied = tied_inputs(study, ok, x)
     others = [v for v in study.varied if v != x and v not in tied and not SOLVE_INPUTS[v].post]
     groups: dict[tuple, list[dict]] = {}
     for r in ok:
@@ -309,7 +309,7 @@ def _line(label: str, x: str, rs: list[dict]) -> Line:
     return Line(label, tuple(r[x] for r in rs), stress, error, safety, edge, on_round, start)
 
 
-def _tied(study: Study, rows: list[dict], x: str) -> list[str]:
+def tied_inputs(study: Study, rows: list[dict], x: str) -> list[str]:
     """The varied inputs that sweep blocks set together with ``x`` and that ``x`` determines
     in every such case."""
     tied = []

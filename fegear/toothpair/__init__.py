@@ -63,8 +63,9 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
               "tension_fillets", "TOOTH_STIFFNESS"),
     "ring.master": ("Gear2Master",),   # the sector model's master curve too
     "edge": ("flank_and_edge", "FlankEdge", "EDGE_ZONE"),
-    "segments": ("ROOT_BAND", "gear2_outline", "gear2_polar", "path_windows",
-                 "profile_segments", "root_half_angle", "round_strips", "unwrap_near"),
+    "segments": ("ROOT_BAND", "Layout", "PairProfiles", "PolarCurve", "gear2_outline",
+                 "gear2_polar", "path_windows", "profile_segments", "root_half_angle",
+                 "round_strips", "unwrap_near"),
     "estimate": ("error_estimate", "second_level_estimate"),
     "safety": ("Allowables", "DEFAULT_ALLOWABLES", "SAFETY", "TOOTH_SAFETY", "allowables_of",
                "safety_factor", "safety_factors", "with_safety"),

@@ -1,6 +1,7 @@
 """What the pictures of a tooth-pair solve mark, from its results: each gear's root hot spot,
-the largest value of a field, a flank's pressure curve ready to draw and the solve's verdict
-(its safety factors against their allowables). No drawing here: :mod:`.plot` draws them."""
+the largest value of a field, a flank's pressure curve ready to draw, the solve's verdict
+(its safety factors against their allowables) and the stretches of the gears the von Mises
+picture shows. No drawing here: :mod:`.plot` draws them."""
 
 from __future__ import annotations
 
@@ -130,3 +131,26 @@ class Verdict:
                        "at this position", "#1e6b2f")
         return cls(f"{line}\n{name} {have[name]:.2f} below 1: the stress exceeds the "
                    "allowable", "#b0201a")
+
+
+def labelled_box(points: np.ndarray, m: float) -> tuple[float, float, float, float]:
+    """A box around the marked ``points``, at least 4:3, with room about them for their
+    labels: 1.2 m (``m``: the module, mm), or on a long arc of loaded teeth a tenth of its
+    extent, each side."""
+    pad = max(1.2 * m, 0.1 * np.ptp(points, axis=0).max())
+    lo, hi = points.min(axis=0) - pad, points.max(axis=0) + pad
+    w, h = hi - lo
+    if h < 0.75 * w:
+        mid = 0.5 * (lo[1] + hi[1])
+        lo[1], hi[1] = mid - 0.375 * w, mid + 0.375 * w
+    return float(lo[0]), float(hi[0]), float(lo[1]), float(hi[1])
+
+
+def peak_zoom(fine, half_width: float, m: float) -> float:
+    """Half the side (mm) of the contact peak's picture: within the submodels ``fine`` where
+    they resolve it, else some contact half-widths (``half_width``, mm) or a share of the
+    module ``m`` (mm)."""
+    if fine:
+        near = max(np.ptp(b.points, axis=0).max() for b in fine)
+        return min(0.6 * near, max(12.0 * half_width, 0.02 * m))
+    return max(8.0 * half_width, 0.05 * m)

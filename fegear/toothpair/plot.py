@@ -10,7 +10,14 @@ import numpy as np
 from ..figures import margins, pyplot, save_png
 from ..figures.labels import Callout, place_callouts, place_legend
 from .case import PairSolution
-from .marks import Verdict, field_max, pressure_curve, root_hot_spots
+from .marks import (
+    Verdict,
+    field_max,
+    labelled_box,
+    peak_zoom,
+    pressure_curve,
+    root_hot_spots,
+)
 from .report import factor_cell
 
 #: the verdict drawn on a cycle's stress panels: safety factor key, its stress, its label
@@ -121,16 +128,9 @@ def von_mises_figure(sol: PairSolution, summary: dict, bodies, peaks=()):
     # where the submodels resolve the peak, the bodies' nodes under them are not the answer
     peak_at, peak = field_max(fine or list(bodies), "von_mises")
     contact = [f.points[f.pressure > 0] for f in flanks] or [np.array([peak_at])]
-    marks = np.vstack([*contact, *[sp.point for sp in spots]])
-    # room about the marks for their labels: 1.2 m, or on a long arc of loaded teeth a
-    # tenth of its extent
-    box = _box(marks, pad=max(1.2 * p.m, 0.1 * np.ptp(marks, axis=0).max()))
+    box = labelled_box(np.vstack([*contact, *[sp.point for sp in spots]]), p.m)
     zone = sol.detail.contact_zone()
-    if fine:
-        near = max(np.ptp(b.points, axis=0).max() for b in fine)
-        zoom = min(0.6 * near, max(12.0 * zone.half_width, 0.02 * p.m))
-    else:
-        zoom = max(8.0 * zone.half_width, 0.05 * p.m)
+    zoom = peak_zoom(fine, zone.half_width, p.m)
     zbox = (peak_at[0] - zoom, peak_at[0] + zoom, peak_at[1] - zoom, peak_at[1] + zoom)
 
     fig, (ax, az) = plt.subplots(1, 2, figsize=(16, 8.0), gridspec_kw={"width_ratios": [1.7, 1]})
@@ -165,9 +165,7 @@ def von_mises_figure(sol: PairSolution, summary: dict, bodies, peaks=()):
                         *_tooth_callouts(sol, flanks, -out), *_spot_callouts(spots, summary, out)],
                    data=hot)
     place_callouts(az, [Callout(f"von Mises max {peak:.0f} MPa", tuple(peak_at), (1.0, -1.0),
-                                {"fontsize": 10, "bbox": LABEL_BOX,
-                                 "arrowprops": {"arrowstyle": "->", "color": "white",
-                                                "lw": 1}})])
+                                {"fontsize": 10, "bbox": LABEL_BOX, "arrowprops": WHITE_ARROW})])
     return fig
 
 
@@ -175,6 +173,8 @@ def von_mises_figure(sol: PairSolution, summary: dict, bodies, peaks=()):
 #: the dark, calm material it is written over and on the background where it must cross it)
 LABEL_BOX = {"boxstyle": "round,pad=0.2", "fc": "white", "alpha": 0.85}
 NAME_BOX = {"boxstyle": "round,pad=0.25", "fc": "#14143c", "alpha": 0.45, "ec": "none"}
+#: the leader of a label on a field
+WHITE_ARROW = {"arrowstyle": "->", "color": "white", "lw": 1}
 
 
 def _gear_names(sol, bodies, box, out) -> list[Callout]:
@@ -220,19 +220,8 @@ def _spot_callouts(spots, summary: dict, out) -> list[Callout]:
     return [Callout(f"root σ1 {sp.value:.0f} MPa, gear {sp.gear}"
                     + (f"\nS_F {f:.2f}" if (f := s[f"safety_bending_gear{sp.gear}"]) else ""),
                     tuple(sp.point), tuple(-out if sp.gear == 1 else out),
-                    {"fontsize": 8.5, "bbox": LABEL_BOX,
-                     "arrowprops": {"arrowstyle": "->", "color": "white", "lw": 1}})
+                    {"fontsize": 8.5, "bbox": LABEL_BOX, "arrowprops": WHITE_ARROW})
             for sp in spots]
-
-
-def _box(points: np.ndarray, pad: float) -> tuple[float, float, float, float]:
-    """A box around ``points``, ``pad`` wider on each side, at least 4:3."""
-    lo, hi = points.min(axis=0) - pad, points.max(axis=0) + pad
-    w, h = hi - lo
-    if h < 0.75 * w:
-        mid = 0.5 * (lo[1] + hi[1])
-        lo[1], hi[1] = mid - 0.375 * w, mid + 0.375 * w
-    return float(lo[0]), float(hi[0]), float(lo[1]), float(hi[1])
 
 
 def _draw(ax, bodies, box, clim):
@@ -311,39 +300,7 @@ def flank_pressure_figure(sol: PairSolution, summary: dict):
     fig, axes = plt.subplots(rows, cols, figsize=(5.2 * cols, 3.9 * rows + 0.5), squeeze=False)
     for a in axes.ravel()[n:]:
         a.set_visible(False)
-    spikes = []
-    for a, f in zip(axes.ravel(), flanks):
-        t = teeth[f.tooth]
-        curve = pressure_curve(f, t)
-        a.plot(curve.s_um, f.pressure, color="C0", lw=1.6, label="FE")
-        if curve.round_um is not None:
-            a.axvspan(*curve.round_um, color="C3", alpha=0.12, label="gear 1's tip round")
-        a.axvline(0.0, color="k", lw=0.6, ls=":", label="tip corner")
-        values = []
-        if curve.hertz is not None:
-            a.plot(curve.s_um, curve.hertz, "--", color="C1", lw=1.3,
-                   label="Hertz (p0, b at the contact point)")
-            values.append(f"Hertz p0 {t.hertz_p0_MPa:.0f}")
-        if t.halfplane_flank_MPa:
-            a.axhline(t.halfplane_flank_MPa, color="C2", ls=":", lw=1.3,
-                      label="p ref (flank): half-planes, the exact gap")
-            values.append(f"p ref {t.halfplane_flank_MPa:.0f}")
-        a.set_xlim(*curve.window_um)
-        a.set_ylim(0, curve.top)
-        if curve.top < f.pressure.max():       # the edge spike runs off the top: say so
-            k = int(np.argmax(f.pressure))
-            spikes.append((a, Callout(f"edge peak {f.pressure[k]:.0f} MPa\n(off the scale)",
-                                      (curve.s_um[k], curve.top), (1.0, -0.5),
-                                      {"fontsize": 8, "bbox": PLAIN_BOX,
-                                       "arrowprops": {"arrowstyle": "->", "lw": 0.8}})))
-        where = "on its tip round" if t.peak_on_round else "on the flank"
-        if t.edge_contact:
-            values.insert(0, f"flank {t.flank_p_MPa:.0f}")
-        a.set_title(f"tooth {t.tooth}: {t.load_N:.0f} N, peak {t.p_max_MPa:.0f} MPa {where}"
-                    + (f"\n{', '.join(values)} MPa" if values else ""), fontsize=9)
-        a.set_xlabel("distance along gear 1's profile from its tip corner [µm]")
-        a.set_ylabel("contact pressure [MPa]")
-        a.grid(alpha=0.3)
+    spikes = [(a, _flank_panel(a, f, teeth[f.tooth])) for a, f in zip(axes.ravel(), flanks)]
     i = summary["inputs"]
     fig.suptitle(f"contact pressure along the loaded flanks: T {i['torque_Nm']:g} N·m, β "
                  f"{i['position_deg']:.3g}°, quality {i['quality']}", fontsize=10)
@@ -355,8 +312,48 @@ def flank_pressure_figure(sol: PairSolution, summary: dict):
     fig.legend(shown.values(), shown.keys(), loc="upper center", ncol=len(shown), fontsize=8.5,
                bbox_to_anchor=(0.5, 1.0 - 0.45 / fig.get_size_inches()[1]), frameon=False)
     for a, callout in spikes:
-        place_callouts(a, [callout])
+        if callout is not None:
+            place_callouts(a, [callout])
     return fig
+
+
+def _flank_panel(a, f, t) -> Callout | None:
+    """The pressure along one loaded flank ``f`` (a :class:`~.case.FlankPressure`) of tooth
+    ``t`` (its :class:`~.case.ToothResult`) on the axes ``a``, with Hertz and the half-plane
+    reference; the label of an edge peak that runs off the top, placed once the figure is
+    laid out (None where there is none)."""
+    curve = pressure_curve(f, t)
+    a.plot(curve.s_um, f.pressure, color="C0", lw=1.6, label="FE")
+    if curve.round_um is not None:
+        a.axvspan(*curve.round_um, color="C3", alpha=0.12, label="gear 1's tip round")
+    a.axvline(0.0, color="k", lw=0.6, ls=":", label="tip corner")
+    values = []
+    if curve.hertz is not None:
+        a.plot(curve.s_um, curve.hertz, "--", color="C1", lw=1.3,
+               label="Hertz (p0, b at the contact point)")
+        values.append(f"Hertz p0 {t.hertz_p0_MPa:.0f}")
+    if t.halfplane_flank_MPa:
+        a.axhline(t.halfplane_flank_MPa, color="C2", ls=":", lw=1.3,
+                  label="p ref (flank): half-planes, the exact gap")
+        values.append(f"p ref {t.halfplane_flank_MPa:.0f}")
+    a.set_xlim(*curve.window_um)
+    a.set_ylim(0, curve.top)
+    spike = None
+    if curve.top < f.pressure.max():       # the edge spike runs off the top: say so
+        k = int(np.argmax(f.pressure))
+        spike = Callout(f"edge peak {f.pressure[k]:.0f} MPa\n(off the scale)",
+                        (curve.s_um[k], curve.top), (1.0, -0.5),
+                        {"fontsize": 8, "bbox": PLAIN_BOX,
+                         "arrowprops": {"arrowstyle": "->", "lw": 0.8}})
+    where = "on its tip round" if t.peak_on_round else "on the flank"
+    if t.edge_contact:
+        values.insert(0, f"flank {t.flank_p_MPa:.0f}")
+    a.set_title(f"tooth {t.tooth}: {t.load_N:.0f} N, peak {t.p_max_MPa:.0f} MPa {where}"
+                + (f"\n{', '.join(values)} MPa" if values else ""), fontsize=9)
+    a.set_xlabel("distance along gear 1's profile from its tip corner [µm]")
+    a.set_ylabel("contact pressure [MPa]")
+    a.grid(alpha=0.3)
+    return spike
 
 
 #: the box of a label on a chart

@@ -7,7 +7,7 @@ import math
 from dataclasses import fields
 
 from ..fe import Allowables
-from .case import HEADLINE, PairSolution, SolveCase
+from .case import HEADLINE, PairSolution, SolveCase, ToothResult
 from .safety import (
     ALLOWABLE_KEYS,
     DEFAULT_ALLOWABLES,
@@ -26,22 +26,10 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
                  allowables: Allowables = DEFAULT_ALLOWABLES) -> dict:
     """The JSON summary: inputs, headline stresses and the safety factors at ``allowables``
     (:mod:`.safety`), per-tooth results and checks."""
-    c, p = sol.case, sol.case.params
     loaded = [t for t in sol.teeth if t.load_N > 0]
     peak = max(loaded, key=lambda t: t.p_max_MPa)
     out = {
-        "inputs": {"m": p.m, "z1": p.z1, "z2": p.z2, "h1": p.h1, "f1": p.f1, "shift": p.shift,
-                   "rotation": p.rotation, "tip_clearance": p.tip_clearance,
-                   "relief_um": p.relief, "relief_extent_mm": p.relief_extent,
-                   "relief_start_mm": p.relief_start, "relief_shape": p.relief_shape,
-                   "torque_Nm": c.torque,
-                   "position_deg": math.degrees(c.beta), "thickness_mm": c.thickness,
-                   "E_MPa": c.E, "nu": c.nu, "quality": c.quality,
-                   "tip_round_mm": c.edge_radius,
-                   "rim1_mm": c.rims[0], "rim2_mm": c.rims[1], "extra_pairs": c.extra_pairs,
-                   # a peer's own inputs (the sector model's extra teeth and penalty factor)
-                   **{f.name: getattr(c, f.name) for f in fields(c)
-                      if f.name not in SOLVE_FIELDS}},
+        "inputs": _inputs(sol.case),
         **sol.headline(),
         **dict.fromkeys(SAFETY),           # with_safety fills them in
         "contact_peak_on_tip_round": peak.peak_on_round,
@@ -65,23 +53,43 @@ def pair_summary(sol: PairSolution, estimate: dict | None = None, wall_s: float 
         "body_residuals": list(sol.checks.residuals),
         "dofs": sol.dofs,
         "contact_points": sol.checks.points,
-        "teeth": [{"tooth": t.tooth, "clearance_um": t.clearance_um, "load_N": t.load_N,
-                   "load_share": t.load_share, "p_max_MPa": t.p_max_MPa,
-                   "half_width_mm": t.half_width_mm, "hertz_p0_MPa": t.hertz_p0_MPa,
-                   "hertz_b_mm": t.hertz_b_mm, "b_over_R": t.b_over_R,
-                   "root_stress_gear1_MPa": t.root1_MPa, "root_stress_gear2_MPa": t.root2_MPa,
-                   "peak_on_tip_round": t.peak_on_round,
-                   "flank_pressure_MPa": t.flank_p_MPa, "edge_pressure_MPa": t.edge_p_MPa,
-                   "edge_load_N": t.edge_load_N, "edge_contact": t.edge_contact,
-                   "halfplane_p_MPa": t.halfplane_p_MPa,
-                   "halfplane_flank_MPa": t.halfplane_flank_MPa,
-                   "bending_curvature": t.bending_curvature,
-                   "points_per_half_width": t.per_half_width, "resolved": t.resolved}
-                  for t in sol.teeth],
+        "teeth": [_tooth_row(t) for t in sol.teeth],
         "timings_s": sol.timings_s,
         "wall_s": wall_s,
     }
     return with_safety(out, allowables)
+
+
+def _inputs(c: SolveCase) -> dict:
+    """The summary's ``inputs``: the case's, by their summary names."""
+    p = c.params
+    return {"m": p.m, "z1": p.z1, "z2": p.z2, "h1": p.h1, "f1": p.f1, "shift": p.shift,
+            "rotation": p.rotation, "tip_clearance": p.tip_clearance,
+            "relief_um": p.relief, "relief_extent_mm": p.relief_extent,
+            "relief_start_mm": p.relief_start, "relief_shape": p.relief_shape,
+            "torque_Nm": c.torque,
+            "position_deg": math.degrees(c.beta), "thickness_mm": c.thickness,
+            "E_MPa": c.E, "nu": c.nu, "quality": c.quality,
+            "tip_round_mm": c.edge_radius,
+            "rim1_mm": c.rims[0], "rim2_mm": c.rims[1], "extra_pairs": c.extra_pairs,
+            # a peer's own inputs (the sector model's extra teeth and penalty factor)
+            **{f.name: getattr(c, f.name) for f in fields(c) if f.name not in SOLVE_FIELDS}}
+
+
+def _tooth_row(t: ToothResult) -> dict:
+    """One tooth's entry in the summary's ``teeth``."""
+    return {"tooth": t.tooth, "clearance_um": t.clearance_um, "load_N": t.load_N,
+            "load_share": t.load_share, "p_max_MPa": t.p_max_MPa,
+            "half_width_mm": t.half_width_mm, "hertz_p0_MPa": t.hertz_p0_MPa,
+            "hertz_b_mm": t.hertz_b_mm, "b_over_R": t.b_over_R,
+            "root_stress_gear1_MPa": t.root1_MPa, "root_stress_gear2_MPa": t.root2_MPa,
+            "peak_on_tip_round": t.peak_on_round,
+            "flank_pressure_MPa": t.flank_p_MPa, "edge_pressure_MPa": t.edge_p_MPa,
+            "edge_load_N": t.edge_load_N, "edge_contact": t.edge_contact,
+            "halfplane_p_MPa": t.halfplane_p_MPa,
+            "halfplane_flank_MPa": t.halfplane_flank_MPa,
+            "bending_curvature": t.bending_curvature,
+            "points_per_half_width": t.per_half_width, "resolved": t.resolved}
 
 
 #: the pair's safety factors in the printed table; the per-tooth and cycle tables show the

@@ -6,10 +6,13 @@ gear 2 under the rounds) and the plain flank between them, each a polyline of ex
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..fe import Segment, halved
+from ..geometry import Cycloid, PairParameters, RoundedProfile
 from ..planar import rotate, wrap
 
 ROOT_BAND = 0.3          # root zone: the lower 30 % of the tooth height
@@ -25,16 +28,50 @@ SHORT = 0.5              # a piece of boundary shorter than this part of its ele
                          # a neighbour (a 0.6 µm piece under 57 µm elements made a sliver)
 
 
-def round_strips(params, shape, g2, rounds, betas, margin, ref):
+@dataclass(frozen=True)
+class PolarCurve:
+    """A profile by polar angle: ``point`` gives its points (n, 2; mm) at polar angles (rad),
+    ``project`` carries points (n, 2) onto it, as the mesher snaps boundary nodes (None: they
+    are not snapped)."""
+
+    point: Callable[[np.ndarray], np.ndarray]
+    project: Callable[[np.ndarray], np.ndarray] | None = None
+
+
+@dataclass(frozen=True)
+class Layout:
+    """How :func:`profile_segments` cuts a profile: ``windows`` and ``roots`` (name, centre
+    angle, half-angle; rad), ``marks`` (lo, hi, zone: polar-angle ranges, rad, whose pieces get
+    that refinement zone; zone None: only a cut at lo) and ``sizes``, the element size (mm) per
+    name or zone."""
+
+    windows: tuple = ()
+    roots: tuple = ()
+    marks: tuple = ()
+    sizes: Mapping[str, float] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class PairProfiles:
+    """A pair's two profiles: its parameters, gear 1's rounded profile and gear 2's curve."""
+
+    params: PairParameters
+    shape: RoundedProfile
+    curve2: Cycloid
+
+
+def round_strips(pair: PairProfiles, rounds, betas, margin: float, ref: float):
     """Gear-2 polar-angle ranges (lo, hi, "g2_round") that gear 1's refined ``rounds`` (body
-    angle ranges) face within ROUND_GAP modules at some β, widened by ``margin`` (rad);
-    overlapping ranges are merged (no slivers between their ends)."""
+    angle ranges, rad) face within ROUND_GAP modules at some β of ``betas``, widened by
+    ``margin`` (rad) and unwrapped near ``ref`` (rad); overlapping ranges are merged (no
+    slivers between their ends)."""
+    params = pair.params
     spans = []
     for lo, hi in rounds:
-        pts1 = shape.point(np.linspace(lo, hi, 9))
+        pts1 = pair.shape.point(np.linspace(lo, hi, 9))
         for beta in betas:
             x = rotate(rotate(pts1, params.ratio * beta) + np.array([0.0, params.e]), -beta)
-            if g2.closest(x)[2].min() > ROUND_GAP * params.m:
+            if pair.curve2.closest(x)[2].min() > ROUND_GAP * params.m:
                 continue
             th = [unwrap_near(math.atan2(y, z), ref) for z, y in x]
             spans.append((min(th) - margin, max(th) + margin))
@@ -74,21 +111,55 @@ def root_half_angle(radius, centre: float, pitch: float, r_min: float, r_max: fl
     return float(inside.max()) if len(inside) else 0.05 * pitch
 
 
-def profile_segments(prefix, curve, project, a, b, windows, roots, marks=(), sizes=None):
-    """Split the profile over polar angles [a, b] into named segments.
+def profile_segments(prefix: str, profile: PolarCurve, a: float, b: float,
+                     layout: Layout) -> tuple[tuple[Segment, ...], tuple[str, ...]]:
+    """Split the ``profile`` over polar angles [a, b] into named segments, as ``layout`` says.
 
-    ``windows``/``roots``: (name, centre angle, half-angle). Where two windows (in centre
-    order) overlap they are cut halfway between their centres, so every window keeps its centre
-    and one connected piece, also when nested in a longer one; windows take
-    precedence over roots, and earlier roots over later ones (a root may become two pieces
-    under one name); the rest is
-    ``{prefix}_flank``. ``marks``: (lo, hi, zone) angle ranges whose pieces get that refinement
-    zone (whatever their name); every mark end cuts a segment (zone None: only the cut).
-    ``sizes``: element size (mm) per name or zone, which sets the
-    sampling (:func:`sampled`) and the shortest piece: a piece shorter than SHORT of its size
-    (the finest size where it has none) joins a neighbour, and a zone end that close to
-    another cut is left out. Returns segments in increasing angle and the distinct names.
+    Where two windows (in centre order) overlap they are cut halfway between their centres, so
+    every window keeps its centre and one connected piece, also when nested in a longer one;
+    windows take precedence over roots, and earlier roots over later ones (a root may become
+    two pieces under one name); the rest is ``{prefix}_flank`` (:func:`_named_pieces`). The
+    marks' pieces get their refinement zone (whatever their name); every mark end cuts a
+    segment. The sizes set the sampling (:func:`sampled`) and the shortest piece: a piece
+    shorter than SHORT of its size (the finest size where it has none) joins a neighbour, and a
+    zone end that close to another cut is left out. Returns segments in increasing angle and
+    the distinct names.
     """
+    marks, sizes = layout.marks, layout.sizes
+    filled = _named_pieces(prefix, a, b, layout.windows, layout.roots)
+
+    def zone_at(x):
+        return next((z for m_lo, m_hi, z in marks if m_lo <= x <= m_hi), None)
+
+    finest = min(sizes.values(), default=math.inf)
+    ends = sorted({x for lo, hi, _ in filled for x in (lo, hi)}
+                  | {x for m_lo, m_hi, _ in marks for x in (m_lo, m_hi)})
+    at = dict(zip(ends, profile.point(np.array(ends))))  # every cut there can be, at once
+
+    def too_short(lo, hi, name):  # shorter than SHORT of its element size (else the finest)
+        size = sizes.get(zone_at(0.5 * (lo + hi)), sizes.get(name, finest))
+        if hi - lo <= 1e-9:
+            return True
+        return math.isfinite(size) and float(np.hypot(*(at[hi] - at[lo]))) < SHORT * size
+
+    jumps = sorted({m_lo for m_lo, _, z in marks if z is None})
+    filled = _joined(filled, jumps, too_short, {name for name, _, _ in layout.windows})
+    segments, names = [], []
+    for lo, hi, name in filled:
+        cuts = _cuts(lo, hi, name, marks, too_short)
+        for p0, p1 in zip(cuts, cuts[1:]):
+            zone = zone_at(0.5 * (p0 + p1))
+            size = sizes.get(zone, sizes.get(name, math.inf))
+            segments.append(sampled(name, profile, p0, p1, zone, size))
+        if name not in names:
+            names.append(name)
+    return tuple(segments), tuple(names)
+
+
+def _named_pieces(prefix: str, a: float, b: float, windows, roots) -> list[tuple]:
+    """[a, b] as named pieces (lo, hi, name) in increasing angle: the ``windows`` (cut halfway
+    between the centres of two that overlap), the ``roots`` where no window or earlier root
+    is, ``{prefix}_flank`` between them (see :func:`profile_segments`)."""
     wins = sorted((c, max(a, c - h), min(b, c + h), name) for name, c, h in windows)
     cuts = [None] + [0.5 * (pc + c) if lo < phi_ else None
                      for (pc, _, phi_, _), (c, lo, _, _) in zip(wins, wins[1:])] + [None]
@@ -114,33 +185,7 @@ def profile_segments(prefix, curve, project, a, b, windows, roots, marks=(), siz
         pos = hi
     if b - pos > 1e-9:
         filled.append((pos, b, f"{prefix}_flank"))
-
-    def zone_at(x):
-        return next((z for m_lo, m_hi, z in marks if m_lo <= x <= m_hi), None)
-
-    finest = min((sizes or {}).values(), default=math.inf)
-    ends = sorted({x for lo, hi, _ in filled for x in (lo, hi)}
-                  | {x for m_lo, m_hi, _ in marks for x in (m_lo, m_hi)})
-    at = dict(zip(ends, curve(np.array(ends))))  # every cut there can be, in one evaluation
-
-    def too_short(lo, hi, name):  # shorter than SHORT of its element size (else the finest)
-        size = (sizes or {}).get(zone_at(0.5 * (lo + hi)), (sizes or {}).get(name, finest))
-        if hi - lo <= 1e-9:
-            return True
-        return math.isfinite(size) and float(np.hypot(*(at[hi] - at[lo]))) < SHORT * size
-
-    jumps = sorted({m_lo for m_lo, _, z in marks if z is None})
-    filled = _joined(filled, jumps, too_short, {name for name, _, _ in windows})
-    segments, names = [], []
-    for lo, hi, name in filled:
-        cuts = _cuts(lo, hi, name, marks, too_short)
-        for p0, p1 in zip(cuts, cuts[1:]):
-            zone = zone_at(0.5 * (p0 + p1))
-            size = (sizes or {}).get(zone, (sizes or {}).get(name, math.inf))
-            segments.append(sampled(name, curve, project, p0, p1, zone, size))
-        if name not in names:
-            names.append(name)
-    return tuple(segments), tuple(names)
+    return filled
 
 
 def _joined(pieces, jumps, too_short, keep):
@@ -188,11 +233,13 @@ def _cuts(lo, hi, name, marks, too_short) -> list[float]:
     return [x for x, _ in kept]
 
 
-def sampled(name, curve, project, lo, hi, zone=None, size=math.inf) -> Segment:
-    """The curve over polar angles [lo, hi] as a polyline whose chord error is SPLINE_CHORD,
-    or SNAP_CHORD of the element ``size`` (mm) if smaller: spaced for a 0.5 mm radius of
-    curvature, even in polar angle, or in arc length where the curve runs nearly radially,
-    then halved where the curve turns tighter."""
+def sampled(name: str, profile: PolarCurve, lo: float, hi: float, zone: str | None = None,
+            size: float = math.inf) -> Segment:
+    """The ``profile`` over polar angles [lo, hi] as a polyline whose chord error is
+    SPLINE_CHORD, or SNAP_CHORD of the element ``size`` (mm) if smaller: spaced for a 0.5 mm
+    radius of curvature, even in polar angle, or in arc length where the curve runs nearly
+    radially, then halved where the curve turns tighter."""
+    curve = profile.point
     r = np.hypot(*curve(np.array([0.5 * (lo + hi)]))[0])
     spacing = math.sqrt(8 * 0.5 * min(SPLINE_CHORD, SNAP_CHORD * size))
     n = min(max(8, int((hi - lo) * r / spacing) + 2), 2000)
@@ -209,13 +256,13 @@ def sampled(name, curve, project, lo, hi, zone=None, size=math.inf) -> Segment:
         points = curve(theta)
     points = halved(curve, theta, points, min(SPLINE_CHORD, SNAP_CHORD * size),
                     MAX_POINTS)
-    return Segment(name, points, project, zone)
+    return Segment(name, points, profile.project, zone)
 
 
-def gear2_polar(curve):
-    """Gear 2's profile as points by polar angle (its frame), and the projection of points
-    onto it: the foot of their normal (along their polar angle a node on a nearly radial
-    flank moved far along it and inverted its element: h1 0.83 at the seed paper's pair)."""
+def gear2_polar(curve: Cycloid) -> PolarCurve:
+    """Gear 2's profile by polar angle (its frame), projecting points onto it at the foot of
+    their normal (along their polar angle a node on a nearly radial flank moved far along it
+    and inverted its element: h1 0.83 at the seed paper's pair)."""
 
     def point(theta):   # a mesh's input: no table (Cycloid.xi_at_angle)
         r = curve.radius_at_angle(theta, tabled=False)
@@ -224,7 +271,7 @@ def gear2_polar(curve):
     def project(x):
         return curve.closest(x, tabled=False)[0]
 
-    return point, project
+    return PolarCurve(point, project)
 
 
 def gear2_outline(point, segs, a: float, b: float, outer: float,

@@ -5,7 +5,7 @@ import pytest
 
 from fegear.cli import main
 from fegear.toothpair.ring import cache
-from fegear.toothpair.ring.model import _KEPT
+from fegear.toothpair.ring.model import KEPT
 
 LIGHT = ["--z2", "25", "--z1", "24", "--torque", "20", "--quality", "coarse", "--no-estimate",
          "-q"]
@@ -15,16 +15,16 @@ LIGHT = ["--z2", "25", "--z1", "24", "--torque", "20", "--quality", "coarse", "-
 def folder(tmp_path, monkeypatch):
     monkeypatch.setenv(cache.ENV_DIR, str(tmp_path / "cache"))
     monkeypatch.delenv(cache.ENV, raising=False)
-    _KEPT.clear()
+    KEPT.clear()
     yield tmp_path / "cache"
-    _KEPT.clear()
+    KEPT.clear()
 
 
 def test_solve_keeps_its_model_only_with_cache_and_the_command_lists_and_clears(folder,
                                                                                 capsys):
     assert main(["solve", *LIGHT]) == 0
     assert cache.entries() == []                       # off by default for a one-off solve
-    _KEPT.clear()
+    KEPT.clear()
     assert main(["solve", *LIGHT, "--cache"]) == 0
     (entry,) = cache.entries()
     capsys.readouterr()

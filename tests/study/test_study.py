@@ -242,16 +242,16 @@ def test_an_input_zipped_with_the_plotted_one_goes_with_it_a_product_splits_the_
     """paper_trends_relieved zips a relief per case with h1: the h1 plot is one line through
     its cases and the m = 2 case (h1 0.30); a product of torque and shift is one line per
     shift."""
-    from fegear.study.results import _tied
+    from fegear.study.results import tied_inputs
 
     s = load_study(ROOT / "studies" / "paper_trends_relieved.toml")
     rows = [{"case": c.index, "status": "ok"} for c in s.cases]
-    assert _tied(s, rows, "h1") == ["relief"] and _tied(s, rows, "m") == ["relief"]
-    assert _tied(s, rows, "relief") == []
+    assert tied_inputs(s, rows, "h1") == ["relief"] and tied_inputs(s, rows, "m") == ["relief"]
+    assert tied_inputs(s, rows, "relief") == []
     p = build_study({"base": {}, "sweep": [{"torque": [10.0, 20.0], "shift": [0.008, 0.01]}]},
                     Path("x"))
     rows = [{"case": c.index, "status": "ok"} for c in p.cases]
-    assert _tied(p, rows, "torque") == [] and _tied(p, rows, "shift") == []
+    assert tied_inputs(p, rows, "torque") == [] and tied_inputs(p, rows, "shift") == []
 
 
 def test_build_study_accepts_a_parsed_document(tmp_path):

@@ -79,7 +79,7 @@ def test_the_second_solve_in_parallel_with_the_first_gives_the_same_estimate(mon
     import fegear.toothpair.ring.model as ring_model
 
     job = prepare_job({"quality": "coarse", "torque": 150})
-    monkeypatch.setattr(ring_model, "_KEPT", OrderedDict())
+    monkeypatch.setattr(ring_model, "KEPT", OrderedDict())
     with Forks(2) as forks:
         forked = solve_job(job, forks)
     alone = solve_job(job)

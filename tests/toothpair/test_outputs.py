@@ -167,25 +167,30 @@ def test_the_cycle_picture_carries_the_allowable_and_the_smallest_factors():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from fegear.toothpair.plot import CYCLE_VERDICT, _verdict
+    from fegear.fe import Allowables
+    from fegear.toothpair.plot import cycle_figure
 
-    rows = [{"position_deg": b, "root_stress_gear1_MPa": s1, "root_stress_gear2_MPa": s2,
-             "safety_bending_gear1": 558 / s1, "safety_bending_gear2": 558 / s2}
+    rows = [{"position_deg": b, "share_10": 1.0, "root_stress_gear1_MPa": s1,
+             "root_stress_gear2_MPa": s2, "contact_pressure_MPa": 1000.0,
+             "safety_bending_gear1": 558 / s1, "safety_bending_gear2": 558 / s2,
+             "rotation_urad": 0.0, "first_touch_urad": 0.0, "transmission_error_urad": 0.0}
             for b, s1, s2 in ((0.0, 280.0, 270.0), (4.0, 300.0, 250.0), (8.0, 290.0, 275.0))]
-    fig, ax = plt.subplots()
-    _verdict(ax, rows, 558.0, "σ_FP", CYCLE_VERDICT[1])
-    labels = [t.get_text() for t in ax.get_legend().get_texts()]
-    assert labels == ["allowable σ_FP 558 MPa", "smallest S_F gear 1 1.86, at β 4°",
-                      "smallest S_F gear 2 2.03, at β 8°"]
-    assert [tuple(line.get_ydata()) for line in ax.lines[:1]] == [(558.0, 558.0)]
-    fig2, far = plt.subplots()
-    _verdict(far, rows, 5580.0, "σ_FP", CYCLE_VERDICT[1])
+    stresses = {"root_stress_gear1_MPa": "gear 1", "root_stress_gear2_MPa": "gear 2",
+                "contact_pressure_MPa": "peak pressure"}
+    near, far = (cycle_figure(rows, "cycle", stresses, Allowables(bending=limit, contact=1500.0))
+                 for limit in (558.0, 5580.0))
+    roots = near.axes[1]                 # the root stresses' panel
+    labels = [t.get_text() for t in roots.get_legend().get_texts()]
+    assert labels[-3:] == ["allowable σ_FP 558 MPa", "smallest S_F gear 1 1.86, at β 4°",
+                           "smallest S_F gear 2 2.03, at β 8°"]
+    assert [tuple(line.get_ydata()) for line in roots.lines
+            if tuple(line.get_ydata()) == (558.0, 558.0)] == [(558.0, 558.0)]
     assert "allowable σ_FP 5580 MPa (off the scale)" in [
-        t.get_text() for t in far.get_legend().get_texts()]
+        t.get_text() for t in far.axes[1].get_legend().get_texts()]
     assert all(len(line.get_ydata()) != 2 or line.get_ydata()[0] != 5580.0
-               for line in far.lines)
-    plt.close(fig)
-    plt.close(fig2)
+               for line in far.axes[1].lines)
+    plt.close(near)
+    plt.close(far)
 
 
 @pytest.fixture(scope="module")

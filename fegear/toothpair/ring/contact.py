@@ -49,6 +49,33 @@ class RingContactSolution:
     clamped: tuple | None = field(default=None, repr=False, compare=False)
 
 
+@dataclass(frozen=True)
+class ContactSystem:
+    """The contact's linear system at one linearisation of the rigid gap, over its points:
+    ``A`` (mm/MPa) how far each point separates per unit pressure of each point's hat, ``w``
+    (mm²) the force (N) per unit pressure of each hat (its weight ∫φ ds times the face
+    width), ``g0`` (mm) the rigid gaps and ``a`` (mm/rad) their rate with gear 1's turn. With
+    pressures p and a rotation step δ the gaps are g0 + a δ + A p, and −Σ w a p is the torque
+    (N·mm) the pressures carry."""
+
+    A: np.ndarray
+    w: np.ndarray
+    g0: np.ndarray
+    a: np.ndarray
+
+
+@dataclass(frozen=True)
+class ActiveSet:
+    """What an active-set method settled: the pressure per point (MPa, zero off the active
+    set), the rotation step (rad), the active set (a mask over the points) and the
+    iterations counted so far."""
+
+    pressure: np.ndarray
+    step: float
+    active: np.ndarray
+    iterations: int
+
+
 def rigid_gap(model: RingModel, x: np.ndarray, beta: float, turn: float,
               feet: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Exact gap (mm) of gear-1 points ``x`` (its frame) to gear 2 (turned by β) with gear 1
@@ -76,7 +103,6 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
     (their pressures zero, their columns act on nothing), else None: the caller forms them."""
     alpha = model.case.params.ratio * contact.beta
     on = np.flatnonzero(contact.formed)
-    A = contact.A
     x, w = contact.x[on], contact.weight[on] * model.case.thickness
     feet = contact.feet[on]
     g0, a = rigid_gap(model, x, contact.beta, alpha + theta, feet)
@@ -96,12 +122,13 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
         arm_rate = 0.0 if not len(loaded) else (w[loaded] * pressure[loaded]) @ (
             rigid_gap(model, x[loaded], contact.beta, alpha + theta + ARM_STEP,
                       feet[loaded])[1] - a[loaded]) / ARM_STEP
-        pressure, step, active, used = _active_set(A, w, g0, a, torque_nmm, active, arm_rate)
-        total += used
+        found = active_set(ContactSystem(contact.A, w, g0, a), torque_nmm, active, arm_rate)
+        pressure, active = found.pressure, found.active
+        total += found.iterations
         turns += 1
-        theta += step
+        theta += found.step
         # settled to rounding: 1e-12 of the rotation, or a 1e-13 mm turn at the pitch circle
-        settled = abs(step) <= max(1e-12 * abs(theta), 1e-13 / model.case.params.r0)
+        settled = abs(found.step) <= max(1e-12 * abs(theta), 1e-13 / model.case.params.r0)
         if settled:   # the last evaluation at every point: the open ones' gaps are checked
             contact.feet[on] = feet
             g0, a = rigid_gap(model, contact.x, contact.beta, alpha + theta, contact.feet)
@@ -110,17 +137,10 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
         if turns == MAX_TURNS:
             raise RingContactError(f"the rotation did not settle in {MAX_TURNS} "
                                    "linearisations")
-    full = np.zeros(contact.npoints)
-    full[on] = pressure
-    gap = g0.copy()
-    gap[on] += A @ pressure
-    clamped = None
-    if not contact.complete:
-        rest = np.flatnonzero(~contact.formed)
-        approach, clamped = approach_open(model, contact, full, rest)
-        gap[rest] += approach
-        if (gap[rest] < 0).any():
-            return None
+    closed = _closed(model, contact, pressure, g0)
+    if closed is None:
+        return None
+    full, gap, clamped = closed
     balance = abs(-(w * pressure) @ a[on] - torque_nmm) / torque_nmm
     loaded = full > 0
     overlap = float(max(0.0, -gap[loaded].min())) if loaded.any() else 0.0
@@ -128,41 +148,64 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
                                clamped)
 
 
-def _active_set(A, w, g0, a, torque_nmm, active, arm_rate=0.0):
+def _closed(model: RingModel, contact: RingContact, pressure: np.ndarray, g0: np.ndarray
+            ) -> tuple[np.ndarray, np.ndarray, tuple | None] | None:
+    """The formed points' ``pressure`` (MPa) spread over every point, the gaps (mm) from the
+    rigid gaps ``g0`` of every point (A p added on the formed points, the fields' approach on
+    the others: :func:`~.influence.approach_open`) and each gear's clamped fields that check
+    formed (None where every column is formed); None where a point left out closes."""
+    on = np.flatnonzero(contact.formed)
+    full = np.zeros(contact.npoints)
+    full[on] = pressure
+    gap = g0.copy()
+    gap[on] += contact.A @ pressure
+    clamped = None
+    if not contact.complete:
+        rest = np.flatnonzero(~contact.formed)
+        approach, clamped = approach_open(model, contact, full, rest)
+        gap[rest] += approach
+        if (gap[rest] < 0).any():
+            return None
+    return full, gap, clamped
+
+
+def active_set(system: ContactSystem, torque_nmm: float, active: np.ndarray,
+               arm_rate: float = 0.0) -> ActiveSet:
     """Pressures on the active points and the rotation step with the gap linear in the step:
     A p + a δ = −g0 on the active points, −Σ w a p − ``arm_rate`` δ = T (``arm_rate``: the
-    torque's rate with the turn at the last pressures, Σ w (da/dθ) p); points join when their
-    gap closes and leave when their pressure pulls. Returns pressure, step, active set,
-    iterations."""
+    torque's rate with the turn at the last pressures, Σ w (da/dθ) p); from the points
+    ``active``, points join when their gap closes and leave when their pressure pulls, all at
+    once; where that cycles, :func:`primal_active_set` settles it."""
     seen = set()
-    pressure = np.zeros(len(g0))
+    pressure = np.zeros(len(system.g0))
     for k in range(1, MAX_ACTIVE_SET + 1):
-        pressure, step = _on(A, w, g0, a, torque_nmm, active, arm_rate)
-        gap = g0 + a * step + A @ pressure
+        pressure, step = _on(system, torque_nmm, active, arm_rate)
+        gap = system.g0 + system.a * step + system.A @ pressure
         new = np.where(active, pressure > 0, gap < 0)
         if not new.any():
             new = gap <= gap.min()
         if np.array_equal(new, active):
-            return pressure, step, active, k
+            return ActiveSet(pressure, step, active, k)
         key = new.tobytes()
         if key in seen:   # it cycles: on by the primal method, which cannot
             break
         seen.add(key)
         active = new
-    return _primal(A, w, g0, a, torque_nmm, arm_rate, pressure, k)
+    return primal_active_set(system, torque_nmm, pressure, arm_rate, k)
 
 
-def _on(A, w, g0, a, torque_nmm, active, arm_rate):
+def _on(system: ContactSystem, torque_nmm: float, active: np.ndarray,
+        arm_rate: float) -> tuple[np.ndarray, float]:
     """Pressure (zero off ``active``) and rotation step with every active gap closed and the
     torque balanced."""
     idx = np.flatnonzero(active)
     n = len(idx)
     try:
-        sol = np.linalg.solve(_bordered(A, w, a, idx, arm_rate),
-                              np.concatenate([-g0[idx], [-torque_nmm]]))
+        sol = np.linalg.solve(_bordered(system.A, system.w, system.a, idx, arm_rate),
+                              np.concatenate([-system.g0[idx], [-torque_nmm]]))
     except np.linalg.LinAlgError:
         raise RingContactError("the contact points cannot carry the torque") from None
-    pressure = np.zeros(len(g0))
+    pressure = np.zeros(len(system.g0))
     pressure[idx] = sol[:n]
     return pressure, sol[n]
 
@@ -179,7 +222,8 @@ def _bordered(A, w, a, idx, arm_rate) -> np.ndarray:
     return M
 
 
-def _primal(A, w, g0, a, torque_nmm, arm_rate, start, used):
+def primal_active_set(system: ContactSystem, torque_nmm: float, start: np.ndarray,
+                      arm_rate: float = 0.0, used: int = 0) -> ActiveSet:
     """The primal active-set method (after Lawson and Hanson's, with the torque row) where
     swapping every violated point at once cycles or does not settle (large loads on sharp
     teeth, where the teeth's near fields overlap): pressures stay ≥ 0 and the torque balanced
@@ -188,7 +232,9 @@ def _primal(A, w, g0, a, torque_nmm, arm_rate, start, used):
     else the closing point of least gap): the point of most overlap joins, one at a time (its
     pressure then rises from zero); a pressure that would pull stops the step where it reaches
     zero and leaves. Finite for a symmetric positive definite compliance (the ring's,
-    collocated at the grid points, is close to one); bounded by MAX_PRIMAL steps a point."""
+    collocated at the grid points, is close to one); bounded by MAX_PRIMAL steps a point.
+    ``used``: the iterations spent before (the fast method's), counted on."""
+    A, w, g0, a = system.A, system.w, system.g0, system.a
     pressure = np.maximum(start, 0.0)
     carried = -(w * pressure) @ a
     if carried > 0:
@@ -204,7 +250,7 @@ def _primal(A, w, g0, a, torque_nmm, arm_rate, start, used):
     active = pressure > 0
     tol = 1e-12 * max(float(np.abs(g0).max()), 1e-9)
     for k in range(used + 1, used + MAX_PRIMAL * len(g0) + 1):
-        trial, trial_step = _on(A, w, g0, a, torque_nmm, active, arm_rate)
+        trial, trial_step = _on(system, torque_nmm, active, arm_rate)
         pulls = active & (trial <= 0)
         if not pulls.any():
             pressure, step = trial, trial_step
@@ -212,7 +258,7 @@ def _primal(A, w, g0, a, torque_nmm, arm_rate, start, used):
             gap[active] = np.inf
             worst = int(np.argmin(gap))
             if gap[worst] >= -tol:
-                return pressure, step, active, k
+                return ActiveSet(pressure, step, active, k)
             active[worst] = True
             continue
         i = np.flatnonzero(pulls)

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...geometry import RoundedProfile
+from ...geometry import Cycloid, RoundedProfile
 from ...planar import rotate
 
 SAMPLES = 4001        # samples of one tooth pitch to find windows and spacings on
@@ -109,16 +109,27 @@ class Window:
     coarse: np.ndarray | None = None   # gear 2's ξ at the feet of every COARSE-th sample
 
 
-def window(samples: ToothSamples, curve2, tooth: int, turn: float, beta: float, e: float,
-           reach: float) -> Window | None:
-    """The stretch of ``tooth`` whose rigid gap to gear 2 (gear 1 turned by ``turn``, its
-    kinematic angle included; gear 2 by ``beta``) is below ``reach`` (mm) and closes under a
-    positive turn; None if there is none (:func:`windows` for one tooth)."""
-    return windows(samples, curve2, (tooth,), turn, beta, e, (reach,))[0]
+@dataclass(frozen=True)
+class Facing:
+    """Gear 2 as gear 1's teeth face it: its curve ``curve2`` turned by the rolling angle
+    ``beta`` (rad), and gear 1 turned by ``turn`` (rad, its kinematic angle included) about its
+    centre, ``e`` (mm) from gear 2's."""
+
+    curve2: Cycloid
+    turn: float
+    beta: float
+    e: float
 
 
-def windows(samples: ToothSamples, curve2, teeth, turn: float, beta: float, e: float,
-            reaches, start: dict | None = None) -> list[Window | None]:
+def window(samples: ToothSamples, facing: Facing, tooth: int, reach: float) -> Window | None:
+    """The stretch of ``tooth`` whose rigid gap to gear 2 (as it faces the tooth: ``facing``)
+    is below ``reach`` (mm) and closes under a positive turn; None if there is none
+    (:func:`windows` for one tooth)."""
+    return windows(samples, facing, (tooth,), (reach,))[0]
+
+
+def windows(samples: ToothSamples, facing: Facing, teeth, reaches,
+            start: dict | None = None) -> list[Window | None]:
     """:func:`window` of each of ``teeth`` with its own reach (mm): every COARSE-th sample
     first, then every sample where that found the gap within reach of the threshold. The
     teeth's samples go to gear 2's closest-point search together, one call a pass (the points
@@ -128,11 +139,12 @@ def windows(samples: ToothSamples, curve2, teeth, turn: float, beta: float, e: f
     polar start's inversion and four to fifty steps)."""
     if not teeth:
         return []
+    curve2 = facing.curve2
     coarse = np.arange(0, len(samples.x), COARSE)
     points = [samples.turned(tooth)[1] for tooth in teeth]
     before = start or {}
     first = np.concatenate([before.get(t, np.full(len(coarse), np.nan)) for t in teeth])
-    gaps = _split(_gaps(np.vstack([x[coarse] for x in points]), curve2, turn, beta, e, first),
+    gaps = _split(_gaps(np.vstack([x[coarse] for x in points]), facing, first),
                   [len(coarse)] * len(teeth))
     ranges = []
     for (gap, closing, _), reach in zip(gaps, reaches):
@@ -151,8 +163,8 @@ def windows(samples: ToothSamples, curve2, teeth, turn: float, beta: float, e: f
     # start's three and four more)
     start = np.concatenate([np.interp(np.arange(lo, hi + 1), coarse, np.unwrap(gaps[k][2]))
                             for k, lo, hi in found])
-    fine = _split(_gaps(np.vstack([points[k][lo:hi + 1] for k, lo, hi in found]), curve2,
-                        turn, beta, e, start), [hi + 1 - lo for _, lo, hi in found])
+    fine = _split(_gaps(np.vstack([points[k][lo:hi + 1] for k, lo, hi in found]), facing,
+                        start), [hi + 1 - lo for _, lo, hi in found])
     for (k, lo, _), (gap, closing, xi) in zip(found, fine):
         near = np.flatnonzero((gap < reaches[k]) & closing)
         if len(near) == 0:
@@ -170,12 +182,13 @@ def _split(parts, sizes) -> list[tuple]:
     return list(zip(*(np.split(p, cuts) for p in parts)))
 
 
-def _gaps(x: np.ndarray, curve2, turn: float, beta: float, e: float,
-          start: np.ndarray | None = None):
-    """Rigid gap (mm) of gear-1 points ``x`` to gear 2, whether a positive turn closes it, and
-    gear 2's curve parameter ξ at the feet (searched from ``start`` where given)."""
-    o1 = np.array([0.0, e])
-    fixed = rotate(x, turn) + o1
+def _gaps(x: np.ndarray, facing: Facing, start: np.ndarray | None = None):
+    """Rigid gap (mm) of tooth-0-frame points ``x`` of gear 1 to gear 2 as it faces them,
+    whether a positive turn closes it, and gear 2's curve parameter ξ at the feet (searched
+    from ``start`` where given)."""
+    curve2, beta = facing.curve2, facing.beta
+    o1 = np.array([0.0, facing.e])
+    fixed = rotate(x, facing.turn) + o1
     y = rotate(fixed, -beta)
     xi = curve2.feet(y, start=start)
     _, normal, gap = curve2.at_feet(y, xi)
@@ -184,25 +197,37 @@ def _gaps(x: np.ndarray, curve2, turn: float, beta: float, e: float,
     return gap, closing, xi
 
 
-def tooth_grid(samples: ToothSamples, win: Window, load: float, E_star: float, per_b: float,
-               floor: float, reach: float, probe: bool = False) -> ToothGrid:
-    """The grid over the window ``win``: spacing a ``per_b``-th of the local Hertz half-width
-    under the line load ``load`` (N/mm) for the relative curvature of the two profiles, at
-    least ``floor`` (mm), at most a ``MIN_POINTS``-th of the stretch that a gap of ``reach``
-    (mm) spans at the anchor's curvature; ``JUNCTION_FACTOR`` times finer again within
-    ``JUNCTION`` round widths of the rounds' tangent points, coarsening beyond by ``GRADING``
-    of the distance (from 1 µm to the flank's 19 µm in one step, `coarse` read the flank
-    pressure beside an edge 1 % low). The points are counted from the window's anchor, so two
-    windows of a tooth at one position share every point but their ends: a position solved in
-    a cycle and alone has the same grid where it carries pressure, whatever rotation each
-    placed its windows for. A ``probe`` grid, on a tooth not expected to touch, has
-    PROBE_POINTS evenly: enough to tell whether it does."""
-    return tooth_grids(samples, (win,), load, E_star, per_b, floor, reach,
-                       (probe,))[0]
+@dataclass(frozen=True)
+class GridSpacing:
+    """How finely a fine grid samples a tooth (:func:`tooth_grid`): a ``per_b``-th of the local
+    Hertz half-width under the line load ``load`` (N/mm) at the contact modulus ``E_star``
+    (MPa), at least ``floor`` (mm), at most a ``MIN_POINTS``-th of the stretch that a gap of
+    ``reach`` (mm) spans at the window's anchor."""
+
+    load: float
+    E_star: float
+    per_b: float
+    floor: float
+    reach: float
 
 
-def tooth_grids(samples: ToothSamples, wins, load: float, E_star: float, per_b: float,
-                floor: float, reach: float, probes) -> tuple[ToothGrid, ...]:
+def tooth_grid(samples: ToothSamples, win: Window, spacing: GridSpacing,
+               probe: bool = False) -> ToothGrid:
+    """The grid over the window ``win``: its spacing a ``per_b``-th of the local Hertz
+    half-width for the relative curvature of the two profiles, within the bounds of
+    ``spacing``; ``JUNCTION_FACTOR`` times finer again within ``JUNCTION`` round widths of the
+    rounds' tangent points, coarsening beyond by ``GRADING`` of the distance (from 1 µm to the
+    flank's 19 µm in one step, `coarse` read the flank pressure beside an edge 1 % low). The
+    points are counted from the window's anchor, so two windows of a tooth at one position
+    share every point but their ends: a position solved in a cycle and alone has the same grid
+    where it carries pressure, whatever rotation each placed its windows for. A ``probe``
+    grid, on a tooth not expected to touch, has PROBE_POINTS evenly: enough to tell whether it
+    does."""
+    return tooth_grids(samples, (win,), spacing, (probe,))[0]
+
+
+def tooth_grids(samples: ToothSamples, wins, spacing: GridSpacing,
+                probes) -> tuple[ToothGrid, ...]:
     """:func:`tooth_grid` over each of the windows ``wins``, a probe where ``probes`` says:
     the exact profile evaluated for all their points at once (its Newton iterations are each
     point's own: the same points as one window at a time, a third of the time)."""
@@ -213,7 +238,7 @@ def tooth_grids(samples: ToothSamples, wins, load: float, E_star: float, per_b: 
         if probe:
             sg = np.linspace(0.0, s[-1], PROBE_POINTS + 1)
         else:
-            sg = _counted(samples, win, s, load, E_star, per_b, floor, reach)
+            sg = _counted(samples, win, s, spacing)
         sg = sg[np.concatenate([[True], np.diff(sg) > 1e-9 * s[-1]])]  # samples of zero length
         angles.append((np.interp(sg, s, samples.phi[k]), s[-1]))     # tooth 0's angles
     shape = samples.shape
@@ -236,17 +261,18 @@ def tooth_grids(samples: ToothSamples, wins, load: float, E_star: float, per_b: 
     return tuple(out)
 
 
-def _counted(samples: ToothSamples, win: Window, s: np.ndarray, load: float, E_star: float,
-             per_b: float, floor: float, reach: float) -> np.ndarray:
+def _counted(samples: ToothSamples, win: Window, s: np.ndarray,
+             rule: GridSpacing) -> np.ndarray:
     """A fine grid's arc positions (from the window's start): the points where the count of
-    spacings from the anchor is whole, the window's two ends and the rounds' exact tangent
-    points, where the curvature jumps (a whole count within half a spacing of one of those
-    gives way to it)."""
+    spacings (``rule``) from the anchor is whole, the window's two ends and the rounds' exact
+    tangent points, where the curvature jumps (a whole count within half a spacing of one of
+    those gives way to it)."""
+    load, E_star, per_b, floor = rule.load, rule.E_star, rule.per_b, rule.floor
     k = slice(win.lo, win.hi + 1)
     relative = np.maximum(samples.kappa[k] + win.kappa2, 1e-9)
     b = np.sqrt(4.0 * load / (math.pi * E_star * relative))
     a = win.anchor - win.lo
-    span = min(2.0 * math.sqrt(2.0 * reach / relative[a]), samples.s[-1])
+    span = min(2.0 * math.sqrt(2.0 * rule.reach / relative[a]), samples.s[-1])
     spacing = np.clip(b / per_b, floor, max(span / MIN_POINTS, floor))
     on_round = samples.on_round[k]
     for j in np.flatnonzero(np.diff(on_round.astype(int)) != 0):

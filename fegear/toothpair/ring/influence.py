@@ -17,7 +17,7 @@ a column a hat), the same numbers as its row of A times the pressure.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -100,25 +100,43 @@ class RingContact:
         return np.repeat(np.arange(len(self.grids)), np.diff(self.offsets))
 
 
-def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float,
-                     turn: float, probe_columns: bool = True,
-                     within: float | None = None,
-                     columns: np.ndarray | None = None) -> RingContact:
-    """The contact of the ``grids`` with gear 2 turned by β and gear 1 by ``turn`` (rad, its
-    kinematic angle included, about its centre). Without ``probe_columns`` (and with a fine
-    grid among the ``grids``), A's columns of the probe grids' hats are not formed: the
-    approach of every point under the fine grids' pressures is all a solve needs while no
-    probe point closes (:func:`~.contact.solve_ring_contact`); the probes' columns, with the
-    sectors only they load, were a fifth of the influence products. ``within`` (mm): only
-    the columns of the points whose rigid gap at ``turn`` is below it are formed, the hats
+@dataclass(frozen=True, eq=False)
+class ColumnRule:
+    """Which of A's columns (and rows: the same points) :func:`assemble_contact` forms. Every
+    point's, but: without ``probes`` (and with a fine grid among the grids) not the probe
+    grids' (the approach of every point under the fine grids' pressures is all a solve needs
+    while no probe point closes: :func:`~.contact.solve_ring_contact`; the probes' columns,
+    with the sectors only they load, were a fifth of the influence products); with ``within``
+    (mm), only those of the points whose rigid gap at the contact's turn is below it, the hats
     that can carry pressure there (pressure separates the surfaces everywhere, so a loaded
     point overlaps rigidly: on the baseline's cycle, by a fifth of the elastic approach or
-    more at the expected turn). A's rows are formed at those points alone (they were three
-    in five of its products at a cycle's later position, read only to tell whether a point
-    left out closes: :func:`approach_open` tells that from the solved pressure's fields).
-    ``columns`` (a mask over the points): only these points' columns are formed, of those the
-    other rules form (where the position before carried pressure, say); all of those where
-    none is among them."""
+    more at the expected turn); with ``mask`` (over the points), only those of these points
+    (where the position before carried pressure, say). A rule that would leave no column
+    keeps those of the rules before it."""
+
+    probes: bool = True
+    within: float | None = None
+    mask: np.ndarray | None = None
+
+    def formed(self, grids, offsets: np.ndarray, gap: np.ndarray) -> np.ndarray:
+        """The points whose columns are formed, of the ``grids`` (their points from
+        ``offsets``) at the rigid gaps ``gap`` (mm)."""
+        every = self.probes or all(g.probe for g in grids)
+        formed = np.repeat([every or not g.probe for g in grids], np.diff(offsets))
+        if self.within is not None and (formed & (gap < self.within)).any():
+            formed &= gap < self.within
+        if self.mask is not None and (formed & self.mask).any():
+            formed &= self.mask
+        return formed
+
+
+def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float,
+                     turn: float, rule: ColumnRule = ColumnRule()) -> RingContact:
+    """The contact of the ``grids`` with gear 2 turned by β and gear 1 by ``turn`` (rad, its
+    kinematic angle included, about its centre), A formed on the columns ``rule`` gives. A's
+    rows are formed at those points alone (they were three in five of its products at a
+    cycle's later position, read only to tell whether a point left out closes:
+    :func:`approach_open` tells that from the solved pressure's fields)."""
     p, case = model.case.params, model.case
     g1, g2 = model.gears
     offsets = np.cumsum([0] + [len(g) for g in grids])
@@ -129,12 +147,7 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     master = Gear2Master(model.curve2, beta)
     feet = np.full(len(x), np.nan)
     cp = master.closest(rotate(x, turn) + o1, feet)
-    every = probe_columns or all(g.probe for g in grids)
-    formed = np.repeat([every or not g.probe for g in grids], np.diff(offsets))
-    if within is not None and (formed & (cp.distance < within)).any():
-        formed &= cp.distance < within
-    if columns is not None and (formed & columns).any():
-        formed &= columns
+    formed = rule.formed(grids, offsets, cp.distance)
 
     xq, nq, size, col = _hat_loads(model, grids, offsets, case.thickness, formed)
     loads1 = g1.nodal_loads(xq, -nq, col, size)
@@ -144,14 +157,23 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     x2, n2 = rotate(cp.foot, -beta), rotate(cp.normal, -beta)   # n2 out of gear 2's material
     match = (_matching(g1, x, n1, model.level.depth, grids, offsets),
              _matching(g2, x2, n2, model.level.depth, grids, offsets))
+    contact = RingContact(beta, turn, tuple(grids), offsets, x, n1, weight, (loads1, loads2),
+                          match, (x2, n2), None, formed, feet)
+    return replace(contact, A=_influence(model, contact))
+
+
+def _influence(model: RingModel, contact: RingContact) -> np.ndarray:
+    """A between the ``contact``'s formed points (module docstring): each gear's
+    finite-element part, then the half-plane's near field on each grid."""
+    case, formed = model.case, contact.formed
     on = np.flatnonzero(formed)
-    place = np.full(len(x), -1)
+    place = np.full(contact.npoints, -1)
     place[on] = np.arange(len(on))
     A = np.zeros((len(on), len(on)))
-    for side, loads, m in zip((g1, g2), (loads1, loads2), match):
+    for side, loads, m in zip(model.gears, contact.loads, contact.matching):
         _fe_part(side, loads, m.take(on), place, A)
-    for k, g in enumerate(grids):
-        blk = slice(int(offsets[k]), int(offsets[k + 1]))
+    for k, g in enumerate(contact.grids):
+        blk = contact.block(k)
         rows = np.flatnonzero(formed[blk])
         if not len(rows):
             continue
@@ -161,11 +183,10 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
             # as over the whole grid (each hat's two intervals), for the formed ones alone
             a, b = max(lo - 1, 0), min(hi + 1, len(g))
             c = place[blk.start + lo]
-            for m in match:
+            for m in contact.matching:
                 A[first:first + len(rows), c:c + hi - lo] += approach_matrix(
                     g.s[rows], m.depth[blk][rows], g.s[a:b], case.E, case.nu)[:, lo - a:hi - a]
-    return RingContact(beta, turn, tuple(grids), offsets, x, n1, weight, (loads1, loads2), match,
-                       (x2, n2), A, formed, feet)
+    return A
 
 
 def _true_runs(mask: np.ndarray) -> list[tuple[int, int]]:

@@ -129,8 +129,9 @@ def _live(token: int) -> RingModel:
 
 
 #: ring models kept per process, most recent last: a study's cases that differ only in torque
-#: or position, and the error estimate's second level, find theirs here
-_KEPT: OrderedDict = OrderedDict()
+#: or position, and the error estimate's second level, find theirs here (by the case's
+#: GEOMETRY_KEYS; at most KEEP)
+KEPT: OrderedDict = OrderedDict()
 KEEP = 4
 
 
@@ -141,18 +142,18 @@ def ring_model(case: SolveCase, profile: Gear1Profile | None = None) -> RingMode
     (:mod:`.cache`), one read back from it; or a new one (:func:`build_ring`). It is kept in
     memory (and in the model cache once solved: :func:`keep_cached`)."""
     key = tuple(getattr(case, k) for k in GEOMETRY_KEYS)
-    model = _KEPT.pop(key, None)
+    model = KEPT.pop(key, None)
     if model is None:
         meshed = meshed_params(case)
-        kin = next((m for m in reversed(_KEPT.values())
+        kin = next((m for m in reversed(KEPT.values())
                     if m.meshed == meshed and _same_body(m.case, case)), None)
         if kin is None and cache.enabled():
             model = _from_cache(case, profile)
         if model is None:
             model = build_ring(case, profile, kin)
-        while len(_KEPT) >= KEEP:
-            _KEPT.popitem(last=False)
-    _KEPT[key] = model
+        while len(KEPT) >= KEEP:
+            KEPT.popitem(last=False)
+    KEPT[key] = model
     return model
 
 

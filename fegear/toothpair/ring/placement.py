@@ -19,7 +19,7 @@ from ...errors import FegearError
 from ...fe import contact_modulus
 from ..case import SolveCase
 from ..positions import SHARE_GUESS, Trial, expected_elastic_um
-from .grid import ToothGrid, tooth_grids, windows
+from .grid import Facing, GridSpacing, ToothGrid, tooth_grids, windows
 from .model import RingModel
 from .results import RingDetail
 
@@ -127,13 +127,14 @@ def place_grids(model: RingModel, case: SolveCase, trial: Trial, placement: Plac
     # the grids' largest spacing follows the reach of the expected rotation without a solution
     # before, so that a position solved in a cycle has the grid it has alone
     canonical = REACH * expected_elastic_um(case) * 1e-3 + REACH_FLOOR * p.m
+    spacing = GridSpacing(load, E_star, model.level.per_b, GRID_FLOOR * p.m, canonical)
+    facing = Facing(model.curve2, turn, case.beta, p.e)
     while True:
-        wins = [w for w in windows(model.samples, model.curve2, tuple(teeth), turn, case.beta,
-                                   p.e, [base * reach.get(t, 1.0) for t in teeth], coarse)
+        wins = [w for w in windows(model.samples, facing, tuple(teeth),
+                                   [base * reach.get(t, 1.0) for t in teeth], coarse)
                 if w is not None]
         if wins:
-            return tooth_grids(model.samples, wins, load, E_star, model.level.per_b,
-                               GRID_FLOOR * p.m, canonical, [w.tooth not in full for w in wins])
+            return tooth_grids(model.samples, wins, spacing, [w.tooth not in full for w in wins])
         # the first touch the clearance table gives is the sharp profile's: on a tip edge the
         # round stands that far back (µm at z1 = 8 and h1 0.9), so the reach widens
         if base > WIDEST_REACH * p.m:

@@ -55,71 +55,87 @@ def from_tip_corner(shape, grid, pressure: np.ndarray) -> np.ndarray:
     return (grid.s - s_corner) * math.copysign(1.0, centre - corner)
 
 
-def tooth_results(model: RingModel, case: SolveCase, contact: RingContact,
-                  sol: RingContactSolution, stresses: RingStresses | None, state,
-                  cands) -> tuple[ToothResult, ...]:
-    """One :class:`~fegear.toothpair.case.ToothResult` per gridded tooth. Without
-    ``stresses`` (a contact-only solve) the root stresses are NaN and the half-plane
-    reference and the bending curvature are left out (None, 0)."""
+def tooth_results(detail: RingDetail, state, cands) -> tuple[ToothResult, ...]:
+    """One :class:`~fegear.toothpair.case.ToothResult` per gridded tooth of the solved position
+    ``detail``; ``state``: the position's clearance state (each tooth's clearance), ``cands``:
+    the gridded teeth as candidates (:func:`~..teeth.candidate_data`: Hertz at each one's
+    predicted contact point). Without stresses (a contact-only solve) the root stresses are
+    NaN and the half-plane reference and the bending curvature are left out (None, 0)."""
+    case, contact, sol = detail.case, detail.contact, detail.solution
     p = case.params
-    pitch1, pitch2 = model.shape.pitch, 2 * math.pi / p.z2
-    w = contact.weight * case.thickness
-    gap, rate = rigid_gap(model, contact.x, case.beta, p.ratio * case.beta + sol.rotation,
-                          contact.feet)
-    E_star = contact_modulus(case.E, case.E)
+    rigid = rigid_gap(detail.model, contact.x, case.beta, p.ratio * case.beta + sol.rotation,
+                      contact.feet)
     clearance = {c.tooth: c.plus_um for c in state.teeth}
     by_tooth = {c.tooth: c for c in cands}
-    out = []
-    for k, grid in enumerate(contact.grids):
-        blk = contact.block(k)
-        pk = sol.pressure[blk]
-        load = float(w[blk] @ pk)
-        i = blk.start + int(np.argmax(pk))
-        c = by_tooth.get(grid.tooth)
-        if load > 0:
-            x2 = contact.facing[0][i]
-            theta2 = math.atan2(x2[1], x2[0])
-        else:
-            theta2 = c.theta2 if c is not None else math.nan
-        hz = (c.hertz(load, case.thickness, case.E, case.nu)
-              if load > 0 and c is not None else None)
-        fillets = tension_fillets(model.shape.tooth_center + grid.tooth * pitch1, pitch1,
-                                  theta2 if math.isfinite(theta2) else 0.0, pitch2)
-        split = flank_and_edge(grid.s, pk, grid.on_round, case.thickness,
-                               model.shape.radius_mm, E_star)
-        b = local_half_width(contact, sol.pressure, i) if load > 0 else 0.0
-        if stresses is not None:
-            surface = surface_matrix(grid.s, E_star) if load > 0 else None
-            bend, curvature = _bending(grid.s, pk, sol.gap[blk] - gap[blk], gap[blk], surface)
-            ref = (_halfplane(grid, gap[blk] + bend, load / case.thickness, E_star,
-                              case.thickness, model.shape.radius_mm, surface, pk > 0)
-                   if load > 0 else None)
-        else:
-            curvature, ref = 0.0, None
-        j = i - blk.start
-        spacing = 0.5 * (grid.s[min(j + 1, len(grid) - 1)] - grid.s[max(j - 1, 0)])
-        per_b = b / spacing if load > 0 else 0.0
-        out.append(ToothResult(
-            tooth=grid.tooth, clearance_um=clearance.get(grid.tooth), load_N=load,
-            load_share=float(-(w[blk] * pk) @ rate[blk] / (case.torque * 1e3)),
-            p_max_MPa=float(pk.max()),
-            half_width_mm=b,
-            hertz_p0_MPa=hz.p0 if hz else None, hertz_b_mm=hz.b if hz else None,
-            b_over_R=hz.b_over_R if hz else None,
-            root1_MPa=(stresses.roots[0].near(fillets[0], pitch1) if stresses is not None
-                       else math.nan),
-            root2_MPa=(math.nan if stresses is None else
-                       stresses.roots[1].near(fillets[1], pitch2) if math.isfinite(theta2)
-                       else 0.0),
-            peak_on_round=bool(load > 0 and grid.on_round[i - blk.start]),
-            flank_p_MPa=split.flank_MPa, edge_p_MPa=split.edge_MPa,
-            edge_load_N=split.edge_load_N,
-            halfplane_p_MPa=float(ref[0].max()) if ref else None,
-            halfplane_flank_MPa=ref[1].flank_MPa if ref else None,
-            bending_curvature=curvature,
-            per_half_width=float(per_b),
-            resolved=bool(load <= 0 or per_b >= RESOLVED_PER_B)))
-    return tuple(out)
+    return tuple(_tooth_result(detail, k, rigid, by_tooth.get(g.tooth), clearance.get(g.tooth))
+                 for k, g in enumerate(contact.grids))
+
+
+def _tooth_result(detail: RingDetail, k: int, rigid: tuple[np.ndarray, np.ndarray], cand,
+                  clearance_um: float | None) -> ToothResult:
+    """The result of grid ``k``'s tooth: ``rigid`` the rigid gap (mm) of every point at the
+    solved rotation and its rate with the turn (mm/rad), ``cand`` the tooth as a candidate
+    (None where it is not one)."""
+    model, case, contact, sol = detail.model, detail.case, detail.contact, detail.solution
+    stresses = detail.stresses
+    pitch1, pitch2 = model.shape.pitch, 2 * math.pi / case.params.z2
+    w = contact.weight * case.thickness
+    gap, rate = rigid
+    grid, blk = contact.grids[k], contact.block(k)
+    pk = sol.pressure[blk]
+    load = float(w[blk] @ pk)
+    i = blk.start + int(np.argmax(pk))
+    if load > 0:
+        x2 = contact.facing[0][i]
+        theta2 = math.atan2(x2[1], x2[0])
+    else:
+        theta2 = cand.theta2 if cand is not None else math.nan
+    hz = (cand.hertz(load, case.thickness, case.E, case.nu)
+          if load > 0 and cand is not None else None)
+    fillets = tension_fillets(model.shape.tooth_center + grid.tooth * pitch1, pitch1,
+                              theta2 if math.isfinite(theta2) else 0.0, pitch2)
+    split = flank_and_edge(grid.s, pk, grid.on_round, case.thickness, model.shape.radius_mm,
+                           contact_modulus(case.E, case.E))
+    b = local_half_width(contact, sol.pressure, i) if load > 0 else 0.0
+    curvature, ref = (_references(detail, k, gap[blk], load) if stresses is not None
+                      else (0.0, None))
+    j = i - blk.start
+    spacing = 0.5 * (grid.s[min(j + 1, len(grid) - 1)] - grid.s[max(j - 1, 0)])
+    per_b = b / spacing if load > 0 else 0.0
+    return ToothResult(
+        tooth=grid.tooth, clearance_um=clearance_um, load_N=load,
+        load_share=float(-(w[blk] * pk) @ rate[blk] / (case.torque * 1e3)),
+        p_max_MPa=float(pk.max()),
+        half_width_mm=b,
+        hertz_p0_MPa=hz.p0 if hz else None, hertz_b_mm=hz.b if hz else None,
+        b_over_R=hz.b_over_R if hz else None,
+        root1_MPa=(stresses.roots[0].near(fillets[0], pitch1) if stresses is not None
+                   else math.nan),
+        root2_MPa=(math.nan if stresses is None else
+                   stresses.roots[1].near(fillets[1], pitch2) if math.isfinite(theta2)
+                   else 0.0),
+        peak_on_round=bool(load > 0 and grid.on_round[i - blk.start]),
+        flank_p_MPa=split.flank_MPa, edge_p_MPa=split.edge_MPa,
+        edge_load_N=split.edge_load_N,
+        halfplane_p_MPa=float(ref[0].max()) if ref else None,
+        halfplane_flank_MPa=ref[1].flank_MPa if ref else None,
+        bending_curvature=curvature,
+        per_half_width=float(per_b),
+        resolved=bool(load <= 0 or per_b >= RESOLVED_PER_B))
+
+
+def _references(detail: RingDetail, k: int, gap: np.ndarray, load: float):
+    """The bending curvature of grid ``k``'s tooth (:func:`_bending`) and its half-plane
+    reference (:func:`_halfplane`; None where it carries no ``load``, N), from the rigid
+    ``gap`` (mm) of its points."""
+    case, grid, blk = detail.case, detail.contact.grids[k], detail.contact.block(k)
+    pk = detail.solution.pressure[blk]
+    E_star = contact_modulus(case.E, case.E)
+    surface = surface_matrix(grid.s, E_star) if load > 0 else None
+    bend, curvature = _bending(grid.s, pk, detail.solution.gap[blk] - gap, gap, surface)
+    ref = (_halfplane(detail, grid, gap + bend, load / case.thickness, surface, pk > 0)
+           if load > 0 else None)
+    return curvature, ref
 
 
 def _bending(s: np.ndarray, p: np.ndarray, elastic: np.ndarray, gap: np.ndarray,
@@ -144,13 +160,16 @@ def _bending(s: np.ndarray, p: np.ndarray, elastic: np.ndarray, gap: np.ndarray,
     return np.polyval(fit, np.clip(s, lo, hi)), float(fit[0] / g) if g > 0 else 0.0
 
 
-def _halfplane(grid, gap: np.ndarray, q: float, E_star: float, thickness: float,
-               radius: float, surface: np.ndarray, loaded: np.ndarray):
+def _halfplane(detail: RingDetail, grid, gap: np.ndarray, q: float, surface: np.ndarray,
+               loaded: np.ndarray):
     """The reference of docs/model.md, "Hertz": two half-planes with the tooth's exact gap
     along its grid, bent as the teeth bend under the load, pressed by its load q (N/mm); its
     pressure and that split into flank and edge; None where its active set does not settle
     (no reference rather than no result). ``surface``: the grid's :func:`surface_matrix`;
     ``loaded``: the points the ring model loads, where its active set starts."""
+    case = detail.case
+    E_star = contact_modulus(case.E, case.E)
+    thickness, radius = case.thickness, detail.model.shape.radius_mm
     try:
         p = gap_contact(grid.s, gap, q, E_star, surface=surface, start=loaded)
     except (ValueError, np.linalg.LinAlgError):
@@ -161,13 +180,13 @@ def _halfplane(grid, gap: np.ndarray, q: float, E_star: float, thickness: float,
 @dataclass(eq=False)
 class RingDetail:
     """The ring model's record of a solved position: the model, case, contact, its solution and
-    the stresses."""
+    the stresses (None: a contact-only solve)."""
 
     model: RingModel = field(repr=False)
     case: SolveCase
     contact: RingContact = field(repr=False)
     solution: RingContactSolution = field(repr=False)
-    stresses: RingStresses = field(repr=False)
+    stresses: RingStresses | None = field(repr=False)
 
     def body_fields(self, around: int | None = None) -> tuple[BodyField, ...]:
         """Both gears in the fixed frame at the solved position: every sector's field and

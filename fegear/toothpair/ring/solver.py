@@ -28,7 +28,7 @@ from ..positions import Attempt, Trial
 from ..teeth import candidate_data, choose_teeth
 from .contact import RingContactSolution, solve_ring_contact, tangent_stiffness, touch_rotation
 from .grid import ToothGrid
-from .influence import RingContact, assemble_contact
+from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel, keep_cached, ring_model
 from .peaks import with_peak_submodels
 from .placement import (
@@ -128,13 +128,12 @@ class RingSolver:
         old = None if near is None else by_tooth(near.detail)
         start = None if old is None else loaded_before(old, grids)
         columns = None if old is None else columns_before(old, grids)
-        tries = [(False, within, columns)] if columns is not None else []
-        tries += [(False, within, None), (True, None, None)]
-        for probe_columns, within, columns in tries:
+        tries = [ColumnRule(False, within, columns)] if columns is not None else []
+        tries += [ColumnRule(False, within), ColumnRule()]
+        for rule in tries:
             with timed("assemble"):
                 contact = assemble_contact(self.model, grids, case.beta,
-                                           p.ratio * case.beta + theta, probe_columns, within,
-                                           columns)
+                                           p.ratio * case.beta + theta, rule)
             try:
                 with timed("contact"):
                     # the rotation's linearisations start at the expected rotation after a
@@ -144,7 +143,7 @@ class RingSolver:
                                              theta if near is not None else p.turn_of(first_um),
                                              guess=theta, start=start)
             except ContactError:   # the candidates alone cannot carry the torque: on
-                if within is not None:
+                if rule.within is not None:
                     continue
                 if not predict:
                     raise
@@ -168,7 +167,8 @@ class RingSolver:
                                          self.submodels == "all", clamped)
                 cands = candidate_data(case.params, model.shape, state,
                                        tuple(g.tooth for g in solved.grids), case.beta)
-            teeth = tooth_results(model, case, contact, sol, stresses, state, cands)
+            detail = RingDetail(model, case, replace(contact, A=None), sol, stresses)
+            teeth = tooth_results(detail, state, cands)
         residuals = () if stresses is None else tuple(_residuals(model, contact, sol, stresses))
         return PairSolution(
             case=case, teeth=teeth,
@@ -178,7 +178,7 @@ class RingSolver:
             rotation=sol.rotation, first_touch=touch, dofs=model.dofs,
             checks=ContactChecks(sol.balance_error, sol.max_penetration, sol.iterations,
                                  residuals, contact.npoints),
-            timings_s={}, detail=RingDetail(model, case, replace(contact, A=None), sol, stresses),
+            timings_s={}, detail=detail,
             von_mises_estimated=stresses is None or not stresses.submodels,
             tangent_stiffness=tangent)
 

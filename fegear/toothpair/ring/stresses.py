@@ -272,7 +272,8 @@ def contact_submodel(model: RingModel, contact: RingContact, pressure: np.ndarra
         angles = contact.grids[k].phi
     else:   # the template's own: along the normal (a near-radial flank, h1 0.2, f1 0.6,
         # inverted along the polar angle), no table (a mesh's input: Cycloid.xi_at_angle)
-        point, foot = gear2_polar(model.curve2)
+        polar = gear2_polar(model.curve2)
+        point, foot = polar.point, polar.project
         x = contact.facing[0][i]
         angles = np.unwrap(np.arctan2(contact.facing[0][blk, 1], contact.facing[0][blk, 0]))
     centre = float(np.arctan2(x[1], x[0]))

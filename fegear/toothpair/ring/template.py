@@ -26,6 +26,8 @@ from ...fe import BodyGeometry, Periodic, Refinement, Segment
 from ...geometry import Cycloid, PairParameters, RoundedProfile
 from ..segments import (
     ROOT_BAND,
+    Layout,
+    PolarCurve,
     gear2_outline,
     gear2_polar,
     profile_segments,
@@ -98,10 +100,10 @@ def gear1_template(p: PairParameters, shape: RoundedProfile, sizes: TemplateSize
     def project(x):
         return shape.point(np.arctan2(x[:, 1], x[:, 0]))
 
-    segs, names = profile_segments(
-        "g1", shape.point, project, a, b, [], [("g1_root", space, root_half)], marks=marks,
+    segs, names = profile_segments("g1", PolarCurve(shape.point, project), a, b, Layout(
+        roots=(("g1_root", space, root_half),), marks=tuple(marks),
         sizes={"g1_root": sizes.root, "g1_flank": sizes.flank, "g1_round": sizes.round,
-               "g1_junction": sizes.junction})
+               "g1_junction": sizes.junction}))
     pa, pb = shape.point(np.array([a]))[0], shape.point(np.array([b]))[0]
     t = np.linspace(b, a, 40)
     bore_pts = bore * np.column_stack([np.cos(t), np.sin(t)])
@@ -133,15 +135,15 @@ def gear2_template(p: PairParameters, curve: Cycloid, sizes: TemplateSizes,
     r_min, r_max = p.r0 - 2 * p.e1, p.r0 + 2 * p.e1
     outer = r_max + rim
 
-    g2_curve, project = gear2_polar(curve)
+    g2_profile = gear2_polar(curve)
     # the template's geometry and sizes are inverted without a table (Cycloid.xi_at_angle)
     root_half = root_half_angle(lambda t: curve.radius_at_angle(t, tabled=False), 0.5 * pitch,
                                 pitch, r_min, r_max, inverted=True)
     marks, bent = bends(curve, a, b, sizes)
-    segs, names = profile_segments(
-        "g2", g2_curve, project, a, b, [], [("g2_root", 0.5 * pitch, root_half)], marks=marks,
-        sizes={"g2_root": sizes.root, "g2_flank": sizes.flank, "g2_bend": bent})
-    geo = BodyGeometry("gear2", gear2_outline(g2_curve, segs, a, b, outer, 40),
+    segs, names = profile_segments("g2", g2_profile, a, b, Layout(
+        roots=(("g2_root", 0.5 * pitch, root_half),), marks=tuple(marks),
+        sizes={"g2_root": sizes.root, "g2_flank": sizes.flank, "g2_bend": bent}))
+    geo = BodyGeometry("gear2", gear2_outline(g2_profile.point, segs, a, b, outer, 40),
                        size=sizes.body, refinements=(
         Refinement(("g2_root",), sizes.root, sizes.growth),
         Refinement(("g2_flank",), sizes.flank, sizes.growth),

@@ -39,6 +39,9 @@ from ...toothpair import (
     SHARE_GUESS,
     Candidate,
     Gear2Master,
+    Layout,
+    PairProfiles,
+    PolarCurve,
     candidate_data,
     gear2_outline,
     gear2_polar,
@@ -256,12 +259,13 @@ def gear1_body(case: SectorCase, shape: RoundedProfile, sector: Sector, paired, 
         return shape.point(np.arctan2(x[:, 1], x[:, 0]))
 
     segs1, names1 = profile_segments(
-        "g1", shape.point, g1_project, sector.phi_a, sector.phi_b,
-        [(f"g1_contact_{t}", p_, w) for t, p_, w in windows1],
-        [(f"g1_root_{k}", p_, root_half1) for k, p_ in roots1],
-        marks=junctions + [(a - spill, b + spill, "g1_round") for a, b in rounds] + tangents,
-        sizes={"g1_round": sizes.round, "g1_junction": sizes.junction,
-               **{f"g1_contact_{t}": sizes.contact for t in paired}})
+        "g1", PolarCurve(shape.point, g1_project), sector.phi_a, sector.phi_b, Layout(
+            windows=tuple((f"g1_contact_{t}", p_, w) for t, p_, w in windows1),
+            roots=tuple((f"g1_root_{k}", p_, root_half1) for k, p_ in roots1),
+            marks=tuple(junctions + [(a - spill, b + spill, "g1_round") for a, b in rounds]
+                        + tangents),
+            sizes={"g1_round": sizes.round, "g1_junction": sizes.junction,
+                   **{f"g1_contact_{t}": sizes.contact for t in paired}}))
     a0 = shape.point(np.array([sector.phi_a]))[0]
     b0 = shape.point(np.array([sector.phi_b]))[0]
     bore_pts = bore * np.column_stack([np.cos(np.linspace(sector.phi_b, sector.phi_a, 60)),
@@ -314,17 +318,16 @@ def gear2_body(case: SectorCase, shape: RoundedProfile, sector: Sector, paired, 
     root_half2 = root_half_angle(lambda t: g2.radius_at_angle(t, tabled=False), roots2[0][1],
                                  pitch2, R_min, R_max, inverted=True)   # a mesh's input
 
-    g2_curve, g2_project = gear2_polar(g2)
+    g2_profile = gear2_polar(g2)
 
     # where a refined round comes near gear 2 at some β, gear 2 under it gets the same size
-    marks2 = round_strips(params, shape, g2, rounds, betas, sizes.b_round / params.r0,
-                          0.5 * (th_a + th_b))
-    segs2, names2 = profile_segments(
-        "g2", g2_curve, g2_project, th_a, th_b,
-        [("g2_contact", p_, w) for _, p_, w in windows2],
-        [(f"g2_root_{k}", p_, root_half2) for k, p_ in roots2], marks=marks2,
-        sizes={"g2_contact": sizes.contact, "g2_round": sizes.round})
-    geo2 = BodyGeometry("gear2", gear2_outline(g2_curve, segs2, th_a, th_b, outer, 80),
+    marks2 = round_strips(PairProfiles(params, shape, g2), rounds, betas,
+                          sizes.b_round / params.r0, 0.5 * (th_a + th_b))
+    segs2, names2 = profile_segments("g2", g2_profile, th_a, th_b, Layout(
+        windows=tuple(("g2_contact", p_, w) for _, p_, w in windows2),
+        roots=tuple((f"g2_root_{k}", p_, root_half2) for k, p_ in roots2),
+        marks=tuple(marks2), sizes={"g2_contact": sizes.contact, "g2_round": sizes.round}))
+    geo2 = BodyGeometry("gear2", gear2_outline(g2_profile.point, segs2, th_a, th_b, outer, 80),
                         size=sizes.body, refinements=(
         Refinement(("g2_contact",), sizes.contact),
         Refinement(tuple(n for n in names2 if n.startswith("g2_root")), sizes.root),

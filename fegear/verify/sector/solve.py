@@ -140,7 +140,7 @@ class SectorSolver:
         sol = solve_position(self.model, case.beta, state, near)
         p = case.params
         more = set(choose_teeth(state, p.arc_um(sol.rotation), case.extra_pairs))
-        ends = _window_ends(sol)
+        ends = window_ends(sol)
         if more <= set(self.model.scene.paired) and not ends:
             return Attempt(sol, None)
         for tooth in ends:
@@ -155,7 +155,7 @@ class SectorSolver:
         return attempt.solved
 
 
-def _window_ends(sol: PairSolution) -> list[int]:
+def window_ends(sol: PairSolution) -> list[int]:
     """The paired teeth whose contact pressure reaches either end of their window."""
     d = sol.detail
     out = []

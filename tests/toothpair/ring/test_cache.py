@@ -13,7 +13,7 @@ import pytest
 from fegear.geometry import PairParameters
 from fegear.toothpair import SolveCase, cycle_positions, solve_positions
 from fegear.toothpair.ring import cache
-from fegear.toothpair.ring.model import _KEPT
+from fegear.toothpair.ring.model import KEPT
 
 CASE = SolveCase(PairParameters(m=2, z2=25, z1=24, shift=0.016, rotation=0.002), torque=20.0,
                  quality="coarse")
@@ -25,9 +25,9 @@ def cache_on(tmp_path, monkeypatch):
     """The cache on, in a folder of the test's own, with no model kept in memory."""
     monkeypatch.setenv(cache.ENV_DIR, str(tmp_path / "cache"))
     monkeypatch.setenv(cache.ENV, "on")
-    _KEPT.clear()
+    KEPT.clear()
     yield tmp_path / "cache"
-    _KEPT.clear()
+    KEPT.clear()
 
 
 def _numbers(sols):
@@ -46,7 +46,7 @@ def test_a_model_read_back_solves_as_the_one_built_without_meshing(cache_on, mon
     built = solve_positions(CASE, BETAS, submodels="all")
     assert built[0].timings_s["mesh"] > 0 and built[0].timings_s["cache"] == 0
     (entry,) = cache.entries()
-    _KEPT.clear()
+    KEPT.clear()
     with monkeypatch.context() as m:
         _no_meshing(m)
         read = solve_positions(CASE, BETAS, submodels="all")
@@ -61,18 +61,18 @@ def test_a_model_read_back_solves_as_the_one_built_without_meshing(cache_on, mon
 def test_more_work_on_a_read_model_is_kept_again(cache_on):
     solve_positions(CASE, BETAS[:1])
     (first,) = cache.entries()
-    _KEPT.clear()
+    KEPT.clear()
     heavier = solve_positions(replace(CASE, torque=200.0), BETAS)
     (again,) = cache.entries()
     assert again[0] == first[0] and again[1] > first[1]   # more responses formed
-    _KEPT.clear()
+    KEPT.clear()
     fresh = solve_positions(replace(CASE, torque=200.0), BETAS)
     np.testing.assert_allclose(_numbers(fresh), _numbers(heavier), rtol=1e-10)
 
 
 def test_an_edit_to_the_code_reads_no_older_entry(cache_on, monkeypatch):
     solve_positions(CASE, BETAS[:1])
-    _KEPT.clear()
+    KEPT.clear()
     monkeypatch.setattr("fegear.provenance.code_version", lambda: "another version")
     again = solve_positions(CASE, BETAS[:1])
     assert again[0].timings_s["mesh"] > 0
@@ -83,7 +83,7 @@ def test_an_unreadable_entry_is_dropped_and_the_model_built_again(cache_on, capl
     built = solve_positions(CASE, BETAS[:1])
     (entry,) = cache.entries()
     entry[0].write_bytes(entry[0].read_bytes()[:1000])    # cut short, as by a full file system
-    _KEPT.clear()
+    KEPT.clear()
     with caplog.at_level(logging.WARNING):
         again = solve_positions(CASE, BETAS[:1])
     assert "unreadable" in caplog.text and again[0].timings_s["mesh"] > 0
@@ -98,10 +98,10 @@ def test_an_unwritable_cache_warns_and_the_solve_goes_on(tmp_path, monkeypatch, 
     blocker.write_text("")
     monkeypatch.setenv(cache.ENV_DIR, str(blocker / "cache"))
     monkeypatch.setenv(cache.ENV, "on")
-    _KEPT.clear()
+    KEPT.clear()
     with caplog.at_level(logging.WARNING):
         sol = solve_positions(CASE, BETAS[:1])[0]
-    _KEPT.clear()
+    KEPT.clear()
     assert "could not keep" in caplog.text
     assert sol.root_stress[0] > 0 and not list(tmp_path.glob("**/*.tmp"))
 
@@ -159,8 +159,7 @@ def test_a_submodel_meshes_the_same_whatever_was_meshed_before_it(baseline, base
     what else was meshed in the same call. The baseline's two peaks at `standard`: meshed in
     one gmsh session after gear 2's, gear 1's submodel came out with 1696 nodes instead of
     1692."""
-    from fegear.fe import StarCurve, SubmodelProblem, mesh_bodies
-    from fegear.fe.submodel import _geometry
+    from fegear.fe import Material, StarCurve, SubmodelProblem, prepare_submodels, submodel_meshes
     from fegear.geometry import RoundedProfile, gear2_curve
 
     shape = RoundedProfile(baseline_profile, 0.25)
@@ -175,11 +174,13 @@ def test_a_submodel_meshes_the_same_whatever_was_meshed_before_it(baseline, base
 
     size, focus = 0.0008211879055212056, 0.03716272234383503
     one = SubmodelProblem(StarCurve(shape.point, inside=True), 0.0673121245250514,
-                          0.052556025953357156, size, focus, unused, unused)
+                          0.052556025953357156, size, focus, unused, unused, key="one")
     two = SubmodelProblem(StarCurve(point2, inside=False, foot=lambda y: curve2.closest(y)[0]),
-                          0.1011093291354564, 0.29730177875068026, size, focus, unused, unused)
-    geo1, geo2 = (_geometry(pb)[0] for pb in (one, two))
-    (alone,) = mesh_bodies([geo1])
-    _, after = mesh_bodies([geo2, geo1])
-    assert np.array_equal(alone.mesh.p, after.mesh.p)
-    assert np.array_equal(alone.mesh.t, after.mesh.t)
+                          0.1011093291354564, 0.29730177875068026, size, focus, unused, unused,
+                          key="two")
+    kept_alone, kept_after = {}, {}
+    prepare_submodels([one], Material(), kept_alone)          # its disk meshed alone …
+    prepare_submodels([two, one], Material(), kept_after)     # … and after gear 2's, at once
+    alone, after = (submodel_meshes(kept)["one"].mesh.mesh for kept in (kept_alone, kept_after))
+    assert np.array_equal(alone.p, after.p)
+    assert np.array_equal(alone.t, after.t)

@@ -12,7 +12,14 @@ from fegear.geometry.gear1 import Gear1Profile
 from fegear.geometry.gear2 import gear2_curve
 from fegear.geometry.tip_edge import RoundedProfile
 from fegear.planar import rotate
-from fegear.toothpair.segments import SHORT, SPLINE_CHORD, profile_segments, sampled
+from fegear.toothpair.segments import (
+    SHORT,
+    SPLINE_CHORD,
+    Layout,
+    PolarCurve,
+    profile_segments,
+    sampled,
+)
 from fegear.toothpair.teeth import candidate_data, choose_teeth
 from fegear.verify.sector import SectorCase
 from fegear.verify.sector.scene import build_scene, tooth_run
@@ -22,11 +29,14 @@ def circle(phi):
     return 10.0 * np.column_stack([np.cos(phi), np.sin(phi)])
 
 
+CIRCLE = PolarCurve(circle)
+
+
 def test_profile_segments_are_contiguous_with_windows_over_roots():
     windows = [("w1", 0.30, 0.10), ("w2", 0.45, 0.10)]       # overlapping windows
     roots = [("r1", 0.20, 0.05), ("r2", 0.50, 0.02), ("r3", 0.40, 0.3)]  # r3 around all
     marks = [(0.05, 0.1, "edge")]
-    segs, names = profile_segments("p", circle, None, 0.0, 1.0, windows, roots, marks)
+    segs, names = profile_segments("p", CIRCLE, 0.0, 1.0, Layout(windows, roots, marks))
     for s0, s1 in zip(segs, segs[1:]):
         assert np.allclose(s0.points[-1], s1.points[0], atol=1e-12)
     assert np.allclose(segs[0].points[0], circle(np.array([0.0]))[0])
@@ -50,7 +60,7 @@ def test_profile_segments_with_many_zones_stay_contiguous():
     # a sector of 20 tooth spaces: every root is cut against every piece placed before it
     roots = [(f"r{k}", 0.05 * k + 0.025, 0.01) for k in range(20)]
     windows = [(f"w{k}", 0.05 * k + 0.04, 0.012) for k in range(0, 20, 2)]
-    segs, names = profile_segments("p", circle, None, 0.0, 1.0, windows, roots)
+    segs, names = profile_segments("p", CIRCLE, 0.0, 1.0, Layout(windows, roots))
     for s0, s1 in zip(segs, segs[1:]):
         assert np.allclose(s0.points[-1], s1.points[0], atol=1e-12)
     assert len([n for n in names if n.startswith("r")]) == 20
@@ -59,7 +69,7 @@ def test_profile_segments_with_many_zones_stay_contiguous():
 def test_profile_segments_with_nested_windows_stay_contiguous():
     # a long contact path (w8) around shorter ones, as for a conformal, unmodified pair
     windows = [("w8", 0.30, 0.28), ("w9", 0.32, 0.05), ("w10", 0.40, 0.15), ("w11", 0.45, 0.01)]
-    segs, names = profile_segments("p", circle, None, 0.0, 1.0, windows, [])
+    segs, names = profile_segments("p", CIRCLE, 0.0, 1.0, Layout(windows))
     for s0, s1 in zip(segs, segs[1:]):
         assert np.allclose(s0.points[-1], s1.points[0], atol=1e-12)
     seg_names = [s.name for s in segs]
@@ -200,12 +210,12 @@ def test_a_nearly_radial_curve_is_sampled_evenly_in_arc_length():
         return np.column_stack([r * np.cos(theta), r * np.sin(theta)])
 
     spacing = math.sqrt(8 * 0.5 * 1e-3)  # SPLINE_CHORD at 0.5 mm radius
-    seg = sampled("s", spiral, None, 0.0, 0.02)
+    seg = sampled("s", PolarCurve(spiral), 0.0, 0.02)
     gaps = np.hypot(*np.diff(seg.points, axis=0).T)
     assert gaps.max() < 1.05 * spacing and gaps.min() > 0.9 * gaps.max()
     assert np.allclose(seg.points[[0, -1]], spiral(np.array([0.0, 0.02])))
     # a circle keeps its points even in polar angle
-    arc = sampled("c", circle, None, 0.0, 0.5).points
+    arc = sampled("c", CIRCLE, 0.0, 0.5).points
     angles = np.arctan2(arc[:, 1], arc[:, 0])
     assert np.allclose(np.diff(angles), angles[1] - angles[0])
 
@@ -216,7 +226,7 @@ def test_a_tighter_curve_than_the_spacing_assumes_is_sampled_within_the_chord_er
     def small(theta):
         return 0.1 * np.column_stack([np.cos(theta), np.sin(theta)])
 
-    pts = sampled("s", small, None, 0.0, math.pi).points
+    pts = sampled("s", PolarCurve(small), 0.0, math.pi).points
     half_chord = 0.5 * np.hypot(*np.diff(pts, axis=0).T)
     assert np.max(0.1 - np.sqrt(0.1 ** 2 - half_chord ** 2)) <= SPLINE_CHORD
     assert np.allclose(pts[[0, -1]], small(np.array([0.0, math.pi])))
@@ -228,8 +238,8 @@ def test_a_boundary_piece_much_shorter_than_its_elements_joins_a_neighbour():
     sizes = {"r": 0.05, "round": 0.02, "p_flank": 0.1}
     jump = 0.6 + 2e-7  # a curvature jump 2 µm past the root's end (r dθ, r = 10 mm)
     marks = [(0.3, 0.4 - 1e-7, "round"), (jump, jump, None)]
-    segs, names = profile_segments("p", circle, None, 0.0, 1.0, [], [("r", 0.5, 0.1)], marks,
-                                   sizes)
+    segs, names = profile_segments("p", CIRCLE, 0.0, 1.0,
+                                   Layout(roots=[("r", 0.5, 0.1)], marks=marks, sizes=sizes))
     for s0, s1 in zip(segs, segs[1:]):
         assert np.allclose(s0.points[-1], s1.points[0], atol=1e-12)
     lengths = [np.hypot(*np.diff(s.points, axis=0).T).sum() for s in segs]

@@ -132,12 +132,12 @@ def test_the_peer_reports_the_flank_pressure_beside_an_edge_contact_as_the_produ
     (fegear/toothpair/edge.py) and agree within 5 % (48 s)."""
     from fegear.toothpair import prepare_job
     from fegear.verify.sector import cross_check
-    from fegear.verify.sector.solve import _window_ends
+    from fegear.verify.sector.solve import window_ends
 
     case = prepare_job({"m": 2.5, "h1": 0.35, "f1": 0.12, "torque": 150,
                         "quality": "coarse"}).case
     ring, sector = cross_check(case)
-    assert not _window_ends(sector)
+    assert not window_ends(sector)
     edges = [t.tooth for t in ring.teeth if t.edge_load_N > 0 and t.load_share > 0.1]
     assert edges == [10, 11]
     peer = {t.tooth: t for t in sector.teeth}
