@@ -217,8 +217,8 @@ def cyclic_parts(body: CyclicBody) -> dict:
 
 def restore_cyclic(mesh: BodyMesh, material: Material, parts: dict) -> CyclicBody:
     """The cyclic body of template ``mesh`` from its :func:`cyclic_parts`: its interior
-    factorised again (0.03-0.06 s on a baseline template; the static modes and the ring's
-    flexibility, which cost the solves, come from ``parts``)."""
+    factorised again (the static modes and the ring's flexibility, which cost the solves,
+    come from ``parts``)."""
     K, interior = parts["K"], parts["interior"]
     return CyclicBody(mesh.name, mesh, material, parts["count"], parts["pitch"], K,
                       interior, parts["face_a"], parts["face_b"], parts["fixed"],
@@ -301,6 +301,6 @@ def _ring_flexibility(D: np.ndarray, B: np.ndarray, Bt: np.ndarray, count: int) 
     omega = np.exp(2j * np.pi * k / count)
     blocks = D[None] + B[None] * omega[:, None, None] + Bt[None] * np.conj(omega)[:, None, None]
     inv = np.linalg.inv(blocks)
-    # G(Δ) = (1/n) Σ_k inv_k ω^(−kΔ): a forward FFT over k (as a dense sum over all Δ and k it
-    # was 0.86 s of a 10 s solve at z 180)
+    # G(Δ) = (1/n) Σ_k inv_k ω^(−kΔ): a forward FFT over k (a dense sum over all Δ and k is
+    # quadratic in the teeth)
     return (np.fft.fft(inv, axis=0) / count).real

@@ -18,11 +18,9 @@ def keep_freed_memory() -> None:
     A solve allocates and frees the same numpy temporaries over and over; by default glibc
     grows its heap by what each asks for and hands the top back once 128 kB of it lie free,
     and every page handed back is faulted in again at its next use. With the heap grown and
-    kept in 256 MB steps (M_TOP_PAD), alternated runs of the baseline, each from a fresh
-    process (docs/benchmark.md, "Memory, blocks and forms"): a 24-position cycle 2.28-2.30 s
-    against 2.37-2.41 s, one position 0.99 s either way (1.22 s once without). Setting the
-    trim and mmap thresholds as well gained nothing more. The process's resident memory
-    stays near its peak until it ends. Once a process."""
+    kept in 256 MB steps (M_TOP_PAD) a cycle of the baseline ran a few per cent faster, one
+    position as fast; setting the trim and mmap thresholds as well gained nothing more. The
+    process's resident memory stays near its peak until it ends. Once a process."""
     global _set
     if _set or not sys.platform.startswith("linux"):
         return

@@ -1,9 +1,9 @@
 """Sparse symmetric positive-definite factorisation, and solves with many right-hand sides.
 
 CHOLMOD (supernodal Cholesky, through the ``cholespy`` wheel) solves a block of right-hand
-sides with dense kernels: on a 20k-dof P2 body it factored in 0.2 s against SuperLU's 0.46 s and
-solved at 0.7-3 ms per column against 7-16 ms (docs/benchmark.md). SuperLU (scipy) stands in
-where cholespy cannot be imported.
+sides with dense kernels: on a 20k-dof P2 body it factors in about half SuperLU's time and
+solves a column several times faster. SuperLU (scipy) stands in where cholespy cannot be
+imported.
 """
 
 from __future__ import annotations
@@ -15,13 +15,13 @@ from ..errors import FegearError
 
 #: BLAS threads while a solve runs. The dense products and solves here are of a few thousand
 #: rows: OpenBLAS's threads cost more than they give, and with a second process on the two
-#: cores (a study's other worker) they spin against each other (docs/benchmark.md, "BLAS
-#: threads": a 24-position cycle 95 s with two threads and another job running, 13 s with one)
+#: cores (a study's other worker) they spin against each other: a cycle beside another job ran
+#: seven times slower with two threads than with one
 BLAS_THREADS = 1
 #: right-hand sides a CHOLMOD solve takes at once: its workspace, the block and the solution
 #: are then a few MB that stay in cache and are allocated once, where 476 columns on gear 1's
-#: 12 560-dof template made three blocks of 48 MB each, faulted in page by page: 0.23 s for
-#: that first solve, 0.11 s in blocks of 64 (docs/benchmark.md, "Memory, blocks and forms")
+#: 12 560-dof template made three blocks of 48 MB each, faulted in page by page: half the time
+#: again in blocks of 64
 CHUNK = 64
 
 

@@ -39,7 +39,7 @@ MAX_POINTS = 1000   # element size, with up to this many points a piece
 #: default 1e-9 spent 0.10 s of a submodel's 0.11 s there, the size falling 90-fold towards
 #: the contact): 1e-5 meshes one in 0.02 s and moves the baseline's von Mises stress by 2e-5.
 #: The templates keep the default: meshed at 1e-5, a design's flank pressure at `fine` moved
-#: by 0.35 %, outside `standard`'s estimate (docs/benchmark.md, "Tonight's changes")
+#: by 0.35 %, outside `standard`'s estimate
 CURVE_PRECISION = 1e-5
 
 

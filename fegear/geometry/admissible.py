@@ -83,8 +83,8 @@ def curves_defect(p: PairParameters) -> Defect | None:
 def defect(p: PairParameters) -> Defect | None:
     """Why ``p`` is not admissible, or ``None``. Builds gear 1 (kept by
     :func:`~.gear1.gear1_profile`) and the exact conjugate it is compared with. Kept for the
-    last few pairs, as gear 1 is: a study's cases of one pair at other torques each check it
-    (11 ms of a 0.3 s `coarse` solve)."""
+    last few pairs, as gear 1 is: a study's cases of one pair at other torques each check
+    it."""
     found = curves_defect(p)
     if found is not None:
         return found

@@ -217,7 +217,7 @@ def fits(profile: Gear1Profile, radius: float) -> bool:
 def _fillets_of(profile: Gear1Profile, radius: float) -> tuple[Fillet, ...]:
     """The rounds of radius ``radius`` (mm) on ``profile``'s tip edges (raises ``_NoFit``),
     kept for the last few: a solve's checks ask whether the default round fits, and its model
-    then rounds the same edges (18 ms at the baseline)."""
+    then rounds the same edges."""
     shape = RoundedProfile.__new__(RoundedProfile)
     shape.profile, shape.radius_mm, shape.pitch = profile, radius, profile.pitch
     shape.kinks = tuple(k for k in (shape._kink(pc.phi0) for pc in profile.pieces[1:]) if k)

@@ -45,7 +45,7 @@ Units: mm, N, MPa, rad; the torque is in N·m in the case and N·mm in the deck.
   our stiffness on the same mesh gives gear 1's nodal contact forces, which are averaged over
   our contact nodes' hats and then per facet, exactly as ours are read (:func:`facet_reading`);
   that agrees with ours within about 3 % in peak and 2 % in half-width per loaded tooth
-  (docs/benchmark.md, "Contact pressure beside CalculiX"). On the Hertz disks (matched,
+  (docs/benchmark.md, "CalculiX"). On the Hertz disks (matched,
   shifted, in a conformal bore, turned in ten increments) even the CSTR maximum agreed within
   2 % at penalty factor 30.
 * **Read-back.** θ from the reference node (``.dat``); per pair the slave contact force, its

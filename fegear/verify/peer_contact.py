@@ -3,8 +3,8 @@
 CalculiX's own contact output is a pointwise penalty pressure (CSTR) at its slave integration
 points. In these gear decks about 30 % of the contact area carries no contact spring and the
 points scatter ±30 % within a facet, so its largest CSTR sits 1.9-3.2× above the pressure
-the contact transmits. Here both codes are read the same way (docs/benchmark.md, "Contact pressure
-beside CalculiX"): ccx's displacements times our stiffness give gear 1's nodal forces, averaged
+the contact transmits. Here both codes are read the same way (docs/benchmark.md,
+"CalculiX"): ccx's displacements times our stiffness give gear 1's nodal forces, averaged
 over our contact nodes' hats (:func:`~fegear.verify.penalty.forces_from_body`); ours are our
 own node forces; both are then read per facet
 (:func:`~fegear.verify.calculix_pair.facet_reading`).

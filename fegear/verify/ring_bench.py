@@ -9,8 +9,8 @@ high-water mark, VmHWM) is its own. Errors are measured against the sector model
 references (Richardson over fast/standard/fine, measured 2026-11-22 and kept in
 docs/benchmark.md): the present model's answers are judged by the old model's best ones.
 The old model's von Mises at the edge contact is low by about 1.3 %: its own `fine` state
-re-solved in a submodel gives ``VON_MISES_RESOLVED`` (docs/benchmark.md, "The von Mises
-reference"); both are shown.
+re-solved in a submodel gives ``VON_MISES_RESOLVED`` (docs/benchmark.md, "The references");
+both are shown.
 """
 
 from __future__ import annotations

@@ -2,11 +2,9 @@
 find: the two templates' meshes, stiffness, static modes and ring flexibilities, the unit-load
 responses formed so far and the contact submodels' meshes (docs/model.md, "The model cache").
 
-A new baseline model at ``standard`` costs about 1.1 s (meshing 0.4 s, assembling and
-condensing 0.3 s, the responses of its first position 0.3-0.5 s) and its submodels' meshes
-0.2-0.3 s more; read back it costs 0.15-0.25 s (the factors do not pickle: each template's
-interior is factorised again). An entry is about 140 MB at the baseline at ``standard`` (60,
-90 and 430 MB at ``coarse``, ``fast`` and ``fine``; docs/model.md, "The model cache").
+Reading an entry back is several times cheaper than building the model again: only the
+factors are made again (they do not pickle: each template's interior is factorised anew).
+What an entry costs and weighs: docs/model.md, "The model cache".
 
 On where the environment variable :data:`ENV` says "on": ``fegear study`` and ``fegear
 relief`` set it for themselves and their workers unless ``--no-cache``; ``fegear solve

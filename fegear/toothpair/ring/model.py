@@ -296,7 +296,7 @@ def keep_cached(model: RingModel) -> None:
     """Keep ``model`` in the model cache if the cache is on and it holds more than its entry: a new
     model, more submodels meshed, or :data:`GROWN` more responses formed (a mesh cycle's
     later positions load other template dofs; a relief search's trials add a few each, and
-    writing 120 MB for each of them cost its seven trials 0.6-0.8 s)."""
+    writing a whole entry for each of them would cost more than the few they add save)."""
     if not cache.enabled():
         return
     key = _cache_key(model.case)
