@@ -30,12 +30,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..checks import require_finite
 from ..errors import ParameterError
+from ..planar import rotate
 
 #: the largest deviation fegear takes, µm: far beyond ISO 1328-1's coarsest class for any
 #: module fegear solves (class 11, m 100, d 2 m: about 900 µm) and below what closes a pair
@@ -118,12 +119,12 @@ class Runout:
 
 @dataclass(frozen=True)
 class Deviations:
-    """A pair's deviations: per tooth of gear 1 and of gear 2 (tooth index → deviation; a
-    tooth not named has none), the centre distance's (µm) and each gear's runout. The empty
-    one is the exact pair."""
+    """A pair's deviations: per tooth of gear 1 and of gear 2 (given as tooth index →
+    deviation, kept as sorted pairs; a tooth not named has none), the centre distance's (µm)
+    and each gear's runout. The empty one is the exact pair."""
 
-    gear1: Mapping[int, ToothDeviation] = field(default_factory=dict)
-    gear2: Mapping[int, ToothDeviation] = field(default_factory=dict)
+    gear1: tuple = ()
+    gear2: tuple = ()
     centre_distance: float = 0.0
     runout1: Runout = Runout()
     runout2: Runout = Runout()
@@ -132,16 +133,33 @@ class Deviations:
         object.__setattr__(self, "centre_distance",
                            _micron("centre-distance-deviation", self.centre_distance))
         for gear in GEARS:
-            teeth = dict(self.teeth(gear))
-            object.__setattr__(self, f"gear{gear}", {int(k): v for k, v in sorted(teeth.items())
-                                                    if v != ToothDeviation()})
+            given = getattr(self, f"gear{gear}")
+            teeth = dict(given.items() if isinstance(given, Mapping) else given)
+            object.__setattr__(self, f"gear{gear}", tuple(
+                (int(k), v) for k, v in sorted(teeth.items()) if v != ToothDeviation()))
 
-    def teeth(self, gear: int) -> Mapping[int, ToothDeviation]:
-        return self.gear1 if gear == 1 else self.gear2
+    def teeth(self, gear: int) -> dict[int, ToothDeviation]:
+        """``gear``'s teeth with deviations: tooth index → deviation."""
+        return dict(self.gear1 if gear == 1 else self.gear2)
 
     def __bool__(self) -> bool:
         return bool(self.gear1 or self.gear2 or self.centre_distance or self.runout1.fr
                     or self.runout2.fr)
+
+    def summary(self) -> dict:
+        """The deviations as JSON (µm, degrees): per gear its teeth's, the centre distance's
+        and each gear's runout."""
+        def tooth(d: ToothDeviation) -> dict:
+            out = {"pitch_um": d.pitch, "slope_um": d.slope, "form_um": d.form}
+            if d.curve:
+                out["form_curve_um"] = [list(c) for c in d.curve]
+            return out
+
+        return {"gear1": {str(t): tooth(d) for t, d in self.gear1},
+                "gear2": {str(t): tooth(d) for t, d in self.gear2},
+                "centre_distance_um": self.centre_distance,
+                "runout1": {"fr_um": self.runout1.fr, "phase_deg": self.runout1.phase},
+                "runout2": {"fr_um": self.runout2.fr, "phase_deg": self.runout2.phase}}
 
     def check_teeth(self, z1: int, z2: int) -> None:
         """Refuse, by name, a tooth that does not exist on its gear."""
@@ -151,14 +169,19 @@ class Deviations:
                     raise ParameterError("pitch-deviation", f"{gear}:{tooth}", f"a tooth "
                                          f"0 ... {z - 1} of gear {gear} (z{gear} = {z})")
 
-    def largest_um(self) -> float:
-        """The largest amount any deviation moves a flank (µm): what a contact grid must reach
-        beyond the exact pair's."""
-        per_tooth = [abs(d.pitch) + abs(d.slope) + abs(d.form)
-                     + max((abs(v) for _, v in d.curve), default=0.0)
-                     for gear in GEARS for d in self.teeth(gear).values()]
-        return (max(per_tooth, default=0.0) + abs(self.centre_distance)
-                + 0.5 * (self.runout1.fr + self.runout2.fr))
+    def reach_um(self, tooth: int) -> float:
+        """How far (µm) the deviations can move gear 1's tooth ``tooth`` towards gear 2 or away
+        at most: what a contact grid on it must reach beyond the exact pair's. Its own
+        deviations, the largest of gear 2's teeth's (any may face it), the centre distance's
+        and the runouts'."""
+        def amount(d: ToothDeviation) -> float:
+            return (abs(d.pitch) + abs(d.slope) + abs(d.form)
+                    + max((abs(v) for _, v in d.curve), default=0.0))
+
+        own = self.teeth(1).get(tooth)
+        return ((amount(own) if own is not None else 0.0)
+                + max((amount(d) for _, d in self.gear2), default=0.0)
+                + abs(self.centre_distance) + 0.5 * (self.runout1.fr + self.runout2.fr))
 
     def turns(self, gear: int, teeth: np.ndarray, r: float) -> np.ndarray:
         """The extra turn (rad, counter-clockwise) of each of ``teeth`` of ``gear`` about its
@@ -191,4 +214,85 @@ class Deviations:
         return out
 
 
-NONE = Deviations()
+NONE = NO_DEVIATIONS = Deviations()
+
+
+class Placed:
+    """A pair's deviations at one rolling angle β: the exact unloaded gap of gear 1's points to
+    gear 2 as the deviations leave them (:meth:`gap`), and each tooth's clearance moved by
+    them (:meth:`clearances`).
+
+    Gear 1 turns about its axis, which the centre-distance deviation moves along the line of
+    centres; its teeth stand off that axis by its runout and gear 2's by its own (each turning
+    with its gear from tooth 0's centre); a tooth's pitch deviation turns it about its gear's
+    axis; a flank's deviation adds material along its normal. A flank's roll fraction runs
+    from its root (0) to its tip (1) by radius: gear 1's root and tip radii, gear 2's
+    r0 ± 2 e1."""
+
+    def __init__(self, deviations: Deviations, params, beta: float) -> None:
+        from .gear1 import gear1_profile
+        from .gear2 import gear2_curve
+
+        self.deviations, self.params, self.beta = deviations, params, beta
+        self.curve2 = gear2_curve(params)
+        g1 = gear1_profile(params)
+        self.axis1 = np.array([0.0, params.e + 1e-3 * deviations.centre_distance])
+        alpha = params.ratio * beta
+        self.teeth_offset = (deviations.runout1.offset(g1.tooth_center + alpha)
+                             - deviations.runout2.offset(beta))
+        self.roots1 = float(g1.radius(np.array([g1.phi_space]))[0])
+        self.tips1 = float(g1.radius(np.array([g1.tooth_center]))[0])
+        self.roots2, self.tips2 = params.r0 + 2 * params.e1, params.r0 - 2 * params.e1
+
+    def gap(self, x: np.ndarray, teeth: np.ndarray, turn: float,
+            feet: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """The exact gap (mm, > 0 open) of gear-1 points ``x`` (its own frame, (n, 2)) of its
+        ``teeth`` to gear 2 with gear 1 turned by ``turn`` (rad, kinematic angle included), and
+        the gap's rate with that turn (mm/rad). ``feet``: gear 2's parameters ξ to start the
+        searches from, overwritten with those found."""
+        dev, p = self.deviations, self.params
+        turns = turn + dev.turns(1, teeth, p.r1)
+        fixed = rotate(x, turns) + self.axis1 + self.teeth_offset
+        feet = np.full(len(x), np.nan) if feet is None else feet
+        k2 = np.zeros(len(x), dtype=int)
+        turn2 = np.zeros(len(x))
+        if dev.gear2:            # gear 2's tooth under each point, then its own turn
+            y = rotate(fixed, -self.beta)
+            feet[:] = self.curve2.feet(y, start=feet)
+            k2 = self._tooth2(feet)
+            turn2 = dev.turns(2, k2, p.r0)
+        y = rotate(fixed, -(self.beta + turn2))
+        feet[:] = self.curve2.feet(y, start=feet)
+        foot, normal, dist = self.curve2.at_feet(y, feet)
+        if dev.gear2:
+            k2 = self._tooth2(feet)
+        roll1 = (np.hypot(x[:, 0], x[:, 1]) - self.roots1) / (self.tips1 - self.roots1)
+        roll2 = (self.roots2 - np.hypot(foot[:, 0], foot[:, 1])) / (self.roots2 - self.tips2)
+        dist = dist - dev.flank_offset(1, teeth, roll1) - dev.flank_offset(2, k2, roll2)
+        r = rotate(fixed - self.axis1, -(self.beta + turn2))
+        return dist, np.einsum("ij,ij->i", normal, np.column_stack([-r[:, 1], r[:, 0]]))
+
+    def _tooth2(self, xi: np.ndarray) -> np.ndarray:
+        z2 = self.params.z2
+        return np.mod(np.round(np.asarray(xi) * z2 / (2 * np.pi)).astype(int), z2)
+
+    def clearances(self, state):
+        """``state`` (a :class:`~.clearance.ContactState` at this β, the + torque's side) with
+        each tooth's clearance moved by the deviations: one Newton step on the deviated gap at
+        the point that closes it (exact for a pitch deviation of gear 1, to the second order in
+        the deviation otherwise)."""
+        from dataclasses import replace as _replace
+
+        p = self.params
+        alpha = p.ratio * self.beta
+        teeth = []
+        for t in state.teeth:
+            if t.plus_um is None or t.plus_point is None:
+                teeth.append(t)
+                continue
+            x1 = rotate(np.array([t.plus_point]) - np.array([0.0, p.e]), -alpha)
+            closing = alpha + p.turn_of(t.plus_um)
+            g, rate = self.gap(x1, np.array([t.tooth]), closing)
+            moved = t.plus_um - p.arc_um(g[0] / rate[0])
+            teeth.append(_replace(t, plus_um=float(moved)))
+        return _replace(state, teeth=tuple(teeth))

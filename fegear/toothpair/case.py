@@ -14,7 +14,7 @@ import numpy as np
 
 from ..checks import require_range
 from ..fe import Material
-from ..geometry import PairParameters
+from ..geometry import NO_DEVIATIONS, Deviations, PairParameters
 from ..planar import wrap
 from .inputs import (
     SOLVE_INPUTS,
@@ -39,7 +39,8 @@ class SolveCase:
     """Inputs: the pair, torque (N·m) on gear 1, rolling angle β (rad), face width (mm), one
     material (E MPa, ν), quality, rim thicknesses below the roots (mm; default 3 m), extra
     teeth paired on each side of the chosen ones (beyond what the closure needs: the safety
-    check) and gear 1's tip-edge round (mm)."""
+    check), gear 1's tip-edge round (mm) and the pair's manufacturing and assembly
+    deviations (:class:`~fegear.geometry.Deviations`; none: the exact pair)."""
 
     params: PairParameters
     torque: float = SOLVE_INPUTS["torque"].default
@@ -52,6 +53,7 @@ class SolveCase:
     rim2: float | None = None
     extra_pairs: int = SOLVE_INPUTS["extra-pairs"].default
     tip_round: float | None = None
+    deviations: Deviations = NO_DEVIATIONS
 
     def __post_init__(self) -> None:
         require_range("position", self.beta, -math.pi, math.pi, unit="rad")
@@ -69,6 +71,7 @@ class SolveCase:
         SOLVE_INPUTS["extra-pairs"].check(self.extra_pairs)
         if self.tip_round is not None:
             check_tip_round(self.tip_round, m)
+        self.deviations.check_teeth(self.params.z1, self.params.z2)
 
     @property
     def torque_limit(self) -> float:

@@ -52,9 +52,33 @@ MODEL_INPUTS = (
           "estimate)"),
 )
 
+#: a real pair's manufacturing and assembly deviations (docs/geometry.md, "Deviations"): + moves
+#: a tooth's loaded flank towards its mate
+DEVIATION_INPUTS = (
+    Input("pitch-deviation", str, None, "teeth turned along their pitch circle (a tooth's "
+          "position deviation), GEAR:TOOTH=µm, comma-separated, e.g. 1:11=5",
+          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none"),
+    Input("slope-deviation", str, None, "profile slope deviations: the loaded flank's normal "
+          "departure growing from its root to the value at its tip, GEAR:TOOTH=µm",
+          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none"),
+    Input("form-deviation", str, None, "profile form deviations: a parabola along the loaded "
+          "flank, the value at its middle, GEAR:TOOTH=µm",
+          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none"),
+    Input("centre-distance-deviation", float, 0.0, "the centres farther apart than "
+          "m (z2 - z1)/2 by this", "µm", low=-1000.0, high=1000.0),
+    Input("runout", str, None, "radial runout F_r of a gear and the angle of its high point "
+          "from tooth 0, GEAR=µm@deg, comma-separated, e.g. 1=10@90",
+          limits="GEAR 1 or 2, 0 <= µm <= 1000", rule="none"),
+    Input("deviations", str, None, "a CSV file of measured deviations, a row per tooth: gear, "
+          "tooth and any of fp, fpt, fHa, ffa with their units, e.g. fp [µm]",
+          limits="a readable file (docs/geometry.md)", rule="none"),
+)
+#: the deviation inputs that name a deviation by text (the others: the centre distance)
+DEVIATION_TEXTS = tuple(row.name for row in DEVIATION_INPUTS if row.kind is str)
+
 #: every input of ``fegear solve`` (and of a study case), in the order of ``--help``
 SOLVE_INPUTS = InputTable(PAIR_INPUTS, LOAD_INPUTS[:2], LOAD_INPUTS[2:], MATERIAL_INPUTS,
-                          ALLOWABLE_INPUTS, MODEL_INPUTS)
+                          ALLOWABLE_INPUTS, MODEL_INPUTS, DEVIATION_INPUTS)
 
 
 def torque_limit(E: float, m: float, face_width: float, r1: float) -> float:

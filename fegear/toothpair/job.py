@@ -14,7 +14,7 @@ from pathlib import Path
 
 from .. import progress
 from ..fe import Allowables
-from ..geometry import admissible_pair
+from ..geometry import admissible_pair, deviations_of
 from ..running import SERIAL, Executor
 from ..timing import Stopwatch
 from .case import SolveCase, cycle_positions
@@ -52,7 +52,8 @@ def prepare_job(values: Mapping[str, object]) -> Job:
     case = SolveCase(params, torque=v["torque"], beta=math.radians(position),
                      thickness=v["face-width"], E=v["E"], nu=v["nu"], quality=v["quality"],
                      rim1=v["rim1"], rim2=v["rim2"], extra_pairs=v["extra-pairs"],
-                     tip_round=v["tip-round"])
+                     tip_round=v["tip-round"],
+                     deviations=deviations_of(v, params.z1, params.z2))
     betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
     return Job(case, tuple(betas), not v["no-estimate"], allowables_of(v))
 

@@ -32,11 +32,11 @@ from typing import Protocol
 from .. import progress
 from ..errors import ContactError, FegearError
 from ..fe import blas_threads, keep_freed_memory
-from ..geometry import Gear1Profile, ToothContact, gear1_profile
+from ..geometry import Gear1Profile, Placed, ToothContact, gear1_profile
 from ..running import SERIAL, Executor
 from ..timing import clocked, timed
 from .case import PairSolution, SolveCase
-from .teeth import TOOTH_STIFFNESS, choose_teeth, refuse_interference
+from .teeth import TOOTH_STIFFNESS, choose_teeth, refuse_closed, refuse_interference
 
 log = logging.getLogger(__name__)
 
@@ -140,12 +140,13 @@ def drive(case: SolveCase, betas, solver: PositionModel,
 
 class _Clearances:
     """The clearance states of every position ((β, state) pairs, the + torque's side, one
-    search), a long cycle's found on the executor while the model is built; a pair that
-    interferes before any load is refused when they are first read."""
+    search), a long cycle's found on the executor while the model is built, each tooth's moved
+    by the case's deviations; a pair that interferes before any load, or that its deviations
+    close, is refused when they are first read."""
 
     def __init__(self, case: SolveCase, profile: Gear1Profile, betas, executor: Executor
                  ) -> None:
-        self._betas = tuple(betas)
+        self._betas, self._case = tuple(betas), case
         self._find = ToothContact(case.params, profile).states
         self._task = executor.submit(self._find, self._betas, None, True, (+1,)) \
             if len(self._betas) >= CHAINED else None
@@ -158,6 +159,10 @@ class _Clearances:
                     self._find(self._betas, directions=(+1,))
                 self._states = list(zip(self._betas, found))
                 refuse_interference(self._states)
+                if self._case.deviations:
+                    self._states = [(b, Placed(self._case.deviations, self._case.params, b)
+                                     .clearances(st)) for b, st in self._states]
+                    refuse_closed(self._states, self._case.deviations)
         return self._states
 
 

@@ -72,6 +72,7 @@ def _inputs(c: SolveCase) -> dict:
             "E_MPa": c.E, "nu": c.nu, "quality": c.quality,
             "tip_round_mm": c.edge_radius,
             "rim1_mm": c.rims[0], "rim2_mm": c.rims[1], "extra_pairs": c.extra_pairs,
+            "deviations": c.deviations.summary(),
             # a peer's own inputs (the sector model's extra teeth and penalty factor)
             **{f.name: getattr(c, f.name) for f in fields(c) if f.name not in SOLVE_FIELDS}}
 
@@ -180,7 +181,8 @@ def pair_table(summary: dict) -> str:
         f"tip round {i['tip_round_mm']:g} mm"
         + (f", tip relief {i['relief_um']:g} µm {i['relief_shape']}"
            + (f" over {i['relief_extent_mm']:g} mm" if i["relief_extent_mm"] else
-              f" from r {i['relief_start_mm']:g} mm") if i["relief_um"] else ""),
+              f" from r {i['relief_start_mm']:g} mm") if i["relief_um"] else "")
+        + _deviations_line(i.get("deviations")),
         "",
         *aligned_table(["headline [MPa]         ", "     FE", "err est %"],
                        [[label, f"{summary[k]:.1f}", f"{est[k]:.2f}" if k in est else "-"]
@@ -258,6 +260,22 @@ def _tangent(summary: dict) -> str:
     k = summary.get("tangent_stiffness_Nm_per_rad")
     return ("" if k is None else
             f" secant, {stiffness_cell(k)} tangent (dT/dθ, the contact set kept)")
+
+
+def _deviations_line(d: dict | None) -> str:
+    """The heading's words for a summary's deviations (none: nothing)."""
+    if not d:
+        return ""
+    parts = [f"gear {g} tooth {t} {k.split('_')[0]} {v:+g} µm"
+             for g in (1, 2) for t, tooth in d[f"gear{g}"].items()
+             for k, v in tooth.items() if k.endswith("_um") and v]
+    parts += [f"gear {g} tooth {t} a measured form" for g in (1, 2)
+              for t, tooth in d[f"gear{g}"].items() if "form_curve_um" in tooth]
+    if d["centre_distance_um"]:
+        parts.append(f"centre distance {d['centre_distance_um']:+g} µm")
+    parts += [f"gear {g} runout {d[f'runout{g}']['fr_um']:g} µm at "
+              f"{d[f'runout{g}']['phase_deg']:g}°" for g in (1, 2) if d[f"runout{g}"]["fr_um"]]
+    return f"; deviations: {', '.join(parts)}" if parts else ""
 
 
 def _estimate_time(summary: dict) -> str:

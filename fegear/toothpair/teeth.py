@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import GeometryError
+from ..errors import GeometryError, ParameterError
 from ..geometry import PairParameters, RoundedProfile, gear2_curve
 from ..planar import rotate
 
@@ -111,6 +111,36 @@ def refuse_interference(states) -> None:
                                 f"gear 2 by {-c.plus_um:.3g} µm of arc at r0 at β = "
                                 f"{math.degrees(beta):.4g}°; an interference fit is not "
                                 "modelled (raise tip_clearance, or check shift and rotation)")
+
+
+def refuse_closed(states, deviations) -> None:
+    """A pair its ``deviations`` close before any load (a tooth turned or grown into its mate
+    beyond its clearance) is an interference fit: refused naming the deviation to change, with
+    how far the tooth overlaps."""
+    for beta, state in states:
+        c = state.closest(+1)
+        if c.plus_um < -INTERFERENCE_UM:
+            on_tooth = deviations.teeth(1).get(c.tooth)
+            name = ("pitch-deviation" if on_tooth is not None and on_tooth.pitch else
+                    "slope-deviation" if on_tooth is not None and on_tooth.slope else
+                    "form-deviation" if on_tooth is not None and on_tooth.profiled else
+                    "centre-distance-deviation" if deviations.centre_distance else
+                    "deviations")
+            raise ParameterError(name, _given(deviations, name, c.tooth), "deviations that "
+                                 f"leave every tooth clear before any load (gear-1 tooth "
+                                 f"{c.tooth} overlaps gear 2 by {-c.plus_um:.3g} µm of arc at "
+                                 f"r0 at β = {math.degrees(beta):.4g}°)",
+                                 "the pair closes before any load")
+
+
+def _given(deviations, name: str, tooth: int) -> object:
+    """The value a refusal of ``name`` quotes."""
+    d = deviations.teeth(1).get(tooth)
+    if name == "centre-distance-deviation":
+        return deviations.centre_distance
+    if d is not None and name.endswith("-deviation"):
+        return f"1:{tooth}={getattr(d, name.split('-')[0])}"
+    return "as given"
 
 
 def tension_fillets(tooth_centre: float, pitch1: float, theta2: float,

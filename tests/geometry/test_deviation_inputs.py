@@ -32,8 +32,8 @@ def test_the_inputs_of_a_solve_make_one_set_of_deviations(tmp_path):
     d = deviations_of({"deviations": str(f), "pitch-deviation": "1:11=5",
                        "form-deviation": "2:3=1", "centre-distance-deviation": 10.0,
                        "runout": "2=8@45"}, 44, 45)
-    assert d.gear1 == {11: ToothDeviation(5.0, 1.5), 12: ToothDeviation(-2.0)}  # the option wins
-    assert d.gear2 == {3: ToothDeviation(form=1.0)}
+    assert d.teeth(1) == {11: ToothDeviation(5.0, 1.5), 12: ToothDeviation(-2.0)}  # the option
+    assert d.teeth(2) == {3: ToothDeviation(form=1.0)}                            # wins
     assert d.centre_distance == 10.0 and d.runout2 == Runout(8.0, 45.0) and d
     assert not deviations_of({}, 44, 45)
     with pytest.raises(ParameterError, match="a tooth 0 ... 43 of gear 1"):

@@ -76,16 +76,22 @@ class ActiveSet:
     iterations: int
 
 
-def rigid_gap(model: RingModel, x: np.ndarray, beta: float, turn: float,
-              feet: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """Exact gap (mm) of gear-1 points ``x`` (its frame) to gear 2 (turned by β) with gear 1
-    turned by ``turn`` (rad, kinematic angle included), and the gap's rate with that turn
-    (mm/rad). ``feet``: gear 2's parameters ξ to start the points' foot searches from (the
-    feet at a nearby turn, :attr:`~.influence.RingContact.feet`), overwritten with the feet
-    found."""
+def rigid_gap(model: RingModel, contact: RingContact, turn: float,
+              feet: np.ndarray | None = None, idx: np.ndarray | None = None
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """Exact gap (mm) of the ``contact``'s points (those of ``idx``, default all) to gear 2
+    (turned by its β) with gear 1 turned by ``turn`` (rad, kinematic angle included), with
+    the pair's deviations where it has any (:attr:`~.influence.RingContact.placed`), and the
+    gap's rate with that turn (mm/rad). ``feet``: gear 2's parameters ξ to start the points'
+    foot searches from (the feet at a nearby turn, :attr:`~.influence.RingContact.feet`),
+    overwritten with the feet found."""
+    x = contact.x if idx is None else contact.x[idx]
+    if contact.placed is not None:
+        teeth = contact.teeth if idx is None else contact.teeth[idx]
+        return contact.placed.gap(x, teeth, turn, feet)
     o1 = np.array([0.0, model.case.params.e])
     fixed = rotate(x, turn) + o1
-    cp = Gear2Master(model.curve2, beta).closest(fixed, feet)
+    cp = Gear2Master(model.curve2, contact.beta).closest(fixed, feet)
     r = fixed - o1
     return cp.distance, np.einsum("ij,ij->i", cp.normal, np.column_stack([-r[:, 1], r[:, 0]]))
 
@@ -103,14 +109,14 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
     (their pressures zero, their columns act on nothing), else None: the caller forms them."""
     alpha = model.case.params.ratio * contact.beta
     on = np.flatnonzero(contact.formed)
-    x, w = contact.x[on], contact.weight[on] * model.case.thickness
+    w = contact.weight[on] * model.case.thickness
     feet = contact.feet[on]
-    g0, a = rigid_gap(model, x, contact.beta, alpha + theta, feet)
+    g0, a = rigid_gap(model, contact, alpha + theta, feet, on)
     active = g0 <= g0.min() + 1e-12
     if start is not None and start[on].any():
         active = start[on].copy()
     elif guess is not None:
-        overlap = rigid_gap(model, x, contact.beta, alpha + guess, feet.copy())[0] < 0
+        overlap = rigid_gap(model, contact, alpha + guess, feet.copy(), on)[0] < 0
         active = overlap if overlap.any() else active
     pressure = np.zeros(len(g0))
     total = turns = 0
@@ -120,8 +126,8 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
         # (the loaded points' arms alone: the others carry nothing)
         loaded = np.flatnonzero(pressure)
         arm_rate = 0.0 if not len(loaded) else (w[loaded] * pressure[loaded]) @ (
-            rigid_gap(model, x[loaded], contact.beta, alpha + theta + ARM_STEP,
-                      feet[loaded])[1] - a[loaded]) / ARM_STEP
+            rigid_gap(model, contact, alpha + theta + ARM_STEP, feet[loaded],
+                      on[loaded])[1] - a[loaded]) / ARM_STEP
         found = active_set(ContactSystem(contact.A, w, g0, a), torque_nmm, active, arm_rate)
         pressure, active = found.pressure, found.active
         total += found.iterations
@@ -131,9 +137,9 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
         settled = abs(found.step) <= max(1e-12 * abs(theta), 1e-13 / model.case.params.r0)
         if settled:   # the last evaluation at every point: the open ones' gaps are checked
             contact.feet[on] = feet
-            g0, a = rigid_gap(model, contact.x, contact.beta, alpha + theta, contact.feet)
+            g0, a = rigid_gap(model, contact, alpha + theta, contact.feet)
             break
-        g0, a = rigid_gap(model, x, contact.beta, alpha + theta, feet)
+        g0, a = rigid_gap(model, contact, alpha + theta, feet, on)
         if turns == MAX_TURNS:
             raise RingContactError(f"the rotation did not settle in {MAX_TURNS} "
                                    "linearisations")
@@ -281,10 +287,10 @@ def tangent_stiffness(model: RingModel, contact: RingContact,
     active = sol.pressure > 0
     if not active.any():
         return float("nan")
-    _, a = rigid_gap(model, contact.x, contact.beta, alpha + sol.rotation, contact.feet)
+    _, a = rigid_gap(model, contact, alpha + sol.rotation, contact.feet)
     idx = np.flatnonzero(active)
-    ahead = rigid_gap(model, contact.x[idx], contact.beta, alpha + sol.rotation + ARM_STEP,
-                      contact.feet[idx])[1]
+    ahead = rigid_gap(model, contact, alpha + sol.rotation + ARM_STEP, contact.feet[idx],
+                      idx)[1]
     arm_rate = (w[idx] * sol.pressure[idx]) @ (ahead - a[idx]) / ARM_STEP
     rhs = np.zeros(len(idx) + 1)
     rhs[-1] = -1.0                     # one N·mm more on gear 1
@@ -300,7 +306,7 @@ def touch_rotation(model: RingModel, contact: RingContact, theta: float) -> floa
     alpha = model.case.params.ratio * contact.beta
     feet = contact.feet.copy()
     for _ in range(8):
-        g0, a = rigid_gap(model, contact.x, contact.beta, alpha + theta, feet)
+        g0, a = rigid_gap(model, contact, alpha + theta, feet)
         closing = a < 0
         step = float(np.min(g0[closing] / -a[closing]))
         theta += step

@@ -23,6 +23,7 @@ import numpy as np
 
 from ...contact import approach_matrix
 from ...fe import Cells
+from ...geometry import Placed
 from ...planar import rotate
 from .grid import ToothGrid
 from .master import Gear2Master
@@ -80,6 +81,12 @@ class RingContact:
     formed: np.ndarray = field(repr=False)   # the points whose rows and columns A holds
     feet: np.ndarray = field(repr=False)     # gear 2's parameter ξ at each point's foot, the
                                              # last found: the next search's start
+    placed: Placed | None = field(default=None, repr=False)   # the pair's deviations here
+
+    @property
+    def teeth(self) -> np.ndarray:
+        """Each point's gear-1 tooth."""
+        return np.repeat([g.tooth for g in self.grids], np.diff(self.offsets))
 
     @property
     def complete(self) -> bool:
@@ -131,12 +138,15 @@ class ColumnRule:
 
 
 def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float,
-                     turn: float, rule: ColumnRule = ColumnRule()) -> RingContact:
+                     turn: float, rule: ColumnRule = ColumnRule(),
+                     placed: Placed | None = None) -> RingContact:
     """The contact of the ``grids`` with gear 2 turned by β and gear 1 by ``turn`` (rad, its
-    kinematic angle included, about its centre), A formed on the columns ``rule`` gives. A's
-    rows are formed at those points alone (they were three in five of its products at a
-    cycle's later position, read only to tell whether a point left out closes:
-    :func:`approach_open` tells that from the solved pressure's fields)."""
+    kinematic angle included, about its centre), A formed on the columns ``rule`` gives (its
+    rigid gaps with the pair's deviations ``placed`` at β, where there are any). A's rows are
+    formed at those points alone (they were three in five of its products at a cycle's later
+    position, read only to tell whether a point left out closes: :func:`approach_open` tells
+    that from the solved pressure's fields). The elastic part is the exact pair's: the
+    deviations move the surfaces by µm."""
     p, case = model.case.params, model.case
     g1, g2 = model.gears
     offsets = np.cumsum([0] + [len(g) for g in grids])
@@ -147,7 +157,9 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     master = Gear2Master(model.curve2, beta)
     feet = np.full(len(x), np.nan)
     cp = master.closest(rotate(x, turn) + o1, feet)
-    formed = rule.formed(grids, offsets, cp.distance)
+    gap = cp.distance if placed is None else placed.gap(
+        x, np.repeat([g.tooth for g in grids], np.diff(offsets)), turn, feet.copy())[0]
+    formed = rule.formed(grids, offsets, gap)
 
     xq, nq, size, col = _hat_loads(model, grids, offsets, case.thickness, formed)
     loads1 = g1.nodal_loads(xq, -nq, col, size)
@@ -158,7 +170,7 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
     match = (_matching(g1, x, n1, model.level.depth, grids, offsets),
              _matching(g2, x2, n2, model.level.depth, grids, offsets))
     contact = RingContact(beta, turn, tuple(grids), offsets, x, n1, weight, (loads1, loads2),
-                          match, (x2, n2), None, formed, feet)
+                          match, (x2, n2), None, formed, feet, placed)
     return replace(contact, A=_influence(model, contact))
 
 

@@ -130,8 +130,11 @@ def place_grids(model: RingModel, case: SolveCase, trial: Trial, placement: Plac
     spacing = GridSpacing(load, E_star, model.level.per_b, GRID_FLOOR * p.m, canonical)
     facing = Facing(model.curve2, turn, case.beta, p.e)
     while True:
+        # the deviations move a tooth's gap by at most their reach: the windows of the exact
+        # pair's gaps reach that much further
         wins = [w for w in windows(model.samples, facing, tuple(teeth),
-                                   [base * reach.get(t, 1.0) for t in teeth], coarse)
+                                   [base * reach.get(t, 1.0)
+                                    + 1e-3 * case.deviations.reach_um(t) for t in teeth], coarse)
                 if w is not None]
         if wins:
             return tooth_grids(model.samples, wins, spacing, [w.tooth not in full for w in wins])

@@ -63,8 +63,7 @@ def tooth_results(detail: RingDetail, state, cands) -> tuple[ToothResult, ...]:
     NaN and the half-plane reference and the bending curvature are left out (None, 0)."""
     case, contact, sol = detail.case, detail.contact, detail.solution
     p = case.params
-    rigid = rigid_gap(detail.model, contact.x, case.beta, p.ratio * case.beta + sol.rotation,
-                      contact.feet)
+    rigid = rigid_gap(detail.model, contact, p.ratio * case.beta + sol.rotation, contact.feet)
     clearance = {c.tooth: c.plus_um for c in state.teeth}
     by_tooth = {c.tooth: c for c in cands}
     return tuple(_tooth_result(detail, k, rigid, by_tooth.get(g.tooth), clearance.get(g.tooth))

@@ -21,7 +21,7 @@ from dataclasses import dataclass, replace
 
 from ... import progress
 from ...errors import ContactError
-from ...geometry import Gear1Profile
+from ...geometry import Gear1Profile, Placed
 from ...timing import note, timed
 from ..case import ContactChecks, PairSolution, SolveCase
 from ..positions import Attempt, Trial
@@ -130,10 +130,11 @@ class RingSolver:
         columns = None if old is None else columns_before(old, grids)
         tries = [ColumnRule(False, within, columns)] if columns is not None else []
         tries += [ColumnRule(False, within), ColumnRule()]
+        placed = Placed(case.deviations, p, case.beta) if case.deviations else None
         for rule in tries:
             with timed("assemble"):
                 contact = assemble_contact(self.model, grids, case.beta,
-                                           p.ratio * case.beta + theta, rule)
+                                           p.ratio * case.beta + theta, rule, placed)
             try:
                 with timed("contact"):
                     # the rotation's linearisations start at the expected rotation after a

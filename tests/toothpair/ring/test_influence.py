@@ -18,7 +18,7 @@ from fegear.toothpair.ring.influence import ColumnRule, approach_open, assemble_
 def test_the_rigid_gap_of_the_solved_rotation_is_closed_by_the_elastic_approach(baseline_200):
     d = baseline_200.detail
     p = d.case.params
-    g0, _ = rigid_gap(d.model, d.contact.x, 0.0, p.ratio * 0.0 + baseline_200.rotation)
+    g0, _ = rigid_gap(d.model, d.contact, p.ratio * 0.0 + baseline_200.rotation)
     loaded = d.solution.pressure > 0
     assert d.contact.A is None   # not kept: formed again
     A = assemble_contact(d.model, d.contact.grids, 0.0, d.contact.turn).A
@@ -52,7 +52,7 @@ def test_columns_formed_only_where_points_overlap_give_the_solution_of_all_colum
     exact = every.A @ part.pressure
     assert np.abs(approach - exact[rest]).max() < 1e-12 * np.abs(exact).max()
     assert np.abs(part.gap - full.gap).max() < 1e-12
-    gap = rigid_gap(d.model, every.x, 0.0, turn)[0]
+    gap = rigid_gap(d.model, every, turn)[0]
     half = float(np.median(gap[full.pressure > 0]))      # half the loaded points left out
     deepest = assemble_contact(d.model, d.contact.grids, 0.0, turn, ColumnRule(within=half))
     assert 0 < deepest.formed.sum() < (full.pressure > 0).sum()
