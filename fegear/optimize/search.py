@@ -301,7 +301,8 @@ def write_trials(study, space: Space, out: Path) -> Path:
               if "requeued_from" in t.user_attrs}
     rows = []
     for t in trials:
-        a = {**t.user_attrs, **_unfinished(t, copies)}
+        cut = _unfinished(t, copies)
+        a = cut if cut.get("status") == "cut" else {**t.user_attrs, **cut}
         cons = _constraints(t) if t.state.name == "COMPLETE" else [None] * len(CONSTRAINTS)
         rows.append([t.number, t.state.name, feasible(t), *(t.params.get(n) for n in names),
                      *cons, *(a.get(c) for c in TABLE_COLUMNS)])
@@ -320,8 +321,10 @@ def write_trials(study, space: Space, out: Path) -> Path:
 
 def _unfinished(t, copies: dict) -> dict:
     """The status and reason of a trial that did not finish: one cut short (FAIL) and the
-    queued copy that redoes it (WAITING, or RUNNING while solved)."""
-    if t.state.name == "FAIL" and not t.user_attrs.get("status"):
+    queued copy that redoes it (WAITING, or RUNNING while solved). A trial with a copy was
+    cut short whatever its record says: a kill between a record's attributes and the state
+    that finishes it leaves part of a record on a trial that never finished."""
+    if t.state.name == "FAIL" and (not t.user_attrs.get("status") or t.number in copies):
         copy = copies.get(t.number)
         if copy is None:
             return {"status": "cut", "reason": "did not finish"}

@@ -61,12 +61,18 @@ class LocalPool(ProcessPoolExecutor):
                     procs.append(p)
             except psutil.Error:
                 continue
+        manager = getattr(self, "_executor_manager_thread", None)
         self.shutdown(wait=False, cancel_futures=True)
         for p in procs:
             try:
                 p.terminate()
             except psutil.NoSuchProcess:
                 continue
+        # the pool's manager thread sees its workers end and closes its wake-up pipe; at the
+        # interpreter's exit multiprocessing writes to that pipe unlocked (CPython 3.11), so
+        # a close under way then is an EBADF traceback: let the thread finish here
+        if manager is not None:
+            manager.join(timeout=10)
         # no psutil.wait_procs: reaping them here would hide their exit from
         # multiprocessing, whose shutdown then waits forever
 
