@@ -169,7 +169,10 @@ class ToothContact:
         lo, hi, flo, owner = [], [], [], []
         for k, o1 in enumerate(o1s):
             f = np.einsum("ij,ij->i", p - o1, d1)
-            idx = np.nonzero(np.sign(f[:-1]) * np.sign(f[1:]) < 0)[0]
+            # a sign change between samples; an extremum exactly on a sample (O1 on the
+            # symmetry line of a tooth or space: f is 0 there) counts once, as f >= 0
+            up = f >= 0
+            idx = np.nonzero(up[:-1] != up[1:])[0]
             lo.append(xi[idx])
             hi.append(xi[idx + 1])
             flo.append(f[idx])

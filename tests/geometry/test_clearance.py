@@ -101,6 +101,22 @@ def test_states_of_a_cycle_are_the_states_one_by_one(baseline, baseline_profile)
         tca.state(b, teeth=[9, 10, 30], refine=False) for b in betas[1:3]]
 
 
+@pytest.mark.parametrize("k", [22, 23, 24, 29])
+def test_clearances_hold_where_gear_1s_centre_is_on_a_symmetry_line_of_gear_2(
+        baseline, baseline_profile, k):
+    # at β = π/2 − k π/z2 gear 1's centre lies on the middle of a gear-2 tooth or space,
+    # where the distance to gear 2 is extreme exactly on a sample of the curve: every tooth's
+    # clearance there is its clearance a hair away (a tooth was lost here, at 2 k π/z2 - 26°)
+    beta = np.pi / 2 - k * np.pi / baseline.z2
+    tca = ToothContact(baseline, baseline_profile)
+    at, near = tca.states([beta, beta + 1e-9])
+    for a, b in zip(at.teeth, near.teeth):
+        for key in ("plus_um", "minus_um"):
+            x, y = getattr(a, key), getattr(b, key)
+            assert (x is None) == (y is None) and (x is None or abs(x - y) < 1e-3), (a.tooth,
+                                                                                    key)
+
+
 def test_states_of_one_direction_are_that_direction_of_both(baseline, baseline_profile):
     # a tooth-pair solve under a + torque asks for the + side only: the same values, and no
     # contact point on the other side
