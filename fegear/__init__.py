@@ -11,7 +11,7 @@ The pipeline, one subpackage per stage (docs/architecture.md):
 * :mod:`fegear.verify` and :mod:`fegear.drive` beside them: the Hertz case, the benchmark and
   CalculiX; the drive level;
 * :mod:`fegear.cli`: the ``fegear`` command; :mod:`fegear.api`: the same solve from Python
-  (:func:`solve`, :func:`cycle`; docs/python.md).
+  (:func:`solve`, :func:`cycle`, :func:`revolution`; docs/python.md).
 """
 
 from .exports import lazy
@@ -23,6 +23,6 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
                  "build_geometry"),
     "toothpair": ("SolveCase", "solve_pair", "solve_positions"),
     "errors": ("FegearError", "GeometryError", "ParameterError"),
-    "api": ("solve", "cycle", "Result"),
+    "api": ("solve", "cycle", "revolution", "Result"),
 })
 __all__ = [*__all__, "__version__"]

@@ -90,6 +90,28 @@ class Result:
         cycle = self.summary.get("cycle")
         return None if cycle is None else {k: cycle[k] for k in (*HEADLINE, *SAFETY)}
 
+    @property
+    def revolution(self) -> dict | None:
+        """For a whole revolution of gear 1 (``revolution=True``): ``worst``, each headline
+        stress's largest with its gear, tooth and position and each safety factor's smallest;
+        ``teeth``, a DataFrame indexed by gear and tooth of the largest root stress (and, for
+        gear 1's teeth, contact pressure) each tooth carried; ``spectrum``, a DataFrame of
+        the loaded rotation's largest harmonics by order; ``rotation_urad``, its range. None
+        otherwise."""
+        import pandas as pd
+
+        rev = self.summary.get("revolution")
+        if rev is None:
+            return None
+        per = rev["per_tooth"]
+        teeth = pd.DataFrame(
+            [{"gear": g, "tooth": t, "root_stress_MPa": v,
+              "contact_pressure_MPa": per["contact_pressure_MPa"].get(t) if g == 1 else None}
+             for g in (1, 2) for t, v in per[f"root_stress_gear{g}_MPa"].items()]
+        ).set_index(["gear", "tooth"])
+        return {"worst": rev["worst"], "teeth": teeth, "rotation_urad": rev["rotation_urad"],
+                "spectrum": pd.DataFrame(rev["spectrum"]).set_index("order")}
+
     def write(self, out: str | Path, fields: bool = True,
               pictures: bool = True) -> dict[str, Path]:
         """Write the files ``fegear solve --out`` writes into ``out``: summary.json, the VTU
@@ -145,3 +167,11 @@ def cycle(positions: int = 24, cache: bool | None = None, **inputs: object) -> R
     ``position`` (degrees, default 0) on one model; ``cache`` and the other inputs as
     :func:`solve`."""
     return solve(cache=cache, positions=positions, **inputs)
+
+
+def revolution(positions: int = 24, cache: bool | None = None, **inputs: object) -> Result:
+    """Solve a whole revolution of gear 1, ``positions`` a pitch from ``position`` (degrees,
+    default 0), on one model: every tooth pair that meets, the deviations given with
+    ``pitch_deviation``, ``runout``, … as ``fegear solve --revolution``; ``cache`` and the
+    other inputs as :func:`solve`."""
+    return solve(cache=cache, positions=positions, revolution=True, **inputs)

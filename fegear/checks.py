@@ -88,7 +88,8 @@ class Input:
     "none" (``default`` None), ``rule`` says how (``0.008 m, at most m h1/4``). ``post``: the
     input only reads the results (an allowable stress): it changes no number of the solve, so
     a cache key leaves it out (:meth:`InputTable.keyed`). ``aliases``: other names the command
-    line and study files take for it (an earlier name, say).
+    line and study files take for it (an earlier name, say). ``repeat``: a text input the
+    command line takes more than once, as a list of its texts (a list of entries).
     """
 
     name: str
@@ -105,6 +106,7 @@ class Input:
     aliases: tuple[str, ...] = ()
     limits: str = ""
     rule: str = ""
+    repeat: bool = False
 
     def __post_init__(self) -> None:
         if self.kind not in (float, int, str, bool):

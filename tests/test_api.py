@@ -49,6 +49,19 @@ def test_a_cycle_reports_its_worst_where_it_occurs():
     assert c.worst["safety_contact"]["min"] == table.safety_contact.min()
 
 
+def test_a_revolution_names_the_deviated_tooth_as_the_worst():
+    r = fegear.revolution(positions=2, pitch_deviation=["1:5=5"], **INPUTS)
+    rev = r.revolution
+    worst = rev["worst"]["root_stress_gear1_MPa"]
+    assert (worst["gear"], worst["tooth"]) == (1, 5)
+    teeth = rev["teeth"]
+    assert teeth.loc[(1, 5), "root_stress_MPa"] == worst["max"]
+    assert len(teeth.loc[1]) == 24 and teeth.loc[1].root_stress_MPa.idxmax() == 5
+    assert len(r.positions) == 48 and rev["spectrum"].index.name == "order"
+    assert r.summary["inputs"]["deviations"]["gear1"]["5"]["pitch_um"] == 5.0
+    assert fegear.solve(**INPUTS).revolution is None
+
+
 @pytest.mark.parametrize("inputs, name, text", [
     ({"tip_clearence": 0.01}, "tip-clearence", "did you mean tip_clearance?"),
     ({"tip_clearance": -5.0}, "tip-clearance", "tip_clearance = -5.0 is not admissible"),

@@ -71,7 +71,8 @@ def add_inputs(parser: argparse.ArgumentParser, rows: Iterable[Input],
         text += f"; admissible: {row.range_text}" if row.range_text else ""
         text += f"; default: {row.default_text}"
         group.add_argument(*names, type=_Read(row.kind), default=row.default, dest=row.dest,
-                           help=text.replace("%", "%%"))
+                           help=text.replace("%", "%%"),
+                           **({"action": "append"} if row.repeat else {}))
 
 
 class _Read:

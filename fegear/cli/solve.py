@@ -28,6 +28,7 @@ def run(a: argparse.Namespace) -> int:
     from ..files import check_dir
     from ..running import spare_core
     from ..toothpair import cycle_table, pair_table, prepare_job, run_job
+    from ..toothpair.revolution import revolution_table
     from .terminal import command_wall_s
 
     job = prepare_job(given_values(a, SOLVE_INPUTS.values()))
@@ -45,7 +46,13 @@ def run(a: argparse.Namespace) -> int:
     if a.json:
         print(json.dumps({**result.summary, "files": files}, indent=2))
         return 0
-    if result.rows:
+    if job.revolution:
+        rev = result.summary["revolution"]
+        print(revolution_table(rev))
+        print(f"\n{rev['positions']} positions over {rev['pitches']} pitches (one turn of gear "
+              f"1) in {result.summary['cycle']['solve_s']:.1f} s; the details below are at the "
+              "position of the largest gear-1 root stress\n")
+    elif result.rows:
         print(cycle_table(result.rows))
         print(f"\n{len(result.rows)} positions on one mesh in "
               f"{result.summary['cycle']['solve_s']:.1f} s; the details below are at the "

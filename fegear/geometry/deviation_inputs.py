@@ -36,7 +36,7 @@ TOOTH_SPEC = "GEAR:TOOTH=µm, comma-separated (e.g. 1:11=5,2:30=-3), GEAR 1 or 2
 RUNOUT_SPEC = "GEAR=µm@deg, comma-separated (e.g. 1=10@90), GEAR 1 or 2, 0 <= µm <= 1000"
 
 
-def per_tooth(name: str, text: str | None) -> dict[tuple[int, int], float]:
+def per_tooth(name: str, text) -> dict[tuple[int, int], float]:
     """``GEAR:TOOTH=µm`` entries of option ``name`` → {(gear, tooth): µm}."""
     out: dict[tuple[int, int], float] = {}
     for part in _parts(text):
@@ -48,7 +48,7 @@ def per_tooth(name: str, text: str | None) -> dict[tuple[int, int], float]:
     return out
 
 
-def runouts(text: str | None) -> dict[int, Runout]:
+def runouts(text) -> dict[int, Runout]:
     """``GEAR=µm@deg`` entries of ``--runout`` → {gear: Runout}."""
     out: dict[int, Runout] = {}
     for part in _parts(text):
@@ -168,8 +168,15 @@ def _whole(path, line: int, row: dict, column: str) -> int:
     return int(value)
 
 
-def _parts(text: str | None) -> list[str]:
-    return [p for p in (text or "").split(",") if p.strip()]
+def _parts(given) -> list[str]:
+    """The entries of a deviation option: a text of comma-separated entries, a list of such
+    texts (the option given more than once, a study file's list) or a mapping of entries to
+    values (``{"1:11": 5}`` from Python)."""
+    if isinstance(given, Mapping):
+        given = [f"{k}={v}" for k, v in given.items()]
+    if isinstance(given, (list, tuple)):
+        given = ",".join(str(g) for g in given)
+    return [p for p in str(given or "").split(",") if p.strip()]
 
 
 def _number(text) -> float:

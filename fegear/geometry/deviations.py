@@ -164,9 +164,10 @@ class Deviations:
     def check_teeth(self, z1: int, z2: int) -> None:
         """Refuse, by name, a tooth that does not exist on its gear."""
         for gear, z in ((1, z1), (2, z2)):
-            for tooth in self.teeth(gear):
+            for tooth, d in self.teeth(gear).items():
                 if not 0 <= tooth < z:
-                    raise ParameterError("pitch-deviation", f"{gear}:{tooth}", f"a tooth "
+                    kind = "pitch" if d.pitch else "slope" if d.slope else "form"
+                    raise ParameterError(f"{kind}-deviation", f"{gear}:{tooth}", f"a tooth "
                                          f"0 ... {z - 1} of gear {gear} (z{gear} = {z})")
 
     def reach_um(self, tooth: int) -> float:
@@ -217,6 +218,11 @@ class Deviations:
 NONE = NO_DEVIATIONS = Deviations()
 
 
+#: the smallest lever arm (fraction of gear 1's pitch radius) by which a clearance's Newton
+#: step divides a deviation's gap (:meth:`Placed.clearances`)
+LEVER_FLOOR = 0.1
+
+
 class Placed:
     """A pair's deviations at one rolling angle β: the exact unloaded gap of gear 1's points to
     gear 2 as the deviations leave them (:meth:`gap`), and each tooth's clearance moved by
@@ -245,11 +251,13 @@ class Placed:
         self.roots2, self.tips2 = params.r0 + 2 * params.e1, params.r0 - 2 * params.e1
 
     def gap(self, x: np.ndarray, teeth: np.ndarray, turn: float,
-            feet: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+            feet: np.ndarray | None = None, flanks: bool = True
+            ) -> tuple[np.ndarray, np.ndarray]:
         """The exact gap (mm, > 0 open) of gear-1 points ``x`` (its own frame, (n, 2)) of its
         ``teeth`` to gear 2 with gear 1 turned by ``turn`` (rad, kinematic angle included), and
         the gap's rate with that turn (mm/rad). ``feet``: gear 2's parameters ξ to start the
-        searches from, overwritten with those found."""
+        searches from, overwritten with those found. ``flanks``: whether the points are on the
+        loaded flanks, which the slope and form deviations move (the coast flanks: False)."""
         dev, p = self.deviations, self.params
         turns = turn + dev.turns(1, teeth, p.r1)
         fixed = rotate(x, turns) + self.axis1 + self.teeth_offset
@@ -268,31 +276,47 @@ class Placed:
             k2 = self._tooth2(feet)
         roll1 = (np.hypot(x[:, 0], x[:, 1]) - self.roots1) / (self.tips1 - self.roots1)
         roll2 = (self.roots2 - np.hypot(foot[:, 0], foot[:, 1])) / (self.roots2 - self.tips2)
-        dist = dist - dev.flank_offset(1, teeth, roll1) - dev.flank_offset(2, k2, roll2)
+        if flanks:
+            dist = dist - dev.flank_offset(1, teeth, roll1) - dev.flank_offset(2, k2, roll2)
         r = rotate(fixed - self.axis1, -(self.beta + turn2))
         return dist, np.einsum("ij,ij->i", normal, np.column_stack([-r[:, 1], r[:, 0]]))
+
+    def _lever(self, rate: float, direction: int) -> float:
+        """The size of a closing point's gap rate (mm/rad) that a Newton step divides by, at
+        least :data:`LEVER_FLOOR` r1: a point whose normal passes nearly through gear 1's axis
+        (a tip meeting a tip, the rate near zero or of the other sign) is not where a deviated
+        tooth closes, for the turn barely moves its gap; a tooth's other points, with the
+        lever arms of its flanks, close first."""
+        floor = LEVER_FLOOR * self.params.r1
+        return max(-direction * rate, floor)
 
     def _tooth2(self, xi: np.ndarray) -> np.ndarray:
         z2 = self.params.z2
         return np.mod(np.round(np.asarray(xi) * z2 / (2 * np.pi)).astype(int), z2)
 
-    def clearances(self, state):
-        """``state`` (a :class:`~.clearance.ContactState` at this β, the + torque's side) with
-        each tooth's clearance moved by the deviations: one Newton step on the deviated gap at
-        the point that closes it (exact for a pitch deviation of gear 1, to the second order in
-        the deviation otherwise)."""
+    def clearances(self, state, direction: int = +1):
+        """``state`` (a :class:`~.clearance.ContactState` at this β) with each tooth's
+        clearance in ``direction`` (+1: the + torque's, the loaded flanks; -1: the coast
+        flanks, which only the pitch, centre-distance and runout deviations move) moved by the
+        deviations: one Newton step on the deviated gap at the point that closes it (exact for
+        a pitch deviation of gear 1, to the second order in the deviation otherwise)."""
         from dataclasses import replace as _replace
 
         p = self.params
         alpha = p.ratio * self.beta
+        key, point = ("plus_um", "plus_point") if direction > 0 else ("minus_um", "minus_point")
         teeth = []
         for t in state.teeth:
-            if t.plus_um is None or t.plus_point is None:
+            um, at = getattr(t, key), getattr(t, point)
+            if um is None or at is None:
                 teeth.append(t)
                 continue
-            x1 = rotate(np.array([t.plus_point]) - np.array([0.0, p.e]), -alpha)
-            closing = alpha + p.turn_of(t.plus_um)
-            g, rate = self.gap(x1, np.array([t.tooth]), closing)
-            moved = t.plus_um - p.arc_um(g[0] / rate[0])
-            teeth.append(_replace(t, plus_um=float(moved)))
+            x1 = rotate(np.array([at]) - np.array([0.0, p.e]), -alpha)
+            closing = alpha + direction * p.turn_of(um)
+            g, rate = self.gap(x1, np.array([t.tooth]), closing, flanks=direction > 0)
+            # the gap's rate with the turn is < 0 on a loaded flank and > 0 on a coast flank:
+            # either way the clearance grows by the gap over its rate's size
+            grown = p.arc_um(abs(g[0]) / self._lever(rate[0], direction)) \
+                * math.copysign(1.0, g[0])
+            teeth.append(_replace(t, **{key: float(um + grown)}))
         return _replace(state, teeth=tuple(teeth))

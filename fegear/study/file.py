@@ -157,7 +157,7 @@ def build_study(data: dict, path: Path) -> Study:
     code = code_version()
     cases, refused, seen = [], [], set()
     for block, swept in combos:
-        values = {**base, **swept}
+        values = _beside(path, {**base, **swept})
         key = case_key(values, outputs, code)
         # cases that differ in an allowable stress alone share a key (one solve) but not a row
         same = (key, json.dumps(SOLVE_INPUTS.with_defaults(values), sort_keys=True))
@@ -190,9 +190,29 @@ def case_key(values: dict, outputs: Outputs, code: str) -> str:
     (not the allowable stresses: the tables compute the safety factors from the stored
     stresses), the kept outputs and the code version: equal keys are equal results."""
     full = {KEY_NAMES.get(k, k): v for k, v in SOLVE_INPUTS.keyed(values).items()}
+    if full.get("deviations"):   # a measured file decides by what it holds, not by its name
+        full["deviations"] = _digest(Path(str(full["deviations"])))
     text = json.dumps({"inputs": full, "outputs": [outputs.vtu, outputs.png], "code": code},
                       sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _beside(path: Path, values: dict) -> dict:
+    """``values`` with a deviations file named relative to the study file made absolute: a
+    study runs the same from any folder."""
+    name = values.get("deviations")
+    if isinstance(name, str) and name and not Path(name).is_absolute():
+        values = {**values, "deviations": str((Path(path).parent / name).resolve())}
+    return values
+
+
+def _digest(file: Path) -> str:
+    """The SHA-256 of ``file``'s bytes; its name where it cannot be read (the solve refuses
+    it by name)."""
+    try:
+        return hashlib.sha256(file.read_bytes()).hexdigest()
+    except OSError:
+        return str(file)
 
 
 def _expand(block: dict, inputs, where: str, label: str) -> list[tuple[str, dict]]:

@@ -267,7 +267,7 @@ def study_plot(study: Study, table: list[dict], x: str) -> StudyPlot | None:
     for level, rs in groups.items():
         if len({r[x] for r in rs}) < 2:
             continue
-        rs = sorted({r["key"]: r for r in rs}.values(), key=lambda r: r[x])
+        rs = sorted({r["key"]: r for r in rs}.values(), key=_along(x, rs))
         label = ", ".join([f"{o} {_cell(v)}{_unit(o)}" for o, v in zip(others, level)]
                           + [f"{o} with {x}" for o in tied]) or "all"
         lines.append(_line(label, x, rs))
@@ -283,6 +283,13 @@ def study_plot(study: Study, table: list[dict], x: str) -> StudyPlot | None:
                      allowables.pop() if len(allowables) == 1 else None,
                      tuple(sorted({r["cycle.positions"] for r in shown
                                    if r.get("cycle.positions")})))
+
+
+def _along(x: str, rs: list[dict]):
+    """The order of cases along ``x``: by value where every value is a number, else (a
+    deviation's text, ``1:11=5``) as the study file lists them."""
+    numbers = all(isinstance(r[x], (int, float)) and not isinstance(r[x], bool) for r in rs)
+    return (lambda r: r[x]) if numbers else (lambda r: int(r["case"]))
 
 
 def _line(label: str, x: str, rs: list[dict]) -> Line:

@@ -56,7 +56,8 @@ class SolveCase:
     deviations: Deviations = NO_DEVIATIONS
 
     def __post_init__(self) -> None:
-        require_range("position", self.beta, -math.pi, math.pi, unit="rad")
+        # a position's own input is ±π; a revolution runs on up to one turn of gear 1 beyond
+        require_range("position", self.beta, -math.pi, 3 * math.pi, unit="rad")
         Material(self.E, self.nu, self.thickness)  # validates E, nu, thickness
         check_torque(self.torque, self.E, self.params.m, self.thickness, self.params.r1)
         SOLVE_INPUTS["quality"].check(self.quality)
@@ -136,6 +137,7 @@ class ToothResult:
     bending_curvature: float = 0.0  # the bending's change of the gap's curvature (relative)
     per_half_width: float = 0.0  # grid points (or elements) across the half-width (0: no load) …
     resolved: bool = True        # … and whether that is enough for a converged pressure
+    tooth2: int | None = None    # the gear-2 tooth it presses on (None: not known)
 
     @property
     def edge_contact(self) -> bool:

@@ -34,6 +34,10 @@ LOAD_INPUTS = (
     Input("positions", int, None, "solve N rolling angles across one tooth pitch from "
           "--position on one mesh; writes cycle.csv, cycle.png and mesh_stiffness.json/.csv",
           low=2, high=360, rule="none (one position)"),
+    Input("revolution", bool, False, "solve every pitch of one turn of gear 1 (z1 pitches, "
+          "--positions in each, 24 if not given): the worst of each stress with its tooth, the "
+          "stresses per tooth and the transmission error's spectrum; writes revolution.csv, "
+          "revolution.png, revolution_teeth.png and revolution.pvd"),
 )
 
 MODEL_INPUTS = (
@@ -57,18 +61,18 @@ MODEL_INPUTS = (
 DEVIATION_INPUTS = (
     Input("pitch-deviation", str, None, "teeth turned along their pitch circle (a tooth's "
           "position deviation), GEAR:TOOTH=µm, comma-separated, e.g. 1:11=5",
-          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none"),
+          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True),
     Input("slope-deviation", str, None, "profile slope deviations: the loaded flank's normal "
           "departure growing from its root to the value at its tip, GEAR:TOOTH=µm",
-          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none"),
+          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True),
     Input("form-deviation", str, None, "profile form deviations: a parabola along the loaded "
           "flank, the value at its middle, GEAR:TOOTH=µm",
-          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none"),
+          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True),
     Input("centre-distance-deviation", float, 0.0, "the centres farther apart than "
           "m (z2 - z1)/2 by this", "µm", low=-1000.0, high=1000.0),
     Input("runout", str, None, "radial runout F_r of a gear and the angle of its high point "
           "from tooth 0, GEAR=µm@deg, comma-separated, e.g. 1=10@90",
-          limits="GEAR 1 or 2, 0 <= µm <= 1000", rule="none"),
+          limits="GEAR 1 or 2, 0 <= µm <= 1000", rule="none", repeat=True),
     Input("deviations", str, None, "a CSV file of measured deviations, a row per tooth: gear, "
           "tooth and any of fp, fpt, fHa, ffa with their units, e.g. fp [µm]",
           limits="a readable file (docs/geometry.md)", rule="none"),

@@ -19,6 +19,7 @@ from ..running import SERIAL, Executor
 from ..timing import Stopwatch
 from .case import SolveCase, cycle_positions
 from .inputs import PAIR_INPUTS, SOLVE_INPUTS, TIP_ROUND, check_tip_round
+from .revolution import PER_PITCH, revolution_positions, revolution_summary
 from .safety import DEFAULT_ALLOWABLES, allowables_of
 
 PAIR_NAMES = {row.name for row in PAIR_INPUTS}
@@ -27,13 +28,15 @@ PAIR_NAMES = {row.name for row in PAIR_INPUTS}
 @dataclass(frozen=True)
 class Job:
     """A checked solve: the case, the rolling angles (rad) to solve it at, whether to
-    estimate the discretisation error with a second mesh level, and the allowable stresses
-    the safety factors divide (they change no number of the solve)."""
+    estimate the discretisation error with a second mesh level, the allowable stresses the
+    safety factors divide (they change no number of the solve) and whether the angles are a
+    whole revolution of gear 1 (:mod:`.revolution`)."""
 
     case: SolveCase
     betas: tuple[float, ...]
     estimate: bool
     allowables: Allowables = DEFAULT_ALLOWABLES
+    revolution: bool = False
 
 
 def prepare_job(values: Mapping[str, object]) -> Job:
@@ -48,14 +51,18 @@ def prepare_job(values: Mapping[str, object]) -> Job:
     v["tip-round"] = _tip_round(params, v["tip-round"])
     position = SOLVE_INPUTS["position"].check(v["position"])
     positions = SOLVE_INPUTS["positions"].check(v["positions"])
+    revolution = SOLVE_INPUTS["revolution"].check(v["revolution"])
     n = 1 if positions is None else positions
     case = SolveCase(params, torque=v["torque"], beta=math.radians(position),
                      thickness=v["face-width"], E=v["E"], nu=v["nu"], quality=v["quality"],
                      rim1=v["rim1"], rim2=v["rim2"], extra_pairs=v["extra-pairs"],
                      tip_round=v["tip-round"],
                      deviations=deviations_of(v, params.z1, params.z2))
-    betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
-    return Job(case, tuple(betas), not v["no-estimate"], allowables_of(v))
+    if revolution:
+        betas = revolution_positions(case.beta, positions or PER_PITCH, params.z1, params.z2)
+    else:
+        betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
+    return Job(case, tuple(betas), not v["no-estimate"], allowables_of(v), revolution)
 
 
 def _tip_round(params, given: float | None) -> float | None:
@@ -157,7 +164,17 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
         rows = cycle_rows(sols, job.allowables)
         summary["cycle"] = {"positions": len(sols), "solve_s": cycle_s,
                             **cycle_summary(rows), "rows": rows}
+    if job.revolution:
+        summary["revolution"] = revolution_summary(tuple(sols), job.allowables)
     return Solved(job, tuple(sols), sol, summary, rows, watch.s)
+
+
+def _deviations_title(summary: dict) -> str:
+    """The deviations a revolution's pictures are of, in one line."""
+    from .report import deviations_words
+
+    words = deviations_words(summary["inputs"].get("deviations"))
+    return f"deviations: {words}" if words else "no deviations (a perfect pair)"
 
 
 def _pictured(sols):
@@ -177,22 +194,26 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
         write_cycle_series,
         write_mesh_stiffness,
         write_pair_outputs,
+        write_revolution_outputs,
     )
 
     progress.stage(f"writing files to {out}")
     out = prepare_dir(out)
     rows, summary, case = solved.rows, solved.summary, solved.job.case
     files: dict[str, Path] = {}
-    if rows:
+    i = summary["inputs"]
+    title = (f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T {i['torque_Nm']:g} N·m, "
+             f"{len(solved.solutions)} positions, quality {i['quality']}")
+    if solved.job.revolution:
+        files.update(write_revolution_outputs(
+            solved.solutions, rows, summary["revolution"], out,
+            f"{title}\n{_deviations_title(summary)}", solved.job.allowables, fields, pictures))
+    elif rows:
         files.update(write_mesh_stiffness(out, rows, case))
-    if rows and fields:
-        files.update(write_cycle_series(solved.solutions, out))
-    if rows and pictures:
-        i = summary["inputs"]
-        files.update(write_cycle_outputs(
-            rows, out, f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T "
-                       f"{i['torque_Nm']:g} N·m, {len(rows)} positions, quality "
-                       f"{i['quality']}", solved.job.allowables))
+        if fields:
+            files.update(write_cycle_series(solved.solutions, out))
+        if pictures:
+            files.update(write_cycle_outputs(rows, out, title, solved.job.allowables))
     files.update(write_pair_outputs(solved.solution, out, {**summary, "files": {
         k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures))
     return files

@@ -31,24 +31,71 @@ def write_cycle_outputs(rows: list[dict], out: Path, title: str,
 SERIES_AROUND = 1
 
 
-def write_cycle_series(sols, out: Path) -> dict[str, Path]:
+def write_cycle_series(sols, out: Path, name: str = "cycle") -> dict[str, Path]:
     """A time series over the rolling angle for ParaView: per position both gears' loaded
-    sectors (and :data:`SERIES_AROUND` either side) as cycle/gear1_000.vtu, …, and cycle.pvd,
-    the collection that lists them with β in degrees as their time."""
-    folder = out / "cycle"
+    sectors (and :data:`SERIES_AROUND` either side) as <name>/gear1_000.vtu, …, and
+    <name>.pvd, the collection that lists them with β in degrees as their time."""
+    folder = out / name
     folder.mkdir(exist_ok=True)
     entries = []
     for k, sol in enumerate(sols):
         beta = math.degrees(sol.case.beta)
         for part, b in enumerate(sol.detail.body_fields(around=SERIES_AROUND)):
-            name = f"{b.name}_{k:03d}.vtu"
-            write_vtu(folder / name, b.points, b.cells, b.data)
+            file = f"{b.name}_{k:03d}.vtu"
+            write_vtu(folder / file, b.points, b.cells, b.data)
             entries.append(f'    <DataSet timestep="{beta:.9g}" part="{part}" '
-                           f'name={quoteattr(b.name)} file={quoteattr("cycle/" + name)}/>')
+                           f'name={quoteattr(b.name)} file={quoteattr(f"{name}/{file}")}/>')
     xml = "\n".join(['<?xml version="1.0"?>',
                      '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
                      "  <Collection>", *entries, "  </Collection>", "</VTKFile>", ""])
-    return {"pvd": write_atomic(out / "cycle.pvd", lambda tmp: tmp.write_text(xml))}
+    return {"pvd": write_atomic(out / f"{name}.pvd", lambda tmp: tmp.write_text(xml))}
+
+
+def write_revolution_outputs(sols, rows: list[dict], revolution: dict, out: Path, title: str,
+                             allowables, fields: bool = True, pictures: bool = True
+                             ) -> dict[str, Path]:
+    """A revolution's files: revolution.csv (a row per position, gear 1's turn first),
+    revolution_teeth.csv (each tooth's largest stresses), revolution_spectrum.csv (the
+    loaded rotation's harmonics), revolution.png and revolution_teeth.png (``pictures``)
+    and revolution.pvd (``fields``): a frame a pitch, at the pitch's position of the largest
+    gear-1 root stress (every position's fields would be z1 times a cycle's series)."""
+    from .revolution import amplitudes, gear1_turn_deg, loaded_rotation
+    from .revolution_plot import revolution_png, revolution_teeth_png
+
+    turn = gear1_turn_deg(sols)
+    harmonics = amplitudes(loaded_rotation(sols))
+    z1 = revolution["pitches"]
+    cols = ["gear1_turn_deg", *rows[0]]
+    files = {"revolution_csv": write_csv(out / "revolution.csv", cols, (
+        [t, *(r[c] for c in cols[1:])] for t, r in zip(turn, rows)))}
+    per = revolution["per_tooth"]
+    teeth = [(1, t) for t in per["root_stress_gear1_MPa"]] + \
+        [(2, t) for t in per["root_stress_gear2_MPa"]]
+    files["revolution_teeth_csv"] = write_csv(
+        out / "revolution_teeth.csv", ("gear", "tooth", "root_stress_MPa",
+                                       "contact_pressure_MPa"),
+        ((g, t, per[f"root_stress_gear{g}_MPa"][t],
+          per["contact_pressure_MPa"].get(t, "") if g == 1 else "") for g, t in teeth))
+    files["revolution_spectrum_csv"] = write_csv(
+        out / "revolution_spectrum.csv", ("order", "mesh_order", "amplitude_urad"),
+        ((h, h / z1, a) for h, a in enumerate(harmonics) if h > 0))
+    if pictures:
+        files["revolution_png"] = revolution_png(out / "revolution.png", revolution, rows,
+                                                 turn, harmonics, title)
+        files["revolution_teeth_png"] = revolution_teeth_png(
+            out / "revolution_teeth.png", per, revolution["worst"], allowables, title)
+    if fields:
+        files["revolution_pvd"] = write_cycle_series(_pitch_peaks(sols, rows, z1), out,
+                                                     "revolution")["pvd"]
+    return files
+
+
+def _pitch_peaks(sols, rows: list[dict], pitches: int) -> list:
+    """Of each pitch's positions (``sols`` in order, as many a pitch), the one of the largest
+    gear-1 root stress."""
+    per = len(sols) // pitches
+    return [sols[k * per + max(range(per), key=lambda i: rows[k * per + i][
+        "root_stress_gear1_MPa"])] for k in range(pitches)]
 
 
 def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool = True,

@@ -160,10 +160,22 @@ class _Clearances:
                 self._states = list(zip(self._betas, found))
                 refuse_interference(self._states)
                 if self._case.deviations:
-                    self._states = [(b, Placed(self._case.deviations, self._case.params, b)
-                                     .clearances(st)) for b, st in self._states]
-                    refuse_closed(self._states, self._case.deviations)
+                    self._states = self._deviated()
         return self._states
+
+    def _deviated(self) -> list:
+        """The states with each tooth's clearance moved by the case's deviations; where a
+        tooth then stands into its mate, the coast side's found and moved too, for the check
+        that the deviations leave the pair its backlash (:func:`~.teeth.refuse_closed`)."""
+        dev, params = self._case.deviations, self._case.params
+        placed = {b: Placed(dev, params, b) for b in self._betas}
+        states = [(b, placed[b].clearances(st)) for b, st in self._states]
+        behind = [(b, st) for b, st in states if st.closest(+1).plus_um < 0]
+        if behind:
+            coast = self._find([b for b, _ in behind], directions=(-1,))
+            refuse_closed([(b, st, placed[b].clearances(back, -1))
+                           for (b, st), back in zip(behind, coast)], dev)
+        return states
 
 
 def _chain(case: SolveCase, states, span: range, solver: PositionModel

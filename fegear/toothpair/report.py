@@ -90,7 +90,8 @@ def _tooth_row(t: ToothResult) -> dict:
             "halfplane_p_MPa": t.halfplane_p_MPa,
             "halfplane_flank_MPa": t.halfplane_flank_MPa,
             "bending_curvature": t.bending_curvature,
-            "points_per_half_width": t.per_half_width, "resolved": t.resolved}
+            "points_per_half_width": t.per_half_width, "resolved": t.resolved,
+            "gear2_tooth": t.tooth2}
 
 
 #: the pair's safety factors in the printed table; the per-tooth and cycle tables show the
@@ -182,7 +183,7 @@ def pair_table(summary: dict) -> str:
         + (f", tip relief {i['relief_um']:g} µm {i['relief_shape']}"
            + (f" over {i['relief_extent_mm']:g} mm" if i["relief_extent_mm"] else
               f" from r {i['relief_start_mm']:g} mm") if i["relief_um"] else "")
-        + _deviations_line(i.get("deviations")),
+        + (f"; deviations: {words}" if (words := deviations_words(i.get("deviations"))) else ""),
         "",
         *aligned_table(["headline [MPa]         ", "     FE", "err est %"],
                        [[label, f"{summary[k]:.1f}", f"{est[k]:.2f}" if k in est else "-"]
@@ -262,8 +263,8 @@ def _tangent(summary: dict) -> str:
             f" secant, {stiffness_cell(k)} tangent (dT/dθ, the contact set kept)")
 
 
-def _deviations_line(d: dict | None) -> str:
-    """The heading's words for a summary's deviations (none: nothing)."""
+def deviations_words(d: dict | None) -> str:
+    """A summary's deviations in words, comma-separated (none: the empty text)."""
     if not d:
         return ""
     parts = [f"gear {g} tooth {t} {k.split('_')[0]} {v:+g} µm"
@@ -275,7 +276,7 @@ def _deviations_line(d: dict | None) -> str:
         parts.append(f"centre distance {d['centre_distance_um']:+g} µm")
     parts += [f"gear {g} runout {d[f'runout{g}']['fr_um']:g} µm at "
               f"{d[f'runout{g}']['phase_deg']:g}°" for g in (1, 2) if d[f"runout{g}"]["fr_um"]]
-    return f"; deviations: {', '.join(parts)}" if parts else ""
+    return ", ".join(parts)
 
 
 def _estimate_time(summary: dict) -> str:

@@ -113,23 +113,28 @@ def refuse_interference(states) -> None:
                                 "modelled (raise tip_clearance, or check shift and rotation)")
 
 
-def refuse_closed(states, deviations) -> None:
-    """A pair its ``deviations`` close before any load (a tooth turned or grown into its mate
-    beyond its clearance) is an interference fit: refused naming the deviation to change, with
-    how far the tooth overlaps."""
-    for beta, state in states:
-        c = state.closest(+1)
-        if c.plus_um < -INTERFERENCE_UM:
+def refuse_closed(behind, deviations) -> None:
+    """A pair its ``deviations`` close before any load is refused naming the deviation to
+    change: at some β a tooth stands into its mate on the loaded side (a tooth turned or grown
+    beyond its clearance) by more than the coast flanks leave gear 1 to turn back, so the
+    deviations take up the whole backlash and the pair would be assembled with a preload. A
+    loaded-side overlap within the backlash only sets gear 1 back from its kinematic position:
+    that pair is solved. ``behind``: (β, loaded-side state, coast-side state) of the positions
+    with a loaded-side overlap, both sides' clearances moved by the deviations."""
+    for beta, state, coast in behind:
+        c, back = state.closest(+1), coast.closest(-1)
+        if c.plus_um + back.minus_um < -INTERFERENCE_UM:
             on_tooth = deviations.teeth(1).get(c.tooth)
             name = ("pitch-deviation" if on_tooth is not None and on_tooth.pitch else
                     "slope-deviation" if on_tooth is not None and on_tooth.slope else
                     "form-deviation" if on_tooth is not None and on_tooth.profiled else
                     "centre-distance-deviation" if deviations.centre_distance else
                     "deviations")
-            raise ParameterError(name, _given(deviations, name, c.tooth), "deviations that "
-                                 f"leave every tooth clear before any load (gear-1 tooth "
-                                 f"{c.tooth} overlaps gear 2 by {-c.plus_um:.3g} µm of arc at "
-                                 f"r0 at β = {math.degrees(beta):.4g}°)",
+            raise ParameterError(name, _given(deviations, name, c.tooth), "deviations within "
+                                 f"the pair's backlash (gear-1 tooth {c.tooth} stands "
+                                 f"{-c.plus_um:.3g} µm of arc at r0 into gear 2 at β = "
+                                 f"{math.degrees(beta):.4g}°, and the coast flanks leave gear 1 "
+                                 f"{back.minus_um:.3g} µm to turn back)",
                                  "the pair closes before any load")
 
 

@@ -254,6 +254,35 @@ def test_an_input_zipped_with_the_plotted_one_goes_with_it_a_product_splits_the_
     assert tied_inputs(p, rows, "torque") == [] and tied_inputs(p, rows, "shift") == []
 
 
+def test_a_swept_deviation_is_an_input_of_its_own_plotted_in_the_file_s_order():
+    from fegear.study.results import study_plot
+
+    s = load_study(ROOT / "studies" / "pitch_deviation.toml")
+    assert s.varied == ("pitch-deviation",) and len({c.key for c in s.cases}) == 4
+    rows = [{"case": c.index, "key": c.key, "status": "ok", "torque": 200.0,
+             "allowable-bending": 558.0, "allowable-contact": 745.0,
+             **{k: 1.0 for k in ("root_stress_gear1_MPa", "root_stress_gear2_MPa",
+                                 "contact_pressure_MPa", "flank_contact_pressure_MPa",
+                                 "von_mises_max_MPa")}, **c.values} for c in s.cases]
+    plot = study_plot(s, rows[::-1], "pitch-deviation")
+    assert plot.lines[0].x == ("1:11=0", "1:11=2", "1:11=5", "1:11=10")
+
+
+def test_a_measured_file_is_found_beside_the_study_and_keyed_by_what_it_holds(tmp_path):
+    doc = {"base": {"deviations": "measured.csv"}, "sweep": [{"torque": [100.0, 200.0]}]}
+    (tmp_path / "measured.csv").write_text("gear, tooth, fp [µm]\n1, 11, 4.0\n")
+    first = build_study(doc, tmp_path / "a.toml")
+    assert first.cases[0].values["deviations"] == str(tmp_path / "measured.csv")
+    elsewhere = tmp_path / "copy"
+    elsewhere.mkdir()
+    (elsewhere / "measured.csv").write_text("gear, tooth, fp [µm]\n1, 11, 4.0\n")
+    assert [c.key for c in build_study(doc, elsewhere / "a.toml").cases] == [
+        c.key for c in first.cases]                      # the same measurement: its results
+    (tmp_path / "measured.csv").write_text("gear, tooth, fp [µm]\n1, 11, 5.0\n")
+    assert not {c.key for c in build_study(doc, tmp_path / "a.toml").cases} & {
+        c.key for c in first.cases}                      # another one: solved again
+
+
 def test_build_study_accepts_a_parsed_document(tmp_path):
     s = build_study({"base": {"torque": 50}, "sweep": [{"m": [1.5, 2.0]}]}, tmp_path / "x")
     assert s.name == "x" and [c.values["m"] for c in s.cases] == [1.5, 2.0]

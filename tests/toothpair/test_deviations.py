@@ -1,8 +1,9 @@
 """A real pair's deviations on the kept model (issue 56): every sign moves a loaded flank
 towards its mate; a deviation on a tooth out of the mesh leaves the exact pair's numbers; the
 one the issue measured (5 µm on gear 1's tooth 11) raises its root stress by 30 %; the grids
-hold the deviated contact (wider ones change nothing); a deviation that closes the pair before
-any load is refused by name."""
+hold the deviated contact (wider ones change nothing); a tooth turned beyond its clearance sets
+gear 1 back and is solved, and a deviation that takes up the pair's backlash is refused by
+name."""
 
 from dataclasses import replace
 
@@ -100,10 +101,38 @@ def test_wider_grids_change_nothing(monkeypatch, baseline_ring):
         assert wide.headline()[key] == pytest.approx(value, rel=1e-3), key
 
 
-def test_a_deviation_that_closes_the_pair_is_refused_by_name():
-    job = prepare_job({"pitch-deviation": "1:11=10", "quality": "coarse"})
+def test_a_pitch_deviation_moves_both_flanks_of_its_tooth_by_its_arc():
+    """Turning gear 1's tooth into the mesh by d µm of arc at r1 closes its loaded flank and
+    opens its coast flank by d r0/r1 µm of arc at r0 (within 1 nm: the turn is a rigid one,
+    the move one Newton step on the gap)."""
+    full = ToothContact(PAIR, gear1_profile(PAIR)).state(0.0)
+    placed = Placed(Deviations({11: ToothDeviation(pitch=3.0)}), PAIR, 0.0)
+    before = {t.tooth: t for t in full.teeth}[11]
+    plus = {t.tooth: t for t in placed.clearances(full).teeth}[11]
+    minus = {t.tooth: t for t in placed.clearances(full, -1).teeth}[11]
+    arc = 3.0 * PAIR.r0 / PAIR.r1
+    assert plus.plus_um == pytest.approx(before.plus_um - arc, abs=1e-3)
+    assert minus.minus_um == pytest.approx(before.minus_um + arc, abs=1e-3)
+
+
+def test_a_tooth_turned_beyond_its_clearance_sets_gear_1_back(nominal, baseline_ring):
+    """10 µm on tooth 11, beyond its 6.1 µm clearance (within the backlash): gear 1 stands
+    back of its kinematic position before the load, the tooth touches first and carries the
+    most."""
+    case = replace(CASE, deviations=Deviations({11: ToothDeviation(pitch=10.0)}))
+    sol = solve_pair(case, model=baseline_ring)
+    teeth = {t.tooth: t for t in sol.teeth}
+    assert teeth[11].clearance_um < 0
+    assert sol.rotation < nominal.rotation
+    assert max(sol.teeth, key=lambda t: t.load_N).tooth == 11
+    assert teeth[11].root1_MPa > 1.3 * {t.tooth: t for t in nominal.teeth}[11].root1_MPa
+
+
+def test_a_deviation_that_takes_up_the_backlash_is_refused_by_name():
+    job = prepare_job({"pitch-deviation": "1:11=30", "quality": "coarse"})
     from fegear.toothpair import solve_positions
 
     with pytest.raises(ParameterError, match="the pair closes before any load") as exc:
         solve_positions(job.case, job.betas)
-    assert exc.value.name == "pitch-deviation" and "tooth 11 overlaps" in str(exc.value)
+    assert exc.value.name == "pitch-deviation" and "tooth 11 stands" in str(exc.value)
+    assert "backlash" in str(exc.value)

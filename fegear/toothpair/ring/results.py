@@ -120,7 +120,9 @@ def _tooth_result(detail: RingDetail, k: int, rigid: tuple[np.ndarray, np.ndarra
         halfplane_flank_MPa=ref[1].flank_MPa if ref else None,
         bending_curvature=curvature,
         per_half_width=float(per_b),
-        resolved=bool(load <= 0 or per_b >= RESOLVED_PER_B))
+        resolved=bool(load <= 0 or per_b >= RESOLVED_PER_B),
+        tooth2=(int(round(theta2 / pitch2)) % case.params.z2 if math.isfinite(theta2)
+                else None))
 
 
 def _references(detail: RingDetail, k: int, gap: np.ndarray, load: float):
