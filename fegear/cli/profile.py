@@ -7,6 +7,7 @@ import json
 
 from ..checks import Input
 from ..geometry.parameters import PAIR_INPUTS
+from ..toothpair.inputs import DEVIATION_INPUTS
 from .args import add_inputs, checked, given_values
 
 #: the command's own inputs (the pair's are :data:`~fegear.geometry.PAIR_INPUTS`)
@@ -33,6 +34,7 @@ def add_parser(sub) -> None:
                         "input's range for the others); with --out writes map.png, "
                         "map_grid.csv and map_edges.csv")
     add_inputs(p, PROFILE_INPUTS[2:])
+    add_inputs(p, DEVIATION_INPUTS, "deviations (with --out: deviations.png draws them)")
 
 
 def run(a: argparse.Namespace) -> int:
@@ -44,6 +46,7 @@ def run(a: argparse.Namespace) -> int:
         return _map(a, own["map_size"])
     params = admissible_pair(given_values(a, PAIR_INPUTS))
     chord, positions = own["chord_error"], own["positions"]
+    deviations = _deviations(a, params)
     out = None if a.out is None else check_dir(a.out)
     from ..geometry import build_geometry, pair_png  # the envelope needs scipy
     geo = build_geometry(params, chord, positions)
@@ -62,6 +65,16 @@ def run(a: argparse.Namespace) -> int:
                         teeth=[(t.tooth, t.position_deg) for t in geo.contact.teeth],
                         tip_radius=geo.tip_radius),
     }
+    if deviations:
+        from ..geometry import gear1_profile
+        from ..geometry.deviation_plot import deviations_png
+        from ..toothpair.report import deviations_words
+
+        summary["deviations"] = deviations.summary()
+        files["deviations_png"] = deviations_png(
+            out / "deviations.png", geo.gear1, geo.gear2, params, gear1_profile(params),
+            deviations,
+            f"deviations: {deviations_words(deviations.summary())}")
     summary["files"] = {k: str(v) for k, v in files.items()}
     write_json(out / "summary.json", summary)
     if a.json:
@@ -71,6 +84,13 @@ def run(a: argparse.Namespace) -> int:
         for k, v in files.items():
             print(f"{k:10s} {v}")
     return 0
+
+
+def _deviations(a: argparse.Namespace, params):
+    """The deviations the options give, checked against the pair's teeth."""
+    from ..geometry import deviations_of
+
+    return deviations_of(given_values(a, DEVIATION_INPUTS), params.z1, params.z2)
 
 
 def _profile_table(geo) -> str:

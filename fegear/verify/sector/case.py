@@ -7,6 +7,7 @@ from dataclasses import dataclass, fields
 
 from ...checks import require_range
 from ...toothpair import SolveCase
+from .deviated import explicit_only
 
 EXTRA_TEETH = (1, 10)        # admissible unloaded teeth meshed on each side
 PENALTY_LIMIT = 1e6          # the largest penalty factor
@@ -25,6 +26,7 @@ class SectorCase(SolveCase):
         super().__post_init__()
         require_range("extra-teeth", self.extra_teeth, *EXTRA_TEETH)
         require_range("penalty-factor", self.penalty_factor, 0.0, PENALTY_LIMIT, lo_open=True)
+        explicit_only(self.deviations)
 
     @classmethod
     def of(cls, case: SolveCase, **sector: object) -> SectorCase:

@@ -34,6 +34,7 @@ from ...errors import FegearError, ParameterError
 from ...fe import BodyGeometry, Refinement, Segment, line_contact
 from ...geometry import Cycloid, Gear1Profile, PairParameters, RoundedProfile, gear2_curve
 from ...planar import rotate
+from .deviated import turned_outline
 from ...toothpair import (
     ROOT_BAND,
     SHARE_GUESS,
@@ -255,19 +256,18 @@ def gear1_body(case: SectorCase, shape: RoundedProfile, sector: Sector, paired, 
     span = JUNCTION_SPAN * sizes.b_round / rho_max
     junctions = [(x - span, x + span, "g1_junction") for a, b in rounds for x in (a, b)]
 
-    def g1_project(x):
-        return shape.point(np.arctan2(x[:, 1], x[:, 0]))
-
+    g1_point, g1_project = turned_outline(shape, case.deviations, case.params.r1,
+                                          case.params.z1)
     segs1, names1 = profile_segments(
-        "g1", PolarCurve(shape.point, g1_project), sector.phi_a, sector.phi_b, Layout(
+        "g1", PolarCurve(g1_point, g1_project), sector.phi_a, sector.phi_b, Layout(
             windows=tuple((f"g1_contact_{t}", p_, w) for t, p_, w in windows1),
             roots=tuple((f"g1_root_{k}", p_, root_half1) for k, p_ in roots1),
             marks=tuple(junctions + [(a - spill, b + spill, "g1_round") for a, b in rounds]
                         + tangents),
             sizes={"g1_round": sizes.round, "g1_junction": sizes.junction,
                    **{f"g1_contact_{t}": sizes.contact for t in paired}}))
-    a0 = shape.point(np.array([sector.phi_a]))[0]
-    b0 = shape.point(np.array([sector.phi_b]))[0]
+    a0 = g1_point(np.array([sector.phi_a]))[0]
+    b0 = g1_point(np.array([sector.phi_b]))[0]
     bore_pts = bore * np.column_stack([np.cos(np.linspace(sector.phi_b, sector.phi_a, 60)),
                                        np.sin(np.linspace(sector.phi_b, sector.phi_a, 60))])
 

@@ -250,9 +250,11 @@ class SectorDetail:
 
 def place(model: PairModel, beta: float) -> tuple[Body, Body]:
     """The model's bodies placed at rolling angle β: gear 2 turned by β, gear 1 by
-    α = (z2/z1) β about its centre (0, e). The factors and caches are shared."""
+    α = (z2/z1) β about its centre (0, e), e with the centre distance's deviation. The factors
+    and caches are shared."""
     p = model.case.params
-    return (replace(model.bodies[0], placement=Placement(p.ratio * beta, (0.0, p.e))),
+    e = p.e + 1e-3 * model.case.deviations.centre_distance
+    return (replace(model.bodies[0], placement=Placement(p.ratio * beta, (0.0, e))),
             replace(model.bodies[1], placement=Placement(beta)))
 
 
