@@ -34,7 +34,6 @@ from ...errors import FegearError, ParameterError
 from ...fe import BodyGeometry, Refinement, Segment, line_contact
 from ...geometry import Cycloid, Gear1Profile, PairParameters, RoundedProfile, gear2_curve
 from ...planar import rotate
-from .deviated import turned_outline
 from ...toothpair import (
     ROOT_BAND,
     SHARE_GUESS,
@@ -52,6 +51,7 @@ from ...toothpair import (
     round_strips,
     unwrap_near,
 )
+from .deviated import turned_outline
 
 if TYPE_CHECKING:
     from .case import SectorCase
