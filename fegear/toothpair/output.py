@@ -73,9 +73,10 @@ def write_revolution_outputs(sols, rows: list[dict], revolution: dict, out: Path
         [(2, t) for t in per["root_stress_gear2_MPa"]]
     files["revolution_teeth_csv"] = write_csv(
         out / "revolution_teeth.csv", ("gear", "tooth", "root_stress_MPa",
-                                       "contact_pressure_MPa"),
+                                       "contact_pressure_MPa", "whole_pass"),
         ((g, t, per[f"root_stress_gear{g}_MPa"][t],
-          per["contact_pressure_MPa"].get(t, "") if g == 1 else "") for g, t in teeth))
+          per["contact_pressure_MPa"].get(t, "") if g == 1 else "",
+          t not in per["cut"][f"gear{g}"]) for g, t in teeth))
     files["revolution_spectrum_csv"] = write_csv(
         out / "revolution_spectrum.csv", ("order", "mesh_order", "amplitude_urad"),
         ((h, h / z1, a) for h, a in enumerate(harmonics) if h > 0))

@@ -36,15 +36,15 @@ def revolution_positions(beta0: float, per_pitch: int, z1: int, z2: int) -> tupl
 
 def per_tooth(sols: tuple[PairSolution, ...]) -> dict:
     """The largest stress each tooth carried over the positions: gear 1's root and contact
-    pressure by gear-1 tooth, gear 2's root by gear-2 tooth (MPa); and under ``cut`` the teeth
-    left out, by gear.
+    pressure by gear-1 tooth, gear 2's root by gear-2 tooth (MPa); and under ``cut``, by gear,
+    the teeth seen only in part.
 
     A tooth loaded at the first or the last position met the mesh partly outside the
     positions. Its pass is whole only where the revolution repeats for its gear: gear 1's
     when gear 2 is perfect (after z1 pitches gear 1 stands where it started, against
     identical teeth, so the pass that the end cuts off is the one the start holds). Gear 2
-    turns z1/z2 of a turn, so its teeth at the ends are always cut; their largest stress is
-    not known and they are left out, not drawn as light teeth."""
+    turns z1/z2 of a turn, so its teeth at the ends are always cut: their largest stress here
+    is a lower bound."""
     whole1 = not (sols[0].case.deviations.gear2 or sols[0].case.deviations.runout2.fr)
     ends = [t for s in (sols[0], sols[-1]) for t in s.teeth if t.load_N > 0]
     cut = {1: set() if whole1 else {t.tooth for t in ends},
@@ -56,15 +56,21 @@ def per_tooth(sols: tuple[PairSolution, ...]) -> dict:
         for t in s.teeth:
             if t.load_N <= 0:
                 continue
-            if t.tooth not in cut[1]:
-                root1[t.tooth] = max(root1.get(t.tooth, 0.0), t.root1_MPa)
-                contact[t.tooth] = max(contact.get(t.tooth, 0.0), t.p_max_MPa)
-            if t.tooth2 is not None and t.tooth2 not in cut[2]:
+            root1[t.tooth] = max(root1.get(t.tooth, 0.0), t.root1_MPa)
+            contact[t.tooth] = max(contact.get(t.tooth, 0.0), t.p_max_MPa)
+            if t.tooth2 is not None:
                 root2[t.tooth2] = max(root2.get(t.tooth2, 0.0), t.root2_MPa)
     return {"root_stress_gear1_MPa": dict(sorted(root1.items())),
             "contact_pressure_MPa": dict(sorted(contact.items())),
             "root_stress_gear2_MPa": dict(sorted(root2.items())),
             "cut": {"gear1": sorted(cut[1]), "gear2": sorted(cut[2])}}
+
+
+def median_tooth(values: dict[int, float], cut: list[int]) -> float:
+    """The median of the teeth's largest stresses, the teeth seen only in part left out (all
+    of them where every tooth is)."""
+    whole = [v for t, v in values.items() if t not in cut] or list(values.values())
+    return float(np.median(whole))
 
 
 def worst(sols: tuple[PairSolution, ...], allowables: Allowables = DEFAULT_ALLOWABLES) -> dict:
@@ -160,14 +166,15 @@ def revolution_table(rev: dict) -> str:
         per = rev["per_tooth"][key]
         if not per:
             continue
-        median = float(np.median(list(per.values())))
-        top = sorted(per.items(), key=lambda kv: -kv[1])[:4]
         gear = key[len("root_stress_gear")] if key.startswith("root") else "1"
         cut = rev["per_tooth"]["cut"][f"gear{gear}"]
+        median = median_tooth(per, cut)
+        top = sorted(per.items(), key=lambda kv: -kv[1])[:4]
         lines.append(f"{label}: median tooth {median:.1f} MPa; most loaded " + ", ".join(
-            f"tooth {t} {v:.1f} ({100 * (v / median - 1):+.0f} %)" for t, v in top)
-            + (f" (teeth {', '.join(map(str, cut))} left out: their pass is cut by the "
-               "revolution's ends)" if cut else ""))
+            f"tooth {t}{'*' if t in cut else ''} {v:.1f} ({100 * (v / median - 1):+.0f} %)"
+            for t, v in top)
+            + (f" (*: seen in part, teeth {', '.join(map(str, cut))}: the revolution's ends "
+               "cut their pass)" if cut else ""))
     te = rev["rotation_urad"]
     top = sorted(rev["spectrum"], key=lambda h: -h["amplitude_urad"])[:5]
     lines.append(f"loaded rotation (transmission error): {te['min']:.1f} ... {te['max']:.1f} µrad "

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..figures import margins, pyplot, save_png
 from ..figures.labels import place_legend
+from .revolution import median_tooth
 
 #: the per-tooth panels: summary key, label, the gear whose teeth, the allowable's name
 TOOTH_PANELS = (("root_stress_gear1_MPa", "root stress σ1, gear 1", 1, "bending"),
@@ -87,8 +88,8 @@ def revolution_teeth_figure(per_tooth: dict, worst: dict, allowables, title: str
     """One bar per tooth of the largest stress it carried over the revolution: gear 1's and
     gear 2's root stress and gear 1's teeth's contact pressure; on each panel the median
     tooth (what a perfect pair gives every tooth) dashed, the allowable where it is within
-    twice the largest bar, the worst tooth in red with its value, and the teeth left out (whose
-    pass the revolution's ends cut: :func:`~.revolution.per_tooth`) named under the axis."""
+    twice the largest bar, the worst tooth in red with its value, and the teeth seen in part
+    (whose pass the revolution's ends cut: :func:`~.revolution.per_tooth`) pale."""
     plt = pyplot()
     fig, ax = plt.subplots(len(TOOTH_PANELS), 1, figsize=(9, 10))
     for a, (key, label, gear, kind) in zip(ax, TOOTH_PANELS):
@@ -98,22 +99,26 @@ def revolution_teeth_figure(per_tooth: dict, worst: dict, allowables, title: str
         if not len(v):
             a.text(0.5, 0.5, "no tooth loaded", transform=a.transAxes, ha="center")
             continue
+        cut = per_tooth["cut"][f"gear{gear}"]
         k = int(np.argmax(v))
-        colours = ["C3" if i == k else "C0" for i in range(len(v))]
+        colours = ["C3" if i == k else "#b9c7d6" if t in cut else "C0"
+                   for i, t in enumerate(teeth)]
         a.bar(teeth, v, width=0.8, color=colours)
-        a.axhline(float(np.median(v)), color="k", ls="--", lw=1.0,
-                  label=f"median tooth {np.median(v):.0f} MPa")
+        median = median_tooth(values, cut)
+        a.axhline(median, color="k", ls="--", lw=1.0, label=f"median tooth {median:.0f} MPa")
+        if cut:   # a zero bar: the legend's swatch in the pale colour
+            a.bar([teeth[0]], [0.0], color="#b9c7d6", label="seen in part (the revolution's "
+                  "ends cut its pass)")
         limit = allowables.bending if kind == "bending" else allowables.contact
         if limit <= 2 * v.max():
             a.axhline(limit, color="C3", ls=":", lw=1.2, label=f"allowable {limit:g} MPa")
-        a.annotate(f"tooth {teeth[k]}: {v[k]:.0f} MPa", (teeth[k], v[k]),
+        part = " (seen in part)" if teeth[k] in cut else ""
+        a.annotate(f"tooth {teeth[k]}: {v[k]:.0f} MPa{part}", (teeth[k], v[k]),
                    textcoords="offset points", xytext=(0, 4), ha="center", fontsize=8,
                    color="C3")
         a.set_ylim(0, 1.2 * max(v.max(), limit if limit <= 2 * v.max() else 0))
         a.set_xlim(teeth.min() - 1, teeth.max() + 1)
-        cut = per_tooth["cut"][f"gear{gear}"]
-        a.set_xlabel(f"gear-{gear} tooth" + (f" (left out: {', '.join(map(str, cut))}, whose "
-                                             "pass the revolution's ends cut)" if cut else ""))
+        a.set_xlabel(f"gear-{gear} tooth")
         a.set_ylabel(f"{label} [MPa]", fontsize=9)
         a.grid(alpha=0.3, axis="y")
     fig.suptitle(title, fontsize=10)
