@@ -90,7 +90,11 @@ def _deviations(a: argparse.Namespace, params):
     """The deviations the options give, checked against the pair's teeth."""
     from ..geometry import deviations_of
 
-    return deviations_of(given_values(a, DEVIATION_INPUTS), params.z1, params.z2)
+    values = given_values(a, DEVIATION_INPUTS)
+    for row in DEVIATION_INPUTS:    # the numbers' ranges; the texts are read by deviations_of
+        if row.kind is not str and row.name in values:
+            values[row.name] = row.check(values[row.name])
+    return deviations_of(values, params.z1, params.z2)
 
 
 def _profile_table(geo) -> str:

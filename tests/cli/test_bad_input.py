@@ -270,7 +270,7 @@ def test_outputs_are_written_atomically_with_ordinary_permissions(tmp_path):
 
 @pytest.mark.parametrize("field,value", [
     (f, v) for f, values in {
-        "torque": [0.0, -1.0, 1e300], "beta": [7.0, -7.0], "thickness": [0.0, -5.0, 1e300],
+        "torque": [0.0, -1.0, 1e300], "beta": [10.0, -7.0], "thickness": [0.0, -5.0, 1e300],
         "E": [0.0, -1.0, 1e300], "nu": [-0.1, 0.5], "quality": ["best", 3],
         "rim1": [0.0, -1.0, 1e300], "rim2": [0.0, 1e300],
         "extra_pairs": [-1, 1000, True], "tip_round": [-0.1, 100.0, True]}.items()
