@@ -5,7 +5,7 @@ model's meshes carry (:data:`MESH_SCATTER_PCT`)."""
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 from .case import HEADLINE, PairSolution, SolveCase
 from .inputs import QUALITY
@@ -34,8 +34,7 @@ def error_estimate(fine: dict[str, float], coarse: dict[str, float],
     stress order p = 2; e ≈ |s_fine − s_coarse| for r = 2, 3 |s_fine − s_coarse| for
     r = √2. (Plain Richardson, Fs = 1, understated the sector model's von Mises error at
     ``standard`` 7×: peaks on a contact edge are not yet in the asymptotic range.)"""
-    return {k: 100.0 * GCI_FS * abs(fine[k] - coarse[k]) / (ratio ** 2 - 1.0)
-            / max(abs(fine[k]), 1e-300) for k in HEADLINE}
+    return _gci({k: fine[k] for k in HEADLINE}, coarse, ratio)
 
 
 def mesh_ratio(coarse: str, fine: str) -> float:
@@ -64,7 +63,7 @@ def second_level_estimate(sol: PairSolution, solve: Callable = solve_pair,
     :data:`MESH_SCATTER_PCT`, by default). Returns the estimate and the other quality.
     ``solve``, ``ratio`` and ``floor``: the model's solve, its mesh ratio between two qualities
     and its mesh scatter (the product's by default; a peer passes its own); ``second``: the
-    headline of that second solve if it is solved already (:func:`second_headline`, a task
+    headline of that second solve if it is solved already (:func:`second_headline`'s, a task
     of its own)."""
     floor = MESH_SCATTER_PCT if floor is None else floor
     estimate, other = _two_levels(sol, solve, ratio, second)
@@ -89,8 +88,60 @@ def _two_levels(sol: PairSolution, solve: Callable,
     return {key: r ** 2 * v * second[key] / own[key] for key, v in finer.items()}, other
 
 
-def second_headline(case: SolveCase) -> dict[str, float]:
-    """The headline of ``case`` solved at its :func:`second_quality`: the estimate's second
-    solve, as a task of its own (:func:`~.job.solve_job` hands it to an executor)."""
+#: each loaded tooth's stresses that get an estimate of their own: the tooth's field → the
+#: headline stress whose mesh scatter floors it
+TOOTH_STRESSES = {"root1_MPa": "root_stress_gear1_MPa", "root2_MPa": "root_stress_gear2_MPa",
+                  "p_max_MPa": "contact_pressure_MPa", "flank_p_MPa": "flank_contact_pressure_MPa"}
+
+
+@dataclass(frozen=True)
+class SecondLevel:
+    """The estimate's second solve: its headline, and each loaded tooth's stresses
+    (:data:`TOOTH_STRESSES`) by tooth."""
+
+    headline: dict[str, float]
+    teeth: dict[int, dict[str, float]]
+
+
+def second_headline(case: SolveCase) -> SecondLevel:
+    """``case`` solved at its :func:`second_quality`: the estimate's second solve, as a task
+    of its own (:func:`~.job.solve_job` hands it to an executor)."""
     second = replace(case, quality=second_quality(case.quality))
-    return solve_positions(second, (second.beta,))[0].headline()
+    sol = solve_positions(second, (second.beta,))[0]
+    return SecondLevel(sol.headline(), {t.tooth: {k: getattr(t, k) for k in TOOTH_STRESSES}
+                                        for t in sol.teeth if t.load_N > 0})
+
+
+def tooth_estimates(sol: PairSolution, second: dict[int, dict[str, float]],
+                    ratio: Callable[[str, str], float] = mesh_ratio,
+                    floor: dict[str, float] | None = None) -> dict[int, dict[str, float]]:
+    """Each loaded tooth's own error estimate (%) of its stresses (:data:`TOOTH_STRESSES`),
+    from the same tooth at the second level (``second``: :attr:`SecondLevel.teeth`) as the
+    headline's, each at least its headline's floor. A tooth that a deviation or a
+    neighbour's relief loads lightly is resolved by fewer grid points than the headline tooth:
+    its estimate is its own, not the headline's. A tooth loaded at one level only is compared
+    with 0 there."""
+    floor = MESH_SCATTER_PCT if floor is None else floor
+    levels = tuple(QUALITY)
+    k = levels.index(sol.case.quality)
+    other = second_quality(sol.case.quality)
+    out = {}
+    for t in sol.teeth:
+        if t.load_N <= 0:
+            continue
+        mine = {f: getattr(t, f) for f in TOOTH_STRESSES}
+        theirs = second.get(t.tooth, dict.fromkeys(TOOTH_STRESSES, 0.0))
+        if k > 0:
+            pct = _gci(mine, theirs, ratio(other, levels[k]))
+        else:   # the coarsest level's error is r² the finer one's (rate h²)
+            r = ratio(levels[0], other)
+            pct = {f: r ** 2 * v * abs(theirs[f]) / max(abs(mine[f]), 1e-300)
+                   for f, v in _gci(theirs, mine, r).items()}
+        out[t.tooth] = {f: max(v, floor.get(TOOTH_STRESSES[f], 0.0)) for f, v in pct.items()}
+    return out
+
+
+def _gci(fine: dict[str, float], coarse: dict[str, float], ratio: float) -> dict[str, float]:
+    """:func:`error_estimate` of any stresses by name."""
+    return {k: 100.0 * GCI_FS * abs(fine[k] - coarse[k]) / (ratio ** 2 - 1.0)
+            / max(abs(fine[k]), 1e-300) for k in fine}

@@ -129,9 +129,14 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     while this process solves the submodels where the cycle peaks."""
     from ..fe import import_libraries
     from ..geometry import gear1_profile
-    from .estimate import second_headline, second_level_estimate, second_quality
+    from .estimate import (
+        second_headline,
+        second_level_estimate,
+        second_quality,
+        tooth_estimates,
+    )
     from .positions import drive
-    from .report import cycle_rows, cycle_summary, pair_summary
+    from .report import add_tooth_estimates, cycle_rows, cycle_summary, pair_summary
     from .ring.solver import RingSolver
 
     watch = Stopwatch()
@@ -148,17 +153,19 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     sols = solver.at_peaks(sols)
     cycle_s = watch.s
     sol = _pictured(sols)
-    estimate, other, estimate_s = None, None, None
+    estimate, other, estimate_s, teeth = None, None, None, None
     if job.estimate:
         after = Stopwatch()
         progress.stage("error estimate: the same case again at quality "
                        f"{second_quality(job.case.quality)}")
         with progress.reporting(None):  # one stage, however the second solve goes
-            headline = None if second is None else second.result()
-            estimate, other = second_level_estimate(sol, second=headline)
+            level = second.result()
+            estimate, other = second_level_estimate(sol, second=level.headline)
+            teeth = tooth_estimates(sol, level.teeth)
         estimate_s = after.s
     summary = pair_summary(sol, estimate, watch.s, other, job.allowables)
     summary["estimate_s"] = estimate_s
+    add_tooth_estimates(summary, teeth)
     rows = None
     if len(sols) > 1:
         rows = cycle_rows(sols, job.allowables)

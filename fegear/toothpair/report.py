@@ -77,6 +77,19 @@ def _inputs(c: SolveCase) -> dict:
             **{f.name: getattr(c, f.name) for f in fields(c) if f.name not in SOLVE_FIELDS}}
 
 
+def add_tooth_estimates(summary: dict, estimates: dict[int, dict[str, float]] | None) -> None:
+    """Each loaded tooth of ``summary`` with its own error estimate (%; :func:`~.estimate.
+    tooth_estimates`): ``error_estimate_pct`` the largest of its stresses', and by stress
+    under the summary's names; None without an estimate."""
+    names = {"root1_MPa": "root_stress_gear1_MPa", "root2_MPa": "root_stress_gear2_MPa",
+             "p_max_MPa": "p_max_MPa", "flank_p_MPa": "flank_pressure_MPa"}
+    for t in summary["teeth"]:
+        own = (estimates or {}).get(t["tooth"])
+        t["error_estimate_pct"] = max(own.values()) if own else None
+        t["error_estimate_by_stress_pct"] = (None if own is None else
+                                             {names[k]: v for k, v in own.items()})
+
+
 def _tooth_row(t: ToothResult) -> dict:
     """One tooth's entry in the summary's ``teeth``."""
     return {"tooth": t.tooth, "clearance_um": t.clearance_um, "load_N": t.load_N,
@@ -208,6 +221,11 @@ def pair_table(summary: dict) -> str:
             + " grid points or elements across its half-width (on a round, the round's), fewer "
             f"than `{summary['inputs']['quality']}` needs for a converged pressure "
             "(docs/model.md, \"Under-resolved contacts\"); a finer --quality resolves it."]
+    if any(t.get("error_estimate_pct") is not None for t in summary["teeth"]):
+        lines += ["", "err %: each loaded tooth's own discretisation-error estimate, the "
+                  "largest of its root stresses' and pressures', from the same tooth solved "
+                  f"at `{summary['error_estimate_from']}` (a lightly loaded tooth is resolved "
+                  "more coarsely than the headline's)."]
     if any(t.get("halfplane_flank_MPa") for t in summary["teeth"]):
         lines += ["", "p ref: the flank pressure of two half-planes with the teeth's exact gap, "
                   "bent as the teeth bend, under the same load (Hertz without its constant "
@@ -232,7 +250,7 @@ def pair_table(summary: dict) -> str:
 #: the per-tooth table's headers, each as wide as its column's usual values
 TOOTH_HEAD = ("tooth", "clear. µm", "load N", "share", "p_max MPa", "p flank", "p ref ",
               "p edge", "edge N", "b mm  ", "Hertz p0", "b/R*  ", "root1", "root2", "S_F1 ",
-              "S_F2 ", "S_H  ")
+              "S_F2 ", "S_H  ", "err %")
 
 
 def _tooth_cells(t: dict) -> list[str]:
@@ -249,7 +267,13 @@ def _tooth_cells(t: dict) -> list[str]:
             f"{t['hertz_p0_MPa']:.1f}" if t["hertz_p0_MPa"] else "-",
             f"{t['b_over_R']:.4f}" if t["b_over_R"] else "-",
             f"{t['root_stress_gear1_MPa']:.0f}", f"{t['root_stress_gear2_MPa']:.0f}",
-            *(factor_cell(t.get(k)) for k in TABLE_SAFETY)]
+            *(factor_cell(t.get(k)) for k in TABLE_SAFETY), _estimate_cell(t)]
+
+
+def _estimate_cell(t: dict) -> str:
+    """A tooth's own error estimate (%): one decimal, none from 100, "-" without one."""
+    e = t.get("error_estimate_pct")
+    return "-" if e is None else f"{e:.1f}" if e < 100 else ">99"
 
 
 def _number(v: float) -> float | None:
