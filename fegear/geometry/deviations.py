@@ -219,8 +219,9 @@ NONE = NO_DEVIATIONS = Deviations()
 
 
 #: the smallest lever arm (fraction of gear 1's pitch radius) by which a clearance's Newton
-#: step divides a deviation's gap (:meth:`Placed.clearances`)
-LEVER_FLOOR = 0.1
+#: step divides a deviation's gap (:meth:`Placed.clearances`): below the flanks' own, down to
+#: about 0.05 r1 on the teeth farthest from the mesh, above a tip meeting a tip
+LEVER_FLOOR = 0.02
 
 
 class Placed:
@@ -281,7 +282,7 @@ class Placed:
         r = rotate(fixed - self.axis1, -(self.beta + turn2))
         return dist, np.einsum("ij,ij->i", normal, np.column_stack([-r[:, 1], r[:, 0]]))
 
-    def _lever(self, rate: float, direction: int) -> float:
+    def lever(self, rate: float, direction: int) -> float:
         """The size of a closing point's gap rate (mm/rad) that a Newton step divides by, at
         least :data:`LEVER_FLOOR` r1: a point whose normal passes nearly through gear 1's axis
         (a tip meeting a tip, the rate near zero or of the other sign) is not where a deviated
@@ -316,7 +317,7 @@ class Placed:
             g, rate = self.gap(x1, np.array([t.tooth]), closing, flanks=direction > 0)
             # the gap's rate with the turn is < 0 on a loaded flank and > 0 on a coast flank:
             # either way the clearance grows by the gap over its rate's size
-            grown = p.arc_um(abs(g[0]) / self._lever(rate[0], direction)) \
+            grown = p.arc_um(abs(g[0]) / self.lever(rate[0], direction)) \
                 * math.copysign(1.0, g[0])
             teeth.append(_replace(t, **{key: float(um + grown)}))
         return _replace(state, teeth=tuple(teeth))

@@ -157,7 +157,7 @@ def build_study(data: dict, path: Path) -> Study:
     code = code_version()
     cases, refused, seen = [], [], set()
     for block, swept in combos:
-        values = _beside(path, {**base, **swept})
+        values = _relative_to_study(path, {**base, **swept})
         key = case_key(values, outputs, code)
         # cases that differ in an allowable stress alone share a key (one solve) but not a row
         same = (key, json.dumps(SOLVE_INPUTS.with_defaults(values), sort_keys=True))
@@ -197,7 +197,7 @@ def case_key(values: dict, outputs: Outputs, code: str) -> str:
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
-def _beside(path: Path, values: dict) -> dict:
+def _relative_to_study(path: Path, values: dict) -> dict:
     """``values`` with a deviations file named relative to the study file made absolute: a
     study runs the same from any folder."""
     name = values.get("deviations")

@@ -87,6 +87,18 @@ def test_five_microns_on_the_most_loaded_tooth_raise_its_root_stress_by_a_third(
     assert sol.checks.balance_error < 1e-9
 
 
+def test_a_gear_2_tooth_turned_is_its_mate_turned_by_the_same_arc(baseline_ring):
+    """Gear 2's tooth 12 turned 5 µm (of arc at r0) into gear 1's tooth 11 closes the same gap
+    as tooth 11 turned 5 µm (at r1) into it: the pitch circles roll on each other, so the two
+    arcs are the same motion at the pitch point and nearly so along the short contact."""
+    one = solve_pair(replace(CASE, deviations=Deviations({11: ToothDeviation(pitch=5)})),
+                     model=baseline_ring)
+    two = solve_pair(replace(CASE, deviations=Deviations(gear2={12: ToothDeviation(pitch=5)})),
+                     model=baseline_ring)
+    for key, value in one.headline().items():
+        assert two.headline()[key] == pytest.approx(value, rel=1e-3), key
+
+
 def test_wider_grids_change_nothing(monkeypatch, baseline_ring):
     """The grids reach the deviated contact: placed twice as wide, the headlines move by less
     than 0.1 %."""
@@ -136,3 +148,15 @@ def test_a_deviation_that_takes_up_the_backlash_is_refused_by_name():
         solve_positions(job.case, job.betas)
     assert exc.value.name == "pitch-deviation" and "tooth 11 stands" in str(exc.value)
     assert "backlash" in str(exc.value)
+
+
+def test_a_newton_step_divides_by_a_flank_s_lever_not_by_a_tip_s():
+    """A closing point whose gap the turn barely moves (its normal through gear 1's axis, the
+    rate near zero or of the wrong sign) is no place for a Newton step: the step divides by at
+    least 0.02 r1; a flank's own lever, even on the teeth farthest from the mesh, stays."""
+    from fegear.geometry.deviations import LEVER_FLOOR
+
+    placed = Placed(Deviations(runout1=Runout(4.0)), PAIR, 0.0)
+    floor = LEVER_FLOOR * PAIR.r1
+    assert placed.lever(-38.7, +1) == 38.7 and placed.lever(2.18, -1) == 2.18
+    assert placed.lever(-0.03, -1) == floor and placed.lever(0.0, +1) == floor
