@@ -20,7 +20,7 @@ Clearances are reported as µm of arc at the pitch radius r0 (``δ r0``).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 
 import numpy as np
@@ -301,10 +301,36 @@ class ToothContact:
 
     def states(self, betas, teeth=None, refine: bool = True,
                directions: tuple[int, ...] = (+1, -1)) -> list[ContactState]:
-        """:meth:`state` at each rolling angle of ``betas``, the same values; the refinement
+        """:meth:`state` at each rolling angle of ``betas``, the same values (to the search's
+        accuracy, which a far tooth's value has); the refinement
         of every position is one search (about half the time of one search a position).
         Only in ``directions``: a direction left out has no
-        contact point on any tooth (None), as a tooth-pair solve under a + torque needs."""
+        contact point on any tooth (None), as a tooth-pair solve under a + torque needs.
+
+        Angles a whole number of gear-2 pitches apart are one search: turning gear 2 by a
+        pitch turns gear 1 by one of its own, and the pair stands as before with gear 1's
+        teeth counted one on (:func:`_turned_on`), so a revolution's z1 pitches cost one
+        pitch's search."""
+        betas = [float(b) for b in np.atleast_1d(betas)]
+        if teeth is not None or len(betas) < 2:
+            return self._states(betas, teeth, refine, directions)
+        pitch2 = 2 * np.pi / self.params.z2
+        turns = [round((b - betas[0]) / pitch2) for b in betas]
+        base = [b - k * pitch2 for b, k in zip(betas, turns)]
+        keys = [round((b - betas[0]) / pitch2 * PHASES) for b in base]
+        first = {}
+        for i, key in enumerate(keys):
+            first.setdefault(key, i)
+        if len(first) == len(betas):
+            return self._states(betas, None, refine, directions)
+        solved = dict(zip(first, self._states([betas[i] for i in first.values()], None,
+                                              refine, directions)))
+        return [_turned_on(solved[key], beta, turns[i] - turns[first[key]], self.params.z1)
+                for i, (key, beta) in enumerate(zip(keys, betas))]
+
+    def _states(self, betas, teeth, refine: bool,
+                directions: tuple[int, ...]) -> list[ContactState]:
+        """:meth:`states`, each angle searched."""
         g = self.gear1
         teeth = np.arange(self.params.z1) if teeth is None else np.asarray(teeth, dtype=int)
         betas = [float(b) for b in np.atleast_1d(betas)]
@@ -475,6 +501,21 @@ def golden_min(f, a, b, iters: int):
 
 
 NEIGHBOURS = 3   # crossings tried on each side of a point's place among its circle's crossings
+
+
+#: the rolling angles that :meth:`ToothContact.states` takes for the same phase of the mesh: a
+#: gear-2 pitch in this many parts (angles that fall within one part of a pitch apart from
+#: another by whole pitches: the same search)
+PHASES = 10 ** 9
+
+
+def _turned_on(state: ContactState, beta: float, pitches: int, z1: int) -> ContactState:
+    """``state`` as it stands ``pitches`` gear-2 pitches on, at ``beta``: gear 1's tooth j
+    there is tooth j + ``pitches`` here, at the same place."""
+    rows = {t.tooth: t for t in state.teeth}
+    teeth = tuple(replace(rows[(j + pitches) % z1], tooth=j) for j in range(z1))
+    hits = tuple(replace(i, tooth=(i.tooth - pitches) % z1) for i in state.interference)
+    return ContactState(beta, teeth, tuple(sorted(hits, key=lambda i: i.tooth)))
 
 
 def _nearest_crossings(ang: np.ndarray, valid: np.ndarray, phi: np.ndarray, point: np.ndarray,

@@ -306,18 +306,19 @@ class Placed:
         p = self.params
         alpha = p.ratio * self.beta
         key, point = ("plus_um", "plus_point") if direction > 0 else ("minus_um", "minus_point")
-        teeth = []
-        for t in state.teeth:
-            um, at = getattr(t, key), getattr(t, point)
-            if um is None or at is None:
-                teeth.append(t)
-                continue
-            x1 = rotate(np.array([at]) - np.array([0.0, p.e]), -alpha)
-            closing = alpha + direction * p.turn_of(um)
-            g, rate = self.gap(x1, np.array([t.tooth]), closing, flanks=direction > 0)
-            # the gap's rate with the turn is < 0 on a loaded flank and > 0 on a coast flank:
-            # either way the clearance grows by the gap over its rate's size
-            grown = p.arc_um(abs(g[0]) / self.lever(rate[0], direction)) \
-                * math.copysign(1.0, g[0])
-            teeth.append(_replace(t, **{key: float(um + grown)}))
-        return _replace(state, teeth=tuple(teeth))
+        closing = [t for t in state.teeth
+                   if getattr(t, key) is not None and getattr(t, point) is not None]
+        if not closing:
+            return state
+        um = np.array([getattr(t, key) for t in closing])
+        x1 = rotate(np.array([getattr(t, point) for t in closing]) - np.array([0.0, p.e]),
+                    -alpha)
+        g, rate = self.gap(x1, np.array([t.tooth for t in closing]),
+                           alpha + direction * p.turn_of(um), flanks=direction > 0)
+        # the gap's rate with the turn is < 0 on a loaded flank and > 0 on a coast flank:
+        # either way the clearance grows by the gap over its rate's size
+        grown = {t.tooth: p.arc_um(abs(gi) / self.lever(ri, direction)) * math.copysign(1.0, gi)
+                 for t, gi, ri in zip(closing, g, rate)}
+        return _replace(state, teeth=tuple(
+            _replace(t, **{key: float(getattr(t, key) + grown[t.tooth])})
+            if t.tooth in grown else t for t in state.teeth))
