@@ -36,12 +36,16 @@ from ..geometry import Gear1Profile, Placed, ToothContact, gear1_profile
 from ..running import SERIAL, Executor
 from ..timing import clocked, timed
 from .case import PairSolution, SolveCase
+from .revolution import revolution_positions
 from .teeth import TOOTH_STIFFNESS, choose_teeth, refuse_closed, refuse_interference
 
 log = logging.getLogger(__name__)
 
 SHARE_GUESS = 3.0    # teeth assumed to share the load before the first position is solved
 ATTEMPTS = 5         # solves of one position, each from the last one's choice of teeth
+#: the angles a gear-2 pitch at which the deviations' backlash is checked over a whole turn of
+#: gear 1 before fewer positions are solved
+TURN_CHECK = 4
 CHAINED = 16         # positions from which a cycle is solved as two chains (a chain's first
                      # position costs about one position more than it would following another)
 
@@ -164,18 +168,30 @@ class _Clearances:
         return self._states
 
     def _deviated(self) -> list:
-        """The states with each tooth's clearance moved by the case's deviations; where a
-        tooth then stands into its mate, the coast side's found and moved too, for the check
-        that the deviations leave the pair its backlash (:func:`~.teeth.refuse_closed`)."""
+        """The states with each tooth's clearance moved by the case's deviations, once the
+        deviations are known to leave the pair its backlash over a whole turn of gear 1: at
+        these positions, and where they are fewer than a turn, at :data:`TURN_CHECK` angles
+        a pitch over one (a pair that jams anywhere cannot be turned to any position)."""
         dev, params = self._case.deviations, self._case.params
-        placed = {b: Placed(dev, params, b) for b in self._betas}
-        states = [(b, placed[b].clearances(st)) for b, st in self._states]
+        states = [(b, Placed(dev, params, b).clearances(st)) for b, st in self._states]
+        self._refuse_closed(states)
+        span = max(self._betas) - min(self._betas)
+        if span < (params.z1 - 1) * 2 * math.pi / params.z2:
+            turn = revolution_positions(self._betas[0], TURN_CHECK, params.z1, params.z2)
+            self._refuse_closed([(b, Placed(dev, params, b).clearances(st)) for b, st in
+                                 zip(turn, self._find(turn, directions=(+1,)))])
+        return states
+
+    def _refuse_closed(self, states) -> None:
+        """Where a tooth of ``states`` (β, deviated state) stands into its mate, the coast
+        side found and moved too, for the check that the deviations leave the pair its
+        backlash (:func:`~.teeth.refuse_closed`)."""
+        dev, params = self._case.deviations, self._case.params
         behind = [(b, st) for b, st in states if st.closest(+1).plus_um < 0]
         if behind:
             coast = self._find([b for b, _ in behind], directions=(-1,))
-            refuse_closed([(b, st, placed[b].clearances(back, -1))
+            refuse_closed([(b, st, Placed(dev, params, b).clearances(back, -1))
                            for (b, st), back in zip(behind, coast)], dev)
-        return states
 
 
 def _chain(case: SolveCase, states, span: range, solver: PositionModel

@@ -150,6 +150,18 @@ def test_a_deviation_that_takes_up_the_backlash_is_refused_by_name():
     assert "backlash" in str(exc.value)
 
 
+def test_a_pair_that_jams_elsewhere_in_the_turn_is_refused_at_any_position():
+    """10 µm more centre distance leaves β = 0 its backlash but jams tooth 10 at β = 2° (both
+    flanks 0.6 µm into gear 2): one position at β = 0 is refused too, naming where."""
+    from fegear.toothpair import solve_positions
+
+    job = prepare_job({"centre-distance-deviation": 10.0, "quality": "coarse"})
+    assert job.betas == (0.0,)
+    with pytest.raises(ParameterError, match="at β = 2°") as exc:
+        solve_positions(job.case, job.betas)
+    assert exc.value.name == "centre-distance-deviation"
+
+
 def test_a_newton_step_divides_by_a_flank_s_lever_not_by_a_tip_s():
     """A closing point whose gap the turn barely moves (its normal through gear 1's axis, the
     rate near zero or of the wrong sign) is no place for a Newton step: the step divides by at
