@@ -175,8 +175,8 @@ class _Clearances:
         dev, params = self._case.deviations, self._case.params
         states = [(b, Placed(dev, params, b).clearances(st)) for b, st in self._states]
         self._refuse_closed(states)
-        span = max(self._betas) - min(self._betas)
-        if span < (params.z1 - 1) * 2 * math.pi / params.z2:
+        pitch2 = 2 * math.pi / params.z2
+        if len({round((b - self._betas[0]) / pitch2) for b in self._betas}) < params.z1:
             turn = revolution_positions(self._betas[0], TURN_CHECK, params.z1, params.z2)
             self._refuse_closed([(b, Placed(dev, params, b).clearances(st)) for b, st in
                                  zip(turn, self._find(turn, directions=(+1,)))])
