@@ -74,18 +74,25 @@ def _two_levels(sol: PairSolution, solve: Callable,
                 ratio: Callable[[str, str], float], second: dict[str, float] | None
                 ) -> tuple[dict[str, float], str]:
     """:func:`second_level_estimate` without its floor."""
-    levels = tuple(QUALITY)  # coarsest first
-    k = levels.index(sol.case.quality)
     other = second_quality(sol.case.quality)
     if second is None:
         second = solve(replace(sol.case, quality=other)).headline()
     own = sol.headline()
+    return _level_errors({k: own[k] for k in HEADLINE}, second, sol.case.quality, ratio), other
+
+
+def _level_errors(own: dict[str, float], second: dict[str, float], quality: str,
+                  ratio: Callable[[str, str], float]) -> dict[str, float]:
+    """The error (%) of each stress ``own`` at ``quality`` from the same stresses ``second``
+    at :func:`second_quality`: the two-grid index where the second level is coarser; at the
+    coarsest level, whose second is finer, r² that (rate h²), relative to its own value."""
+    levels = tuple(QUALITY)  # coarsest first
+    k = levels.index(quality)
+    other = second_quality(quality)
     if k > 0:
-        return error_estimate(own, second, ratio(other, levels[k])), other
-    # the estimate is for the finer level; the coarser one's error is r² larger (rate h²)
+        return _gci(own, second, ratio(other, levels[k]))
     r = ratio(levels[0], other)
-    finer = error_estimate(second, own, r)
-    return {key: r ** 2 * v * second[key] / own[key] for key, v in finer.items()}, other
+    return {f: r ** 2 * v for f, v in _gci(own, second, r).items()}
 
 
 #: each loaded tooth's stresses that get an estimate of their own: the tooth's field → the
@@ -122,21 +129,13 @@ def tooth_estimates(sol: PairSolution, second: dict[int, dict[str, float]],
     its estimate is its own, not the headline's. A tooth loaded at one level only is compared
     with 0 there."""
     floor = MESH_SCATTER_PCT if floor is None else floor
-    levels = tuple(QUALITY)
-    k = levels.index(sol.case.quality)
-    other = second_quality(sol.case.quality)
     out = {}
     for t in sol.teeth:
         if t.load_N <= 0:
             continue
         mine = {f: getattr(t, f) for f in TOOTH_STRESSES}
         theirs = second.get(t.tooth, dict.fromkeys(TOOTH_STRESSES, 0.0))
-        if k > 0:
-            pct = _gci(mine, theirs, ratio(other, levels[k]))
-        else:   # the coarsest level's error is r² the finer one's (rate h²)
-            r = ratio(levels[0], other)
-            pct = {f: r ** 2 * v * abs(theirs[f]) / max(abs(mine[f]), 1e-300)
-                   for f, v in _gci(theirs, mine, r).items()}
+        pct = _level_errors(mine, theirs, sol.case.quality, ratio)
         out[t.tooth] = {f: max(v, floor.get(TOOTH_STRESSES[f], 0.0)) for f, v in pct.items()}
     return out
 
