@@ -146,7 +146,7 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
         second = executor.submit(second_headline, job.case)
     progress.stage("gear 1's profile")
     gear1_profile(job.case.params)
-    solver = RingSolver()
+    solver = RingSolver(repeats=job.revolution)
     sols = drive(job.case, job.betas, solver, executor=executor)
     if job.estimate and len(job.betas) > 1:   # while the peaks' submodels are solved here
         second = executor.submit(second_headline, _pictured(sols).case)

@@ -31,6 +31,7 @@ from .grid import ToothGrid
 from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel, keep_cached, ring_model
 from .peaks import with_peak_submodels
+from .phases import Phases
 from .placement import (
     CANDIDATES,
     PLACEMENT,
@@ -71,15 +72,18 @@ class RingSolver:
     the contacts is the template's surface estimate (:func:`~.stresses.ring_stresses`).
     ``contact_only``: no stresses at all, for a caller that reads only the contact (loads,
     shares, pressures, flank and edge apart, rotations: the tip-relief search); the root and
-    von Mises stresses are NaN, the teeth's Hertz values and half-plane references None."""
+    von Mises stresses are NaN, the teeth's Hertz values and half-plane references None.
+    ``repeats``: the positions repeat over whole pitches (a revolution): each position's
+    contact is kept for its phase and the others solved on it (:mod:`.phases`)."""
 
     def __init__(self, model: RingModel | None = None, submodels: str = "peaks",
-                 contact_only: bool = False) -> None:
+                 contact_only: bool = False, repeats: bool = False) -> None:
         if submodels not in SUBMODELS:
             raise ValueError(f"submodels must be one of {SUBMODELS}, not {submodels!r}")
         self.model = model
         self.submodels = "none" if contact_only else submodels
         self.contact_only = contact_only
+        self.phases = Phases() if repeats else None
 
     def build(self, case: SolveCase, profile: Gear1Profile, states) -> None:
         # the same stages on every solve (zero where not run), so that a study's table has
@@ -94,6 +98,11 @@ class RingSolver:
     def attempt(self, case: SolveCase, state, trial: Trial,
                 near: PairSolution | None) -> Attempt:
         first_um = state.closest(+1).plus_um
+        if self.phases is not None and trial.own is None:
+            with timed("contact"):
+                kept = self.phases.solve(self.model, case, state)
+            if kept is not None:
+                return Attempt(RingAttempt(*kept, kept[0].grids, first_um), None)
         # without a solution before, the expected rotation is an estimate (20-50 % off): a
         # first solve on probe grids only finds the rotation to place the fine grids at
         predict = near is None and trial.own is None
@@ -109,7 +118,13 @@ class RingSolver:
         if solved is None:   # probe grids too coarse for this contact to settle: fine grids
             return Attempt(None, replace(trial, own=replace(placement, full=None)),
                            "probe grids did not settle")
-        return _judged(case, state, trial, placement, solved, predict)
+        judged = _judged(case, state, trial, placement, solved, predict)
+        if self.phases is not None and judged.again is None:
+            with timed("assemble"):
+                self.phases.keep(self.model, case, trial.teeth, solved.contact,
+                                 solved.solution,
+                                 case.params.arc_um(solved.solution.rotation) - first_um)
+        return judged
 
     def _contact(self, case: SolveCase, trial: Trial, grids: tuple[ToothGrid, ...],
                  first_um: float, near: PairSolution | None) -> RingAttempt | None:
