@@ -4,6 +4,7 @@ solved on its phases' kept contacts is the one whose every position is placed an
 anew."""
 
 import math
+
 import numpy as np
 import pytest
 
