@@ -23,17 +23,33 @@ import numpy as np
 from ...errors import ContactError
 from ...geometry import Placed
 from ...planar import rotate
-from ..case import SolveCase
+from ..case import PairSolution, SolveCase
 from ..teeth import choose_teeth
-from .contact import RingContactSolution, solve_ring_contact
+from .contact import RingContactSolution, rigid_gap, solve_ring_contact
 from .grid import ToothGrid
 from .influence import ColumnRule, Matching, RingContact, assemble_contact
 from .model import RingModel
 from .placement import PLACEMENT
+from .results import RingDetail
 from .side import Located
+from .stresses import RingStresses, RootZone
 
 #: the resolution (a fraction of a gear-2 pitch) at which two rolling angles count as one phase
 PHASE_STEPS = 2 ** 20
+#: rigid gaps (mm) that differ by less than this anywhere are the same contact problem: 0.1 nm,
+#: a ten-thousandth of the smallest deviation given in whole µm, far above the turned
+#: points' rounding (1e-15 mm)
+SAME_GAP = 1e-7
+
+
+@dataclass(frozen=True)
+class Solved:
+    """A position's solution kept for the pitches of its phase whose rigid gaps, at its solved
+    rotation, are its ``gaps`` (mm): solved ``pitch`` gear-2 pitches from zero."""
+
+    pitch: int
+    gaps: np.ndarray
+    solution: PairSolution
 
 
 @dataclass(frozen=True)
@@ -65,6 +81,34 @@ class Phases:
 
     def __init__(self) -> None:
         self._kept: dict[int, Kept] = {}
+        self._solved: dict[int, Solved] = {}
+
+    def repeat(self, model: RingModel, case: SolveCase, state) -> PairSolution | None:
+        """The solution at ``case.beta`` (clearance ``state``) as the last one solved in its
+        phase, renumbered, where their rigid gaps are the same (module docstring); else
+        None."""
+        phase, pitch = phase_of(case, case.beta)
+        last = self._solved.get(phase)
+        if last is None:
+            return None
+        pitches = pitch - last.pitch
+        sol = last.solution
+        placed = Placed(case.deviations, case.params, case.beta) if case.deviations else None
+        contact = turned(model, sol.detail.contact, pitches, case.beta, placed)
+        gaps = rigid_gap(model, contact, case.params.ratio * case.beta + sol.rotation,
+                         contact.feet.copy())[0]
+        if np.abs(gaps - last.gaps).max() > SAME_GAP:
+            return None
+        return _renumbered(sol, pitches, case, state, contact)
+
+    def solved(self, model: RingModel, sol: PairSolution) -> None:
+        """Keep ``sol``, solved, for the pitches of its phase with its rigid gaps."""
+        detail, case = sol.detail, sol.case
+        phase, pitch = phase_of(case, case.beta)
+        contact = detail.contact
+        gaps = rigid_gap(model, contact, case.params.ratio * case.beta + sol.rotation,
+                         contact.feet.copy())[0]
+        self._solved[phase] = Solved(pitch, gaps, sol)
 
     def solve(self, model: RingModel, case: SolveCase, state
               ) -> tuple[RingContact, RingContactSolution] | None:
@@ -122,6 +166,35 @@ def _holds(case: SolveCase, state, kept: Kept, pitches: int, contact: RingContac
         if pressure[[0, -1]].max() > 0 or (g.probe and pressure.max() > 0):
             return False
     return True
+
+
+def _renumbered(sol: PairSolution, pitches: int, case: SolveCase, state,
+                contact: RingContact) -> PairSolution:
+    """``sol`` at ``case`` ``pitches`` gear-2 pitches later, on its ``contact`` turned there:
+    the teeth and sectors renumbered, each tooth's clearance from ``state``."""
+    p = case.params
+    clearance = {c.tooth: c.plus_um for c in state.teeth}
+    teeth = tuple(replace(t, tooth=(t.tooth - pitches) % p.z1,
+                          tooth2=None if t.tooth2 is None else (t.tooth2 - pitches) % p.z2,
+                          clearance_um=clearance.get((t.tooth - pitches) % p.z1))
+                  for t in sol.teeth)
+    d = sol.detail
+    stresses = None if d.stresses is None else _turned_stresses(d.model, d.stresses, pitches)
+    detail = RingDetail(d.model, case, contact, d.solution, stresses)
+    return replace(sol, case=case, teeth=teeth, timings_s={}, detail=detail)
+
+
+def _turned_stresses(model: RingModel, stresses: RingStresses, pitches: int) -> RingStresses:
+    """``stresses`` renumbered ``pitches`` sectors back on each gear (the fields' arrays are
+    shared)."""
+    fields, roots, subs = [], [], []
+    for g, side in enumerate(model.gears):
+        fields.append({(k - pitches) % side.count: u for k, u in stresses.fields[g].items()})
+        root = stresses.roots[g]
+        roots.append(RootZone(root.angle - pitches * side.pitch, root.s1))
+    subs = tuple((g, turn - pitches * model.gears[g].pitch, sm)
+                 for g, turn, sm in stresses.submodels)
+    return replace(stresses, fields=tuple(fields), roots=tuple(roots), submodels=subs)
 
 
 def turned(model: RingModel, contact: RingContact, pitches: int, beta: float,

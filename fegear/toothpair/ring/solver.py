@@ -100,7 +100,10 @@ class RingSolver:
         first_um = state.closest(+1).plus_um
         if self.phases is not None and trial.own is None:
             with timed("contact"):
-                kept = self.phases.solve(self.model, case, state)
+                same = self.phases.repeat(self.model, case, state)
+                kept = None if same is not None else self.phases.solve(self.model, case, state)
+            if same is not None:
+                return Attempt(same, None)
             if kept is not None:
                 return Attempt(RingAttempt(*kept, kept[0].grids, first_um), None)
         # without a solution before, the expected rotation is an estimate (20-50 % off): a
@@ -169,6 +172,14 @@ class RingSolver:
         raise AssertionError("the last try forms every column")   # pragma: no cover
 
     def finish(self, case: SolveCase, state, attempt: Attempt) -> PairSolution:
+        if isinstance(attempt.solved, PairSolution):   # a pitch that repeats one solved
+            return attempt.solved
+        sol = self._finished(case, state, attempt)
+        if self.phases is not None:
+            self.phases.solved(self.model, sol)
+        return sol
+
+    def _finished(self, case: SolveCase, state, attempt: Attempt) -> PairSolution:
         model, solved = self.model, attempt.solved
         contact, first_um = solved.contact, solved.first_um
         # the stresses take the clamped fields the contact's check formed; not kept
