@@ -31,6 +31,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -224,6 +225,16 @@ NONE = NO_DEVIATIONS = Deviations()
 LEVER_FLOOR = 0.02
 
 
+@lru_cache(maxsize=64)
+def _gear1_radii(params) -> tuple[float, float]:
+    """Gear 1's root and tip radii (mm), where its flanks' roll runs from 0 to 1."""
+    from .gear1 import gear1_profile
+
+    g1 = gear1_profile(params)
+    return (float(g1.radius(np.array([g1.phi_space]))[0]),
+            float(g1.radius(np.array([g1.tooth_center]))[0]))
+
+
 class Placed:
     """A pair's deviations at one rolling angle β: the exact unloaded gap of gear 1's points to
     gear 2 as the deviations leave them (:meth:`gap`), and each tooth's clearance moved by
@@ -247,8 +258,7 @@ class Placed:
         alpha = params.ratio * beta
         self.teeth_offset = (deviations.runout1.offset(g1.tooth_center + alpha)
                              - deviations.runout2.offset(beta))
-        self.roots1 = float(g1.radius(np.array([g1.phi_space]))[0])
-        self.tips1 = float(g1.radius(np.array([g1.tooth_center]))[0])
+        self.roots1, self.tips1 = _gear1_radii(params)
         self.roots2, self.tips2 = params.r0 + 2 * params.e1, params.r0 - 2 * params.e1
 
     def gap(self, x: np.ndarray, teeth: np.ndarray, turn: float,

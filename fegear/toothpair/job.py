@@ -19,7 +19,7 @@ from ..running import SERIAL, Executor
 from ..timing import Stopwatch
 from .case import SolveCase, cycle_positions
 from .inputs import PAIR_INPUTS, SOLVE_INPUTS, TIP_ROUND, check_tip_round
-from .revolution import PER_PITCH, revolution_positions, revolution_summary
+from .revolution import PER_PITCH, phase_major, revolution_positions, revolution_summary
 from .safety import DEFAULT_ALLOWABLES, allowables_of
 
 PAIR_NAMES = {row.name for row in PAIR_INPUTS}
@@ -147,7 +147,10 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     progress.stage("gear 1's profile")
     gear1_profile(job.case.params)
     solver = RingSolver(repeats=job.revolution)
-    sols = drive(job.case, job.betas, solver, executor=executor)
+    order = (phase_major(len(job.betas), job.case.params.z1) if job.revolution
+             else range(len(job.betas)))
+    sols = drive(job.case, [job.betas[k] for k in order], solver, executor=executor)
+    sols = tuple(sol for _, sol in sorted(zip(order, sols), key=lambda pair: pair[0]))
     if job.estimate and len(job.betas) > 1:   # while the peaks' submodels are solved here
         second = executor.submit(second_headline, _pictured(sols).case)
     sols = solver.at_peaks(sols)

@@ -34,6 +34,16 @@ def revolution_positions(beta0: float, per_pitch: int, z1: int, z2: int) -> tupl
     return tuple(beta0 + k * step for k in range(z1 * per_pitch))
 
 
+def phase_major(count: int, z1: int) -> list[int]:
+    """The ``count`` positions of a revolution over ``z1`` pitches (:func:`revolution_positions`)
+    in the order a solve takes them: each place within a pitch over every pitch, then the
+    next. A solve kept for the first pitch of a place serves the others (the ring model's
+    :mod:`~.ring.phases`), and a mesh cycle's two chains, its halves, then carry alike
+    whichever teeth the deviations are on."""
+    per_pitch = count // z1
+    return sorted(range(count), key=lambda k: (k % per_pitch, k // per_pitch))
+
+
 def per_tooth(sols: tuple[PairSolution, ...]) -> dict:
     """The largest stress each tooth carried over the positions: gear 1's root and contact
     pressure by gear-1 tooth, gear 2's root by gear-2 tooth (MPa); and under ``cut``, by gear,

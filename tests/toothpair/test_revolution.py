@@ -83,11 +83,13 @@ def test_the_deviated_tooth_is_the_worst_and_the_worst_is_a_solve_there(deviated
     assert per[11] > 1.2 * float(np.median(list(per.values())))
     # a gear-1 runout: gear 2 is perfect, so gear 1's passes are whole
     assert rev["per_tooth"]["cut"]["gear1"] == []
-    # the position of the worst, solved on its own, gives the same stress
+    # the position of the worst, solved on its own, gives the same stress: the revolution
+    # solved it on its phase's kept grids, wider than its own (tests/toothpair/ring/
+    # test_phases.py: roots within 5e-4 of a position placed anew)
     sol = max(deviated.solutions, key=lambda s: s.headline()["root_stress_gear1_MPa"])
     assert math.degrees(sol.case.beta) == pytest.approx(worst["at_position_deg"])
     alone = solve_pair(sol.case)
-    assert alone.headline()["root_stress_gear1_MPa"] == pytest.approx(worst["max"], rel=1e-6)
+    assert alone.headline()["root_stress_gear1_MPa"] == pytest.approx(worst["max"], rel=5e-4)
     text = revolution_table(rev)
     assert "1:11" in text and "most loaded tooth 11" in text
 

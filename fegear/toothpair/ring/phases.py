@@ -24,13 +24,14 @@ from ...errors import ContactError
 from ...geometry import Placed
 from ...planar import rotate
 from ..case import PairSolution, SolveCase
-from ..teeth import choose_teeth
-from .contact import RingContactSolution, rigid_gap, solve_ring_contact
+from ..positions import Trial
+from ..teeth import candidate_data, choose_teeth
+from .contact import RingContactSolution, rigid_gap, solve_ring_contact, touch_rotation
 from .grid import ToothGrid
 from .influence import ColumnRule, Matching, RingContact, assemble_contact
 from .model import RingModel
-from .placement import PLACEMENT
-from .results import RingDetail
+from .placement import PLACEMENT, REACH, REACH_FLOOR, Placement, place_grids
+from .results import RingDetail, tooth_result
 from .side import Located
 from .stresses import RingStresses, RootZone
 
@@ -85,21 +86,48 @@ class Phases:
 
     def repeat(self, model: RingModel, case: SolveCase, state) -> PairSolution | None:
         """The solution at ``case.beta`` (clearance ``state``) as the last one solved in its
-        phase, renumbered, where their rigid gaps are the same (module docstring); else
-        None."""
+        phase, renumbered, where it solves this position's contact too; else None.
+
+        It does where the rigid gaps are the same on every tooth that carries load, and the
+        points of the others, whose rigid gaps the deviations moved, stay open under the same
+        pressures (their gaps are the solved ones moved by as much): the pressures and the
+        rotation then meet every contact condition, and the compliance, positive definite,
+        admits one solution. Those teeth's results are formed again, and the first touch."""
         phase, pitch = phase_of(case, case.beta)
-        last = self._solved.get(phase)
-        if last is None:
+        last, kept = self._solved.get(phase), self._kept.get(phase)
+        if last is None or kept is None:
             return None
-        pitches = pitch - last.pitch
-        sol = last.solution
+        pitches, sol = pitch - last.pitch, last.solution
         placed = Placed(case.deviations, case.params, case.beta) if case.deviations else None
         contact = turned(model, sol.detail.contact, pitches, case.beta, placed)
-        gaps = rigid_gap(model, contact, case.params.ratio * case.beta + sol.rotation,
-                         contact.feet.copy())[0]
-        if np.abs(gaps - last.gaps).max() > SAME_GAP:
+        turn = case.params.ratio * case.beta + sol.rotation
+        rigid = rigid_gap(model, contact, turn, contact.feet.copy())
+        moved = np.abs(rigid[0] - last.gaps) > SAME_GAP
+        if not _teeth_hold(case, state, kept, pitch - kept.pitch, contact, sol.rotation):
             return None
-        return _renumbered(sol, pitches, case, state, contact)
+        if not moved.any():
+            return _renumbered(sol, pitches, case, state, contact)
+        pressure = sol.detail.solution.pressure
+        loaded = np.repeat([pressure[contact.block(k)].max() > 0
+                            for k in range(len(contact.grids))], np.diff(contact.offsets))
+        opened = sol.detail.solution.gap + rigid[0] - last.gaps
+        if (moved & loaded).any() or (opened[moved] <= 0).any():
+            return None
+        again = sorted({int(k) for k in contact.grid_index[moved]})
+        return _renumbered(sol, pitches, case, state, contact, (rigid, again))
+
+    @staticmethod
+    def beside(model: RingModel, near: PairSolution, beta: float) -> PairSolution:
+        """``near``, the solution a position starts from, renumbered by the whole pitches
+        between it and ``beta`` (a revolution solved phase by phase starts a pitch from the
+        pitch before, and a phase from the last pitch of the phase before: their teeth stand
+        a tooth or more on), so that it stands within a pitch of ``beta``."""
+        pitches = round((beta - near.case.beta) / (2 * math.pi / near.case.params.z2))
+        if pitches == 0:
+            return near
+        at = near.case.beta + pitches * 2 * math.pi / near.case.params.z2
+        contact = turned(model, near.detail.contact, pitches, at, None)
+        return _renumbered(near, pitches, replace(near.case, beta=at), None, contact)
 
     def solved(self, model: RingModel, sol: PairSolution) -> None:
         """Keep ``sol``, solved, for the pitches of its phase with its rigid gaps."""
@@ -132,19 +160,40 @@ class Phases:
             return None
         return contact, sol
 
-    def keep(self, model: RingModel, case: SolveCase, teeth, contact: RingContact,
-             sol: RingContactSolution, elastic_um: float) -> None:
-        """Keep the settled ``contact`` at ``case.beta`` on the paired ``teeth`` for its phase,
-        assembled again with every fine grid's columns (the settled one has only those that
-        could carry pressure at its own gaps); ``elastic_um``: its rotation's elastic part."""
+    def keep(self, model: RingModel, case: SolveCase, state, trial: Trial,
+             settled: RingContactSolution) -> tuple[RingContact, RingContactSolution] | None:
+        """The contact of the phase of ``case.beta``, made from the position's ``settled``
+        solution on ``trial``'s teeth, kept, and solved: fine grids on every paired tooth and
+        one more either side, each reaching as far as the largest deviation of any tooth
+        could need (so that a pitch whose deviations sit on other teeth finds its grids),
+        every column formed. None (nothing kept) where it does not hold the position's own
+        contact."""
+        p = case.params
         phase, pitch = phase_of(case, case.beta)
-        full = contact if contact.formed.all() else assemble_contact(
-            model, contact.grids, contact.beta, contact.turn, ColumnRule(probes=False),
-            contact.placed)
-        self._kept[phase] = Kept(pitch, replace(full, feet=contact.feet.copy()),
-                                 sol.rotation, sol.pressure > 0, elastic_um,
-                                 {t: case.deviations.reach_um(t) for t in teeth})
-
+        first_um = state.closest(+1).plus_um
+        elastic_um = max(p.arc_um(settled.rotation) - first_um, 1e-6)
+        teeth = set(choose_teeth(state, p.arc_um(settled.rotation), case.extra_pairs + 1))
+        teeth |= set(trial.teeth)
+        widest = max(case.deviations.reach_um(t) for t in range(p.z1))
+        base = REACH * elastic_um * 1e-3 + REACH_FLOOR * p.m
+        reach = {t: 1.0 + 1e-3 * (widest - case.deviations.reach_um(t)) / base for t in teeth}
+        grids = place_grids(model, case, Trial(tuple(sorted(teeth)), elastic_um),
+                            Placement(frozenset(teeth), reach), first_um)
+        placed = Placed(case.deviations, p, case.beta) if case.deviations else None
+        contact = assemble_contact(model, grids, case.beta,
+                                   p.ratio * case.beta + settled.rotation, ColumnRule(), placed)
+        try:
+            sol = solve_ring_contact(model, contact, case.torque * 1e3, settled.rotation,
+                                     guess=settled.rotation)
+        except ContactError:
+            return None
+        kept = Kept(pitch, replace(contact, feet=contact.feet.copy()), settled.rotation,
+                    np.zeros(contact.npoints, bool), elastic_um, dict.fromkeys(teeth, widest))
+        if sol is None or not _holds(case, state, kept, 0, contact, sol):
+            return None
+        self._kept[phase] = replace(kept, rotation=sol.rotation, active=sol.pressure > 0,
+                                    elastic_um=p.arc_um(sol.rotation) - first_um)
+        return contact, sol
 
 def _holds(case: SolveCase, state, kept: Kept, pitches: int, contact: RingContact,
            sol: RingContactSolution) -> bool:
@@ -153,14 +202,8 @@ def _holds(case: SolveCase, state, kept: Kept, pitches: int, contact: RingContac
     needs a grid, unless it was paired where the contact was kept, had no grid there, and
     neither the deviations nor the elastic rotation reach further now (its gap is then
     beyond the reach its window was sought within)."""
-    p = case.params
-    gridded = {g.tooth for g in contact.grids}
-    elastic_um = p.arc_um(sol.rotation) - state.closest(+1).plus_um
-    for t in set(choose_teeth(state, p.arc_um(sol.rotation), case.extra_pairs)) - gridded:
-        then = (t + pitches) % p.z1
-        if (then not in kept.reach_um or case.deviations.reach_um(t) > kept.reach_um[then]
-                or elastic_um > (1.0 + PLACEMENT) * kept.elastic_um):
-            return False
+    if not _teeth_hold(case, state, kept, pitches, contact, sol.rotation):
+        return False
     for k, g in enumerate(contact.grids):
         pressure = sol.pressure[contact.block(k)]
         if pressure[[0, -1]].max() > 0 or (g.probe and pressure.max() > 0):
@@ -169,19 +212,35 @@ def _holds(case: SolveCase, state, kept: Kept, pitches: int, contact: RingContac
 
 
 def _renumbered(sol: PairSolution, pitches: int, case: SolveCase, state,
-                contact: RingContact) -> PairSolution:
+                contact: RingContact, again: tuple | None = None) -> PairSolution:
     """``sol`` at ``case`` ``pitches`` gear-2 pitches later, on its ``contact`` turned there:
-    the teeth and sectors renumbered, each tooth's clearance from ``state``."""
+    the teeth and sectors renumbered, each tooth's clearance from ``state`` (None: kept).
+    ``again``: the rigid gaps and their rates at the solved rotation, and the grids whose
+    unloaded teeth's results are formed again there with the first touch (their rigid gaps
+    moved)."""
     p = case.params
-    clearance = {c.tooth: c.plus_um for c in state.teeth}
+    clearance = None if state is None else {c.tooth: c.plus_um for c in state.teeth}
     teeth = tuple(replace(t, tooth=(t.tooth - pitches) % p.z1,
                           tooth2=None if t.tooth2 is None else (t.tooth2 - pitches) % p.z2,
-                          clearance_um=clearance.get((t.tooth - pitches) % p.z1))
+                          clearance_um=t.clearance_um if clearance is None
+                          else clearance.get((t.tooth - pitches) % p.z1))
                   for t in sol.teeth)
     d = sol.detail
     stresses = None if d.stresses is None else _turned_stresses(d.model, d.stresses, pitches)
     detail = RingDetail(d.model, case, contact, d.solution, stresses)
-    return replace(sol, case=case, teeth=teeth, timings_s={}, detail=detail)
+    out = replace(sol, case=case, teeth=teeth, timings_s={}, detail=detail)
+    if again is None:
+        return out
+    rigid, grids = again
+    redone = list(teeth)
+    shown = tuple(contact.grids[k].tooth for k in grids)
+    cands = {c.tooth: c for c in candidate_data(p, d.model.shape, state, shown, case.beta)}
+    for k in grids:
+        tooth = contact.grids[k].tooth
+        i = next(j for j, t in enumerate(teeth) if t.tooth == tooth)
+        redone[i] = tooth_result(detail, k, rigid, cands.get(tooth), clearance.get(tooth))
+    touch = touch_rotation(d.model, contact, sol.first_touch)
+    return replace(out, teeth=tuple(redone), first_touch=touch)
 
 
 def _turned_stresses(model: RingModel, stresses: RingStresses, pitches: int) -> RingStresses:
@@ -195,6 +254,23 @@ def _turned_stresses(model: RingModel, stresses: RingStresses, pitches: int) -> 
     subs = tuple((g, turn - pitches * model.gears[g].pitch, sm)
                  for g, turn, sm in stresses.submodels)
     return replace(stresses, fields=tuple(fields), roots=tuple(roots), submodels=subs)
+
+
+def _teeth_hold(case: SolveCase, state, kept: Kept, pitches: int, contact: RingContact,
+                rotation: float) -> bool:
+    """Whether every tooth the driver's rule pairs at the ``rotation`` (rad) has a grid on
+    ``contact`` (the ``kept`` one turned by ``pitches``) or had none where it was kept
+    for want of a stretch within reach, which the deviations and the elastic rotation do not
+    extend now (:func:`_holds`)."""
+    p = case.params
+    gridded = {g.tooth for g in contact.grids}
+    elastic_um = p.arc_um(rotation) - state.closest(+1).plus_um
+    for t in set(choose_teeth(state, p.arc_um(rotation), case.extra_pairs)) - gridded:
+        then = (t + pitches) % p.z1
+        if (then not in kept.reach_um or case.deviations.reach_um(t) > kept.reach_um[then]
+                or elastic_um > (1.0 + PLACEMENT) * kept.elastic_um):
+            return False
+    return True
 
 
 def turned(model: RingModel, contact: RingContact, pitches: int, beta: float,

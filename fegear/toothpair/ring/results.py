@@ -66,11 +66,11 @@ def tooth_results(detail: RingDetail, state, cands) -> tuple[ToothResult, ...]:
     rigid = rigid_gap(detail.model, contact, p.ratio * case.beta + sol.rotation, contact.feet)
     clearance = {c.tooth: c.plus_um for c in state.teeth}
     by_tooth = {c.tooth: c for c in cands}
-    return tuple(_tooth_result(detail, k, rigid, by_tooth.get(g.tooth), clearance.get(g.tooth))
+    return tuple(tooth_result(detail, k, rigid, by_tooth.get(g.tooth), clearance.get(g.tooth))
                  for k, g in enumerate(contact.grids))
 
 
-def _tooth_result(detail: RingDetail, k: int, rigid: tuple[np.ndarray, np.ndarray], cand,
+def tooth_result(detail: RingDetail, k: int, rigid: tuple[np.ndarray, np.ndarray], cand,
                   clearance_um: float | None) -> ToothResult:
     """The result of grid ``k``'s tooth: ``rigid`` the rigid gap (mm) of every point at the
     solved rotation and its rate with the turn (mm/rad), ``cand`` the tooth as a candidate

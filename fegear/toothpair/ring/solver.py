@@ -98,6 +98,8 @@ class RingSolver:
     def attempt(self, case: SolveCase, state, trial: Trial,
                 near: PairSolution | None) -> Attempt:
         first_um = state.closest(+1).plus_um
+        if self.phases is not None and near is not None:
+            near = self.phases.beside(self.model, near, case.beta)
         if self.phases is not None and trial.own is None:
             with timed("contact"):
                 same = self.phases.repeat(self.model, case, state)
@@ -124,9 +126,9 @@ class RingSolver:
         judged = _judged(case, state, trial, placement, solved, predict)
         if self.phases is not None and judged.again is None:
             with timed("assemble"):
-                self.phases.keep(self.model, case, trial.teeth, solved.contact,
-                                 solved.solution,
-                                 case.params.arc_um(solved.solution.rotation) - first_um)
+                kept = self.phases.keep(self.model, case, state, trial, solved.solution)
+            if kept is not None:   # the position solved on its phase's contact
+                return Attempt(RingAttempt(*kept, kept[0].grids, first_um), None)
         return judged
 
     def _contact(self, case: SolveCase, trial: Trial, grids: tuple[ToothGrid, ...],

@@ -14,7 +14,7 @@ from fegear.toothpair.case import HEADLINE
 from fegear.toothpair.positions import drive
 from fegear.toothpair.ring.contact import rigid_gap
 from fegear.toothpair.ring.influence import ColumnRule, assemble_contact
-from fegear.toothpair.ring.phases import _turned_grid, phase_of, turned
+from fegear.toothpair.ring.phases import Phases, _turned_grid, phase_of, turned
 from fegear.toothpair.ring.solver import RingSolver
 
 
@@ -66,16 +66,17 @@ def _revolution(inputs, repeats):
     return drive(job.case, job.betas, solver), solver
 
 
-# A position placed anew has grids whose ends its own rotation sets, and a deviated tooth's
-# window widened by its deviation: where that takes in a round's tangent point, the grid is
-# refined about it. On the kept contact, a pitch has its phase's first grids. Both are grids
-# of the same rule; they differ by as much as any two such grids, far below the error
-# estimate (1-3 % at `coarse`). Measured: perfect pair 1.5e-4 at most; deviated, roots
-# 3.8e-4, peaks on a round 1.2e-3, the flank/edge split (ill-conditioned at the round's
-# tangent point) 3.4e-3.
-AGREE = {"root_stress_gear1_MPa": (2e-4, 5e-4), "root_stress_gear2_MPa": (2e-4, 5e-4),
-         "contact_pressure_MPa": (2e-4, 2e-3), "von_mises_max_MPa": (2e-4, 2e-3),
-         "flank_contact_pressure_MPa": (2e-4, 5e-3)}
+# A position placed anew has grids whose ends its own rotation sets, a deviated tooth's window
+# widened by its deviation, probes on the teeth it does not expect to close; a phase's kept
+# contact has fine grids on every paired tooth and one more either side, each as wide as the
+# largest deviation needs. Both are grids of the same rule, where a round's tangent point
+# inside a wider window refines the grid about it. Measured at `coarse`: the perfect pair
+# 2e-4 at most; deviated, roots 3.4e-4, peaks on a round 1.2e-3, and the flank pressure
+# 1.8e-2 where it is the deviated tooth's, touching alone on the ring's far side under 209 N
+# (4 % of the load, resolved by few points at `coarse`: its own error estimate covers it).
+AGREE = {"root_stress_gear1_MPa": (3e-4, 5e-4), "root_stress_gear2_MPa": (3e-4, 5e-4),
+         "contact_pressure_MPa": (3e-4, 2e-3), "von_mises_max_MPa": (3e-4, 2e-3),
+         "flank_contact_pressure_MPa": (3e-4, 2.5e-2)}
 
 
 @pytest.mark.parametrize("deviated, inputs", [(0, {}), (1, {"pitch-deviation": ["1:11=5"]})])
@@ -108,3 +109,26 @@ def test_a_deviated_pitch_on_the_kept_contact_takes_its_own_gaps(settled):
     # the tooth turned 5 µm into the mesh stands about 5 µm closer along its normal's share
     assert (g_nom[on] - g_dev[on]).max() == pytest.approx(5e-3, rel=0.3)
     assert np.abs(g_nom[~on] - g_dev[~on]).max() < 1e-12
+
+
+def test_a_pitch_renumbered_is_the_pitch_solved_on_its_phase(monkeypatch):
+    # where the deviations move only open points, the last solution of the phase meets this
+    # pitch's contact conditions, and the positive definite compliance admits no other
+    checked = []
+    repeat = Phases.repeat
+
+    def solved_too(self, model, case, state):
+        out = repeat(self, model, case, state)
+        if out is not None:
+            solved = self.solve(model, case, state)
+            assert solved is not None
+            checked.append((out, solved[1]))
+        return out
+
+    monkeypatch.setattr(Phases, "repeat", solved_too)
+    _revolution({"pitch-deviation": ["1:11=5"]}, True)
+    assert len(checked) > 40
+    for out, sol in checked:
+        assert sol.rotation == pytest.approx(out.rotation, rel=1e-9)
+        top = sol.pressure.max()
+        assert np.abs(sol.pressure - out.detail.solution.pressure).max() < 1e-7 * top
