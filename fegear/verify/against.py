@@ -35,6 +35,11 @@ COMMANDS = (
     ("the paper study: fegear study studies/paper_trends.toml",
      ("study", "studies/paper_trends.toml", "--no-cache", "--out", "{tmp}/study")),
     ("fegear optimize --trials 40", ("optimize", "--trials", "40", "--out", "{tmp}/opt")),
+    ("revolution, one pitch deviation: fegear solve --revolution --pitch-deviation 1:11=5",
+     ("solve", "--revolution", "--pitch-deviation", "1:11=5", "--no-estimate",
+      "--out", "{tmp}/rev")),
+    ("revolution, gear-1 runout: fegear solve --revolution --runout 1=10@0",
+     ("solve", "--revolution", "--runout", "1=10@0", "--no-estimate", "--out", "{tmp}/rev")),
 )
 
 
