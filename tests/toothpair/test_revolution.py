@@ -16,6 +16,7 @@ from fegear.toothpair.output import write_revolution_outputs
 from fegear.toothpair.revolution import (
     amplitudes,
     loaded_rotation,
+    phase_major,
     revolution_positions,
     revolution_table,
 )
@@ -47,6 +48,9 @@ def test_a_revolution_covers_one_turn_of_gear_1(perfect):
     assert len(betas) == 2 * p.z1
     assert math.isclose((betas[-1] + betas[1] - 2 * betas[0]) * p.z2 / p.z1, 2 * math.pi)
     assert betas == revolution_positions(0.0, 2, p.z1, p.z2)
+    # solved phase by phase, handed back in the order of the rolling angles
+    assert [s.case.beta for s in perfect.solutions] == list(betas)
+    assert phase_major(6, 3) == [0, 2, 4, 1, 3, 5]
 
 
 def test_a_perfect_pair_gives_every_tooth_the_same_largest_stresses(perfect):

@@ -5,12 +5,20 @@ Both gears are rings of identical sectors, so the pair at β + k·p2 (gear 2 tur
 pitches, gear 1 k of its own) is the pair at β with every tooth and sector renumbered: the
 grids, the influence matrix A, the loads per unit hat pressure and the matching points are the
 same numbers (:func:`turned` renumbers them and turns the gear-frame points). Only the rigid
-gaps differ, where the pair's deviations differ from tooth to tooth. So a revolution, whose
-z1 pitches repeat each position of one pitch, assembles each of those positions once
-(:class:`Phases`) and solves the others as gap vectors on it: a contact solve, not a placement
-and an assembly. Where the kept contact does not hold a pitch's contact (a deviated tooth loads
-a grid's end, a probe, or a tooth without a grid), the pitch is placed and assembled as any
-position, and its contact is kept instead.
+gaps differ, where the pair's deviations differ from tooth to tooth. A revolution's z1 pitches
+meet each place within a pitch (a phase) z1 times; :class:`Phases` keeps one contact a phase
+and solves the other pitches as gap vectors on it:
+
+* the first position of a phase is placed and solved as any position; then the phase's
+  contact is made for its rotation, with fine grids on every paired tooth and one more either
+  side, each as wide as the largest deviation of any tooth needs, every column formed, and the
+  position is solved on it (:meth:`Phases.keep`);
+* another pitch is a contact solve on that contact turned to it (:meth:`Phases.solve`); where
+  the kept grids do not hold it (a tooth without a grid would close, a grid carries pressure
+  at an end), it is placed anew and its own contact kept instead;
+* a pitch whose rigid gaps leave the last solution of its phase meeting every contact
+  condition (the same gaps on every loaded tooth, the moved points open) is that solution
+  renumbered, stresses and all (:meth:`Phases.repeat`).
 """
 
 from __future__ import annotations
@@ -58,9 +66,9 @@ class Kept:
     """A position's contact kept for the positions whole pitches away: assembled at the rolling
     angle ``pitch`` gear-2 pitches from zero, every fine grid's columns formed, with its
     solved rotation (rad), the points that carried pressure (where a solve at another pitch
-    starts from), the rotation's elastic part (µm of arc at r0), and the teeth the driver
-    paired there with the deviations' reach on each (µm; a paired tooth that nothing of
-    brought within reach of gear 2 has no grid)."""
+    starts from), the rotation's elastic part (µm of arc at r0), and the teeth paired there,
+    each with the reach (µm) beyond the exact pair's that its grid was sought within (a paired
+    tooth with nothing of it within reach of gear 2 has no grid)."""
 
     pitch: int
     contact: RingContact
@@ -130,10 +138,16 @@ class Phases:
         return _renumbered(near, pitches, replace(near.case, beta=at), None, contact)
 
     def solved(self, model: RingModel, sol: PairSolution) -> None:
-        """Keep ``sol``, solved, for the pitches of its phase with its rigid gaps."""
+        """Keep ``sol``, solved, for the pitches of its phase with its rigid gaps, where it was
+        solved on the phase's kept contact (a contact turned from it shares its arrays); a
+        position placed anew, on grids of its own, is not repeated."""
         detail, case = sol.detail, sol.case
         phase, pitch = phase_of(case, case.beta)
         contact = detail.contact
+        kept = self._kept.get(phase)
+        if kept is None or contact.formed is not kept.contact.formed:
+            self._solved.pop(phase, None)
+            return
         gaps = rigid_gap(model, contact, case.params.ratio * case.beta + sol.rotation,
                          contact.feet.copy())[0]
         self._solved[phase] = Solved(pitch, gaps, sol)

@@ -71,22 +71,36 @@ def _revolution(inputs, repeats):
 # contact has fine grids on every paired tooth and one more either side, each as wide as the
 # largest deviation needs. Both are grids of the same rule, where a round's tangent point
 # inside a wider window refines the grid about it. Measured at `coarse`: the perfect pair
-# 2e-4 at most; deviated, roots 3.4e-4, peaks on a round 1.2e-3, and the flank pressure
-# 1.8e-2 where it is the deviated tooth's, touching alone on the ring's far side under 209 N
-# (4 % of the load, resolved by few points at `coarse`: its own error estimate covers it).
-AGREE = {"root_stress_gear1_MPa": (3e-4, 5e-4), "root_stress_gear2_MPa": (3e-4, 5e-4),
+# 2e-4 at most; deviated (5 µm on tooth 11; a 6 µm runout with 4 µm less centre distance),
+# roots 3.4e-4 / 7.4e-4, peaks on a round 1.2e-3 / 1.6e-3, each tooth's load 4e-4 of the
+# torque's, and the flank pressure 1.8e-2 / 2.3e-2 where it is a light tooth's (the deviated
+# tooth touching alone on the ring's far side under 209 N, 4 % of the load, few points across
+# its contact at `coarse`: its own error estimate covers it).
+AGREE = {"root_stress_gear1_MPa": (3e-4, 1e-3), "root_stress_gear2_MPa": (3e-4, 1e-3),
          "contact_pressure_MPa": (3e-4, 2e-3), "von_mises_max_MPa": (3e-4, 2e-3),
-         "flank_contact_pressure_MPa": (3e-4, 2.5e-2)}
+         "flank_contact_pressure_MPa": (3e-4, 3e-2)}
 
 
-@pytest.mark.parametrize("deviated, inputs", [(0, {}), (1, {"pitch-deviation": ["1:11=5"]})])
+def _revolution(inputs, repeats):
+    job = prepare_job({"shift": 0.016, "rotation": 0.002, "quality": "coarse",
+                       "revolution": True, "positions": 2, "no-estimate": True, **inputs})
+    solver = RingSolver(repeats=repeats)
+    return drive(job.case, job.betas, solver), solver
+
+
+@pytest.mark.parametrize("deviated, inputs", [
+    (0, {}), (1, {"pitch-deviation": ["1:11=5"]}),
+    pytest.param(1, {"runout": ["1=6@30"], "centre-distance-deviation": -4},
+                 marks=pytest.mark.slow)])
 def test_a_revolution_on_kept_phases_is_the_one_placed_anew(deviated, inputs):
     kept, solver = _revolution(inputs, True)
     anew, _ = _revolution(inputs, False)
     assert len(solver.phases._kept) == 2
     for a, b in zip(kept, anew):
-        assert {t.tooth: round(t.load_N, 6) for t in a.teeth if t.load_N > 0} == pytest.approx(
-            {t.tooth: round(t.load_N, 6) for t in b.teeth if t.load_N > 0}, rel=2e-3, abs=0.5)
+        total = sum(t.load_N for t in b.teeth)
+        loads = {t.tooth: t.load_N for t in b.teeth if t.load_N > 0}
+        assert {t.tooth: t.load_N for t in a.teeth if t.load_N > 0} == pytest.approx(
+            loads, abs=1e-3 * total)
         for key in HEADLINE:
             assert a.headline()[key] == pytest.approx(b.headline()[key],
                                                       rel=AGREE[key][deviated]), key
