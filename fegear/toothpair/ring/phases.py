@@ -92,6 +92,10 @@ class Phases:
         self._kept: dict[int, Kept] = {}
         self._solved: dict[int, Solved] = {}
 
+    def __len__(self) -> int:
+        """How many phases have a contact kept."""
+        return len(self._kept)
+
     def repeat(self, model: RingModel, case: SolveCase, state) -> PairSolution | None:
         """The solution at ``case.beta`` (clearance ``state``) as the last one solved in its
         phase, renumbered, where it solves this position's contact too; else None.
@@ -296,7 +300,7 @@ def turned(model: RingModel, contact: RingContact, pitches: int, beta: float,
     pair's deviations at ``beta``."""
     g1, g2 = model.gears
     turn1, turn2 = pitches * g1.pitch, pitches * g2.pitch
-    grids = tuple(_turned_grid(g, pitches, g1.count, g1.pitch) for g in contact.grids)
+    grids = tuple(turned_grid(g, pitches, g1.count, g1.pitch) for g in contact.grids)
     return RingContact(
         beta, contact.turn + turn1, grids, contact.offsets, rotate(contact.x, -turn1),
         rotate(contact.normal, -turn1), contact.weight,
@@ -308,7 +312,7 @@ def turned(model: RingModel, contact: RingContact, pitches: int, beta: float,
         contact.A, contact.formed, contact.feet - turn2, placed)
 
 
-def _turned_grid(grid: ToothGrid, pitches: int, count: int, pitch: float) -> ToothGrid:
+def turned_grid(grid: ToothGrid, pitches: int, count: int, pitch: float) -> ToothGrid:
     """``grid`` on the tooth ``pitches`` before its own (its points turned back by as many
     pitches, the tooth numbered within the gear)."""
     tooth = (grid.tooth - pitches) % count

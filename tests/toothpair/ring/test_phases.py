@@ -14,7 +14,7 @@ from fegear.toothpair.case import HEADLINE
 from fegear.toothpair.positions import drive
 from fegear.toothpair.ring.contact import rigid_gap
 from fegear.toothpair.ring.influence import ColumnRule, assemble_contact
-from fegear.toothpair.ring.phases import Phases, _turned_grid, phase_of, turned
+from fegear.toothpair.ring.phases import Phases, phase_of, turned, turned_grid
 from fegear.toothpair.ring.solver import RingSolver
 
 
@@ -30,7 +30,7 @@ def test_a_contact_turned_by_whole_pitches_is_the_one_assembled_there(settled, p
     beta = contact.beta + pitches * 2 * math.pi / p.z2
     whole = assemble_contact(model, contact.grids, contact.beta, contact.turn,
                              ColumnRule(probes=False))
-    grids = tuple(_turned_grid(g, pitches, p.z1, 2 * math.pi / p.z1) for g in contact.grids)
+    grids = tuple(turned_grid(g, pitches, p.z1, 2 * math.pi / p.z1) for g in contact.grids)
     there = assemble_contact(model, grids, beta, contact.turn + pitches * 2 * math.pi / p.z1,
                              ColumnRule(probes=False))
     moved = turned(model, whole, pitches, beta, None)
@@ -95,7 +95,7 @@ def _revolution(inputs, repeats):
 def test_a_revolution_on_kept_phases_is_the_one_placed_anew(deviated, inputs):
     kept, solver = _revolution(inputs, True)
     anew, _ = _revolution(inputs, False)
-    assert len(solver.phases._kept) == 2
+    assert len(solver.phases) == 2
     for a, b in zip(kept, anew):
         total = sum(t.load_N for t in b.teeth)
         loads = {t.tooth: t.load_N for t in b.teeth if t.load_N > 0}
