@@ -213,6 +213,7 @@ class Phases:
                                     elastic_um=p.arc_um(sol.rotation) - first_um)
         return contact, sol
 
+
 def _holds(case: SolveCase, state, kept: Kept, pitches: int, contact: RingContact,
            sol: RingContactSolution) -> bool:
     """Whether the ``kept`` grids, turned by ``pitches`` (``contact``), hold its solution
