@@ -160,9 +160,8 @@ class Phases:
               ) -> tuple[RingContact, RingContactSolution] | None:
         """The contact at ``case.beta`` on the contact kept for its phase, turned to it, and its
         solution; None where none is kept or the kept grids do not hold this contact: the
-        driver's rule at the solved rotation (``state``) chooses a tooth without a grid, a
-        grid carries pressure at an end, a probe carries any, or a point whose column is not
-        formed closes."""
+        driver's rule at the solved rotation (``state``) chooses a tooth without a grid, or a
+        grid carries pressure at an end (:func:`_holds`)."""
         phase, pitch = phase_of(case, case.beta)
         kept = self._kept.get(phase)
         if kept is None:
