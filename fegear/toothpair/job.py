@@ -115,7 +115,7 @@ def run_job(job: Job, out: Path | None, fields: bool = True, pictures: bool = Tr
     only after the solve, so a solve that fails leaves nothing behind."""
     progress.plan(2 + len(job.betas) + job.estimate + (out is not None))
     solved = solve_job(job, executor)
-    files = {} if out is None else write_job(solved, out, fields, pictures, executor)
+    files = {} if out is None else write_job(solved, out, fields, pictures)
     return JobResult(solved.summary, files, solved.rows, solved.solve_s)
 
 
@@ -193,16 +193,13 @@ def _pictured(sols):
     return max(sols, key=lambda s: s.root_stress[0])
 
 
-def write_job(solved: Solved, out: Path, fields: bool = True, pictures: bool = True,
-              executor: Executor = SERIAL) -> dict[str, Path]:
+def write_job(solved: Solved, out: Path, fields: bool = True,
+              pictures: bool = True) -> dict[str, Path]:
     """Write a solved job's files into ``out`` (made here): summary.json, the VTUs
-    (``fields``), the pictures (``pictures``) and, for a cycle or a revolution, its tables,
-    PVD series and plots. Returns name → path. The series (a VTU pair a frame: a second of a
-    revolution's writing) is handed to ``executor``, so that it is written beside the
-    pictures."""
+    (``fields``), the pictures (``pictures``) and, for a cycle, its table, PVD series and
+    plot. Returns name → path."""
     from ..files import prepare_dir
     from .output import (
-        pitch_peaks,
         write_cycle_outputs,
         write_cycle_series,
         write_mesh_stiffness,
@@ -214,26 +211,19 @@ def write_job(solved: Solved, out: Path, fields: bool = True, pictures: bool = T
     out = prepare_dir(out)
     rows, summary, case = solved.rows, solved.summary, solved.job.case
     files: dict[str, Path] = {}
-    series = None
-    if rows and fields:
-        name = "revolution" if solved.job.revolution else "cycle"
-        frames = (pitch_peaks(solved.solutions, rows, case.params.z1) if solved.job.revolution
-                  else solved.solutions)
-        series = executor.submit(write_cycle_series, frames, out, name)
-        files[f"{name}_pvd" if solved.job.revolution else "pvd"] = out / f"{name}.pvd"
     i = summary["inputs"]
     title = (f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T {i['torque_Nm']:g} N·m, "
              f"{len(solved.solutions)} positions, quality {i['quality']}")
     if solved.job.revolution:
         files.update(write_revolution_outputs(
             solved.solutions, rows, summary["revolution"], out,
-            f"{title}\n{_deviations_title(summary)}", solved.job.allowables, pictures))
+            f"{title}\n{_deviations_title(summary)}", solved.job.allowables, fields, pictures))
     elif rows:
         files.update(write_mesh_stiffness(out, rows, case))
+        if fields:
+            files.update(write_cycle_series(solved.solutions, out))
         if pictures:
             files.update(write_cycle_outputs(rows, out, title, solved.job.allowables))
     files.update(write_pair_outputs(solved.solution, out, {**summary, "files": {
         k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures))
-    if series is not None:
-        series.result()
     return files

@@ -52,11 +52,13 @@ def write_cycle_series(sols, out: Path, name: str = "cycle") -> dict[str, Path]:
 
 
 def write_revolution_outputs(sols, rows: list[dict], revolution: dict, out: Path, title: str,
-                             allowables, pictures: bool = True) -> dict[str, Path]:
+                             allowables, fields: bool = True, pictures: bool = True
+                             ) -> dict[str, Path]:
     """A revolution's files: revolution.csv (a row per position, gear 1's turn first),
     revolution_teeth.csv (each tooth's largest stresses), revolution_spectrum.csv (the
-    loaded rotation's harmonics), revolution.png and revolution_teeth.png (``pictures``).
-    Its series, revolution.pvd, is :func:`write_cycle_series` of :func:`pitch_peaks`."""
+    loaded rotation's harmonics), revolution.png and revolution_teeth.png (``pictures``)
+    and revolution.pvd (``fields``): a frame a pitch, at the pitch's position of the largest
+    gear-1 root stress (every position's fields would be z1 times a cycle's series)."""
     from .revolution import amplitudes, gear1_turn_deg, loaded_rotation
     from .revolution_plot import revolution_png, revolution_teeth_png
 
@@ -83,13 +85,15 @@ def write_revolution_outputs(sols, rows: list[dict], revolution: dict, out: Path
                                                  turn, harmonics, title)
         files["revolution_teeth_png"] = revolution_teeth_png(
             out / "revolution_teeth.png", per, revolution["worst"], allowables, title)
+    if fields:
+        files["revolution_pvd"] = write_cycle_series(_pitch_peaks(sols, rows, z1), out,
+                                                     "revolution")["pvd"]
     return files
 
 
-def pitch_peaks(sols, rows: list[dict], pitches: int) -> list:
+def _pitch_peaks(sols, rows: list[dict], pitches: int) -> list:
     """Of each pitch's positions (``sols`` in order, as many a pitch), the one of the largest
-    gear-1 root stress: a revolution's series has a frame a pitch (every position's fields
-    would be z1 times a cycle's series)."""
+    gear-1 root stress."""
     per = len(sols) // pitches
     return [sols[k * per + max(range(per), key=lambda i: rows[k * per + i][
         "root_stress_gear1_MPa"])] for k in range(pitches)]
