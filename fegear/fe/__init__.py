@@ -43,7 +43,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "assembly": ("Body", "RigidLink", "Placement", "SupportError", "assemble_body"),
     "dofs": ("node_dofs", "facet_nodes"),
     "flexibility": ("WindowFlexibility",),
-    "stress": ("StressField", "recover", "recover_many", "projection_matrices"),
+    "stress": ("StressField", "recover", "recover_many", "projection_matrices", "projector"),
     "hertz": ("HertzLine", "line_contact"),
     "vtu": ("vtu_fields", "write_vtu", "written_name"),
     "solvers": ("Factor", "SingularError", "BLAS_THREADS", "blas_threads"),

@@ -93,10 +93,7 @@ def recover_many(body: Body, U: np.ndarray, reused: bool = False) -> list[Stress
     a cycle), so its mass matrix is factorised by CHOLMOD, which solves six sectors in 2.2 ms
     against SuperLU's 4.7 ms; else by SuperLU, which factorises it in half CHOLMOD's time
     (13 against 26 ms on gear 1's template, 3 against 5 ms on a submodel)."""
-    if "projector" not in body.cache:
-        mass, parts = projection_matrices(body)
-        body.cache["projector"] = (Factor(mass) if reused else splu(mass), parts)
-    factor, parts = body.cache["projector"]
+    factor, parts = projector(body, reused)
     k = U.shape[1]
     nodal = factor.solve(np.hstack([C @ U for C in parts]))
     out = []
@@ -108,6 +105,16 @@ def recover_many(body: Body, U: np.ndarray, reused: bool = False) -> list[Stress
             szz = body.material.nu * (sxx + syy)
         out.append(StressField(sxx, syy, sxy, szz, body.material.plane))
     return out
+
+
+def projector(body: Body, reused: bool = True):
+    """The projection's factorised mass matrix and mixed matrices of ``body``, factorised here
+    the first time (kept in ``body.cache``; ``reused``: by CHOLMOD, :func:`recover_many`): a
+    model factorises it with the rest of what its positions share."""
+    if "projector" not in body.cache:
+        mass, parts = projection_matrices(body)
+        body.cache["projector"] = (Factor(mass) if reused else splu(mass), parts)
+    return body.cache["projector"]
 
 
 def pickled_cache(cache: dict) -> dict:

@@ -21,6 +21,7 @@ from dataclasses import dataclass, replace
 
 from ... import progress
 from ...errors import ContactError
+from ...fe import projector
 from ...geometry import Gear1Profile, Placed
 from ...timing import note, timed
 from ..case import ContactChecks, PairSolution, SolveCase
@@ -94,6 +95,10 @@ class RingSolver:
                 progress.stage("model: both gears meshed and condensed at quality "
                                f"{case.quality}")
                 self.model = ring_model(case, profile)
+        if not self.contact_only:   # the stresses' projection, which every position shares
+            with timed("assemble_factor"):
+                for side in self.model.gears:
+                    projector(side.body)
 
     def attempt(self, case: SolveCase, state, trial: Trial,
                 near: PairSolution | None) -> Attempt:
