@@ -45,15 +45,19 @@ COMMANDS = (
 
 @dataclass(frozen=True)
 class Timed:
-    """One command's wall times (s) here and there, each run."""
+    """One command's wall times (s) here and there, each run; ``failed_there``: why the other
+    checkout could not run it (a command it does not have: its times are then empty)."""
 
     name: str
     here: tuple[float, ...]
     there: tuple[float, ...]
+    failed_there: str = ""
 
     @property
     def ratio(self) -> float:
-        """Here over there, medians."""
+        """Here over there, medians (NaN where it did not run there)."""
+        if not self.there:
+            return float("nan")
         return statistics.median(self.here) / statistics.median(self.there)
 
 
@@ -76,10 +80,20 @@ def time_against(there: Path, repeat: int, say: Callable[[str], None] | None = N
     out = []
     for name, args in commands:
         times: dict[str, list[float]] = {"here": [], "there": []}
+        failed = ""
         for k in range(repeat):
             for side in ("here", "there") if k % 2 == 0 else ("there", "here"):
-                times[side].append(_run(*sides[side], args))
-        row = Timed(name, tuple(times["here"]), tuple(times["there"]))
+                try:
+                    times[side].append(_run(*sides[side], args))
+                except FegearError as err:
+                    if side == "here":
+                        raise
+                    failed = str(err)   # a command the other checkout does not have
+                    break
+            if failed:
+                times["there"].clear()
+                break
+        row = Timed(name, tuple(times["here"]), tuple(times["there"]), failed)
         out.append(row)
         if say:
             say(_line(row))
@@ -107,7 +121,10 @@ def _line(row: Timed) -> str:
     def runs(ts):
         return ", ".join(f"{t:.2f}" for t in ts)
 
-    return (f"| {row.name} | {statistics.median(row.here):.2f} ({runs(row.here)}) | "
+    here = f"{statistics.median(row.here):.2f} ({runs(row.here)})" if row.here else "-"
+    if row.failed_there:
+        return f"| {row.name} | {here} | failed there: {row.failed_there} | - |"
+    return (f"| {row.name} | {here} | "
             f"{statistics.median(row.there):.2f} ({runs(row.there)}) | {row.ratio:.3f} |")
 
 
