@@ -314,19 +314,16 @@ class ToothContact:
         betas = [float(b) for b in np.atleast_1d(betas)]
         if teeth is not None or len(betas) < 2:
             return self._states(betas, teeth, refine, directions)
-        pitch2 = 2 * np.pi / self.params.z2
-        turns = [round((b - betas[0]) / pitch2) for b in betas]
-        base = [b - k * pitch2 for b, k in zip(betas, turns)]
-        keys = [round((b - betas[0]) / pitch2 * PHASES) for b in base]
-        first = {}
-        for i, key in enumerate(keys):
-            first.setdefault(key, i)
+        places = [pitch_phase(b, self.params.z2) for b in betas]
+        first: dict[int, int] = {}
+        for i, (phase, _) in enumerate(places):
+            first.setdefault(phase, i)
         if len(first) == len(betas):
             return self._states(betas, None, refine, directions)
         solved = dict(zip(first, self._states([betas[i] for i in first.values()], None,
                                               refine, directions)))
-        return [_turned_on(solved[key], beta, turns[i] - turns[first[key]], self.params.z1)
-                for i, (key, beta) in enumerate(zip(keys, betas))]
+        return [_turned_on(solved[phase], beta, pitch - places[first[phase]][1],
+                           self.params.z1) for (phase, pitch), beta in zip(places, betas)]
 
     def _states(self, betas, teeth, refine: bool,
                 directions: tuple[int, ...]) -> list[ContactState]:
@@ -503,10 +500,20 @@ def golden_min(f, a, b, iters: int):
 NEIGHBOURS = 3   # crossings tried on each side of a point's place among its circle's crossings
 
 
-#: the rolling angles that :meth:`ToothContact.states` takes for the same phase of the mesh: a
-#: gear-2 pitch in this many parts (angles that fall within one part of a pitch apart from
-#: another by whole pitches: the same search)
+#: the parts of a gear-2 pitch in which rolling angles whole pitches apart count as the same
+#: place of the mesh (:func:`pitch_phase`): angles within one part of it share a search
+#: (:meth:`ToothContact.states`) and a revolution's kept contact
+#: (:mod:`fegear.toothpair.ring.phases`)
 PHASES = 10 ** 9
+
+
+def pitch_phase(beta: float, z2: int) -> tuple[int, int]:
+    """(phase, pitch) of the rolling angle ``beta`` (rad): its place within a gear-2 pitch, in
+    :data:`PHASES` parts, and how many whole pitches of gear 2's ``z2`` it lies from zero.
+    Two angles with one phase are the same pair, gear 1's and gear 2's teeth counted on by
+    the difference of their pitches."""
+    steps = round(beta / (2 * math.pi / z2) * PHASES)
+    return steps % PHASES, steps // PHASES
 
 
 def _turned_on(state: ContactState, beta: float, pitches: int, z1: int) -> ContactState:

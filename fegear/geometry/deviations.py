@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
@@ -311,8 +311,6 @@ class Placed:
         flanks, which only the pitch, centre-distance and runout deviations move) moved by the
         deviations: one Newton step on the deviated gap at the point that closes it (exact for
         a pitch deviation of gear 1, to the second order in the deviation otherwise)."""
-        from dataclasses import replace as _replace
-
         p = self.params
         alpha = p.ratio * self.beta
         key, point = ("plus_um", "plus_point") if direction > 0 else ("minus_um", "minus_point")
@@ -329,6 +327,6 @@ class Placed:
         # either way the clearance grows by the gap over its rate's size
         grown = {t.tooth: p.arc_um(abs(gi) / self.lever(ri, direction)) * math.copysign(1.0, gi)
                  for t, gi, ri in zip(closing, g, rate)}
-        return _replace(state, teeth=tuple(
-            _replace(t, **{key: float(getattr(t, key) + grown[t.tooth])})
+        return replace(state, teeth=tuple(
+            replace(t, **{key: float(getattr(t, key) + grown[t.tooth])})
             if t.tooth in grown else t for t in state.teeth))

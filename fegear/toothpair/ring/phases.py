@@ -29,7 +29,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...errors import ContactError
-from ...geometry import Placed
+from ...geometry import Placed, pitch_phase
 from ...planar import rotate
 from ..case import PairSolution, SolveCase
 from ..positions import Trial
@@ -43,8 +43,6 @@ from .results import RingDetail, tooth_result
 from .side import Located
 from .stresses import RingStresses, RootZone
 
-#: the resolution (a fraction of a gear-2 pitch) at which two rolling angles count as one phase
-PHASE_STEPS = 2 ** 20
 #: rigid gaps (mm) that differ by less than this anywhere are the same contact problem: 0.1 nm,
 #: a ten-thousandth of the smallest deviation given in whole µm, far above the turned
 #: points' rounding (1e-15 mm)
@@ -78,13 +76,6 @@ class Kept:
     reach_um: dict[int, float]
 
 
-def phase_of(case: SolveCase, beta: float) -> tuple[int, int]:
-    """(phase, pitch) of the rolling angle ``beta`` (rad): its place within a gear-2 pitch, in
-    :data:`PHASE_STEPS`, and how many whole pitches it lies from zero."""
-    steps = round(beta / (2 * math.pi / case.params.z2) * PHASE_STEPS)
-    return steps % PHASE_STEPS, steps // PHASE_STEPS
-
-
 class Phases:
     """The contacts kept by phase (:class:`Kept`), for one model."""
 
@@ -105,7 +96,7 @@ class Phases:
         pressures (their gaps are the solved ones moved by as much): the pressures and the
         rotation then meet every contact condition, and the compliance, positive definite,
         admits one solution. Those teeth's results are formed again, and the first touch."""
-        phase, pitch = phase_of(case, case.beta)
+        phase, pitch = pitch_phase(case.beta, case.params.z2)
         last, kept = self._solved.get(phase), self._kept.get(phase)
         if last is None or kept is None:
             return None
@@ -120,8 +111,8 @@ class Phases:
         if not moved.any():
             return _renumbered(sol, pitches, case, state, contact)
         pressure = sol.detail.solution.pressure
-        loaded = np.repeat([pressure[contact.block(k)].max() > 0
-                            for k in range(len(contact.grids))], np.diff(contact.offsets))
+        loaded = np.array([pressure[contact.block(k)].max() > 0
+                           for k in range(len(contact.grids))])[contact.grid_index]
         opened = sol.detail.solution.gap + rigid[0] - last.gaps
         if (moved & loaded).any() or (opened[moved] <= 0).any():
             return None
@@ -146,7 +137,7 @@ class Phases:
         solved on the phase's kept contact (a contact turned from it shares its arrays); a
         position placed anew, on grids of its own, is not repeated."""
         detail, case = sol.detail, sol.case
-        phase, pitch = phase_of(case, case.beta)
+        phase, pitch = pitch_phase(case.beta, case.params.z2)
         contact = detail.contact
         kept = self._kept.get(phase)
         if kept is None or contact.formed is not kept.contact.formed:
@@ -162,7 +153,7 @@ class Phases:
         solution; None where none is kept or the kept grids do not hold this contact: the
         driver's rule at the solved rotation (``state``) chooses a tooth without a grid, or a
         grid carries pressure at an end (:func:`_holds`)."""
-        phase, pitch = phase_of(case, case.beta)
+        phase, pitch = pitch_phase(case.beta, case.params.z2)
         kept = self._kept.get(phase)
         if kept is None:
             return None
@@ -186,7 +177,7 @@ class Phases:
         every column formed. None (nothing kept) where it does not hold the position's own
         contact."""
         p = case.params
-        phase, pitch = phase_of(case, case.beta)
+        phase, pitch = pitch_phase(case.beta, case.params.z2)
         first_um = state.closest(+1).plus_um
         elastic_um = max(p.arc_um(settled.rotation) - first_um, 1e-6)
         teeth = set(choose_teeth(state, p.arc_um(settled.rotation), case.extra_pairs + 1))

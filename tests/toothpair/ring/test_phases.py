@@ -8,13 +8,13 @@ import math
 import numpy as np
 import pytest
 
-from fegear.geometry import Deviations, Placed, ToothDeviation
+from fegear.geometry import Deviations, Placed, ToothDeviation, pitch_phase
 from fegear.toothpair import prepare_job
 from fegear.toothpair.case import HEADLINE
 from fegear.toothpair.positions import drive
 from fegear.toothpair.ring.contact import rigid_gap
 from fegear.toothpair.ring.influence import ColumnRule, assemble_contact
-from fegear.toothpair.ring.phases import Phases, phase_of, turned, turned_grid
+from fegear.toothpair.ring.phases import Phases, turned, turned_grid
 from fegear.toothpair.ring.solver import RingSolver
 
 
@@ -51,19 +51,12 @@ def test_a_contact_turned_by_whole_pitches_is_the_one_assembled_there(settled, p
 
 
 def test_phases_tell_the_place_within_a_pitch_and_the_pitch(baseline_ring):
-    case = baseline_ring.case
-    pitch = 2 * math.pi / case.params.z2
-    phase, k = phase_of(case, 0.3 * pitch)
-    assert phase_of(case, 0.3 * pitch + 5 * pitch) == (phase, k + 5)
-    assert phase_of(case, 0.3 * pitch - 2 * pitch) == (phase, k - 2)
-    assert phase_of(case, 0.31 * pitch)[0] != phase
-
-
-def _revolution(inputs, repeats):
-    job = prepare_job({"shift": 0.016, "rotation": 0.002, "quality": "coarse",
-                       "revolution": True, "positions": 2, "no-estimate": True, **inputs})
-    solver = RingSolver(repeats=repeats)
-    return drive(job.case, job.betas, solver), solver
+    z2 = baseline_ring.case.params.z2
+    pitch = 2 * math.pi / z2
+    phase, k = pitch_phase(0.3 * pitch, z2)
+    assert pitch_phase(0.3 * pitch + 5 * pitch, z2) == (phase, k + 5)
+    assert pitch_phase(0.3 * pitch - 2 * pitch, z2) == (phase, k - 2)
+    assert pitch_phase(0.31 * pitch, z2)[0] != phase
 
 
 # A position placed anew has grids whose ends its own rotation sets, a deviated tooth's window
