@@ -32,7 +32,7 @@ from typing import Protocol
 from .. import progress
 from ..errors import ContactError, FegearError
 from ..fe import blas_threads, keep_freed_memory
-from ..geometry import Gear1Profile, Placed, ToothContact, gear1_profile
+from ..geometry import Gear1Profile, Placed, ToothContact, gear1_profile, pitch_phase
 from ..running import SERIAL, Executor
 from ..timing import clocked, timed
 from .case import PairSolution, SolveCase
@@ -173,25 +173,28 @@ class _Clearances:
         these positions, and where they are fewer than a turn, at :data:`TURN_CHECK` angles
         a pitch over one (a pair that jams anywhere cannot be turned to any position)."""
         dev, params = self._case.deviations, self._case.params
-        states = [(b, Placed(dev, params, b).clearances(st)) for b, st in self._states]
-        self._refuse_closed(states)
-        pitch2 = 2 * math.pi / params.z2
-        if len({round((b - self._betas[0]) / pitch2) for b in self._betas}) < params.z1:
+        placed = [Placed(dev, params, b) for b in self._betas]
+        states = [(b, at.clearances(st)) for (b, st), at in zip(self._states, placed)]
+        self._refuse_closed(states, placed)
+        if len({pitch_phase(b, params.z2)[1] for b in self._betas}) < params.z1:
             turn = revolution_positions(self._betas[0], TURN_CHECK, params.z1, params.z2)
-            self._refuse_closed([(b, Placed(dev, params, b).clearances(st)) for b, st in
-                                 zip(turn, self._find(turn, directions=(+1,)))])
+            at_turn = [Placed(dev, params, b) for b in turn]
+            self._refuse_closed([(b, at.clearances(st)) for b, st, at in
+                                 zip(turn, self._find(turn, directions=(+1,)), at_turn)],
+                                at_turn)
         return states
 
-    def _refuse_closed(self, states) -> None:
-        """Where a tooth of ``states`` (β, deviated state) stands into its mate, the coast
-        side found and moved too, for the check that the deviations leave the pair its
-        backlash (:func:`~.teeth.refuse_closed`)."""
-        dev, params = self._case.deviations, self._case.params
-        behind = [(b, st) for b, st in states if st.closest(+1).plus_um < 0]
+    def _refuse_closed(self, states, placed: list[Placed]) -> None:
+        """Where a tooth of ``states`` (β, deviated state; ``placed``: the deviations at each
+        β) stands into its mate, the coast side found and moved too, for the check that the
+        deviations leave the pair its backlash (:func:`~.teeth.refuse_closed`)."""
+        behind = [(b, st, at) for (b, st), at in zip(states, placed)
+                  if st.closest(+1).plus_um < 0]
         if behind:
-            coast = self._find([b for b, _ in behind], directions=(-1,))
-            refuse_closed([(b, st, Placed(dev, params, b).clearances(back, -1))
-                           for (b, st), back in zip(behind, coast)], dev)
+            coast = self._find([b for b, _, _ in behind], directions=(-1,))
+            refuse_closed([(b, st, at.clearances(back, -1))
+                           for (b, st, at), back in zip(behind, coast)],
+                          self._case.deviations)
 
 
 def _chain(case: SolveCase, states, span: range, solver: PositionModel
