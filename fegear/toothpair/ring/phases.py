@@ -16,9 +16,13 @@ and solves the other pitches as gap vectors on it:
 * another pitch is a contact solve on that contact turned to it (:meth:`Phases.solve`); where
   the kept grids do not hold it (a tooth without a grid would close, a grid carries pressure
   at an end), it is placed anew and its own contact kept instead;
-* a pitch whose rigid gaps leave the last solution of its phase meeting every contact
-  condition (the same gaps on every loaded tooth, the moved points open) is that solution
-  renumbered, stresses and all (:meth:`Phases.repeat`).
+* a pitch whose teeth on the kept contact carry the deviations of a pitch solved before, place
+  by place, is the same contact problem: that solution renumbered, stresses and all, with no
+  rigid gap formed (:meth:`Phases.repeat`; a runout turns with its gear, so with one every
+  pitch differs);
+* otherwise, a pitch whose rigid gaps leave the last solution of its phase meeting every
+  contact condition (the same gaps on every loaded tooth, the moved points open) is that
+  solution renumbered, with the moved teeth's results formed again.
 """
 
 from __future__ import annotations
@@ -66,7 +70,9 @@ class Kept:
     solved rotation (rad), the points that carried pressure (where a solve at another pitch
     starts from), the rotation's elastic part (µm of arc at r0), and the teeth paired there,
     each with the reach (µm) beyond the exact pair's that its grid was sought within (a paired
-    tooth with nothing of it within reach of gear 2 has no grid)."""
+    tooth with nothing of it within reach of gear 2 has no grid); ``teeth``: each gear's teeth
+    whose deviations its rigid gaps can see (gear 1's with grids, gear 2's that their points
+    face and one either side), in order."""
 
     pitch: int
     contact: RingContact
@@ -74,6 +80,17 @@ class Kept:
     active: np.ndarray
     elastic_um: float
     reach_um: dict[int, float]
+    teeth: tuple[tuple[int, ...], tuple[int, ...]] = ((), ())
+
+    def seen(self, deviations, pitches: int, z: tuple[int, int]) -> tuple | None:
+        """The deviations its rigid gaps see turned by ``pitches`` gear-2 pitches, place by
+        place (:attr:`teeth`, each renumbered): two pitches that see the same are one contact
+        problem. None with a runout (its offset turns with the gear: every pitch differs)."""
+        if deviations.runout1.fr or deviations.runout2.fr:
+            return None
+        return tuple(tuple(table.get((t - pitches) % zg) for t in teeth)
+                     for table, teeth, zg in zip((deviations.teeth(1), deviations.teeth(2)),
+                                                 self.teeth, z))
 
 
 class Phases:
@@ -82,42 +99,47 @@ class Phases:
     def __init__(self) -> None:
         self._kept: dict[int, Kept] = {}
         self._solved: dict[int, Solved] = {}
+        self._seen: dict[int, dict[tuple, Solved]] = {}   # phase → what it saw → solution
 
     def __len__(self) -> int:
         """How many phases have a contact kept."""
         return len(self._kept)
 
     def repeat(self, model: RingModel, case: SolveCase, state) -> PairSolution | None:
-        """The solution at ``case.beta`` (clearance ``state``) as the last one solved in its
+        """The solution at ``case.beta`` (clearance ``state``) as one solved before in its
         phase, renumbered, where it solves this position's contact too; else None.
 
-        It does where the rigid gaps are the same on every tooth that carries load, and the
-        points of the others, whose rigid gaps the deviations moved, stay open under the same
-        pressures (their gaps are the solved ones moved by as much): the pressures and the
-        rotation then meet every contact condition, and the compliance, positive definite,
-        admits one solution. Those teeth's results are formed again, and the first touch."""
-        phase, pitch = pitch_phase(case.beta, case.params.z2)
+        It does where its teeth on the kept contact see the deviations a pitch solved before
+        saw (:meth:`Kept.seen`): that solution, renumbered whole. Otherwise it tries the
+        pitch of its phase that saw no deviation, then the last one solved: a solution does
+        where the rigid gaps are the same on every tooth that carries load, and the points of
+        the others, whose rigid gaps the deviations moved, stay open under the same pressures
+        (their gaps are the solved ones moved by as much): the pressures and the rotation then
+        meet every contact condition, and the compliance, positive definite, admits one
+        solution. Those teeth's results are formed again, and the first touch."""
+        p = case.params
+        phase, pitch = pitch_phase(case.beta, p.z2)
         last, kept = self._solved.get(phase), self._kept.get(phase)
         if last is None or kept is None:
             return None
-        pitches, sol = pitch - last.pitch, last.solution
-        placed = Placed(case.deviations, case.params, case.beta) if case.deviations else None
-        contact = turned(model, sol.detail.contact, pitches, case.beta, placed)
-        turn = case.params.ratio * case.beta + sol.rotation
-        rigid = rigid_gap(model, contact, turn, contact.feet.copy())
-        moved = np.abs(rigid[0] - last.gaps) > SAME_GAP
-        if not _teeth_hold(case, state, kept, pitch - kept.pitch, contact, sol.rotation):
-            return None
-        if not moved.any():
-            return _renumbered(sol, pitches, case, state, contact)
-        pressure = sol.detail.solution.pressure
-        loaded = np.array([pressure[contact.block(k)].max() > 0
-                           for k in range(len(contact.grids))])[contact.grid_index]
-        opened = sol.detail.solution.gap + rigid[0] - last.gaps
-        if (moved & loaded).any() or (opened[moved] <= 0).any():
-            return None
-        again = sorted({int(k) for k in contact.grid_index[moved]})
-        return _renumbered(sol, pitches, case, state, contact, (rigid, again))
+        placed = Placed(case.deviations, p, case.beta) if case.deviations else None
+        seen = kept.seen(case.deviations, pitch - kept.pitch, (p.z1, p.z2))
+        solved = self._seen.get(phase, {})
+        same = solved.get(seen)
+        if same is not None:
+            sol = same.solution
+            contact = turned(model, sol.detail.contact, pitch - same.pitch, case.beta, placed)
+            if not _teeth_hold(case, state, kept, pitch - kept.pitch, contact, sol.rotation):
+                return None
+            return _renumbered(sol, pitch - same.pitch, case, state, contact)
+        exact = None if seen is None else solved.get(tuple((None,) * len(t) for t in seen))
+        for base in (exact, last) if exact is not last else (last,):
+            out = None if base is None else _moved_only(model, case, state, kept, base, placed)
+            if out is not None:
+                if seen is not None:
+                    self._seen.setdefault(phase, {})[seen] = out
+                return out.solution
+        return None
 
     @staticmethod
     def beside(model: RingModel, near: PairSolution, beta: float) -> PairSolution:
@@ -146,6 +168,9 @@ class Phases:
         gaps = rigid_gap(model, contact, case.params.ratio * case.beta + sol.rotation,
                          contact.feet.copy())[0]
         self._solved[phase] = Solved(pitch, gaps, sol)
+        seen = kept.seen(case.deviations, pitch - kept.pitch, (case.params.z1, case.params.z2))
+        if seen is not None:
+            self._seen.setdefault(phase, {})[seen] = self._solved[phase]
 
     def solve(self, model: RingModel, case: SolveCase, state
               ) -> tuple[RingContact, RingContactSolution] | None:
@@ -196,12 +221,48 @@ class Phases:
         except ContactError:
             return None
         kept = Kept(pitch, replace(contact, feet=contact.feet.copy()), settled.rotation,
-                    np.zeros(contact.npoints, bool), elastic_um, dict.fromkeys(teeth, widest))
+                    np.zeros(contact.npoints, bool), elastic_um, dict.fromkeys(teeth, widest),
+                    _seen_teeth(contact, p.z2))
         if sol is None or not _holds(case, state, kept, 0, contact, sol):
             return None
         self._kept[phase] = replace(kept, rotation=sol.rotation, active=sol.pressure > 0,
                                     elastic_um=p.arc_um(sol.rotation) - first_um)
+        self._seen.pop(phase, None)   # what was solved on the contact it replaces
         return contact, sol
+
+
+def _seen_teeth(contact: RingContact, z2: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
+    """The teeth whose deviations ``contact``'s rigid gaps can see (:attr:`Kept.teeth`):
+    gear 1's with grids, gear 2's under its points' feet and one either side."""
+    feet = contact.feet[np.isfinite(contact.feet)]
+    under = np.round(feet * z2 / (2 * math.pi)).astype(int)
+    near = np.unique(np.concatenate([under - 1, under, under + 1]) % z2)
+    return tuple(g.tooth for g in contact.grids), tuple(int(t) for t in near)
+
+
+def _moved_only(model: RingModel, case: SolveCase, state, kept: Kept, base: Solved,
+                placed: Placed | None) -> Solved | None:
+    """``base`` renumbered to ``case.beta`` where it solves that contact too
+    (:meth:`Phases.repeat`), kept with its rigid gaps there; else None."""
+    pitch = pitch_phase(case.beta, case.params.z2)[1]
+    pitches, sol = pitch - base.pitch, base.solution
+    contact = turned(model, sol.detail.contact, pitches, case.beta, placed)
+    if not _teeth_hold(case, state, kept, pitch - kept.pitch, contact, sol.rotation):
+        return None
+    turn = case.params.ratio * case.beta + sol.rotation
+    rigid = rigid_gap(model, contact, turn, contact.feet.copy())
+    moved = np.abs(rigid[0] - base.gaps) > SAME_GAP
+    if not moved.any():
+        return Solved(pitch, rigid[0], _renumbered(sol, pitches, case, state, contact))
+    pressure = sol.detail.solution.pressure
+    loaded = np.array([pressure[contact.block(k)].max() > 0
+                       for k in range(len(contact.grids))])[contact.grid_index]
+    opened = sol.detail.solution.gap + rigid[0] - base.gaps
+    if (moved & loaded).any() or (opened[moved] <= 0).any():
+        return None
+    again = sorted({int(k) for k in contact.grid_index[moved]})
+    return Solved(pitch, rigid[0], _renumbered(sol, pitches, case, state, contact,
+                                               (rigid, again)))
 
 
 def _holds(case: SolveCase, state, kept: Kept, pitches: int, contact: RingContact,

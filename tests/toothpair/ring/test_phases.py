@@ -139,3 +139,29 @@ def test_a_pitch_renumbered_is_the_pitch_solved_on_its_phase(monkeypatch):
         assert sol.rotation == pytest.approx(out.rotation, rel=1e-9)
         top = sol.pressure.max()
         assert np.abs(sol.pressure - out.detail.solution.pressure).max() < 1e-7 * top
+
+
+def test_pitches_that_see_the_same_deviations_are_one_contact_problem(settled):
+    from fegear.geometry import Runout
+    from fegear.toothpair.ring.phases import Kept, _seen_teeth
+
+    contact = settled.contact
+    p = settled.case.params
+    teeth = _seen_teeth(contact, p.z2)
+    assert teeth[0] == tuple(g.tooth for g in contact.grids)
+    under = np.round(contact.feet * p.z2 / (2 * math.pi)).astype(int) % p.z2
+    assert set(under) < set(teeth[1])          # one either side too
+    kept = Kept(0, contact, 0.0, np.zeros(contact.npoints, bool), 1.0, {}, teeth)
+    z = (p.z1, p.z2)
+    far = (teeth[0][0] + p.z1 // 2) % p.z1     # a gear-1 tooth far from the kept contact
+    dev = Deviations({far: ToothDeviation(pitch=5)})
+    exact = kept.seen(Deviations(), 0, z)
+    assert kept.seen(dev, 0, z) == exact
+    # turned on until the deviated tooth stands where the kept contact's first grid is
+    pitches = (teeth[0][0] - far) % p.z1
+    assert kept.seen(dev, pitches, z) != exact
+    assert kept.seen(dev, pitches, z) == kept.seen(dev, pitches + p.z1, z)
+    mate = Deviations(gear2={(teeth[1][0] - 3) % p.z2: ToothDeviation(slope=2)})
+    assert kept.seen(mate, 0, z) == exact and kept.seen(mate, 3, z) != exact
+    # a runout's offset turns with its gear: no two pitches are known to be alike
+    assert kept.seen(Deviations(runout1=Runout(6, 30)), 0, z) is None
