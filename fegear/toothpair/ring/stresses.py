@@ -210,8 +210,11 @@ def surface_von_mises(model: RingModel, contact: RingContact, pressure: np.ndarr
             blk = contact.block(k)
             on = np.flatnonzero(loaded[blk])    # only these are read
             if len(on):
-                eps_hp[blk.start + on] = strain_matrix(grid.s[on], m.depth[blk][on], grid.s,
-                                                       E, nu) @ pressure[blk]
+                # the hats from the first loaded point's neighbour to the last's: the same
+                # integrals as over the whole grid, where the others carry nothing
+                a, b = max(on[0] - 1, 0), min(on[-1] + 2, len(grid))
+                eps_hp[blk.start + on] = strain_matrix(grid.s[on], m.depth[blk][on],
+                                                       grid.s[a:b], E, nu) @ pressure[blk][a:b]
         sig_t = E * (eps_fe - eps_hp) - pressure
         out[g] = np.where(loaded, np.sqrt(pressure ** 2 + sig_t ** 2 + pressure * sig_t), 0.0)
     return out
