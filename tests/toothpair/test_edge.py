@@ -44,3 +44,23 @@ def test_an_edge_spike_beside_a_flank_contact_is_split_at_its_own_width():
     far = (s > 0.2 + EDGE_ZONE * b_e)
     assert split.flank_MPa == pytest.approx((spike + flank)[far].max(), rel=1e-9)
     assert split.flank_MPa == pytest.approx(500.0, rel=1e-3)
+
+
+def test_the_split_does_not_hang_on_which_side_of_the_tangent_point_an_edge_peaks():
+    """A Hertz spike on the round's end, peaking a third of its half-width on the round or as
+    far off it, with a tail falling slowly down the flank (as on these near-conformal flanks)
+    beside a lighter flank contact: the round's load moves 2.4-fold between the two, its
+    largest pressure by 6 %, and the flank pressure, the tail read 10 b_e from the round, by
+    2.3 %. (With b_e from the round's load it moved by 13 %.)"""
+    s = np.linspace(0.0, 1.0, 400001)
+    on_round = s <= 0.2
+    b_e = 0.004
+    p0 = E_STAR * b_e / (2 * 0.25)
+    tail = np.where(on_round, 0.0, 1200.0 * np.exp(-(s - 0.2) / 0.1))
+    flank = _hertz(s, 0.6, 0.3, 300.0)
+    reads = [flank_and_edge(s, _hertz(s, centre, b_e, p0) + tail + flank, on_round, 5.0, 0.25,
+                            E_STAR) for centre in (0.2 - b_e / 3, 0.2 + b_e / 3)]
+    assert reads[0].edge_load_N > 2.0 * reads[1].edge_load_N
+    assert reads[1].edge_MPa == pytest.approx(reads[0].edge_MPa * math.sqrt(8) / 3, rel=1e-3)
+    assert reads[0].flank_MPa > 600.0
+    assert reads[0].flank_MPa == pytest.approx(reads[1].flank_MPa, rel=0.03)

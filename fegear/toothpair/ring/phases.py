@@ -20,9 +20,10 @@ and solves the other pitches as gap vectors on it:
   by place, is the same contact problem: that solution renumbered, stresses and all, with no
   rigid gap formed (:meth:`Phases.repeat`; a runout turns with its gear, so with one every
   pitch differs);
-* otherwise, a pitch whose rigid gaps leave the last solution of its phase meeting every
-  contact condition (the same gaps on every loaded tooth, the moved points open) is that
-  solution renumbered, with the moved teeth's results formed again.
+* otherwise, a pitch whose rigid gaps leave a solution of its phase (the one that saw no
+  deviation, else the last one solved) meeting every contact condition (the same gaps on
+  every loaded tooth, the moved points open) is that solution renumbered, with the moved
+  teeth's results formed again.
 """
 
 from __future__ import annotations
@@ -222,7 +223,7 @@ class Phases:
             return None
         kept = Kept(pitch, replace(contact, feet=contact.feet.copy()), settled.rotation,
                     np.zeros(contact.npoints, bool), elastic_um, dict.fromkeys(teeth, widest),
-                    _seen_teeth(contact, p.z2))
+                    seen_teeth(contact, p.z2))
         if sol is None or not _holds(case, state, kept, 0, contact, sol):
             return None
         self._kept[phase] = replace(kept, rotation=sol.rotation, active=sol.pressure > 0,
@@ -231,7 +232,7 @@ class Phases:
         return contact, sol
 
 
-def _seen_teeth(contact: RingContact, z2: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
+def seen_teeth(contact: RingContact, z2: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
     """The teeth whose deviations ``contact``'s rigid gaps can see (:attr:`Kept.teeth`):
     gear 1's with grids, gear 2's under its points' feet and one either side."""
     feet = contact.feet[np.isfinite(contact.feet)]

@@ -143,11 +143,11 @@ def test_a_pitch_renumbered_is_the_pitch_solved_on_its_phase(monkeypatch):
 
 def test_pitches_that_see_the_same_deviations_are_one_contact_problem(settled):
     from fegear.geometry import Runout
-    from fegear.toothpair.ring.phases import Kept, _seen_teeth
+    from fegear.toothpair.ring.phases import Kept, seen_teeth
 
     contact = settled.contact
     p = settled.case.params
-    teeth = _seen_teeth(contact, p.z2)
+    teeth = seen_teeth(contact, p.z2)
     assert teeth[0] == tuple(g.tooth for g in contact.grids)
     under = np.round(contact.feet * p.z2 / (2 * math.pi)).astype(int) % p.z2
     assert set(under) < set(teeth[1])          # one either side too
