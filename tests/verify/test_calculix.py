@@ -417,7 +417,7 @@ def test_ccx_reads_a_deviated_pair_as_the_sector_model_does(tmp_path):
     −1.6 % / −1.0 %). The flank pressure beside an edge contact is read beyond 10 edge
     half-widths, each from the round's largest pressure (fegear.toothpair.edge), so it moves
     with that peak: CalculiX's facet means read the peak of a contact a few facets wide lower
-    (tooth 11: 2332 against 2480 MPa), its zone is narrower, and its flank higher (measured:
+    (tooth 11: 2334 against 2479 MPa), its zone is narrower, and its flank higher (measured:
     teeth 10 and 11 +0.8 % / +4.9 %): within 2 % plus the peaks' difference."""
     from fegear.geometry import Deviations, PairParameters, ToothDeviation
 

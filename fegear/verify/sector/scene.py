@@ -92,6 +92,10 @@ class Scene:
     b_full: float                 # Hertz half-width for the whole load on one tooth, mm
     shape: RoundedProfile = field(repr=False)
     curve2: Cycloid = field(repr=False)
+    contact_sizes: dict[int, float] = field(default_factory=dict)  # paired tooth → its
+    # windows' element size (mm, both gears) …
+    window_lengths: dict[int, float] = field(default_factory=dict)  # … and gear 1's window
+    # length (mm of arc)
 
     def master(self, beta: float) -> Gear2Master:
         """Gear 2's exact curve placed at rolling angle β."""
@@ -188,14 +192,17 @@ class SectorBody:
 
 def build_scene(case: SectorCase, profile: Gear1Profile, positions, teeth: tuple[int, ...],
                 shape: RoundedProfile | None = None,
-                reach: dict[int, float] | None = None) -> Scene:
+                reach: dict[int, float] | None = None,
+                finer: dict[int, float] | None = None) -> Scene:
     """Sector geometries for the paired ``teeth`` (gear-1 indices) over ``positions``, a
     sequence of (β, clearance state at β): each tooth's contact windows cover its predicted
     contact points at every β, and the gear-2 sector covers gear 1's at every β.
 
     Gear 1's tip edges are rounded to ``case.edge_radius`` (:mod:`fegear.geometry.tip_edge`);
     pass ``shape`` to reuse one :class:`RoundedProfile`. ``reach``: factors (tooth → factor)
-    on the contact windows of teeth whose contact was longer than their window."""
+    on the contact windows of teeth whose contact was longer than their window; ``finer``:
+    factors (tooth → factor below 1) on the element size of the windows of teeth whose
+    contact was narrower than the size was made for (a lightly loaded tooth)."""
     p = case.params
     shape = shape if shape is not None else RoundedProfile(profile, case.edge_radius)
     betas = tuple(b for b, _ in positions)
@@ -213,19 +220,31 @@ def build_scene(case: SectorCase, profile: Gear1Profile, positions, teeth: tuple
                     WINDOW_MIN * p.m) * reach.get(c.tooth, 1.0)) for _, c in cands]
     sector = gear1_sector(p, shape, teeth, case.extra_teeth)
     paired = tuple(sorted({c.tooth for _, c in cands}))
-    gear1, rounds = gear1_body(case, shape, sector, paired, half, sizes)
-    gear2, curve2 = gear2_body(case, shape, sector, paired, half, sizes, betas, rounds)
+    finer = finer or {}
+    floor = SIZE_FLOOR * p.m
+    contact = {t: max(sizes.contact * finer.get(t, 1.0), floor) for t in paired}
+    gear1, rounds, lengths = gear1_body(case, shape, sector, paired, half, sizes, contact)
+    gear2, curve2 = gear2_body(case, shape, sector, paired, half, sizes, betas, rounds, contact)
     return Scene(params=p, betas=betas, gear1=gear1.geometry, gear2=gear2.geometry,
                  paired=paired, teeth1=sector.teeth, profile1=gear1.profile,
                  profile2=gear2.profile, root_band1=gear1.root_band, root_band2=gear2.root_band,
-                 b_full=sizes.b_full, shape=shape, curve2=curve2)
+                 b_full=sizes.b_full, shape=shape, curve2=curve2, contact_sizes=contact,
+                 window_lengths=lengths)
+
+
+def _by_size(names: dict[str, float]) -> list[Refinement]:
+    """One refinement per element size over the segments ``names`` (name → size) of it."""
+    return [Refinement(tuple(n for n, h in names.items() if h == size), size)
+            for size in sorted(set(names.values()))]
 
 
 def gear1_body(case: SectorCase, shape: RoundedProfile, sector: Sector, paired, half,
-               sizes: Sizes) -> tuple[SectorBody, list[tuple[float, float]]]:
-    """Gear 1's sector: its profile over the sector (windows, roots, the refined tip rounds and
-    their tangent points), two radial cuts and the bore. Also the body angle ranges of the
-    refined rounds (gear 2 is refined under them)."""
+               sizes: Sizes, contact: dict[int, float]
+               ) -> tuple[SectorBody, list[tuple[float, float]], dict[int, float]]:
+    """Gear 1's sector: its profile over the sector (windows, each at its tooth's ``contact``
+    element size; roots; the refined tip rounds and their tangent points), two radial cuts and
+    the bore. Also the body angle ranges of the refined rounds (gear 2 is refined under
+    them) and each window's length (mm of arc, about)."""
     m = case.params.m
     pitch1 = shape.pitch
     mid1 = 0.5 * (sector.phi_a + sector.phi_b)
@@ -265,7 +284,7 @@ def gear1_body(case: SectorCase, shape: RoundedProfile, sector: Sector, paired, 
             marks=tuple(junctions + [(a - spill, b + spill, "g1_round") for a, b in rounds]
                         + tangents),
             sizes={"g1_round": sizes.round, "g1_junction": sizes.junction,
-                   **{f"g1_contact_{t}": sizes.contact for t in paired}}))
+                   **{f"g1_contact_{t}": contact[t] for t in paired}}))
     a0 = g1_point(np.array([sector.phi_a]))[0]
     b0 = g1_point(np.array([sector.phi_b]))[0]
     bore_pts = bore * np.column_stack([np.cos(np.linspace(sector.phi_b, sector.phi_a, 60)),
@@ -274,7 +293,7 @@ def gear1_body(case: SectorCase, shape: RoundedProfile, sector: Sector, paired, 
     def bore_project(x):
         return bore * x / np.linalg.norm(x, axis=1)[:, None]
 
-    refine1 = [Refinement(tuple(f"g1_contact_{t}" for t in paired), sizes.contact),
+    refine1 = [*_by_size({f"g1_contact_{t}": contact[t] for t in paired}),
                Refinement(tuple(n for n in names1 if n.startswith("g1_root")), sizes.root)]
     if any(s.zone == "g1_round" for s in segs1):
         refine1.append(Refinement(("g1_round",), sizes.round))
@@ -287,14 +306,19 @@ def gear1_body(case: SectorCase, shape: RoundedProfile, sector: Sector, paired, 
         Segment("g1_cut_a", np.array([bore_pts[-1], a0])),
     ), size=sizes.body, refinements=tuple(refine1))
     band1 = (rho_min, rho_min + ROOT_BAND * (rho_max - rho_min))
-    return SectorBody(geo1, names1, band1), rounds
+    lengths = {t: 2.0 * w * float(np.hypot(*shape.point(np.array([p_]))[0]))
+               for t, p_, w in windows1}
+    return SectorBody(geo1, names1, band1), rounds, lengths
 
 
 def gear2_body(case: SectorCase, shape: RoundedProfile, sector: Sector, paired, half,
-               sizes: Sizes, betas, rounds) -> tuple[SectorBody, Cycloid]:
+               sizes: Sizes, betas, rounds, contact: dict[int, float]
+               ) -> tuple[SectorBody, Cycloid]:
     """Gear 2's ring sector, in its own frame: the fixed-frame range of gear 1's sector at
-    every β, cut at gear-2 tooth tips; its windows, roots and the strips under gear 1's refined
-    rounds; the fixed outer rim. Also gear 2's exact curve."""
+    every β, cut at gear-2 tooth tips; its windows (one boundary, ``g2_contact``: the contact's
+    master; a window whose gear-1 tooth has a finer ``contact`` size than the rest is a zone
+    of that size), roots and the strips under gear 1's refined rounds; the fixed outer rim.
+    Also gear 2's exact curve."""
     params = case.params
     phi_a, phi_b = sector.phi_a, sector.phi_b
     g2 = gear2_curve(params)
@@ -323,13 +347,20 @@ def gear2_body(case: SectorCase, shape: RoundedProfile, sector: Sector, paired, 
     # where a refined round comes near gear 2 at some β, gear 2 under it gets the same size
     marks2 = round_strips(PairProfiles(params, shape, g2), rounds, betas,
                           sizes.b_round / params.r0, 0.5 * (th_a + th_b))
+    coarsest = max(contact.values())
+    finer = [(p_ - w, p_ + w, f"g2_contact_{t}") for t, p_, w in windows2
+             if contact[t] < coarsest]
     segs2, names2 = profile_segments("g2", g2_profile, th_a, th_b, Layout(
         windows=tuple(("g2_contact", p_, w) for _, p_, w in windows2),
         roots=tuple((f"g2_root_{k}", p_, root_half2) for k, p_ in roots2),
-        marks=tuple(marks2), sizes={"g2_contact": sizes.contact, "g2_round": sizes.round}))
+        marks=tuple(marks2) + tuple(finer),    # a round's strip first: it is the finer
+        sizes={"g2_contact": coarsest, "g2_round": sizes.round,
+               **{z: contact[int(z.rsplit("_", 1)[1])] for _, _, z in finer}}))
     geo2 = BodyGeometry("gear2", gear2_outline(g2_profile.point, segs2, th_a, th_b, outer, 80),
                         size=sizes.body, refinements=(
-        Refinement(("g2_contact",), sizes.contact),
+        Refinement(("g2_contact",), coarsest),
+        *_by_size({z: contact[int(z.rsplit("_", 1)[1])] for _, _, z in finer
+                   if any(s.zone == z for s in segs2)}),
         Refinement(tuple(n for n in names2 if n.startswith("g2_root")), sizes.root),
         *([Refinement(("g2_round",), sizes.round)] if marks2 else [])))
     band2 = (R_max - ROOT_BAND * (R_max - R_min), R_max)

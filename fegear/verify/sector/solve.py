@@ -73,11 +73,13 @@ class PairModel:
 
 
 def build_model(case: SectorCase, profile: Gear1Profile, positions, teeth,
-                reach: dict[int, float] | None = None) -> PairModel:
+                reach: dict[int, float] | None = None,
+                finer: dict[int, float] | None = None) -> PairModel:
     """Mesh and factorise the sector for the paired ``teeth`` over ``positions`` (β, state);
-    ``reach``: factors on some teeth's contact windows (:func:`~.scene.build_scene`)."""
+    ``reach`` and ``finer``: factors on some teeth's contact windows and on their element
+    sizes (:func:`~.scene.build_scene`)."""
     with timed("mesh"):
-        scene = build_scene(case, profile, positions, teeth, reach=reach)
+        scene = build_scene(case, profile, positions, teeth, reach=reach, finer=finer)
         m1, m2 = mesh_bodies([scene.gear1, scene.gear2])
     with timed("assemble_factor"):
         mat = case.material
@@ -113,12 +115,15 @@ class SectorSolver:
     covers every position's contact path for the teeth paired so far; a position whose solved
     rotation would close a tooth outside it is solved again on a scene rebuilt with that tooth,
     and one whose pressure reaches the end of a tooth's contact window (the window is shorter
-    than the contact: a near-conformal flank) on a scene with that window twice as long (the
-    positions before keep theirs: they settled on theirs)."""
+    than the contact: a near-conformal flank) on a scene with that window twice as long, and
+    one where a tooth's flank contact is narrower than its window's elements were made for (a
+    lightly loaded tooth: :func:`too_coarse`) on a scene whose window of that tooth is as fine
+    as its contact needs (the positions before keep theirs: they settled on theirs)."""
 
     def __init__(self) -> None:
         self.model: PairModel | None = None
         self.reach: dict[int, float] = {}
+        self.finer: dict[int, float] = {}
 
     def build(self, case: SectorCase, profile: Gear1Profile, states) -> None:
         self.profile, self.states = profile, states()
@@ -127,7 +132,8 @@ class SectorSolver:
 
     def _scene(self, case: SectorCase, teeth: tuple[int, ...]) -> None:
         progress.stage(f"model: sector meshes of both gears at quality {case.quality}")
-        self.model = build_model(case, self.profile, self.states, teeth, self.reach)
+        self.model = build_model(case, self.profile, self.states, teeth, self.reach,
+                                 self.finer)
 
     def attempt(self, case: SectorCase, state, trial: Trial,
                 near: PairSolution | None) -> Attempt:
@@ -141,18 +147,57 @@ class SectorSolver:
         p = case.params
         more = set(choose_teeth(state, p.arc_um(sol.rotation), case.extra_pairs))
         ends = window_ends(sol)
-        if more <= set(self.model.scene.paired) and not ends:
+        coarse = too_coarse(sol, SECTOR_LEVELS[case.quality][0])
+        if more <= set(self.model.scene.paired) and not ends and not coarse:
             return Attempt(sol, None)
         for tooth in ends:
             self.reach[tooth] = 2.0 * self.reach.get(tooth, 1.0)
-        if ends:
+        for tooth, factor in coarse.items():
+            self.finer[tooth] = factor * self.finer.get(tooth, 1.0)
+        if ends or coarse:
             self._scene(case, _union((self.model.scene.paired, trial.teeth)))
         again = Trial(_union((trial.teeth, tuple(more))), trial.elastic_um)
         return Attempt(sol, again, f"teeth {sorted(more - set(self.model.scene.paired))} "
-                                   f"would close, windows of teeth {ends} too short")
+                                   f"would close, windows of teeth {ends} too short, of teeth "
+                                   f"{sorted(coarse)} too coarse")
 
     def finish(self, case: SectorCase, state, attempt: Attempt) -> PairSolution:
         return attempt.solved
+
+
+#: a tooth's flank contact is resolved where its window's elements are at most this many
+#: times the quality's (its elements across the Hertz half-width, SECTOR_LEVELS) at its load
+RESOLVED = 2.0
+#: a tooth carrying less of the normal load than this is a touch, not a contact to resolve
+LIGHT_SHARE = 1e-3
+#: the most elements a refined window is cut into (along gear 1's arc): a tooth that barely
+#: touches would otherwise take its window to the size floor and the mesh to millions
+WINDOW_ELEMENTS = 400
+
+
+def too_coarse(sol: PairSolution, across: int) -> dict[int, float]:
+    """The paired teeth whose flank contact is narrower than their windows' elements were made
+    for: each tooth's windows are sized from the Hertz half-width of the first-touching tooth
+    at a shared load, so a lightly loaded tooth (a far-side tooth, or a deviated pair's
+    unloaded one) has few elements across its contact (one or two: its peak pressure read
+    half of the ring's). Per such tooth, where its size exceeds RESOLVED times ``across``
+    elements across its Hertz half-width at its solved load, the factor on that size that
+    puts ``across`` there, or WINDOW_ELEMENTS along the window if fewer. A contact the round
+    carries alone is left to the rounds' size, and a touch (under LIGHT_SHARE of the normal
+    load) is left alone."""
+    scene = sol.detail.scene
+    total = sum(t.load_N for t in sol.teeth)
+    out = {}
+    for t in sol.teeth:
+        h = scene.contact_sizes.get(t.tooth)
+        if (h is None or t.load_N <= LIGHT_SHARE * total or t.hertz_b_mm is None
+                or t.edge_load_N >= t.load_N):
+            continue
+        want = max(t.hertz_b_mm / across,
+                   scene.window_lengths.get(t.tooth, 0.0) / WINDOW_ELEMENTS)
+        if h > RESOLVED * want:
+            out[t.tooth] = want / h
+    return out
 
 
 def window_ends(sol: PairSolution) -> list[int]:
