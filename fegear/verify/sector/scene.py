@@ -353,7 +353,7 @@ def gear2_body(case: SectorCase, shape: RoundedProfile, sector: Sector, paired, 
     segs2, names2 = profile_segments("g2", g2_profile, th_a, th_b, Layout(
         windows=tuple(("g2_contact", p_, w) for _, p_, w in windows2),
         roots=tuple((f"g2_root_{k}", p_, root_half2) for k, p_ in roots2),
-        marks=tuple(marks2) + tuple(finer),    # a round's strip first: it is the finer
+        marks=tuple(marks2) + tuple(finer),    # where they overlap, a round's strip rules
         sizes={"g2_contact": coarsest, "g2_round": sizes.round,
                **{z: contact[int(z.rsplit("_", 1)[1])] for _, _, z in finer}}))
     geo2 = BodyGeometry("gear2", gear2_outline(g2_profile.point, segs2, th_a, th_b, outer, 80),
