@@ -282,15 +282,20 @@ def approach_open(model: RingModel, contact: RingContact, pressure: np.ndarray,
         loaded = np.flatnonzero(pressure[blk])
         if not len(loaded):
             continue
-        # the hats from the first loaded point's neighbour to the last's: the same integrals
-        # as over the whole grid, where the others carry nothing
-        a, b = max(loaded[0] - 1, 0), min(loaded[-1] + 2, len(g))
+        a, b = loaded_hats(loaded, len(g))
         r = np.flatnonzero(grid == k)
         local = rows[r] - blk.start
         for m in contact.matching:
             out[r] += approach_matrix(g.s[local], m.depth[blk][local], g.s[a:b], case.E,
                                       case.nu) @ pressure[blk][a:b]
     return out, tuple(clamped)
+
+
+def loaded_hats(loaded: np.ndarray, n: int) -> tuple[int, int]:
+    """The hats [a, b) of an ``n``-point grid from the first ``loaded`` point's neighbour to
+    the last's (``loaded``: increasing indices of the points with pressure): a half-plane sum
+    over them is the sum over the whole grid, where the others carry nothing."""
+    return max(int(loaded[0]) - 1, 0), min(int(loaded[-1]) + 2, n)
 
 
 def _fe_approach(side: GearSide, loads: dict[int, LoadBlock], match: Matching,

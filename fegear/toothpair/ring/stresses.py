@@ -29,7 +29,7 @@ from ...fe import (
 )
 from ...planar import rotate, wrap
 from ..segments import gear2_polar
-from .influence import RingContact
+from .influence import RingContact, loaded_hats
 from .model import RingModel
 from .side import GearSide
 
@@ -210,9 +210,7 @@ def surface_von_mises(model: RingModel, contact: RingContact, pressure: np.ndarr
             blk = contact.block(k)
             on = np.flatnonzero(loaded[blk])    # only these are read
             if len(on):
-                # the hats from the first loaded point's neighbour to the last's: the same
-                # integrals as over the whole grid, where the others carry nothing
-                a, b = max(on[0] - 1, 0), min(on[-1] + 2, len(grid))
+                a, b = loaded_hats(on, len(grid))
                 eps_hp[blk.start + on] = strain_matrix(grid.s[on], m.depth[blk][on],
                                                        grid.s[a:b], E, nu) @ pressure[blk][a:b]
         sig_t = E * (eps_fe - eps_hp) - pressure

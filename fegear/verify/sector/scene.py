@@ -348,19 +348,18 @@ def gear2_body(case: SectorCase, shape: RoundedProfile, sector: Sector, paired, 
     marks2 = round_strips(PairProfiles(params, shape, g2), rounds, betas,
                           sizes.b_round / params.r0, 0.5 * (th_a + th_b))
     coarsest = max(contact.values())
-    finer = [(p_ - w, p_ + w, f"g2_contact_{t}") for t, p_, w in windows2
-             if contact[t] < coarsest]
+    finer = [(t, p_, w) for t, p_, w in windows2 if contact[t] < coarsest]
+    finer_sizes = {f"g2_contact_{t}": contact[t] for t, _, _ in finer}
     segs2, names2 = profile_segments("g2", g2_profile, th_a, th_b, Layout(
         windows=tuple(("g2_contact", p_, w) for _, p_, w in windows2),
         roots=tuple((f"g2_root_{k}", p_, root_half2) for k, p_ in roots2),
-        marks=tuple(marks2) + tuple(finer),    # where they overlap, a round's strip rules
-        sizes={"g2_contact": coarsest, "g2_round": sizes.round,
-               **{z: contact[int(z.rsplit("_", 1)[1])] for _, _, z in finer}}))
+        marks=tuple(marks2) + tuple((p_ - w, p_ + w, f"g2_contact_{t}") for t, p_, w in finer),
+        # (where they overlap, a round's strip rules)
+        sizes={"g2_contact": coarsest, "g2_round": sizes.round, **finer_sizes}))
     geo2 = BodyGeometry("gear2", gear2_outline(g2_profile.point, segs2, th_a, th_b, outer, 80),
                         size=sizes.body, refinements=(
         Refinement(("g2_contact",), coarsest),
-        *_by_size({z: contact[int(z.rsplit("_", 1)[1])] for _, _, z in finer
-                   if any(s.zone == z for s in segs2)}),
+        *_by_size({z: h for z, h in finer_sizes.items() if any(s.zone == z for s in segs2)}),
         Refinement(tuple(n for n in names2 if n.startswith("g2_root")), sizes.root),
         *([Refinement(("g2_round",), sizes.round)] if marks2 else [])))
     band2 = (R_max - ROOT_BAND * (R_max - R_min), R_max)
