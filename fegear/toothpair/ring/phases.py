@@ -155,10 +155,11 @@ class Phases:
         contact = turned(model, near.detail.contact, pitches, at, None)
         return _renumbered(near, pitches, replace(near.case, beta=at), None, contact)
 
-    def solved(self, model: RingModel, sol: PairSolution) -> None:
-        """Keep ``sol``, solved, for the pitches of its phase with its rigid gaps, where it was
-        solved on the phase's kept contact (a contact turned from it shares its arrays); a
-        position placed anew, on grids of its own, is not repeated."""
+    def solved(self, sol: PairSolution, gaps: np.ndarray) -> None:
+        """Keep ``sol``, solved, for the pitches of its phase with its rigid ``gaps`` (mm) at its
+        solved rotation, where it was solved on the phase's kept contact (a contact turned from
+        it shares its arrays); a position placed anew, on grids of its own, is not
+        repeated."""
         detail, case = sol.detail, sol.case
         phase, pitch = pitch_phase(case.beta, case.params.z2)
         contact = detail.contact
@@ -166,8 +167,6 @@ class Phases:
         if kept is None or contact.formed is not kept.contact.formed:
             self._solved.pop(phase, None)
             return
-        gaps = rigid_gap(model, contact, case.params.ratio * case.beta + sol.rotation,
-                         contact.feet.copy())[0]
         self._solved[phase] = Solved(pitch, gaps, sol)
         seen = kept.seen(case.deviations, pitch - kept.pitch, (case.params.z1, case.params.z2))
         if seen is not None:

@@ -55,15 +55,23 @@ def from_tip_corner(shape, grid, pressure: np.ndarray) -> np.ndarray:
     return (grid.s - s_corner) * math.copysign(1.0, centre - corner)
 
 
-def tooth_results(detail: RingDetail, state, cands) -> tuple[ToothResult, ...]:
+def solved_rigid_gap(detail: RingDetail) -> tuple[np.ndarray, np.ndarray]:
+    """The rigid gap (mm) of every point of the solved position ``detail`` at its solved
+    rotation, and its rate with the turn (mm/rad) (:func:`~.contact.rigid_gap`)."""
+    case, contact = detail.case, detail.contact
+    return rigid_gap(detail.model, contact,
+                     case.params.ratio * case.beta + detail.solution.rotation, contact.feet)
+
+
+def tooth_results(detail: RingDetail, state, cands,
+                  rigid: tuple[np.ndarray, np.ndarray]) -> tuple[ToothResult, ...]:
     """One :class:`~fegear.toothpair.case.ToothResult` per gridded tooth of the solved position
     ``detail``; ``state``: the position's clearance state (each tooth's clearance), ``cands``:
     the gridded teeth as candidates (:func:`~..teeth.candidate_data`: Hertz at each one's
-    predicted contact point). Without stresses (a contact-only solve) the root stresses are
-    NaN and the half-plane reference and the bending curvature are left out (None, 0)."""
-    case, contact, sol = detail.case, detail.contact, detail.solution
-    p = case.params
-    rigid = rigid_gap(detail.model, contact, p.ratio * case.beta + sol.rotation, contact.feet)
+    predicted contact point), ``rigid``: :func:`solved_rigid_gap`. Without stresses (a
+    contact-only solve) the root stresses are NaN and the half-plane reference and the bending
+    curvature are left out (None, 0)."""
+    contact = detail.contact
     clearance = {c.tooth: c.plus_um for c in state.teeth}
     by_tooth = {c.tooth: c for c in cands}
     return tuple(tooth_result(detail, k, rigid, by_tooth.get(g.tooth), clearance.get(g.tooth))

@@ -19,6 +19,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
+import numpy as np
+
 from ... import progress
 from ...errors import ContactError
 from ...fe import projector
@@ -43,7 +45,7 @@ from .placement import (
     loaded_before,
     place_grids,
 )
-from .results import RingDetail, tooth_results
+from .results import RingDetail, solved_rigid_gap, tooth_results
 from .stresses import ring_stresses
 
 #: the one-off stages a solve reports: the model built (profile, mesh, assembly and
@@ -181,12 +183,14 @@ class RingSolver:
     def finish(self, case: SolveCase, state, attempt: Attempt) -> PairSolution:
         if isinstance(attempt.solved, PairSolution):   # a pitch that repeats one solved
             return attempt.solved
-        sol = self._finished(case, state, attempt)
+        sol, rigid = self._finished(case, state, attempt)
         if self.phases is not None:
-            self.phases.solved(self.model, sol)
+            self.phases.solved(sol, rigid[0])
         return sol
 
-    def _finished(self, case: SolveCase, state, attempt: Attempt) -> PairSolution:
+    def _finished(self, case: SolveCase, state, attempt: Attempt
+                  ) -> tuple[PairSolution, tuple[np.ndarray, np.ndarray]]:
+        """The solved position and its rigid gaps at its solved rotation (with their rates)."""
         model, solved = self.model, attempt.solved
         contact, first_um = solved.contact, solved.first_um
         # the stresses take the clamped fields the contact's check formed; not kept
@@ -202,7 +206,8 @@ class RingSolver:
                 cands = candidate_data(case.params, model.shape, state,
                                        tuple(g.tooth for g in solved.grids), case.beta)
             detail = RingDetail(model, case, replace(contact, A=None), sol, stresses)
-            teeth = tooth_results(detail, state, cands)
+            rigid = solved_rigid_gap(detail)
+            teeth = tooth_results(detail, state, cands, rigid)
         residuals = () if stresses is None else tuple(_residuals(model, contact, sol, stresses))
         return PairSolution(
             case=case, teeth=teeth,
@@ -214,7 +219,7 @@ class RingSolver:
                                  residuals, contact.npoints),
             timings_s={}, detail=detail,
             von_mises_estimated=stresses is None or not stresses.submodels,
-            tangent_stiffness=tangent)
+            tangent_stiffness=tangent), rigid
 
     def at_peaks(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
         """``sols`` with their contact submodels where the cycle peaks
