@@ -22,14 +22,16 @@ SHARED = {"__init__", "__main__", "checks", "errors", "exports", "figures", "fil
 #: which stages each stage may import (the shared helpers are open to all)
 ALLOWED = {
     "geometry": set(),
+    "tolerance": {"geometry"},
     "fe": set(),
     "contact": {"fe"},
-    "toothpair": {"geometry", "fe", "contact"},
+    "toothpair": {"geometry", "fe", "contact", "tolerance"},
     "study": {"toothpair"},
     "drive": {"toothpair"},
     "optimize": {"geometry", "toothpair"},
     "verify": {"geometry", "fe", "contact", "toothpair", "study"},
-    "cli": {"geometry", "fe", "contact", "toothpair", "study", "drive", "verify", "optimize"},
+    "cli": {"geometry", "fe", "contact", "toothpair", "study", "drive", "verify", "optimize",
+            "tolerance"},
     "api": {"toothpair"},   # the Python face: one module beside the command line
 }
 #: faces that are one module, not a subpackage

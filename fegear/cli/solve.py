@@ -5,14 +5,14 @@ from __future__ import annotations
 import argparse
 import json
 
-from ..toothpair.inputs import PAIR_INPUTS, SOLVE_INPUTS
+from ..toothpair.inputs import JOB_INPUTS, PAIR_INPUTS
 from .args import add_inputs, given_values
 from .cache import add_switch, apply_switch
 
 
 def add_parser(sub) -> None:
     p = sub.add_parser("solve", help="tooth-pair FE solve: stresses, load sharing, stiffness")
-    rows = list(SOLVE_INPUTS.values())
+    rows = list(JOB_INPUTS.values())
     add_inputs(p, rows[:len(PAIR_INPUTS)], "pair")
     add_inputs(p, rows[len(PAIR_INPUTS):])
     p.add_argument("--out", default=None,
@@ -31,7 +31,7 @@ def run(a: argparse.Namespace) -> int:
     from ..toothpair.revolution import revolution_table
     from .terminal import command_wall_s
 
-    job = prepare_job(given_values(a, SOLVE_INPUTS.values()))
+    job = prepare_job(given_values(a, JOB_INPUTS.values()))
     apply_switch(a, default=False)
     out = None if a.out is None else check_dir(a.out)
     made = out is not None and not out.exists()
@@ -58,6 +58,13 @@ def run(a: argparse.Namespace) -> int:
               f"{result.summary['cycle']['solve_s']:.1f} s; the details below are at the "
               "position of the largest gear-1 root stress\n")
     print(pair_table(result.summary))
+    if "samples" in result.summary:
+        from ..toothpair.samples_report import samples_table
+
+        print("\nThe exact pair above; the pairs of its tolerance class over the same "
+              "positions (von Mises from the templates' surface estimate, as the samples' "
+              "is read):\n")
+        print(samples_table(result.summary["samples"]))
     for k, v in files.items():
         print(f"{k:10s} {v}")
     if out is None:

@@ -77,12 +77,30 @@ DEVIATION_INPUTS = (
           "tooth and any of fp, fpt, fHa, ffa with their units, e.g. fp [µm]",
           limits="a readable file (docs/geometry.md)", rule="none"),
 )
+#: a tolerance class's sampled pairs (docs/tolerance.md): what most gears of the class carry
+TOLERANCE_INPUTS = (
+    Input("grade", int, None, "ISO 1328-1:2013 flank tolerance class of both gears: solve "
+          "--samples pairs whose deviations that class admits, beside the exact pair, and "
+          "report each stress's quantiles and the safety factors at --quantile; writes "
+          "samples.csv and samples.png", low=1, high=11, rule="none (the pair as given)"),
+    Input("samples", int, 200, "how many pairs of the --grade are drawn", low=1,
+          high=100000),
+    Input("seed", int, 0, "the draw's seed: sample k is the same pair whatever --samples is",
+          low=0, high=2**63 - 1),
+    Input("quantile", float, 0.95, "the share of the --grade's pairs the verdict's safety "
+          "factors hold for", low=0.5, high=1.0, high_open=True),
+    Input("centre-distance-tolerance", float, 0.0, "the ± tolerance of the centre distance "
+          "drawn with --grade (0: exact)", "µm", low=0.0, high=1000.0),
+)
+
 #: the deviation inputs that name a deviation by text (the others: the centre distance)
 DEVIATION_TEXTS = tuple(row.name for row in DEVIATION_INPUTS if row.kind is str)
 
 #: every input of ``fegear solve`` (and of a study case), in the order of ``--help``
 SOLVE_INPUTS = InputTable(PAIR_INPUTS, LOAD_INPUTS[:2], LOAD_INPUTS[2:], MATERIAL_INPUTS,
                           ALLOWABLE_INPUTS, MODEL_INPUTS, DEVIATION_INPUTS)
+#: ``fegear solve``'s inputs: a solve's and a tolerance class's samples (not yet a study's)
+JOB_INPUTS = InputTable(SOLVE_INPUTS.values(), TOLERANCE_INPUTS)
 
 
 def torque_limit(E: float, m: float, face_width: float, r1: float) -> float:

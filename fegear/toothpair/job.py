@@ -13,12 +13,14 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .. import progress
+from ..errors import ParameterError
 from ..fe import Allowables
 from ..geometry import admissible_pair, deviations_of
 from ..running import SERIAL, Executor
 from ..timing import Stopwatch
+from ..tolerance import Draw, grade_of
 from .case import SolveCase, cycle_positions
-from .inputs import PAIR_INPUTS, SOLVE_INPUTS, TIP_ROUND, check_tip_round
+from .inputs import JOB_INPUTS, PAIR_INPUTS, SOLVE_INPUTS, TIP_ROUND, check_tip_round
 from .revolution import PER_PITCH, phase_major, revolution_positions, revolution_summary
 from .safety import DEFAULT_ALLOWABLES, allowables_of
 
@@ -29,22 +31,26 @@ PAIR_NAMES = {row.name for row in PAIR_INPUTS}
 class Job:
     """A checked solve: the case, the rolling angles (rad) to solve it at, whether to
     estimate the discretisation error with a second mesh level, the allowable stresses the
-    safety factors divide (they change no number of the solve) and whether the angles are a
-    whole revolution of gear 1 (:mod:`.revolution`)."""
+    safety factors divide (they change no number of the solve), whether the angles are a
+    whole revolution of gear 1 (:mod:`.revolution`), and the pairs of a tolerance class
+    solved beside the exact one (``draw``, :mod:`.samples`) with the share of them the
+    verdict's safety factors hold for (``quantile``)."""
 
     case: SolveCase
     betas: tuple[float, ...]
     estimate: bool
     allowables: Allowables = DEFAULT_ALLOWABLES
     revolution: bool = False
+    draw: Draw | None = None
+    quantile: float = 0.95
 
 
 def prepare_job(values: Mapping[str, object]) -> Job:
     """Check every input of a solve, given by name (missing ones at their defaults); raises
     :class:`~fegear.errors.ParameterError` or :class:`~fegear.errors.GeometryError`. No
     meshing, no output."""
-    v = SOLVE_INPUTS.with_defaults(values)
-    for name, row in SOLVE_INPUTS.items():   # every static range first: they answer at once
+    v = JOB_INPUTS.with_defaults(values)
+    for name, row in JOB_INPUTS.items():   # every static range first: they answer at once
         if name not in PAIR_NAMES and not row.limits:   # those with limits: at the others'
             row.check(v[name])                          # values, by the case they build
     params = admissible_pair(v, given=values)
@@ -62,7 +68,32 @@ def prepare_job(values: Mapping[str, object]) -> Job:
         betas = revolution_positions(case.beta, positions or PER_PITCH, params.z1, params.z2)
     else:
         betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
-    return Job(case, tuple(betas), not v["no-estimate"], allowables_of(v), revolution)
+    draw = _draw(v, given=values, case=case, revolution=revolution)
+    return Job(case, tuple(betas), not v["no-estimate"], allowables_of(v), revolution, draw,
+               JOB_INPUTS["quantile"].check(v["quantile"]))
+
+
+def _draw(v: dict, given: Mapping[str, object], case: SolveCase, revolution: bool
+          ) -> Draw | None:
+    """The tolerance class's pairs to solve (``--grade``), refused by name with a revolution
+    or with deviations given (the class draws them); None without a class."""
+    grade = v["grade"]
+    if grade is None:
+        for name in ("samples", "seed", "quantile", "centre-distance-tolerance"):
+            if given.get(name) is not None:
+                raise ParameterError(name, given[name], "with --grade only (the pairs of a "
+                                     "tolerance class are drawn only where it is given)")
+        return None
+    grade = JOB_INPUTS["grade"].check(grade)
+    if revolution:
+        raise ParameterError("grade", grade, "without --revolution (a class's pairs are "
+                             "solved at the positions of one mesh cycle)")
+    if case.deviations:
+        raise ParameterError("grade", grade, "without deviations given (the class draws each "
+                             "pair's deviations)")
+    return Draw(grade_of(grade, case.params, v["centre-distance-tolerance"]),
+                JOB_INPUTS["samples"].check(v["samples"]),
+                JOB_INPUTS["seed"].check(v["seed"]))
 
 
 def _tip_round(params, given: float | None) -> float | None:
@@ -138,6 +169,8 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     from .positions import drive
     from .report import add_tooth_estimates, cycle_rows, cycle_summary, pair_summary
     from .ring.solver import RingSolver
+    from .samples import solve_samples
+    from .samples_report import samples_summary
 
     watch = Stopwatch()
     second = None
@@ -146,11 +179,20 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
         second = executor.submit(second_headline, job.case)
     progress.stage("gear 1's profile")
     gear1_profile(job.case.params)
-    solver = RingSolver(repeats=job.revolution)
-    order = (phase_major(len(job.betas), job.case.params.z1) if job.revolution
-             else range(len(job.betas)))
-    sols = drive(job.case, [job.betas[k] for k in order], solver, executor=executor)
-    sols = tuple(sol for _, sol in sorted(zip(order, sols), key=lambda pair: pair[0]))
+    sampled = None
+    if job.draw is not None:
+        solver = RingSolver(repeats=True, reach_um=job.draw.grade.reach_um())
+        sampled = solve_samples(job.case, job.betas, job.draw, job.allowables, solver,
+                                executor)
+        sols = sampled.nominal
+    else:
+        solver = RingSolver(repeats=job.revolution)
+        order = (phase_major(len(job.betas), job.case.params.z1) if job.revolution
+                 else range(len(job.betas)))
+        sols = drive(job.case, [job.betas[k] for k in order], solver, executor=executor)
+        sols = tuple(sol for _, sol in sorted(zip(order, sols), key=lambda pair: pair[0]))
+    # the exact pair's stresses as the samples' are read: von Mises from the surface estimate
+    estimated = None if sampled is None else cycle_rows(sols, job.allowables)
     if job.estimate and len(job.betas) > 1:   # while the peaks' submodels are solved here
         second = executor.submit(second_headline, _pictured(sols).case)
     sols = solver.at_peaks(sols)
@@ -176,6 +218,9 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
                             **cycle_summary(rows), "rows": rows}
     if job.revolution:
         summary["revolution"] = revolution_summary(tuple(sols), job.allowables)
+    if sampled is not None:
+        summary["samples"] = samples_summary(sampled.rows, estimated, job.draw.grade,
+                                             job.draw.seed, job.quantile, job.allowables)
     return Solved(job, tuple(sols), sol, summary, rows, watch.s)
 
 
@@ -205,6 +250,7 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
         write_mesh_stiffness,
         write_pair_outputs,
         write_revolution_outputs,
+        write_samples_outputs,
     )
 
     progress.stage(f"writing files to {out}")
@@ -213,7 +259,8 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
     files: dict[str, Path] = {}
     i = summary["inputs"]
     title = (f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T {i['torque_Nm']:g} N·m, "
-             f"{len(solved.solutions)} positions, quality {i['quality']}")
+             f"{len(solved.solutions)} position{'s' if len(solved.solutions) > 1 else ''}, "
+             f"quality {i['quality']}")
     if solved.job.revolution:
         files.update(write_revolution_outputs(
             solved.solutions, rows, summary["revolution"], out,
@@ -224,6 +271,9 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
             files.update(write_cycle_series(solved.solutions, out))
         if pictures:
             files.update(write_cycle_outputs(rows, out, title, solved.job.allowables))
+    if "samples" in summary:
+        files.update(write_samples_outputs(summary["samples"], out, title,
+                                           solved.job.allowables, pictures))
     files.update(write_pair_outputs(solved.solution, out, {**summary, "files": {
         k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures))
     return files

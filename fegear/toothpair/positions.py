@@ -208,13 +208,13 @@ def _chain(case: SolveCase, states, span: range, solver: PositionModel
                        + (f" ({k + 1} of {len(states)})" if len(states) > 1 else ""))
         at = replace(case, beta=beta)
         with clocked() as clock:
-            sol = _position(at, state, solver, sols[-1] if sols else None)
+            sol = solve_position(at, state, solver, sols[-1] if sols else None)
         sols.append(replace(sol, timings_s=dict(clock.stages)))
     return sols
 
 
-def _position(case: SolveCase, state, solver: PositionModel,
-              near: PairSolution | None) -> PairSolution:
+def solve_position(case: SolveCase, state, solver: PositionModel,
+                   near: PairSolution | None) -> PairSolution:
     """One position: attempts from the first guess until the model settles, then its
     stresses."""
     elastic = expected_elastic_um(case, near)

@@ -113,29 +113,52 @@ def refuse_interference(states) -> None:
                                 "modelled (raise tip_clearance, or check shift and rotation)")
 
 
-def refuse_closed(behind, deviations) -> None:
-    """A pair its ``deviations`` close before any load is refused naming the deviation to
-    change: at some β a tooth stands into its mate on the loaded side (a tooth turned or grown
-    beyond its clearance) by more than the coast flanks leave gear 1 to turn back, so the
-    deviations take up the whole backlash and the pair would be assembled with a preload. A
-    loaded-side overlap within the backlash only sets gear 1 back from its kinematic position:
-    that pair is solved. ``behind``: (β, loaded-side state, coast-side state) of the positions
-    with a loaded-side overlap, both sides' clearances moved by the deviations."""
+@dataclass(frozen=True)
+class Closure:
+    """Where deviations take up the pair's backlash: at ``beta`` (rad) gear 1's ``tooth``
+    stands ``into_um`` into gear 2 (µm of arc at r0) and the coast flanks leave gear 1
+    ``back_um`` to turn back."""
+
+    beta: float
+    tooth: int
+    into_um: float
+    back_um: float
+
+    def __str__(self) -> str:
+        return (f"gear-1 tooth {self.tooth} stands {self.into_um:.3g} µm of arc at r0 into "
+                f"gear 2 at β = {math.degrees(self.beta):.4g}°, and the coast flanks leave "
+                f"gear 1 {self.back_um:.3g} µm to turn back")
+
+
+def closed(behind) -> Closure | None:
+    """Where deviations take up the pair's whole backlash, else None: at some β a tooth stands
+    into its mate on the loaded side (a tooth turned or grown beyond its clearance) by more
+    than the coast flanks leave gear 1 to turn back, so the pair would be assembled with a
+    preload. A loaded-side overlap within the backlash only sets gear 1 back from its
+    kinematic position: that pair is solved. ``behind``: (β, loaded-side state, coast-side
+    state) of the positions with a loaded-side overlap, both sides' clearances moved by the
+    deviations."""
     for beta, state, coast in behind:
         c, back = state.closest(+1), coast.closest(-1)
         if c.plus_um + back.minus_um < -INTERFERENCE_UM:
-            on_tooth = deviations.teeth(1).get(c.tooth)
-            name = ("pitch-deviation" if on_tooth is not None and on_tooth.pitch else
-                    "slope-deviation" if on_tooth is not None and on_tooth.slope else
-                    "form-deviation" if on_tooth is not None and on_tooth.profiled else
-                    "centre-distance-deviation" if deviations.centre_distance else
-                    "deviations")
-            raise ParameterError(name, _given(deviations, name, c.tooth), "deviations within "
-                                 f"the pair's backlash (gear-1 tooth {c.tooth} stands "
-                                 f"{-c.plus_um:.3g} µm of arc at r0 into gear 2 at β = "
-                                 f"{math.degrees(beta):.4g}°, and the coast flanks leave gear 1 "
-                                 f"{back.minus_um:.3g} µm to turn back)",
-                                 "the pair closes before any load")
+            return Closure(beta, c.tooth, -c.plus_um, back.minus_um)
+    return None
+
+
+def refuse_closed(behind, deviations) -> None:
+    """A pair its ``deviations`` close before any load (:func:`closed`) is refused naming the
+    deviation to change."""
+    where = closed(behind)
+    if where is None:
+        return
+    on_tooth = deviations.teeth(1).get(where.tooth)
+    name = ("pitch-deviation" if on_tooth is not None and on_tooth.pitch else
+            "slope-deviation" if on_tooth is not None and on_tooth.slope else
+            "form-deviation" if on_tooth is not None and on_tooth.profiled else
+            "centre-distance-deviation" if deviations.centre_distance else
+            "deviations")
+    raise ParameterError(name, _given(deviations, name, where.tooth), "deviations within the "
+                         f"pair's backlash ({where})", "the pair closes before any load")
 
 
 def _given(deviations, name: str, tooth: int) -> object:

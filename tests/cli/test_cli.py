@@ -66,6 +66,11 @@ def test_profile_table_output(tmp_path):
     ("solve", ["--position", "400"], "position = 400.0 is not admissible"),
     ("solve", ["--extra-pairs", "9"], "--extra-pairs = 9 is not admissible"),
     ("solve", ["--h1", "0.9"], "admissible: 0.0500 <= h1 <= 0.83"),
+    ("solve", ["--grade", "0"], "--grade = 0 is not admissible"),
+    ("solve", ["--grade", "6", "--samples", "0"], "--samples = 0 is not admissible"),
+    ("solve", ["--grade", "6", "--quantile", "1.5"], "--quantile = 1.5 is not admissible"),
+    ("solve", ["--samples", "50"], "--samples = 50 is not admissible"),
+    ("solve", ["--grade", "6", "--revolution"], "without --revolution"),
 ])
 def test_user_errors_exit_2_with_one_line(tmp_path, command, args, fragment):
     out = tmp_path / "o"
@@ -147,6 +152,19 @@ def test_solve_positions_writes_cycle_csv_and_plot(tmp_path):
     assert (tmp_path / "cycle.png").stat().st_size > 10_000
     for name in ("gear1.vtu", "gear2.vtu", "von_mises.png", "summary.json"):
         assert (tmp_path / name).stat().st_size > 0
+
+
+def test_solve_grade_writes_the_samples_table_picture_and_summary(tmp_path):
+    r = run("solve", "--shift", "0.03", "--rotation", "0.002", "--quality", "coarse",
+            "--grade", "5", "--samples", "4", "--no-estimate", "--out", str(tmp_path))
+    assert r.returncode == 0, r.stderr
+    assert "pairs of ISO 1328-1:2013 class 5" in r.stdout and "verdict: " in r.stdout
+    s = json.loads((tmp_path / "summary.json").read_text())["samples"]
+    assert s["samples"] == 4 == len(s["rows"]) and s["grade"]["gear1"]["f_pT_um"] == 6.0
+    rows = np.genfromtxt(tmp_path / "samples.csv", delimiter=",", names=True, dtype=None,
+                         encoding="utf-8")
+    assert list(rows["sample"]) == [0, 1, 2, 3]
+    assert (tmp_path / "samples.png").stat().st_size > 10_000
 
 
 @pytest.mark.parametrize("argv,hint", [

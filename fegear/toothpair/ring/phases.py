@@ -95,9 +95,13 @@ class Kept:
 
 
 class Phases:
-    """The contacts kept by phase (:class:`Kept`), for one model."""
+    """The contacts kept by phase (:class:`Kept`), for one model; ``reach_um``: the most that
+    any deviations solved on them can move a tooth (µm; the pairs drawn of a tolerance class),
+    which every kept grid reaches beyond the exact pair's whatever the deviations of the
+    position it is kept at."""
 
-    def __init__(self) -> None:
+    def __init__(self, reach_um: float = 0.0) -> None:
+        self.reach_um = reach_um
         self._kept: dict[int, Kept] = {}
         self._solved: dict[int, Solved] = {}
         self._seen: dict[int, dict[tuple, Solved]] = {}   # phase → what it saw → solution
@@ -207,7 +211,7 @@ class Phases:
         elastic_um = max(p.arc_um(settled.rotation) - first_um, 1e-6)
         teeth = set(choose_teeth(state, p.arc_um(settled.rotation), case.extra_pairs + 1))
         teeth |= set(trial.teeth)
-        widest = max(case.deviations.reach_um(t) for t in range(p.z1))
+        widest = max(self.reach_um, *(case.deviations.reach_um(t) for t in range(p.z1)))
         base = REACH * elastic_um * 1e-3 + REACH_FLOOR * p.m
         reach = {t: 1.0 + 1e-3 * (widest - case.deviations.reach_um(t)) / base for t in teeth}
         grids = place_grids(model, case, Trial(tuple(sorted(teeth)), elastic_um),

@@ -76,17 +76,20 @@ class RingSolver:
     ``contact_only``: no stresses at all, for a caller that reads only the contact (loads,
     shares, pressures, flank and edge apart, rotations: the tip-relief search); the root and
     von Mises stresses are NaN, the teeth's Hertz values and half-plane references None.
-    ``repeats``: the positions repeat over whole pitches (a revolution): each position's
-    contact is kept for its phase and the others solved on it (:mod:`.phases`)."""
+    ``repeats``: the positions repeat over whole pitches (a revolution), or one position is
+    solved for many deviation sets (:meth:`on_kept`): each position's contact is kept for its
+    phase and the others solved on it (:mod:`.phases`), its grids reaching ``reach_um``
+    beyond the exact pair's at least."""
 
     def __init__(self, model: RingModel | None = None, submodels: str = "peaks",
-                 contact_only: bool = False, repeats: bool = False) -> None:
+                 contact_only: bool = False, repeats: bool = False,
+                 reach_um: float = 0.0) -> None:
         if submodels not in SUBMODELS:
             raise ValueError(f"submodels must be one of {SUBMODELS}, not {submodels!r}")
         self.model = model
         self.submodels = "none" if contact_only else submodels
         self.contact_only = contact_only
-        self.phases = Phases() if repeats else None
+        self.phases = Phases(reach_um) if repeats else None
 
     def build(self, case: SolveCase, profile: Gear1Profile, states) -> None:
         # the same stages on every solve (zero where not run), so that a study's table has
@@ -137,6 +140,17 @@ class RingSolver:
             if kept is not None:   # the position solved on its phase's contact
                 return Attempt(RingAttempt(*kept, kept[0].grids, first_um), None)
         return judged
+
+    def on_kept(self, case: SolveCase, state) -> PairSolution | None:
+        """``case`` (clearance ``state``) solved on the contact kept for its phase, stresses and
+        all, and not kept for the positions after it: one of many deviation sets at a position
+        solved before (a tolerance class's samples). None where no contact is kept there or
+        its grids do not hold this one's."""
+        kept = self.phases.solve(self.model, case, state)
+        if kept is None:
+            return None
+        settled = Attempt(RingAttempt(*kept, kept[0].grids, state.closest(+1).plus_um), None)
+        return self._finished(case, state, settled)[0]
 
     def _contact(self, case: SolveCase, trial: Trial, grids: tuple[ToothGrid, ...],
                  first_um: float, near: PairSolution | None) -> RingAttempt | None:

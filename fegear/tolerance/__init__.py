@@ -1,0 +1,20 @@
+"""Tolerance classes: the deviations an ISO 1328-1 class admits, drawn as Monte-Carlo gear
+pairs, and the statistics of what the pairs carry (docs/tolerance.md).
+
+>>> from fegear.geometry import PairParameters
+>>> from fegear.tolerance import grade_of, sample_pair
+>>> grade = grade_of(6, PairParameters(m=2.0, z2=45, z1=44, h1=0.3, f1=0.15))
+>>> grade.gear1.f_pT, grade.gear1.F_pT, grade.gear1.F_rT       # µm, d1 = 88 mm
+(8.5, 26.0, 24.0)
+>>> pair = sample_pair(grade, seed=0, k=7)                       # the same pair in every run
+>>> abs(pair.teeth(1)[3].pitch) <= grade.gear1.F_pT
+True
+"""
+
+from .iso1328 import CLASSES, ClassTolerances, check_grade, class_tolerances, rounded
+from .sampling import SIGMAS, Draw, Grade, grade_of, sample_pair
+from .stats import QUANTILES, Quantile, quantiles
+
+__all__ = ["CLASSES", "QUANTILES", "SIGMAS", "ClassTolerances", "Draw", "Grade", "Quantile",
+           "check_grade", "class_tolerances", "grade_of", "quantiles", "rounded",
+           "sample_pair"]

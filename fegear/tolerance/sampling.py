@@ -1,0 +1,156 @@
+"""Monte-Carlo gear pairs of an ISO 1328-1 class: each sample a :class:`~fegear.geometry.
+Deviations` that a gear measuring machine would pass for the class (docs/tolerance.md,
+"Samples").
+
+Every deviation is drawn normal about zero with a third of its tolerance as its standard
+deviation (:data:`SIGMAS`: a process just capable of the class, C_p = 1), and a gear is kept
+only where every measured quantity lies within its class, as an inspected gear would be:
+
+* **Runout**: the teeth's centre off the axis by an eccentricity whose two components are
+  normal, σ = F_rT / 6 each (the largest eccentricity the class admits is F_rT / 2); the runout
+  F_r is twice the eccentricity, its phase uniform.
+* **Pitch**: each tooth's indexing error (fegear's per-tooth pitch deviation) is normal with
+  σ = f_pT / (3√2), so that a single pitch (the difference of two neighbours) has σ = f_pT /
+  3, taken from the gear's mean (a turn of the whole gear is no deviation). A measuring
+  machine reads a tooth's position as its indexing error plus the eccentricity's component
+  along the tooth's pitch circle: those positions' single pitches (neighbours' differences)
+  must lie within ±f_pT and their cumulative pitch (their range over the gear) within F_pT,
+  so the one cumulative pitch is consistent with the single pitches and with the runout. (The
+  solve takes the eccentricity from the runout, turning with the gear, not from the teeth.)
+* **Profile**: each tooth's slope deviation f_Hα and form deviation (a parabola's amplitude,
+  which is its f_fα), each half a gear-wide part (the machine's setting) and half the tooth's
+  own (variances), σ = f_HαT / 3 and f_fαT / 3 in all; each within its tolerance and the total
+  profile deviation (the range of the two along the profile) within F_αT.
+* **Centre distance**, where a tolerance ±T is given: normal, σ = T / 3, within ±T.
+
+A sample is drawn from its own generator, seeded by the study's seed and its own index
+(``numpy.random.default_rng([seed, k])``), so sample k is the same gear pair in a run of 100
+samples and in one of 10 000, and in every design a search compares (common random numbers).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import FegearError, ParameterError
+from ..geometry import Deviations, Runout, ToothDeviation
+from .iso1328 import ClassTolerances, check_grade, class_tolerances
+
+#: a deviation's tolerance over its standard deviation
+SIGMAS = 3.0
+#: draws of one gear before its class is declared out of reach (each passes with about 0.8
+#: of the probability; a thousand failures in a row is a bug, not bad luck)
+DRAWS = 1000
+#: roll fractions along the profile at which the total profile deviation is measured
+_ROLL = np.linspace(0.0, 1.0, 41)
+
+
+@dataclass(frozen=True)
+class Grade:
+    """What a pair of class ``grade`` is drawn within: each gear's tolerances and the
+    centre distance's tolerance ±``centre_distance_um`` (0: none drawn)."""
+
+    grade: int
+    gear1: ClassTolerances
+    gear2: ClassTolerances
+    centre_distance_um: float = 0.0
+
+    def summary(self) -> dict:
+        """As JSON (µm)."""
+        return {"grade": self.grade, "gear1": self.gear1.summary(),
+                "gear2": self.gear2.summary(),
+                "centre_distance_tolerance_um": self.centre_distance_um,
+                "sigmas": SIGMAS}
+
+    def reach_um(self) -> float:
+        """The most the deviations of any pair drawn can move one tooth of gear 1 towards
+        gear 2 or away (what :meth:`~fegear.geometry.Deviations.reach_um` can give at most):
+        each gear's cumulative pitch, profile slope and form, the centre distance's and half
+        the two runouts."""
+        def gear(t: ClassTolerances) -> float:
+            return t.F_pT + t.f_HaT + t.f_faT + 0.5 * t.F_rT
+        return gear(self.gear1) + gear(self.gear2) + self.centre_distance_um
+
+
+@dataclass(frozen=True)
+class Draw:
+    """Which pairs are solved: ``count`` samples of class ``grade`` drawn with ``seed``."""
+
+    grade: Grade
+    count: int
+    seed: int
+
+    def pair(self, k: int) -> Deviations:
+        """Sample ``k``'s deviations (:func:`sample_pair`)."""
+        return sample_pair(self.grade, self.seed, k)
+
+
+def grade_of(grade, params, centre_distance_tolerance: float = 0.0) -> Grade:
+    """Class ``grade``'s tolerances for both gears of the pair ``params`` (module m, z1 and
+    z2 teeth) and the centre distance's tolerance (µm), refused by name outside their
+    ranges."""
+    tol = float(centre_distance_tolerance or 0.0)
+    if not (math.isfinite(tol) and 0.0 <= tol <= 1000.0):
+        raise ParameterError("centre-distance-tolerance", centre_distance_tolerance,
+                             "0 <= centre-distance-tolerance <= 1000 µm (the ± tolerance)")
+    grade = check_grade(grade)
+    return Grade(grade, class_tolerances(grade, params.m, params.z1),
+                 class_tolerances(grade, params.m, params.z2), tol)
+
+
+def sample_pair(grade: Grade, seed: int, k: int) -> Deviations:
+    """Sample ``k`` of the pairs of ``grade`` drawn with ``seed`` (module docstring)."""
+    rng = np.random.default_rng([int(seed), int(k)])
+    teeth1, runout1 = _gear(rng, grade.gear1, +1.0)
+    teeth2, runout2 = _gear(rng, grade.gear2, -1.0)
+    cd = 0.0
+    if grade.centre_distance_um > 0:
+        cd = _within(rng, grade.centre_distance_um)
+    return Deviations(teeth1, teeth2, cd, runout1, runout2)
+
+
+def _within(rng: np.random.Generator, tolerance: float) -> float:
+    """One normal draw (σ = tolerance / :data:`SIGMAS`) within ±tolerance."""
+    for _ in range(DRAWS):
+        x = rng.normal(0.0, tolerance / SIGMAS)
+        if abs(x) <= tolerance:
+            return float(x)
+    raise FegearError("no draw within its tolerance")   # pragma: no cover
+
+
+def _gear(rng: np.random.Generator, tol: ClassTolerances, sign: float
+          ) -> tuple[dict[int, ToothDeviation], Runout]:
+    """One gear's teeth and runout that pass its class (module docstring); ``sign``: +1 for
+    gear 1, whose positive pitch deviation turns a tooth counter-clockwise, −1 for gear 2."""
+    z = tol.z
+    theta = 2.0 * np.pi * np.arange(z) / z
+    for _ in range(DRAWS):
+        ecc = rng.normal(0.0, tol.F_rT / (2.0 * SIGMAS), 2)
+        phase = math.atan2(ecc[1], ecc[0])
+        fr = 2.0 * math.hypot(*ecc)
+        index = rng.normal(0.0, tol.f_pT / (SIGMAS * math.sqrt(2.0)), z)
+        index -= index.mean()
+        # what a measuring machine reads: the indexing error and the centre's offset along
+        # each tooth's pitch circle (counter-clockwise), in the gear's sign of a pitch
+        # deviation; the solve takes the offset from the runout, so a tooth's own pitch
+        # deviation is its indexing error alone
+        position = index + sign * 0.5 * fr * np.sin(phase - theta)
+        half = 1.0 / math.sqrt(2.0)
+        slope = rng.normal(0.0, tol.f_HaT / SIGMAS * half) + \
+            rng.normal(0.0, tol.f_HaT / SIGMAS * half, z)
+        form = rng.normal(0.0, tol.f_faT / SIGMAS * half) + \
+            rng.normal(0.0, tol.f_faT / SIGMAS * half, z)
+        profile = slope[:, None] * _ROLL + 4.0 * form[:, None] * _ROLL * (1.0 - _ROLL)
+        if (fr <= tol.F_rT
+                and np.abs(position - np.roll(position, 1)).max() <= tol.f_pT
+                and np.ptp(position) <= tol.F_pT
+                and np.abs(slope).max() <= tol.f_HaT and np.abs(form).max() <= tol.f_faT
+                and np.ptp(profile, axis=1).max() <= tol.F_aT):
+            teeth = {i: ToothDeviation(float(index[i]), float(slope[i]), float(form[i]))
+                     for i in range(z)}
+            return teeth, Runout(fr, math.degrees(phase))
+    raise FegearError(f"no gear of class {tol.grade} drawn within its tolerances in "
+                      f"{DRAWS} draws")   # pragma: no cover

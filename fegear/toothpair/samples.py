@@ -1,0 +1,184 @@
+"""A tolerance class's sampled gear pairs solved at a job's positions (docs/tolerance.md).
+
+Every sample is the same pair with other deviations (:mod:`fegear.tolerance.sampling`), so it
+is the same model with other rigid gaps: at each position the exact pair is solved first, its
+contact kept with grids reaching as far as the deviations of any sample drawn can move a tooth
+(:class:`~.ring.phases.Phases`), and each sample is a contact solve and its stresses on that
+contact (:meth:`~.ring.solver.RingSolver.on_kept`); one whose contact the kept grids do not
+hold is placed and solved as a position of its own.
+
+A sample whose deviations take up the pair's backlash somewhere over a whole turn of gear 1
+(:func:`~.teeth.refuse_closed`, checked at :data:`~.positions.TURN_CHECK` angles a pitch, as a
+deviated solve checks it) cannot be turned: it is counted as jammed, with where, and carries no
+stresses. A sample whose contact does not settle is counted as failed, with why: no sample
+leaves the tables unseen.
+
+The positions are the parallel work: two chains, each half of them with every sample (one
+position: half the samples each), on the executor the caller gives.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+from .. import progress
+from ..errors import FegearError
+from ..fe import Allowables, blas_threads, keep_freed_memory
+from ..geometry import Placed, ToothContact, gear1_profile
+from ..running import SERIAL, Executor
+from ..tolerance import Draw
+from .case import HEADLINE, PairSolution, SolveCase
+from .positions import TURN_CHECK, solve_position
+from .revolution import revolution_positions
+from .ring.solver import RingSolver
+from .safety import safety_factors
+from .teeth import closed, refuse_interference
+
+
+@dataclass(frozen=True)
+class Sampled:
+    """The exact pair's solutions at the positions (in order) and one row a sample: its
+    deviations in brief, ``status`` ("solved", "jammed" or "failed", with ``why``), and where
+    solved its largest headline stresses over the positions, each with its position, and
+    the safety factors they give."""
+
+    nominal: tuple[PairSolution, ...]
+    rows: tuple[dict, ...]
+
+
+def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
+                  solver: RingSolver, executor: Executor = SERIAL) -> Sampled:
+    """The exact pair and ``draw``'s samples solved at the rolling angles ``betas`` (rad) with
+    ``solver``, a ring solver that keeps a contact a position (``repeats``) with grids that
+    reach as far as the draw's deviations (module docstring)."""
+    keep_freed_memory()
+    p = case.params
+    with blas_threads():
+        profile = gear1_profile(p)
+        states = _States(case, profile, tuple(betas))
+        jams = executor.map(lambda ks: [_jammed(states, draw.pair(k)) for k in ks],
+                            _halves(range(draw.count)))
+        jammed = [j for half in jams for j in half]
+        solver.build(case, profile, lambda: states.loaded)
+        free = [k for k in range(draw.count) if jammed[k] is None]
+        if len(betas) > 1:
+            spans = [(span, free) for span in _halves(range(len(betas)))]
+        else:
+            spans = [(range(1), half) for half in _halves(free)]
+        chains = executor.map(lambda job: _chain(case, states, draw, solver, *job), spans)
+    nominal: dict[int, PairSolution] = {}
+    found: dict[int, list] = {}
+    for done_nominal, done in chains:
+        nominal.update(done_nominal)
+        for k, got in done.items():
+            found.setdefault(k, []).extend(got)
+    rows = []
+    for k in range(draw.count):
+        brief = _brief(draw.pair(k))
+        if jammed[k] is not None:
+            rows.append({"sample": k, **brief, "status": "jammed", "why": jammed[k]})
+            continue
+        got = found.get(k, [])
+        failed = [why for _, why in got if isinstance(why, str)]
+        if failed:
+            rows.append({"sample": k, **brief, "status": "failed", "why": failed[0]})
+            continue
+        rows.append({"sample": k, **brief, "status": "solved", "why": "",
+                     **_worst([(beta, head) for beta, head in got], allowables)})
+    return Sampled(tuple(nominal[i] for i in range(len(betas))), tuple(rows))
+
+
+def _halves(items) -> list:
+    """``items`` in two halves (one where fewer than two)."""
+    items = list(items)
+    cut = (len(items) + 1) // 2
+    return [items[:cut], items[cut:]] if len(items) > 1 else [items]
+
+
+class _States:
+    """The exact pair's clearance states at the positions (``loaded``: (β, state) pairs, the
+    loaded flanks) and, for the check that a sample leaves the pair its backlash, both
+    sides' states over a whole turn of gear 1 (:data:`~.positions.TURN_CHECK` angles a
+    pitch) and at the positions."""
+
+    def __init__(self, case: SolveCase, profile, betas: tuple[float, ...]) -> None:
+        p = case.params
+        find = ToothContact(p, profile).states
+        self.case = case
+        self.loaded = list(zip(betas, find(betas, directions=(+1,))))
+        refuse_interference(self.loaded)
+        turn = revolution_positions(betas[0], TURN_CHECK, p.z1, p.z2)
+        self.turn = list(zip(turn, find(turn, directions=(+1,)), find(turn, directions=(-1,))))
+
+
+def _jammed(states: _States, deviations) -> str | None:
+    """Where ``deviations`` take up the pair's backlash over a whole turn (the refusal's
+    words), else None."""
+    p = states.case.params
+    behind = []
+    for beta, plus, minus in states.turn:
+        at = Placed(deviations, p, beta)
+        moved = at.clearances(plus)
+        if moved.closest(+1).plus_um < 0:
+            behind.append((beta, moved, at.clearances(minus, -1)))
+    where = closed(behind)
+    return None if where is None else str(where)
+
+
+def _chain(case: SolveCase, states: _States, draw: Draw, solver: RingSolver, span,
+           samples) -> tuple[dict[int, PairSolution], dict[int, list]]:
+    """The positions ``span`` (indices) of the exact pair and of ``samples``: the exact
+    pair's solutions by position, and each sample's (β, headline) a position, or (β, why)
+    where it failed."""
+    nominal: dict[int, PairSolution] = {}
+    found: dict[int, list] = {}
+    placed = RingSolver(solver.model, submodels="none")   # a sample the kept grids miss
+    near = None
+    for i in span:
+        beta, state = states.loaded[i]
+        progress.stage(f"samples at β {math.degrees(beta):.3g}°")
+        at = replace(case, beta=beta)
+        near = nominal[i] = solve_position(at, state, solver, near)
+        for k in samples:
+            deviations = draw.pair(k)
+            one = replace(at, deviations=deviations)
+            moved = Placed(deviations, case.params, beta).clearances(state)
+            try:
+                sol = solver.on_kept(one, moved)
+                if sol is None:
+                    sol = solve_position(one, moved, placed, near)
+            except FegearError as err:
+                found.setdefault(k, []).append((beta, str(err)))
+                continue
+            found.setdefault(k, []).append((beta, sol.headline()))
+    return nominal, found
+
+
+def _worst(got: list, allowables: Allowables) -> dict:
+    """A sample's largest headline stresses over its positions ((β, headline) pairs), each
+    with the position (degrees), and the safety factors they give."""
+    out = {}
+    for key in HEADLINE:
+        beta, head = max(got, key=lambda g: g[1][key])
+        out[key] = head[key]
+        out[f"{key.removesuffix('_MPa')}_at_deg"] = math.degrees(beta)
+    return {**out, **safety_factors(out, allowables)}
+
+
+def _brief(deviations) -> dict:
+    """A sample's deviations in a few numbers (µm): each gear's cumulative pitch (the range
+    of its teeth's positions), largest single pitch, largest profile slope and form, its
+    runout, and the centre distance's."""
+    out = {}
+    for g in (1, 2):
+        teeth = deviations.teeth(g)
+        pitch = [teeth[t].pitch if t in teeth else 0.0 for t in range(max(teeth, default=-1) + 1)]
+        single = [abs(a - b) for a, b in zip(pitch, pitch[-1:] + pitch[:-1])] if pitch else [0.0]
+        out[f"gear{g}_cumulative_pitch_um"] = (max(pitch) - min(pitch)) if pitch else 0.0
+        out[f"gear{g}_single_pitch_um"] = max(single)
+        out[f"gear{g}_slope_um"] = max((abs(d.slope) for d in teeth.values()), default=0.0)
+        out[f"gear{g}_form_um"] = max((abs(d.form) for d in teeth.values()), default=0.0)
+        out[f"gear{g}_runout_um"] = getattr(deviations, f"runout{g}").fr
+    out["centre_distance_um"] = deviations.centre_distance
+    return out

@@ -1,0 +1,151 @@
+"""What a tolerance class's samples give a designer (``fegear solve --grade``): each headline
+stress's nominal, quantiles with their statistical errors and worst with its sample, the
+safety factors that the ``--quantile`` share of the class's pairs meet, and the verdict
+(docs/tolerance.md, "Reading the quantiles").
+
+A pair that jams (its deviations take up the backlash) carries no stress a solve can give, and
+it fails: its stresses count as beyond every other's, so a quantile is taken of all the pairs
+drawn, and where the jammed share reaches past it the quantile is "jams".
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..fe import Allowables
+from ..tolerance import QUANTILES, quantiles
+from .case import HEADLINE
+from .safety import SAFETY, safety_factor
+
+#: a jammed pair's stresses, beyond every solved one's (module docstring)
+JAMMED = math.inf
+
+
+def samples_summary(rows, nominal_rows: list[dict], grade, seed: int, quantile: float,
+                    allowables: Allowables) -> dict:
+    """The samples' summary (``summary["samples"]``): the class, the counts, per headline
+    stress and per safety factor the nominal (the exact pair's largest over the positions),
+    the quantiles, the value at ``quantile`` and the worst with its sample, the verdict and
+    the rows (one a sample)."""
+    rows = list(rows)
+    n = len(rows)
+    solved = [r for r in rows if r["status"] == "solved"]
+    jammed = sum(r["status"] == "jammed" for r in rows)
+    failed = [r for r in rows if r["status"] == "failed"]
+    share = jammed / n
+    qs = tuple(sorted({*QUANTILES, quantile}))
+    stresses, safety = {}, {}
+    for key in HEADLINE:
+        values = [r[key] if r["status"] == "solved" else JAMMED
+                  for r in rows if r["status"] != "failed"]
+        found = {q.q: q for q in quantiles(values, qs, seed=seed)}
+        worst = max(solved, key=lambda r: r[key]) if solved else None
+        stresses[key] = {
+            "nominal": max(r[key] for r in nominal_rows),
+            "quantiles": [_quantile(found[q]) for q in qs],
+            "worst": worst[key] if worst else None,
+            "worst_sample": worst["sample"] if worst else None}
+    for name, (which, key) in SAFETY.items():
+        allowable = getattr(allowables, which)
+        at = next(q for q in stresses[key]["quantiles"] if q["q"] == quantile)
+        worst = stresses[key]["worst"]
+        safety[name] = {"nominal": safety_factor(allowable, stresses[key]["nominal"]),
+                        "at_quantile": _factor(allowable, at),
+                        "at_quantile_error": _factor_error(allowable, at),
+                        "worst": None if worst is None else safety_factor(allowable, worst),
+                        "worst_sample": stresses[key]["worst_sample"]}
+    return {"grade": grade.summary(), "samples": n, "seed": seed, "quantile": quantile,
+            "solved": len(solved), "jammed": jammed, "failed": len(failed),
+            "jammed_share": share, "jammed_share_error": math.sqrt(share * (1 - share) / n),
+            "failures": sorted({r["why"] for r in failed}),
+            "stresses": stresses, "safety": safety,
+            "verdict": verdict(safety, share, quantile, grade.grade), "rows": rows}
+
+
+def _quantile(q) -> dict:
+    """A quantile as JSON: "jams" (its value None) where it falls among the jammed pairs."""
+    jams = not math.isfinite(q.value)
+    return {"q": q.q, "value": None if jams else q.value,
+            "error": None if jams or not math.isfinite(q.error) else q.error,
+            "jams": jams, "n": q.n}
+
+
+def _factor(allowable: float, q: dict) -> float | None:
+    return 0.0 if q["jams"] else safety_factor(allowable, q["value"])
+
+
+def _factor_error(allowable: float, q: dict) -> float | None:
+    """The standard error of allowable / stress from the stress's (to first order)."""
+    if q["jams"] or q["error"] is None or not q["value"]:
+        return None
+    return allowable * q["error"] / q["value"] ** 2
+
+
+def verdict(safety: dict, jammed_share: float, quantile: float, grade: int) -> str:
+    """One line: whether the ``quantile`` share of class ``grade``'s pairs meet every safety
+    factor (S >= 1), the limiting one, or that too many of them jam."""
+    share = f"{100 * quantile:g} % of class-{grade} pairs"
+    if jammed_share > 1.0 - quantile:
+        return (f"FAIL: {100 * jammed_share:.3g} % of class-{grade} pairs jam (their deviations "
+                f"take up the backlash), more than the {100 * (1 - quantile):.3g} % that "
+                f"--quantile {quantile:g} leaves: a finer class, or more backlash (--shift)")
+    have = {k: v["at_quantile"] for k, v in safety.items() if v["at_quantile"] is not None}
+    if not have:
+        return f"no safety factor: no stress at the quantile ({share})"
+    key = min(have, key=have.get)
+    word = "PASS" if have[key] >= 1.0 else "FAIL"
+    return (f"{word}: {share} meet {NAMES[key]} >= {have[key]:.2f} (the limiting factor; "
+            f"nominal {safety[key]['nominal']:.2f})")
+
+
+#: the safety factors as a table names them
+NAMES = {"safety_bending_gear1": "S_F gear 1", "safety_bending_gear2": "S_F gear 2",
+         "safety_contact": "S_H", "safety_contact_flank": "S_H flank"}
+
+
+def samples_table(s: dict) -> str:
+    """The samples' summary as the terminal shows it: the stresses' quantiles with their
+    errors, the safety factors at the quantile, the counts and the verdict."""
+    q = s["quantile"]
+    head = ["stress [MPa]", "nominal", *(f"P{100 * x:g}" for x in _shown(s)), "worst (sample)"]
+    lines = ["| " + " | ".join(head) + " |",
+             "|" + "|".join(["---"] + ["---:"] * (len(head) - 1)) + "|"]
+    for key, label in HEADLINE.items():
+        v = s["stresses"][key]
+        cells = [label, f"{v['nominal']:.1f}"]
+        for x in v["quantiles"]:
+            if x["q"] in _shown(s):
+                cells.append("jams" if x["jams"] else f"{x['value']:.1f} ± " + (
+                    "∞" if x["error"] is None else f"{x['error']:.1f}"))
+        cells.append("-" if v["worst"] is None else f"{v['worst']:.1f} ({v['worst_sample']})")
+        lines.append("| " + " | ".join(cells) + " |")
+    lines += ["", f"| safety factor | nominal | at P{100 * q:g} | worst |", "|---|---:|---:|---:|"]
+    for key, label in NAMES.items():
+        v = s["safety"][key]
+        at = ("jams" if v["at_quantile"] == 0.0 else "-" if v["at_quantile"] is None else
+              f"{v['at_quantile']:.2f}" + (f" ± {v['at_quantile_error']:.2f}"
+                                           if v["at_quantile_error"] is not None else ""))
+        lines.append(f"| {label} | {_num(v['nominal'])} | {at} | {_num(v['worst'])} |")
+    g = s["grade"]
+    lines += ["", f"{s['samples']} pairs of ISO 1328-1:2013 class {g['grade']} (seed "
+              f"{s['seed']}): {s['solved']} solved, {s['jammed']} jammed "
+              f"({100 * s['jammed_share']:.3g} ± {100 * s['jammed_share_error']:.2g} %), "
+              f"{s['failed']} failed" + (f" ({'; '.join(s['failures'])})" if s["failures"]
+                                         else ""),
+              f"class {g['grade']}: f_pT {g['gear1']['f_pT_um']:g}/{g['gear2']['f_pT_um']:g}, "
+              f"F_pT {g['gear1']['F_pT_um']:g}/{g['gear2']['F_pT_um']:g}, f_HαT "
+              f"{g['gear1']['f_HaT_um']:g}/{g['gear2']['f_HaT_um']:g}, f_fαT "
+              f"{g['gear1']['f_faT_um']:g}/{g['gear2']['f_faT_um']:g}, F_rT "
+              f"{g['gear1']['F_rT_um']:g}/{g['gear2']['F_rT_um']:g} µm (gear 1/gear 2)"
+              + (f", centre distance ±{g['centre_distance_tolerance_um']:g} µm"
+                 if g["centre_distance_tolerance_um"] else ""),
+              f"verdict: {s['verdict']}"]
+    return "\n".join(lines)
+
+
+def _shown(s: dict) -> tuple[float, ...]:
+    return tuple(sorted({*QUANTILES, s["quantile"]}))
+
+
+def _num(x) -> str:
+    return "-" if x is None else f"{x:.2f}"

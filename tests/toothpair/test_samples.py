@@ -1,0 +1,96 @@
+"""A tolerance class's pairs solved (``fegear solve --grade``): each sample on its position's
+kept contact reads as the same deviated pair solved alone; a sample that jams is one a
+deviated solve refuses; every pair drawn is in the table; the quantiles and the verdict read
+what the rows give; a class with a revolution or with deviations given is refused by name."""
+
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from fegear.errors import ParameterError
+from fegear.geometry import PairParameters
+from fegear.tolerance import Draw, grade_of
+from fegear.toothpair import SolveCase, prepare_job, solve_pair
+from fegear.toothpair.ring.solver import RingSolver
+from fegear.toothpair.safety import DEFAULT_ALLOWABLES
+from fegear.toothpair.samples import solve_samples
+from fegear.toothpair.samples_report import samples_summary
+
+PAIR = PairParameters(shift=0.016, rotation=0.002)
+CASE = SolveCase(PAIR, torque=200.0, quality="coarse")
+DRAW = Draw(grade_of(5, PAIR), 8, 0)
+
+
+@pytest.fixture(scope="module")
+def sampled(baseline_ring):
+    solver = RingSolver(baseline_ring, repeats=True, reach_um=DRAW.grade.reach_um())
+    return solve_samples(CASE, (0.0,), DRAW, DEFAULT_ALLOWABLES, solver)
+
+
+def test_each_sample_reads_as_the_same_pair_solved_alone(sampled, baseline_ring):
+    solved = [r for r in sampled.rows if r["status"] == "solved"]
+    assert len(solved) >= 3
+    for row in solved:
+        alone = solve_pair(replace(CASE, deviations=DRAW.pair(row["sample"])),
+                           model=baseline_ring).headline()
+        # the kept contact's grids against the ones placed for this pair alone (the same
+        # rule: docs/deviations.md, "A whole revolution")
+        for key in ("root_stress_gear1_MPa", "root_stress_gear2_MPa"):
+            assert row[key] == pytest.approx(alone[key], rel=2e-3), (row["sample"], key)
+        for key in ("contact_pressure_MPa", "flank_contact_pressure_MPa"):
+            assert row[key] == pytest.approx(alone[key], rel=5e-3), (row["sample"], key)
+
+
+def test_a_jammed_sample_is_one_a_deviated_solve_refuses(sampled, baseline_ring):
+    jammed = [r for r in sampled.rows if r["status"] == "jammed"]
+    assert jammed, "class 5 jams this pair's backlash in a third of its pairs"
+    for row in jammed[:2]:
+        assert "stands" in row["why"] and "to turn back" in row["why"]
+        with pytest.raises(ParameterError, match="closes before any load"):
+            solve_pair(replace(CASE, deviations=DRAW.pair(row["sample"])), model=baseline_ring)
+
+
+def test_every_pair_drawn_is_in_the_table_and_the_exact_pair_beside(sampled):
+    assert [r["sample"] for r in sampled.rows] == list(range(DRAW.count))
+    assert {r["status"] for r in sampled.rows} <= {"solved", "jammed", "failed"}
+    assert len(sampled.nominal) == 1 and not sampled.nominal[0].case.deviations
+    assert sampled.nominal[0].root_stress[0] == pytest.approx(286, rel=0.02)
+
+
+def test_the_summary_reads_the_rows(sampled):
+    nominal = [dict(sampled.nominal[0].headline(), position_deg=0.0)]
+    s = samples_summary(sampled.rows, nominal, DRAW.grade, DRAW.seed, 0.5, DEFAULT_ALLOWABLES)
+    solved = [r for r in sampled.rows if r["status"] == "solved"]
+    key = "root_stress_gear1_MPa"
+    assert s["solved"] + s["jammed"] + s["failed"] == DRAW.count
+    assert s["stresses"][key]["worst"] == max(r[key] for r in solved)
+    assert s["stresses"][key]["nominal"] == nominal[0][key]
+    median = next(q for q in s["stresses"][key]["quantiles"] if q["q"] == 0.5)
+    values = [r[key] if r["status"] == "solved" else math.inf for r in sampled.rows]
+    if median["jams"]:
+        assert np.median(values) == math.inf
+    else:
+        assert median["value"] == pytest.approx(np.median(values))
+    factor = s["safety"]["safety_bending_gear1"]
+    assert factor["worst"] == pytest.approx(DEFAULT_ALLOWABLES.bending / max(
+        r[key] for r in solved))
+    assert s["verdict"].startswith(("PASS", "FAIL"))
+    if s["jammed_share"] > 0.5:
+        assert "jam" in s["verdict"]
+
+
+@pytest.mark.parametrize("values, name", [
+    ({"grade": 6, "revolution": True}, "grade"),
+    ({"grade": 6, "pitch-deviation": "1:11=5"}, "grade"),
+    ({"samples": 10}, "samples"),
+    ({"centre-distance-tolerance": 5.0}, "centre-distance-tolerance"),
+    ({"grade": 0}, "grade"),
+    ({"grade": 6, "samples": 0}, "samples"),
+    ({"grade": 6, "quantile": 1.5}, "quantile"),
+])
+def test_bad_class_inputs_are_refused_by_name(values, name):
+    with pytest.raises(ParameterError) as err:
+        prepare_job(values)
+    assert err.value.name == name
