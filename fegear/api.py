@@ -112,6 +112,29 @@ class Result:
         return {"worst": rev["worst"], "teeth": teeth, "rotation_urad": rev["rotation_urad"],
                 "spectrum": pd.DataFrame(rev["spectrum"]).set_index("order")}
 
+    @property
+    def samples(self) -> dict | None:
+        """For a tolerance class's pairs (``grade=...``, docs/tolerance.md): ``rows``, a
+        DataFrame indexed by sample (its deviations in brief, status, largest stresses and
+        safety factors); ``quantiles``, a DataFrame indexed by stress and quantile of the
+        value, its bootstrap error and whether it falls among the jammed pairs; ``safety``,
+        a DataFrame indexed by safety factor of the nominal, the value at the quantile, its
+        error and the worst; the counts (``solved``, ``jammed``, ``failed``) and the
+        ``verdict``. None otherwise."""
+        import pandas as pd
+
+        s = self.summary.get("samples")
+        if s is None:
+            return None
+        quantiles = pd.DataFrame(
+            [{"stress": k, **q} for k, v in s["stresses"].items() for q in v["quantiles"]]
+        ).set_index(["stress", "q"])
+        safety = pd.DataFrame([{"factor": k, **v} for k, v in s["safety"].items()]
+                              ).set_index("factor")
+        return {"rows": pd.DataFrame(s["rows"]).set_index("sample"), "quantiles": quantiles,
+                "safety": safety, "solved": s["solved"], "jammed": s["jammed"],
+                "failed": s["failed"], "verdict": s["verdict"]}
+
     def write(self, out: str | Path, fields: bool = True,
               pictures: bool = True) -> dict[str, Path]:
         """Write the files ``fegear solve --out`` writes into ``out``: summary.json, the VTU
@@ -149,10 +172,10 @@ def _named(inputs: dict[str, object]) -> dict[str, object]:
     refused with the nearest known one."""
     import difflib
 
-    from .toothpair import SOLVE_INPUTS
+    from .toothpair import JOB_INPUTS
 
-    known = [row.dest for row in SOLVE_INPUTS.values()]
-    known += [a.replace("-", "_") for row in SOLVE_INPUTS.values() for a in row.aliases]
+    known = [row.dest for row in JOB_INPUTS.values()]
+    known += [a.replace("-", "_") for row in JOB_INPUTS.values() for a in row.aliases]
     for name, value in inputs.items():
         if name not in known:
             close = difflib.get_close_matches(name, known, n=1)

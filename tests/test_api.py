@@ -62,6 +62,16 @@ def test_a_revolution_names_the_deviated_tooth_as_the_worst():
     assert fegear.solve(**INPUTS).revolution is None
 
 
+def test_a_class_gives_its_samples_as_data_frames(result):
+    r = fegear.solve(grade=4, samples=3, shift=0.03, **INPUTS)
+    s = r.samples
+    assert list(s["rows"].index) == [0, 1, 2] and s["solved"] + s["jammed"] + s["failed"] == 3
+    assert s["quantiles"].loc[("root_stress_gear1_MPa", 0.95)].n == 3
+    assert s["safety"].loc["safety_bending_gear1"].nominal > 0
+    assert s["verdict"].startswith(("PASS", "FAIL"))
+    assert result.samples is None
+
+
 @pytest.mark.parametrize("inputs, name, text", [
     ({"tip_clearence": 0.01}, "tip-clearence", "did you mean tip_clearance?"),
     ({"tip_clearance": -5.0}, "tip-clearance", "tip_clearance = -5.0 is not admissible"),

@@ -41,7 +41,8 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "tip_edge": ("RoundedProfile", "default_round", "largest_round"),
     "build": ("PairGeometry", "build_geometry"),
     "space": ("DesignMap", "design_map", "map_row", "map_span", "map_tables"),
-    "deviations": ("Deviations", "ToothDeviation", "Runout", "Placed", "NO_DEVIATIONS"),
+    "deviations": ("Deviations", "ToothDeviation", "Runout", "Placed", "NO_DEVIATIONS",
+                   "moved_clearances", "least_clearances"),
     "deviation_inputs": ("deviations_of", "read_deviations"),
     "plot": ("pair_png", "map_png"),
 })

@@ -111,11 +111,12 @@ class Runout:
                                  "runout; its direction is the phase)")
         object.__setattr__(self, "phase", require_finite("runout phase", self.phase))
 
-    def offset(self, tooth0: float) -> np.ndarray:
+    def offset(self, tooth0) -> np.ndarray:
         """The centre of the gear's teeth from its axis (mm, fixed frame) with tooth 0's
-        centre at polar angle ``tooth0`` (rad, fixed frame, about the axis)."""
-        a = math.radians(self.phase) + tooth0
-        return 0.5e-3 * self.fr * np.array([math.cos(a), math.sin(a)])
+        centre at polar angle ``tooth0`` (rad, fixed frame, about the axis): (2,), or (n, 2)
+        for n angles."""
+        a = math.radians(self.phase) + np.asarray(tooth0, dtype=float)
+        return 0.5e-3 * self.fr * np.stack([np.cos(a), np.sin(a)], axis=-1)
 
 
 @dataclass(frozen=True)
@@ -205,15 +206,32 @@ class Deviations:
     def flank_offset(self, gear: int, teeth: np.ndarray, roll: np.ndarray) -> np.ndarray:
         """The normal departure (mm, + adds material) of ``gear``'s loaded flanks at points
         of ``teeth`` at roll fractions ``roll``."""
-        table = self.teeth(gear)
         teeth, roll = np.ravel(teeth), np.ravel(roll)
+        slope, form, curves = self._profiles(gear)
         out = np.zeros(len(teeth))
-        for t in np.unique(teeth):
-            d = table.get(int(t))
-            if d is not None and d.profiled:
-                sel = teeth == t
-                out[sel] = 1e-3 * d.normal_um(roll[sel])
+        if not len(slope) or not len(teeth):
+            return out
+        inside = teeth < len(slope)
+        t, u = teeth[inside], np.clip(roll[inside], 0.0, 1.0)
+        out[inside] = 1e-3 * (slope[t] * u + form[t] * 4.0 * u * (1.0 - u))
+        for tooth, d in curves.items():   # a measured form: its own curve, not the parabola
+            sel = teeth == tooth
+            out[sel] = 1e-3 * d.normal_um(roll[sel])
         return out
+
+    def _profiles(self, gear: int) -> tuple[np.ndarray, np.ndarray, dict]:
+        """``gear``'s profile deviations as arrays by tooth (µm; zero where none): slopes,
+        parabolas' amplitudes, and the teeth with measured form curves (made once: a solve
+        asks for them at every gap it forms)."""
+        key = f"_profiles{gear}"
+        if key not in self.__dict__:
+            table = self.teeth(gear)
+            n = max(table, default=-1) + 1
+            slope, form = np.zeros(n), np.zeros(n)
+            for tooth, d in table.items():
+                slope[tooth], form[tooth] = d.slope, 0.0 if d.curve else d.form
+            self.__dict__[key] = (slope, form, {t: d for t, d in table.items() if d.curve})
+        return self.__dict__[key]
 
 
 NONE = NO_DEVIATIONS = Deviations()
@@ -236,9 +254,9 @@ def _gear1_radii(params) -> tuple[float, float]:
 
 
 class Placed:
-    """A pair's deviations at one rolling angle β: the exact unloaded gap of gear 1's points to
-    gear 2 as the deviations leave them (:meth:`gap`), and each tooth's clearance moved by
-    them (:meth:`clearances`).
+    """A pair's deviations at one rolling angle β (or at one a point of the gaps asked for:
+    ``beta`` an array): the exact unloaded gap of gear 1's points to gear 2 as the deviations
+    leave them (:meth:`gap`), and each tooth's clearance moved by them (:meth:`clearances`).
 
     Gear 1 turns about its axis, which the centre-distance deviation moves along the line of
     centres; its teeth stand off that axis by its runout and gear 2's by its own (each turning
@@ -292,14 +310,13 @@ class Placed:
         r = rotate(fixed - self.axis1, -(self.beta + turn2))
         return dist, np.einsum("ij,ij->i", normal, np.column_stack([-r[:, 1], r[:, 0]]))
 
-    def lever(self, rate: float, direction: int) -> float:
-        """The size of a closing point's gap rate (mm/rad) that a Newton step divides by, at
+    def levers(self, rate: np.ndarray, direction: int) -> np.ndarray:
+        """The size of closing points' gap rates (mm/rad) that a Newton step divides by, at
         least :data:`LEVER_FLOOR` r1: a point whose normal passes nearly through gear 1's axis
         (a tip meeting a tip, the rate near zero or of the other sign) is not where a deviated
         tooth closes, for the turn barely moves its gap; a tooth's other points, with the
         lever arms of its flanks, close first."""
-        floor = LEVER_FLOOR * self.params.r1
-        return max(-direction * rate, floor)
+        return np.maximum(-direction * np.asarray(rate), LEVER_FLOOR * self.params.r1)
 
     def _tooth2(self, xi: np.ndarray) -> np.ndarray:
         z2 = self.params.z2
@@ -309,24 +326,56 @@ class Placed:
         """``state`` (a :class:`~.clearance.ContactState` at this β) with each tooth's
         clearance in ``direction`` (+1: the + torque's, the loaded flanks; -1: the coast
         flanks, which only the pitch, centre-distance and runout deviations move) moved by the
-        deviations: one Newton step on the deviated gap at the point that closes it (exact for
-        a pitch deviation of gear 1, to the second order in the deviation otherwise)."""
-        p = self.params
-        alpha = p.ratio * self.beta
-        key, point = ("plus_um", "plus_point") if direction > 0 else ("minus_um", "minus_point")
-        closing = [t for t in state.teeth
-                   if getattr(t, key) is not None and getattr(t, point) is not None]
-        if not closing:
-            return state
-        um = np.array([getattr(t, key) for t in closing])
-        x1 = rotate(np.array([getattr(t, point) for t in closing]) - np.array([0.0, p.e]),
-                    -alpha)
-        g, rate = self.gap(x1, np.array([t.tooth for t in closing]),
-                           alpha + direction * p.turn_of(um), flanks=direction > 0)
-        # the gap's rate with the turn is < 0 on a loaded flank and > 0 on a coast flank:
-        # either way the clearance grows by the gap over its rate's size
-        grown = {t.tooth: p.arc_um(abs(gi) / self.lever(ri, direction)) * math.copysign(1.0, gi)
-                 for t, gi, ri in zip(closing, g, rate)}
-        return replace(state, teeth=tuple(
-            replace(t, **{key: float(getattr(t, key) + grown[t.tooth])})
-            if t.tooth in grown else t for t in state.teeth))
+        deviations (:func:`moved_clearances`)."""
+        return moved_clearances(self.deviations, self.params, [state], direction)[0]
+
+
+def moved_clearances(deviations: Deviations, params, states, direction: int = +1) -> list:
+    """``states`` (:class:`~.clearance.ContactState` s, each at its own β) with each tooth's
+    clearance in ``direction`` (+1: the + torque's, the loaded flanks; -1: the coast flanks,
+    which only the pitch, centre-distance and runout deviations move) moved by
+    ``deviations``: one Newton step on the deviated gap at the point that closes it (exact for
+    a pitch deviation of gear 1, to the second order in the deviation otherwise). Every
+    state's closing points are one batch of gaps (:class:`Placed` with a β a point): a whole
+    turn's states cost about what one does."""
+    key = "plus_um" if direction > 0 else "minus_um"
+    closing, um = _moved_um(deviations, params, states, direction)
+    out, k = [], 0
+    for s, c in zip(states, closing):
+        moved = {t.tooth: float(um[k + i]) for i, t in enumerate(c)}
+        k += len(c)
+        out.append(replace(s, teeth=tuple(replace(t, **{key: moved[t.tooth]})
+                                          if t.tooth in moved else t for t in s.teeth)))
+    return out
+
+
+def least_clearances(deviations: Deviations, params, states, direction: int = +1
+                     ) -> np.ndarray:
+    """Each of ``states``' smallest clearance in ``direction`` moved by ``deviations`` (µm;
+    +inf where no tooth closes): :func:`moved_clearances`' numbers without the states."""
+    closing, um = _moved_um(deviations, params, states, direction)
+    ends = np.cumsum([0] + [len(c) for c in closing])
+    return np.array([um[a:b].min() if b > a else np.inf for a, b in zip(ends[:-1], ends[1:])])
+
+
+def _moved_um(deviations: Deviations, params, states, direction: int
+              ) -> tuple[list[list], np.ndarray]:
+    """Each state's closing teeth in ``direction`` and their clearances moved by
+    ``deviations`` (µm), all states' in one array (:func:`moved_clearances`)."""
+    key, point = ("plus_um", "plus_point") if direction > 0 else ("minus_um", "minus_point")
+    closing = [[t for t in s.teeth if getattr(t, key) is not None
+                and getattr(t, point) is not None] for s in states]
+    flat = [t for c in closing for t in c]
+    if not flat:
+        return closing, np.zeros(0)
+    beta = np.repeat([s.beta for s in states], [len(c) for c in closing])
+    alpha = params.ratio * beta
+    um = np.array([getattr(t, key) for t in flat])
+    x1 = rotate(np.array([getattr(t, point) for t in flat]) - np.array([0.0, params.e]),
+                -alpha)
+    at = Placed(deviations, params, beta)
+    g, rate = at.gap(x1, np.array([t.tooth for t in flat]),
+                     alpha + direction * params.turn_of(um), flanks=direction > 0)
+    # the gap's rate with the turn is < 0 on a loaded flank and > 0 on a coast flank:
+    # either way the clearance grows by the gap over its rate's size
+    return closing, um + params.arc_um(np.abs(g) / at.levers(rate, direction)) * np.sign(g)

@@ -41,8 +41,8 @@ from .iso1328 import ClassTolerances, check_grade, class_tolerances
 
 #: a deviation's tolerance over its standard deviation
 SIGMAS = 3.0
-#: draws of one gear before its class is declared out of reach (each passes with about 0.8
-#: of the probability; a thousand failures in a row is a bug, not bad luck)
+#: draws of one gear before its class is declared out of reach (about 0.7 of them pass; a
+#: thousand failures in a row is a bug, not bad luck)
 DRAWS = 1000
 #: roll fractions along the profile at which the total profile deviation is measured
 _ROLL = np.linspace(0.0, 1.0, 41)

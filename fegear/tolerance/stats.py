@@ -4,11 +4,11 @@
 A quantile of N samples is itself a random number: another N pairs give another value. Its
 standard error is estimated by the bootstrap (Efron): the N values drawn again with
 replacement :data:`RESAMPLES` times, the quantile taken of each, and the spread of those taken
-as the error. It needs no assumption about the distribution, which for a root stress over
-deviated pairs is skewed and bounded by the class's tolerances. The quantile is numpy's
-default (linear between order statistics). A value of +inf (a pair that fails outright: it
-jams) counts as beyond every finite one: a quantile that falls among them is +inf, its error
-too where any resample's does.
+as the error (``scipy.stats.bootstrap``'s standard error). It needs no assumption about the
+distribution, which for a root stress over deviated pairs is skewed and bounded by the class's
+tolerances. The quantile is numpy's default (linear between order statistics). A value of
++inf (a pair that fails outright: it jams) counts as beyond every finite one: a quantile that
+falls among them is +inf, its error too where any resample's does.
 """
 
 from __future__ import annotations
@@ -50,12 +50,20 @@ def quantiles(values, qs=QUANTILES, resamples: int = RESAMPLES, seed: int = 0
     beyond = np.isposinf(x)
     top = 2.0 * np.abs(x[~beyond]).max() + 1.0 if (~beyond).any() else 1.0
     x = np.where(beyond, _BEYOND * top, x)
+    from scipy.stats import bootstrap
+
     rng = np.random.default_rng(seed)
-    again = np.quantile(x[rng.integers(0, len(x), size=(resamples, len(x)))], qs, axis=1)
     out = []
-    for q, taken in zip(qs, again):
+    for q in qs:
         value = float(np.quantile(x, q))
-        jams = value > top or (taken > top).any()
+        if len(x) > 1 and np.ptp(x) > 0:
+            taken = bootstrap((x,), lambda s, axis, q=q: np.quantile(s, q, axis=axis),
+                              n_resamples=resamples, vectorized=True, method="percentile",
+                              rng=rng)
+            error = float(taken.standard_error)
+            jams = value > top or error > top
+        else:   # one value, or all alike: nothing to resample
+            error, jams = 0.0, value > top
         out.append(Quantile(q, math.inf if value > top else value,
-                            math.inf if jams else float(taken.std(ddof=1)), len(x)))
+                            math.inf if jams else error, len(x)))
     return tuple(out)

@@ -55,7 +55,7 @@ True
 from ..exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
-    "inputs": ("SOLVE_INPUTS", "QUALITY", "TIP_ROUND", "RENAMED"),
+    "inputs": ("SOLVE_INPUTS", "JOB_INPUTS", "QUALITY", "TIP_ROUND", "RENAMED"),
     "case": ("SolveCase", "PairSolution", "ToothResult", "ContactChecks", "BodyField",
              "ContactZone", "HEADLINE", "cycle_positions"),
     "pair": ("solve_pair", "solve_positions"),

@@ -32,7 +32,7 @@ from typing import Protocol
 from .. import progress
 from ..errors import ContactError, FegearError
 from ..fe import blas_threads, keep_freed_memory
-from ..geometry import Gear1Profile, Placed, ToothContact, gear1_profile, pitch_phase
+from ..geometry import Gear1Profile, ToothContact, gear1_profile, moved_clearances, pitch_phase
 from ..running import SERIAL, Executor
 from ..timing import clocked, timed
 from .case import PairSolution, SolveCase
@@ -173,28 +173,25 @@ class _Clearances:
         these positions, and where they are fewer than a turn, at :data:`TURN_CHECK` angles
         a pitch over one (a pair that jams anywhere cannot be turned to any position)."""
         dev, params = self._case.deviations, self._case.params
-        placed = [Placed(dev, params, b) for b in self._betas]
-        states = [(b, at.clearances(st)) for (b, st), at in zip(self._states, placed)]
-        self._refuse_closed(states, placed)
+        states = list(zip(self._betas, moved_clearances(dev, params, [st for _, st in
+                                                                      self._states])))
+        self._refuse_closed(states)
         if len({pitch_phase(b, params.z2)[1] for b in self._betas}) < params.z1:
             turn = revolution_positions(self._betas[0], TURN_CHECK, params.z1, params.z2)
-            at_turn = [Placed(dev, params, b) for b in turn]
-            self._refuse_closed([(b, at.clearances(st)) for b, st, at in
-                                 zip(turn, self._find(turn, directions=(+1,)), at_turn)],
-                                at_turn)
+            self._refuse_closed(list(zip(turn, moved_clearances(
+                dev, params, self._find(turn, directions=(+1,))))))
         return states
 
-    def _refuse_closed(self, states, placed: list[Placed]) -> None:
-        """Where a tooth of ``states`` (β, deviated state; ``placed``: the deviations at each
-        β) stands into its mate, the coast side found and moved too, for the check that the
-        deviations leave the pair its backlash (:func:`~.teeth.refuse_closed`)."""
-        behind = [(b, st, at) for (b, st), at in zip(states, placed)
-                  if st.closest(+1).plus_um < 0]
+    def _refuse_closed(self, states) -> None:
+        """Where a tooth of ``states`` ((β, deviated state) pairs) stands into its mate, the
+        coast side found and moved too, for the check that the deviations leave the pair its
+        backlash (:func:`~.teeth.refuse_closed`)."""
+        behind = [(b, st) for b, st in states if st.closest(+1).plus_um < 0]
         if behind:
-            coast = self._find([b for b, _, _ in behind], directions=(-1,))
-            refuse_closed([(b, st, at.clearances(back, -1))
-                           for (b, st, at), back in zip(behind, coast)],
-                          self._case.deviations)
+            dev, params = self._case.deviations, self._case.params
+            coast = moved_clearances(dev, params, self._find([b for b, _ in behind],
+                                                             directions=(-1,)), -1)
+            refuse_closed([(b, st, back) for (b, st), back in zip(behind, coast)], dev)
 
 
 def _chain(case: SolveCase, states, span: range, solver: PositionModel

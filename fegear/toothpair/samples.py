@@ -22,10 +22,12 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
+import numpy as np
+
 from .. import progress
 from ..errors import FegearError
 from ..fe import Allowables, blas_threads, keep_freed_memory
-from ..geometry import Placed, ToothContact, gear1_profile
+from ..geometry import Placed, ToothContact, gear1_profile, least_clearances, moved_clearances
 from ..running import SERIAL, Executor
 from ..tolerance import Draw
 from .case import HEADLINE, PairSolution, SolveCase
@@ -113,16 +115,16 @@ class _States:
 
 
 def _jammed(states: _States, deviations) -> str | None:
-    """Where ``deviations`` take up the pair's backlash over a whole turn (the refusal's
-    words), else None."""
+    """Where ``deviations`` take up the pair's backlash over a whole turn (:func:`~.teeth.
+    closed`, in words), else None."""
     p = states.case.params
-    behind = []
-    for beta, plus, minus in states.turn:
-        at = Placed(deviations, p, beta)
-        moved = at.clearances(plus)
-        if moved.closest(+1).plus_um < 0:
-            behind.append((beta, moved, at.clearances(minus, -1)))
-    where = closed(behind)
+    least = least_clearances(deviations, p, [s for _, s, _ in states.turn])
+    behind = [states.turn[i] for i in np.flatnonzero(least < 0)]
+    if not behind:
+        return None
+    plus = moved_clearances(deviations, p, [s for _, s, _ in behind])
+    coast = moved_clearances(deviations, p, [s for _, _, s in behind], -1)
+    where = closed([(b[0], s, back) for b, s, back in zip(behind, plus, coast)])
     return None if where is None else str(where)
 
 
@@ -146,8 +148,9 @@ def _chain(case: SolveCase, states: _States, draw: Draw, solver: RingSolver, spa
             moved = Placed(deviations, case.params, beta).clearances(state)
             try:
                 sol = solver.on_kept(one, moved)
-                if sol is None:
+                if sol is None:   # placed on its own, and its teeth kept for those after it
                     sol = solve_position(one, moved, placed, near)
+                    solver.widen(one, moved, sol)
             except FegearError as err:
                 found.setdefault(k, []).append((beta, str(err)))
                 continue

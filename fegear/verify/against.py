@@ -40,6 +40,8 @@ COMMANDS = (
       "--out", "{tmp}/rev")),
     ("revolution, gear-1 runout: fegear solve --revolution --runout 1=10@0",
      ("solve", "--revolution", "--runout", "1=10@0", "--no-estimate", "--out", "{tmp}/rev")),
+    ("a tolerance class: fegear solve --grade 5 --samples 100 --shift 0.03",
+     ("solve", "--grade", "5", "--samples", "100", "--shift", "0.03", "--no-estimate")),
 )
 
 

@@ -170,5 +170,5 @@ def test_a_newton_step_divides_by_a_flank_s_lever_not_by_a_tip_s():
 
     placed = Placed(Deviations(runout1=Runout(4.0)), PAIR, 0.0)
     floor = LEVER_FLOOR * PAIR.r1
-    assert placed.lever(-38.7, +1) == 38.7 and placed.lever(2.18, -1) == 2.18
-    assert placed.lever(-0.03, -1) == floor and placed.lever(0.0, +1) == floor
+    assert placed.levers(-38.7, +1) == 38.7 and placed.levers(2.18, -1) == 2.18
+    assert placed.levers(-0.03, -1) == floor and placed.levers(0.0, +1) == floor

@@ -35,12 +35,14 @@ def test_each_sample_reads_as_the_same_pair_solved_alone(sampled, baseline_ring)
     for row in solved:
         alone = solve_pair(replace(CASE, deviations=DRAW.pair(row["sample"])),
                            model=baseline_ring).headline()
-        # the kept contact's grids against the ones placed for this pair alone (the same
-        # rule: docs/deviations.md, "A whole revolution")
+        # the kept contact's grids (placed for the exact pair, or for a sample they missed)
+        # against the ones placed for this pair alone: the same rule, other anchors. A peak
+        # pressure moves with where the points fall (up to 1.2 % here, at `coarse`, whose
+        # own estimate of the contact pressure's error is 6 %); the roots do not
         for key in ("root_stress_gear1_MPa", "root_stress_gear2_MPa"):
             assert row[key] == pytest.approx(alone[key], rel=2e-3), (row["sample"], key)
         for key in ("contact_pressure_MPa", "flank_contact_pressure_MPa"):
-            assert row[key] == pytest.approx(alone[key], rel=5e-3), (row["sample"], key)
+            assert row[key] == pytest.approx(alone[key], rel=2e-2), (row["sample"], key)
 
 
 def test_a_jammed_sample_is_one_a_deviated_solve_refuses(sampled, baseline_ring):

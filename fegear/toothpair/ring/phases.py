@@ -198,19 +198,24 @@ class Phases:
         return contact, sol
 
     def keep(self, model: RingModel, case: SolveCase, state, trial: Trial,
-             settled: RingContactSolution) -> tuple[RingContact, RingContactSolution] | None:
+             settled: RingContactSolution, widen: bool = False
+             ) -> tuple[RingContact, RingContactSolution] | None:
         """The contact of the phase of ``case.beta``, made from the position's ``settled``
         solution on ``trial``'s teeth, kept, and solved: fine grids on every paired tooth and
         one more either side, each reaching as far as the largest deviation of any tooth
         could need (so that a pitch whose deviations sit on other teeth finds its grids),
-        every column formed. None (nothing kept) where it does not hold the position's own
-        contact."""
+        every column formed; ``widen``: grids on the teeth of the contact kept there before
+        too (a deviation set that needed others: :meth:`~.solver.RingSolver.widen`). None
+        (nothing kept) where it does not hold the position's own contact."""
         p = case.params
         phase, pitch = pitch_phase(case.beta, case.params.z2)
         first_um = state.closest(+1).plus_um
         elastic_um = max(p.arc_um(settled.rotation) - first_um, 1e-6)
         teeth = set(choose_teeth(state, p.arc_um(settled.rotation), case.extra_pairs + 1))
         teeth |= set(trial.teeth)
+        before = self._kept.get(phase)
+        if widen and before is not None:
+            teeth |= {(g.tooth - (pitch - before.pitch)) % p.z1 for g in before.contact.grids}
         widest = max(self.reach_um, *(case.deviations.reach_um(t) for t in range(p.z1)))
         base = REACH * elastic_um * 1e-3 + REACH_FLOOR * p.m
         reach = {t: 1.0 + 1e-3 * (widest - case.deviations.reach_um(t)) / base for t in teeth}

@@ -152,6 +152,16 @@ class RingSolver:
         settled = Attempt(RingAttempt(*kept, kept[0].grids, state.closest(+1).plus_um), None)
         return self._finished(case, state, settled)[0]
 
+    def widen(self, case: SolveCase, state, sol: PairSolution) -> None:
+        """Keep the contact of ``case``'s phase again with grids on the teeth ``sol`` paired
+        too: a deviation set the kept grids did not hold (:meth:`on_kept`), solved on grids of
+        its own, so that the sets after it that pair those teeth find theirs."""
+        first_um = state.closest(+1).plus_um
+        teeth = tuple(g.tooth for g in sol.detail.contact.grids)
+        trial = Trial(teeth, case.params.arc_um(sol.rotation) - first_um)
+        with timed("assemble"):
+            self.phases.keep(self.model, case, state, trial, sol.detail.solution, widen=True)
+
     def _contact(self, case: SolveCase, trial: Trial, grids: tuple[ToothGrid, ...],
                  first_um: float, near: PairSolution | None) -> RingAttempt | None:
         """The contact on ``grids`` under the torque; None where probe grids alone did not
