@@ -190,9 +190,12 @@ class Deviations:
         """The extra turn (rad, counter-clockwise) of each of ``teeth`` of ``gear`` about its
         centre, its pitch circle of radius ``r`` (mm): + for gear 1, − for gear 2 (module
         docstring)."""
-        table = self.teeth(gear)
         sign = 1.0 if gear == 1 else -1.0
-        um = np.array([table[t].pitch if t in table else 0.0 for t in np.ravel(teeth)])
+        pitch = self._arrays(gear)[0]
+        teeth = np.ravel(teeth).astype(int)
+        um = np.zeros(len(teeth))
+        inside = teeth < len(pitch)
+        um[inside] = pitch[teeth[inside]]
         return sign * 1e-3 * um / r
 
     def centre_offset(self, tooth0_1: float, tooth0_2: float) -> np.ndarray:
@@ -207,7 +210,7 @@ class Deviations:
         """The normal departure (mm, + adds material) of ``gear``'s loaded flanks at points
         of ``teeth`` at roll fractions ``roll``."""
         teeth, roll = np.ravel(teeth), np.ravel(roll)
-        slope, form, curves = self._profiles(gear)
+        _, slope, form, curves = self._arrays(gear)
         out = np.zeros(len(teeth))
         if not len(slope) or not len(teeth):
             return out
@@ -219,18 +222,20 @@ class Deviations:
             out[sel] = 1e-3 * d.normal_um(roll[sel])
         return out
 
-    def _profiles(self, gear: int) -> tuple[np.ndarray, np.ndarray, dict]:
-        """``gear``'s profile deviations as arrays by tooth (µm; zero where none): slopes,
+    def _arrays(self, gear: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, dict]:
+        """``gear``'s deviations as arrays by tooth (µm; zero where none): pitches, slopes,
         parabolas' amplitudes, and the teeth with measured form curves (made once: a solve
         asks for them at every gap it forms)."""
-        key = f"_profiles{gear}"
+        key = f"_arrays{gear}"
         if key not in self.__dict__:
             table = self.teeth(gear)
             n = max(table, default=-1) + 1
-            slope, form = np.zeros(n), np.zeros(n)
+            pitch, slope, form = np.zeros(n), np.zeros(n), np.zeros(n)
             for tooth, d in table.items():
-                slope[tooth], form[tooth] = d.slope, 0.0 if d.curve else d.form
-            self.__dict__[key] = (slope, form, {t: d for t, d in table.items() if d.curve})
+                pitch[tooth], slope[tooth] = d.pitch, d.slope
+                form[tooth] = 0.0 if d.curve else d.form
+            self.__dict__[key] = (pitch, slope, form,
+                                  {t: d for t, d in table.items() if d.curve})
         return self.__dict__[key]
 
 

@@ -35,7 +35,7 @@ from .positions import TURN_CHECK, solve_position
 from .revolution import revolution_positions
 from .ring.solver import RingSolver
 from .safety import safety_factors
-from .teeth import closed, refuse_interference
+from .teeth import choose_teeth, closed, refuse_interference
 
 
 @dataclass(frozen=True)
@@ -132,30 +132,49 @@ def _chain(case: SolveCase, states: _States, draw: Draw, solver: RingSolver, spa
            samples) -> tuple[dict[int, PairSolution], dict[int, list]]:
     """The positions ``span`` (indices) of the exact pair and of ``samples``: the exact
     pair's solutions by position, and each sample's (β, headline) a position, or (β, why)
-    where it failed."""
+    where it failed. The exact pair is solved as any position, then its contact kept with
+    grids on every tooth that any of the samples pairs (:func:`_paired`), and let go of when
+    they are solved."""
     nominal: dict[int, PairSolution] = {}
     found: dict[int, list] = {}
     placed = RingSolver(solver.model, submodels="none")   # a sample the kept grids miss
+    p = case.params
     near = None
     for i in span:
         beta, state = states.loaded[i]
         progress.stage(f"samples at β {math.degrees(beta):.3g}°")
         at = replace(case, beta=beta)
-        near = nominal[i] = solve_position(at, state, solver, near)
+        near = nominal[i] = solve_position(at, state, placed, near)
+        moved = {k: Placed(draw.pair(k), p, beta).clearances(state) for k in samples}
+        solver.widen(at, state, near, _paired(case, near, state, moved.values()))
         for k in samples:
-            deviations = draw.pair(k)
-            one = replace(at, deviations=deviations)
-            moved = Placed(deviations, case.params, beta).clearances(state)
+            one = replace(at, deviations=draw.pair(k))
             try:
-                sol = solver.on_kept(one, moved)
+                sol = solver.on_kept(one, moved[k], brief=True)
                 if sol is None:   # placed on its own, and its teeth kept for those after it
-                    sol = solve_position(one, moved, placed, near)
-                    solver.widen(one, moved, sol)
+                    sol = solve_position(one, moved[k], placed, near)
+                    solver.widen(one, moved[k], sol)
             except FegearError as err:
                 found.setdefault(k, []).append((beta, str(err)))
                 continue
             found.setdefault(k, []).append((beta, sol.headline()))
+        solver.forget(at)
     return nominal, found
+
+
+#: a sample's teeth are those the driver's rule pairs at its first touch plus this many times
+#: the exact pair's elastic rotation (a deviated pair carries its load on fewer teeth, which
+#: turn gear 1 further)
+ELASTIC_MARGIN = 1.5
+
+
+def _paired(case: SolveCase, exact: PairSolution, state, moved) -> set[int]:
+    """The teeth that the samples (their clearance states ``moved``) pair: the driver's rule
+    (:func:`~.teeth.choose_teeth`) at each one's first touch plus
+    :data:`ELASTIC_MARGIN` times the exact pair's elastic rotation (µm of arc at r0)."""
+    elastic = case.params.arc_um(exact.rotation) - state.closest(+1).plus_um
+    return {t for m in moved for t in choose_teeth(
+        m, m.closest(+1).plus_um + ELASTIC_MARGIN * elastic, case.extra_pairs)}
 
 
 def _worst(got: list, allowables: Allowables) -> dict:

@@ -37,7 +37,9 @@ class RingContactSolution:
     error (relative) and the largest overlap (mm) left where pressure acts. ``clamped``:
     each gear's clamped fields of its loaded sectors under the pressure (sector → template
     field), where the open points' check formed them (:func:`~.influence.approach_open`):
-    the stresses' fields take them; not kept in a solved position's record."""
+    the stresses' fields take them; not kept in a solved position's record. ``rigid``: every
+    point's rigid gap (mm) at the solved rotation and its rate with the turn (mm/rad), the
+    last evaluation's, which the teeth's results take (not kept either)."""
 
     pressure: np.ndarray
     gap: np.ndarray
@@ -47,6 +49,7 @@ class RingContactSolution:
     balance_error: float
     max_penetration: float
     clamped: tuple | None = field(default=None, repr=False, compare=False)
+    rigid: tuple | None = field(default=None, repr=False, compare=False)
 
 
 @dataclass(frozen=True)
@@ -97,8 +100,8 @@ def rigid_gap(model: RingModel, contact: RingContact, turn: float,
 
 
 def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float, theta: float,
-                       guess: float | None = None, start: np.ndarray | None = None
-                       ) -> RingContactSolution | None:
+                       guess: float | None = None, start: np.ndarray | None = None,
+                       within: float | None = None) -> RingContactSolution | None:
     """Solve the contact under ``torque_nmm`` (N·mm on gear 1) from the rotation ``theta``
     (rad); the iterations start from the points ``start`` (a mask over the points: where the
     position before carried pressure, say), else from those the rigid teeth overlap at the
@@ -106,12 +109,20 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
     many iterations the solve takes, not its solution. On a contact whose probe columns are
     not formed (:func:`~.influence.assemble_contact`), the points of the formed columns are
     solved and the others kept open; that is the solution if none of them then overlaps
-    (their pressures zero, their columns act on nothing), else None: the caller forms them."""
+    (their pressures zero, their columns act on nothing), else None: the caller forms them.
+    ``within`` (mm): on a contact with every column formed, the iterations take only the
+    points whose rigid gap at ``theta`` is within that of the least (a kept contact's wide
+    grids, most of them far from closing); the others are checked at the solution, and where
+    one overlaps the contact is solved again on every point."""
     alpha = model.case.params.ratio * contact.beta
     on = np.flatnonzero(contact.formed)
-    w = contact.weight[on] * model.case.thickness
     feet = contact.feet[on]
     g0, a = rigid_gap(model, contact, alpha + theta, feet, on)
+    A, near = contact.A, None
+    if within is not None and contact.complete and (g0 > g0.min() + within).any():
+        near = g0 <= g0.min() + within
+        on, A, feet, g0, a = on[near], A[np.ix_(near, near)], feet[near], g0[near], a[near]
+    w = contact.weight[on] * model.case.thickness
     active = g0 <= g0.min() + 1e-12
     if start is not None and start[on].any():
         active = start[on].copy()
@@ -128,7 +139,7 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
         arm_rate = 0.0 if not len(loaded) else (w[loaded] * pressure[loaded]) @ (
             rigid_gap(model, contact, alpha + theta + ARM_STEP, feet[loaded],
                       on[loaded])[1] - a[loaded]) / ARM_STEP
-        found = active_set(ContactSystem(contact.A, w, g0, a), torque_nmm, active, arm_rate)
+        found = active_set(ContactSystem(A, w, g0, a), torque_nmm, active, arm_rate)
         pressure, active = found.pressure, found.active
         total += found.iterations
         turns += 1
@@ -143,15 +154,20 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
         if turns == MAX_TURNS:
             raise RingContactError(f"the rotation did not settle in {MAX_TURNS} "
                                    "linearisations")
+    balance = abs(-(w * pressure) @ a[on] - torque_nmm) / torque_nmm
+    if near is not None:   # the points left out: the pressures act on them too
+        pressure = np.zeros(len(near))
+        pressure[near] = found.pressure
     closed = _closed(model, contact, pressure, g0)
     if closed is None:
         return None
     full, gap, clamped = closed
-    balance = abs(-(w * pressure) @ a[on] - torque_nmm) / torque_nmm
+    if near is not None and (gap[np.flatnonzero(contact.formed)[~near]] < 0).any():
+        return solve_ring_contact(model, contact, torque_nmm, theta, guess, start)
     loaded = full > 0
     overlap = float(max(0.0, -gap[loaded].min())) if loaded.any() else 0.0
     return RingContactSolution(full, gap, float(theta), total, turns, float(balance), overlap,
-                               clamped)
+                               clamped, (g0, a))
 
 
 def _closed(model: RingModel, contact: RingContact, pressure: np.ndarray, g0: np.ndarray
@@ -164,7 +180,8 @@ def _closed(model: RingModel, contact: RingContact, pressure: np.ndarray, g0: np
     full = np.zeros(contact.npoints)
     full[on] = pressure
     gap = g0.copy()
-    gap[on] += contact.A @ pressure
+    idx = np.flatnonzero(pressure)   # the loaded columns alone
+    gap[on] += contact.A[:, idx] @ pressure[idx]
     clamped = None
     if not contact.complete:
         rest = np.flatnonzero(~contact.formed)

@@ -52,6 +52,10 @@ from .stresses import RingStresses, RootZone
 #: a ten-thousandth of the smallest deviation given in whole µm, far above the turned
 #: points' rounding (1e-15 mm)
 SAME_GAP = 1e-7
+#: a solve on a kept contact iterates on the points whose rigid gap is within this many times
+#: the kept position's elastic approach of the least one (its wide grids are mostly far from
+#: closing); the others are checked at the solution (:func:`~.contact.solve_ring_contact`)
+NEAR = 1.5
 
 
 @dataclass(frozen=True)
@@ -109,6 +113,22 @@ class Phases:
     def __len__(self) -> int:
         """How many phases have a contact kept."""
         return len(self._kept)
+
+    def gridded(self, beta: float, z2: int) -> set[int]:
+        """The teeth with grids on the contact kept at ``beta`` itself (none where none is
+        kept there, or it was kept at another pitch of the phase)."""
+        phase, pitch = pitch_phase(beta, z2)
+        kept = self._kept.get(phase)
+        if kept is None or kept.pitch != pitch:
+            return set()
+        return {g.tooth for g in kept.contact.grids}
+
+    def forget(self, beta: float, z2: int) -> None:
+        """Let go of what is kept for the phase of ``beta`` (a position whose deviation sets
+        are all solved: its contact is a large matrix)."""
+        phase = pitch_phase(beta, z2)[0]
+        for kept in (self._kept, self._solved, self._seen):
+            kept.pop(phase, None)
 
     def repeat(self, model: RingModel, case: SolveCase, state) -> PairSolution | None:
         """The solution at ``case.beta`` (clearance ``state``) as one solved before in its
@@ -190,7 +210,8 @@ class Phases:
         contact = turned(model, kept.contact, pitch - kept.pitch, case.beta, placed)
         try:
             sol = solve_ring_contact(model, contact, case.torque * 1e3, kept.rotation,
-                                     start=kept.active)
+                                     start=kept.active,
+                                     within=NEAR * 1e-3 * max(kept.elastic_um, 1.0))
         except ContactError:
             return None
         if sol is None or not _holds(case, state, kept, pitch - kept.pitch, contact, sol):

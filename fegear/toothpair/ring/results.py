@@ -63,26 +63,27 @@ def solved_rigid_gap(detail: RingDetail) -> tuple[np.ndarray, np.ndarray]:
                      case.params.ratio * case.beta + detail.solution.rotation, contact.feet)
 
 
-def tooth_results(detail: RingDetail, state, cands,
-                  rigid: tuple[np.ndarray, np.ndarray]) -> tuple[ToothResult, ...]:
+def tooth_results(detail: RingDetail, state, cands, rigid: tuple[np.ndarray, np.ndarray],
+                  references: bool = True) -> tuple[ToothResult, ...]:
     """One :class:`~fegear.toothpair.case.ToothResult` per gridded tooth of the solved position
     ``detail``; ``state``: the position's clearance state (each tooth's clearance), ``cands``:
     the gridded teeth as candidates (:func:`~..teeth.candidate_data`: Hertz at each one's
     predicted contact point), ``rigid``: :func:`solved_rigid_gap`. Without stresses (a
     contact-only solve) the root stresses are NaN and the half-plane reference and the bending
-    curvature are left out (None, 0)."""
+    curvature are left out (None, 0), as they are without ``references``."""
     contact = detail.contact
     clearance = {c.tooth: c.plus_um for c in state.teeth}
     by_tooth = {c.tooth: c for c in cands}
-    return tuple(tooth_result(detail, k, rigid, by_tooth.get(g.tooth), clearance.get(g.tooth))
-                 for k, g in enumerate(contact.grids))
+    return tuple(tooth_result(detail, k, rigid, by_tooth.get(g.tooth), clearance.get(g.tooth),
+                              references) for k, g in enumerate(contact.grids))
 
 
 def tooth_result(detail: RingDetail, k: int, rigid: tuple[np.ndarray, np.ndarray], cand,
-                  clearance_um: float | None) -> ToothResult:
+                  clearance_um: float | None, references: bool = True) -> ToothResult:
     """The result of grid ``k``'s tooth: ``rigid`` the rigid gap (mm) of every point at the
     solved rotation and its rate with the turn (mm/rad), ``cand`` the tooth as a candidate
-    (None where it is not one)."""
+    (None where it is not one); ``references``: its half-plane reference and bending
+    curvature too."""
     model, case, contact, sol = detail.model, detail.case, detail.contact, detail.solution
     stresses = detail.stresses
     pitch1, pitch2 = model.shape.pitch, 2 * math.pi / case.params.z2
@@ -104,8 +105,8 @@ def tooth_result(detail: RingDetail, k: int, rigid: tuple[np.ndarray, np.ndarray
     split = flank_and_edge(grid.s, pk, grid.on_round, case.thickness, model.shape.radius_mm,
                            contact_modulus(case.E, case.E))
     b = local_half_width(contact, sol.pressure, i) if load > 0 else 0.0
-    curvature, ref = (_references(detail, k, gap[blk], load) if stresses is not None
-                      else (0.0, None))
+    curvature, ref = (_references(detail, k, gap[blk], load)
+                      if stresses is not None and references else (0.0, None))
     j = i - blk.start
     spacing = 0.5 * (grid.s[min(j + 1, len(grid) - 1)] - grid.s[max(j - 1, 0)])
     per_b = b / spacing if load > 0 else 0.0

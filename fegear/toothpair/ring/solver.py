@@ -141,26 +141,38 @@ class RingSolver:
                 return Attempt(RingAttempt(*kept, kept[0].grids, first_um), None)
         return judged
 
-    def on_kept(self, case: SolveCase, state) -> PairSolution | None:
+    def on_kept(self, case: SolveCase, state, brief: bool = False) -> PairSolution | None:
         """``case`` (clearance ``state``) solved on the contact kept for its phase, stresses and
         all, and not kept for the positions after it: one of many deviation sets at a position
-        solved before (a tolerance class's samples). None where no contact is kept there or
-        its grids do not hold this one's."""
+        solved before (a tolerance class's samples). ``brief``: the headline stresses and the
+        teeth's loads and pressures only, without the first touch (NaN: no transmission
+        error), the tangent stiffness, the equilibrium residuals, the teeth's Hertz values and
+        half-plane references or an unloaded tooth's root stress on gear 2, which a sample's
+        row does not read. None
+        where no contact is kept there or its grids do not hold this one's."""
         kept = self.phases.solve(self.model, case, state)
         if kept is None:
             return None
         settled = Attempt(RingAttempt(*kept, kept[0].grids, state.closest(+1).plus_um), None)
-        return self._finished(case, state, settled)[0]
+        return self._finished(case, state, settled, brief)[0]
 
-    def widen(self, case: SolveCase, state, sol: PairSolution) -> None:
-        """Keep the contact of ``case``'s phase again with grids on the teeth ``sol`` paired
-        too: a deviation set the kept grids did not hold (:meth:`on_kept`), solved on grids of
-        its own, so that the sets after it that pair those teeth find theirs."""
+    def widen(self, case: SolveCase, state, sol: PairSolution, teeth=()) -> None:
+        """Keep the contact of ``case``'s phase (again, where one is kept) with grids on the
+        teeth ``sol`` paired, on the kept one's and on ``teeth``: the teeth that the deviation
+        sets to be solved there pair, or that one the kept grids did not hold (:meth:`on_kept`)
+        paired on grids of its own, so that the sets after it find theirs."""
         first_um = state.closest(+1).plus_um
-        teeth = tuple(g.tooth for g in sol.detail.contact.grids)
+        teeth = tuple(sorted({g.tooth for g in sol.detail.contact.grids} | set(teeth)))
+        if set(teeth) <= self.phases.gridded(case.beta, case.params.z2):
+            return   # the kept grids have them all
         trial = Trial(teeth, case.params.arc_um(sol.rotation) - first_um)
         with timed("assemble"):
             self.phases.keep(self.model, case, state, trial, sol.detail.solution, widen=True)
+
+    def forget(self, case: SolveCase) -> None:
+        """Let go of the contact kept for ``case``'s phase (:meth:`.phases.Phases.forget`)."""
+        if self.phases is not None:
+            self.phases.forget(case.beta, case.params.z2)
 
     def _contact(self, case: SolveCase, trial: Trial, grids: tuple[ToothGrid, ...],
                  first_um: float, near: PairSolution | None) -> RingAttempt | None:
@@ -212,27 +224,33 @@ class RingSolver:
             self.phases.solved(sol, rigid[0])
         return sol
 
-    def _finished(self, case: SolveCase, state, attempt: Attempt
+    def _finished(self, case: SolveCase, state, attempt: Attempt, brief: bool = False
                   ) -> tuple[PairSolution, tuple[np.ndarray, np.ndarray]]:
-        """The solved position and its rigid gaps at its solved rotation (with their rates)."""
+        """The solved position and its rigid gaps at its solved rotation (with their rates);
+        ``brief`` as :meth:`on_kept`."""
         model, solved = self.model, attempt.solved
         contact, first_um = solved.contact, solved.first_um
-        # the stresses take the clamped fields the contact's check formed; not kept
-        clamped, sol = solved.solution.clamped, replace(solved.solution, clamped=None)
+        # the stresses take the clamped fields the contact's check formed, the teeth the
+        # rigid gaps its last evaluation formed; neither is kept
+        clamped, formed = solved.solution.clamped, solved.solution.rigid
+        sol = replace(solved.solution, clamped=None, rigid=None)
         with timed("stresses"):
-            touch = touch_rotation(model, contact, case.params.turn_of(first_um))
-            tangent = tangent_stiffness(model, contact, sol)
+            touch = (math.nan if brief else
+                     touch_rotation(model, contact, case.params.turn_of(first_um)))
+            tangent = None if brief else tangent_stiffness(model, contact, sol)
             if self.contact_only:
                 stresses, cands = None, ()
             else:
                 stresses = ring_stresses(model, contact, sol.pressure,
                                          self.submodels == "all", clamped)
-                cands = candidate_data(case.params, model.shape, state,
-                                       tuple(g.tooth for g in solved.grids), case.beta)
+                cands = () if brief else candidate_data(
+                    case.params, model.shape, state, tuple(g.tooth for g in solved.grids),
+                    case.beta)
             detail = RingDetail(model, case, replace(contact, A=None), sol, stresses)
-            rigid = solved_rigid_gap(detail)
-            teeth = tooth_results(detail, state, cands, rigid)
-        residuals = () if stresses is None else tuple(_residuals(model, contact, sol, stresses))
+            rigid = formed if formed is not None else solved_rigid_gap(detail)
+            teeth = tooth_results(detail, state, cands, rigid, references=not brief)
+        residuals = () if stresses is None or brief else tuple(
+            _residuals(model, contact, sol, stresses))
         return PairSolution(
             case=case, teeth=teeth,
             root_stress=((math.nan, math.nan) if stresses is None else

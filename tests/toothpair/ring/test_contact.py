@@ -178,6 +178,23 @@ def test_the_rotation_started_near_its_solution_settles_sooner_to_the_same_conta
     assert np.abs(near.pressure - far.pressure).max() < 1e-9 * far.pressure.max()
 
 
+@pytest.mark.parametrize("within_um", [0.5, 3.0, 20.0])
+def test_iterating_on_the_points_near_closing_solves_the_same_contact(baseline_200, within_um):
+    # the points farther from closing are checked at the solution; where one overlaps (the
+    # tightest cut here) the contact is solved again on every point: the same solution
+    d = baseline_200.detail
+    turn, torque, touch = d.contact.turn, d.case.torque * 1e3, baseline_200.first_touch
+    assembled = assemble_contact(d.model, d.contact.grids, 0.0, turn)
+    assert assembled.complete            # every column formed: the cut applies
+    every = contact.solve_ring_contact(d.model, assembled, torque, touch, guess=turn)
+    near = contact.solve_ring_contact(d.model, assembled, torque, touch, guess=turn,
+                                      within=1e-3 * within_um)
+    assert near.rotation == pytest.approx(every.rotation, rel=1e-12)
+    assert np.abs(near.pressure - every.pressure).max() < 1e-9 * every.pressure.max()
+    np.testing.assert_allclose(near.gap, every.gap, rtol=0, atol=1e-12)
+    assert near.balance_error < 1e-9
+
+
 @pytest.mark.parametrize("torque", [50.0, 200.0, 400.0])
 def test_the_tangent_stiffness_is_the_slope_of_two_solves(baseline_ring, torque):
     """dT/dθ with the contact set kept against the central difference of two solves at ±1 %
