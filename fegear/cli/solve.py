@@ -65,6 +65,12 @@ def run(a: argparse.Namespace) -> int:
               "positions (von Mises from the templates' surface estimate, as the samples' "
               "is read):\n")
         print(samples_table(result.summary["samples"]))
+    if "sensitivities" in result.summary:
+        from ..toothpair.sensitivity_report import sensitivity_table
+
+        print("\nSensitivities: each stress's rate with each deviation of the teeth in mesh "
+              "(the largest first):\n")
+        print(sensitivity_table(result.summary["sensitivities"]))
     for k, v in files.items():
         print(f"{k:10s} {v}")
     if out is None:

@@ -91,6 +91,10 @@ TOLERANCE_INPUTS = (
           "factors hold for", low=0.5, high=1.0, high_open=True),
     Input("centre-distance-tolerance", float, 0.0, "the ± tolerance of the centre distance "
           "drawn with --grade (0: exact)", "µm", low=0.0, high=1000.0),
+    Input("sensitivities", bool, False, "each stress's rate with each deviation of the teeth "
+          "in mesh (MPa/µm) at the position of the largest gear-1 root stress, and with "
+          "--grade what one tolerance of each moves; writes sensitivities.csv and "
+          "sensitivities.png"),
 )
 
 #: the deviation inputs that name a deviation by text (the others: the centre distance)

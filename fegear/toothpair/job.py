@@ -34,7 +34,8 @@ class Job:
     safety factors divide (they change no number of the solve), whether the angles are a
     whole revolution of gear 1 (:mod:`.revolution`), and the pairs of a tolerance class
     solved beside the exact one (``draw``, :mod:`.samples`) with the share of them the
-    verdict's safety factors hold for (``quantile``)."""
+    verdict's safety factors hold for (``quantile``), and whether the headlines' rates with
+    the deviations are formed (``sensitivities``, :mod:`.ring.sensitivity`)."""
 
     case: SolveCase
     betas: tuple[float, ...]
@@ -43,6 +44,7 @@ class Job:
     revolution: bool = False
     draw: Draw | None = None
     quantile: float = 0.95
+    sensitivities: bool = False
 
 
 def prepare_job(values: Mapping[str, object]) -> Job:
@@ -70,7 +72,8 @@ def prepare_job(values: Mapping[str, object]) -> Job:
         betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
     draw = _draw(v, given=values, case=case, revolution=revolution)
     return Job(case, tuple(betas), not v["no-estimate"], allowables_of(v), revolution, draw,
-               JOB_INPUTS["quantile"].check(v["quantile"]))
+               JOB_INPUTS["quantile"].check(v["quantile"]),
+               JOB_INPUTS["sensitivities"].check(v["sensitivities"]))
 
 
 def _draw(v: dict, given: Mapping[str, object], case: SolveCase, revolution: bool
@@ -168,9 +171,11 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     )
     from .positions import drive
     from .report import add_tooth_estimates, cycle_rows, cycle_summary, pair_summary
+    from .ring.sensitivity import solved_sensitivities
     from .ring.solver import RingSolver
     from .samples import solve_samples
     from .samples_report import samples_summary
+    from .sensitivity_report import sensitivity_summary
 
     watch = Stopwatch()
     second = None
@@ -221,6 +226,11 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     if sampled is not None:
         summary["samples"] = samples_summary(sampled.rows, estimated, job.draw.grade,
                                              job.draw.seed, job.quantile, job.allowables)
+    if job.sensitivities:
+        progress.stage("sensitivities: each stress's rate with each deviation in mesh")
+        summary["sensitivities"] = sensitivity_summary(
+            solved_sensitivities(sol), math.degrees(sol.case.beta),
+            None if job.draw is None else job.draw.grade)
     return Solved(job, tuple(sols), sol, summary, rows, watch.s)
 
 
@@ -251,6 +261,7 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
         write_pair_outputs,
         write_revolution_outputs,
         write_samples_outputs,
+        write_sensitivity_outputs,
     )
 
     progress.stage(f"writing files to {out}")
@@ -274,6 +285,8 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
     if "samples" in summary:
         files.update(write_samples_outputs(summary["samples"], out, title,
                                            solved.job.allowables, pictures))
+    if "sensitivities" in summary:
+        files.update(write_sensitivity_outputs(summary["sensitivities"], out, title, pictures))
     files.update(write_pair_outputs(solved.solution, out, {**summary, "files": {
         k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures))
     return files

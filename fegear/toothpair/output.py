@@ -108,6 +108,22 @@ def write_samples_outputs(samples: dict, out: Path, title: str, allowables,
     return files
 
 
+def write_sensitivity_outputs(sens: dict, out: Path, title: str, pictures: bool = True
+                              ) -> dict[str, Path]:
+    """sensitivities.csv (a row a deviation of the teeth in mesh: each headline's rate,
+    MPa/µm, and with a class what one tolerance moves) and sensitivities.png (``pictures``:
+    the tornado of the largest)."""
+    from .sensitivity_plot import sensitivities_png
+
+    rows = sens["rows"]
+    cols = list(dict.fromkeys(k for r in rows for k in r))
+    files = {"sensitivities_csv": write_csv(out / "sensitivities.csv", cols, (
+        ["" if r.get(c) is None else r[c] for c in cols] for r in rows))}
+    if pictures:
+        files["sensitivities_png"] = sensitivities_png(out / "sensitivities.png", sens, title)
+    return files
+
+
 def _pitch_peaks(sols, rows: list[dict], pitches: int) -> list:
     """Of each pitch's positions (``sols`` in order, as many a pitch), the one of the largest
     gear-1 root stress."""

@@ -154,9 +154,11 @@ def test_solve_positions_writes_cycle_csv_and_plot(tmp_path):
         assert (tmp_path / name).stat().st_size > 0
 
 
-def test_solve_grade_writes_the_samples_table_picture_and_summary(tmp_path):
+def test_solve_grade_writes_the_samples_and_sensitivities_tables_pictures_and_summary(
+        tmp_path):
     r = run("solve", "--shift", "0.03", "--rotation", "0.002", "--quality", "coarse",
-            "--grade", "5", "--samples", "4", "--no-estimate", "--out", str(tmp_path))
+            "--grade", "5", "--samples", "4", "--no-estimate", "--sensitivities",
+            "--out", str(tmp_path))
     assert r.returncode == 0, r.stderr
     assert "pairs of ISO 1328-1:2013 class 5" in r.stdout and "verdict: " in r.stdout
     s = json.loads((tmp_path / "summary.json").read_text())["samples"]
@@ -165,6 +167,12 @@ def test_solve_grade_writes_the_samples_table_picture_and_summary(tmp_path):
                          encoding="utf-8")
     assert list(rows["sample"]) == [0, 1, 2, 3]
     assert (tmp_path / "samples.png").stat().st_size > 10_000
+    sens = json.loads((tmp_path / "summary.json").read_text())["sensitivities"]
+    first = sens["rows"][0]      # the largest first, at one class-5 tolerance
+    assert abs(first["root_stress_gear1_at_tolerance"]) == max(
+        abs(r["root_stress_gear1_at_tolerance"]) for r in sens["rows"]
+        if r["tolerance_um"] is not None)
+    assert "Sensitivities:" in r.stdout and (tmp_path / "sensitivities.png").exists()
 
 
 @pytest.mark.parametrize("argv,hint", [
