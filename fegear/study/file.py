@@ -41,7 +41,7 @@ from pathlib import Path
 from ..checks import Input
 from ..errors import FegearError
 from ..provenance import code_version
-from ..toothpair import RENAMED, SOLVE_INPUTS, prepare_job
+from ..toothpair import JOB_INPUTS, RENAMED, prepare_job
 
 MAX_CASES = 100_000
 _SECTIONS = ("study", "outputs", "base", "sweep")
@@ -140,7 +140,7 @@ def build_study(data: dict, path: Path) -> Study:
     out = _table(data, "outputs", where)
     _known(out, _OUTPUT_KEYS, f"{where}: [outputs]", "key")
     outputs = Outputs(**{k: _bool(out[k], f"{where}: [outputs] {k}") for k in out})
-    inputs = SOLVE_INPUTS
+    inputs = JOB_INPUTS
     base = {k: _value(v, inputs[k].kind.__name__, f"{where}: [base] {k}", inputs[k])
             for k, v in _known(_table(data, "base", where), inputs, f"{where}: [base]",
                                "fegear solve input").items()}
@@ -160,7 +160,7 @@ def build_study(data: dict, path: Path) -> Study:
         values = _relative_to_study(path, {**base, **swept})
         key = case_key(values, outputs, code)
         # cases that differ in an allowable stress alone share a key (one solve) but not a row
-        same = (key, json.dumps(SOLVE_INPUTS.with_defaults(values), sort_keys=True))
+        same = (key, json.dumps(JOB_INPUTS.with_defaults(values), sort_keys=True))
         if same in seen:
             continue
         seen.add(same)
@@ -175,7 +175,7 @@ def build_study(data: dict, path: Path) -> Study:
         raise StudyError(first.describe(path) if len(refused) == 1 else
                          f"{where}: all {len(refused)} cases are refused; the first, "
                          f"{first.where}: {first.reason}")
-    full = [SOLVE_INPUTS.with_defaults(c.values) for c in (*cases, *refused)]
+    full = [JOB_INPUTS.with_defaults(c.values) for c in (*cases, *refused)]
     varied = tuple(n for n in inputs if len({json.dumps(f[n]) for f in full}) > 1)
     return Study(name, path, description, outputs, base, tuple(cases), varied, tuple(refused))
 
@@ -189,7 +189,7 @@ def case_key(values: dict, outputs: Outputs, code: str) -> str:
     """Hash (first 16 hex digits of SHA-256) of every input that decides the solve's numbers
     (not the allowable stresses: the tables compute the safety factors from the stored
     stresses), the kept outputs and the code version: equal keys are equal results."""
-    full = {KEY_NAMES.get(k, k): v for k, v in SOLVE_INPUTS.keyed(values).items()}
+    full = {KEY_NAMES.get(k, k): v for k, v in JOB_INPUTS.keyed(values).items()}
     if full.get("deviations"):   # a measured file decides by what it holds, not by its name
         full["deviations"] = _digest(Path(str(full["deviations"])))
     text = json.dumps({"inputs": full, "outputs": [outputs.vtu, outputs.png], "code": code},

@@ -21,7 +21,14 @@ import math
 from pathlib import Path
 
 from ..files import write_atomic
-from ..toothpair import HEADLINE, SOLVE_INPUTS, allowables_of, with_safety
+from ..toothpair import (
+    HEADLINE,
+    JOB_INPUTS,
+    allowables_of,
+    samples_columns,
+    sensitivity_columns,
+    with_safety,
+)
 from .file import RefusedCase, Study
 from .plot import Line, StudyPlot
 
@@ -46,7 +53,7 @@ def rows(study: Study, out: Path) -> list[dict]:
     done = finished(study, out)
     if not done:
         return []
-    inputs = SOLVE_INPUTS
+    inputs = JOB_INPUTS
     table = []
     for case in sorted((*study.cases, *study.refused), key=lambda c: c.index):
         if isinstance(case, RefusedCase):
@@ -63,6 +70,14 @@ def rows(study: Study, out: Path) -> list[dict]:
         summary = rec.get("summary")
         if summary:
             summary = with_safety(summary, allowables_of(row))
+            # a class's pairs and the sensitivities in a few columns each: their rows stay
+            # in the case's record
+            summary = dict(summary)
+            samples, sens = summary.pop("samples", None), summary.pop("sensitivities", None)
+            if samples is not None:
+                row.update(samples_columns(samples))
+            if sens is not None:
+                row.update(sensitivity_columns(sens))
         row.update(_flatten(summary or {}))
         row.update({k: rec.get(k) for k in _TRAILER})
         row.update({f"versions.{k}": v for k, v in (rec.get("versions") or {}).items()})
@@ -106,7 +121,7 @@ def write_results(study: Study, out: Path) -> dict[str, Path]:
     plots = out / "plots"
     plots.mkdir(exist_ok=True)
     for x in study.varied:
-        if SOLVE_INPUTS[x].post:  # no stress varies with an allowable
+        if JOB_INPUTS[x].post:  # no stress varies with an allowable
             continue
         png = plot_input(plots / f"{x}.png", study, table, x)
         if png is not None:
@@ -126,7 +141,7 @@ def write_parquet(path: Path, table: list[dict], cols: list[str]) -> Path:
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    kinds = {n: i.kind.__name__ for n, i in SOLVE_INPUTS.items()}
+    kinds = {n: i.kind.__name__ for n, i in JOB_INPUTS.items()}
     arrays = {c: _arrow(pa, [r.get(c) for r in table], kinds.get(c)) for c in cols}
     return write_atomic(path, lambda tmp: pq.write_table(pa.table(arrays), tmp))
 
@@ -166,10 +181,12 @@ def markdown(study: Study, table: list[dict]) -> str:
     smallest factors, each at its β, beside the values at the cycle's first position β0 (the
     study's ``position``) and a line under the table that says so."""
     cycled = any(r.get("cycle.positions") for r in table)
+    sampled = any(r.get("samples.n") for r in table)
     head = (list(study.varied) + [SHORT[k] for k in HEADLINE] + list(SAFETY_SHORT.values())
             + ["edge N"]
             + ([f"{SHORT[k]} cycle" for k in HEADLINE]
                + [f"{s} cycle" for s in SAFETY_SHORT.values()] if cycled else [])
+            + (list(SAMPLES_SHORT) if sampled else [])
             + ["est. error %", "teeth", "status", "time s"])
     lines = ["| " + " | ".join(head) + " |", "|" + "---:|" * len(head)]
     for r in table:
@@ -177,6 +194,8 @@ def markdown(study: Study, table: list[dict]) -> str:
         cells = [_cell(r.get(x)) for x in study.varied] + _position_cells(r)
         if cycled:
             cells += _cycle_cells(r)
+        if sampled:
+            cells += [_samples_cell(r, key) for key in SAMPLES_SHORT.values()]
         est = r.get("error_estimate_pct")
         status = {"ok": "ok", "refused": "refused (below)"}.get(r["status"],
                                                                  f"failed: {r['error']}")
@@ -191,6 +210,11 @@ def markdown(study: Study, table: list[dict]) -> str:
         lines += [f"* case {r['case']} ("
                   + ", ".join(f"{x} = {_cell(r.get(x))}" for x in study.varied)
                   + f"): {r['error']}" for r in refused]
+    if sampled:
+        lines += ["", "A class's pairs (`grade`, docs/tolerance.md): the share that jams, the "
+                  "P95 of gear 1's root stress and of the flank pressure, and the safety "
+                  "factors that the `quantile` share of the pairs meet (\"jams\" where the "
+                  "jammed pairs reach past it)."]
     if cycled:
         lines += ["", "Stresses in MPa. With positions, the first columns are at the cycle's "
                   "first position β0 (the study's position); \"cycle\": the largest stress "
@@ -198,6 +222,27 @@ def markdown(study: Study, table: list[dict]) -> str:
                   "is at the position of the largest root σ1 of gear 1; teeth: fewest–most "
                   "in contact over the cycle."]
     return "\n".join(lines)
+
+
+#: a class's samples in the table: header → the results' column
+SAMPLES_SHORT = {"jammed %": "samples.jammed_share",
+                 "σ1 g1 P95": "samples.root_stress_gear1_MPa.P95",
+                 "p flank P95": "samples.flank_contact_pressure_MPa.P95",
+                 "S_F1 at q": "samples.safety_bending_gear1.at_quantile",
+                 "S_H flank at q": "samples.safety_contact_flank.at_quantile"}
+
+
+def _samples_cell(row: dict, key: str) -> str:
+    """One samples cell: "–" without samples, "jams" where a quantile falls among the jammed
+    pairs (a stress None, a factor 0), else the number."""
+    if row["status"] != "ok" or row.get("samples.n") is None:
+        return "–"
+    v = row.get(key)
+    if key == "samples.jammed_share":
+        return f"{100 * v:.1f}"
+    if v is None or (key.endswith("at_quantile") and v == 0.0):
+        return "jams"
+    return f"{v:.2f}" if key.endswith("at_quantile") else f"{v:.1f}"
 
 
 def cycle_of(row: dict) -> list[dict] | None:
@@ -259,7 +304,7 @@ def study_plot(study: Study, table: list[dict], x: str) -> StudyPlot | None:
     in allowables alone are one point). None if no such line exists."""
     ok = [r for r in table if r["status"] == "ok"]
     tied = tied_inputs(study, ok, x)
-    others = [v for v in study.varied if v != x and v not in tied and not SOLVE_INPUTS[v].post]
+    others = [v for v in study.varied if v != x and v not in tied and not JOB_INPUTS[v].post]
     groups: dict[tuple, list[dict]] = {}
     for r in ok:
         groups.setdefault(tuple(r[o] for o in others), []).append(r)
@@ -333,5 +378,5 @@ def tied_inputs(study: Study, rows: list[dict], x: str) -> list[str]:
 
 
 def _unit(name: str) -> str:
-    unit = SOLVE_INPUTS[name].unit if name in SOLVE_INPUTS else ""
+    unit = JOB_INPUTS[name].unit if name in JOB_INPUTS else ""
     return f" {unit}" if unit else ""

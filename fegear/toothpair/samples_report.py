@@ -149,3 +149,19 @@ def _shown(s: dict) -> tuple[float, ...]:
 
 def _num(x) -> str:
     return "-" if x is None else f"{x:.2f}"
+
+
+def samples_columns(s: dict) -> dict:
+    """A class's samples as a study's columns: the count, the jammed share, each headline's
+    quantiles with their errors (None where one falls among the jammed pairs), each safety
+    factor at the quantile and the verdict."""
+    out = {"samples.n": s["samples"], "samples.jammed_share": s["jammed_share"]}
+    for key, v in s["stresses"].items():
+        for q in v["quantiles"]:
+            tag = f"P{100 * q['q']:g}"
+            out[f"samples.{key}.{tag}"] = q["value"]
+            out[f"samples.{key}.{tag}_error"] = q["error"]
+    for key, v in s["safety"].items():
+        out[f"samples.{key}.at_quantile"] = v["at_quantile"]
+    out["samples.verdict"] = s["verdict"]
+    return out

@@ -69,3 +69,13 @@ def sensitivity_table(s: dict, top: int = 12) -> str:
                  "rate is the largest over its phase, per µm of F_r"
                  + (f"; {more} more rows in sensitivities.csv" if more > 0 else ""))
     return "\n".join(lines)
+
+
+def sensitivity_columns(s: dict) -> dict:
+    """The sensitivities as a study's columns: the deviation that moves gear 1's root stress
+    most and its rate (MPa/µm), and what one tolerance of it moves with a class."""
+    top = s["rows"][0]
+    return {"sensitivities.largest": top["deviation"],
+            "sensitivities.largest.root_stress_gear1_per_um": top["root_stress_gear1_per_um"],
+            "sensitivities.largest.root_stress_gear1_at_tolerance":
+                top.get("root_stress_gear1_at_tolerance")}

@@ -609,3 +609,24 @@ def test_load_results_of_a_directory_without_results_names_it(tmp_path):
 
     with pytest.raises(StudyError, match="no study results there"):
         load_results(tmp_path)
+
+
+def test_a_class_is_an_input_its_samples_a_few_columns(tmp_path, capsys):
+    # grade, samples, seed and quantile are study inputs; each case's samples become the
+    # jammed share, each headline's quantiles with their errors, the factors at the quantile
+    # and the verdict (the per-sample rows stay in the case's record)
+    toml = tmp_path / "classes.toml"
+    base = SMALL.split("[[sweep]]")[0].replace("shift = 0.016", "shift = 0.03")
+    toml.write_text(base + "samples = 3\n[[sweep]]\ngrade = [4, 6]\n")
+    out = tmp_path / "out"
+    assert main(["study", str(toml), "--workers", "1", "--out", str(out), "--no-progress"]) == 0
+    table = _table(out)
+    assert [r["grade"] for r in table] == ["4", "6"]
+    for r in table:
+        assert r["status"] == "ok" and r["samples.n"] == "3"
+        assert float(r["samples.jammed_share"]) <= 1.0
+        assert "samples.root_stress_gear1_MPa.P95" in r and "samples.verdict" in r
+        assert "samples.rows" not in r
+        record = json.loads((out / "cases" / f"{r['key']}.json").read_text())
+        assert len(record["summary"]["samples"]["rows"]) == 3
+    assert "jammed %" in (out / "results.md").read_text()
