@@ -298,13 +298,24 @@ class Placed:
         feet = np.full(len(x), np.nan) if feet is None else feet
         k2 = np.zeros(len(x), dtype=int)
         turn2 = np.zeros(len(x))
-        if dev.gear2:            # gear 2's tooth under each point, then its own turn
+        warm = bool(dev.gear2) and bool(np.isfinite(feet).all())
+        if warm:                 # a search started at feet found before: the tooth they face
+            k2 = self._tooth2(feet)
+            turn2 = dev.turns(2, k2, p.r0)
+        elif dev.gear2:          # gear 2's tooth under each point, then its own turn
             y = rotate(fixed, -self.beta)
             feet[:] = self.curve2.feet(y, start=feet)
             k2 = self._tooth2(feet)
             turn2 = dev.turns(2, k2, p.r0)
         y = rotate(fixed, -(self.beta + turn2))
         feet[:] = self.curve2.feet(y, start=feet)
+        if warm:                 # a point now facing another tooth: found again, turned as it
+            moved = np.flatnonzero(self._tooth2(feet) != k2)
+            if len(moved):
+                turn2[moved] = dev.turns(2, self._tooth2(feet[moved]), p.r0)
+                beta = self.beta if np.ndim(self.beta) == 0 else self.beta[moved]
+                y[moved] = rotate(fixed[moved], -(beta + turn2[moved]))
+                feet[moved] = self.curve2.feet(y[moved], start=feet[moved])
         foot, normal, dist = self.curve2.at_feet(y, feet)
         if dev.gear2:
             k2 = self._tooth2(feet)

@@ -139,16 +139,17 @@ def _chain(case: SolveCase, states: _States, draw: Draw, solver: RingSolver, spa
     found: dict[int, list] = {}
     placed = RingSolver(solver.model, submodels="none")   # a sample the kept grids miss
     p = case.params
+    pairs = {k: draw.pair(k) for k in samples}   # drawn once, solved at every position
     near = None
     for i in span:
         beta, state = states.loaded[i]
         progress.stage(f"samples at β {math.degrees(beta):.3g}°")
         at = replace(case, beta=beta)
         near = nominal[i] = solve_position(at, state, placed, near)
-        moved = {k: Placed(draw.pair(k), p, beta).clearances(state) for k in samples}
+        moved = {k: Placed(pairs[k], p, beta).clearances(state) for k in samples}
         solver.widen(at, state, near, _paired(case, near, state, moved.values()))
         for k in samples:
-            one = replace(at, deviations=draw.pair(k))
+            one = replace(at, deviations=pairs[k])
             try:
                 sol = solver.on_kept(one, moved[k], brief=True)
                 if sol is None:   # placed on its own, and its teeth kept for those after it
