@@ -12,9 +12,9 @@ True
 """
 
 from .iso1328 import CLASSES, ClassTolerances, check_grade, class_tolerances, rounded
-from .sampling import SIGMAS, Draw, Grade, grade_of, sample_pair
+from .sampling import SIGMAS, Draw, Grade, grade_of, sample_pair, tooth_positions
 from .stats import QUANTILES, Quantile, quantiles
 
 __all__ = ["CLASSES", "QUANTILES", "SIGMAS", "ClassTolerances", "Draw", "Grade", "Quantile",
            "check_grade", "class_tolerances", "grade_of", "quantiles", "rounded",
-           "sample_pair"]
+           "sample_pair", "tooth_positions"]

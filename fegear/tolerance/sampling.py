@@ -88,6 +88,21 @@ class Draw:
         return sample_pair(self.grade, self.seed, k)
 
 
+def tooth_positions(deviations: Deviations, gear: int, z: int) -> np.ndarray:
+    """What a measuring machine reads of ``gear``'s teeth's positions (µm, in the gear's sign
+    of a pitch deviation): each tooth's indexing error (its pitch deviation) and its runout's
+    eccentricity along the tooth's pitch circle (module docstring)."""
+    teeth, runout = deviations.teeth(gear), getattr(deviations, f"runout{gear}")
+    index = np.array([teeth[t].pitch if t in teeth else 0.0 for t in range(z)])
+    return index + _along(runout.fr, math.radians(runout.phase), z, 1.0 if gear == 1 else -1.0)
+
+
+def _along(fr: float, phase: float, z: int, sign: float) -> np.ndarray:
+    """A runout ``fr`` (µm) at ``phase`` (rad)'s component along each of z teeth's pitch
+    circles (counter-clockwise, times the gear's ``sign`` of a pitch deviation)."""
+    return sign * 0.5 * fr * np.sin(phase - 2.0 * np.pi * np.arange(z) / z)
+
+
 def grade_of(grade, params, centre_distance_tolerance: float = 0.0) -> Grade:
     """Class ``grade``'s tolerances for both gears of the pair ``params`` (module m, z1 and
     z2 teeth) and the centre distance's tolerance (µm), refused by name outside their
@@ -126,7 +141,6 @@ def _gear(rng: np.random.Generator, tol: ClassTolerances, sign: float
     """One gear's teeth and runout that pass its class (module docstring); ``sign``: +1 for
     gear 1, whose positive pitch deviation turns a tooth counter-clockwise, −1 for gear 2."""
     z = tol.z
-    theta = 2.0 * np.pi * np.arange(z) / z
     for _ in range(DRAWS):
         ecc = rng.normal(0.0, tol.F_rT / (2.0 * SIGMAS), 2)
         phase = math.atan2(ecc[1], ecc[0])
@@ -137,7 +151,7 @@ def _gear(rng: np.random.Generator, tol: ClassTolerances, sign: float
         # each tooth's pitch circle (counter-clockwise), in the gear's sign of a pitch
         # deviation; the solve takes the offset from the runout, so a tooth's own pitch
         # deviation is its indexing error alone
-        position = index + sign * 0.5 * fr * np.sin(phase - theta)
+        position = index + _along(fr, phase, z, sign)
         half = 1.0 / math.sqrt(2.0)
         slope = rng.normal(0.0, tol.f_HaT / SIGMAS * half) + \
             rng.normal(0.0, tol.f_HaT / SIGMAS * half, z)

@@ -1,14 +1,15 @@
 """A tolerance class's sampled gear pairs solved at a job's positions (docs/tolerance.md).
 
 Every sample is the same pair with other deviations (:mod:`fegear.tolerance.sampling`), so it
-is the same model with other rigid gaps: at each position the exact pair is solved first, its
-contact kept with grids reaching as far as the deviations of any sample drawn can move a tooth
-(:class:`~.ring.phases.Phases`), and each sample is a contact solve and its stresses on that
-contact (:meth:`~.ring.solver.RingSolver.on_kept`); one whose contact the kept grids do not
-hold is placed and solved as a position of its own.
+is the same model with other rigid gaps: at each position the exact pair is solved first, then
+its contact kept with grids on every tooth that any sample pairs there, each reaching as far as
+the deviations of any pair of the class can move a tooth (:class:`~.ring.phases.Phases`), and
+each sample is a contact solve and its stresses on that contact
+(:meth:`~.ring.solver.RingSolver.on_kept`); one whose contact the kept grids do not hold is
+placed and solved as a position of its own, and the contact kept again with its teeth too.
 
 A sample whose deviations take up the pair's backlash somewhere over a whole turn of gear 1
-(:func:`~.teeth.refuse_closed`, checked at :data:`~.positions.TURN_CHECK` angles a pitch, as a
+(:func:`~.teeth.closed`, checked at :data:`~.positions.TURN_CHECK` angles a pitch, as a
 deviated solve checks it) cannot be turned: it is counted as jammed, with where, and carries no
 stresses. A sample whose contact does not settle is counted as failed, with why: no sample
 leaves the tables unseen.
@@ -29,7 +30,7 @@ from ..errors import FegearError
 from ..fe import Allowables, blas_threads, keep_freed_memory
 from ..geometry import Placed, ToothContact, gear1_profile, least_clearances, moved_clearances
 from ..running import SERIAL, Executor
-from ..tolerance import Draw
+from ..tolerance import Draw, tooth_positions
 from .case import HEADLINE, PairSolution, SolveCase
 from .positions import TURN_CHECK, solve_position
 from .revolution import revolution_positions
@@ -77,7 +78,7 @@ def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
             found.setdefault(k, []).extend(got)
     rows = []
     for k in range(draw.count):
-        brief = _brief(draw.pair(k))
+        brief = _brief(draw.pair(k), (p.z1, p.z2))
         if jammed[k] is not None:
             rows.append({"sample": k, **brief, "status": "jammed", "why": jammed[k]})
             continue
@@ -189,17 +190,17 @@ def _worst(got: list, allowables: Allowables) -> dict:
     return {**out, **safety_factors(out, allowables)}
 
 
-def _brief(deviations) -> dict:
-    """A sample's deviations in a few numbers (µm): each gear's cumulative pitch (the range
-    of its teeth's positions), largest single pitch, largest profile slope and form, its
-    runout, and the centre distance's."""
+def _brief(deviations, z: tuple[int, int]) -> dict:
+    """A sample's deviations in a few numbers (µm), as a measuring machine reads them: each
+    gear's cumulative pitch (the range of its teeth's positions, runout included) and largest
+    single pitch, its largest profile slope and form and its runout, and the centre
+    distance's; ``z``: the gears' numbers of teeth."""
     out = {}
-    for g in (1, 2):
+    for g, zg in zip((1, 2), z):
         teeth = deviations.teeth(g)
-        pitch = [teeth[t].pitch if t in teeth else 0.0 for t in range(max(teeth, default=-1) + 1)]
-        single = [abs(a - b) for a, b in zip(pitch, pitch[-1:] + pitch[:-1])] if pitch else [0.0]
-        out[f"gear{g}_cumulative_pitch_um"] = (max(pitch) - min(pitch)) if pitch else 0.0
-        out[f"gear{g}_single_pitch_um"] = max(single)
+        position = tooth_positions(deviations, g, zg)
+        out[f"gear{g}_cumulative_pitch_um"] = float(np.ptp(position))
+        out[f"gear{g}_single_pitch_um"] = float(np.abs(position - np.roll(position, 1)).max())
         out[f"gear{g}_slope_um"] = max((abs(d.slope) for d in teeth.values()), default=0.0)
         out[f"gear{g}_form_um"] = max((abs(d.form) for d in teeth.values()), default=0.0)
         out[f"gear{g}_runout_um"] = getattr(deviations, f"runout{g}").fr

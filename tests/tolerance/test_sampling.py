@@ -8,7 +8,7 @@ import pytest
 
 from fegear.errors import ParameterError
 from fegear.geometry import PairParameters
-from fegear.tolerance import SIGMAS, grade_of, sample_pair
+from fegear.tolerance import SIGMAS, grade_of, sample_pair, tooth_positions
 
 PAIR = PairParameters(shift=0.016, rotation=0.002)
 
@@ -21,12 +21,14 @@ def class6():
 
 def _positions(dev, gear, z):
     """What a measuring machine reads: each tooth's indexing error and the eccentricity
-    along its pitch circle (the runout's, in the gear's sign of a pitch deviation)."""
+    along its pitch circle (the runout's, in the gear's sign of a pitch deviation), by hand."""
     teeth, runout = dev.teeth(gear), getattr(dev, f"runout{gear}")
     theta = 2 * np.pi * np.arange(z) / z
     sign = 1.0 if gear == 1 else -1.0
-    return (np.array([teeth[t].pitch for t in range(z)])
-            + sign * 0.5 * runout.fr * np.sin(math.radians(runout.phase) - theta))
+    by_hand = (np.array([teeth[t].pitch for t in range(z)])
+               + sign * 0.5 * runout.fr * np.sin(math.radians(runout.phase) - theta))
+    assert np.allclose(tooth_positions(dev, gear, z), by_hand, rtol=0, atol=1e-12)
+    return by_hand
 
 
 def test_every_pair_drawn_passes_inspection_for_its_class(class6):

@@ -148,8 +148,8 @@ class RingSolver:
         teeth's loads and pressures only, without the first touch (NaN: no transmission
         error), the tangent stiffness, the equilibrium residuals, the teeth's Hertz values and
         half-plane references or an unloaded tooth's root stress on gear 2, which a sample's
-        row does not read. None
-        where no contact is kept there or its grids do not hold this one's."""
+        row does not read. None where no contact is kept there or its grids do not hold this
+        one's."""
         kept = self.phases.solve(self.model, case, state)
         if kept is None:
             return None
@@ -237,7 +237,7 @@ class RingSolver:
         with timed("stresses"):
             touch = (math.nan if brief else
                      touch_rotation(model, contact, case.params.turn_of(first_um)))
-            tangent = None if brief else tangent_stiffness(model, contact, sol)
+            tangent = math.nan if brief else tangent_stiffness(model, contact, sol)
             if self.contact_only:
                 stresses, cands = None, ()
             else:
