@@ -25,8 +25,9 @@ def samples_summary(rows, nominal_rows: list[dict], grade, seed: int, quantile: 
                     allowables: Allowables) -> dict:
     """The samples' summary (``summary["samples"]``): the class, the counts, per headline
     stress and per safety factor the nominal (the exact pair's largest over the positions),
-    the quantiles, the value at ``quantile`` and the worst with its sample, the verdict and
-    the rows (one a sample)."""
+    the quantiles (of every pair drawn, and of the pairs that turn alone: ``turning``), the
+    value at ``quantile`` and the worst with its sample, the verdict and the rows (one a
+    sample)."""
     rows = list(rows)
     n = len(rows)
     solved = [r for r in rows if r["status"] == "solved"]
@@ -39,10 +40,12 @@ def samples_summary(rows, nominal_rows: list[dict], grade, seed: int, quantile: 
         values = [r[key] if r["status"] == "solved" else JAMMED
                   for r in rows if r["status"] != "failed"]
         found = {q.q: q for q in quantiles(values, qs, seed=seed)}
+        turning = quantiles([r[key] for r in solved], qs, seed=seed)
         worst = max(solved, key=lambda r: r[key]) if solved else None
         stresses[key] = {
             "nominal": max(r[key] for r in nominal_rows),
             "quantiles": [_quantile(found[q]) for q in qs],
+            "turning": [_quantile(q) for q in turning],
             "worst": worst[key] if worst else None,
             "worst_sample": worst["sample"] if worst else None}
     for name, (which, key) in SAFETY.items():
@@ -119,6 +122,14 @@ def samples_table(s: dict) -> str:
                     "∞" if x["error"] is None else f"{x['error']:.1f}"))
         cells.append("-" if v["worst"] is None else f"{v['worst']:.1f} ({v['worst_sample']})")
         lines.append("| " + " | ".join(cells) + " |")
+    if s["jammed"] and s["solved"]:   # what the pairs that turn carry, the jammed aside
+        lines += ["", "| of the pairs that turn [MPa] | "
+                  + " | ".join(f"P{100 * x:g}" for x in _shown(s)) + " |",
+                  "|---|" + "---:|" * len(_shown(s))]
+        for key, label in HEADLINE.items():
+            cells = [f"{x['value']:.1f} ± {x['error']:.1f}"
+                     for x in s["stresses"][key]["turning"] if x["q"] in _shown(s)]
+            lines.append(f"| {label} | " + " | ".join(cells) + " |")
     lines += ["", f"| safety factor | nominal | at P{100 * q:g} | worst |", "|---|---:|---:|---:|"]
     for key, label in NAMES.items():
         v = s["safety"][key]

@@ -75,6 +75,8 @@ def test_the_summary_reads_the_rows(sampled):
         assert np.median(values) == math.inf
     else:
         assert median["value"] == pytest.approx(np.median(values))
+    turning = next(q for q in s["stresses"][key]["turning"] if q["q"] == 0.5)
+    assert turning["value"] == pytest.approx(np.median([r[key] for r in solved]))
     factor = s["safety"]["safety_bending_gear1"]
     assert factor["worst"] == pytest.approx(DEFAULT_ALLOWABLES.bending / max(
         r[key] for r in solved))
