@@ -41,7 +41,9 @@ class CycleResult:
     overall contact pressure (MPa), the transmission error's mean and peak-to-peak (µrad),
     each tooth's largest load share, and the radial tip clearance (mm). Teeth more than
     ``FAR_DEG`` from the pitch point are far-side teeth: their tips meet gear 2's other flanks
-    across the mesh."""
+    across the mesh. For a tolerance class's pairs (:func:`graded_cycle_result`) the rounds
+    count as loaded where more pairs than the quantile leaves load them (``edge_share``: the
+    share of the pairs that turn whose rounds carry load), the rest are the exact pair's."""
 
     amount_um: float
     torque: float
@@ -54,6 +56,7 @@ class CycleResult:
     te_p2p_urad: float
     shares: dict
     tip_clearance_mm: float = 0.0
+    edge_share: float | None = None   # a class's pairs: the share whose rounds carry load
 
     @property
     def off_the_rounds(self) -> bool:
@@ -101,11 +104,67 @@ def cycle_result(values: Mapping, amount_um: float, torque: float, positions: in
     profile = gear1_profile(job.case.params)
     # the search reads contact loads and pressures only: no stresses, no submodels
     sols = solve_positions(job.case, job.betas, contact_only=True)
-    edge = [(t, s.case.beta) for s in sols for t in s.teeth if t.edge_contact]
-    p = job.case.params
-    angles = {t.tooth: math.degrees(wrap(profile.tooth_center + t.tooth * profile.pitch
-                                         + p.ratio * beta - 0.5 * math.pi))
-              for t, beta in edge}
+    return _exact(sols, profile, job.case.params, amount_um, torque)
+
+
+def _tip_angles(profile, params, sol) -> list[tuple[int, float]]:
+    """The teeth whose tip rounds carry load in the solution ``sol``, each with where it
+    stands (° from the pitch point about O1)."""
+    beta = sol.case.beta
+    return [(t.tooth, math.degrees(wrap(profile.tooth_center + t.tooth * profile.pitch
+                                        + params.ratio * beta - 0.5 * math.pi)))
+            for t in sol.teeth if t.edge_contact]
+
+
+def graded_cycle_result(values: Mapping, amount_um: float, torque: float, positions: int,
+                        draw, quantile: float) -> CycleResult:
+    """:func:`cycle_result` for the pairs of a tolerance class (``draw``: its samples): the
+    exact pair's loads, pressures and transmission error, and its tip rounds counted as loaded
+    where, of the pairs that turn, more than ``1 - quantile`` load a round by the pitch point,
+    or a far-side one (the search then raises the tip clearance as for one pair). A class of
+    which more pairs jam than the quantile leaves has no relief: refused by name."""
+    from ..geometry import gear1_profile
+    from .job import prepare_job
+    from .ring.solver import RingSolver
+    from .safety import DEFAULT_ALLOWABLES
+    from .samples import solve_samples
+
+    job = prepare_job({**values, "relief": amount_um, "torque": torque,
+                       "positions": positions, "no-estimate": True})
+    case, p = job.case, job.case.params
+    profile = gear1_profile(p)
+    solver = RingSolver(contact_only=True, repeats=True, reach_um=draw.grade.reach_um())
+    sampled = solve_samples(case, job.betas, draw, DEFAULT_ALLOWABLES, solver,
+                            read=lambda sol: (sum(t.edge_load_N for t in sol.teeth),
+                                              _tip_angles(profile, p, sol)))
+    turning = [r["sample"] for r in sampled.rows if r["status"] == "solved"]
+    jammed = sum(r["status"] == "jammed" for r in sampled.rows) / len(sampled.rows)
+    if jammed > 1.0 - quantile:
+        raise ParameterError("grade", draw.grade.grade, f"a class whose pairs turn in "
+                             f"{100 * quantile:g} % of cases at least ({100 * jammed:.3g} % "
+                             "of these jam: no relief frees them; a finer class or more "
+                             "backlash, --shift)")
+    exact = _exact(sampled.nominal, profile, p, amount_um, torque)
+    loaded = {k: [e for load, tips in sampled.readings.get(k, []) for e in tips]
+              for k in turning}
+    teeth: dict[int, float] = {}
+    for side in (lambda a: abs(a) <= FAR_DEG, lambda a: abs(a) > FAR_DEG):
+        hit = [k for k in turning if any(side(a) for _, a in loaded[k])]
+        if len(hit) > (1.0 - quantile) * len(turning):
+            teeth.update({t: a for k in hit for t, a in loaded[k] if side(a)})
+    any_round = sum(bool(loaded[k]) for k in turning) / max(len(turning), 1)
+    most = max((load for k in turning for load, _ in sampled.readings.get(k, [])),
+               default=0.0)
+    return CycleResult(amount_um, torque, most if teeth else 0.0, tuple(sorted(teeth)),
+                       tuple(teeth[t] for t in sorted(teeth)), exact.flank_MPa,
+                       exact.contact_MPa, exact.te_mean_urad, exact.te_p2p_urad, exact.shares,
+                       p.radial_tip_clearance, any_round)
+
+
+def _exact(sols, profile, p, amount_um: float, torque: float) -> CycleResult:
+    """The exact pair's :class:`CycleResult` from its solutions over the cycle."""
+    edge = [e for s in sols for e in _tip_angles(profile, p, s)]
+    angles = dict(edge)
     te = [1e6 * (s.rotation - s.first_touch) for s in sols]
     shares: dict[int, float] = {}
     for s in sols:

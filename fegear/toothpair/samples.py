@@ -21,7 +21,8 @@ position: half the samples each), on the executor the caller gives.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -44,17 +45,22 @@ class Sampled:
     """The exact pair's solutions at the positions (in order) and one row a sample: its
     deviations in brief, ``status`` ("solved", "jammed" or "failed", with ``why``), and where
     solved its largest headline stresses over the positions, each with its position, and
-    the safety factors they give."""
+    the safety factors they give; ``readings``: by sample, what the caller's ``read`` took of
+    its solution at each position (:func:`solve_samples`)."""
 
     nominal: tuple[PairSolution, ...]
     rows: tuple[dict, ...]
+    readings: dict = field(default_factory=dict)
 
 
 def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
-                  solver: RingSolver, executor: Executor = SERIAL) -> Sampled:
+                  solver: RingSolver, executor: Executor = SERIAL,
+                  read: Callable[[PairSolution], object] | None = None) -> Sampled:
     """The exact pair and ``draw``'s samples solved at the rolling angles ``betas`` (rad) with
     ``solver``, a ring solver that keeps a contact a position (``repeats``) with grids that
-    reach as far as the draw's deviations (module docstring)."""
+    reach as far as the draw's deviations (module docstring); ``read``: what to keep of each
+    sample's solution at each position beside its headlines (a relief search's tip-round
+    loads, say)."""
     keep_freed_memory()
     p = case.params
     with blas_threads():
@@ -69,13 +75,17 @@ def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
             spans = [(span, free) for span in _halves(range(len(betas)))]
         else:
             spans = [(range(1), half) for half in _halves(free)]
-        chains = executor.map(lambda job: _chain(case, states, draw, solver, *job), spans)
+        chains = executor.map(lambda job: _chain(case, states, draw, solver, *job, read),
+                              spans)
     nominal: dict[int, PairSolution] = {}
     found: dict[int, list] = {}
-    for done_nominal, done in chains:
+    readings: dict[int, list] = {}
+    for done_nominal, done, took in chains:
         nominal.update(done_nominal)
         for k, got in done.items():
             found.setdefault(k, []).extend(got)
+        for k, got in took.items():
+            readings.setdefault(k, []).extend(got)
     rows = []
     for k in range(draw.count):
         brief = _brief(draw.pair(k), (p.z1, p.z2))
@@ -89,7 +99,7 @@ def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
             continue
         rows.append({"sample": k, **brief, "status": "solved", "why": "",
                      **_worst([(beta, head) for beta, head in got], allowables)})
-    return Sampled(tuple(nominal[i] for i in range(len(betas))), tuple(rows))
+    return Sampled(tuple(nominal[i] for i in range(len(betas))), tuple(rows), readings)
 
 
 def _halves(items) -> list:
@@ -130,14 +140,15 @@ def _jammed(states: _States, deviations) -> str | None:
 
 
 def _chain(case: SolveCase, states: _States, draw: Draw, solver: RingSolver, span,
-           samples) -> tuple[dict[int, PairSolution], dict[int, list]]:
+           samples, read=None) -> tuple[dict[int, PairSolution], dict[int, list], dict]:
     """The positions ``span`` (indices) of the exact pair and of ``samples``: the exact
     pair's solutions by position, and each sample's (β, headline) a position, or (β, why)
-    where it failed. The exact pair is solved as any position, then its contact kept with
-    grids on every tooth that any of the samples pairs (:func:`_paired`), and let go of when
-    they are solved."""
+    where it failed, and what ``read`` took of each solution. The exact pair is solved as any
+    position, then its contact kept with grids on every tooth that any of the samples pairs
+    (:func:`_paired`), and let go of when they are solved."""
     nominal: dict[int, PairSolution] = {}
     found: dict[int, list] = {}
+    took: dict[int, list] = {}
     placed = RingSolver(solver.model, submodels="none")   # a sample the kept grids miss
     p = case.params
     pairs = {k: draw.pair(k) for k in samples}   # drawn once, solved at every position
@@ -160,8 +171,10 @@ def _chain(case: SolveCase, states: _States, draw: Draw, solver: RingSolver, spa
                 found.setdefault(k, []).append((beta, str(err)))
                 continue
             found.setdefault(k, []).append((beta, sol.headline()))
+            if read is not None:
+                took.setdefault(k, []).append(read(sol))
         solver.forget(at)
-    return nominal, found
+    return nominal, found, took
 
 
 #: a sample's teeth are those the driver's rule pairs at its first touch plus this many times

@@ -134,3 +134,46 @@ def test_the_baseline_gets_a_relief_and_tip_clearance_that_keep_it_off_its_round
     assert s.with_relief.off_the_rounds and not s.without.off_the_rounds
     assert s.with_relief.contact_MPa == s.with_relief.flank_MPa
     assert s.with_relief.te_mean_urad > s.without.te_mean_urad
+
+
+CLASSED = {"shift": 0.03, "rotation": 0.002, "torque": 240.0, "relief-extent": 0.5,
+           "quality": "coarse"}
+
+
+@pytest.fixture(scope="module")
+def class4():
+    from fegear.geometry import PairParameters
+    from fegear.tolerance import Draw, grade_of
+
+    return Draw(grade_of(4, PairParameters(shift=0.03, rotation=0.002)), 8, 0)
+
+
+def test_a_class_s_trial_loads_a_round_where_more_of_its_pairs_do_than_the_quantile_leaves(
+        class4):
+    from fegear.toothpair.relief_rule import cycle_result, graded_cycle_result, near
+
+    # 2.5 µm keeps the exact pair off its rounds; some class-4 pairs still press a round by
+    # the pitch point: at the 95th percentile of 8 pairs (any one of them) that fails, at the
+    # median (more than four) it passes where no more than four do
+    exact = cycle_result(CLASSED, 2.5, 240.0, 4)
+    strict = graded_cycle_result(CLASSED, 2.5, 240.0, 4, class4, 0.95)
+    lax = graded_cycle_result(CLASSED, 2.5, 240.0, 4, class4, 0.5)
+    assert not near(exact) and near(strict)
+    assert 0 < strict.edge_share <= 1 and strict.edge_share == lax.edge_share
+    assert bool(near(lax)) == (strict.edge_share > 0.5)
+    # the loads, pressures and transmission error reported are the exact pair's (solved in
+    # the class's chain: 5e-6 apart, where its grids fall)
+    assert strict.flank_MPa == pytest.approx(exact.flank_MPa, rel=1e-4)
+    assert strict.te_mean_urad == pytest.approx(exact.te_mean_urad, rel=1e-4)
+
+
+def test_a_class_whose_pairs_mostly_jam_has_no_relief_and_says_why():
+    from fegear.errors import ParameterError
+    from fegear.geometry import PairParameters
+    from fegear.tolerance import Draw, grade_of
+    from fegear.toothpair.relief_rule import graded_cycle_result
+
+    draw = Draw(grade_of(6, PairParameters(shift=0.016, rotation=0.002)), 6, 0)
+    with pytest.raises(ParameterError, match="jam: no relief frees them") as err:
+        graded_cycle_result({**CLASSED, "shift": 0.016}, 3.0, 240.0, 2, draw, 0.95)
+    assert err.value.name == "grade"
