@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 from ..checks import Input
 from ..errors import FegearError
 from ..optimize.space import CONSTRAINT_INPUTS
-from ..toothpair.inputs import QUALITY, SOLVE_INPUTS
+from ..toothpair.inputs import QUALITY, SOLVE_INPUTS, TOLERANCE_INPUTS
 from .args import add_inputs, checked, given_values, workers_input
 
 if TYPE_CHECKING:
@@ -22,6 +22,10 @@ if TYPE_CHECKING:
 #: quality are its own options)
 TAKEN = [row for name, row in SOLVE_INPUTS.items()
          if name not in ("position", "positions", "no-estimate", "quality")]
+#: a tolerance class's inputs: each design measured on the class's pairs (the draw's seed
+#: fixed: every design meets the same pairs)
+CLASS = [row for row in TOLERANCE_INPUTS
+         if row.name in ("grade", "samples", "quantile", "centre-distance-tolerance")]
 WORKERS = 2
 #: the search's own inputs (its constraints are :data:`~fegear.optimize.space.
 #: CONSTRAINT_INPUTS`)
@@ -71,6 +75,8 @@ def add_parser(sub) -> None:
                         "files (default out/optimize; a search there is resumed)")
     g.add_argument("--json", action="store_true", help="print the final table as JSON")
     add_inputs(p, CONSTRAINT_INPUTS, "constraints")
+    add_inputs(p, CLASS, "a tolerance class: each design's safety factors at --quantile of "
+                         "its --samples pairs (the same pairs for every design)")
 
 
 def run(a: argparse.Namespace) -> int:
@@ -100,7 +106,7 @@ def _settings(a: argparse.Namespace) -> SearchSettings:
         raise FegearError("--workers sets the local pool; with --scheduler the cluster's "
                           "workers solve the trials (leave --workers out)")
     own = checked(a, SEARCH_INPUTS)
-    fixed = given_values(a, TAKEN)
+    fixed = {**given_values(a, TAKEN), **given_values(a, CLASS)}
     # without --vary, the default variables less those given a value
     variables = parse_variables(a.vary or [f"{k}={lo}:{hi}" for k, (lo, hi)
                                            in DEFAULT_RANGES.items() if k not in fixed])

@@ -30,9 +30,9 @@ OBJECTIVE_HELP = {"safety": "the smallest of S_F1, S_F2 and S_H on the flank ove
 def outer_diameter(values: Mapping) -> float:
     """Gear 2's outer diameter (mm): its root circle r0 + 2 e1 and the rim beyond it
     (``rim2``, default 3 m), the size the pair takes in a housing."""
-    from ..toothpair import SOLVE_INPUTS
+    from ..toothpair import JOB_INPUTS
 
-    v = SOLVE_INPUTS.with_defaults(values)
+    v = JOB_INPUTS.with_defaults(values)
     m, z2, h1 = float(v["m"]), int(v["z2"]), float(v["h1"])
     rim2 = v["rim2"]
     rim2 = 3.0 * m if rim2 is None else float(rim2)
@@ -42,9 +42,9 @@ def outer_diameter(values: Mapping) -> float:
 def centre_distance(values: Mapping) -> float:
     """The pair's centre distance e = m (z2 − z1) / 2 (mm): with the ratio fixed, the module's
     size."""
-    from ..toothpair import SOLVE_INPUTS
+    from ..toothpair import JOB_INPUTS
 
-    v = SOLVE_INPUTS.with_defaults(values)
+    v = JOB_INPUTS.with_defaults(values)
     return 0.5 * float(v["m"]) * (int(v["z2"]) - int(v["z1"]))
 
 
@@ -102,11 +102,42 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
     rec["te_p2p_urad"] = max(te) - min(te)
     rec["stiffness_Nm_per_rad"] = sum(s.mesh_stiffness for s in sols) / len(sols)
     rec["objective_safety"] = rec[limit]
+    if job.draw is not None:   # a class's pairs: the factors their quantile meets decide
+        try:
+            rec.update(_graded(job, allow))
+        except FegearError as exc:
+            return _infeasible(rec, "failed", str(exc), t0)
     rec["objective_te"] = rec["te_p2p_urad"]
     rec["objective_stiffness"] = rec["stiffness_Nm_per_rad"]
     rec["violation_buildable"] = 0.0
     rec["time_s"] = time.perf_counter() - t0
     return rec
+
+
+def _graded(job, allow) -> dict:
+    """A design measured on a tolerance class's pairs (``job.draw``, the same pairs for every
+    design of a search: common random numbers): each limiting factor at the ``job.quantile``
+    of the pairs (0 where more of them jam), the smallest the objective, and the tip rounds'
+    constraint violated where more of the pairs that turn load a round than the quantile
+    leaves (by the largest such load, N)."""
+    from ..toothpair import class_samples, samples_summary
+
+    draw, q = job.draw, job.quantile
+    sampled = class_samples(job, allow, read=lambda sol: sum(t.edge_load_N for t in sol.teeth))
+    rows = [dict(s.headline(), position_deg=math.degrees(s.case.beta)) for s in sampled.nominal]
+    summary = samples_summary(sampled.rows, rows, draw.grade, draw.seed, q, allow)
+    out = {"jammed_share": summary["jammed_share"]}
+    names = {"S_F1": "safety_bending_gear1", "S_F2": "safety_bending_gear2",
+             "S_H_flank": "safety_contact_flank"}
+    for name, key in names.items():
+        out[f"{name}_P{100 * q:g}"] = summary["safety"][key]["at_quantile"] or 0.0
+    out["objective_safety"] = min(out[f"{n}_P{100 * q:g}"] for n in names)
+    turning = [r["sample"] for r in sampled.rows if r["status"] == "solved"]
+    loads = [max(sampled.readings.get(k, [0.0])) for k in turning]
+    loaded = [x for x in loads if x > 0]
+    out["edge_share"] = len(loaded) / max(len(turning), 1)
+    out["violation_edge_load"] = (max(loaded) if out["edge_share"] > 1.0 - q else 0.0)
+    return out
 
 
 def carrying_tooth(sol, key: str) -> int:

@@ -294,9 +294,15 @@ def write_trials(study, space: Space, out: Path) -> Path:
     constraint values and :data:`TABLE_COLUMNS`; and ``search.json``, the settings and the
     best trials."""
     names = [v.name for v in space.variables]
-    header = ["trial", "state", "feasible", *names, *(f"violation_{c}" for c in CONSTRAINTS),
-              *TABLE_COLUMNS]
     trials = study.get_trials(deepcopy=False)
+    # a class's pairs add their columns (the jammed share, each factor at the quantile, the
+    # share whose rounds carry load), as the trials have them
+    graded = sorted({k for t in trials for k in t.user_attrs
+                     if k in ("jammed_share", "edge_share")
+                     or k.startswith(("S_F1_P", "S_F2_P", "S_H_flank_P"))})
+    columns = [*TABLE_COLUMNS, *graded]
+    header = ["trial", "state", "feasible", *names, *(f"violation_{c}" for c in CONSTRAINTS),
+              *columns]
     copies = {t.user_attrs["requeued_from"]: t for t in trials
               if "requeued_from" in t.user_attrs}
     rows = []
@@ -305,7 +311,7 @@ def write_trials(study, space: Space, out: Path) -> Path:
         a = cut if cut.get("status") == "cut" else {**t.user_attrs, **cut}
         cons = _constraints(t) if t.state.name == "COMPLETE" else [None] * len(CONSTRAINTS)
         rows.append([t.number, t.state.name, feasible(t), *(t.params.get(n) for n in names),
-                     *cons, *(a.get(c) for c in TABLE_COLUMNS)])
+                     *cons, *(a.get(c) for c in columns)])
     path = write_csv(out / "trials.csv", header,
                      (["" if v is None else v for v in row] for row in rows))
     best = best_trials(study, space)

@@ -106,7 +106,7 @@ def parse_variables(texts: Sequence[str]) -> tuple[Variable, ...]:
 def check_variable(v: Variable) -> Variable:
     """``v`` with its bounds checked: numbers (a bool is none), low < high, each inside the
     input's own range (refused by the input's name)."""
-    from ..toothpair import SOLVE_INPUTS
+    from ..toothpair import JOB_INPUTS
 
     if v.name not in VARIABLES:
         raise ParameterError("vary", v.name, "one of " + ", ".join(VARIABLES),
@@ -116,7 +116,7 @@ def check_variable(v: Variable) -> Variable:
         raise ParameterError("vary", f"{v.name}={v.low!r}:{v.high!r}",
                              f"{v.name}=low:high with finite numbers low < high")
     for bound in (lo, hi):
-        SOLVE_INPUTS[v.name].check(bound)   # outside the input's range: refused by its name
+        JOB_INPUTS[v.name].check(bound)   # outside the input's range: refused by its name
     return Variable(v.name, lo, hi)
 
 
@@ -124,12 +124,12 @@ def check_space(space: Space) -> None:
     """Refuse, by name, a space no design of which can meet its constraints or be solved: the
     fixed inputs must be valid, a variable not also fixed, the objectives known, the outer
     diameter reachable inside the bounds, the backlash bounds in order."""
-    from ..toothpair import SOLVE_INPUTS
+    from ..toothpair import JOB_INPUTS
 
-    SOLVE_INPUTS.with_defaults(space.fixed)    # an unknown input: refused by its name
+    JOB_INPUTS.with_defaults(space.fixed)    # an unknown input: refused by its name
     for name, value in space.fixed.items():   # those with limits: by prepare_job, below
-        if value is not None and not SOLVE_INPUTS[name].limits:
-            SOLVE_INPUTS[name].check(value)
+        if value is not None and not JOB_INPUTS[name].limits:
+            JOB_INPUTS[name].check(value)
     for v in space.variables:
         check_variable(v)
         if v.name in space.fixed and space.fixed[v.name] is not None:

@@ -77,6 +77,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "positions": ("PositionModel", "Trial", "Attempt", "SHARE_GUESS", "ATTEMPTS", "CHAINED",
                   "drive", "expected_elastic_um", "first_teeth"),
     "ring.cache": ("model_cache",),
-    "samples_report": ("samples_columns", "samples_table"),
+    "samples": ("class_samples", "Sampled"),
+    "samples_report": ("samples_columns", "samples_summary", "samples_table"),
     "sensitivity_report": ("sensitivity_columns", "sensitivity_table"),
 })

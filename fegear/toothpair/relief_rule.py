@@ -123,18 +123,19 @@ def graded_cycle_result(values: Mapping, amount_um: float, torque: float, positi
     where, of the pairs that turn, more than ``1 - quantile`` load a round by the pitch point,
     or a far-side one (the search then raises the tip clearance as for one pair). A class of
     which more pairs jam than the quantile leaves has no relief: refused by name."""
+    from dataclasses import replace
+
     from ..geometry import gear1_profile
     from .job import prepare_job
-    from .ring.solver import RingSolver
     from .safety import DEFAULT_ALLOWABLES
-    from .samples import solve_samples
+    from .samples import class_samples
 
     job = prepare_job({**values, "relief": amount_um, "torque": torque,
                        "positions": positions, "no-estimate": True})
-    case, p = job.case, job.case.params
+    job = replace(job, draw=draw, quantile=quantile)
+    p = job.case.params
     profile = gear1_profile(p)
-    solver = RingSolver(contact_only=True, repeats=True, reach_um=draw.grade.reach_um())
-    sampled = solve_samples(case, job.betas, draw, DEFAULT_ALLOWABLES, solver,
+    sampled = class_samples(job, DEFAULT_ALLOWABLES, contact_only=True,
                             read=lambda sol: (sum(t.edge_load_N for t in sol.teeth),
                                               _tip_angles(profile, p, sol)))
     turning = [r["sample"] for r in sampled.rows if r["status"] == "solved"]

@@ -102,6 +102,16 @@ def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
     return Sampled(tuple(nominal[i] for i in range(len(betas))), tuple(rows), readings)
 
 
+def class_samples(job, allowables: Allowables, read=None, contact_only: bool = False,
+                  executor: Executor = SERIAL) -> Sampled:
+    """A checked job's class (``job.draw``) solved at its positions (:func:`solve_samples`)
+    on a ring solver made for it: the stresses without submodels, or the contact alone
+    (``contact_only``: a relief search's trial)."""
+    solver = RingSolver(repeats=True, reach_um=job.draw.grade.reach_um(), submodels="none",
+                        contact_only=contact_only)
+    return solve_samples(job.case, job.betas, job.draw, allowables, solver, executor, read)
+
+
 def _halves(items) -> list:
     """``items`` in two halves (one where fewer than two)."""
     items = list(items)

@@ -100,6 +100,24 @@ def test_a_designs_record_is_its_cycle_read_as_a_designer_would():
     assert outer_diameter({"m": 1.0, "h1": 0.2, "rim2": 2.0}) == pytest.approx(2 * 24.9)
 
 
+def test_a_class_s_design_is_measured_at_the_quantile_of_its_pairs():
+    """With a class, the objective is the smallest factor the quantile of the class's pairs
+    meets (those of the samples' own solve), the tip rounds' constraint the pairs' share."""
+    from fegear.toothpair import prepare_job, solve_job
+
+    values = {**BASE, "quality": "coarse", "shift": 0.03, "relief": 3.0, "tip-clearance": 0.04,
+              "grade": 4, "samples": 4, "quantile": 0.5}
+    rec = evaluate(values, 2, {})
+    s = solve_job(prepare_job({**values, "positions": 2, "no-estimate": True})).summary
+    at = {k: v["at_quantile"] for k, v in s["samples"]["safety"].items()}
+    assert rec["S_F1_P50"] == pytest.approx(at["safety_bending_gear1"], rel=1e-6)
+    assert rec["S_H_flank_P50"] == pytest.approx(at["safety_contact_flank"], rel=1e-6)
+    assert rec["objective_safety"] == min(rec["S_F1_P50"], rec["S_F2_P50"],
+                                          rec["S_H_flank_P50"])
+    assert rec["jammed_share"] == s["samples"]["jammed_share"]
+    assert (rec["violation_edge_load"] > 0) == (rec["edge_share"] > 0.5)
+
+
 def test_a_design_the_solve_refuses_comes_back_as_a_violation_not_an_error():
     rec = evaluate({**BASE, "quality": "coarse", "tip-clearance": 5.0}, 2, {})
     assert rec["status"] == "refused" and "tip-clearance" in rec["reason"]
