@@ -66,6 +66,7 @@ class Sensitivity:
 
     @property
     def name(self) -> str:
+        """As a table names it: "gear 1 tooth 11 pitch", "gear 2 runout", "centre distance"."""
         where = f"gear {self.gear}" + (f" tooth {self.tooth}" if self.tooth is not None else "")
         return self.kind if self.gear is None else f"{where} {self.kind}"
 
