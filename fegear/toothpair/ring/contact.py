@@ -162,7 +162,7 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
     if closed is None:
         return None
     full, gap, clamped = closed
-    if near is not None and (gap[np.flatnonzero(contact.formed)[~near]] < 0).any():
+    if near is not None and (gap[~near] < 0).any():   # every column formed: near spans all
         return solve_ring_contact(model, contact, torque_nmm, theta, guess, start)
     loaded = full > 0
     overlap = float(max(0.0, -gap[loaded].min())) if loaded.any() else 0.0
@@ -307,22 +307,34 @@ def tangent_stiffness(model: RingModel, contact: RingContact,
     active points kept: the same system :func:`_on` solves, differentiated in the torque (a
     linearised dynamic model's mesh spring; the secant T/(θ − θ_touch) is the static one). It
     is the slope of θ(T) between the loads at which a point joins or leaves the contact."""
+    idx, system = solved_system(model, contact, sol)
+    if not len(idx):
+        return float("nan")
+    rhs = np.zeros(len(idx) + 1)
+    rhs[-1] = -1.0                     # one N·mm more on gear 1
+    rate = np.linalg.solve(system, rhs)[-1]  # rad per N·mm
+    return float(1e-3 / rate)
+
+
+def solved_system(model: RingModel, contact: RingContact, sol: RingContactSolution
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """The solved contact's active points (indices) and the bordered system over them that
+    :func:`_on` solves at the solution, the torque arm's turn included: the matrix whose
+    solutions are the contact's derivatives with its active set kept (in the torque:
+    :func:`tangent_stiffness`; in a deviation: :mod:`.sensitivity`). ``contact`` with its
+    influence matrix."""
     alpha = model.case.params.ratio * contact.beta
     w = contact.weight * model.case.thickness
-    active = sol.pressure > 0
-    if not active.any():
-        return float("nan")
+    idx = np.flatnonzero(sol.pressure > 0)
+    if not len(idx):
+        return idx, np.zeros((1, 1))
     _, a = rigid_gap(model, contact, alpha + sol.rotation, contact.feet)
-    idx = np.flatnonzero(active)
     ahead = rigid_gap(model, contact, alpha + sol.rotation + ARM_STEP, contact.feet[idx],
                       idx)[1]
     arm_rate = (w[idx] * sol.pressure[idx]) @ (ahead - a[idx]) / ARM_STEP
-    rhs = np.zeros(len(idx) + 1)
-    rhs[-1] = -1.0                     # one N·mm more on gear 1
     rows = (np.cumsum(contact.formed) - 1)[idx]     # the active points' rows of A
-    rate = np.linalg.solve(_bordered(contact.A[np.ix_(rows, rows)], w[idx], a[idx],
-                                     np.arange(len(idx)), arm_rate), rhs)[-1]  # rad per N·mm
-    return float(1e-3 / rate)
+    return idx, _bordered(contact.A[np.ix_(rows, rows)], w[idx], a[idx],
+                          np.arange(len(idx)), arm_rate)
 
 
 def touch_rotation(model: RingModel, contact: RingContact, theta: float) -> float:

@@ -34,9 +34,9 @@ import numpy as np
 from scipy.linalg import lu_factor, lu_solve
 
 from ...fe import contact_modulus
-from ...geometry import Deviations, Placed, Runout, ToothDeviation
+from ...geometry import Deviations, Placed, Runout, ToothDeviation, gear2_tooth
 from ..edge import flank_and_edge
-from .contact import ARM_STEP, RingContactSolution, _bordered, rigid_gap
+from .contact import RingContactSolution, rigid_gap, solved_system
 from .influence import RingContact
 from .model import RingModel
 from .stresses import ring_stresses
@@ -76,19 +76,12 @@ def sensitivities(model: RingModel, contact: RingContact, sol: RingContactSoluti
     """Every headline's derivative with every deviation of the teeth in mesh (module
     docstring) at the solved position ``sol`` on ``contact`` (with its influence matrix),
     about the pair's own ``deviations``."""
-    case = model.case
-    p, thickness = case.params, case.thickness
-    alpha = p.ratio * contact.beta
-    turn = alpha + sol.rotation
+    p = model.case.params
+    turn = p.ratio * contact.beta + sol.rotation
     pressure = sol.pressure
-    idx = np.flatnonzero(pressure > 0)
-    w = contact.weight * thickness
-    _, a = rigid_gap(model, contact, turn, contact.feet.copy())
-    ahead = rigid_gap(model, contact, turn + ARM_STEP, contact.feet[idx].copy(), idx)[1]
-    arm_rate = (w[idx] * pressure[idx]) @ (ahead - a[idx]) / ARM_STEP
-    rows = (np.cumsum(contact.formed) - 1)[idx]
-    factors = lu_factor(_bordered(contact.A[np.ix_(rows, rows)], w[idx], a[idx],
-                                  np.arange(len(idx)), arm_rate))
+    w = contact.weight * model.case.thickness
+    idx, system = solved_system(model, contact, sol)
+    factors = lu_factor(system)
     base = pressure_headlines(model, contact, pressure)
 
     def rate(moved: Deviations, other: Deviations) -> dict:
@@ -160,7 +153,7 @@ def _loaded_teeth(contact: RingContact, pressure: np.ndarray) -> list[int]:
 def _faced_teeth(contact: RingContact, pressure: np.ndarray, z2: int) -> list[int]:
     """Gear 2's teeth that the loaded points face (the tooth under each one's foot)."""
     feet = contact.feet[pressure > 0]
-    return sorted({int(t) for t in np.mod(np.round(feet * z2 / (2 * math.pi)), z2)})
+    return sorted({int(t) for t in gear2_tooth(feet, z2)})
 
 
 def _nudged(deviations: Deviations, gear: int, tooth: int, kind: str, um: float) -> Deviations:
