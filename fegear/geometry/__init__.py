@@ -31,7 +31,7 @@ from ..exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
     "parameters": ("PairParameters", "PAIR_INPUTS", "RENAMED"),
-    "gear2": ("Cycloid", "gear2_curve"),
+    "gear2": ("Cycloid", "gear2_curve", "gear2_tooth"),
     "envelope": ("Branch", "BranchPoints", "NEAR", "FAR"),
     "gear1": ("Gear1Profile", "gear1_profile"),
     "admissible": ("Defect", "defect", "design_defect", "resolve"),

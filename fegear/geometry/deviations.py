@@ -38,6 +38,7 @@ import numpy as np
 from ..checks import require_finite
 from ..errors import ParameterError
 from ..planar import rotate
+from .gear2 import gear2_tooth
 
 #: the largest deviation fegear takes, µm: far beyond ISO 1328-1's coarsest class for any
 #: module fegear solves (class 11, m 100, d 2 m: about 900 µm) and below what closes a pair
@@ -299,26 +300,23 @@ class Placed:
         k2 = np.zeros(len(x), dtype=int)
         turn2 = np.zeros(len(x))
         warm = bool(dev.gear2) and bool(np.isfinite(feet).all())
-        if warm:                 # a search started at feet found before: the tooth they face
-            k2 = self._tooth2(feet)
-            turn2 = dev.turns(2, k2, p.r0)
-        elif dev.gear2:          # gear 2's tooth under each point, then its own turn
-            y = rotate(fixed, -self.beta)
-            feet[:] = self.curve2.feet(y, start=feet)
-            k2 = self._tooth2(feet)
+        if dev.gear2:            # gear 2's tooth under each point, then its own turn
+            if not warm:         # (started at feet found before: the tooth they face)
+                feet[:] = self.curve2.feet(rotate(fixed, -self.beta), start=feet)
+            k2 = gear2_tooth(feet, p.z2)
             turn2 = dev.turns(2, k2, p.r0)
         y = rotate(fixed, -(self.beta + turn2))
         feet[:] = self.curve2.feet(y, start=feet)
         if warm:                 # a point now facing another tooth: found again, turned as it
-            moved = np.flatnonzero(self._tooth2(feet) != k2)
+            moved = np.flatnonzero(gear2_tooth(feet, p.z2) != k2)
             if len(moved):
-                turn2[moved] = dev.turns(2, self._tooth2(feet[moved]), p.r0)
+                turn2[moved] = dev.turns(2, gear2_tooth(feet[moved], p.z2), p.r0)
                 beta = self.beta if np.ndim(self.beta) == 0 else self.beta[moved]
                 y[moved] = rotate(fixed[moved], -(beta + turn2[moved]))
                 feet[moved] = self.curve2.feet(y[moved], start=feet[moved])
         foot, normal, dist = self.curve2.at_feet(y, feet)
         if dev.gear2:
-            k2 = self._tooth2(feet)
+            k2 = gear2_tooth(feet, p.z2)
         roll1 = (np.hypot(x[:, 0], x[:, 1]) - self.roots1) / (self.tips1 - self.roots1)
         roll2 = (self.roots2 - np.hypot(foot[:, 0], foot[:, 1])) / (self.roots2 - self.tips2)
         if flanks:
@@ -333,10 +331,6 @@ class Placed:
         tooth closes, for the turn barely moves its gap; a tooth's other points, with the
         lever arms of its flanks, close first."""
         return np.maximum(-direction * np.asarray(rate), LEVER_FLOOR * self.params.r1)
-
-    def _tooth2(self, xi: np.ndarray) -> np.ndarray:
-        z2 = self.params.z2
-        return np.mod(np.round(np.asarray(xi) * z2 / (2 * np.pi)).astype(int), z2)
 
     def clearances(self, state, direction: int = +1):
         """``state`` (a :class:`~.clearance.ContactState` at this β) with each tooth's

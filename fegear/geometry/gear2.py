@@ -313,6 +313,12 @@ def adaptive_parameters(derivs, a: float, b: float, chord_error: float,
     return np.concatenate(pts)
 
 
+def gear2_tooth(xi, z2: int) -> np.ndarray:
+    """The gear-2 tooth (0 … z2 − 1) whose flanks hold the curve's points at parameters
+    ``xi`` (rad): tooth k spans a pitch about ξ = 2π k / z2."""
+    return np.mod(np.round(np.asarray(xi) * z2 / (2 * np.pi)).astype(int), z2)
+
+
 def gear2_curve(p: PairParameters, tool: bool = False) -> Cycloid:
     """Nominal gear 2 of the pair, or the generating tool (with the rotation modification)."""
     return Cycloid(p.r0, p.e1, p.e2, p.z2, p.rotation if tool else 0.0)

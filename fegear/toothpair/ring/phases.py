@@ -34,7 +34,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...errors import ContactError
-from ...geometry import Placed, pitch_phase
+from ...geometry import Placed, gear2_tooth, pitch_phase
 from ...planar import rotate
 from ..case import PairSolution, SolveCase
 from ..positions import Trial
@@ -265,7 +265,7 @@ def seen_teeth(contact: RingContact, z2: int) -> tuple[tuple[int, ...], tuple[in
     """The teeth whose deviations ``contact``'s rigid gaps can see (:attr:`Kept.teeth`):
     gear 1's with grids, gear 2's under its points' feet and one either side."""
     feet = contact.feet[np.isfinite(contact.feet)]
-    under = np.round(feet * z2 / (2 * math.pi)).astype(int)
+    under = gear2_tooth(feet, z2)
     near = np.unique(np.concatenate([under - 1, under, under + 1]) % z2)
     return tuple(g.tooth for g in contact.grids), tuple(int(t) for t in near)
 
