@@ -66,7 +66,8 @@ def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
     with blas_threads():
         profile = gear1_profile(p)
         states = _States(case, profile, tuple(betas))
-        jams = executor.map(lambda ks: [_jammed(states, draw.pair(k)) for k in ks],
+        pairs = [draw.pair(k) for k in range(draw.count)]   # drawn once, here
+        jams = executor.map(lambda ks: [_jammed(states, pairs[k]) for k in ks],
                             _halves(range(draw.count)))
         jammed = [j for half in jams for j in half]
         solver.build(case, profile, lambda: states.loaded)
@@ -75,7 +76,7 @@ def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
             spans = [(span, free) for span in _halves(range(len(betas)))]
         else:
             spans = [(range(1), half) for half in _halves(free)]
-        chains = executor.map(lambda job: _chain(case, states, draw, solver, *job, read),
+        chains = executor.map(lambda job: _chain(case, states, pairs, solver, *job, read),
                               spans)
     nominal: dict[int, PairSolution] = {}
     found: dict[int, list] = {}
@@ -88,7 +89,7 @@ def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
             readings.setdefault(k, []).extend(got)
     rows = []
     for k in range(draw.count):
-        brief = _brief(draw.pair(k), (p.z1, p.z2))
+        brief = _brief(pairs[k], (p.z1, p.z2))
         if jammed[k] is not None:
             rows.append({"sample": k, **brief, "status": "jammed", "why": jammed[k]})
             continue
@@ -121,9 +122,9 @@ def _halves(items) -> list:
 
 class _States:
     """The exact pair's clearance states at the positions (``loaded``: (β, state) pairs, the
-    loaded flanks) and, for the check that a sample leaves the pair its backlash, both
-    sides' states over a whole turn of gear 1 (:data:`~.positions.TURN_CHECK` angles a
-    pitch) and at the positions."""
+    loaded flanks) and, for the check that a sample leaves the pair its backlash, over a
+    whole turn of gear 1 (``turn``: :data:`~.positions.TURN_CHECK` angles a pitch, both
+    sides of each state found in one search)."""
 
     def __init__(self, case: SolveCase, profile, betas: tuple[float, ...]) -> None:
         p = case.params
@@ -132,36 +133,37 @@ class _States:
         self.loaded = list(zip(betas, find(betas, directions=(+1,))))
         refuse_interference(self.loaded)
         turn = revolution_positions(betas[0], TURN_CHECK, p.z1, p.z2)
-        self.turn = list(zip(turn, find(turn, directions=(+1,)), find(turn, directions=(-1,))))
+        self.turn = list(zip(turn, find(turn)))
 
 
 def _jammed(states: _States, deviations) -> str | None:
     """Where ``deviations`` take up the pair's backlash over a whole turn (:func:`~.teeth.
     closed`, in words), else None."""
     p = states.case.params
-    least = least_clearances(deviations, p, [s for _, s, _ in states.turn])
+    least = least_clearances(deviations, p, [s for _, s in states.turn])
     behind = [states.turn[i] for i in np.flatnonzero(least < 0)]
     if not behind:
         return None
-    plus = moved_clearances(deviations, p, [s for _, s, _ in behind])
-    coast = moved_clearances(deviations, p, [s for _, _, s in behind], -1)
-    where = closed([(b[0], s, back) for b, s, back in zip(behind, plus, coast)])
+    exact = [s for _, s in behind]
+    plus = moved_clearances(deviations, p, exact)
+    coast = moved_clearances(deviations, p, exact, -1)
+    where = closed([(b, s, back) for (b, _), s, back in zip(behind, plus, coast)])
     return None if where is None else str(where)
 
 
-def _chain(case: SolveCase, states: _States, draw: Draw, solver: RingSolver, span,
-           samples, read=None) -> tuple[dict[int, PairSolution], dict[int, list], dict]:
-    """The positions ``span`` (indices) of the exact pair and of ``samples``: the exact
-    pair's solutions by position, and each sample's (β, headline) a position, or (β, why)
-    where it failed, and what ``read`` took of each solution. The exact pair is solved as any
-    position, then its contact kept with grids on every tooth that any of the samples pairs
-    (:func:`_paired`), and let go of when they are solved."""
+def _chain(case: SolveCase, states: _States, pairs, solver: RingSolver, span, samples,
+           read=None) -> tuple[dict[int, PairSolution], dict[int, list], dict]:
+    """The positions ``span`` (indices) of the exact pair and of ``samples`` (indices into the
+    drawn ``pairs``' deviations): the exact pair's solutions by position, and each sample's
+    (β, headline) a position, or (β, why) where it failed, and what ``read`` took of each
+    solution. The exact pair is solved as any position, then its contact kept with grids on
+    every tooth that any of the samples pairs (:func:`_paired`), and let go of when they are
+    solved."""
     nominal: dict[int, PairSolution] = {}
     found: dict[int, list] = {}
     took: dict[int, list] = {}
     placed = RingSolver(solver.model, submodels="none")   # a sample the kept grids miss
     p = case.params
-    pairs = {k: draw.pair(k) for k in samples}   # drawn once, solved at every position
     near = None
     for i in span:
         beta, state = states.loaded[i]
