@@ -120,12 +120,12 @@ def _graded(job, allow) -> dict:
     of the pairs (0 where more of them jam), the smallest the objective, and the tip rounds'
     constraint violated where more of the pairs that turn load a round than the quantile
     leaves (by the largest such load, N)."""
-    from ..toothpair import class_samples, samples_summary
+    from ..toothpair import class_samples, cycle_rows, samples_summary
 
     draw, q = job.draw, job.quantile
     sampled = class_samples(job, allow, read=lambda sol: sum(t.edge_load_N for t in sol.teeth))
-    rows = [dict(s.headline(), position_deg=math.degrees(s.case.beta)) for s in sampled.nominal]
-    summary = samples_summary(sampled.rows, rows, draw.grade, draw.seed, q, allow)
+    summary = samples_summary(sampled.rows, cycle_rows(sampled.nominal, allow), draw.grade,
+                              draw.seed, q, allow)
     out = {"jammed_share": summary["jammed_share"]}
     names = {"S_F1": "safety_bending_gear1", "S_F2": "safety_bending_gear2",
              "S_H_flank": "safety_contact_flank"}

@@ -1,7 +1,7 @@
 """One ``fegear solve`` job: its inputs checked, the solve, the estimate and the files.
 
 The command line and the study runner share this module, so a study case is exactly a
-``fegear solve`` call: the same inputs under the same names (:data:`~.inputs.SOLVE_INPUTS`),
+``fegear solve`` call: the same inputs under the same names (:data:`~.inputs.JOB_INPUTS`),
 the same checks, the same JSON summary.
 """
 
@@ -20,7 +20,7 @@ from ..running import SERIAL, Executor
 from ..timing import Stopwatch
 from ..tolerance import Draw, grade_of
 from .case import SolveCase, cycle_positions
-from .inputs import JOB_INPUTS, PAIR_INPUTS, SOLVE_INPUTS, TIP_ROUND, check_tip_round
+from .inputs import JOB_INPUTS, PAIR_INPUTS, TIP_ROUND, check_tip_round
 from .revolution import PER_PITCH, phase_major, revolution_positions, revolution_summary
 from .safety import DEFAULT_ALLOWABLES, allowables_of
 
@@ -57,9 +57,9 @@ def prepare_job(values: Mapping[str, object]) -> Job:
             row.check(v[name])                          # values, by the case they build
     params = admissible_pair(v, given=values)
     v["tip-round"] = _tip_round(params, v["tip-round"])
-    position = SOLVE_INPUTS["position"].check(v["position"])
-    positions = SOLVE_INPUTS["positions"].check(v["positions"])
-    revolution = SOLVE_INPUTS["revolution"].check(v["revolution"])
+    position = JOB_INPUTS["position"].check(v["position"])
+    positions = JOB_INPUTS["positions"].check(v["positions"])
+    revolution = JOB_INPUTS["revolution"].check(v["revolution"])
     n = 1 if positions is None else positions
     case = SolveCase(params, torque=v["torque"], beta=math.radians(position),
                      thickness=v["face-width"], E=v["E"], nu=v["nu"], quality=v["quality"],
