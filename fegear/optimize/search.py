@@ -138,7 +138,8 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
                       len(space.objectives))
     stale = study.get_trials(deepcopy=False, states=(TrialState.RUNNING,))
     for t in stale:                      # a search killed outright left these running
-        _requeue(study, t.number, t.params, "the search ended while it ran (killed outright)")
+        _requeue(study, t.number, _whole_design(study, space, t),
+                 "the search ended while it ran (killed outright)")
     found = sum(t.state == TrialState.COMPLETE for t in study.get_trials(deepcopy=False))
     done, solved = found, 0
     stop: list[int] = []
@@ -202,6 +203,20 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
     if stop:
         raise SearchInterrupted(stop[0], done, trials)
     return SearchReport(out, study, table, found, solved, time.perf_counter() - t_start)
+
+
+def _whole_design(study, space: Space, t) -> dict:
+    """The design of ``t``, a trial a kill left running, every variable drawn: a kill between
+    its variables' draws (each a line of the journal) left some undrawn, and the trial, never
+    solved, is drawn whole now, so that the copy queued again solves its design."""
+    params = dict(t.params)
+    missing = [v for v in space.variables if v.name not in params]
+    if missing:
+        from optuna.trial import Trial
+
+        live = Trial(study, t._trial_id)   # Optuna names a trial in its storage by this id
+        params.update({v.name: live.suggest_float(v.name, v.low, v.high) for v in missing})
+    return params
 
 
 def _failed() -> Future:

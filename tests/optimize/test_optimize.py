@@ -145,6 +145,17 @@ def test_a_seeded_search_repeats_and_a_resumed_one_solves_only_what_is_missing(t
         run_search(SPACE, a, trials=5, workers=1, seed=8)
 
 
+def test_a_trial_killed_while_its_design_was_drawn_is_drawn_whole_and_solved_again(tmp_path):
+    # a kill between a trial's draws of its variables leaves it running with part of a
+    # design: the next start draws the rest, marks it cut and solves that whole design
+    study = open_study(SPACE, tmp_path)
+    study.ask().suggest_float("h1", 0.25, 0.35)          # killed before relief was drawn
+    run_search(SPACE, tmp_path, trials=1, workers=1)
+    cut = _params(tmp_path, "FAIL")
+    assert len(cut) == 1 and all(math.isfinite(v) for v in cut[0])
+    assert _params(tmp_path) == cut
+
+
 def _wait_for(out: Path, complete: int, proc, timeout: float = 120.0) -> None:
     """Until the search in ``out`` has ``complete`` finished trials."""
     from optuna.trial import TrialState
