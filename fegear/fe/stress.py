@@ -96,15 +96,15 @@ def recover_many(body: Body, U: np.ndarray, reused: bool = False) -> list[Stress
     factor, parts = projector(body, reused)
     k = U.shape[1]
     nodal = factor.solve(np.hstack([C @ U for C in parts]))
-    out = []
-    for j in range(k):
-        sxx, syy, sxy = (np.ascontiguousarray(nodal[:, c * k + j]) for c in range(3))
-        if body.material.plane == "stress":
-            szz = np.zeros_like(sxx)
-        else:
-            szz = body.material.nu * (sxx + syy)
-        out.append(StressField(sxx, syy, sxy, szz, body.material.plane))
-    return out
+    return [stress_field(*(np.ascontiguousarray(nodal[:, c * k + j]) for c in range(3)),
+                         body.material) for j in range(k)]
+
+
+def stress_field(sxx: np.ndarray, syy: np.ndarray, sxy: np.ndarray, material) -> StressField:
+    """The :class:`StressField` of in-plane components (MPa) in ``material`` (its plane
+    assumption gives σzz)."""
+    szz = np.zeros_like(sxx) if material.plane == "stress" else material.nu * (sxx + syy)
+    return StressField(sxx, syy, sxy, szz, material.plane)
 
 
 def projector(body: Body, reused: bool = True):

@@ -250,7 +250,7 @@ LEVER_FLOOR = 0.02
 
 
 @lru_cache(maxsize=64)
-def _gear1_radii(params) -> tuple[float, float]:
+def gear1_radii(params) -> tuple[float, float]:
     """Gear 1's root and tip radii (mm), where its flanks' roll runs from 0 to 1."""
     from .gear1 import gear1_profile
 
@@ -282,7 +282,7 @@ class Placed:
         alpha = params.ratio * beta
         self.teeth_offset = (deviations.runout1.offset(g1.tooth_center + alpha)
                              - deviations.runout2.offset(beta))
-        self.roots1, self.tips1 = _gear1_radii(params)
+        self.roots1, self.tips1 = gear1_radii(params)
         self.roots2, self.tips2 = params.r0 + 2 * params.e1, params.r0 - 2 * params.e1
 
     def gap(self, x: np.ndarray, teeth: np.ndarray, turn: float,
@@ -349,9 +349,10 @@ def moved_clearances(deviations: Deviations, params, states, direction: int = +1
     state's closing points are one batch of gaps (:class:`Placed` with a β a point): a whole
     turn's states cost about what one does."""
     key = "plus_um" if direction > 0 else "minus_um"
-    closing, um = _moved_um(deviations, params, states, direction)
+    closing = closing_points(params, states, direction)
+    um = _moved_um(deviations, params, closing)
     out, k = [], 0
-    for s, c in zip(states, closing):
+    for s, c in zip(states, closing.teeth):
         moved = {t.tooth: float(um[k + i]) for i, t in enumerate(c)}
         k += len(c)
         out.append(replace(s, teeth=tuple(replace(t, **{key: moved[t.tooth]})
@@ -359,33 +360,67 @@ def moved_clearances(deviations: Deviations, params, states, direction: int = +1
     return out
 
 
-def least_clearances(deviations: Deviations, params, states, direction: int = +1
-                     ) -> np.ndarray:
-    """Each of ``states``' smallest clearance in ``direction`` moved by ``deviations`` (µm;
-    +inf where no tooth closes): :func:`moved_clearances`' numbers without the states."""
-    closing, um = _moved_um(deviations, params, states, direction)
-    ends = np.cumsum([0] + [len(c) for c in closing])
-    return np.array([um[a:b].min() if b > a else np.inf for a, b in zip(ends[:-1], ends[1:])])
+@dataclass(frozen=True)
+class Closing:
+    """Clearance states' closing points in one ``direction``, as arrays (:func:`closing_points`):
+    per state its closing teeth (``teeth``), and per point its state's β (rad), its clearance
+    (µm of arc at r0), where it is (gear 1's frame, mm), its tooth, and its foot's parameter
+    ξ on gear 2's curve where found (NaN before: each deviated gap's search starts there)."""
+
+    direction: int
+    teeth: list
+    beta: np.ndarray
+    um: np.ndarray
+    x: np.ndarray
+    tooth: np.ndarray
+    feet: np.ndarray
 
 
-def _moved_um(deviations: Deviations, params, states, direction: int
-              ) -> tuple[list[list], np.ndarray]:
-    """Each state's closing teeth in ``direction`` and their clearances moved by
-    ``deviations`` (µm), all states' in one array (:func:`moved_clearances`)."""
+def closing_points(params, states, direction: int = +1) -> Closing:
+    """``states``' closing points in ``direction`` (:class:`Closing`): one set of arrays for
+    the deviated clearances of many pairs (:func:`least_clearances`)."""
     key, point = ("plus_um", "plus_point") if direction > 0 else ("minus_um", "minus_point")
-    closing = [[t for t in s.teeth if getattr(t, key) is not None
-                and getattr(t, point) is not None] for s in states]
-    flat = [t for c in closing for t in c]
-    if not flat:
-        return closing, np.zeros(0)
-    beta = np.repeat([s.beta for s in states], [len(c) for c in closing])
-    alpha = params.ratio * beta
-    um = np.array([getattr(t, key) for t in flat])
-    x1 = rotate(np.array([getattr(t, point) for t in flat]) - np.array([0.0, params.e]),
-                -alpha)
-    at = Placed(deviations, params, beta)
-    g, rate = at.gap(x1, np.array([t.tooth for t in flat]),
-                     alpha + direction * params.turn_of(um), flanks=direction > 0)
+    teeth = [[t for t in s.teeth if getattr(t, key) is not None
+              and getattr(t, point) is not None] for s in states]
+    flat = [t for c in teeth for t in c]
+    beta = np.repeat([s.beta for s in states], [len(c) for c in teeth]).astype(float)
+    x = np.array([getattr(t, point) for t in flat]).reshape(-1, 2)
+    return Closing(direction, teeth, beta, np.array([getattr(t, key) for t in flat], float),
+                   rotate(x - np.array([0.0, params.e]), -params.ratio * beta),
+                   np.array([t.tooth for t in flat], int), np.full(len(flat), np.nan))
+
+
+def least_clearances(deviations: Deviations, params, closing: Closing
+                     ) -> tuple[np.ndarray, np.ndarray]:
+    """Each state's smallest clearance in the ``closing`` points' direction moved by
+    ``deviations`` (µm; +inf where no tooth closes) and its tooth (−1 where none):
+    :func:`moved_clearances`' numbers without new states (a whole turn's states a pair of
+    many: new states a tooth cost more than the gaps). The points' feet are kept for the
+    next pair's searches."""
+    um = _moved_um(deviations, params, closing)
+    ends = np.cumsum([0] + [len(c) for c in closing.teeth])
+    least = np.full(len(closing.teeth), np.inf)
+    teeth = np.full(len(closing.teeth), -1)
+    for i, (a, b) in enumerate(zip(ends[:-1], ends[1:])):
+        if b > a:
+            j = int(np.argmin(um[a:b]))
+            least[i], teeth[i] = um[a + j], closing.tooth[a + j]
+    return least, teeth
+
+
+def _moved_um(deviations: Deviations, params, closing: Closing) -> np.ndarray:
+    """The ``closing`` points' clearances moved by ``deviations`` (µm): one batch of gaps,
+    their searches started at the points' feet, which they leave there
+    (:func:`moved_clearances`)."""
+    if not len(closing.um):
+        return np.zeros(0)
+    direction = closing.direction
+    alpha = params.ratio * closing.beta
+    at = Placed(deviations, params, closing.beta)
+    feet = closing.feet.copy()
+    g, rate = at.gap(closing.x, closing.tooth, alpha + direction * params.turn_of(closing.um),
+                     feet, flanks=direction > 0)
+    closing.feet[:] = feet
     # the gap's rate with the turn is < 0 on a loaded flank and > 0 on a coast flank:
     # either way the clearance grows by the gap over its rate's size
-    return closing, um + params.arc_um(np.abs(g) / at.levers(rate, direction)) * np.sign(g)
+    return closing.um + params.arc_um(np.abs(g) / at.levers(rate, direction)) * np.sign(g)

@@ -9,7 +9,7 @@ each sample is a contact solve and its stresses on that contact
 placed and solved as a position of its own, and the contact kept again with its teeth too.
 
 A sample whose deviations take up the pair's backlash somewhere over a whole turn of gear 1
-(:func:`~.teeth.closed`, checked at :data:`~.positions.TURN_CHECK` angles a pitch, as a
+(:func:`~.teeth.closure`, checked at :data:`~.positions.TURN_CHECK` angles a pitch, as a
 deviated solve checks it) cannot be turned: it is counted as jammed, with where, and carries no
 stresses. A sample whose contact does not settle is counted as failed, with why: no sample
 leaves the tables unseen.
@@ -29,7 +29,7 @@ import numpy as np
 from .. import progress
 from ..errors import FegearError
 from ..fe import Allowables, blas_threads, keep_freed_memory
-from ..geometry import Placed, ToothContact, gear1_profile, least_clearances, moved_clearances
+from ..geometry import Placed, ToothContact, closing_points, gear1_profile, least_clearances
 from ..running import SERIAL, Executor
 from ..tolerance import Draw, tooth_positions
 from .case import HEADLINE, PairSolution, SolveCase
@@ -37,7 +37,7 @@ from .positions import TURN_CHECK, solve_position
 from .revolution import revolution_positions
 from .ring.solver import RingSolver
 from .safety import safety_factors
-from .teeth import choose_teeth, closed, refuse_interference
+from .teeth import choose_teeth, closure, refuse_interference
 
 
 @dataclass(frozen=True)
@@ -124,7 +124,9 @@ class _States:
     """The exact pair's clearance states at the positions (``loaded``: (β, state) pairs, the
     loaded flanks) and, for the check that a sample leaves the pair its backlash, over a
     whole turn of gear 1 (``turn``: :data:`~.positions.TURN_CHECK` angles a pitch, both
-    sides of each state found in one search)."""
+    sides of each state found in one search) and the loaded sides' closing points
+    (``closing``, whose feet on gear 2 the first pair checked finds and the others' searches
+    start from)."""
 
     def __init__(self, case: SolveCase, profile, betas: tuple[float, ...]) -> None:
         p = case.params
@@ -134,21 +136,24 @@ class _States:
         refuse_interference(self.loaded)
         turn = revolution_positions(betas[0], TURN_CHECK, p.z1, p.z2)
         self.turn = list(zip(turn, find(turn)))
+        self.closing = closing_points(p, [s for _, s in self.turn])
 
 
 def _jammed(states: _States, deviations) -> str | None:
     """Where ``deviations`` take up the pair's backlash over a whole turn (:func:`~.teeth.
-    closed`, in words), else None."""
+    closure`, in words), else None: the smallest clearances alone, both sides' in a batch."""
     p = states.case.params
-    least = least_clearances(deviations, p, [s for _, s in states.turn])
-    behind = [states.turn[i] for i in np.flatnonzero(least < 0)]
-    if not behind:
+    least, teeth = least_clearances(deviations, p, states.closing)
+    behind = np.flatnonzero(least < 0)
+    if not len(behind):
         return None
-    exact = [s for _, s in behind]
-    plus = moved_clearances(deviations, p, exact)
-    coast = moved_clearances(deviations, p, exact, -1)
-    where = closed([(b, s, back) for (b, _), s, back in zip(behind, plus, coast)])
-    return None if where is None else str(where)
+    coast = closing_points(p, [states.turn[i][1] for i in behind], -1)
+    back = least_clearances(deviations, p, coast)[0]
+    for i, b in zip(behind, back):
+        where = closure(states.turn[i][0], int(teeth[i]), float(least[i]), float(b))
+        if where is not None:
+            return str(where)
+    return None
 
 
 def _chain(case: SolveCase, states: _States, pairs, solver: RingSolver, span, samples,

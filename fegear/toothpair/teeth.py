@@ -139,9 +139,20 @@ def closed(behind) -> Closure | None:
     state) of the positions with a loaded-side overlap, both sides' clearances moved by the
     deviations."""
     for beta, state, coast in behind:
-        c, back = state.closest(+1), coast.closest(-1)
-        if c.plus_um + back.minus_um < -INTERFERENCE_UM:
-            return Closure(beta, c.tooth, -c.plus_um, back.minus_um)
+        c = state.closest(+1)
+        where = closure(beta, c.tooth, c.plus_um, coast.closest(-1).minus_um)
+        if where is not None:
+            return where
+    return None
+
+
+def closure(beta: float, tooth: int, plus_um: float, back_um: float) -> Closure | None:
+    """The :class:`Closure` at ``beta`` (rad) where gear 1's ``tooth``, the nearest to closing
+    on the loaded side, has the deviated clearance ``plus_um`` there and the coast flanks'
+    nearest ``back_um`` (µm of arc at r0), if together they take up the backlash
+    (:func:`closed`); else None."""
+    if plus_um + back_um < -INTERFERENCE_UM:
+        return Closure(beta, tooth, -plus_um, back_um)
     return None
 
 

@@ -172,3 +172,23 @@ def test_a_newton_step_divides_by_a_flank_s_lever_not_by_a_tip_s():
     floor = LEVER_FLOOR * PAIR.r1
     assert placed.levers(-38.7, +1) == 38.7 and placed.levers(2.18, -1) == 2.18
     assert placed.levers(-0.03, -1) == floor and placed.levers(0.0, +1) == floor
+
+
+def test_the_least_clearances_of_many_states_are_those_their_moved_states_hold():
+    from fegear.geometry import closing_points, least_clearances, moved_clearances
+
+    find = ToothContact(PAIR, gear1_profile(PAIR)).states
+    states = find([0.0, 0.05, 0.1])
+    dev = Deviations({11: ToothDeviation(pitch=3, slope=-2), 30: ToothDeviation(form=4)},
+                     gear2={12: ToothDeviation(pitch=-2)}, centre_distance=1.5,
+                     runout1=Runout(6, 20))
+    for direction in (+1, -1):
+        key = "plus_um" if direction > 0 else "minus_um"
+        closing = closing_points(PAIR, states, direction)
+        for _ in range(2):   # the second time from the feet the first found
+            least, teeth = least_clearances(dev, PAIR, closing)
+            for s, um, tooth in zip(moved_clearances(dev, PAIR, states, direction), least,
+                                    teeth):
+                c = s.closest(direction)
+                assert um == pytest.approx(getattr(c, key), abs=1e-9)
+                assert tooth == c.tooth

@@ -10,12 +10,16 @@ settles (the rigid gap is nonlinear in θ only through the turn, a µrad here).
 
 from __future__ import annotations
 
+import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.linalg
 
 from ...errors import ContactError
 from ...planar import rotate
+from .circles import TOLERANCE, FootCircles, circle_gaps, moved
 from .influence import RingContact, approach_open
 from .master import Gear2Master
 from .model import RingModel
@@ -59,12 +63,16 @@ class ContactSystem:
     (mm²) the force (N) per unit pressure of each hat (its weight ∫φ ds times the face
     width), ``g0`` (mm) the rigid gaps and ``a`` (mm/rad) their rate with gear 1's turn. With
     pressures p and a rotation step δ the gaps are g0 + a δ + A p, and −Σ w a p is the torque
-    (N·mm) the pressures carry."""
+    (N·mm) the pressures carry. ``rows``: the points' rows (and columns) of ``A`` where they
+    are some of its points (None: all); ``blocks``: A's blocks for the active sets met so far
+    (:func:`_block`), which a contact solve's linearisations share."""
 
     A: np.ndarray
     w: np.ndarray
     g0: np.ndarray
     a: np.ndarray
+    rows: np.ndarray | None = None
+    blocks: dict = field(default_factory=dict, repr=False, compare=False)
 
 
 @dataclass(frozen=True)
@@ -101,7 +109,8 @@ def rigid_gap(model: RingModel, contact: RingContact, turn: float,
 
 def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float, theta: float,
                        guess: float | None = None, start: np.ndarray | None = None,
-                       within: float | None = None) -> RingContactSolution | None:
+                       within: float | None = None, circles: FootCircles | None = None
+                       ) -> RingContactSolution | None:
     """Solve the contact under ``torque_nmm`` (N·mm on gear 1) from the rotation ``theta``
     (rad); the iterations start from the points ``start`` (a mask over the points: where the
     position before carried pressure, say), else from those the rigid teeth overlap at the
@@ -113,21 +122,32 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
     ``within`` (mm): on a contact with every column formed, the iterations take only the
     points whose rigid gap at ``theta`` is within that of the least (a kept contact's wide
     grids, most of them far from closing); the others are checked at the solution, and where
-    one overlaps the contact is solved again on every point."""
+    one overlaps the contact is solved again on every point. ``circles``: this contact's
+    points' foot circles (:mod:`.circles`), which the iterations measure the gaps to instead
+    of searching gear 2's curve; the last evaluation is exact, and where the two differ the
+    iterations go on with the exact gaps."""
     alpha = model.case.params.ratio * contact.beta
     on = np.flatnonzero(contact.formed)
     feet = contact.feet[on]
-    g0, a = rigid_gap(model, contact, alpha + theta, feet, on)
-    A, near = contact.A, None
+    points = None if circles is None else moved(circles, model, contact)
+
+    def gaps(turn: float, feet: np.ndarray, idx: np.ndarray):
+        if points is None:
+            return rigid_gap(model, contact, turn, feet, idx)
+        return circle_gaps(circles, points, turn - alpha, idx)
+
+    g0, a = gaps(alpha + theta, feet, on)
+    rows, near, blocks = None, None, {}
     if within is not None and contact.complete and (g0 > g0.min() + within).any():
         near = g0 <= g0.min() + within
-        on, A, feet, g0, a = on[near], A[np.ix_(near, near)], feet[near], g0[near], a[near]
+        rows = np.flatnonzero(near)
+        on, feet, g0, a = on[near], feet[near], g0[near], a[near]
     w = contact.weight[on] * model.case.thickness
     active = g0 <= g0.min() + 1e-12
     if start is not None and start[on].any():
         active = start[on].copy()
     elif guess is not None:
-        overlap = rigid_gap(model, contact, alpha + guess, feet.copy(), on)[0] < 0
+        overlap = gaps(alpha + guess, feet.copy(), on)[0] < 0
         active = overlap if overlap.any() else active
     pressure = np.zeros(len(g0))
     total = turns = 0
@@ -137,9 +157,9 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
         # (the loaded points' arms alone: the others carry nothing)
         loaded = np.flatnonzero(pressure)
         arm_rate = 0.0 if not len(loaded) else (w[loaded] * pressure[loaded]) @ (
-            rigid_gap(model, contact, alpha + theta + ARM_STEP, feet[loaded],
-                      on[loaded])[1] - a[loaded]) / ARM_STEP
-        found = active_set(ContactSystem(A, w, g0, a), torque_nmm, active, arm_rate)
+            gaps(alpha + theta + ARM_STEP, feet[loaded], on[loaded])[1] - a[loaded]) / ARM_STEP
+        found = active_set(ContactSystem(contact.A, w, g0, a, rows, blocks), torque_nmm,
+                           active, arm_rate)
         pressure, active = found.pressure, found.active
         total += found.iterations
         turns += 1
@@ -147,10 +167,16 @@ def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float
         # settled to rounding: 1e-12 of the rotation, or a 1e-13 mm turn at the pitch circle
         settled = abs(found.step) <= max(1e-12 * abs(theta), 1e-13 / model.case.params.r0)
         if settled:   # the last evaluation at every point: the open ones' gaps are checked
-            contact.feet[on] = feet
+            if points is None:
+                contact.feet[on] = feet
+            iterated = g0 + a * found.step   # the gaps the iterations settled on
             g0, a = rigid_gap(model, contact, alpha + theta, contact.feet)
-            break
-        g0, a = rigid_gap(model, contact, alpha + theta, feet, on)
+            if points is None or np.abs(g0[on] - iterated).max() <= TOLERANCE:
+                break
+            # the circles' gaps left the exact ones: on with the exact gaps
+            points, feet, g0, a = None, contact.feet[on], g0[on], a[on]
+            continue
+        g0, a = gaps(alpha + theta, feet, on)
         if turns == MAX_TURNS:
             raise RingContactError(f"the rotation did not settle in {MAX_TURNS} "
                                    "linearisations")
@@ -221,24 +247,64 @@ def _gap(system: ContactSystem, pressure: np.ndarray, step: float,
          active: np.ndarray) -> np.ndarray:
     """The gaps at the ``pressure`` (zero off ``active``) and rotation ``step``: A's active
     columns alone (a tenth of them on a phase's wide grids)."""
-    idx = np.flatnonzero(active)
-    return system.g0 + system.a * step + system.A[:, idx] @ pressure[idx]
+    idx, _, columns = _block(system, active)
+    return system.g0 + system.a * step + pressure[idx] @ columns
 
 
 def _on(system: ContactSystem, torque_nmm: float, active: np.ndarray,
         arm_rate: float) -> tuple[np.ndarray, float]:
     """Pressure (zero off ``active``) and rotation step with every active gap closed and the
-    torque balanced."""
-    idx = np.flatnonzero(active)
-    n = len(idx)
-    try:
-        sol = np.linalg.solve(_bordered(system.A, system.w, system.a, idx, arm_rate),
-                              np.concatenate([-system.g0[idx], [-torque_nmm]]))
-    except np.linalg.LinAlgError:
-        raise RingContactError("the contact points cannot carry the torque") from None
+    torque balanced: the bordered system A_aa p + a δ = −g0, (w a)·p + ``arm_rate`` δ = −T
+    by its Schur complement on the active points' factorised block (:func:`_block`), which
+    the linearisations after the first, on the same points, use again."""
+    idx, factor, _ = _block(system, active)
+    a, wa = system.a[idx], system.w[idx] * system.a[idx]
+    free, per_step = scipy.linalg.lu_solve(factor, np.column_stack([-system.g0[idx], a])).T
+    denominator = arm_rate - wa @ per_step
+    step = (-torque_nmm - wa @ free) / denominator if denominator else math.inf
+    if not math.isfinite(step) or not np.isfinite(free).all():
+        raise RingContactError("the contact points cannot carry the torque")
     pressure = np.zeros(len(system.g0))
-    pressure[idx] = sol[:n]
-    return pressure, sol[n]
+    pressure[idx] = free - per_step * step
+    return pressure, step
+
+
+#: active sets whose blocks a contact solve keeps (the last few: a linearisation's iterations
+#: and the next one's start)
+BLOCKS = 4
+
+
+def _block(system: ContactSystem, active: np.ndarray) -> tuple[np.ndarray, tuple, np.ndarray]:
+    """The ``active`` points (indices), their block of A factorised (LU) and A's columns of
+    theirs over every point, as rows (active, points), kept in ``system.blocks`` for the
+    solve's later linearisations. The columns are gathered from A once a point, when it
+    first joins (the active sets of one solve differ by a few points)."""
+    key = active.tobytes()
+    if key not in system.blocks:
+        idx = np.flatnonzero(active)
+        columns = _columns(system, idx)
+        with warnings.catch_warnings():   # a singular block: a non-finite solution, refused
+            warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+            factor = scipy.linalg.lu_factor(columns[:, idx].T, check_finite=False)
+        if len(system.blocks) >= BLOCKS + 1:
+            system.blocks.pop(next(k for k in system.blocks if k != "columns"))
+        system.blocks[key] = (idx, factor, columns)
+    return system.blocks[key]
+
+
+def _columns(system: ContactSystem, idx: np.ndarray) -> np.ndarray:
+    """A's columns of the points ``idx`` over the system's points, as rows (idx, points),
+    from the ones gathered before (``system.blocks["columns"]``)."""
+    n = len(system.g0)
+    if "columns" not in system.blocks:   # rows a point, filled as points join (np.empty:
+        system.blocks["columns"] = (np.empty((n, n)), np.zeros(n, bool))   # untouched pages
+    store, filled = system.blocks["columns"]                              # cost nothing)
+    new = idx[~filled[idx]]
+    if len(new):
+        rows = np.arange(n) if system.rows is None else system.rows
+        store[new] = system.A[np.ix_(rows, rows[new])].T
+        filled[new] = True
+    return store[idx]
 
 
 def _bordered(A, w, a, idx, arm_rate) -> np.ndarray:

@@ -181,7 +181,7 @@ def _influence(model: RingModel, contact: RingContact) -> np.ndarray:
     on = np.flatnonzero(formed)
     place = np.full(contact.npoints, -1)
     place[on] = np.arange(len(on))
-    A = np.zeros((len(on), len(on)))
+    A = np.zeros((len(on), len(on)), order="F")   # read by columns: the loaded points'
     for side, loads, m in zip(model.gears, contact.loads, contact.matching):
         _fe_part(side, loads, m.take(on), place, A)
     for k, g in enumerate(contact.grids):

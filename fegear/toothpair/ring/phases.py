@@ -39,11 +39,13 @@ from ...planar import rotate
 from ..case import PairSolution, SolveCase
 from ..positions import Trial
 from ..teeth import candidate_data, choose_teeth
+from .circles import FootCircles, foot_circles
 from .contact import RingContactSolution, rigid_gap, solve_ring_contact, touch_rotation
 from .grid import ToothGrid
 from .influence import ColumnRule, Matching, RingContact, assemble_contact
 from .model import RingModel
 from .placement import PLACEMENT, REACH, REACH_FLOOR, Placement, place_grids
+from .readout import SurfaceStrains
 from .results import RingDetail, tooth_result
 from .side import Located
 from .stresses import RingStresses, RootZone
@@ -109,6 +111,8 @@ class Phases:
         self._kept: dict[int, Kept] = {}
         self._solved: dict[int, Solved] = {}
         self._seen: dict[int, dict[tuple, Solved]] = {}   # phase → what it saw → solution
+        self._circles: dict[int, FootCircles] = {}   # phase → its kept contact's feet …
+        self._strains: dict[int, SurfaceStrains] = {}   # … and surface strains
 
     def __len__(self) -> int:
         """How many phases have a contact kept."""
@@ -127,7 +131,7 @@ class Phases:
         """Let go of what is kept for the phase of ``beta`` (a position whose deviation sets
         are all solved: its contact is a large matrix)."""
         phase = pitch_phase(beta, z2)[0]
-        for kept in (self._kept, self._solved, self._seen):
+        for kept in (self._kept, self._solved, self._seen, self._circles, self._strains):
             kept.pop(phase, None)
 
     def repeat(self, model: RingModel, case: SolveCase, state) -> PairSolution | None:
@@ -196,6 +200,14 @@ class Phases:
         if seen is not None:
             self._seen.setdefault(phase, {})[seen] = self._solved[phase]
 
+    def strains(self, model: RingModel, beta: float) -> SurfaceStrains:
+        """The surface strains (:class:`~.readout.SurfaceStrains`) of the contact kept for
+        the phase of ``beta``, made the first time they are asked for."""
+        phase = pitch_phase(beta, model.case.params.z2)[0]
+        if phase not in self._strains:
+            self._strains[phase] = SurfaceStrains(model, self._kept[phase].contact)
+        return self._strains[phase]
+
     def solve(self, model: RingModel, case: SolveCase, state
               ) -> tuple[RingContact, RingContactSolution] | None:
         """The contact at ``case.beta`` on the contact kept for its phase, turned to it, and its
@@ -208,10 +220,13 @@ class Phases:
             return None
         placed = Placed(case.deviations, case.params, case.beta) if case.deviations else None
         contact = turned(model, kept.contact, pitch - kept.pitch, case.beta, placed)
+        if phase not in self._circles:
+            self._circles[phase] = foot_circles(model, kept.contact, kept.rotation)
         try:
             sol = solve_ring_contact(model, contact, case.torque * 1e3, kept.rotation,
                                      start=kept.active,
-                                     within=NEAR * 1e-3 * max(kept.elastic_um, 1.0))
+                                     within=NEAR * 1e-3 * max(kept.elastic_um, 1.0),
+                                     circles=self._circles[phase])
         except ContactError:
             return None
         if sol is None or not _holds(case, state, kept, pitch - kept.pitch, contact, sol):
@@ -258,6 +273,8 @@ class Phases:
         self._kept[phase] = replace(kept, rotation=sol.rotation, active=sol.pressure > 0,
                                     elastic_um=p.arc_um(sol.rotation) - first_um)
         self._seen.pop(phase, None)   # what was solved on the contact it replaces
+        self._circles.pop(phase, None)
+        self._strains.pop(phase, None)
         return contact, sol
 
 

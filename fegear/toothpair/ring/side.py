@@ -75,6 +75,7 @@ class GearSide:
     _rho: np.ndarray = field(init=False, repr=False)        # cut loads, by column
     _used: int = 0
     _cut_field: np.ndarray | None = field(default=None, repr=False)
+    readout: object | None = field(default=None, repr=False)   # :class:`.readout.RootReadout`
 
     def __post_init__(self) -> None:
         m = self.body.mesh
@@ -198,6 +199,17 @@ class GearSide:
                 # rows, then columns: a gather each (np.ix_ took up to four times as long)
                 X[:, sel] = np.take(np.take(block, place, axis=0), cols[sel] - start, axis=1)
         return np.asarray(rows[:, used] @ X)
+
+    def clamped_product(self, rows: np.ndarray, dofs: np.ndarray) -> np.ndarray:
+        """Dense ``rows`` over the template's interior dofs (r, interior) applied to the
+        clamped fields of unit loads at template ``dofs``: (r, dofs)."""
+        cols = self._form(dofs)
+        out = np.empty((rows.shape[0], len(cols)))
+        for start, block in self._X:
+            sel = np.flatnonzero((cols >= start) & (cols < start + block.shape[1]))
+            if len(sel):
+                out[:, sel] = rows @ np.take(block, cols[sel] - start, axis=1)
+        return out
 
     def cut_loads(self, dofs: np.ndarray) -> np.ndarray:
         """Cut loads (2 n_f, dofs) of unit loads at template ``dofs``."""

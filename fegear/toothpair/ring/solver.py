@@ -45,6 +45,7 @@ from .placement import (
     loaded_before,
     place_grids,
 )
+from .readout import brief_stresses
 from .results import RingDetail, solved_rigid_gap, tooth_results
 from .stresses import ring_stresses
 
@@ -240,10 +241,13 @@ class RingSolver:
             tangent = math.nan if brief else tangent_stiffness(model, contact, sol)
             if self.contact_only:
                 stresses, cands = None, ()
+            elif brief:
+                strains = self.phases.strains(model, case.beta)
+                stresses, cands = brief_stresses(model, contact, sol.pressure, strains), ()
             else:
                 stresses = ring_stresses(model, contact, sol.pressure,
                                          self.submodels == "all", clamped)
-                cands = () if brief else candidate_data(
+                cands = candidate_data(
                     case.params, model.shape, state, tuple(g.tooth for g in solved.grids),
                     case.beta)
             detail = RingDetail(model, case, replace(contact, A=None), sol, stresses)

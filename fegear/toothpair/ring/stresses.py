@@ -95,13 +95,24 @@ def ring_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
     stresses = tuple(dict(zip(f, recover_many(side.body, np.column_stack(list(f.values())),
                                               reused=True)))
                      if f else {} for side, f in zip(model.gears, fields))
-    roots = tuple(_root_zone(side, s) for side, s in zip(model.gears, stresses))
-    surface = surface_von_mises(model, contact, pressure, fields)
+    roots = []
+    for side, by in zip(model.gears, stresses):
+        nodes = side_root_nodes(side)
+        roots.append(root_zone(side, {k: s.max_principal[nodes] for k, s in by.items()}))
+
+    def strain(g: int, k: int, points: np.ndarray) -> np.ndarray:
+        u, m = fields[g].get(k), contact.matching[g]
+        if u is None:
+            return np.zeros(len(points))
+        return model.gears[g].rows_at(m.cells.take(points), surface_tangent(m)[points],
+                                      strain=True) @ u
+
+    surface = surface_von_mises(model, contact, pressure, strain)
     loaded = pressure > 0
     bulk = max(_bulk_von_mises(side, s, pts[loaded], m.facet[loaded])
                for side, s, pts, m in zip(model.gears, stresses, (contact.x, contact.facing[0]),
                                           contact.matching))
-    out = RingStresses(fields, roots, surface, (), bulk)
+    out = RingStresses(fields, tuple(roots), surface, (), bulk)
     return with_submodels(model, contact, pressure, out) if submodels else out
 
 
@@ -162,18 +173,24 @@ def _bulk_von_mises(side: GearSide, stresses: dict, loaded: np.ndarray,
 
 def _fields(side: GearSide, loads, pressure: np.ndarray,
             clamped: dict) -> dict[int, np.ndarray]:
+    return side.fields(loads, pressure, loaded_sectors(side, loads, pressure), clamped)
+
+
+def loaded_sectors(side: GearSide, loads, pressure: np.ndarray) -> list[int]:
+    """The sectors whose fields a position's stresses read: those the ``pressure`` loads
+    through ``loads`` and one either side."""
     loaded = [t for t, b in loads.items() if np.any(pressure[b.columns] > 0)]
-    sectors = sorted({(t + k) % side.count for t in loaded for k in (-1, 0, 1)})
-    return side.fields(loads, pressure, sectors, clamped)
+    return sorted({(t + k) % side.count for t in loaded for k in (-1, 0, 1)})
 
 
-def _root_zone(side: GearSide, stresses: dict) -> RootZone:
-    nodes = side_root_nodes(side)
-    x = side.body.mesh.doflocs[:, nodes].T
+def root_zone(side: GearSide, max_principal: dict) -> RootZone:
+    """The :class:`RootZone` of ``side``'s sectors from the largest principal stress of each
+    (sector → its values at :func:`side_root_nodes`)."""
+    x = side.body.mesh.doflocs[:, side_root_nodes(side)].T
     angle, s1 = [], []
-    for k, s in stresses.items():
+    for k, s in max_principal.items():
         angle.append(np.arctan2(x[:, 1], x[:, 0]) + k * side.pitch)
-        s1.append(s.max_principal[nodes])
+        s1.append(s)
     return RootZone(np.concatenate(angle) if angle else np.zeros(0),
                     np.concatenate(s1) if s1 else np.zeros(0))
 
@@ -189,22 +206,21 @@ def side_root_nodes(side: GearSide) -> np.ndarray:
 
 
 def surface_von_mises(model: RingModel, contact: RingContact, pressure: np.ndarray,
-                      fields: tuple[dict, dict]) -> np.ndarray:
+                      strain) -> np.ndarray:
     """Von Mises (MPa) at the contact surface of each gear per grid point, (2, n): plane
     stress, σ_nn = −p, σ_nt = 0, σ_tt from the template strain at depth with the half-plane's
-    part replaced by its surface value (zero where no pressure acts)."""
+    part replaced by its surface value (zero where no pressure acts). ``strain(g, k,
+    points)``: the template's strain along the surface (:func:`surface_tangent`) at gear
+    ``g``'s matching ``points`` (indices) in its sector ``k`` (zero where it has no field)."""
     E, nu = model.case.E, model.case.nu
     out = np.zeros((2, contact.npoints))
     loaded = pressure > 0
-    for g, side in enumerate(model.gears):
+    for g in range(len(model.gears)):
         m = contact.matching[g]
-        tangent = np.column_stack([-m.direction[:, 1], m.direction[:, 0]])
         eps_fe = np.zeros(contact.npoints)
         for k in np.unique(m.at.sector[loaded]):
             rows = np.flatnonzero((m.at.sector == k) & loaded)
-            u = fields[g].get(int(k))
-            if u is not None:
-                eps_fe[rows] = side.rows_at(m.cells.take(rows), tangent[rows], strain=True) @ u
+            eps_fe[rows] = strain(g, int(k), rows)
         eps_hp = np.zeros(contact.npoints)
         for k, grid in enumerate(contact.grids):
             blk = contact.block(k)
@@ -216,6 +232,12 @@ def surface_von_mises(model: RingModel, contact: RingContact, pressure: np.ndarr
         sig_t = E * (eps_fe - eps_hp) - pressure
         out[g] = np.where(loaded, np.sqrt(pressure ** 2 + sig_t ** 2 + pressure * sig_t), 0.0)
     return out
+
+
+def surface_tangent(matching) -> np.ndarray:
+    """The direction along the surface (n, 2, template frame) at ``matching``'s points, in
+    which :func:`surface_von_mises` reads the template's strain."""
+    return np.column_stack([-matching.direction[:, 1], matching.direction[:, 0]])
 
 
 def _peaks(contact: RingContact, pressure: np.ndarray, surface: np.ndarray):
