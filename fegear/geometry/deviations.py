@@ -178,13 +178,17 @@ class Deviations:
         at most: what a contact grid on it must reach beyond the exact pair's. Its own
         deviations, the largest of gear 2's teeth's (any may face it), the centre distance's
         and the runouts'."""
-        def amount(d: ToothDeviation) -> float:
-            return (abs(d.pitch) + abs(d.slope) + abs(d.form)
-                    + max((abs(v) for _, v in d.curve), default=0.0))
-
         own = self.teeth(1).get(tooth)
-        return ((amount(own) if own is not None else 0.0)
-                + max((amount(d) for _, d in self.gear2), default=0.0)
+        return (0.0 if own is None else _amount(own)) + self._shared_um()
+
+    def widest_um(self) -> float:
+        """The largest :meth:`reach_um` of any of gear 1's teeth."""
+        return max((_amount(d) for _, d in self.gear1), default=0.0) + self._shared_um()
+
+    def _shared_um(self) -> float:
+        """What of :meth:`reach_um` every tooth of gear 1 shares: the largest of gear 2's
+        teeth's, the centre distance's and the runouts'."""
+        return (max((_amount(d) for _, d in self.gear2), default=0.0)
                 + abs(self.centre_distance) + 0.5 * (self.runout1.fr + self.runout2.fr))
 
     def turns(self, gear: int, teeth: np.ndarray, r: float) -> np.ndarray:
@@ -241,6 +245,12 @@ class Deviations:
 
 
 NONE = NO_DEVIATIONS = Deviations()
+
+
+def _amount(d: ToothDeviation) -> float:
+    """How far (µm) a tooth's own deviations move it at most."""
+    return (abs(d.pitch) + abs(d.slope) + abs(d.form)
+            + max((abs(v) for _, v in d.curve), default=0.0))
 
 
 #: the smallest lever arm (fraction of gear 1's pitch radius) by which a clearance's Newton
@@ -374,6 +384,24 @@ class Closing:
     x: np.ndarray
     tooth: np.ndarray
     feet: np.ndarray
+
+    def reachable(self, params, reach_um: float) -> Closing:
+        """The points whose clearance deviations that move no flank point more than
+        ``reach_um`` (µm, along any normal: :meth:`Deviations.reach_um`) could take up: the
+        clearance moves by the gap over the lever (:func:`moved_clearances`), here the exact
+        pair's lever, with a factor 2 for the lever's own move. A state left without points
+        cannot close (its least clearance is +inf)."""
+        alpha = params.ratio * self.beta
+        at = Placed(NONE, params, self.beta)
+        feet = self.feet.copy()
+        _, rate = at.gap(self.x, self.tooth, alpha + self.direction * params.turn_of(self.um),
+                         feet, flanks=self.direction > 0)
+        keep = self.um < 2.0 * params.arc_um(1e-3 * reach_um / at.levers(rate, self.direction))
+        ends = np.cumsum([0] + [len(c) for c in self.teeth])
+        teeth = [[t for t, k in zip(c, keep[a:b]) if k]
+                 for c, a, b in zip(self.teeth, ends[:-1], ends[1:])]
+        return Closing(self.direction, teeth, self.beta[keep], self.um[keep], self.x[keep],
+                       self.tooth[keep], feet[keep])
 
 
 def closing_points(params, states, direction: int = +1) -> Closing:

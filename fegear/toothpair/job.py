@@ -186,7 +186,7 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     gear1_profile(job.case.params)
     sampled = None
     if job.draw is not None:
-        solver = RingSolver(repeats=True, reach_um=job.draw.grade.reach_um())
+        solver = RingSolver(repeats=True)
         sampled = solve_samples(job.case, job.betas, job.draw, job.allowables, solver,
                                 executor)
         sols = sampled.nominal

@@ -14,8 +14,8 @@ deviated solve checks it) cannot be turned: it is counted as jammed, with where,
 stresses. A sample whose contact does not settle is counted as failed, with why: no sample
 leaves the tables unseen.
 
-The positions are the parallel work: two chains, each half of them with every sample (one
-position: half the samples each), on the executor the caller gives.
+The positions are the parallel work: two chains, each every other position with every sample
+(one position: half the samples each), on the executor the caller gives.
 """
 
 from __future__ import annotations
@@ -57,23 +57,27 @@ def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
                   solver: RingSolver, executor: Executor = SERIAL,
                   read: Callable[[PairSolution], object] | None = None) -> Sampled:
     """The exact pair and ``draw``'s samples solved at the rolling angles ``betas`` (rad) with
-    ``solver``, a ring solver that keeps a contact a position (``repeats``) with grids that
-    reach as far as the draw's deviations (module docstring); ``read``: what to keep of each
-    sample's solution at each position beside its headlines (a relief search's tip-round
-    loads, say)."""
+    ``solver``, a ring solver that keeps a contact a position (``repeats``), its grids set
+    here to reach as far as the drawn deviations move a tooth (module docstring); ``read``:
+    what to keep of each sample's solution at each position beside its headlines (a relief
+    search's tip-round loads, say)."""
     keep_freed_memory()
     p = case.params
     with blas_threads():
         profile = gear1_profile(p)
-        states = _States(case, profile, tuple(betas))
         pairs = [draw.pair(k) for k in range(draw.count)]   # drawn once, here
+        reach = max(d.widest_um() for d in pairs)          # … and how far they move a tooth
+        states = _States(case, profile, tuple(betas), reach)
+        solver.reach(reach)
         jams = executor.map(lambda ks: [_jammed(states, pairs[k]) for k in ks],
                             _halves(range(draw.count)))
         jammed = [j for half in jams for j in half]
         solver.build(case, profile, lambda: states.loaded)
         free = [k for k in range(draw.count) if jammed[k] is None]
         if len(betas) > 1:
-            spans = [(span, free) for span in _halves(range(len(betas)))]
+            # every other position a chain: a cycle's positions where more teeth carry
+            # (more points in contact, dearer solves) come in a run
+            spans = [(range(k, len(betas), 2), free) for k in (0, 1)]
         else:
             spans = [(range(1), half) for half in _halves(free)]
         chains = executor.map(lambda job: _chain(case, states, pairs, solver, *job, read),
@@ -108,8 +112,7 @@ def class_samples(job, allowables: Allowables, read=None, contact_only: bool = F
     """A checked job's class (``job.draw``) solved at its positions (:func:`solve_samples`)
     on a ring solver made for it: the stresses without submodels, or the contact alone
     (``contact_only``: a relief search's trial)."""
-    solver = RingSolver(repeats=True, reach_um=job.draw.grade.reach_um(), submodels="none",
-                        contact_only=contact_only)
+    solver = RingSolver(repeats=True, submodels="none", contact_only=contact_only)
     return solve_samples(job.case, job.betas, job.draw, allowables, solver, executor, read)
 
 
@@ -124,11 +127,12 @@ class _States:
     """The exact pair's clearance states at the positions (``loaded``: (β, state) pairs, the
     loaded flanks) and, for the check that a sample leaves the pair its backlash, over a
     whole turn of gear 1 (``turn``: :data:`~.positions.TURN_CHECK` angles a pitch, both
-    sides of each state found in one search) and the loaded sides' closing points
-    (``closing``, whose feet on gear 2 the first pair checked finds and the others' searches
-    start from)."""
+    sides of each state found in one search) and the loaded sides' closing points that
+    deviations reaching ``reach_um`` could close (``closing``, whose feet on gear 2 the first
+    pair checked finds and the others' searches start from)."""
 
-    def __init__(self, case: SolveCase, profile, betas: tuple[float, ...]) -> None:
+    def __init__(self, case: SolveCase, profile, betas: tuple[float, ...],
+                 reach_um: float) -> None:
         p = case.params
         find = ToothContact(p, profile).states
         self.case = case
@@ -136,7 +140,7 @@ class _States:
         refuse_interference(self.loaded)
         turn = revolution_positions(betas[0], TURN_CHECK, p.z1, p.z2)
         self.turn = list(zip(turn, find(turn)))
-        self.closing = closing_points(p, [s for _, s in self.turn])
+        self.closing = closing_points(p, [s for _, s in self.turn]).reachable(p, reach_um)
 
 
 def _jammed(states: _States, deviations) -> str | None:

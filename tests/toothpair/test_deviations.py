@@ -192,3 +192,11 @@ def test_the_least_clearances_of_many_states_are_those_their_moved_states_hold()
                 c = s.closest(direction)
                 assert um == pytest.approx(getattr(c, key), abs=1e-9)
                 assert tooth == c.tooth
+
+
+def test_the_widest_reach_is_the_largest_of_any_tooth():
+    dev = Deviations({3: ToothDeviation(pitch=2, slope=-1), 11: ToothDeviation(form=-4)},
+                     gear2={5: ToothDeviation(pitch=-3)}, centre_distance=1.0,
+                     runout1=Runout(4, 0), runout2=Runout(2, 90))
+    assert dev.widest_um() == max(dev.reach_um(t) for t in range(PAIR.z1)) == 4 + 3 + 1 + 3
+    assert Deviations().widest_um() == 0.0

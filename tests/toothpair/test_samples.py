@@ -25,7 +25,7 @@ DRAW = Draw(grade_of(5, PAIR), 8, 0)
 
 @pytest.fixture(scope="module")
 def sampled(baseline_ring):
-    solver = RingSolver(baseline_ring, repeats=True, reach_um=DRAW.grade.reach_um())
+    solver = RingSolver(baseline_ring, repeats=True)
     return solve_samples(CASE, (0.0,), DRAW, DEFAULT_ALLOWABLES, solver)
 
 

@@ -115,7 +115,8 @@ def brief_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
     roots, motions = [], []
     for side, loads in zip(model.gears, contact.loads):
         reading = readout(side)
-        f = {t: b.matrix @ pressure[b.columns] for t, b in loads.items()}
+        f = {t: b.matrix @ pressure[b.columns] for t, b in loads.items()
+             if pressure[b.columns].any()}   # (a kept contact's wide grids: most unloaded)
         f = {t: v for t, v in f.items() if np.any(v)}
         sectors = loaded_sectors(side, loads, pressure)
         rho = {t: side.cut_loads(loads[t].dofs) @ v for t, v in f.items()}

@@ -79,18 +79,18 @@ class RingSolver:
     von Mises stresses are NaN, the teeth's Hertz values and half-plane references None.
     ``repeats``: the positions repeat over whole pitches (a revolution), or one position is
     solved for many deviation sets (:meth:`on_kept`): each position's contact is kept for its
-    phase and the others solved on it (:mod:`.phases`), its grids reaching ``reach_um``
-    beyond the exact pair's at least."""
+    phase and the others solved on it (:mod:`.phases`), its grids reaching as far beyond the
+    exact pair's as the deviations of the position it is kept at, or the sets to be solved
+    on it (:meth:`reach`), need."""
 
     def __init__(self, model: RingModel | None = None, submodels: str = "peaks",
-                 contact_only: bool = False, repeats: bool = False,
-                 reach_um: float = 0.0) -> None:
+                 contact_only: bool = False, repeats: bool = False) -> None:
         if submodels not in SUBMODELS:
             raise ValueError(f"submodels must be one of {SUBMODELS}, not {submodels!r}")
         self.model = model
         self.submodels = "none" if contact_only else submodels
         self.contact_only = contact_only
-        self.phases = Phases(reach_um) if repeats else None
+        self.phases = Phases() if repeats else None
 
     def build(self, case: SolveCase, profile: Gear1Profile, states) -> None:
         # the same stages on every solve (zero where not run), so that a study's table has
@@ -156,6 +156,12 @@ class RingSolver:
             return None
         settled = Attempt(RingAttempt(*kept, kept[0].grids, state.closest(+1).plus_um), None)
         return self._finished(case, state, settled, brief)[0]
+
+    def reach(self, reach_um: float) -> None:
+        """Keep the contacts from now on with grids reaching ``reach_um`` beyond the exact
+        pair's at least: the most the deviation sets to be solved on them move a tooth
+        (:meth:`~fegear.geometry.Deviations.widest_um`)."""
+        self.phases.reach_um = reach_um
 
     def widen(self, case: SolveCase, state, sol: PairSolution, teeth=()) -> None:
         """Keep the contact of ``case``'s phase (again, where one is kept) with grids on the
