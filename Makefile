@@ -28,9 +28,10 @@ test-all: lint
 	$(BIN)/python -m pytest -q -n 2 -m ""
 
 bench: $(STAMP)
-	# the paper's baseline pair; the sector model and CalculiX beside it, the paper study timed
+	# the paper's baseline pair; the sector model and CalculiX beside it, the paper study and
+	# a tolerance class's samples timed
 	$(BIN)/fegear bench --shift 0.016 --rotation 0.002 --sector-levels coarse,fast --paper-study \
-		--history docs/bench/history.jsonl
+		--tolerance-class --history docs/bench/history.jsonl
 
 study: $(STAMP)
 	$(BIN)/fegear study studies/paper_trends.toml  # the paper's Tables 4-6, about 15 s

@@ -45,6 +45,9 @@ def add_parser(sub) -> None:
     add_inputs(p, BENCH_INPUTS)
     p.add_argument("--paper-study", action="store_true",
                    help="also time studies/paper_trends.toml on 2 workers (about a minute)")
+    p.add_argument("--tolerance-class", action="store_true",
+                   help="also time fegear solve --grade 6 --samples 1000 --positions 24 on "
+                        "the pair (about a minute on the baseline)")
     p.add_argument("--no-peer", action="store_true",
                    help="do not run CalculiX beside the ladders even if ccx is installed")
     p.add_argument("--study-only", action="store_true",
@@ -163,5 +166,6 @@ def _plan(a: argparse.Namespace) -> BenchPlan:
                      pair_levels=tuple(pair_levels), sector_levels=tuple(sector_levels),
                      scaling=tuple(int(z) for z in teeth), study_cases=study_cases,
                      pair_args=tuple(x for k, v in given.items() for x in (f"--{k}", f"{v}")),
-                     peer=not a.no_peer, paper_study=a.paper_study, only=only,
+                     peer=not a.no_peer, paper_study=a.paper_study,
+                     tolerance_class=a.tolerance_class, only=only,
                      history=None if a.history is None else Path(a.history))

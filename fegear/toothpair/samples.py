@@ -126,10 +126,11 @@ def _halves(items) -> list:
 class _States:
     """The exact pair's clearance states at the positions (``loaded``: (β, state) pairs, the
     loaded flanks) and, for the check that a sample leaves the pair its backlash, over a
-    whole turn of gear 1 (``turn``: :data:`~.positions.TURN_CHECK` angles a pitch, both
-    sides of each state found in one search) and the loaded sides' closing points that
-    deviations reaching ``reach_um`` could close (``closing``, whose feet on gear 2 the first
-    pair checked finds and the others' searches start from)."""
+    whole turn of gear 1 and at the positions (``turn``: :data:`~.positions.TURN_CHECK`
+    angles a pitch and the positions, both sides of each state found in one search) and the
+    loaded sides' closing points that deviations reaching ``reach_um`` could close
+    (``closing``, whose feet on gear 2 the first pair checked finds and the others' searches
+    start from)."""
 
     def __init__(self, case: SolveCase, profile, betas: tuple[float, ...],
                  reach_um: float) -> None:
@@ -138,14 +139,17 @@ class _States:
         self.case = case
         self.loaded = list(zip(betas, find(betas, directions=(+1,))))
         refuse_interference(self.loaded)
-        turn = revolution_positions(betas[0], TURN_CHECK, p.z1, p.z2)
+        # the positions too, as a deviated solve checks them: a pair that jams exactly
+        # there may turn at the turn's angles beside them
+        turn = (*revolution_positions(betas[0], TURN_CHECK, p.z1, p.z2), *betas)
         self.turn = list(zip(turn, find(turn)))
         self.closing = closing_points(p, [s for _, s in self.turn]).reachable(p, reach_um)
 
 
 def _jammed(states: _States, deviations) -> str | None:
     """Where ``deviations`` take up the pair's backlash over a whole turn (:func:`~.teeth.
-    closure`, in words), else None: the smallest clearances alone, both sides' in a batch."""
+    closure`, in words), else None: the smallest clearances alone, the loaded sides' over the
+    turn in one batch of gaps, the coast sides' where a loaded side overlaps in another."""
     p = states.case.params
     least, teeth = least_clearances(deviations, p, states.closing)
     behind = np.flatnonzero(least < 0)

@@ -40,9 +40,11 @@ class BenchPlan:
     ladder; with ``only="contact-peer"`` none means the comparison's own); ``scaling``: teeth
     of gear 2 for the cost-growth runs (none: skipped); ``study_cases``: solves of the study
     runner's benchmark (0: skipped); ``peer``: CalculiX beside the ladders; ``paper_study``:
-    also time studies/paper_trends.toml; ``only``: one of :data:`ONLY`; ``out``: the directory
-    (checked, made when there is something to write); ``history``: the file this run is
-    appended to and compared with (None: :data:`~.history.HISTORY` in ``out``)."""
+    also time studies/paper_trends.toml; ``tolerance_class``: also time a tolerance class's
+    samples over the cycle (:func:`~.ring_bench.class_run`); ``only``: one of :data:`ONLY`;
+    ``out``: the directory (checked, made when there is something to write); ``history``: the
+    file this run is appended to and compared with (None: :data:`~.history.HISTORY` in
+    ``out``)."""
 
     params: PairParameters
     torque: float
@@ -58,6 +60,7 @@ class BenchPlan:
     pair_args: tuple[str, ...] = ()
     peer: bool = True
     paper_study: bool = False
+    tolerance_class: bool = False
     only: str = ""
     history: Path | None = None
 
@@ -82,6 +85,7 @@ def _everything(plan: BenchPlan, say: Say) -> None:
     """Every benchmark of ``plan``, in the report's order (the command without a mode)."""
     from ..files import prepare_dir
     from . import geometry_bench, paper_study_s
+    from .ring_bench import class_run
 
     prepare_dir(plan.out)
     say(geometry_bench(plan.params, plan.repeat))
@@ -92,7 +96,8 @@ def _everything(plan: BenchPlan, say: Say) -> None:
     sector = _sector_ladder(plan, say)
     scale = _scaling(plan, runs.ring, say)
     runs = replace(runs, sector=sector,
-                   study=paper_study_s() if plan.paper_study else None)
+                   study=paper_study_s() if plan.paper_study else None,
+                   tolerance=class_run(plan.pair_args) if plan.tolerance_class else None)
     _report(plan, disks, runs, scale, say)
     if plan.study_cases:
         say("")
@@ -209,6 +214,8 @@ def _ring_record(runs: PairRuns, scale: list, targets: list[str]) -> dict:
         record["scaling"] = [r.__dict__ for r in scale]
     if runs.study is not None:
         record["paper_study_s"] = runs.study[0]
+    if runs.tolerance is not None:
+        record["tolerance_class"] = {"seconds": runs.tolerance[0], **runs.tolerance[1]}
     record["targets"] = targets
     return record
 

@@ -54,6 +54,8 @@ def bench_metrics(record: dict) -> dict[str, float]:
         out[f"{r['label']}, peak [MB]"] = r["peak_mb"]
     if ring.get("paper_study_s") is not None:
         out["studies/paper_trends.toml, 2 workers [s]"] = ring["paper_study_s"]
+    if ring.get("tolerance_class") is not None:
+        out["1000 class-6 pairs, 24 positions [s]"] = ring["tolerance_class"]["seconds"]
     return out
 
 

@@ -30,7 +30,8 @@ class PairRuns:
     """The tooth pair's runs the targets judge: one position at the default quality
     (``default``), the same with the error estimate (``extra``), the ring model's ladder, and
     where they were run the mesh cycle, the sector model's ladder (with CalculiX's times on
-    its meshes), the paper study (s, cases) and the model cache's runs."""
+    its meshes), the paper study (s, cases), the model cache's runs and a tolerance class's
+    samples (s, their counts: :func:`~.ring_bench.class_run`)."""
 
     default: RingRun
     extra: RingRun
@@ -39,6 +40,7 @@ class PairRuns:
     sector: Ladder | None = None
     study: tuple[float, int] | None = None
     cached: CacheRuns | None = None
+    tolerance: tuple[float, dict] | None = None
 
 
 def sector_error(values: dict, keys=None) -> float:
@@ -69,6 +71,12 @@ def pair_targets(runs: PairRuns, peer_target: float = PEER_TARGET) -> list[str]:
         lines.append(f"* studies/paper_trends.toml, {cases} cases with estimates, 2 workers: "
                      f"{seconds:.1f} s (target <= {rb.STUDY_TARGET_S:g} s): "
                      f"{_status(seconds <= rb.STUDY_TARGET_S)}")
+    if runs.tolerance is not None:
+        seconds, counts = runs.tolerance
+        lines.append(f"* `fegear solve {' '.join(rb.CLASS_ARGS)}`: {seconds:.1f} s, "
+                     f"{counts['solved']} pairs solved at every position, {counts['jammed']} "
+                     f"jammed, {counts['failed']} failed (target <= {rb.CLASS_TARGET_S:g} s): "
+                     f"{_status(seconds <= rb.CLASS_TARGET_S)}")
     if runs.sector is not None:
         lines += _peer(runs.sector, runs.ring, peer_target)
     return lines

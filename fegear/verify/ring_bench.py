@@ -36,6 +36,9 @@ ESTIMATE_TARGET = 2.0         # with the error estimate: at most 2× the single 
 CYCLE_TARGET = 1.5            # 24 positions: at most 1.5× one position
 MEMORY_TARGET_GB = 2.0
 STUDY_TARGET_S = 60.0         # studies/paper_trends.toml, 12 cases with estimates, 2 workers
+#: a tolerance class's samples of the baseline's cycle (issue 57): the whole command, 2 cores
+CLASS_ARGS = ("--grade", "6", "--samples", "1000", "--positions", "24", "--no-estimate")
+CLASS_TARGET_S = 60.0
 
 
 @dataclass(frozen=True)
@@ -347,3 +350,18 @@ def paper_study_s(workers: int = 2) -> tuple[float, int]:
         report = run_study(load_study(root), Path(tmp) / "out", workers=workers,
                            progress=False)
         return time.perf_counter() - t0, report.computed
+
+
+def class_run(pair_args: tuple[str, ...]) -> tuple[float, dict]:
+    """Wall time (s) of ``fegear solve`` on a tolerance class (:data:`CLASS_ARGS`, the pair's
+    options ``pair_args``), the whole command in a fresh process with the model cache in an
+    empty folder of its own, and what its samples came to (pairs solved, jammed, failed: a
+    jammed pair costs its check over a turn alone)."""
+    import json
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="fegear-bench-class-") as tmp:
+        seconds = command_s([*pair_args, *CLASS_ARGS, "--out", f"{tmp}/out"],
+                            {"FEGEAR_CACHE_DIR": f"{tmp}/cache"})
+        samples = json.loads(Path(tmp, "out", "summary.json").read_text())["samples"]
+    return seconds, {k: samples[k] for k in ("solved", "jammed", "failed")}

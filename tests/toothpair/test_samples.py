@@ -11,6 +11,7 @@ import pytest
 
 from fegear.errors import ParameterError
 from fegear.geometry import PairParameters
+from fegear.running import spare_core
 from fegear.tolerance import Draw, grade_of
 from fegear.toothpair import SolveCase, prepare_job, solve_pair
 from fegear.toothpair.ring.solver import RingSolver
@@ -101,24 +102,25 @@ def test_bad_class_inputs_are_refused_by_name(values, name):
 
 
 @pytest.mark.slow
-def test_a_quantile_falls_within_its_printed_error_of_a_ten_times_larger_draw():
-    # 200 pairs against 2000 others (another seed: disjoint draws), class 5 with backlash
-    # enough that hardly any jams, `coarse`, one position: each P95 of the pairs that turn
-    # within 2.5 of its combined standard errors (the issue asks for a 20 000-pair reference:
-    # 2000 keep the slow suite within minutes, and their own error enters the bound)
+def test_a_quantile_falls_within_its_printed_error_of_a_20000_pair_reference():
+    # 200 pairs against 20 000 others (another seed: disjoint draws), class 5 with backlash
+    # enough that hardly any jams, `coarse`, one position: each headline's P95 of the pairs
+    # that turn within 2.5 of its printed standard error, the reference's own (a tenth of it)
+    # added (about three minutes on 2 cores)
     from fegear.toothpair import solve_job
+    from fegear.toothpair.case import HEADLINE
 
     def p95(seed, count):
         job = prepare_job({"shift": 0.03, "rotation": 0.002, "quality": "coarse",
                            "no-estimate": True, "grade": 5, "samples": count, "seed": seed})
-        s = solve_job(job).summary["samples"]
+        with spare_core() as executor:
+            s = solve_job(job, executor=executor).summary["samples"]
         assert s["jammed_share"] < 0.02 and s["failed"] == 0
         return {k: next(q for q in v["turning"] if q["q"] == 0.95)
                 for k, v in s["stresses"].items()}
 
-    small, large = p95(1, 200), p95(2, 2000)
-    for key in ("root_stress_gear1_MPa", "root_stress_gear2_MPa",
-                "flank_contact_pressure_MPa"):
+    small, large = p95(1, 200), p95(2, 20000)
+    for key in HEADLINE:
         a, b = small[key], large[key]
         assert abs(a["value"] - b["value"]) <= 2.5 * math.hypot(a["error"], b["error"]), key
-        assert b["error"] < a["error"]          # ten times the pairs: about a third the error
+        assert b["error"] < 0.2 * a["error"], key   # a hundred times the pairs: a tenth

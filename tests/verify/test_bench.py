@@ -220,3 +220,20 @@ def test_commands_are_timed_here_and_in_another_checkout_alternately(tmp_path):
     assert len(rows[1].there) == 2 and not rows[1].failed_there
     assert "| version |" in against_table(rows, tmp_path) and "failed there" in against_table(
         rows, tmp_path)
+
+
+def test_a_tolerance_class_is_judged_by_its_whole_command_with_what_its_pairs_came_to():
+    from fegear.verify import ring_bench as rb
+    from fegear.verify.pair_targets import PairRuns, pair_targets
+
+    ref = dict(rb.SECTOR_REFERENCE, von_mises_max_MPa=rb.VON_MISES_RESOLVED)
+    one = rb.RingRun("standard", {"mesh": 1.0}, 1.0, 500.0, 1, 1, ref, {})
+    counts = {"solved": 161, "jammed": 839, "failed": 0}
+
+    def line(seconds):
+        out = pair_targets(PairRuns(one, one, [one], tolerance=(seconds, counts)), 20.0)
+        return next(x for x in out if "--grade 6" in x)
+
+    assert line(59.6).endswith("161 pairs solved at every position, 839 jammed, 0 failed "
+                               "(target <= 60 s): met")
+    assert line(60.4).endswith("MISSED")

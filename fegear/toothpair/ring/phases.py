@@ -13,7 +13,8 @@ and solves the other pitches as gap vectors on it:
   contact is made for its rotation, with fine grids on every paired tooth and one more either
   side, each as wide as the largest deviation of any tooth needs, every column formed, and the
   position is solved on it (:meth:`Phases.keep`);
-* another pitch is a contact solve on that contact turned to it (:meth:`Phases.solve`); where
+* another pitch is a contact solve on that contact turned to it, its iterations measuring the
+  gaps to the kept points' foot circles (:mod:`.circles`) (:meth:`Phases.solve`); where
   the kept grids do not hold it (a tooth without a grid would close, a grid carries pressure
   at an end), it is placed anew and its own contact kept instead;
 * a pitch whose teeth on the kept contact carry the deviations of a pitch solved before, place
