@@ -42,7 +42,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "build": ("PairGeometry", "build_geometry"),
     "space": ("DesignMap", "design_map", "map_row", "map_span", "map_tables"),
     "deviations": ("Deviations", "ToothDeviation", "Runout", "Placed", "NO_DEVIATIONS",
-                   "moved_clearances", "least_clearances", "gear1_radii", "Closing",
+                   "moved_clearances", "least_clearances", "Closing",
                    "closing_points"),
     "deviation_inputs": ("deviations_of", "read_deviations"),
     "plot": ("pair_png", "map_png"),

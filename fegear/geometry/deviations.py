@@ -260,7 +260,7 @@ LEVER_FLOOR = 0.02
 
 
 @lru_cache(maxsize=64)
-def gear1_radii(params) -> tuple[float, float]:
+def _gear1_radii(params) -> tuple[float, float]:
     """Gear 1's root and tip radii (mm), where its flanks' roll runs from 0 to 1."""
     from .gear1 import gear1_profile
 
@@ -292,7 +292,7 @@ class Placed:
         alpha = params.ratio * beta
         self.teeth_offset = (deviations.runout1.offset(g1.tooth_center + alpha)
                              - deviations.runout2.offset(beta))
-        self.roots1, self.tips1 = gear1_radii(params)
+        self.roots1, self.tips1 = _gear1_radii(params)
         self.roots2, self.tips2 = params.r0 + 2 * params.e1, params.r0 - 2 * params.e1
 
     def gap(self, x: np.ndarray, teeth: np.ndarray, turn: float,
@@ -327,12 +327,19 @@ class Placed:
         foot, normal, dist = self.curve2.at_feet(y, feet)
         if dev.gear2:
             k2 = gear2_tooth(feet, p.z2)
-        roll1 = (np.hypot(x[:, 0], x[:, 1]) - self.roots1) / (self.tips1 - self.roots1)
-        roll2 = (self.roots2 - np.hypot(foot[:, 0], foot[:, 1])) / (self.roots2 - self.tips2)
         if flanks:
-            dist = dist - dev.flank_offset(1, teeth, roll1) - dev.flank_offset(2, k2, roll2)
+            dist = (dist - dev.flank_offset(1, teeth, self.roll(1, x))
+                    - dev.flank_offset(2, k2, self.roll(2, foot)))
         r = rotate(fixed - self.axis1, -(self.beta + turn2))
         return dist, np.einsum("ij,ij->i", normal, np.column_stack([-r[:, 1], r[:, 0]]))
+
+    def roll(self, gear: int, x: np.ndarray) -> np.ndarray:
+        """The roll fractions on ``gear``'s flanks (0 at the root end, 1 at the tip end: class
+        docstring) of its points ``x`` (n, 2, about its own axis)."""
+        r = np.hypot(x[:, 0], x[:, 1])
+        if gear == 1:
+            return (r - self.roots1) / (self.tips1 - self.roots1)
+        return (self.roots2 - r) / (self.roots2 - self.tips2)
 
     def levers(self, rate: np.ndarray, direction: int) -> np.ndarray:
         """The size of closing points' gap rates (mm/rad) that a Newton step divides by, at

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...geometry import gear1_radii, gear2_tooth
+from ...geometry import gear2_tooth
 from ...planar import rotate
 from .influence import RingContact
 from .model import RingModel
@@ -47,13 +47,6 @@ class FootCircles:
     normal: np.ndarray
     tangent: np.ndarray
     kappa: np.ndarray
-    roots: float    # gear 2's flank's radii at its root and tip ends (mm)
-    tips: float
-
-    def roll(self, foot: np.ndarray) -> np.ndarray:
-        """The roll fractions on gear 2's flank of feet (n, 2) (:class:`~fegear.geometry.
-        Placed`)."""
-        return (self.roots - np.hypot(foot[:, 0], foot[:, 1])) / (self.roots - self.tips)
 
 
 @dataclass(frozen=True)
@@ -62,8 +55,8 @@ class Moved:
     turned by the kinematic angle (gear-1 frame to fixed, (n, 2)), each one's extra turn with
     its tooth's pitch (rad), its gear-2 tooth's turn (rad; None: none turns), gear 1's axis
     and the teeth's offset from it (mm, fixed frame), gear 1's flank departures (mm), and
-    the deviations with each point's gear-2 tooth, whose flank departures are taken where
-    the point's foot slides to (None: gear 2 has none)."""
+    the placed deviations with each point's gear-2 tooth, whose flank departures are taken
+    where the point's foot slides to (None: gear 2 has none)."""
 
     x: np.ndarray
     turn1: np.ndarray
@@ -82,8 +75,7 @@ def foot_circles(model: RingModel, contact: RingContact, theta: float) -> FootCi
     xi = model.curve2.feet(rotate(fixed, -contact.beta), start=contact.feet.copy())
     foot, tangent, normal, kappa = model.curve2.frame(xi)
     return FootCircles(rotate(foot, contact.beta), rotate(normal, contact.beta),
-                       rotate(tangent, contact.beta), kappa, p.r0 + 2 * p.e1,
-                       p.r0 - 2 * p.e1)
+                       rotate(tangent, contact.beta), kappa)
 
 
 def moved(circles: FootCircles, model: RingModel, contact: RingContact) -> Moved:
@@ -98,11 +90,10 @@ def moved(circles: FootCircles, model: RingModel, contact: RingContact) -> Moved
         return Moved(x, np.zeros(n), None, np.array([0.0, p.e]), np.zeros(2), np.zeros(n))
     dev, teeth = placed.deviations, contact.teeth
     k2 = gear2_tooth(contact.feet, p.z2)
-    roots1, tips1 = gear1_radii(p)
-    roll1 = (np.hypot(contact.x[:, 0], contact.x[:, 1]) - roots1) / (tips1 - roots1)
     turn2 = dev.turns(2, k2, p.r0) if dev.gear2 else None
     return Moved(x, dev.turns(1, teeth, p.r1), turn2, placed.axis1, placed.teeth_offset,
-                 dev.flank_offset(1, teeth, roll1), (dev, k2) if dev.gear2 else None)
+                 dev.flank_offset(1, teeth, placed.roll(1, contact.x)),
+                 (placed, k2) if dev.gear2 else None)
 
 
 def circle_gaps(circles: FootCircles, moved: Moved, theta: float,
@@ -124,10 +115,10 @@ def circle_gaps(circles: FootCircles, moved: Moved, theta: float,
     q = np.sqrt(bend * bend + (kappa * s) ** 2)
     gap = (2.0 * d - kappa * (d * d + s * s)) / (1.0 + q) - moved.flank1[sel]
     if moved.gear2 is not None:   # at the roll fraction of the point's foot on its circle
-        dev, k2 = moved.gear2
+        placed, k2 = moved.gear2
         slid = circles.foot[sel] + (s[:, None] * tangent + (kappa * s * s / (q + bend))[:, None]
                                     * normal) / q[:, None]
-        gap -= dev.flank_offset(2, k2[sel], circles.roll(slid))
+        gap -= placed.deviations.flank_offset(2, k2[sel], placed.roll(2, slid))
     grad = (bend[:, None] * normal - (kappa * s)[:, None] * tangent) / q[:, None]
     return gap, grad[:, 1] * lever[:, 0] - grad[:, 0] * lever[:, 1]
 
