@@ -398,12 +398,9 @@ class Closing:
         clearance moves by the gap over the lever (:func:`moved_clearances`), here the exact
         pair's lever, with a factor 2 for the lever's own move. A state left without points
         cannot close (its least clearance is +inf)."""
-        alpha = params.ratio * self.beta
-        at = Placed(NONE, params, self.beta)
         feet = self.feet.copy()
-        _, rate = at.gap(self.x, self.tooth, alpha + self.direction * params.turn_of(self.um),
-                         feet, flanks=self.direction > 0)
-        keep = self.um < 2.0 * params.arc_um(1e-3 * reach_um / at.levers(rate, self.direction))
+        _, lever = _gaps(NONE, params, self, feet)
+        keep = self.um < 2.0 * params.arc_um(1e-3 * reach_um / lever)
         ends = np.cumsum([0] + [len(c) for c in self.teeth])
         teeth = [[t for t, k in zip(c, keep[a:b]) if k]
                  for c, a, b in zip(self.teeth, ends[:-1], ends[1:])]
@@ -449,13 +446,18 @@ def _moved_um(deviations: Deviations, params, closing: Closing) -> np.ndarray:
     (:func:`moved_clearances`)."""
     if not len(closing.um):
         return np.zeros(0)
-    direction = closing.direction
-    alpha = params.ratio * closing.beta
-    at = Placed(deviations, params, closing.beta)
-    feet = closing.feet.copy()
-    g, rate = at.gap(closing.x, closing.tooth, alpha + direction * params.turn_of(closing.um),
-                     feet, flanks=direction > 0)
-    closing.feet[:] = feet
+    g, lever = _gaps(deviations, params, closing, closing.feet)
     # the gap's rate with the turn is < 0 on a loaded flank and > 0 on a coast flank:
     # either way the clearance grows by the gap over its rate's size
-    return closing.um + params.arc_um(np.abs(g) / at.levers(rate, direction)) * np.sign(g)
+    return closing.um + params.arc_um(np.abs(g) / lever) * np.sign(g)
+
+
+def _gaps(deviations: Deviations, params, closing: Closing, feet: np.ndarray
+          ) -> tuple[np.ndarray, np.ndarray]:
+    """The ``closing`` points' deviated gaps (mm) where each closes the exact pair, and the
+    lever (mm/rad) a Newton step on the clearance divides them by (:meth:`Placed.levers`);
+    the foot searches start at ``feet``, overwritten with the feet found."""
+    at = Placed(deviations, params, closing.beta)
+    turn = params.ratio * closing.beta + closing.direction * params.turn_of(closing.um)
+    g, rate = at.gap(closing.x, closing.tooth, turn, feet, flanks=closing.direction > 0)
+    return g, at.levers(rate, closing.direction)

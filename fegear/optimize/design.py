@@ -132,7 +132,7 @@ def _graded(job, allow) -> dict:
     for name, key in names.items():
         out[f"{name}_P{100 * q:g}"] = summary["safety"][key]["at_quantile"] or 0.0
     out["objective_safety"] = min(out[f"{n}_P{100 * q:g}"] for n in names)
-    turning = [r["sample"] for r in sampled.rows if r["status"] == "solved"]
+    turning = sampled.turning
     loads = [max(sampled.readings.get(k, [0.0])) for k in turning]
     loaded = [x for x in loads if x > 0]
     out["edge_share"] = len(loaded) / max(len(turning), 1)

@@ -138,8 +138,7 @@ def graded_cycle_result(values: Mapping, amount_um: float, torque: float, positi
     sampled = class_samples(job, DEFAULT_ALLOWABLES, contact_only=True,
                             read=lambda sol: (sum(t.edge_load_N for t in sol.teeth),
                                               _tip_angles(profile, p, sol)))
-    turning = [r["sample"] for r in sampled.rows if r["status"] == "solved"]
-    jammed = sum(r["status"] == "jammed" for r in sampled.rows) / len(sampled.rows)
+    turning, jammed = sampled.turning, sampled.jammed_share
     if jammed > 1.0 - quantile:
         raise ParameterError("grade", draw.grade.grade, f"a class whose pairs turn in "
                              f"{100 * quantile:g} % of cases at least ({100 * jammed:.3g} % "

@@ -52,6 +52,16 @@ class Sampled:
     rows: tuple[dict, ...]
     readings: dict = field(default_factory=dict)
 
+    @property
+    def turning(self) -> list[int]:
+        """The samples solved at every position (neither jammed nor failed)."""
+        return [r["sample"] for r in self.rows if r["status"] == "solved"]
+
+    @property
+    def jammed_share(self) -> float:
+        """The share of the samples that jam."""
+        return sum(r["status"] == "jammed" for r in self.rows) / len(self.rows)
+
 
 def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
                   solver: RingSolver, executor: Executor = SERIAL,

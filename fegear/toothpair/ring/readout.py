@@ -137,7 +137,8 @@ def brief_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
         return strains.strain(g, contact.loads[g].get(k), cuts[k], f.get(k), points)
 
     surface = surface_von_mises(model, contact, pressure, strain)
-    zones = tuple(root_zone(side, {k: s.max_principal for k, s in r.items()})
+    zones = tuple(root_zone(side, readout(side).nodes,
+                            {k: s.max_principal for k, s in r.items()})
                   for side, r in zip(model.gears, roots))
     bulk = max((float(s.von_mises.max()) for r in roots for s in r.values()), default=0.0)
     return RingStresses(({}, {}), zones, surface, (), bulk)

@@ -192,24 +192,25 @@ class GearSide:
         place = self.body.interior_place(used)
         used = used[place >= 0]               # a cut dof's clamped field is zero
         place = place[place >= 0]
-        X = np.empty((len(used), len(cols)))
-        for start, block in self._X:
-            sel = np.flatnonzero((cols >= start) & (cols < start + block.shape[1]))
-            if len(sel):
-                # rows, then columns: a gather each (np.ix_ took up to four times as long)
-                X[:, sel] = np.take(np.take(block, place, axis=0), cols[sel] - start, axis=1)
-        return np.asarray(rows[:, used] @ X)
+        return np.asarray(rows[:, used] @ self._clamped(cols, place))
 
     def clamped_product(self, rows: np.ndarray, dofs: np.ndarray) -> np.ndarray:
         """Dense ``rows`` over the template's interior dofs (r, interior) applied to the
         clamped fields of unit loads at template ``dofs``: (r, dofs)."""
-        cols = self._form(dofs)
-        out = np.empty((rows.shape[0], len(cols)))
+        return rows @ self._clamped(self._form(dofs))
+
+    def _clamped(self, cols: np.ndarray, place: np.ndarray | None = None) -> np.ndarray:
+        """The formed clamped fields' response columns ``cols``, their interior rows ``place``
+        (default all), gathered from the blocks they were formed in."""
+        rows = len(self.body.interior) if place is None else len(place)
+        X = np.empty((rows, len(cols)))
         for start, block in self._X:
             sel = np.flatnonzero((cols >= start) & (cols < start + block.shape[1]))
             if len(sel):
-                out[:, sel] = rows @ np.take(block, cols[sel] - start, axis=1)
-        return out
+                # rows, then columns: a gather each (np.ix_ took up to four times as long)
+                rows_of = block if place is None else np.take(block, place, axis=0)
+                X[:, sel] = np.take(rows_of, cols[sel] - start, axis=1)
+        return X
 
     def cut_loads(self, dofs: np.ndarray) -> np.ndarray:
         """Cut loads (2 n_f, dofs) of unit loads at template ``dofs``."""

@@ -98,7 +98,8 @@ def ring_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
     roots = []
     for side, by in zip(model.gears, stresses):
         nodes = side_root_nodes(side)
-        roots.append(root_zone(side, {k: s.max_principal[nodes] for k, s in by.items()}))
+        roots.append(root_zone(side, nodes,
+                               {k: s.max_principal[nodes] for k, s in by.items()}))
 
     def strain(g: int, k: int, points: np.ndarray) -> np.ndarray:
         u, m = fields[g].get(k), contact.matching[g]
@@ -183,10 +184,10 @@ def loaded_sectors(side: GearSide, loads, pressure: np.ndarray) -> list[int]:
     return sorted({(t + k) % side.count for t in loaded for k in (-1, 0, 1)})
 
 
-def root_zone(side: GearSide, max_principal: dict) -> RootZone:
+def root_zone(side: GearSide, nodes: np.ndarray, max_principal: dict) -> RootZone:
     """The :class:`RootZone` of ``side``'s sectors from the largest principal stress of each
-    (sector → its values at :func:`side_root_nodes`)."""
-    x = side.body.mesh.doflocs[:, side_root_nodes(side)].T
+    (sector → its values at the template's root ``nodes``, :func:`side_root_nodes`)."""
+    x = side.body.mesh.doflocs[:, nodes].T
     angle, s1 = [], []
     for k, s in max_principal.items():
         angle.append(np.arctan2(x[:, 1], x[:, 0]) + k * side.pitch)
