@@ -46,7 +46,7 @@ def run(a: argparse.Namespace) -> int:
     if a.json:
         print(json.dumps({**result.summary, "files": files}, indent=2))
         return 0
-    if job.revolution:
+    if "revolution" in result.summary:
         rev = result.summary["revolution"]
         print(revolution_table(rev))
         print(f"\n{rev['positions']} positions over {rev['pitches']} pitches (one turn of gear "
@@ -54,17 +54,21 @@ def run(a: argparse.Namespace) -> int:
               "position of the largest gear-1 root stress\n")
     elif result.rows:
         print(cycle_table(result.rows))
-        print(f"\n{len(result.rows)} positions on one mesh in "
+        also = " (and the class's pairs)" if "samples" in result.summary else ""
+        print(f"\n{len(result.rows)} positions on one mesh{also} in "
               f"{result.summary['cycle']['solve_s']:.1f} s; the details below are at the "
               "position of the largest gear-1 root stress\n")
     print(pair_table(result.summary))
     if "samples" in result.summary:
         from ..toothpair.samples_report import samples_table
 
-        print("\nThe exact pair above; the pairs of its tolerance class over the same "
-              "positions (von Mises from the templates' surface estimate, as the samples' "
-              "is read):\n")
-        print(samples_table(result.summary["samples"]))
+        sampled = result.summary["samples"]
+        over = ("the same positions" if sampled["over"] == "cycle" else
+                f"a whole revolution each ({sampled['positions_per_pair']} positions: the "
+                "cycle's at every pitch of gear 1)")
+        print(f"\nThe exact pair above; the pairs of its tolerance class over {over} (von "
+              "Mises from the templates' surface estimate, as the samples' is read):\n")
+        print(samples_table(sampled))
     if "sensitivities" in result.summary:
         from ..toothpair.sensitivity_report import sensitivity_table
 

@@ -37,7 +37,8 @@ LOAD_INPUTS = (
     Input("revolution", bool, False, "solve every pitch of one turn of gear 1 (z1 pitches, "
           "--positions in each, 24 if not given): the worst of each stress with its tooth, the "
           "stresses per tooth and the transmission error's spectrum; writes revolution.csv, "
-          "revolution.png, revolution_teeth.png and revolution.pvd"),
+          "revolution.png, revolution_teeth.png and revolution.pvd; with --grade, each pair "
+          "of the class over the whole turn, its worst there its row"),
 )
 
 MODEL_INPUTS = (

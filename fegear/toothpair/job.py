@@ -70,16 +70,15 @@ def prepare_job(values: Mapping[str, object]) -> Job:
         betas = revolution_positions(case.beta, positions or PER_PITCH, params.z1, params.z2)
     else:
         betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
-    draw = _draw(v, given=values, case=case, revolution=revolution)
+    draw = _draw(v, given=values, case=case)
     return Job(case, tuple(betas), not v["no-estimate"], allowables_of(v), revolution, draw,
                JOB_INPUTS["quantile"].check(v["quantile"]),
                JOB_INPUTS["sensitivities"].check(v["sensitivities"]))
 
 
-def _draw(v: dict, given: Mapping[str, object], case: SolveCase, revolution: bool
-          ) -> Draw | None:
-    """The tolerance class's pairs to solve (``--grade``), refused by name with a revolution
-    or with deviations given (the class draws them); None without a class."""
+def _draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | None:
+    """The tolerance class's pairs to solve (``--grade``), refused by name with deviations
+    given (the class draws them); None without a class."""
     grade = v["grade"]
     if grade is None:
         for name in ("samples", "seed", "quantile", "centre-distance-tolerance"):
@@ -88,9 +87,6 @@ def _draw(v: dict, given: Mapping[str, object], case: SolveCase, revolution: boo
                                      "tolerance class are drawn only where it is given)")
         return None
     grade = JOB_INPUTS["grade"].check(grade)
-    if revolution:
-        raise ParameterError("grade", grade, "without --revolution (a class's pairs are "
-                             "solved at the positions of one mesh cycle)")
     if case.deviations:
         raise ParameterError("grade", grade, "without deviations given (the class draws each "
                              "pair's deviations)")
@@ -187,8 +183,10 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     sampled = None
     if job.draw is not None:
         solver = RingSolver(repeats=True)
-        sampled = solve_samples(job.case, job.betas, job.draw, job.allowables, solver,
-                                executor)
+        # a revolution: each pair over gear 1's turn from the first pitch's places
+        pitches = job.case.params.z1 if job.revolution else 1
+        sampled = solve_samples(job.case, job.betas[:len(job.betas) // pitches], job.draw,
+                                job.allowables, solver, executor, pitches=pitches)
         sols = sampled.nominal
     else:
         solver = RingSolver(repeats=job.revolution)
@@ -221,11 +219,12 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
         rows = cycle_rows(sols, job.allowables)
         summary["cycle"] = {"positions": len(sols), "solve_s": cycle_s,
                             **cycle_summary(rows), "rows": rows}
-    if job.revolution:
+    if job.revolution and sampled is None:   # the exact pair's: its cycle, repeated
         summary["revolution"] = revolution_summary(tuple(sols), job.allowables)
     if sampled is not None:
         summary["samples"] = samples_summary(sampled.rows, estimated, job.draw.grade,
-                                             job.draw.seed, job.quantile, job.allowables)
+                                             job.draw.seed, job.quantile, job.allowables,
+                                             len(job.betas), job.revolution)
     if job.sensitivities:
         progress.stage("sensitivities: each stress's rate with each deviation in mesh")
         summary["sensitivities"] = sensitivity_summary(
@@ -272,7 +271,7 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
     title = (f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T {i['torque_Nm']:g} N·m, "
              f"{len(solved.solutions)} position{'s' if len(solved.solutions) > 1 else ''}, "
              f"quality {i['quality']}")
-    if solved.job.revolution:
+    if "revolution" in summary:
         files.update(write_revolution_outputs(
             solved.solutions, rows, summary["revolution"], out,
             f"{title}\n{_deviations_title(summary)}", solved.job.allowables, fields, pictures))

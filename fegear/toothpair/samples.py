@@ -35,6 +35,7 @@ from ..tolerance import Draw, tooth_positions
 from .case import HEADLINE, PairSolution, SolveCase
 from .positions import TURN_CHECK, solve_position
 from .revolution import revolution_positions
+from .ring.phases import Phases
 from .ring.solver import RingSolver
 from .safety import safety_factors
 from .teeth import choose_teeth, closure, refuse_interference
@@ -65,33 +66,38 @@ class Sampled:
 
 def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
                   solver: RingSolver, executor: Executor = SERIAL,
-                  read: Callable[[PairSolution], object] | None = None) -> Sampled:
+                  read: Callable[[PairSolution], object] | None = None, pitches: int = 1
+                  ) -> Sampled:
     """The exact pair and ``draw``'s samples solved at the rolling angles ``betas`` (rad) with
     ``solver``, a ring solver that keeps a contact a position (``repeats``), its grids set
     here to reach as far as the drawn deviations move a tooth (module docstring); ``read``:
     what to keep of each sample's solution at each position beside its headlines (a relief
-    search's tip-round loads, say)."""
+    search's tip-round loads, say). ``pitches`` > 1: each sample at ``betas`` and at each of
+    that many gear-2 pitches on (a revolution: z1), its worst over all of them."""
     keep_freed_memory()
     p = case.params
     with blas_threads():
         profile = gear1_profile(p)
         pairs = [draw.pair(k) for k in range(draw.count)]   # drawn once, here
         reach = max(d.widest_um() for d in pairs)          # … and how far they move a tooth
-        states = _States(case, profile, tuple(betas), reach)
+        states = _States(case, profile, tuple(betas), reach, pitches)
         solver.reach(reach)
         jams = executor.map(lambda ks: [_jammed(states, pairs[k]) for k in ks],
                             _halves(range(draw.count)))
         jammed = [j for half in jams for j in half]
         solver.build(case, profile, lambda: states.loaded)
         free = [k for k in range(draw.count) if jammed[k] is None]
+        # every other position a chain: a cycle's positions where more teeth carry (more
+        # points in contact, dearer solves) come in a run
+        spans = [range(k, len(betas), 2) for k in (0, 1)] if len(betas) > 1 else [range(1)]
         if len(betas) > 1:
-            # every other position a chain: a cycle's positions where more teeth carry
-            # (more points in contact, dearer solves) come in a run
-            spans = [(range(k, len(betas), 2), free) for k in (0, 1)]
-        else:
-            spans = [(range(1), half) for half in _halves(free)]
-        chains = executor.map(lambda job: _chain(case, states, pairs, solver, *job, read),
-                              spans)
+            jobs = _every(free, len(betas), pitches)
+            chains = executor.map(lambda span: _chain(case, states, pairs, solver, span,
+                                                      jobs, read), spans)
+        else:   # one position: half the samples each
+            chains = executor.map(lambda half: _chain(case, states, pairs, solver, range(1),
+                                                      _every(half, 1, pitches), read),
+                                  _halves(free))
     nominal: dict[int, PairSolution] = {}
     found: dict[int, list] = {}
     readings: dict[int, list] = {}
@@ -135,18 +141,19 @@ def _halves(items) -> list:
 
 class _States:
     """The exact pair's clearance states at the positions (``loaded``: (β, state) pairs, the
-    loaded flanks) and, for the check that a sample leaves the pair its backlash, over a
-    whole turn of gear 1 and at the positions (``turn``: :data:`~.positions.TURN_CHECK`
-    angles a pitch and the positions, both sides of each state found in one search) and the
-    loaded sides' closing points that deviations reaching ``reach_um`` could close
-    (``closing``, whose feet on gear 2 the first pair checked finds and the others' searches
-    start from)."""
+    loaded flanks; with ``pitches`` > 1, ``at(i, n)``: position i's state n gear-2 pitches on)
+    and, for the check that a sample leaves the pair its backlash, over a whole turn of gear 1
+    and at the positions (``turn``: :data:`~.positions.TURN_CHECK` angles a pitch and the
+    positions, both sides of each state found in one search) and the loaded sides' closing
+    points that deviations reaching ``reach_um`` could close (``closing``, whose feet on gear
+    2 the first pair checked finds and the others' searches start from)."""
 
     def __init__(self, case: SolveCase, profile, betas: tuple[float, ...],
-                 reach_um: float) -> None:
+                 reach_um: float, pitches: int = 1) -> None:
         p = case.params
         find = ToothContact(p, profile).states
         self.case = case
+        self.pitches = pitches
         self.loaded = list(zip(betas, find(betas, directions=(+1,))))
         refuse_interference(self.loaded)
         # the positions too, as a deviated solve checks them: a pair that jams exactly
@@ -154,6 +161,18 @@ class _States:
         turn = (*revolution_positions(betas[0], TURN_CHECK, p.z1, p.z2), *betas)
         self.turn = list(zip(turn, find(turn)))
         self.closing = closing_points(p, [s for _, s in self.turn]).reachable(p, reach_um)
+        # place-major: one search a place, the other pitches its state renumbered
+        self.revolution = [s for _, s in self.loaded] if pitches == 1 else find(
+            [self.beta(i, n) for i in range(len(betas)) for n in range(pitches)],
+            directions=(+1,))
+
+    def beta(self, i: int, n: int) -> float:
+        """The rolling angle (rad) of position i, ``n`` gear-2 pitches on."""
+        return self.loaded[i][0] + n * 2 * math.pi / self.case.params.z2
+
+    def at(self, i: int, n: int):
+        """The exact pair's clearance state at position i, ``n`` gear-2 pitches on."""
+        return self.revolution[i * self.pitches + n]
 
 
 def _jammed(states: _States, deviations) -> str | None:
@@ -174,14 +193,20 @@ def _jammed(states: _States, deviations) -> str | None:
     return None
 
 
-def _chain(case: SolveCase, states: _States, pairs, solver: RingSolver, span, samples,
+def _every(samples, positions: int, pitches: int) -> dict[int, list[tuple[int, int]]]:
+    """By position (the first ``positions``), the (sample, gear-2 pitches on) pairs solved
+    there: every one of ``samples`` at each of the ``pitches``."""
+    return {i: [(k, n) for k in samples for n in range(pitches)] for i in range(positions)}
+
+
+def _chain(case: SolveCase, states: _States, pairs, solver: RingSolver, span, jobs,
            read=None) -> tuple[dict[int, PairSolution], dict[int, list], dict]:
-    """The positions ``span`` (indices) of the exact pair and of ``samples`` (indices into the
-    drawn ``pairs``' deviations): the exact pair's solutions by position, and each sample's
-    (β, headline) a position, or (β, why) where it failed, and what ``read`` took of each
-    solution. The exact pair is solved as any position, then its contact kept with grids on
-    every tooth that any of the samples pairs (:func:`_paired`), and let go of when they are
-    solved."""
+    """The positions ``span`` (indices) of the exact pair and, at each position i, of the
+    samples ``jobs[i]`` names ((index into the drawn ``pairs``' deviations, gear-2 pitches
+    on)): the exact pair's solutions by position, and each sample's (β, headline) a position,
+    or (β, why) where it failed, and what ``read`` took of each solution. The exact pair is
+    solved as any position, then its contact kept with grids on every tooth that any of the
+    samples pairs (:func:`_paired`), and let go of when they are solved."""
     nominal: dict[int, PairSolution] = {}
     found: dict[int, list] = {}
     took: dict[int, list] = {}
@@ -193,19 +218,21 @@ def _chain(case: SolveCase, states: _States, pairs, solver: RingSolver, span, sa
         progress.stage(f"samples at β {math.degrees(beta):.3g}°")
         at = replace(case, beta=beta)
         near = nominal[i] = solve_position(at, state, placed, near)
-        moved = {k: Placed(pairs[k], p, beta).clearances(state) for k in samples}
-        solver.widen(at, state, near, _paired(case, near, state, moved.values()))
-        for k in samples:
-            one = replace(at, deviations=pairs[k])
+        moved = {(k, n): Placed(pairs[k], p, states.beta(i, n)).clearances(states.at(i, n))
+                 for k, n in jobs[i]}
+        solver.widen(at, state, near, _paired(case, near, state, moved))
+        for k, n in jobs[i]:
+            one = replace(at, beta=states.beta(i, n), deviations=pairs[k])
             try:
-                sol = solver.on_kept(one, moved[k], brief=True)
+                sol = solver.on_kept(one, moved[k, n], brief=True)
                 if sol is None:   # placed on its own, and its teeth kept for those after it
-                    sol = solve_position(one, moved[k], placed, near)
-                    solver.widen(one, moved[k], sol)
+                    sol = solve_position(one, moved[k, n], placed,
+                                         Phases.beside(solver.model, near, one.beta))
+                    solver.widen(one, moved[k, n], sol)
             except FegearError as err:
-                found.setdefault(k, []).append((beta, str(err)))
+                found.setdefault(k, []).append((one.beta, str(err)))
                 continue
-            found.setdefault(k, []).append((beta, sol.headline()))
+            found.setdefault(k, []).append((one.beta, sol.headline()))
             if read is not None:
                 took.setdefault(k, []).append(read(sol))
         solver.forget(at)
@@ -218,12 +245,14 @@ def _chain(case: SolveCase, states: _States, pairs, solver: RingSolver, span, sa
 ELASTIC_MARGIN = 1.5
 
 
-def _paired(case: SolveCase, exact: PairSolution, state, moved) -> set[int]:
-    """The teeth that the samples (their clearance states ``moved``) pair: the driver's rule
-    (:func:`~.teeth.choose_teeth`) at each one's first touch plus
-    :data:`ELASTIC_MARGIN` times the exact pair's elastic rotation (µm of arc at r0)."""
+def _paired(case: SolveCase, exact: PairSolution, state, moved: dict) -> set[int]:
+    """The teeth, counted at pitch 0, that the samples (their clearance states ``moved``, by
+    (sample, gear-2 pitches on)) pair: the driver's rule (:func:`~.teeth.choose_teeth`) at
+    each one's first touch plus :data:`ELASTIC_MARGIN` times the exact pair's elastic
+    rotation (µm of arc at r0); a tooth ``n`` pitches on is the one n after it at pitch 0."""
     elastic = case.params.arc_um(exact.rotation) - state.closest(+1).plus_um
-    return {t for m in moved for t in choose_teeth(
+    z1 = case.params.z1
+    return {(t + n) % z1 for (_, n), m in moved.items() for t in choose_teeth(
         m, m.closest(+1).plus_um + ELASTIC_MARGIN * elastic, case.extra_pairs)}
 
 

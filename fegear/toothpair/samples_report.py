@@ -22,8 +22,10 @@ JAMMED = math.inf
 
 
 def samples_summary(rows, nominal_rows: list[dict], grade, seed: int, quantile: float,
-                    allowables: Allowables) -> dict:
-    """The samples' summary (``summary["samples"]``): the class, the counts, per headline
+                    allowables: Allowables, positions: int = 1, revolution: bool = False
+                    ) -> dict:
+    """The samples' summary (``summary["samples"]``): the class, the counts, the positions
+    each pair is solved at (``positions``, over a whole ``revolution`` or not), per headline
     stress and per safety factor the nominal (the exact pair's largest over the positions),
     the quantiles (of every pair drawn, and of the pairs that turn alone: ``turning``), the
     value at ``quantile`` and the worst with its sample, the verdict and the rows (one a
@@ -58,6 +60,7 @@ def samples_summary(rows, nominal_rows: list[dict], grade, seed: int, quantile: 
                         "worst": None if worst is None else safety_factor(allowable, worst),
                         "worst_sample": stresses[key]["worst_sample"]}
     return {"grade": grade.summary(), "samples": n, "seed": seed, "quantile": quantile,
+            "positions_per_pair": positions, "over": "revolution" if revolution else "cycle",
             "solved": len(solved), "jammed": jammed, "failed": len(failed),
             "jammed_share": share, "jammed_share_error": math.sqrt(share * (1 - share) / n),
             "failures": sorted({r["why"] for r in failed}),

@@ -70,7 +70,6 @@ def test_profile_table_output(tmp_path):
     ("solve", ["--grade", "6", "--samples", "0"], "--samples = 0 is not admissible"),
     ("solve", ["--grade", "6", "--quantile", "1.5"], "--quantile = 1.5 is not admissible"),
     ("solve", ["--samples", "50"], "--samples = 50 is not admissible"),
-    ("solve", ["--grade", "6", "--revolution"], "without --revolution"),
 ])
 def test_user_errors_exit_2_with_one_line(tmp_path, command, args, fragment):
     out = tmp_path / "o"
