@@ -19,24 +19,32 @@ def add_parser(sub) -> None:
                    help="output directory for summary.json, VTU files and pictures, made when "
                         "the solve has succeeded (default: none, the table only)")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    p.add_argument("--scheduler", default=None,
+                   help="with --grade: solve the class's pairs on this Dask distributed "
+                        "scheduler (e.g. tcp://host:8786; its workers need fegear) instead of "
+                        "this machine's second core")
     add_switch(p, default=False)
 
 
 def run(a: argparse.Namespace) -> int:
     import shutil
 
+    from ..errors import FegearError
     from ..files import check_dir
-    from ..running import spare_core
+    from ..running import Cluster, connect, spare_core
     from ..toothpair import cycle_table, pair_table, prepare_job, run_job
     from ..toothpair.revolution import revolution_table
     from .terminal import command_wall_s
 
     job = prepare_job(given_values(a, JOB_INPUTS.values()))
+    if a.scheduler and job.draw is None:
+        raise FegearError("--scheduler: with --grade only (a class's pairs are the work a "
+                          "cluster shares)")
     apply_switch(a, default=False)
     out = None if a.out is None else check_dir(a.out)
     made = out is not None and not out.exists()
     try:
-        with spare_core() as executor:
+        with Cluster(connect(a.scheduler)) if a.scheduler else spare_core() as executor:
             result = run_job(job, out, executor=executor)
     except BaseException:
         if made and out.exists():  # made by this run: nothing half-written stays

@@ -10,6 +10,12 @@ their results; it never learns where they ran, and the numbers are the same wher
   one-off command's second core (:func:`spare_core`).
 * :class:`Pool`: tasks on spawned worker processes that share nothing (a relief search's
   trials, each a mesh cycle of its own).
+* :class:`Cluster`: tasks on a Dask cluster's workers (``--scheduler``), which share nothing
+  either.
+
+Whether a task sees what this process built is the executor's ``shares_memory``: where it
+does not, a task builds what it needs (a ring model) in the process it runs in, and what it
+gives back must be plain data.
 
 A task that fails where it was sent (it raised there, or its process died) raises
 :class:`~.forks.WorkerFailed` where its result is read if workers are strict (the tests set
@@ -44,9 +50,11 @@ class Task(Protocol):
 
 class Executor(Protocol):
     """Runs tasks for the code it is handed to; ``workers``: how many at once, the caller's
-    own process included."""
+    own process included; ``shares_memory``: whether a task sees what this process built
+    (its models, by reference) and can give back what refers to it."""
 
     workers: int
+    shares_memory: bool
 
     def submit(self, fn: Callable, /, *args) -> Task:
         """Start ``fn(*args)`` (or leave it for when its result is read)."""
@@ -78,6 +86,7 @@ class Serial:
     """Every task here, in the order their results are read."""
 
     workers = 1
+    shares_memory = True
 
     def submit(self, fn: Callable, /, *args) -> Task:
         return _Later(fn, args)
@@ -146,6 +155,8 @@ class Forks:
     ``workers - 1`` at once in parallel with it; a task submitted while they are all busy runs
     here when its result is read. A forked task sees everything this process had built when it
     was submitted, and what it builds is lost with it: only its return value comes back."""
+
+    shares_memory = True
 
     def __init__(self, workers: int = 2) -> None:
         self.workers = workers
@@ -216,6 +227,8 @@ class Pool:
     """Tasks on ``workers`` spawned processes (:class:`~.pools.LocalPool`) for work that shares
     nothing with this process. Once a worker has died, the tasks still to come run here."""
 
+    shares_memory = False
+
     def __init__(self, workers: int) -> None:
         from .pools import LocalPool
 
@@ -237,6 +250,54 @@ class Pool:
         self._pool.stop()
 
     def __enter__(self) -> Pool:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+class _OnCluster:
+    """A task under way on a Dask cluster."""
+
+    def __init__(self, future, fn: Callable, args: tuple) -> None:
+        self._future, self._fn, self._args = future, fn, args
+
+    def result(self):
+        from distributed import KilledWorker
+
+        try:
+            return self._future.result()
+        except KilledWorker as err:   # its workers died under it
+            return _again_here(WorkerFailed(f"a Dask worker died: {err}"), self._fn,
+                               self._args)
+
+    def done(self) -> bool:
+        return self._future.done()
+
+
+class Cluster:
+    """Tasks on the workers of a Dask ``client``'s cluster (:func:`~.pools.connect`), as many
+    at once as it has worker threads. The functions and their arguments travel by pickle;
+    its workers need fegear installed. A task that raises raises the same where its result is
+    read; one whose workers died is run here, or raised if workers are strict."""
+
+    shares_memory = False
+
+    def __init__(self, client) -> None:
+        self.client = client
+        self.workers = max(1, sum(client.nthreads().values()))
+
+    def submit(self, fn: Callable, /, *args) -> Task:
+        return _OnCluster(self.client.submit(fn, *args, pure=False), fn, args)
+
+    def map(self, fn: Callable, items: Iterable) -> list:
+        return [t.result() for t in [self.submit(fn, x) for x in items]]
+
+    def close(self) -> None:
+        """Close the client (the cluster itself is its owner's)."""
+        self.client.close()
+
+    def __enter__(self) -> Cluster:
         return self
 
     def __exit__(self, *exc) -> None:

@@ -82,23 +82,30 @@ def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
         reach = max(d.widest_um() for d in pairs)          # … and how far they move a tooth
         states = _States(case, profile, tuple(betas), reach, pitches)
         solver.reach(reach)
+        parts = max(2, executor.workers)
         jams = executor.map(lambda ks: [_jammed(states, pairs[k]) for k in ks],
-                            _halves(range(draw.count)))
-        jammed = [j for half in jams for j in half]
+                            _parts(range(draw.count), parts))
+        jammed = [j for part in jams for j in part]
         solver.build(case, profile, lambda: states.loaded)
         free = [k for k in range(draw.count) if jammed[k] is None]
-        # every other position a chain: a cycle's positions where more teeth carry (more
-        # points in contact, dearer solves) come in a run
-        spans = [range(k, len(betas), 2) for k in (0, 1)] if len(betas) > 1 else [range(1)]
         if len(betas) > 1:
+            # every parts-th position a chain: a cycle's positions where more teeth carry
+            # (more points in contact, dearer solves) come in a run
             jobs = _every(free, len(betas), pitches)
-            chains = executor.map(lambda span: _chain(case, states, pairs, solver, span,
-                                                      jobs, read), spans)
-        else:   # one position: half the samples each
-            chains = executor.map(lambda half: _chain(case, states, pairs, solver, range(1),
-                                                      _every(half, 1, pitches), read),
-                                  _halves(free))
-    nominal: dict[int, PairSolution] = {}
+            work = [(range(k, len(betas), parts), jobs) for k in range(min(parts, len(betas)))]
+        else:   # one position: a share of the samples each
+            work = [(range(1), _every(part, 1, pitches)) for part in _parts(free, parts)]
+        # a chain's exact solutions refer to the model it solved them on: they come back
+        # from a process that shares this one's; elsewhere they are solved here meanwhile
+        if executor.shares_memory:
+            nominal = {}
+            chains = executor.map(lambda job: _chain(case, states, pairs, solver, *job, read),
+                                  work)
+        else:
+            tasks = [executor.submit(_chain, case, states, pairs, solver, span, jobs, read,
+                                     False) for span, jobs in work]
+            nominal = _exact(case, states, solver)
+            chains = [task.result() for task in tasks]
     found: dict[int, list] = {}
     readings: dict[int, list] = {}
     for done_nominal, done, took in chains:
@@ -132,11 +139,11 @@ def class_samples(job, allowables: Allowables, read=None, contact_only: bool = F
     return solve_samples(job.case, job.betas, job.draw, allowables, solver, executor, read)
 
 
-def _halves(items) -> list:
-    """``items`` in two halves (one where fewer than two)."""
+def _parts(items, parts: int) -> list:
+    """``items`` in ``parts`` runs as even as they come (fewer where there are fewer items)."""
     items = list(items)
-    cut = (len(items) + 1) // 2
-    return [items[:cut], items[cut:]] if len(items) > 1 else [items]
+    cuts = np.linspace(0, len(items), min(parts, max(len(items), 1)) + 1).round().astype(int)
+    return [items[a:b] for a, b in zip(cuts[:-1], cuts[1:])]
 
 
 class _States:
@@ -193,6 +200,15 @@ def _jammed(states: _States, deviations) -> str | None:
     return None
 
 
+def _exact(case: SolveCase, states: _States, solver: RingSolver) -> dict[int, PairSolution]:
+    """The exact pair at the positions, one after the other, on ``solver``'s model."""
+    placed = RingSolver(solver.model, submodels="none")
+    near, out = None, {}
+    for i, (beta, state) in enumerate(states.loaded):
+        near = out[i] = solve_position(replace(case, beta=beta), state, placed, near)
+    return out
+
+
 def _every(samples, positions: int, pitches: int) -> dict[int, list[tuple[int, int]]]:
     """By position (the first ``positions``), the (sample, gear-2 pitches on) pairs solved
     there: every one of ``samples`` at each of the ``pitches``."""
@@ -200,13 +216,18 @@ def _every(samples, positions: int, pitches: int) -> dict[int, list[tuple[int, i
 
 
 def _chain(case: SolveCase, states: _States, pairs, solver: RingSolver, span, jobs,
-           read=None) -> tuple[dict[int, PairSolution], dict[int, list], dict]:
+           read=None, exact: bool = True
+           ) -> tuple[dict[int, PairSolution], dict[int, list], dict]:
     """The positions ``span`` (indices) of the exact pair and, at each position i, of the
     samples ``jobs[i]`` names ((index into the drawn ``pairs``' deviations, gear-2 pitches
     on)): the exact pair's solutions by position, and each sample's (β, headline) a position,
     or (β, why) where it failed, and what ``read`` took of each solution. The exact pair is
     solved as any position, then its contact kept with grids on every tooth that any of the
-    samples pairs (:func:`_paired`), and let go of when they are solved."""
+    samples pairs (:func:`_paired`), and let go of when they are solved; not ``exact``: its
+    solutions left out of what it gives back (plain data alone, for another process). A
+    solver received without its model (from another process) builds or finds one here."""
+    if solver.model is None:
+        solver.build(case, gear1_profile(case.params), lambda: states.loaded)
     nominal: dict[int, PairSolution] = {}
     found: dict[int, list] = {}
     took: dict[int, list] = {}
@@ -236,7 +257,7 @@ def _chain(case: SolveCase, states: _States, pairs, solver: RingSolver, span, jo
             if read is not None:
                 took.setdefault(k, []).append(read(sol))
         solver.forget(at)
-    return nominal, found, took
+    return nominal if exact else {}, found, took
 
 
 #: a sample's teeth are those the driver's rule pairs at its first touch plus this many times

@@ -70,6 +70,9 @@ def test_profile_table_output(tmp_path):
     ("solve", ["--grade", "6", "--samples", "0"], "--samples = 0 is not admissible"),
     ("solve", ["--grade", "6", "--quantile", "1.5"], "--quantile = 1.5 is not admissible"),
     ("solve", ["--samples", "50"], "--samples = 50 is not admissible"),
+    ("solve", ["--scheduler", "tcp://127.0.0.1:9"], "--scheduler: with --grade only"),
+    ("solve", ["--grade", "6", "--samples", "2", "--quality", "coarse", "--scheduler",
+               "tcp://127.0.0.1:9"], "--scheduler 'tcp://127.0.0.1:9': cannot connect"),
 ])
 def test_user_errors_exit_2_with_one_line(tmp_path, command, args, fragment):
     out = tmp_path / "o"

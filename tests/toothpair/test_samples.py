@@ -123,6 +123,35 @@ def test_a_revolution_sample_reads_as_the_same_pair_turned_alone(baseline_ring):
             assert row["root_stress_gear1_MPa"] >= one["root_stress_gear1_MPa"] - 1e-6
 
 
+def test_a_dask_cluster_gives_the_local_rows():
+    # the chains travel by pickle, their solver without its model: each worker builds its
+    # own and solves the same samples at the same positions, so every number is the same;
+    # the exact pair is solved here meanwhile (its solutions refer to this process's model)
+    distributed = pytest.importorskip("distributed")
+    from fegear.running import Cluster, Forks
+
+    draw = Draw(grade_of(6, PAIR), 6, 3)
+    case = replace(CASE, params=replace(PAIR, shift=0.03))
+    betas = (0.0, 0.05)
+
+    def solved(executor):
+        return solve_samples(case, betas, draw, DEFAULT_ALLOWABLES,
+                             RingSolver(repeats=True), executor)
+
+    with Forks(2) as forks:
+        local = solved(forks)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                  dashboard_address=None) as cluster:
+        with Cluster(distributed.Client(cluster.scheduler_address)) as executor:
+            assert executor.workers == 2 and not executor.shares_memory
+            remote = solved(executor)
+    assert any(r["status"] == "solved" for r in local.rows)
+    assert remote.rows == local.rows
+    for a, b in zip(remote.nominal, local.nominal):
+        assert a.headline()["root_stress_gear1_MPa"] == pytest.approx(
+            b.headline()["root_stress_gear1_MPa"], rel=1e-4)
+
+
 @pytest.mark.parametrize("values, name", [
     ({"grade": 6, "pitch-deviation": "1:11=5"}, "grade"),
     ({"samples": 10}, "samples"),

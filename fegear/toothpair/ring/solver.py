@@ -92,6 +92,15 @@ class RingSolver:
         self.contact_only = contact_only
         self.phases = Phases() if repeats else None
 
+    def __getstate__(self) -> dict:
+        """What another process receives: the settings and the kept grids' reach, without
+        the model (its factors do not pickle, and it refers to this process's:
+        :meth:`build` builds or finds one there) or the contacts kept for it."""
+        state = dict(self.__dict__, model=None)
+        if self.phases is not None:
+            state["phases"] = Phases(self.phases.reach_um)
+        return state
+
     def build(self, case: SolveCase, profile: Gear1Profile, states) -> None:
         # the same stages on every solve (zero where not run), so that a study's table has
         # the same columns whichever way its cases found their models
