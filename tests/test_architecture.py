@@ -23,15 +23,16 @@ SHARED = {"__init__", "__main__", "checks", "errors", "exports", "figures", "fil
 ALLOWED = {
     "geometry": set(),
     "tolerance": {"geometry"},
+    "rating": set(),
     "fe": set(),
     "contact": {"fe"},
-    "toothpair": {"geometry", "fe", "contact", "tolerance"},
+    "toothpair": {"geometry", "fe", "contact", "tolerance", "rating"},
     "study": {"toothpair"},
     "drive": {"toothpair"},
     "optimize": {"geometry", "toothpair"},
     "verify": {"geometry", "fe", "contact", "toothpair", "study"},
     "cli": {"geometry", "fe", "contact", "toothpair", "study", "drive", "verify", "optimize",
-            "tolerance"},
+            "tolerance", "rating"},
     "api": {"toothpair"},   # the Python face: one module beside the command line
 }
 #: faces that are one module, not a subpackage

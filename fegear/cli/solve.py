@@ -83,6 +83,13 @@ def run(a: argparse.Namespace) -> int:
         print("\nSensitivities: each stress's rate with each deviation of the teeth in mesh "
               "(the largest first):\n")
         print(sensitivity_table(result.summary["sensitivities"]))
+    if "rating" in result.summary:
+        from ..toothpair.rating_report import rating_table
+
+        rating = result.summary["rating"]
+        print(f"\nRated for a life: each level of the spectrum solved over the positions "
+              f"({rating['solve_s']:.1f} s):\n")
+        print(rating_table(rating))
     for k, v in files.items():
         print(f"{k:10s} {v}")
     if out is None:

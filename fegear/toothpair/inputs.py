@@ -98,6 +98,29 @@ TOLERANCE_INPUTS = (
           "sensitivities.png"),
 )
 
+#: a rating for a life (docs/rating.md): a load spectrum on the material's S-N lines
+RATING_INPUTS = (
+    Input("spectrum", str, None, "a load spectrum, CSV or TOML: torque (N·m) with cycles "
+          "(revolutions of gear 1 against gear 2), or with a share of the time and --speed, "
+          "--life; each level solved at KA·KV·torque at the positions, each tooth's damage by "
+          "Miner's rule on the --material's S-N lines, the life and the safety factors at the "
+          "required life; writes rating.csv", rule="none (no life rating)"),
+    Input("speed", float, None, "gear 1's speed against gear 2 (turns a spectrum's shares "
+          "and its life into cycles; with cycles, the life in hours)", "rpm", low=0.0,
+          low_open=True, high=1e5, rule="none"),
+    Input("life", float, None, "the required life (with --spectrum's shares and --speed)",
+          "h", low=0.0, low_open=True, high=1e7, rule="none"),
+    Input("KA", float, 1.0, "application factor: every level's torque is solved times it "
+          "(ISO 6336-1: 1.0 uniform driver and load to 2.25 and more for heavy shocks)",
+          low=1.0, high=5.0),
+    Input("KV", float, 1.0, "dynamic factor: every level's torque is solved times it too "
+          "(`fegear drive dynamics` gives the dynamic factor max F/T at a speed)", low=1.0,
+          high=5.0),
+    Input("material", str, "42CrMo", "the gears' material for the life rating: 42CrMo (the "
+          "seed paper's, default), 42CrMo-QT, 42CrMo-nitrided, 20CrMnTi, 18CrNiMo7-6, or a "
+          "TOML file with treatment, sigma_Hlim and sigma_FE (MPa)"),
+)
+
 #: the deviation inputs that name a deviation by text (the others: the centre distance)
 DEVIATION_TEXTS = tuple(row.name for row in DEVIATION_INPUTS if row.kind is str)
 
@@ -105,7 +128,7 @@ DEVIATION_TEXTS = tuple(row.name for row in DEVIATION_INPUTS if row.kind is str)
 SOLVE_INPUTS = InputTable(PAIR_INPUTS, LOAD_INPUTS[:2], LOAD_INPUTS[2:], MATERIAL_INPUTS,
                           ALLOWABLE_INPUTS, MODEL_INPUTS, DEVIATION_INPUTS)
 #: ``fegear solve``'s inputs: a solve's and a tolerance class's samples (not yet a study's)
-JOB_INPUTS = InputTable(SOLVE_INPUTS.values(), TOLERANCE_INPUTS)
+JOB_INPUTS = InputTable(SOLVE_INPUTS.values(), TOLERANCE_INPUTS, RATING_INPUTS)
 
 
 def torque_limit(E: float, m: float, face_width: float, r1: float) -> float:

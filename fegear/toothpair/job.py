@@ -21,6 +21,7 @@ from ..timing import Stopwatch
 from ..tolerance import Draw, grade_of
 from .case import SolveCase, cycle_positions
 from .inputs import JOB_INPUTS, PAIR_INPUTS, TIP_ROUND, check_tip_round
+from .levels import Rating
 from .revolution import PER_PITCH, phase_major, revolution_positions, revolution_summary
 from .safety import DEFAULT_ALLOWABLES, allowables_of
 
@@ -45,6 +46,7 @@ class Job:
     draw: Draw | None = None
     quantile: float = 0.95
     sensitivities: bool = False
+    rating: Rating | None = None
 
 
 def prepare_job(values: Mapping[str, object]) -> Job:
@@ -71,9 +73,11 @@ def prepare_job(values: Mapping[str, object]) -> Job:
     else:
         betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
     draw = _draw(v, given=values, case=case)
+    rating = _rating(v, given=values, case=case, cycle=positions is not None or revolution,
+                     draw=draw)
     return Job(case, tuple(betas), not v["no-estimate"], allowables_of(v), revolution, draw,
                JOB_INPUTS["quantile"].check(v["quantile"]),
-               JOB_INPUTS["sensitivities"].check(v["sensitivities"]))
+               JOB_INPUTS["sensitivities"].check(v["sensitivities"]), rating)
 
 
 def _draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | None:
@@ -93,6 +97,36 @@ def _draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | None:
     return Draw(grade_of(grade, case.params, v["centre-distance-tolerance"]),
                 JOB_INPUTS["samples"].check(v["samples"]),
                 JOB_INPUTS["seed"].check(v["seed"]))
+
+
+def _rating(v: dict, given: Mapping[str, object], case: SolveCase, cycle: bool,
+            draw: Draw | None) -> Rating | None:
+    """The life rating's inputs (``--spectrum``: the file read and every level checked),
+    refused by name: the rating's options without a spectrum, a spectrum at one position (a
+    tooth's largest stress is over its pass through the mesh) or with a tolerance class;
+    None without a spectrum."""
+    from ..rating import material, read_spectrum
+
+    path = v["spectrum"]
+    if path is None:
+        for name in ("speed", "life", "KA", "KV", "material"):
+            if given.get(name) is not None:
+                raise ParameterError(name, given[name], "with --spectrum only (the options "
+                                     "of a life rating)")
+        return None
+    if not cycle:
+        raise ParameterError("spectrum", path, "with --positions N or --revolution (a "
+                             "tooth's largest stress is over its pass through the mesh)")
+    if draw is not None:
+        raise ParameterError("spectrum", path, "without --grade (a class's life rating is "
+                             "not built)")
+    speed = JOB_INPUTS["speed"].check(v["speed"])
+    life = JOB_INPUTS["life"].check(v["life"])
+    rating = Rating(read_spectrum(path, speed, life), material(v["material"]),
+                    JOB_INPUTS["KA"].check(v["KA"]), JOB_INPUTS["KV"].check(v["KV"]), speed,
+                    str(path))
+    rating.check(case)
+    return rating
 
 
 def _tip_round(params, given: float | None) -> float | None:
@@ -165,7 +199,6 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
         second_quality,
         tooth_estimates,
     )
-    from .positions import drive
     from .report import add_tooth_estimates, cycle_rows, cycle_summary, pair_summary
     from .ring.sensitivity import solved_sensitivities
     from .ring.solver import RingSolver
@@ -190,10 +223,7 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
         sols = sampled.nominal
     else:
         solver = RingSolver(repeats=job.revolution)
-        order = (phase_major(len(job.betas), job.case.params.z1) if job.revolution
-                 else range(len(job.betas)))
-        sols = drive(job.case, [job.betas[k] for k in order], solver, executor=executor)
-        sols = tuple(sol for _, sol in sorted(zip(order, sols), key=lambda pair: pair[0]))
+        sols = _positions(job, solver)(job.case, job.betas, executor)
     # the exact pair's stresses as the samples' are read: von Mises from the surface estimate
     estimated = None if sampled is None else cycle_rows(sols, job.allowables)
     if job.estimate and len(job.betas) > 1:   # while the peaks' submodels are solved here
@@ -230,7 +260,36 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
         summary["sensitivities"] = sensitivity_summary(
             solved_sensitivities(sol), math.degrees(sol.case.beta),
             None if job.draw is None else job.draw.grade)
+    if job.rating is not None:
+        from .levels import rated, solve_levels
+
+        after = Stopwatch()
+
+        def level(case: SolveCase, betas, executor: Executor):
+            # the model kept; a solver of its own a level (a revolution's kept phases hold
+            # solutions at one torque)
+            own = RingSolver(solver.model, submodels="none", repeats=job.revolution)
+            return _positions(job, own)(case, betas, executor)
+
+        levels = solve_levels(job.case, job.betas, job.rating, level, executor)
+        summary["rating"] = {**rated(levels, job.rating, every_tooth=not job.case.deviations),
+                             "solve_s": after.s}
     return Solved(job, tuple(sols), sol, summary, rows, watch.s)
+
+
+def _positions(job: Job, solver):
+    """How ``job`` solves its positions with ``solver``: ``solve(case, betas, executor)``, a
+    revolution phase by phase (:func:`~.revolution.phase_major`), the solutions in the order
+    of ``betas``."""
+    from .positions import drive
+
+    def solve(case: SolveCase, betas, executor: Executor):
+        order = (phase_major(len(betas), case.params.z1) if job.revolution
+                 else range(len(betas)))
+        sols = drive(case, [betas[k] for k in order], solver, executor=executor)
+        return tuple(sol for _, sol in sorted(zip(order, sols), key=lambda pair: pair[0]))
+
+    return solve
 
 
 def _deviations_title(summary: dict) -> str:
@@ -268,9 +327,12 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
     rows, summary, case = solved.rows, solved.summary, solved.job.case
     files: dict[str, Path] = {}
     i = summary["inputs"]
+    n = len(solved.solutions)
+    where = f"{n} position{'s' if n > 1 else ''}"
+    if solved.job.revolution and "revolution" not in summary:   # a class's pairs turned
+        where += f" a pitch over a revolution ({len(solved.job.betas)})"
     title = (f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T {i['torque_Nm']:g} N·m, "
-             f"{len(solved.solutions)} position{'s' if len(solved.solutions) > 1 else ''}, "
-             f"quality {i['quality']}")
+             f"{where}, quality {i['quality']}")
     if "revolution" in summary:
         files.update(write_revolution_outputs(
             solved.solutions, rows, summary["revolution"], out,
@@ -281,6 +343,13 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
             files.update(write_cycle_series(solved.solutions, out))
         if pictures:
             files.update(write_cycle_outputs(rows, out, title, solved.job.allowables))
+    if "rating" in summary:
+        from ..files import write_csv
+        from .rating_report import rating_rows
+
+        rows_ = rating_rows(summary["rating"])
+        files["rating_csv"] = write_csv(out / "rating.csv", list(rows_[0]),
+                                        ([r[c] for c in rows_[0]] for r in rows_))
     if "samples" in summary:
         files.update(write_samples_outputs(summary["samples"], out, title,
                                            solved.job.allowables, pictures))

@@ -1,0 +1,124 @@
+"""A load spectrum's levels solved (``fegear solve --spectrum``, docs/rating.md): each level's
+torque, times the application and dynamic factors, at the job's positions on the model kept
+from the solve before it (the contact is nonlinear in the load: every level is solved, none
+scaled), each tooth's largest stresses over the positions, and the pair rated for its life
+(:func:`fegear.rating.rate`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
+
+from .. import progress
+from ..errors import ParameterError
+from ..running import SERIAL, Executor
+from .case import PairSolution, SolveCase
+
+if TYPE_CHECKING:   # the job module holds a Rating: a user error answers before scipy loads
+    from ..rating import Material, Spectrum
+
+
+@dataclass(frozen=True)
+class Rating:
+    """What a life rating takes besides the solve: the ``spectrum``, the ``material``, the
+    application and dynamic factors (every level's torque is solved times ``KA``·``KV``) and
+    gear 1's ``speed_rpm`` against gear 2 (None: the life as repeats of the spectrum)."""
+
+    spectrum: Spectrum
+    material: Material
+    KA: float = 1.0
+    KV: float = 1.0
+    speed_rpm: float | None = None
+    source: str = ""
+
+    def check(self, case: SolveCase) -> None:
+        """Every level's solved torque within what a solve takes, refused by name."""
+        limit = case.torque_limit
+        for k, level in enumerate(self.spectrum.levels, 1):
+            if level.torque * self.KA * self.KV > limit:
+                raise ParameterError("spectrum", self.source, f"torques whose KA·KV·torque "
+                                     f"is at most {limit:.4g} N·m, the most the pair takes "
+                                     f"(level {k}: {level.torque:g} N·m)")
+
+    @property
+    def hours(self) -> float | None:
+        """The spectrum's duration (h): given, or its revolutions at the speed."""
+        if self.spectrum.hours is not None:
+            return self.spectrum.hours
+        if self.speed_rpm is None:
+            return None
+        return self.spectrum.cycles / (self.speed_rpm * 60.0)
+
+
+def solve_levels(case: SolveCase, betas, rating: Rating, solve, executor: Executor = SERIAL
+                 ) -> list[tuple[PairSolution, ...]]:
+    """Each level of ``rating``'s spectrum at the rolling angles ``betas``: ``solve(case,
+    betas, executor)`` (the job's own way of solving its positions, its model kept) at the
+    level's torque times KA·KV."""
+    out = []
+    for k, level in enumerate(rating.spectrum.levels, 1):
+        torque = level.torque * rating.KA * rating.KV
+        progress.stage(f"spectrum level {k} of {len(rating.spectrum.levels)}: "
+                       f"{torque:.4g} N·m")
+        out.append(solve(replace(case, torque=torque), betas, executor))
+    return out
+
+
+def tooth_stresses(sols: tuple[PairSolution, ...], every_tooth: bool) -> dict[str, dict]:
+    """Each tooth's largest stresses over ``sols`` (MPa), by key: ``root1`` and ``flank1`` by
+    gear-1 tooth, ``root2`` and ``flank2`` by gear-2 tooth. ``every_tooth``: the positions of
+    a perfect pair within a pitch, where each tooth passes every place a tooth is seen at:
+    one value for every tooth of a gear, tooth None."""
+    out: dict[str, dict] = {"root1": {}, "flank1": {}, "root2": {}, "flank2": {}}
+    for sol in sols:
+        for t in sol.teeth:
+            if t.load_N <= 0:
+                continue
+            one, two = (None, None) if every_tooth else (t.tooth, t.tooth2)
+            _keep(out["root1"], one, t.root1_MPa)
+            _keep(out["flank1"], one, t.flank_p_MPa)
+            if t.tooth2 is not None:
+                _keep(out["root2"], two, t.root2_MPa)
+                _keep(out["flank2"], two, t.flank_p_MPa)
+    return out
+
+
+def rated(levels: list[tuple[PairSolution, ...]], rating: Rating, every_tooth: bool) -> dict:
+    """The summary's ``rating``: the inputs, each level's torque, cycles and largest stresses,
+    and the four modes rated (:func:`fegear.rating.rate`)."""
+    from ..rating import rate
+
+    z = (levels[0][0].case.params.z1, levels[0][0].case.params.z2)
+    stresses = [tooth_stresses(sols, every_tooth) for sols in levels]
+    cycles = [level.cycles for level in rating.spectrum.levels]
+    out = rate(stresses, cycles, z, rating.material, rating.hours)
+    rows = []
+    for level, s in zip(rating.spectrum.levels, stresses):
+        rows.append({"torque_Nm": level.torque,
+                     "solved_torque_Nm": level.torque * rating.KA * rating.KV,
+                     "cycles": level.cycles,
+                     **{f"{key}_MPa": max(s[key].values(), default=0.0) for key in s}})
+    m = rating.material
+    return _finite({"material": {"name": m.name, "treatment": m.treatment, "sigma_Hlim_MPa":
+                                 m.sigma_Hlim, "sigma_FE_MPa": m.sigma_FE, "source": m.source},
+                    "KA": rating.KA, "KV": rating.KV, "speed_rpm": rating.speed_rpm,
+                    "every_tooth": every_tooth, "levels": rows, **out})
+
+
+def _finite(value):
+    """``value`` with every infinite float as the string "inf" (JSON has no infinity: an
+    unlimited life, a damage that breaks a tooth at once)."""
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [_finite(v) for v in value]
+    if isinstance(value, float) and math.isinf(value):
+        return "inf"
+    return value
+
+
+def _keep(table: dict, tooth, value: float) -> None:
+    if math.isfinite(value):
+        table[tooth] = max(table.get(tooth, 0.0), value)

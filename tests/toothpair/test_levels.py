@@ -1,0 +1,112 @@
+"""A load spectrum's levels (``fegear solve --spectrum``): each level is the pair solved at
+that torque (none scaled), Miner's sum read back from the levels' stresses and the S-N line
+agrees with the summary's, and bad spectra are refused before anything is written."""
+
+import math
+import subprocess
+import sys
+
+import pytest
+
+from fegear.rating import BENDING, CONTACT, Material
+from fegear.toothpair import prepare_job, solve_job
+from fegear.toothpair.rating_report import rating_rows, rating_table
+
+SPECTRUM = "torque,cycles\n60,1e8\n120,5e6\n160,3e5\n200,2e4\n"
+#: a material weak enough that every mode takes damage from the spectrum
+WEAK = 'treatment = "through-hardened"\nsigma_Hlim = 480\nsigma_FE = 220\n'
+BASE = {"quality": "coarse", "positions": 4, "no-estimate": True}
+
+
+@pytest.fixture(scope="module")
+def rated(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("spectrum")
+    (folder / "duty.csv").write_text(SPECTRUM)
+    (folder / "weak.toml").write_text(WEAK)
+    job = prepare_job({**BASE, "spectrum": str(folder / "duty.csv"), "speed": 1500.0,
+                       "KA": 1.25, "material": str(folder / "weak.toml")})
+    return solve_job(job).summary["rating"]
+
+
+def test_each_level_is_the_pair_solved_at_its_torque(rated):
+    for level in rated["levels"][::3]:
+        alone = solve_job(prepare_job({**BASE, "torque": level["solved_torque_Nm"]}))
+        assert level["solved_torque_Nm"] == pytest.approx(1.25 * level["torque_Nm"])
+        head = alone.summary["cycle"]
+        rows = head["rows"]
+        assert level["root1_MPa"] == pytest.approx(max(r["root_stress_gear1_MPa"]
+                                                       for r in rows), rel=1e-9)
+        assert level["root2_MPa"] == pytest.approx(max(r["root_stress_gear2_MPa"]
+                                                       for r in rows), rel=1e-9)
+
+
+def material_of(text: str) -> Material:
+    values = dict(line.split(" = ") for line in text.strip().splitlines())
+    return Material("weak", values["treatment"].strip('"'), float(values["sigma_Hlim"]),
+                    float(values["sigma_FE"]), "test")
+
+
+def test_miners_sum_read_back_from_the_levels_stresses(rated):
+    steel = material_of(WEAK)
+    z1, z2 = 44, 45
+    cycles = [float(line.split(",")[1]) for line in SPECTRUM.splitlines()[1:]]
+    for mode, key, limit, curve, per in (
+            ("bending gear 1", "root1_MPa", steel.sigma_FE, BENDING, 1.0),
+            ("bending gear 2", "root2_MPa", steel.sigma_FE, BENDING, z1 / z2),
+            ("pitting gear 1", "flank1_MPa", steel.sigma_Hlim, CONTACT, 1.0)):
+        line = curve[steel.treatment]
+        total = 0.0
+        for level, n in zip(rated["levels"], cycles):
+            ratio = level[key] / limit
+            if ratio <= 1.0:
+                continue
+            assert ratio <= line.static
+            # the line through the table's first point and its knee, read in logs
+            lasts = line.knee * math.exp(-math.log(ratio) / math.log(line.static)
+                                         * math.log(line.knee / line.first))
+            total += n * per / lasts
+        m = rated["modes"][mode]
+        assert total > 0, mode   # the weak material: every mode is damaged
+        assert m["miner"] == pytest.approx(total, rel=1e-9), mode
+        hours = sum(cycles) / (1500.0 * 60.0)
+        if total > 0:
+            assert m["life_h"] == pytest.approx(hours / total, rel=1e-9)
+
+
+def test_the_verdict_names_the_smallest_safety_factor(rated):
+    worst = min(rated["modes"].items(), key=lambda kv: kv[1]["safety"])
+    assert worst[0] in rated["verdict"]
+    assert rated["verdict"].startswith("PASS" if worst[1]["miner"] <= 1 else "FAIL")
+    assert "weak" in rating_table(rated)
+    assert len(rating_rows(rated)) == 4 * len(rated["modes"])
+
+
+def _solve(tmp_path, *args):
+    out = tmp_path / "out"
+    r = subprocess.run([sys.executable, "-m", "fegear", "solve", "--quality", "coarse",
+                        "--no-estimate", *args, "--out", str(out)],
+                       capture_output=True, text=True)
+    return r, out
+
+
+@pytest.mark.parametrize("text, args, fragment", [
+    ("", ["--positions", "4"], "at least one level"),
+    ("torque,cycles\n100,-3\n", ["--positions", "4"], "cycles >= 0 at line 2"),
+    ("torque,cycles\n100000,3\n", ["--positions", "4"], "the most the pair takes"),
+    ("torque,cycles\n100,3\n", [], "with --positions N or --revolution"),
+    ("torque,share\n100,1\n", ["--positions", "4"], "--speed and --life"),
+])
+def test_bad_spectra_exit_2_with_one_line_and_nothing_written(tmp_path, text, args, fragment):
+    path = tmp_path / "duty.csv"
+    path.write_text(text)
+    r, out = _solve(tmp_path, "--spectrum", str(path), *args)
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "--spectrum" in lines[0] and fragment in lines[0], lines
+    assert not out.exists()
+
+
+def test_the_rating_options_want_a_spectrum(tmp_path):
+    r, out = _solve(tmp_path, "--positions", "4", "--KA", "1.5")
+    assert r.returncode == 2 and "--KA = 1.5" in r.stderr and "with --spectrum only" in r.stderr
+    assert not out.exists()
