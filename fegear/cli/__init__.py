@@ -93,6 +93,7 @@ def _subcommands(parser: Parser):
 def main(argv: list[str] | None = None) -> int:
     """Run ``fegear`` with ``argv`` (default: the process's arguments); the exit code."""
     a = build_parser().parse_args(argv)
+    a.argv = list(sys.argv[1:] if argv is None else argv)   # as typed: a report repeats it
     logging.basicConfig(level=logging.INFO if a.verbose else logging.WARNING,
                         format="%(levelname)s %(name)s: %(message)s")
     bar = StageBar(enabled=not a.quiet and sys.stderr.isatty())

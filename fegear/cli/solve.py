@@ -19,6 +19,9 @@ def add_parser(sub) -> None:
                    help="output directory for summary.json, VTU files and pictures, made when "
                         "the solve has succeeded (default: none, the table only)")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    p.add_argument("--report", action="store_true",
+                   help="write report.html into --out: one self-contained page, the verdict "
+                        "first (docs/outputs.md, \"The report\")")
     p.add_argument("--scheduler", default=None,
                    help="with --grade: solve the class's pairs on this Dask distributed "
                         "scheduler (e.g. tcp://host:8786; its workers need fegear) instead of "
@@ -27,6 +30,7 @@ def add_parser(sub) -> None:
 
 
 def run(a: argparse.Namespace) -> int:
+    import shlex
     import shutil
 
     from ..errors import FegearError
@@ -37,6 +41,9 @@ def run(a: argparse.Namespace) -> int:
     from .terminal import command_wall_s
 
     job = prepare_job(given_values(a, JOB_INPUTS.values()))
+    if a.report and a.out is None:
+        raise FegearError("--report: with --out DIR (the page is written there, beside the "
+                          "pictures it shows)")
     if a.scheduler and job.draw is None:
         raise FegearError("--scheduler: with --grade only (a class's pairs are the work a "
                           "cluster shares)")
@@ -45,7 +52,8 @@ def run(a: argparse.Namespace) -> int:
     made = out is not None and not out.exists()
     try:
         with Cluster(connect(a.scheduler)) if a.scheduler else spare_core() as executor:
-            result = run_job(job, out, executor=executor)
+            result = run_job(job, out, executor=executor,
+                             report=shlex.join(["fegear", *a.argv]) if a.report else None)
     except BaseException:
         if made and out.exists():  # made by this run: nothing half-written stays
             shutil.rmtree(out, ignore_errors=True)

@@ -173,13 +173,19 @@ class JobResult:
 
 
 def run_job(job: Job, out: Path | None, fields: bool = True, pictures: bool = True,
-            executor: Executor = SERIAL) -> JobResult:
+            executor: Executor = SERIAL, report: str | None = None) -> JobResult:
     """Solve ``job`` (on ``executor``: :func:`solve_job`); write summary.json, and the VTUs
-    (``fields``) and pictures (``pictures``) into ``out`` unless it is None. ``out`` is made
-    only after the solve, so a solve that fails leaves nothing behind."""
+    (``fields``) and pictures (``pictures``) into ``out`` unless it is None, and with
+    ``report`` (the command that gives the numbers again) report.html
+    (:mod:`.html_report`). ``out`` is made only after the solve, so a solve that fails
+    leaves nothing behind."""
     progress.plan(2 + len(job.betas) + job.estimate + (out is not None))
     solved = solve_job(job, executor)
     files = {} if out is None else write_job(solved, out, fields, pictures)
+    if report is not None and out is not None:
+        from .html_report import write_report
+
+        files["report"] = write_report(solved.summary, files, out, report)
     return JobResult(solved.summary, files, solved.rows, solved.solve_s)
 
 

@@ -1,0 +1,301 @@
+"""One page a designer hands on (``fegear solve --report``, docs/outputs.md, "The report"):
+report.html, self-contained (the pictures embedded, the style inline, nothing fetched), the
+verdict first, then the design, the safety factors static and for the life, the stresses with
+their error estimate and a class's band, the spectrum's damage, the pictures and where the
+numbers come from.
+
+It reads a solved job's summary and the pictures already written beside it; it solves
+nothing.
+"""
+
+from __future__ import annotations
+
+import base64
+import hashlib
+import html
+import json
+import math
+from datetime import UTC, datetime
+from pathlib import Path
+
+#: the pictures a page shows, in order, with a caption each (the files' keys)
+PICTURES = {"png": "Von Mises stress on the loaded teeth and at the contact peak",
+            "root_png": "Root stresses: each fillet's largest σ1",
+            "flank_png": "Contact pressure along the flank against Hertz",
+            "cycle_png": "The stresses and safety factors over the mesh cycle",
+            "revolution_png": "The stresses over a whole revolution",
+            "revolution_teeth_png": "Each tooth's largest stresses over the revolution",
+            "samples_png": "Each safety factor over the tolerance class's pairs",
+            "sensitivities_png": "Which deviation decides the stress"}
+#: the static safety factors: summary key → (label, stress key, allowable key)
+STATIC = {"safety_bending_gear1": ("S_F gear 1", "root_stress_gear1_MPa",
+                                   "allowable_bending_MPa"),
+          "safety_bending_gear2": ("S_F gear 2", "root_stress_gear2_MPa",
+                                   "allowable_bending_MPa"),
+          "safety_contact": ("S_H", "contact_pressure_MPa", "allowable_contact_MPa"),
+          "safety_contact_flank": ("S_H flank", "flank_contact_pressure_MPa",
+                                   "allowable_contact_MPa")}
+#: the headline stresses as the page names them
+HEADLINES = {"root_stress_gear1_MPa": "root σ1, gear 1",
+             "root_stress_gear2_MPa": "root σ1, gear 2",
+             "contact_pressure_MPa": "contact pressure",
+             "flank_contact_pressure_MPa": "flank pressure",
+             "von_mises_max_MPa": "von Mises max"}
+
+STYLE = """
+body { font-family: system-ui, sans-serif; max-width: 60rem; margin: 1.5rem auto;
+       padding: 0 1rem; color: #1b1b1b; }
+h1 { font-size: 1.4rem; margin-bottom: 0.2rem; }
+h2 { font-size: 1.1rem; margin-top: 2rem; border-bottom: 1px solid #ccc; }
+.design { color: #444; }
+.verdict { padding: 0.8rem 1rem; border-radius: 6px; font-size: 1.05rem; margin: 1rem 0; }
+.verdict.pass { background: #e3f3e6; border: 2px solid #1e6b2f; }
+.verdict.fail { background: #fbe4e2; border: 2px solid #b0201a; }
+.verdict strong { font-size: 1.3rem; }
+table { border-collapse: collapse; margin: 0.5rem 0; }
+th, td { border: 1px solid #ccc; padding: 0.2rem 0.6rem; text-align: right; }
+th:first-child, td:first-child { text-align: left; }
+td.bad { color: #b0201a; font-weight: bold; }
+figure { margin: 1rem 0; }
+figure img { max-width: 100%; border: 1px solid #ddd; }
+figcaption { color: #444; font-size: 0.9rem; }
+code { background: #f3f3f3; padding: 0.1rem 0.3rem; word-break: break-all; }
+"""
+
+
+def write_report(summary: dict, files: dict[str, Path], out: Path, command: str) -> Path:
+    """report.html in ``out`` from a job's ``summary`` and the pictures among ``files``;
+    ``command``: the command that gives the numbers again."""
+    path = Path(out) / "report.html"
+    path.write_text(report_html(summary, files, command), encoding="utf-8")
+    return path
+
+
+def report_html(summary: dict, files: dict[str, Path], command: str) -> str:
+    """The page (module docstring)."""
+    i = summary["inputs"]
+    title = (f"m {i['m']:g}, z {i['z2']}/{i['z1']}, h1 {i['h1']:g}, f1 {i['f1']:g}, "
+             f"T {i['torque_Nm']:g} N·m")
+    parts = [f"<h1>fegear report: {_e(title)}</h1>",
+             f"<p class='design'>{_e(_design_words(i))}</p>",
+             _verdict(summary),
+             "<h2>Safety factors</h2>",
+             f"<h3>Static, at {i['torque_Nm']:g} N·m</h3>", _static_table(summary)]
+    if "rating" in summary:
+        parts += ["<h3>For the life</h3>", _life_table(summary["rating"])]
+    parts += ["<h2>Stresses</h2>", _stress_table(summary)]
+    if "rating" in summary:
+        parts += ["<h2>The load spectrum</h2>", _spectrum_table(summary["rating"])]
+    parts += ["<h2>The design and its inputs</h2>", _inputs_table(i)]
+    pictures = [_figure(files[key], caption) for key, caption in PICTURES.items()
+                if key in files and Path(files[key]).exists()]
+    if pictures:
+        parts += ["<h2>Pictures</h2>", *pictures]
+    parts += ["<h2>Where the numbers come from</h2>", _provenance(summary, command)]
+    return ("<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
+            f"<title>fegear: {_e(title)}</title><style>{STYLE}</style></head><body>\n"
+            + "\n".join(parts) + "\n</body></html>\n")
+
+
+def verdicts(summary: dict) -> list[tuple[bool, str]]:
+    """Each verdict the summary holds as (passed, line): the static one (the smallest safety
+    factor over the positions, where, and on which tooth), the life's and the class's."""
+    out = []
+    factors = _static_minima(summary)
+    if factors:
+        key, (value, at) = min(factors.items(), key=lambda kv: kv[1][0])
+        label = STATIC[key][0]
+        tooth = _tooth_of(summary, key, at)
+        where = f" at β {at:.3g}°" if at is not None else ""
+        edge = ""
+        if key == "safety_contact" and summary.get("contact_peak_on_tip_round"):
+            flank = factors.get("safety_contact_flank", (None,))[0]
+            edge = (" on the tip round (edge contact" + (f"; S_H flank {flank:.2f}"
+                                                         if flank else "") + ")")
+        out.append((value >= 1.0, f"static: {label} {value:.2f}{where}{tooth}{edge} limits "
+                                  f"({'at least 1' if value >= 1 else 'below 1'})"))
+    if "rating" in summary:
+        line = summary["rating"]["verdict"]
+        out.append((line.startswith("PASS"), f"for the life: {line}"))
+    if "samples" in summary:
+        line = summary["samples"]["verdict"]
+        out.append((line.startswith("PASS"), f"for the class: {line}"))
+    return out
+
+
+def _verdict(summary: dict) -> str:
+    found = verdicts(summary)
+    passed = all(ok for ok, _ in found)
+    word = "PASS" if passed else "FAIL"
+    lines = "".join(f"<li>{'✔' if ok else '✘'} {_e(line)}</li>" for ok, line in found)
+    return (f"<div class='verdict {'pass' if passed else 'fail'}' id='verdict'>"
+            f"<strong>{word}</strong><ul>{lines}</ul></div>")
+
+
+def _static_minima(summary: dict) -> dict[str, tuple[float, float | None]]:
+    """Each static safety factor's smallest over the positions and where (β, degrees)."""
+    cycle = summary.get("cycle")
+    out = {}
+    for key in STATIC:
+        if cycle is not None and isinstance(cycle.get(key), dict):
+            out[key] = (cycle[key]["min"], cycle[key]["at_position_deg"])
+        elif summary.get(key) is not None:
+            out[key] = (summary[key], summary["inputs"].get("position_deg"))
+    return {k: v for k, v in out.items() if v[0] is not None}
+
+
+def _tooth_of(summary: dict, key: str, at: float | None) -> str:
+    """On which tooth the factor ``key`` is smallest, where the summary's teeth are of that
+    position."""
+    here = summary["inputs"].get("position_deg")
+    if at is None or here is None or abs(at - here) > 1e-9 or not summary.get("teeth"):
+        return ""
+    teeth = [t for t in summary["teeth"] if t.get(key) is not None]
+    if not teeth:
+        return ""
+    t = min(teeth, key=lambda t: t[key])
+    if key == "safety_bending_gear2" and t.get("gear2_tooth") is not None:
+        return f", gear 2 tooth {t['gear2_tooth']}"
+    return f", gear 1 tooth {t['tooth']}"
+
+
+def _static_table(summary: dict) -> str:
+    i = summary["inputs"]
+    rows = []
+    for key, (value, at) in _static_minima(summary).items():
+        label, stress_key, allowable_key = STATIC[key]
+        stress = i[allowable_key] / value
+        rows.append([label, _cell(value), f"{i[allowable_key]:g}", f"{stress:.1f}",
+                     "" if at is None else f"{at:.3g}"])
+    return _table(["factor", "S", "allowable MPa", "stress MPa", "at β °"], rows)
+
+
+def _life_table(r: dict) -> str:
+    rows = []
+    for mode, m in r["modes"].items():
+        life = (m["life_h"] if m["life_h"] is not None else m["life_repeats"])
+        unit = " h" if m["life_h"] is not None else " spectra"
+        rows.append([mode, "all" if m["tooth"] is None else str(m["tooth"]),
+                     _num(m["miner"]), "unlimited" if life == "inf" else f"{life:.3g}{unit}",
+                     _cell(m["safety"])])
+    mat = r["material"]
+    note = (f"<p>{_e(mat['name'])} ({_e(mat['treatment'])}): σ_Hlim "
+            f"{mat['sigma_Hlim_MPa']:g} MPa, σ_FE {mat['sigma_FE_MPa']:g} MPa; "
+            f"{_e(mat['source'])}. KA {r['KA']:g}, KV {r['KV']:g}.</p>")
+    return _table(["mode", "tooth", "Miner's sum", "life", "S at the required life"],
+                  rows) + note
+
+
+def _stress_table(summary: dict) -> str:
+    estimate = summary.get("error_estimate_by_stress_pct") or {}
+    cycle = summary.get("cycle") or {}
+    band = (summary.get("samples") or {}).get("stresses", {})
+    head = ["stress", "FE MPa", "error estimate %"]
+    if band:
+        head += ["class P50", "class P95"]
+    rows = []
+    for key, label in HEADLINES.items():
+        value = cycle[key]["max"] if isinstance(cycle.get(key), dict) else summary.get(key)
+        if value is None:
+            continue
+        err = estimate.get(key)
+        row = [label, f"{value:.1f}", "–" if err is None else f"±{err:.1f}"]
+        if band:
+            qs = {q["q"]: q for q in band[key]["quantiles"]}
+            row += [_quantile(qs.get(0.5)), _quantile(qs.get(0.95))]
+        rows.append(row)
+    note = ("<p>The largest over the positions solved. The error estimate compares the solve "
+            "with a second mesh level (docs/model.md); – where it was not run "
+            "(<code>--no-estimate</code>).</p>")
+    return _table(head, rows) + note
+
+
+def _spectrum_table(r: dict) -> str:
+    rows = []
+    modes = list(r["modes"].items())
+    for k, level in enumerate(r["levels"]):
+        rows.append([str(k + 1), f"{level['torque_Nm']:g}", f"{level['solved_torque_Nm']:.4g}",
+                     f"{level['cycles']:.3g}",
+                     *[f"{m['stress_MPa'][k]:.1f} / {_num(m['damage'][k])}"
+                       for _, m in modes]])
+    head = ["level", "torque N·m", "solved N·m", "cycles",
+            *[f"{name}: MPa / damage" for name, _ in modes]]
+    return _table(head, rows)
+
+
+def _inputs_table(i: dict) -> str:
+    from .report import deviations_words
+
+    rows = [[_e(k), _e(_value(v))] for k, v in i.items() if k != "deviations"]
+    rows.append(["deviations", _e(deviations_words(i.get("deviations"))
+                                  or "none (a perfect pair)")])
+    return _table(["input", "value"], rows, escape=False)
+
+
+def _provenance(summary: dict, command: str) -> str:
+    from ..provenance import code_version
+
+    key = json.dumps(summary["inputs"], sort_keys=True, separators=(",", ":"))
+    digest = hashlib.sha256(key.encode()).hexdigest()[:16]
+    when = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
+    return _table(["", ""], [["fegear", _e(code_version())],
+                             ["the inputs' hash (SHA-256 of summary.json's inputs)", digest],
+                             ["the command that gives these numbers again",
+                              f"<code>{_e(command)}</code>"],
+                             ["written", when]], escape=False)
+
+
+def _figure(path: Path, caption: str) -> str:
+    data = base64.b64encode(Path(path).read_bytes()).decode("ascii")
+    return (f"<figure><img src='data:image/png;base64,{data}' alt='{_e(caption)}'>"
+            f"<figcaption>{_e(caption)}</figcaption></figure>")
+
+
+def _table(head: list[str], rows: list[list[str]], escape: bool = True) -> str:
+    def cell(tag: str, text: str) -> str:
+        if text.startswith("<td class="):
+            return text
+        return f"<{tag}>{_e(text) if escape else text}</{tag}>"
+
+    lines = ["<table><tr>" + "".join(f"<th>{_e(h)}</th>" for h in head) + "</tr>"]
+    lines += ["<tr>" + "".join(cell("td", c) for c in row) + "</tr>" for row in rows]
+    return "\n".join(lines) + "</table>"
+
+
+def _cell(value) -> str:
+    """A safety factor's cell, marked where it is below 1."""
+    if value == "inf" or value is None:
+        return "∞" if value == "inf" else "–"
+    text = f"{value:.2f}"
+    return f"<td class='bad'>{text}</td>" if value < 1.0 else text
+
+
+def _num(value) -> str:
+    if value == "inf":
+        return "∞"
+    return "0" if value == 0 else f"{value:.3g}"
+
+
+def _quantile(q: dict | None) -> str:
+    if q is None:
+        return "–"
+    if q["jams"]:
+        return "jams"
+    err = "" if q["error"] is None else f" ± {q['error']:.1f}"
+    return f"{q['value']:.1f}{err}"
+
+
+def _value(v) -> str:
+    if isinstance(v, float):
+        return f"{v:g}" if math.isfinite(v) else str(v)
+    return "–" if v is None else str(v)
+
+
+def _design_words(i: dict) -> str:
+    return (f"torque {i['torque_Nm']:g} N·m, face width {i['thickness_mm']:g} mm, E "
+            f"{i['E_MPa']:g} MPa, ν {i['nu']:g}, shift {i['shift']:g}, tip relief "
+            f"{i['relief_um']:g} µm, quality {i['quality']}")
+
+
+def _e(text) -> str:
+    return html.escape(str(text), quote=True)
