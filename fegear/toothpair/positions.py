@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import logging
 import math
+from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Protocol
@@ -142,6 +143,12 @@ def drive(case: SolveCase, betas, solver: PositionModel,
     return tuple(sols)
 
 
+#: the exact pair's clearance states found last, by (pair, rolling angles): they depend on the
+#: geometry alone, so the levels of a load spectrum or the torques of a study find them here
+_FOUND: OrderedDict = OrderedDict()
+KEEP_FOUND = 4
+
+
 class _Clearances:
     """The clearance states of every position ((β, state) pairs, the + torque's side, one
     search), a long cycle's found on the executor while the model is built, each tooth's moved
@@ -152,15 +159,21 @@ class _Clearances:
                  ) -> None:
         self._betas, self._case = tuple(betas), case
         self._find = ToothContact(case.params, profile).states
+        self._key = (case.params, self._betas)
         self._task = executor.submit(self._find, self._betas, None, True, (+1,)) \
-            if len(self._betas) >= CHAINED else None
+            if len(self._betas) >= CHAINED and self._key not in _FOUND else None
         self._states: list | None = None
 
     def get(self) -> list:
         if self._states is None:
             with timed("clearance"):
-                found = self._task.result() if self._task is not None else \
-                    self._find(self._betas, directions=(+1,))
+                found = _FOUND.pop(self._key, None)
+                if found is None:
+                    found = self._task.result() if self._task is not None else \
+                        self._find(self._betas, directions=(+1,))
+                _FOUND[self._key] = found
+                while len(_FOUND) > KEEP_FOUND:
+                    _FOUND.popitem(last=False)
                 self._states = list(zip(self._betas, found))
                 refuse_interference(self._states)
                 if self._case.deviations:
