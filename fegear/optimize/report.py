@@ -6,10 +6,10 @@ each with what limits it, and the ``fegear solve`` line that gives its numbers.
 from __future__ import annotations
 
 import math
-import shlex
 from collections.abc import Mapping
 from pathlib import Path
 
+from ..toothpair import solve_command
 from .design import carrying_tooth
 from .space import Space
 
@@ -28,12 +28,13 @@ def resolve(values: Mapping, positions: int, out: Path | None) -> dict:
     final table. ``safety`` is the smallest of every safety factor over the cycle, S_H with
     a loaded tip round included (for a design that keeps its rounds unloaded, the search's
     objective); ``limited_by`` names it, with the rolling angle and the tooth."""
-    from ..toothpair import prepare_job, solve_job, write_job
+    from ..toothpair import prepare_job, solve_job, write_job, write_report
 
     inputs = {**values, "quality": CHECK_QUALITY, "positions": positions}
     solved = solve_job(prepare_job(inputs))
-    if out is not None:
-        write_job(solved, out, fields=False, pictures=True)
+    if out is not None:   # its files and its one-page report
+        files = write_job(solved, out, fields=False, pictures=True)
+        write_report(solved.summary, files, out, solve_command(inputs))
     c, s = solved.summary["cycle"], solved.summary
     row = {"inputs": dict(values), "command": solve_command(inputs)}
     for name, key in FACTORS.items():
@@ -59,16 +60,6 @@ def _tooth(solutions, beta_deg: float, factor: str) -> int:
 
     sol = min(solutions, key=lambda x: abs(math.degrees(x.case.beta) - beta_deg))
     return carrying_tooth(sol, SAFETY[FACTORS[factor]][1])
-
-
-def solve_command(inputs: Mapping) -> str:
-    """The ``fegear solve`` line of ``inputs`` (by name)."""
-    parts = ["fegear", "solve"]
-    for k, v in inputs.items():
-        if v is None or k == "no-estimate":
-            continue
-        parts += [f"--{k}", f"{v:.6g}" if isinstance(v, float) else str(v)]
-    return shlex.join(parts)
 
 
 def baselines(space: Space) -> dict[str, dict]:

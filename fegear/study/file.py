@@ -46,7 +46,7 @@ from ..toothpair import JOB_INPUTS, RENAMED, prepare_job
 MAX_CASES = 100_000
 _SECTIONS = ("study", "outputs", "base", "sweep")
 _STUDY_KEYS = ("name", "description")
-_OUTPUT_KEYS = ("vtu", "png")
+_OUTPUT_KEYS = ("vtu", "png", "report")
 _BLOCK_KEYS = ("combine",)
 
 
@@ -56,10 +56,12 @@ class StudyError(FegearError):
 
 @dataclass(frozen=True)
 class Outputs:
-    """Files kept per case besides the numbers: the VTU fields, the pictures."""
+    """Files kept per case besides the numbers: the VTU fields, the pictures, the one-page
+    report (and the study's index page of them)."""
 
     vtu: bool = False
     png: bool = False
+    report: bool = False
 
 
 @dataclass(frozen=True)
@@ -192,8 +194,8 @@ def case_key(values: dict, outputs: Outputs, code: str) -> str:
     full = {KEY_NAMES.get(k, k): v for k, v in JOB_INPUTS.keyed(values).items()}
     if full.get("deviations"):   # a measured file decides by what it holds, not by its name
         full["deviations"] = _digest(Path(str(full["deviations"])))
-    text = json.dumps({"inputs": full, "outputs": [outputs.vtu, outputs.png], "code": code},
-                      sort_keys=True)
+    kept = [outputs.vtu, outputs.png] + [True] * outputs.report   # older keys stay valid
+    text = json.dumps({"inputs": full, "outputs": kept, "code": code}, sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 

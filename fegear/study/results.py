@@ -118,6 +118,8 @@ def write_results(study: Study, out: Path) -> dict[str, Path]:
                                                                                      cols))),
              "md": write_atomic(out / "results.md",
                                 lambda t: t.write_text(markdown(study, table) + "\n"))}
+    if study.outputs.report:
+        files["report"] = write_index(study, table, out)
     plots = out / "plots"
     plots.mkdir(exist_ok=True)
     for x in study.varied:
@@ -127,6 +129,27 @@ def write_results(study: Study, out: Path) -> dict[str, Path]:
         if png is not None:
             files[f"plot_{x}"] = png
     return files
+
+
+def write_index(study: Study, table: list[dict], out: Path) -> Path:
+    """report.html: the study's index page, a row a case with its verdict and a link to its
+    own page (``cases/<key>/report.html``)."""
+    from ..toothpair import index_html
+    from .records import finished
+
+    done = finished(study, out)
+    cases = []
+    for row in table:
+        rec = done.get(row["key"]) if row["key"] else None
+        page = out / "cases" / str(row["key"]) / "report.html"
+        swept = next((c.swept for c in study.cases if c.key == row["key"]), {})
+        cases.append({"case": row["case"], "values": swept, "status": row["status"],
+                      "error": row.get("error"),
+                      "summary": rec.get("summary") if rec else None,
+                      "link": f"cases/{row['key']}/report.html" if page.exists() else None})
+    return write_atomic(out / "report.html",
+                        lambda tmp: tmp.write_text(index_html(study.name, cases),
+                                                   encoding="utf-8"))
 
 
 def plot_input(path: Path, study: Study, table: list[dict], x: str) -> Path | None:

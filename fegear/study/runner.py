@@ -33,7 +33,7 @@ from ..errors import FegearError
 from ..files import prepare_dir, write_json
 from ..provenance import code_version
 from ..running import connect, local_pool
-from .file import Study, StudyCase, StudyError
+from .file import Outputs, Study, StudyCase, StudyError
 from .records import finished, store, study_json
 
 log = logging.getLogger(__name__)
@@ -235,14 +235,14 @@ def _inode(path: Path) -> int | None:
         return None
 
 
-def run_case(key: str, values: dict, vtu: bool, png: bool,
+def run_case(key: str, values: dict, outputs: Outputs,
              running: str | None = None) -> tuple[dict, dict[str, bytes]]:
     """Solve one case (in a worker): its record and the bytes of its kept files. Never
     raises for a failing case: the record says ``failed`` and why. ``running``: a directory
     where the case is marked while it runs (so that a dead worker's case can be told)."""
     from .. import __version__
     from ..provenance import library_versions
-    from ..toothpair import prepare_job, run_job
+    from ..toothpair import prepare_job, run_job, solve_command
 
     t0 = time.perf_counter()
     record = {"key": key, "status": "ok", "error": None, "inputs": values,
@@ -253,9 +253,13 @@ def run_case(key: str, values: dict, vtu: bool, png: bool,
         mark.touch()
     try:
         with _SOLVE_LOCK, tempfile.TemporaryDirectory(prefix="fegear-case-") as tmp:
-            result = run_job(prepare_job(values), Path(tmp) if vtu or png else None,
-                         fields=vtu, pictures=png)
-            files = {p.name: p.read_bytes() for k, p in result.files.items() if k != "summary"}
+            keep = outputs.vtu or outputs.png or outputs.report
+            result = run_job(prepare_job(values), Path(tmp) if keep else None,
+                             fields=outputs.vtu, pictures=outputs.png or outputs.report,
+                             report=solve_command(values) if outputs.report else None)
+            # a report's pictures are in it: their files are kept only where asked for
+            files = {p.name: p.read_bytes() for k, p in result.files.items()
+                     if k != "summary" and (outputs.png or p.suffix != ".png")}
         try:
             json.dumps(result.summary, allow_nan=False)
             record.update(summary=result.summary, solve_s=result.solve_s)
@@ -288,8 +292,8 @@ def _pool_results(todo: list[StudyCase], study: Study, workers: int | None,
         for stale in running.glob("*"):
             stale.unlink()
         pool = local_pool(min(n, len(pending)))
-        futures = {pool.submit(run_case, c.key, c.values, study.outputs.vtu,
-                               study.outputs.png, str(running)): c for c in pending}
+        futures = {pool.submit(run_case, c.key, c.values, study.outputs, str(running)): c
+                   for c in pending}
         try:
             while futures:
                 finished_now, _ = wait(futures, return_when=FIRST_COMPLETED)
@@ -328,8 +332,8 @@ def _dask_results(todo: list[StudyCase], study: Study, client) -> Iterator:
     futures = {}
     try:
         for c in todo:
-            futures[client.submit(run_case, c.key, c.values, study.outputs.vtu,
-                                  study.outputs.png, key=f"fegear-{c.key}", pure=False)] = c
+            futures[client.submit(run_case, c.key, c.values, study.outputs,
+                                  key=f"fegear-{c.key}", pure=False)] = c
         for f in as_completed(futures):
             case = futures[f]
             try:

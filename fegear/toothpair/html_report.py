@@ -97,6 +97,28 @@ def report_html(summary: dict, files: dict[str, Path], command: str) -> str:
             + "\n".join(parts) + "\n</body></html>\n")
 
 
+def index_html(title: str, cases: list[dict]) -> str:
+    """A study's index page: a row a case (``case``, ``values``: what tells it apart,
+    ``status``, ``summary`` where solved, ``link``: its page, relative) with its verdict."""
+    rows = []
+    for c in cases:
+        found = verdicts(c["summary"]) if c.get("summary") else []
+        passed = bool(found) and all(ok for ok, _ in found)
+        word = ("PASS" if passed else "FAIL") if found else c["status"]
+        link = (f"<a href='{_e(c['link'])}'>case {c['case']}</a>" if c.get("link")
+                else f"case {c['case']}")
+        what = ", ".join(f"{k} {_value(v)}" for k, v in c["values"].items())
+        lines = "; ".join(line for _, line in found) or _e(c.get("error") or "")
+        cls = " class='bad'" if found and not passed else ""
+        rows.append(f"<tr><td>{link}</td><td>{_e(what)}</td><td{cls}>{word}</td>"
+                    f"<td>{_e(lines)}</td></tr>")
+    return ("<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
+            f"<title>fegear study: {_e(title)}</title><style>{STYLE}</style></head><body>\n"
+            f"<h1>fegear study: {_e(title)}</h1>\n<table><tr><th>case</th><th>inputs</th>"
+            "<th>verdict</th><th>why</th></tr>\n" + "\n".join(rows)
+            + "</table>\n</body></html>\n")
+
+
 def verdicts(summary: dict) -> list[tuple[bool, str]]:
     """Each verdict the summary holds as (passed, line): the static one (the smallest safety
     factor over the positions, where, and on which tooth), the life's and the class's."""

@@ -283,6 +283,19 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     return Solved(job, tuple(sols), sol, summary, rows, watch.s)
 
 
+def solve_command(inputs: Mapping) -> str:
+    """The ``fegear solve`` line of ``inputs`` (by name): what gives their numbers again."""
+    import shlex
+
+    parts = ["fegear", "solve"]
+    for k, v in inputs.items():
+        if v is None or v is False:
+            continue
+        parts += [f"--{k}"] if v is True else [f"--{k}", f"{v:.6g}" if isinstance(v, float)
+                                              else str(v)]
+    return shlex.join(parts)
+
+
 def _positions(job: Job, solver):
     """How ``job`` solves its positions with ``solver``: ``solve(case, betas, executor)``, a
     revolution phase by phase (:func:`~.revolution.phase_major`), the solutions in the order

@@ -267,15 +267,18 @@ def test_a_killed_worker_costs_its_trial_a_second_start_and_nothing_else(tmp_pat
 
 
 def test_the_printed_solve_line_gives_the_printed_numbers(tmp_path, capsys):
-    """The final table's design, solved again by the ``fegear solve`` line printed for it,
-    gives its safety factors to the last digit printed (the same solve), well inside its
-    error estimate."""
+    """The final table's design, solved again by the ``fegear solve`` line printed for it (and
+    in its one-page report), gives its safety factors to the last digit printed (the same
+    solve), well inside its error estimate."""
     import json
     import shlex
 
     from fegear.optimize import resolve
 
-    row = resolve({**BASE, "relief": 3.0, "tip-clearance": 0.02, "h1": 0.3}, 2, None)
+    row = resolve({**BASE, "relief": 3.0, "tip-clearance": 0.02, "h1": 0.3}, 2,
+                  tmp_path / "best")
+    page = (tmp_path / "best" / "report.html").read_text(encoding="utf-8")
+    assert row["command"].replace("'", "&#x27;") in page   # its page, with the same line
     argv = shlex.split(row["command"])[1:]
     assert main([*argv, "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)
