@@ -56,6 +56,7 @@ table { border-collapse: collapse; margin: 0.5rem 0; }
 th, td { border: 1px solid #ccc; padding: 0.2rem 0.6rem; text-align: right; }
 th:first-child, td:first-child { text-align: left; }
 td.bad { color: #b0201a; font-weight: bold; }
+td.text, th.text { text-align: left; }
 figure { margin: 1rem 0; }
 figure img { max-width: 100%; border: 1px solid #ddd; }
 figcaption { color: #444; font-size: 0.9rem; }
@@ -110,12 +111,13 @@ def index_html(title: str, cases: list[dict]) -> str:
         what = ", ".join(f"{k} {_value(v)}" for k, v in c["values"].items())
         lines = "; ".join(line for _, line in found) or _e(c.get("error") or "")
         cls = " class='bad'" if found and not passed else ""
-        rows.append(f"<tr><td>{link}</td><td>{_e(what)}</td><td{cls}>{word}</td>"
-                    f"<td>{_e(lines)}</td></tr>")
+        rows.append(f"<tr><td>{link}</td><td class='text'>{_e(what)}</td><td{cls}>{word}</td>"
+                    f"<td class='text'>{_e(lines)}</td></tr>")
     return ("<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
             f"<title>fegear study: {_e(title)}</title><style>{STYLE}</style></head><body>\n"
-            f"<h1>fegear study: {_e(title)}</h1>\n<table><tr><th>case</th><th>inputs</th>"
-            "<th>verdict</th><th>why</th></tr>\n" + "\n".join(rows)
+            f"<h1>fegear study: {_e(title)}</h1>\n<table><tr><th>case</th>"
+            "<th class='text'>inputs</th><th>verdict</th><th class='text'>why</th></tr>\n"
+            + "\n".join(rows)
             + "</table>\n</body></html>\n")
 
 
