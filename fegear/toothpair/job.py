@@ -73,7 +73,7 @@ def prepare_job(values: Mapping[str, object]) -> Job:
     else:
         betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
     draw = _draw(v, given=values, case=case)
-    rating = _rating(v, given=values, case=case, cycle=positions is not None or revolution,
+    rating = _rating(v, given=values, case=case, positions=positions, revolution=revolution,
                      draw=draw)
     return Job(case, tuple(betas), not v["no-estimate"], allowables_of(v), revolution, draw,
                JOB_INPUTS["quantile"].check(v["quantile"]),
@@ -99,12 +99,13 @@ def _draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | None:
                 JOB_INPUTS["seed"].check(v["seed"]))
 
 
-def _rating(v: dict, given: Mapping[str, object], case: SolveCase, cycle: bool,
-            draw: Draw | None) -> Rating | None:
+def _rating(v: dict, given: Mapping[str, object], case: SolveCase, positions: int | None,
+            revolution: bool, draw: Draw | None) -> Rating | None:
     """The life rating's inputs (``--spectrum``: the file read and every level checked),
     refused by name: the rating's options without a spectrum, a spectrum at one position (a
-    tooth's largest stress is over its pass through the mesh) or with a tolerance class;
-    None without a spectrum."""
+    tooth's largest stress is over its pass through the mesh), a deviated pair's over less
+    than a revolution (its teeth differ: each is rated over its whole pass) or with a
+    tolerance class; None without a spectrum."""
     from ..rating import material, read_spectrum
 
     path = v["spectrum"]
@@ -114,9 +115,12 @@ def _rating(v: dict, given: Mapping[str, object], case: SolveCase, cycle: bool,
                 raise ParameterError(name, given[name], "with --spectrum only (the options "
                                      "of a life rating)")
         return None
-    if not cycle:
+    if positions is None and not revolution:
         raise ParameterError("spectrum", path, "with --positions N or --revolution (a "
                              "tooth's largest stress is over its pass through the mesh)")
+    if case.deviations and not revolution:
+        raise ParameterError("spectrum", path, "with --revolution for a pair with deviations "
+                             "(its teeth differ: each is rated over its whole pass)")
     if draw is not None:
         raise ParameterError("spectrum", path, "without --grade (a class's life rating is "
                              "not built)")
@@ -366,9 +370,9 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
         from ..files import write_csv
         from .rating_report import rating_rows
 
-        rows_ = rating_rows(summary["rating"])
-        files["rating_csv"] = write_csv(out / "rating.csv", list(rows_[0]),
-                                        ([r[c] for c in rows_[0]] for r in rows_))
+        table = rating_rows(summary["rating"])
+        files["rating_csv"] = write_csv(out / "rating.csv", list(table[0]),
+                                        ([r[c] for c in table[0]] for r in table))
     if "samples" in summary:
         files.update(write_samples_outputs(summary["samples"], out, title,
                                            solved.job.allowables, pictures))

@@ -23,13 +23,20 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from itertools import groupby
 
 import numpy as np
 
 from .. import progress
 from ..errors import FegearError
 from ..fe import Allowables, blas_threads, keep_freed_memory
-from ..geometry import Placed, ToothContact, closing_points, gear1_profile, least_clearances
+from ..geometry import (
+    ToothContact,
+    closing_points,
+    gear1_profile,
+    least_clearances,
+    moved_clearances,
+)
 from ..running import SERIAL, Executor
 from ..tolerance import Draw, tooth_positions
 from .case import HEADLINE, PairSolution, SolveCase
@@ -239,8 +246,11 @@ def _chain(case: SolveCase, states: _States, pairs, solver: RingSolver, span, jo
         progress.stage(f"samples at β {math.degrees(beta):.3g}°")
         at = replace(case, beta=beta)
         near = nominal[i] = solve_position(at, state, placed, near)
-        moved = {(k, n): Placed(pairs[k], p, states.beta(i, n)).clearances(states.at(i, n))
-                 for k, n in jobs[i]}
+        moved = {}
+        for k, run in groupby(jobs[i], key=lambda job: job[0]):   # a sample's pitches at once
+            ns = [n for _, n in run]
+            moved.update(zip(((k, n) for n in ns), moved_clearances(
+                pairs[k], p, [states.at(i, n) for n in ns])))
         solver.widen(at, state, near, _paired(case, near, state, moved))
         for k, n in jobs[i]:
             one = replace(at, beta=states.beta(i, n), deviations=pairs[k])

@@ -95,6 +95,8 @@ def _solve(tmp_path, *args):
     ("torque,cycles\n100000,3\n", ["--positions", "4"], "the most the pair takes"),
     ("torque,cycles\n100,3\n", [], "with --positions N or --revolution"),
     ("torque,share\n100,1\n", ["--positions", "4"], "--speed and --life"),
+    ("torque,cycles\n100,3\n", ["--positions", "4", "--pitch-deviation", "1:11=5"],
+     "with --revolution for a pair with deviations"),
 ])
 def test_bad_spectra_exit_2_with_one_line_and_nothing_written(tmp_path, text, args, fragment):
     path = tmp_path / "duty.csv"
@@ -110,3 +112,20 @@ def test_the_rating_options_want_a_spectrum(tmp_path):
     r, out = _solve(tmp_path, "--positions", "4", "--KA", "1.5")
     assert r.returncode == 2 and "--KA = 1.5" in r.stderr and "with --spectrum only" in r.stderr
     assert not out.exists()
+
+
+def test_over_a_revolution_the_deviated_tooth_limits(tmp_path):
+    # tooth 11 of gear 1 stands 5 µm ahead: it carries more, and its root and flank are the
+    # ones that wear first (a revolution rates every tooth over its whole pass)
+    (tmp_path / "duty.csv").write_text(SPECTRUM)
+    (tmp_path / "weak.toml").write_text(WEAK)
+    job = prepare_job({"quality": "coarse", "no-estimate": True, "revolution": True,
+                       "positions": 2, "pitch-deviation": "1:11=5",
+                       "spectrum": str(tmp_path / "duty.csv"),
+                       "material": str(tmp_path / "weak.toml")})
+    rated = solve_job(job).summary["rating"]
+    assert not rated["every_tooth"]
+    for mode in ("bending gear 1", "pitting gear 1"):
+        assert rated["modes"][mode]["tooth"] == 11, mode
+    name, worst = min(rated["modes"].items(), key=lambda kv: kv[1]["safety"])
+    assert f"{name} (tooth {worst['tooth']})" in rated["verdict"]
