@@ -277,8 +277,8 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
 
         def level(case: SolveCase, betas, executor: Executor):
             # the model kept; a solver of its own a level (a revolution's kept phases hold
-            # solutions at one torque)
-            own = RingSolver(solver.model, submodels="none", repeats=job.revolution)
+            # solutions at one torque), reading the roots and the pressures alone
+            own = RingSolver(solver.model, repeats=job.revolution, roots_only=True)
             return _positions(job, own)(case, betas, executor)
 
         levels = solve_levels(job.case, job.betas, job.rating, level, executor)

@@ -107,11 +107,12 @@ class SurfaceStrains:
 
 
 def brief_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
-                   strains: SurfaceStrains) -> RingStresses:
+                   strains: SurfaceStrains | None) -> RingStresses:
     """The root zones and the surface von Mises estimate of ``pressure`` on ``contact`` (the
     ``strains`` of the contact it was turned from), read off the cut motions and loads
     (module docstring); the largest von Mises stress away from the contacts is the root
-    zones'. No fields, no submodels."""
+    zones'. No fields, no submodels. Without ``strains``, the root zones alone: the surface
+    estimate is NaN (a caller that reads the roots and the pressures)."""
     roots, motions = [], []
     for side, loads in zip(model.gears, contact.loads):
         reading = readout(side)
@@ -136,7 +137,8 @@ def brief_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
             return np.zeros(len(points))
         return strains.strain(g, contact.loads[g].get(k), cuts[k], f.get(k), points)
 
-    surface = surface_von_mises(model, contact, pressure, strain)
+    surface = (np.full((2, contact.npoints), np.nan) if strains is None else
+               surface_von_mises(model, contact, pressure, strain))
     zones = tuple(root_zone(side, readout(side).nodes,
                             {k: s.max_principal for k, s in r.items()})
                   for side, r in zip(model.gears, roots))

@@ -77,6 +77,9 @@ class RingSolver:
     ``contact_only``: no stresses at all, for a caller that reads only the contact (loads,
     shares, pressures, flank and edge apart, rotations: the tip-relief search); the root and
     von Mises stresses are NaN, the teeth's Hertz values and half-plane references None.
+    ``roots_only``: the contact and the root stresses read without fields (:func:`~.readout.
+    brief_stresses`), as a sample's are, for a caller that reads those alone (a spectrum's
+    levels); the von Mises stress and the tangent stiffness are NaN.
     ``repeats``: the positions repeat over whole pitches (a revolution), or one position is
     solved for many deviation sets (:meth:`on_kept`): each position's contact is kept for its
     phase and the others solved on it (:mod:`.phases`), its grids reaching as far beyond the
@@ -84,12 +87,14 @@ class RingSolver:
     on it (:meth:`reach`), need."""
 
     def __init__(self, model: RingModel | None = None, submodels: str = "peaks",
-                 contact_only: bool = False, repeats: bool = False) -> None:
+                 contact_only: bool = False, repeats: bool = False,
+                 roots_only: bool = False) -> None:
         if submodels not in SUBMODELS:
             raise ValueError(f"submodels must be one of {SUBMODELS}, not {submodels!r}")
         self.model = model
-        self.submodels = "none" if contact_only else submodels
+        self.submodels = "none" if contact_only or roots_only else submodels
         self.contact_only = contact_only
+        self.roots_only = roots_only
         self.phases = Phases() if repeats else None
 
     def __getstate__(self) -> dict:
@@ -253,11 +258,12 @@ class RingSolver:
         with timed("stresses"):
             touch = (math.nan if brief else
                      touch_rotation(model, contact, case.params.turn_of(first_um)))
-            tangent = math.nan if brief else tangent_stiffness(model, contact, sol)
+            tangent = (math.nan if brief or self.roots_only else
+                       tangent_stiffness(model, contact, sol))
             if self.contact_only:
                 stresses, cands = None, ()
-            elif brief:
-                strains = self.phases.strains(model, case.beta)
+            elif brief or self.roots_only:
+                strains = None if self.roots_only else self.phases.strains(model, case.beta)
                 stresses, cands = brief_stresses(model, contact, sol.pressure, strains), ()
             else:
                 stresses = ring_stresses(model, contact, sol.pressure,
@@ -267,8 +273,9 @@ class RingSolver:
                     case.beta)
             detail = RingDetail(model, case, replace(contact, A=None), sol, stresses)
             rigid = formed if formed is not None else solved_rigid_gap(detail)
-            teeth = tooth_results(detail, state, cands, rigid, references=not brief)
-        residuals = () if stresses is None or brief else tuple(
+            teeth = tooth_results(detail, state, cands, rigid,
+                                  references=not (brief or self.roots_only))
+        residuals = () if stresses is None or brief or self.roots_only else tuple(
             _residuals(model, contact, sol, stresses))
         return PairSolution(
             case=case, teeth=teeth,
