@@ -41,7 +41,9 @@ class BenchPlan:
     of gear 2 for the cost-growth runs (none: skipped); ``study_cases``: solves of the study
     runner's benchmark (0: skipped); ``peer``: CalculiX beside the ladders; ``paper_study``:
     also time studies/paper_trends.toml; ``tolerance_class``: also time a tolerance class's
-    samples over the cycle (:func:`~.ring_bench.class_run`); ``only``: one of :data:`ONLY`;
+    samples over the cycle (:func:`~.ring_bench.class_run`); ``spectrum``: also time a 4-level
+    load spectrum over the cycle against the cycle (:func:`~.ring_bench.spectrum_run`);
+    ``only``: one of :data:`ONLY`;
     ``out``: the directory (checked, made when there is something to write); ``history``: the
     file this run is appended to and compared with (None: :data:`~.history.HISTORY` in
     ``out``)."""
@@ -61,6 +63,7 @@ class BenchPlan:
     peer: bool = True
     paper_study: bool = False
     tolerance_class: bool = False
+    spectrum: bool = False
     only: str = ""
     history: Path | None = None
 
@@ -85,7 +88,7 @@ def _everything(plan: BenchPlan, say: Say) -> None:
     """Every benchmark of ``plan``, in the report's order (the command without a mode)."""
     from ..files import prepare_dir
     from . import geometry_bench, paper_study_s
-    from .ring_bench import class_run
+    from .ring_bench import class_run, spectrum_run
 
     prepare_dir(plan.out)
     say(geometry_bench(plan.params, plan.repeat))
@@ -97,7 +100,8 @@ def _everything(plan: BenchPlan, say: Say) -> None:
     scale = _scaling(plan, runs.ring, say)
     runs = replace(runs, sector=sector,
                    study=paper_study_s() if plan.paper_study else None,
-                   tolerance=class_run(plan.pair_args) if plan.tolerance_class else None)
+                   tolerance=class_run(plan.pair_args) if plan.tolerance_class else None,
+                   spectrum=spectrum_run(plan.pair_args) if plan.spectrum else None)
     _report(plan, disks, runs, scale, say)
     if plan.study_cases:
         say("")
@@ -216,6 +220,8 @@ def _ring_record(runs: PairRuns, scale: list, targets: list[str]) -> dict:
         record["paper_study_s"] = runs.study[0]
     if runs.tolerance is not None:
         record["tolerance_class"] = {"seconds": runs.tolerance[0], **runs.tolerance[1]}
+    if runs.spectrum is not None:
+        record["spectrum"] = {"cycle_s": runs.spectrum[0], "spectrum_s": runs.spectrum[1]}
     record["targets"] = targets
     return record
 

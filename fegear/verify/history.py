@@ -56,6 +56,9 @@ def bench_metrics(record: dict) -> dict[str, float]:
         out["studies/paper_trends.toml, 2 workers [s]"] = ring["paper_study_s"]
     if ring.get("tolerance_class") is not None:
         out["1000 class-6 pairs, 24 positions [s]"] = ring["tolerance_class"]["seconds"]
+    if ring.get("spectrum") is not None:
+        s = ring["spectrum"]
+        out["4-level spectrum / its cycle, whole commands [×]"] = s["spectrum_s"] / s["cycle_s"]
     return out
 
 

@@ -31,7 +31,8 @@ class PairRuns:
     (``default``), the same with the error estimate (``extra``), the ring model's ladder, and
     where they were run the mesh cycle, the sector model's ladder (with CalculiX's times on
     its meshes), the paper study (s, cases), the model cache's runs and a tolerance class's
-    samples (s, their counts: :func:`~.ring_bench.class_run`)."""
+    samples (s, their counts: :func:`~.ring_bench.class_run`) and a load spectrum's cycle (s
+    alone, s with the spectrum: :func:`~.ring_bench.spectrum_run`)."""
 
     default: RingRun
     extra: RingRun
@@ -41,6 +42,7 @@ class PairRuns:
     study: tuple[float, int] | None = None
     cached: CacheRuns | None = None
     tolerance: tuple[float, dict] | None = None
+    spectrum: tuple[float, float] | None = None
 
 
 def sector_error(values: dict, keys=None) -> float:
@@ -77,6 +79,12 @@ def pair_targets(runs: PairRuns, peer_target: float = PEER_TARGET) -> list[str]:
                      f"{counts['solved']} pairs solved at every position, {counts['jammed']} "
                      f"jammed, {counts['failed']} failed (target <= {rb.CLASS_TARGET_S:g} s): "
                      f"{_status(seconds <= rb.CLASS_TARGET_S)}")
+    if runs.spectrum is not None:
+        alone, rated = runs.spectrum
+        lines.append(f"* `fegear solve {' '.join(rb.SPECTRUM_ARGS)}` with a 4-level "
+                     f"`--spectrum`: {rated:.2f} s against {alone:.2f} s alone, "
+                     f"{rated / alone:.2f}× (target <= {rb.SPECTRUM_TARGET:g}×): "
+                     f"{_status(rated / alone <= rb.SPECTRUM_TARGET)}")
     if runs.sector is not None:
         lines += _peer(runs.sector, runs.ring, peer_target)
     return lines

@@ -39,6 +39,11 @@ STUDY_TARGET_S = 60.0         # studies/paper_trends.toml, 12 cases with estimat
 #: a tolerance class's samples of the baseline's cycle (issue 57): the whole command, 2 cores
 CLASS_ARGS = ("--grade", "6", "--samples", "1000", "--positions", "24", "--no-estimate")
 CLASS_TARGET_S = 60.0
+#: a 4-level load spectrum over the 24-position cycle (issue 58): at most twice the cycle alone
+SPECTRUM = "torque,cycles\n60,1e8\n120,5e6\n160,3e5\n200,2e4\n"
+SPECTRUM_ARGS = ("--positions", "24", "--no-estimate")
+SPECTRUM_TARGET = 2.0
+SPECTRUM_RUNS = 3
 
 
 @dataclass(frozen=True)
@@ -365,3 +370,22 @@ def class_run(pair_args: tuple[str, ...]) -> tuple[float, dict]:
                             {"FEGEAR_CACHE_DIR": f"{tmp}/cache"})
         samples = json.loads(Path(tmp, "out", "summary.json").read_text())["samples"]
     return seconds, {k: samples[k] for k in ("solved", "jammed", "failed")}
+
+
+def spectrum_run(pair_args: tuple[str, ...]) -> tuple[float, float]:
+    """Wall times (s, medians of :data:`SPECTRUM_RUNS` alternated runs) of ``fegear solve``
+    over the cycle (:data:`SPECTRUM_ARGS`, the pair's options ``pair_args``) alone and with
+    the 4-level :data:`SPECTRUM`, each the whole command in a fresh process."""
+    import statistics
+    import tempfile
+
+    with tempfile.TemporaryDirectory(prefix="fegear-bench-spectrum-") as tmp:
+        path = Path(tmp) / "duty.csv"
+        path.write_text(SPECTRUM)
+        env = {"FEGEAR_CACHE_DIR": f"{tmp}/cache"}
+        alone, rated = [], []
+        for _ in range(SPECTRUM_RUNS):
+            alone.append(command_s([*pair_args, *SPECTRUM_ARGS], env))
+            rated.append(command_s([*pair_args, *SPECTRUM_ARGS, "--spectrum", str(path)],
+                                   env))
+    return statistics.median(alone), statistics.median(rated)

@@ -237,3 +237,21 @@ def test_a_tolerance_class_is_judged_by_its_whole_command_with_what_its_pairs_ca
     assert line(59.6).endswith("161 pairs solved at every position, 839 jammed, 0 failed "
                                "(target <= 60 s): met")
     assert line(60.4).endswith("MISSED")
+
+
+def test_a_spectrum_is_judged_against_its_cycle_alone():
+    from fegear.verify import ring_bench as rb
+    from fegear.verify.history import bench_metrics
+    from fegear.verify.pair_targets import PairRuns, pair_targets
+
+    ref = dict(rb.SECTOR_REFERENCE, von_mises_max_MPa=rb.VON_MISES_RESOLVED)
+    one = rb.RingRun("standard", {"mesh": 1.0}, 1.0, 500.0, 1, 1, ref, {})
+
+    def line(alone, rated):
+        out = pair_targets(PairRuns(one, one, [one], spectrum=(alone, rated)), 20.0)
+        return next(x for x in out if "--spectrum" in x)
+
+    assert line(2.5, 4.9).endswith("1.96× (target <= 2×): met")
+    assert line(2.5, 5.1).endswith("MISSED")
+    got = bench_metrics({"ring": {"spectrum": {"cycle_s": 2.0, "spectrum_s": 3.0}}})
+    assert got["4-level spectrum / its cycle, whole commands [×]"] == 1.5
