@@ -107,11 +107,14 @@ def _unsettled(case: SolveCase, trial: Trial, err: Exception) -> str:
 
 def expected_elastic_um(case: SolveCase, near: PairSolution | None = None) -> float:
     """The elastic part of gear 1's rotation (µm of arc at r0) to place the first attempt at:
-    ``near``'s, else the torque on :data:`SHARE_GUESS` teeth of stiffness
+    ``near``'s where it has one (a brief solution's first touch is NaN), else the torque on
+    :data:`SHARE_GUESS` teeth of stiffness
     :data:`~.teeth.TOOTH_STIFFNESS` per face width."""
     p = case.params
     if near is not None:
-        return p.arc_um(near.rotation - near.first_touch)
+        elastic = p.arc_um(near.rotation - near.first_touch)
+        if math.isfinite(elastic):   # a solution read without its first touch has none
+            return elastic
     return case.torque * 1e3 / p.r0 / (case.thickness * TOOTH_STIFFNESS) / SHARE_GUESS
 
 

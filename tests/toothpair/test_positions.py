@@ -81,6 +81,22 @@ def test_the_first_guess_shares_the_torque_and_later_positions_start_from_the_la
     assert set(sols[1].timings_s) == {"contact", "stresses"}
 
 
+def test_a_position_after_one_without_its_first_touch_starts_from_the_first_guess(profile):
+    # a solution read in brief (a sample's, a spectrum level's) has no first touch (NaN): the
+    # next position's rotation is guessed afresh, not a NaN that no attempt settles on
+    from dataclasses import replace
+
+    from fegear.toothpair import expected_elastic_um
+
+    model = StandIn(again=0)
+    sol = drive(CASE, (0.0,), model, profile)[0]
+    brief = replace(sol, first_touch=math.nan)
+    p = CASE.params
+    guess = CASE.torque * 1e3 / p.r0 / (CASE.thickness * TOOTH_STIFFNESS) / SHARE_GUESS
+    assert expected_elastic_um(CASE, brief) == pytest.approx(guess)
+    assert expected_elastic_um(CASE, sol) == pytest.approx(5.0)
+
+
 def test_attempts_are_summed_and_bounded(profile):
     model = StandIn(again=2)
     sol = drive(CASE, (0.0,), model, profile)[0]
