@@ -125,8 +125,8 @@ def test_a_revolution_sample_reads_as_the_same_pair_turned_alone(baseline_ring):
 
 def test_a_dask_cluster_gives_the_local_rows():
     # the chains travel by pickle, their solver without its model: each worker builds its
-    # own and solves the same samples at the same positions, so every number is the same;
-    # the exact pair is solved here meanwhile (its solutions refer to this process's model)
+    # own and solves the same samples at the same positions; the exact pair is solved here
+    # meanwhile (its solutions refer to this process's model)
     distributed = pytest.importorskip("distributed")
     from fegear.running import Cluster, Forks
 
@@ -146,7 +146,16 @@ def test_a_dask_cluster_gives_the_local_rows():
             assert executor.workers == 2 and not executor.shares_memory
             remote = solved(executor)
     assert any(r["status"] == "solved" for r in local.rows)
-    assert remote.rows == local.rows
+    # the same solves; a worker's model is built afresh where this process's may be one kept
+    # from an earlier solve of the pair, its unit responses formed in other batches: the
+    # numbers agree to rounding, not always to the bit
+    for a, b in zip(remote.rows, local.rows, strict=True):
+        assert a.keys() == b.keys() and (a["status"], a["why"]) == (b["status"], b["why"])
+        for key, value in a.items():
+            if isinstance(value, float):
+                assert value == pytest.approx(b[key], rel=1e-9, abs=1e-9), (a["sample"], key)
+            else:
+                assert value == b[key], (a["sample"], key)
     for a, b in zip(remote.nominal, local.nominal):
         assert a.headline()["root_stress_gear1_MPa"] == pytest.approx(
             b.headline()["root_stress_gear1_MPa"], rel=1e-4)
