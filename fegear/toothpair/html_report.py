@@ -18,6 +18,8 @@ import math
 from datetime import UTC, datetime
 from pathlib import Path
 
+from .rating_report import damage_text
+
 #: the pictures a page shows, in order, with a caption each (the files' keys)
 PICTURES = {"png": "Von Mises stress on the loaded teeth and at the contact peak",
             "root_png": "Root stresses: each fillet's largest σ1",
@@ -200,7 +202,7 @@ def _life_table(r: dict) -> str:
         life = (m["life_h"] if m["life_h"] is not None else m["life_repeats"])
         unit = " h" if m["life_h"] is not None else " spectra"
         rows.append([mode, "all" if m["tooth"] is None else str(m["tooth"]),
-                     _num(m["miner"]), "unlimited" if life == "inf" else f"{life:.3g}{unit}",
+                     damage_text(m["miner"]), "unlimited" if life == "inf" else f"{life:.3g}{unit}",
                      _cell(m["safety"])])
     mat = r["material"]
     note = (f"<p>{_e(mat['name'])} ({_e(mat['treatment'])}): σ_Hlim "
@@ -240,7 +242,7 @@ def _spectrum_table(r: dict) -> str:
     for k, level in enumerate(r["levels"]):
         rows.append([str(k + 1), f"{level['torque_Nm']:g}", f"{level['solved_torque_Nm']:.4g}",
                      f"{level['cycles']:.3g}",
-                     *[f"{m['stress_MPa'][k]:.1f} / {_num(m['damage'][k])}"
+                     *[f"{m['stress_MPa'][k]:.1f} / {damage_text(m['damage'][k])}"
                        for _, m in modes]])
     head = ["level", "torque N·m", "solved N·m", "cycles",
             *[f"{name}: MPa / damage" for name, _ in modes]]
@@ -292,12 +294,6 @@ def _cell(value) -> str:
         return "∞" if value == "inf" else "–"
     text = f"{value:.2f}"
     return f"<td class='bad'>{text}</td>" if value < 1.0 else text
-
-
-def _num(value) -> str:
-    if value == "inf":
-        return "∞"
-    return "0" if value == 0 else f"{value:.3g}"
 
 
 def _quantile(q: dict | None) -> str:

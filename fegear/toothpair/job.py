@@ -340,6 +340,7 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
         write_cycle_series,
         write_mesh_stiffness,
         write_pair_outputs,
+        write_rating_outputs,
         write_revolution_outputs,
         write_samples_outputs,
         write_sensitivity_outputs,
@@ -367,12 +368,7 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
         if pictures:
             files.update(write_cycle_outputs(rows, out, title, solved.job.allowables))
     if "rating" in summary:
-        from ..files import write_csv
-        from .rating_report import rating_rows
-
-        table = rating_rows(summary["rating"])
-        files["rating_csv"] = write_csv(out / "rating.csv", list(table[0]),
-                                        ([r[c] for c in table[0]] for r in table))
+        files.update(write_rating_outputs(summary["rating"], out))
     if "samples" in summary:
         files.update(write_samples_outputs(summary["samples"], out, title,
                                            solved.job.allowables, pictures))

@@ -115,13 +115,27 @@ def write_sensitivity_outputs(sens: dict, out: Path, title: str, pictures: bool 
     the tornado of the largest)."""
     from .sensitivity_plot import sensitivities_png
 
-    rows = sens["rows"]
-    cols = list(dict.fromkeys(k for r in rows for k in r))
-    files = {"sensitivities_csv": write_csv(out / "sensitivities.csv", cols, (
-        ["" if r.get(c) is None else r[c] for c in cols] for r in rows))}
+    files = {"sensitivities_csv": _rows_csv(out / "sensitivities.csv", sens["rows"])}
     if pictures:
         files["sensitivities_png"] = sensitivities_png(out / "sensitivities.png", sens, title)
     return files
+
+
+def write_rating_outputs(rating: dict, out: Path) -> dict[str, Path]:
+    """rating.csv: a row a level and mode of a life rating (docs/rating.md): the limiting
+    tooth, the level's stress, the tooth's load cycles, the damage, the line's limit and
+    exponent, Miner's sum and the safety factor at the required life."""
+    from .rating_report import rating_rows
+
+    return {"rating_csv": _rows_csv(out / "rating.csv", rating_rows(rating))}
+
+
+def _rows_csv(path: Path, rows: list[dict]) -> Path:
+    """``rows`` as a CSV table, a column a key in the order they first come, a key a row
+    lacks (or holds None) blank."""
+    cols = list(dict.fromkeys(k for r in rows for k in r))
+    return write_csv(path, cols, (["" if r.get(c) is None else r[c] for c in cols]
+                                  for r in rows))
 
 
 def _pitch_peaks(sols, rows: list[dict], pitches: int) -> list:

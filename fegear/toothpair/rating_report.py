@@ -22,9 +22,9 @@ def rating_table(r: dict) -> str:
               "life |", "|---|---:|---:|---:|---|---:|---:|---:|"]
     for mode, m in r["modes"].items():
         tooth = "all" if m["tooth"] is None else str(m["tooth"])
-        damage = " / ".join(_d(d) for d in m["damage"])
+        damage = " / ".join(damage_text(d) for d in m["damage"])
         lines.append(f"| {mode} | {m['limit_MPa']:.0f} | {m['exponent']:.1f} | {tooth} | "
-                     f"{damage} | {_d(m['miner'])} | {_life(m)} | {m['safety']:.2f} |")
+                     f"{damage} | {damage_text(m['miner'])} | {_life(m)} | {m['safety']:.2f} |")
     mat = r["material"]
     lines += ["", f"material {mat['name']} ({mat['treatment']}): sigma_Hlim "
               f"{mat['sigma_Hlim_MPa']:g} MPa, sigma_FE {mat['sigma_FE_MPa']:g} MPa "
@@ -48,7 +48,9 @@ def _s(x) -> str:
     return "∞" if x == "inf" else f"{x:.2f}"
 
 
-def _d(d) -> str:
+def damage_text(d) -> str:
+    """A damage or Miner's sum as the tables show it: ∞ for "inf" (a level that breaks the
+    tooth at once), 0 for none."""
     return "∞" if d == "inf" else "0" if d == 0 else f"{d:.3g}"
 
 
