@@ -24,7 +24,7 @@ def rating_table(r: dict) -> str:
         tooth = "all" if m["tooth"] is None else str(m["tooth"])
         damage = " / ".join(damage_text(d) for d in m["damage"])
         lines.append(f"| {mode} | {m['limit_MPa']:.0f} | {m['exponent']:.1f} | {tooth} | "
-                     f"{damage} | {damage_text(m['miner'])} | {_life(m)} | {m['safety']:.2f} |")
+                     f"{damage} | {damage_text(m['miner'])} | {_life(m)} | {_s(m['safety'])} |")
     mat = r["material"]
     lines += ["", f"material {mat['name']} ({mat['treatment']}): sigma_Hlim "
               f"{mat['sigma_Hlim_MPa']:g} MPa, sigma_FE {mat['sigma_FE_MPa']:g} MPa "

@@ -8,7 +8,7 @@ import sys
 
 import pytest
 
-from fegear.rating import BENDING, CONTACT, Material
+from fegear.rating import BENDING, CONTACT, Material, rate
 from fegear.toothpair import prepare_job, solve_job
 from fegear.toothpair.rating_report import rating_rows, rating_table
 
@@ -112,6 +112,25 @@ def test_the_rating_options_want_a_spectrum(tmp_path):
     r, out = _solve(tmp_path, "--positions", "4", "--KA", "1.5")
     assert r.returncode == 2 and "--KA = 1.5" in r.stderr and "with --spectrum only" in r.stderr
     assert not out.exists()
+
+
+def test_an_unloaded_mode_reads_as_an_unlimited_factor():
+    # a mode no level loads has no limit: its safety factor is "inf" in the summary (JSON
+    # has no infinity) and ∞ in the table
+    from fegear.rating import material
+    from fegear.toothpair.levels import _finite
+
+    modes = rate([{"root1": {None: 100.0}, "root2": {None: 0.0}, "flank1": {None: 300.0},
+                   "flank2": {None: 300.0}}], [1e6], (44, 45), material("42CrMo"))
+    rated = _finite({"material": {"name": "42CrMo", "treatment": "through-hardened",
+                                  "sigma_Hlim_MPa": 745.0, "sigma_FE_MPa": 558.0,
+                                  "source": "s"}, "KA": 1.0, "KV": 1.0,
+                     "levels": [{"torque_Nm": 10.0, "solved_torque_Nm": 10.0, "cycles": 1e6,
+                                 "root1_MPa": 100.0, "root2_MPa": 0.0, "flank1_MPa": 300.0}],
+                     **modes})
+    assert rated["modes"]["bending gear 2"]["safety"] == "inf"
+    row = next(x for x in rating_table(rated).splitlines() if x.startswith("| bending gear 2"))
+    assert row.endswith("| ∞ |")
 
 
 def test_over_a_revolution_the_deviated_tooth_limits(tmp_path):
