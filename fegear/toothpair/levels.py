@@ -101,19 +101,19 @@ def rated(levels: list[tuple[PairSolution, ...]], rating: Rating, every_tooth: b
                      "cycles": level.cycles,
                      **{f"{key}_MPa": max(s[key].values(), default=0.0) for key in s}})
     m = rating.material
-    return _finite({"material": {"name": m.name, "treatment": m.treatment, "sigma_Hlim_MPa":
+    return json_ready({"material": {"name": m.name, "treatment": m.treatment, "sigma_Hlim_MPa":
                                  m.sigma_Hlim, "sigma_FE_MPa": m.sigma_FE, "source": m.source},
                     "KA": rating.KA, "KV": rating.KV, "speed_rpm": rating.speed_rpm,
                     "every_tooth": every_tooth, "levels": rows, **out})
 
 
-def _finite(value):
+def json_ready(value):
     """``value`` with every infinite float as the string "inf" (JSON has no infinity: an
     unlimited life, a damage that breaks a tooth at once)."""
     if isinstance(value, dict):
-        return {k: _finite(v) for k, v in value.items()}
+        return {k: json_ready(v) for k, v in value.items()}
     if isinstance(value, list):
-        return [_finite(v) for v in value]
+        return [json_ready(v) for v in value]
     if isinstance(value, float) and math.isinf(value):
         return "inf"
     return value

@@ -118,11 +118,11 @@ def test_an_unloaded_mode_reads_as_an_unlimited_factor():
     # a mode no level loads has no limit: its safety factor is "inf" in the summary (JSON
     # has no infinity) and ∞ in the table
     from fegear.rating import material
-    from fegear.toothpair.levels import _finite
+    from fegear.toothpair.levels import json_ready
 
     modes = rate([{"root1": {None: 100.0}, "root2": {None: 0.0}, "flank1": {None: 300.0},
                    "flank2": {None: 300.0}}], [1e6], (44, 45), material("42CrMo"))
-    rated = _finite({"material": {"name": "42CrMo", "treatment": "through-hardened",
+    rated = json_ready({"material": {"name": "42CrMo", "treatment": "through-hardened",
                                   "sigma_Hlim_MPa": 745.0, "sigma_FE_MPa": 558.0,
                                   "source": "s"}, "KA": 1.0, "KV": 1.0,
                      "levels": [{"torque_Nm": 10.0, "solved_torque_Nm": 10.0, "cycles": 1e6,
