@@ -10,6 +10,7 @@ import json
 import os
 import re
 import shutil
+import signal
 import subprocess
 import tempfile
 import urllib.request
@@ -52,19 +53,25 @@ def look(browser: str, page: Path, width: int = 1200, height: int = 2400) -> Loo
     """Open ``page`` in headless ``browser`` and look at it (:class:`Looked`)."""
     from tornado.ioloop import IOLoop
 
-    with tempfile.TemporaryDirectory() as profile:
+    # the browser's helper processes may still write its profile as it ends: its whole
+    # process group is ended, and what they leave behind does not fail the test
+    with tempfile.TemporaryDirectory(ignore_cleanup_errors=True) as profile:
         proc = subprocess.Popen(
             [browser, "--headless=new", "--no-sandbox", "--disable-gpu", "--hide-scrollbars",
              "--remote-debugging-port=0", f"--user-data-dir={profile}",
              f"--window-size={width},{height}", "about:blank"],
-            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+            start_new_session=True)
         try:
             port = _port(proc)
             target = _page_target(port)
             return IOLoop.current().run_sync(
                 lambda: _drive(target, page.resolve().as_uri(), width, height), timeout=120)
         finally:
-            proc.kill()
+            try:
+                os.killpg(proc.pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
             proc.wait()
 
 

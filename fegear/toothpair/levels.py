@@ -101,10 +101,11 @@ def rated(levels: list[tuple[PairSolution, ...]], rating: Rating, every_tooth: b
                      "cycles": level.cycles,
                      **{f"{key}_MPa": max(s[key].values(), default=0.0) for key in s}})
     m = rating.material
-    return json_ready({"material": {"name": m.name, "treatment": m.treatment, "sigma_Hlim_MPa":
-                                 m.sigma_Hlim, "sigma_FE_MPa": m.sigma_FE, "source": m.source},
-                    "KA": rating.KA, "KV": rating.KV, "speed_rpm": rating.speed_rpm,
-                    "every_tooth": every_tooth, "levels": rows, **out})
+    material = {"name": m.name, "treatment": m.treatment, "sigma_Hlim_MPa": m.sigma_Hlim,
+                "sigma_FE_MPa": m.sigma_FE, "source": m.source}
+    return json_ready({"material": material, "KA": rating.KA, "KV": rating.KV,
+                       "speed_rpm": rating.speed_rpm, "every_tooth": every_tooth,
+                       "levels": rows, **out})
 
 
 def json_ready(value):
