@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from .. import progress
@@ -272,14 +272,18 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
             None if job.draw is None else job.draw.grade)
     if job.rating is not None:
         from .levels import rated, solve_levels
+        from .positions import drive_torques
 
         after = Stopwatch()
 
-        def level(case: SolveCase, betas, executor: Executor):
-            # the model kept; a solver of its own a level (a revolution's kept phases hold
-            # solutions at one torque), reading the roots and the pressures alone
-            own = RingSolver(solver.model, repeats=job.revolution, roots_only=True)
-            return _positions(job, own)(case, betas, executor)
+        def level(case: SolveCase, betas, torques, executor: Executor):
+            # the model kept, the roots and the pressures read alone; a revolution's kept
+            # phases hold solutions at one torque: there a solver of its own a level
+            if not job.revolution:
+                return drive_torques(case, betas, torques,
+                                     RingSolver(solver.model, roots_only=True), executor)
+            return [_positions(job, RingSolver(solver.model, repeats=True, roots_only=True))(
+                replace(case, torque=torque), betas, executor) for torque in torques]
 
         levels = solve_levels(job.case, job.betas, job.rating, level, executor)
         summary["rating"] = {**rated(levels, job.rating, every_tooth=not job.case.deviations),

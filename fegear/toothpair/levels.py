@@ -1,14 +1,15 @@
 """A load spectrum's levels solved (``fegear solve --spectrum``, docs/rating.md): each level's
 torque, times the application and dynamic factors, at the job's positions on the model kept
 from the solve before it (the contact is nonlinear in the load: every level is solved, none
-scaled), each tooth's largest stresses over the positions, and the pair rated for its life
-(:func:`fegear.rating.rate`).
+scaled; at each position the lighter levels on the heavier one's contact, the job's way:
+:func:`~.positions.drive_torques`), each tooth's largest stresses over the positions, and the
+pair rated for its life (:func:`fegear.rating.rate`).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from .. import progress
@@ -54,16 +55,13 @@ class Rating:
 
 def solve_levels(case: SolveCase, betas, rating: Rating, solve, executor: Executor = SERIAL
                  ) -> list[tuple[PairSolution, ...]]:
-    """Each level of ``rating``'s spectrum at the rolling angles ``betas``: ``solve(case,
-    betas, executor)`` (the job's own way of solving its positions, its model kept) at the
-    level's torque times KA·KV."""
-    out = []
-    for k, level in enumerate(rating.spectrum.levels, 1):
-        torque = level.torque * rating.KA * rating.KV
-        progress.stage(f"spectrum level {k} of {len(rating.spectrum.levels)}: "
-                       f"{torque:.4g} N·m")
-        out.append(solve(replace(case, torque=torque), betas, executor))
-    return out
+    """Each level of ``rating``'s spectrum at the rolling angles ``betas``, by level:
+    ``solve(case, betas, torques, executor)`` (the job's own way of solving its positions
+    at several torques, its model kept) at the levels' torques times KA·KV."""
+    torques = [level.torque * rating.KA * rating.KV for level in rating.spectrum.levels]
+    progress.stage(f"spectrum: {len(torques)} levels, "
+                   + ", ".join(f"{t:.4g}" for t in torques) + " N·m")
+    return solve(case, betas, torques, executor)
 
 
 def tooth_stresses(sols: tuple[PairSolution, ...], every_tooth: bool) -> dict[str, dict]:

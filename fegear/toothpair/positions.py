@@ -19,6 +19,10 @@ A cycle of :data:`CHAINED` positions or more is solved as two chains, its halves
 first guess of its own, handed to the executor the caller gives (``executor``: one chain here
 and one in parallel where it has a worker to spare, else one after the other here). The numbers
 are the same either way: a chain starts from its own first guess wherever it is solved.
+
+A position can be solved at several torques at once (:func:`drive_torques`, a load spectrum's
+levels): the heaviest of a family of torques is placed and settled as above, and the lighter
+ones are solved on its contact (:meth:`SharesContacts.again`), where the model allows it.
 """
 
 from __future__ import annotations
@@ -49,6 +53,10 @@ ATTEMPTS = 5         # solves of one position, each from the last one's choice o
 TURN_CHECK = 4
 CHAINED = 16         # positions from which a cycle is solved as two chains (a chain's first
                      # position costs about one position more than it would following another)
+#: a position's contact placed for one torque serves the torques down to this fraction of it
+#: (:func:`drive_torques`): the grids' spacing follows the Hertz half-width, which goes with the
+#: load's square root, so theirs is at most twice the spacing of grids of their own
+SHARED = 0.25
 
 
 @dataclass(frozen=True)
@@ -89,6 +97,15 @@ class PositionModel(Protocol):
 
     def finish(self, case: SolveCase, state, attempt: Attempt) -> PairSolution:
         """Stresses and per-tooth results of a settled attempt."""
+
+
+class SharesContacts(PositionModel, Protocol):
+    """A position model that solves a position again under another torque on the contact an
+    attempt settled on there (:func:`drive_torques`)."""
+
+    def again(self, case: SolveCase, state, attempt: Attempt) -> PairSolution | None:
+        """``case``, the position ``attempt`` settled at under a lighter torque, solved on
+        that attempt's contact, stresses and all; None where that contact does not hold it."""
 
 
 def _unsettled(case: SolveCase, trial: Trial, err: Exception) -> str:
@@ -132,6 +149,58 @@ def drive(case: SolveCase, betas, solver: PositionModel,
     first's with the one-off ones (the clearance states, the model's build). BLAS runs on one
     thread meanwhile (:data:`~fegear.fe.BLAS_THREADS`); the process's allocator keeps the
     memory a solve frees (:func:`~fegear.fe.keep_freed_memory`)."""
+    def one(at: SolveCase, state, near: tuple | None) -> tuple[PairSolution]:
+        return (_clocked(solve_position, at, state, solver, near and near[0]),)
+
+    return tuple(sols[0] for sols in _chains(case, betas, solver, profile, executor, one))
+
+
+def drive_torques(case: SolveCase, betas, torques, solver: SharesContacts,
+                  executor: Executor = SERIAL) -> list[tuple[PairSolution, ...]]:
+    """``case`` at each torque of ``torques`` (N·m) and each rolling angle of ``betas``, as
+    :func:`drive` solves one torque: the solutions by torque, each in the order of ``betas``.
+    At each position the torques go by families (:func:`families`): the heaviest of a family
+    is placed and settled from its own solution at the position before, and the others are
+    solved on the contact it settled on (:meth:`SharesContacts.again`: the same grids and
+    influence matrix, a contact solve and the stresses each), or, where that contact does not
+    hold one, settled from its own solution before as the heaviest is. A lighter torque's
+    contact lies within a heavier one's at the same place, on grids as fine as its own or up
+    to twice as coarse (:data:`SHARED`)."""
+    groups = families(torques)
+
+    def each(at: SolveCase, state, near: tuple | None) -> tuple[PairSolution, ...]:
+        out: list = [None] * len(torques)
+        for family in groups:
+            head = replace(at, torque=torques[family[0]])
+            attempt, out[family[0]] = _clocked(_settled, head, state, solver,
+                                               near and near[family[0]])
+            for k in family[1:]:
+                out[k] = _clocked(_lighter, replace(at, torque=torques[k]), state, solver,
+                                  attempt, near and near[k])
+        return tuple(out)
+
+    sols = _chains(case, betas, solver, None, executor, each)
+    return [tuple(at[k] for at in sols) for k in range(len(torques))]
+
+
+def families(torques) -> list[list[int]]:
+    """The torques (their indices) by the position's contact they are solved on
+    (:func:`drive_torques`): heaviest first, each family's first its heaviest and the others
+    down to :data:`SHARED` of it."""
+    order = sorted(range(len(torques)), key=lambda k: -torques[k])
+    out: list[list[int]] = []
+    for k in order:
+        if out and torques[k] >= SHARED * torques[out[-1][0]]:
+            out[-1].append(k)
+        else:
+            out.append([k])
+    return out
+
+
+def _chains(case: SolveCase, betas, solver: PositionModel, profile: Gear1Profile | None,
+            executor: Executor, position) -> list[tuple[PairSolution, ...]]:
+    """The driver's loop (:func:`drive`), each position's solutions from ``position(case at
+    the position, its clearance state, the solutions of the position before or None)``."""
     keep_freed_memory()
     with blas_threads(), clocked() as once:
         profile = profile if profile is not None else gear1_profile(case.params)
@@ -140,10 +209,11 @@ def drive(case: SolveCase, betas, solver: PositionModel,
         states = states.get()
         cut = len(states) // 2 if len(states) >= CHAINED else len(states)
         spans = [range(cut), range(cut, len(states))] if cut < len(states) else [range(cut)]
-        chains = executor.map(lambda span: _chain(case, states, span, solver), spans)
+        chains = executor.map(lambda span: _chain(case, states, span, position), spans)
     sols = [sol for chain in chains for sol in chain]
-    sols[0] = replace(sols[0], timings_s={**once.stages, **sols[0].timings_s})
-    return tuple(sols)
+    first = sols[0][0]
+    sols[0] = (replace(first, timings_s={**once.stages, **first.timings_s}), *sols[0][1:])
+    return sols
 
 
 #: the exact pair's clearance states found last, by (pair, rolling angles): they depend on the
@@ -210,26 +280,45 @@ class _Clearances:
             refuse_closed([(b, st, back) for (b, st), back in zip(behind, coast)], dev)
 
 
-def _chain(case: SolveCase, states, span: range, solver: PositionModel
-           ) -> list[PairSolution]:
+def _chain(case: SolveCase, states, span: range, position) -> list[tuple[PairSolution, ...]]:
     """The positions ``span`` of ``states`` ((β, clearance state) pairs), each from the one
-    before, the first from the first guess."""
-    sols: list[PairSolution] = []
+    before, the first from the first guess (``position``: :func:`_chains`)."""
+    sols: list[tuple[PairSolution, ...]] = []
     for k in span:
         beta, state = states[k]
         progress.stage(f"contact at β {math.degrees(beta):.3g}°"
                        + (f" ({k + 1} of {len(states)})" if len(states) > 1 else ""))
-        at = replace(case, beta=beta)
-        with clocked() as clock:
-            sol = solve_position(at, state, solver, sols[-1] if sols else None)
-        sols.append(replace(sol, timings_s=dict(clock.stages)))
+        sols.append(position(replace(case, beta=beta), state, sols[-1] if sols else None))
     return sols
+
+
+def _clocked(solve, *args):
+    """``solve(*args)``'s solution (or its last item, an attempt's solution) with the stages
+    it took as its times."""
+    with clocked() as clock:
+        got = solve(*args)
+    if isinstance(got, tuple):
+        return (*got[:-1], replace(got[-1], timings_s=dict(clock.stages)))
+    return replace(got, timings_s=dict(clock.stages))
 
 
 def solve_position(case: SolveCase, state, solver: PositionModel,
                    near: PairSolution | None) -> PairSolution:
     """One position: attempts from the first guess until the model settles, then its
     stresses."""
+    return _settled(case, state, solver, near)[1]
+
+
+def _lighter(case: SolveCase, state, solver: SharesContacts, attempt: Attempt,
+             near: PairSolution | None) -> PairSolution:
+    """``case`` solved on the contact ``attempt`` settled on at a heavier torque, or, where
+    that contact does not hold it, settled from ``near`` as any position."""
+    return solver.again(case, state, attempt) or solve_position(case, state, solver, near)
+
+
+def _settled(case: SolveCase, state, solver: PositionModel, near: PairSolution | None
+             ) -> tuple[Attempt, PairSolution]:
+    """One position's settled attempt (:func:`solve_position`) and its solution."""
     elastic = expected_elastic_um(case, near)
     trial = Trial(first_teeth(case, state, elastic), elastic)
     for _ in range(ATTEMPTS):
@@ -238,7 +327,7 @@ def solve_position(case: SolveCase, state, solver: PositionModel,
         except ContactError as err:
             raise ContactError(_unsettled(case, trial, err)) from None
         if attempt.again is None:
-            return solver.finish(case, state, attempt)
+            return attempt, solver.finish(case, state, attempt)
         log.info("β %.6f: solving again (%s)", case.beta, attempt.why)
         trial = attempt.again
     raise FegearError(f"the paired teeth did not settle in {ATTEMPTS} attempts at "

@@ -60,13 +60,15 @@ SUBMODELS = ("all", "peaks", "none")
 @dataclass(frozen=True)
 class RingAttempt:
     """What an attempt solved (:attr:`~fegear.toothpair.positions.Attempt.solved`): the
-    contact on its grids, its solution, the grids and the rigid rotation to the first touch
-    (µm of arc at r0)."""
+    contact on its grids, its solution, the grids, the rigid rotation to the first touch
+    (µm of arc at r0) and the teeth it paired (a paired tooth with nothing within reach of
+    gear 2 has no grid; none recorded on a phase's kept contact)."""
 
     contact: RingContact
     solution: RingContactSolution
     grids: tuple[ToothGrid, ...]
     first_um: float
+    teeth: tuple[int, ...] = ()
 
 
 class RingSolver:
@@ -171,6 +173,32 @@ class RingSolver:
         settled = Attempt(RingAttempt(*kept, kept[0].grids, state.closest(+1).plus_um), None)
         return self._finished(case, state, settled, brief)[0]
 
+    def again(self, case: SolveCase, state, attempt: Attempt) -> PairSolution | None:
+        """``case``, the position ``attempt`` settled at (clearance ``state``) under a lighter
+        torque, solved on that attempt's contact, stresses and all
+        (:func:`~fegear.toothpair.positions.drive_torques`): its grids and influence matrix
+        serve, the rigid gaps are those of this torque's rotation. None where that contact
+        does not hold it (the driver's rule pairs a tooth the attempt did not, a grid carries
+        pressure at an end, a probe any) or its points cannot carry the torque. Not with kept
+        phases (:class:`~.phases.Phases`: their solutions are at one torque)."""
+        if self.phases is not None:
+            raise ValueError("a ring solver that keeps phases solves one torque")
+        solved = attempt.solved
+        try:
+            with timed("contact"):
+                sol = solve_ring_contact(self.model, solved.contact, case.torque * 1e3,
+                                         solved.solution.rotation,
+                                         start=solved.solution.pressure > 0)
+        except ContactError:
+            return None
+        if sol is None:
+            return None
+        again = replace(solved, solution=sol)
+        paired, ends, touched = _outside(case, state, again)
+        if paired - set(solved.teeth) or ends or touched:
+            return None
+        return self._finished(case, state, Attempt(again, None))[0]
+
     def reach(self, reach_um: float) -> None:
         """Keep the contacts from now on with grids reaching ``reach_um`` beyond the exact
         pair's at least: the most the deviation sets to be solved on them move a tooth
@@ -234,7 +262,7 @@ class RingSolver:
                     raise
                 return None
             if sol is not None:    # None: a point left out closes, its column is wanted
-                return RingAttempt(contact, sol, grids, first_um)
+                return RingAttempt(contact, sol, grids, first_um, trial.teeth)
         raise AssertionError("the last try forms every column")   # pragma: no cover
 
     def finish(self, case: SolveCase, state, attempt: Attempt) -> PairSolution:
@@ -304,12 +332,8 @@ def _judged(case: SolveCase, state, trial: Trial, placement: Placement, solved: 
     """The attempt settled, or the trial to solve again from: the driver's rule at the solved
     rotation chooses a tooth without a grid, a grid carries pressure at an end, a probe
     carries any, or the rotation is not the one placed for (module docstring)."""
-    p, contact, sol, grids = case.params, solved.contact, solved.solution, solved.grids
-    more = set(choose_teeth(state, p.arc_um(sol.rotation), case.extra_pairs))
-    ends = [g.tooth for k, g in enumerate(grids)
-            if sol.pressure[contact.block(k)][[0, -1]].max() > 0]
-    touched = {g.tooth for k, g in enumerate(grids)
-               if g.probe and sol.pressure[contact.block(k)].max() > 0}
+    p, sol = case.params, solved.solution
+    more, ends, touched = _outside(case, state, solved)
     solved_um = p.arc_um(sol.rotation) - solved.first_um
     moved = abs(solved_um - trial.elastic_um) > PLACEMENT * max(abs(solved_um), 1e-3)
     if not predict and more <= set(trial.teeth) and not ends and not moved and not touched:
@@ -324,6 +348,19 @@ def _judged(case: SolveCase, state, trial: Trial, placement: Placement, solved: 
         f"teeth {sorted(more - set(trial.teeth))}, ends {ends}, probes touched "
         f"{sorted(touched)}, elastic {solved_um:.3g} µm, expected {trial.elastic_um:.3g}")
     return Attempt(solved, again, why)
+
+
+def _outside(case: SolveCase, state, solved: RingAttempt) -> tuple[set, list, set]:
+    """What tells whether a solved contact stays on its grids: the teeth the driver's rule
+    pairs at its rotation, the grids' teeth that carry pressure at an end and the probes'
+    that carry any."""
+    contact, sol, grids = solved.contact, solved.solution, solved.grids
+    paired = set(choose_teeth(state, case.params.arc_um(sol.rotation), case.extra_pairs))
+    ends = [g.tooth for k, g in enumerate(grids)
+            if sol.pressure[contact.block(k)][[0, -1]].max() > 0]
+    touched = {g.tooth for k, g in enumerate(grids)
+               if g.probe and sol.pressure[contact.block(k)].max() > 0}
+    return paired, ends, touched
 
 
 def _residuals(model: RingModel, contact: RingContact, sol, stresses) -> list[float]:
