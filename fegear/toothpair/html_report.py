@@ -231,7 +231,7 @@ def _stress_table(summary: dict) -> str:
             row += [_quantile(qs.get(0.5)), _quantile(qs.get(0.95))]
         rows.append(row)
     note = ("<p>The largest over the positions solved. The error estimate compares the solve "
-            "with a second mesh level (docs/model.md); – where it was not run "
+            "with a second mesh level (docs/model.md); a dash where it was not run "
             "(<code>--no-estimate</code>).</p>")
     return _table(head, rows) + note
 

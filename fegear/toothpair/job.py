@@ -285,7 +285,7 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
             return [_positions(job, RingSolver(solver.model, repeats=True, roots_only=True))(
                 replace(case, torque=torque), betas, executor) for torque in torques]
 
-        levels = solve_levels(job.case, job.betas, job.rating, level, executor)
+        levels = solve_levels(job.case, job.betas, job.rating, level, executor, sols)
         summary["rating"] = {**rated(levels, job.rating, every_tooth=not job.case.deviations),
                              "solve_s": after.s}
     return Solved(job, tuple(sols), sol, summary, rows, watch.s)

@@ -53,15 +53,23 @@ class Rating:
         return self.spectrum.cycles / (self.speed_rpm * 60.0)
 
 
-def solve_levels(case: SolveCase, betas, rating: Rating, solve, executor: Executor = SERIAL
+def solve_levels(case: SolveCase, betas, rating: Rating, solve, executor: Executor = SERIAL,
+                 cycle: tuple[PairSolution, ...] | None = None
                  ) -> list[tuple[PairSolution, ...]]:
     """Each level of ``rating``'s spectrum at the rolling angles ``betas``, by level:
     ``solve(case, betas, torques, executor)`` (the job's own way of solving its positions
-    at several torques, its model kept) at the levels' torques times KA·KV."""
+    at several torques, its model kept) at the levels' torques times KA·KV. A level whose
+    torque is ``case``'s is ``cycle``, the job's own solve at ``betas`` where given: the
+    same numbers in the rating as in the static verdict, and a solve fewer."""
     torques = [level.torque * rating.KA * rating.KV for level in rating.spectrum.levels]
+    same = [cycle is not None and math.isclose(t, case.torque, rel_tol=1e-12)
+            for t in torques]
+    others = [t for t, s in zip(torques, same) if not s]
     progress.stage(f"spectrum: {len(torques)} levels, "
-                   + ", ".join(f"{t:.4g}" for t in torques) + " N·m")
-    return solve(case, betas, torques, executor)
+                   + ", ".join(f"{t:.4g}" for t in torques) + " N·m"
+                   + (" (the cycle's own torque taken from it)" if any(same) else ""))
+    solved = iter(solve(case, betas, others, executor) if others else ())
+    return [cycle if s else next(solved) for s in same]
 
 
 def tooth_stresses(sols: tuple[PairSolution, ...], every_tooth: bool) -> dict[str, dict]:

@@ -52,6 +52,19 @@ def test_each_level_is_the_pair_solved_at_its_torque(rated):
             t.flank_p_MPa for sol in alone.solutions for t in sol.teeth), rel=pressures)
 
 
+def test_a_level_at_the_cycles_torque_is_the_cycle(tmp_path):
+    # 160 N·m times KA 1.25 is the solve's own 200 N·m: the rating reads the cycle's numbers,
+    # those of the static verdict, not a second solve's
+    (tmp_path / "duty.csv").write_text(SPECTRUM)
+    solved = solve_job(prepare_job({**BASE, "spectrum": str(tmp_path / "duty.csv"),
+                                    "KA": 1.25}))
+    level = solved.summary["rating"]["levels"][2]
+    assert level["solved_torque_Nm"] == solved.job.case.torque
+    assert level["root1_MPa"] == max(s.root_stress[0] for s in solved.solutions)
+    assert level["flank1_MPa"] == max(t.flank_p_MPa for s in solved.solutions
+                                      for t in s.teeth)
+
+
 @pytest.fixture(scope="module")
 def coarse_cycle():
     job = prepare_job(BASE)
