@@ -293,8 +293,8 @@ def _chain(case: SolveCase, states, span: range, position) -> list[tuple[PairSol
 
 
 def _clocked(solve, *args):
-    """``solve(*args)``'s solution (or its last item, an attempt's solution) with the stages
-    it took as its times."""
+    """``solve(*args)``'s solution with the stages it took as its times; where it gives an
+    attempt and its solution, the two, the solution so timed."""
     with clocked() as clock:
         got = solve(*args)
     if isinstance(got, tuple):
