@@ -192,19 +192,33 @@ def case_key(values: dict, outputs: Outputs, code: str) -> str:
     (not the allowable stresses: the tables compute the safety factors from the stored
     stresses), the kept outputs and the code version: equal keys are equal results."""
     full = {KEY_NAMES.get(k, k): v for k, v in JOB_INPUTS.keyed(values).items()}
-    if full.get("deviations"):   # a measured file decides by what it holds, not by its name
-        full["deviations"] = _digest(Path(str(full["deviations"])))
+    for name in FILE_INPUTS:   # a file decides by what it holds, not by its name
+        if _is_file(name, full.get(name)):
+            full[name] = _digest(Path(str(full[name])))
     kept = [outputs.vtu, outputs.png] + [True] * outputs.report   # older keys stay valid
     text = json.dumps({"inputs": full, "outputs": kept, "code": code}, sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
+#: the solve's inputs that name a file: measured deviations, a load spectrum, a material (a
+#: name of the table, or a .toml file)
+FILE_INPUTS = ("deviations", "spectrum", "material")
+
+
+def _is_file(name: str, value) -> bool:
+    """Whether the input ``name`` = ``value`` names a file (:data:`FILE_INPUTS`)."""
+    if not isinstance(value, str) or not value:
+        return False
+    return name != "material" or value.endswith(".toml")
+
+
 def _relative_to_study(path: Path, values: dict) -> dict:
-    """``values`` with a deviations file named relative to the study file made absolute: a
-    study runs the same from any folder."""
-    name = values.get("deviations")
-    if isinstance(name, str) and name and not Path(name).is_absolute():
-        values = {**values, "deviations": str((Path(path).parent / name).resolve())}
+    """``values`` with the files they name (:data:`FILE_INPUTS`) relative to the study file
+    made absolute: a study runs the same from any folder."""
+    for name in FILE_INPUTS:
+        value = values.get(name)
+        if _is_file(name, value) and not Path(value).is_absolute():
+            values = {**values, name: str((Path(path).parent / value).resolve())}
     return values
 
 

@@ -205,11 +205,13 @@ def markdown(study: Study, table: list[dict]) -> str:
     study's ``position``) and a line under the table that says so."""
     cycled = any(r.get("cycle.positions") for r in table)
     sampled = any(r.get("samples.n") for r in table)
+    rated = any(_modes(r) for r in table)
     head = (list(study.varied) + [SHORT[k] for k in HEADLINE] + list(SAFETY_SHORT.values())
             + ["edge N"]
             + ([f"{SHORT[k]} cycle" for k in HEADLINE]
                + [f"{s} cycle" for s in SAFETY_SHORT.values()] if cycled else [])
             + (list(SAMPLES_SHORT) if sampled else [])
+            + (list(RATING_SHORT) if rated else [])
             + ["est. error %", "teeth", "status", "time s"])
     lines = ["| " + " | ".join(head) + " |", "|" + "---:|" * len(head)]
     for r in table:
@@ -219,6 +221,8 @@ def markdown(study: Study, table: list[dict]) -> str:
             cells += _cycle_cells(r)
         if sampled:
             cells += [_samples_cell(r, key) for key in SAMPLES_SHORT.values()]
+        if rated:
+            cells += _rating_cells(r)
         est = r.get("error_estimate_pct")
         status = {"ok": "ok", "refused": "refused (below)"}.get(r["status"],
                                                                  f"failed: {r['error']}")
@@ -238,6 +242,10 @@ def markdown(study: Study, table: list[dict]) -> str:
                   "P95 of gear 1's root stress and of the flank pressure, and the safety "
                   "factors that the `quantile` share of the pairs meet (\"jams\" where the "
                   "jammed pairs reach past it)."]
+    if rated:
+        lines += ["", "Rated for a life (`spectrum`, docs/rating.md): the mode with the smallest "
+                  "safety factor at the required life, that factor, its Miner's sum and its "
+                  "life."]
     if cycled:
         lines += ["", "Stresses in MPa. With positions, the first columns are at the cycle's "
                   "first position β0 (the study's position); \"cycle\": the largest stress "
@@ -253,6 +261,42 @@ SAMPLES_SHORT = {"jammed %": "samples.jammed_share",
                  "p flank P95": "samples.flank_contact_pressure_MPa.P95",
                  "S_F1 at q": "samples.safety_bending_gear1.at_quantile",
                  "S_H flank at q": "samples.safety_contact_flank.at_quantile"}
+
+
+#: a life rating in the table: its headers (the limiting mode's, :func:`_rating_cells`)
+RATING_SHORT = ("limits for the life", "S at life", "Miner", "life h")
+
+
+def _modes(row: dict) -> list[str]:
+    """The rated modes of a case's row (none without a spectrum)."""
+    head, tail = "rating.modes.", ".safety"
+    return [k[len(head):-len(tail)] for k in row if k.startswith(head) and k.endswith(tail)]
+
+
+def _rating_cells(row: dict) -> list[str]:
+    """The life rating's cells: the mode with the smallest safety factor at the required
+    life, that factor, its Miner's sum and its life (h; "unlimited" below the endurance
+    limit, "repeats" of the spectrum without a speed); dashes without a spectrum. The summary
+    writes an infinity as "inf"."""
+    modes = _modes(row)
+    if row["status"] != "ok" or not modes:
+        return ["–"] * len(RATING_SHORT)
+
+    def value(mode: str, key: str) -> float | None:
+        v = row.get(f"rating.modes.{mode}.{key}")
+        return math.inf if v == "inf" else v
+
+    mode = min(modes, key=lambda m: value(m, "safety"))
+    life = value(mode, "life_h")
+    if life is None:
+        repeats = value(mode, "life_repeats")
+        life_cell = ("unlimited" if repeats == math.inf else
+                     f"{repeats:.3g} repeats" if repeats is not None else "–")
+    else:
+        life_cell = "unlimited" if life == math.inf else f"{life:.3g}"
+    factor, miner = value(mode, "safety"), value(mode, "miner")
+    return [mode, "∞" if factor == math.inf else f"{factor:.2f}",
+            "∞" if miner == math.inf else f"{miner:.3g}", life_cell]
 
 
 def _samples_cell(row: dict, key: str) -> str:

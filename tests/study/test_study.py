@@ -268,19 +268,41 @@ def test_a_swept_deviation_is_an_input_of_its_own_plotted_in_the_file_s_order():
     assert plot.lines[0].x == ("1:11=0", "1:11=2", "1:11=5", "1:11=10")
 
 
-def test_a_measured_file_is_found_beside_the_study_and_keyed_by_what_it_holds(tmp_path):
-    doc = {"base": {"deviations": "measured.csv"}, "sweep": [{"torque": [100.0, 200.0]}]}
-    (tmp_path / "measured.csv").write_text("gear, tooth, fp [µm]\n1, 11, 4.0\n")
+#: what a life rating wants beside its spectrum: a deviated pair's over a revolution
+RATED = {"positions": 2, "revolution": True}
+
+
+@pytest.mark.parametrize("name, file, text, other", [
+    ("deviations", "measured.csv", "gear, tooth, fp [µm]\n1, 11, 4.0\n",
+     "gear, tooth, fp [µm]\n1, 11, 5.0\n"),
+    ("spectrum", "duty.csv", "torque,cycles\n100,1e6\n", "torque,cycles\n100,2e6\n"),
+    ("material", "steel.toml", 'treatment = "nitrided"\nsigma_Hlim = 1000\nsigma_FE = 740\n',
+     'treatment = "nitrided"\nsigma_Hlim = 1000\nsigma_FE = 700\n'),
+])
+def test_a_file_input_is_found_beside_the_study_and_keyed_by_what_it_holds(tmp_path, name,
+                                                                          file, text, other):
+    (tmp_path / "duty.csv").write_text("torque,cycles\n100,1e6\n")
+    doc = {"base": {**RATED, "spectrum": "duty.csv", name: file},
+           "sweep": [{"torque": [100.0, 200.0]}]}
+    (tmp_path / file).write_text(text)
     first = build_study(doc, tmp_path / "a.toml")
-    assert first.cases[0].values["deviations"] == str(tmp_path / "measured.csv")
+    assert first.cases[0].values[name] == str(tmp_path / file)
     elsewhere = tmp_path / "copy"
     elsewhere.mkdir()
-    (elsewhere / "measured.csv").write_text("gear, tooth, fp [µm]\n1, 11, 4.0\n")
+    (elsewhere / "duty.csv").write_text("torque,cycles\n100,1e6\n")
+    (elsewhere / file).write_text(text)
     assert [c.key for c in build_study(doc, elsewhere / "a.toml").cases] == [
-        c.key for c in first.cases]                      # the same measurement: its results
-    (tmp_path / "measured.csv").write_text("gear, tooth, fp [µm]\n1, 11, 5.0\n")
+        c.key for c in first.cases]                      # the same file: its results
+    (tmp_path / file).write_text(other)
     assert not {c.key for c in build_study(doc, tmp_path / "a.toml").cases} & {
         c.key for c in first.cases}                      # another one: solved again
+
+
+def test_a_material_of_the_table_is_a_name_not_a_file(tmp_path):
+    (tmp_path / "duty.csv").write_text("torque,cycles\n100,1e6\n")
+    doc = {"base": {**RATED, "spectrum": "duty.csv", "material": "20CrMnTi"},
+           "sweep": [{"torque": [100.0, 200.0]}]}
+    assert build_study(doc, tmp_path / "a.toml").cases[0].values["material"] == "20CrMnTi"
 
 
 def test_build_study_accepts_a_parsed_document(tmp_path):
@@ -609,6 +631,26 @@ def test_load_results_of_a_directory_without_results_names_it(tmp_path):
 
     with pytest.raises(StudyError, match="no study results there"):
         load_results(tmp_path)
+
+
+def test_a_spectrum_rates_each_case_and_the_table_shows_its_limit(tmp_path):
+    # the spectrum beside the study file; the table's life columns are the limiting mode's
+    toml = tmp_path / "life.toml"
+    (tmp_path / "duty.csv").write_text("torque,cycles\n10,1e8\n20,1e6\n")
+    base = SMALL.split("[[sweep]]")[0]
+    toml.write_text(base + 'positions = 2\nspectrum = "duty.csv"\nspeed = 1500.0\n'
+                    'material = "42CrMo"\n[[sweep]]\nh1 = [0.3, 0.4]\n')
+    out = tmp_path / "out"
+    assert main(["study", str(toml), "--workers", "1", "--out", str(out), "--no-progress"]) == 0
+    text = (out / "results.md").read_text()
+    assert "S at life" in text and "Rated for a life" in text
+    for r in _table(out):
+        assert r["status"] == "ok"
+        modes = json.loads((out / "cases" / f"{r['key']}.json").read_text())[
+            "summary"]["rating"]["modes"]
+        name, worst = min(modes.items(), key=lambda kv: float(kv[1]["safety"]))
+        row = next(line for line in text.splitlines() if line.startswith(f"| {r['h1']} |"))
+        assert f"| {name} | {float(worst['safety']):.2f} |" in row
 
 
 def test_a_class_is_an_input_its_samples_a_few_columns(tmp_path, capsys):
