@@ -118,8 +118,10 @@ def _loaded(answer: bytes | int | None) -> tuple[bool, object]:
             buffers.append(view[at:at + size])
             at += size
         return pickle.loads(view[8:8 + head], buffers=buffers)
-    except Exception:   # cut short: the child died before writing all of it
-        return False, "the worker process died before it answered"
+    except Exception as exc:   # cut short: the child died before writing all of it, or
+        # what it wrote does not load here
+        return False, ("the worker process died before it answered, or its answer does not "
+                       f"load here ({type(exc).__name__}: {exc})")
 
 
 def _written(f, value) -> None:

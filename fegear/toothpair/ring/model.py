@@ -88,7 +88,9 @@ class RingModel:
     level: RingLevel
     submodels: dict = field(default_factory=dict, repr=False)   # prepared, by key
     meshed: PairParameters | None = None    # the pair the templates were meshed for
-    token: int = field(default_factory=lambda: next(_TOKENS), repr=False)
+    # a copy (dataclasses.replace) is another model with a reference of its own: had it taken
+    # this one's, its end would have taken this one's reference with it
+    token: int = field(default_factory=lambda: next(_TOKENS), init=False, repr=False)
 
     def __post_init__(self) -> None:
         if self.meshed is None:

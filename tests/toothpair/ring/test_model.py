@@ -100,6 +100,22 @@ def test_jiggled_templates_move_headline_stresses_by_less_than_2pct(monkeypatch,
                                                         rel=0.02), key
 
 
+def test_a_copy_of_a_model_is_another_reference(baseline_200):
+    # a model changed by dataclasses.replace (another matching depth, say) is a model of its
+    # own: when it ends, the original still pickles as its reference
+    import gc
+    import pickle
+    from dataclasses import replace
+
+    model = baseline_200.detail.model
+    copy = replace(model, level=replace(model.level, depth=3.0))
+    assert copy.token != model.token
+    assert pickle.loads(pickle.dumps(copy)) is copy
+    del copy
+    gc.collect()
+    assert pickle.loads(pickle.dumps(model)) is model
+
+
 def test_a_solution_pickles_with_its_model_as_a_reference(baseline_200):
     # a model is too big to copy: a solution crosses from a forked copy with a reference to
     # the model both processes hold, and one with no such model here is told so
