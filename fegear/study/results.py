@@ -25,6 +25,9 @@ from ..toothpair import (
     HEADLINE,
     JOB_INPUTS,
     allowables_of,
+    damage_text,
+    life_text,
+    safety_text,
     samples_columns,
     sensitivity_columns,
     with_safety,
@@ -264,7 +267,7 @@ SAMPLES_SHORT = {"jammed %": "samples.jammed_share",
 
 
 #: a life rating in the table: its headers (the limiting mode's, :func:`_rating_cells`)
-RATING_SHORT = ("limits for the life", "S at life", "Miner", "life h")
+RATING_SHORT = ("limits for the life", "S at life", "Miner", "life")
 
 
 def _modes(row: dict) -> list[str]:
@@ -275,28 +278,18 @@ def _modes(row: dict) -> list[str]:
 
 def _rating_cells(row: dict) -> list[str]:
     """The life rating's cells: the mode with the smallest safety factor at the required
-    life, that factor, its Miner's sum and its life (h; "unlimited" below the endurance
-    limit, "repeats" of the spectrum without a speed); dashes without a spectrum. The summary
-    writes an infinity as "inf"."""
+    life, that factor, its Miner's sum and its life, as the solve's rating table writes them
+    (:mod:`fegear.toothpair.rating_report`); dashes without a spectrum. The summary writes an
+    infinity as "inf"."""
     modes = _modes(row)
     if row["status"] != "ok" or not modes:
         return ["–"] * len(RATING_SHORT)
-
-    def value(mode: str, key: str) -> float | None:
-        v = row.get(f"rating.modes.{mode}.{key}")
-        return math.inf if v == "inf" else v
-
-    mode = min(modes, key=lambda m: value(m, "safety"))
-    life = value(mode, "life_h")
-    if life is None:
-        repeats = value(mode, "life_repeats")
-        life_cell = ("unlimited" if repeats == math.inf else
-                     f"{repeats:.3g} repeats" if repeats is not None else "–")
-    else:
-        life_cell = "unlimited" if life == math.inf else f"{life:.3g}"
-    factor, miner = value(mode, "safety"), value(mode, "miner")
-    return [mode, "∞" if factor == math.inf else f"{factor:.2f}",
-            "∞" if miner == math.inf else f"{miner:.3g}", life_cell]
+    by_mode = {mode: {key: row.get(f"rating.modes.{mode}.{key}")
+                      for key in ("safety", "miner", "life_h", "life_repeats")}
+               for mode in modes}
+    mode, m = min(by_mode.items(),
+                  key=lambda kv: math.inf if kv[1]["safety"] == "inf" else kv[1]["safety"])
+    return [mode, safety_text(m["safety"]), damage_text(m["miner"]), life_text(m)]
 
 
 def _samples_cell(row: dict, key: str) -> str:

@@ -81,5 +81,6 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "ring.cache": ("model_cache",),
     "samples": ("class_samples", "Sampled"),
     "samples_report": ("samples_columns", "samples_summary", "samples_table"),
+    "rating_report": ("damage_text", "life_text", "safety_text"),
     "sensitivity_report": ("sensitivity_columns", "sensitivity_table"),
 })

@@ -18,7 +18,7 @@ import math
 from datetime import UTC, datetime
 from pathlib import Path
 
-from .rating_report import damage_text
+from .rating_report import damage_text, life_text
 
 #: the pictures a page shows, in order, with a caption each (the files' keys)
 PICTURES = {"png": "Von Mises stress on the loaded teeth and at the contact peak",
@@ -199,11 +199,8 @@ def _static_table(summary: dict) -> str:
 def _life_table(r: dict) -> str:
     rows = []
     for mode, m in r["modes"].items():
-        life = (m["life_h"] if m["life_h"] is not None else m["life_repeats"])
-        unit = " h" if m["life_h"] is not None else " spectra"
         rows.append([mode, "all" if m["tooth"] is None else str(m["tooth"]),
-                     damage_text(m["miner"]), "unlimited" if life == "inf" else f"{life:.3g}{unit}",
-                     _cell(m["safety"])])
+                     damage_text(m["miner"]), life_text(m), _cell(m["safety"])])
     mat = r["material"]
     note = (f"<p>{_e(mat['name'])} ({_e(mat['treatment'])}): σ_Hlim "
             f"{mat['sigma_Hlim_MPa']:g} MPa, σ_FE {mat['sigma_FE_MPa']:g} MPa; "

@@ -24,7 +24,8 @@ def rating_table(r: dict) -> str:
         tooth = "all" if m["tooth"] is None else str(m["tooth"])
         damage = " / ".join(damage_text(d) for d in m["damage"])
         lines.append(f"| {mode} | {m['limit_MPa']:.0f} | {m['exponent']:.1f} | {tooth} | "
-                     f"{damage} | {damage_text(m['miner'])} | {_life(m)} | {_s(m['safety'])} |")
+                     f"{damage} | {damage_text(m['miner'])} | {life_text(m)} | "
+                     f"{safety_text(m['safety'])} |")
     mat = r["material"]
     lines += ["", f"material {mat['name']} ({mat['treatment']}): sigma_Hlim "
               f"{mat['sigma_Hlim_MPa']:g} MPa, sigma_FE {mat['sigma_FE_MPa']:g} MPa "
@@ -44,7 +45,9 @@ def rating_rows(r: dict) -> list[dict]:
             for mode, m in r["modes"].items() for k in range(len(r["levels"]))]
 
 
-def _s(x) -> str:
+def safety_text(x) -> str:
+    """A safety factor at the required life as the tables show it: ∞ for "inf" (a mode no
+    level loads)."""
     return "∞" if x == "inf" else f"{x:.2f}"
 
 
@@ -54,7 +57,10 @@ def damage_text(d) -> str:
     return "∞" if d == "inf" else "0" if d == 0 else f"{d:.3g}"
 
 
-def _life(m: dict) -> str:
+def life_text(m: dict) -> str:
+    """A mode's life (``m``: its ``life_h`` and ``life_repeats``) as the tables show it: in
+    hours, or without a speed in repeats of the spectrum; "unlimited" below the endurance
+    limit."""
     if m["life_h"] is not None:
         return "unlimited" if m["life_h"] == "inf" else f"{m['life_h']:.3g} h"
     return "unlimited" if m["life_repeats"] == "inf" else f"{m['life_repeats']:.3g} spectra"

@@ -82,7 +82,8 @@ def pair_targets(runs: PairRuns, peer_target: float = PEER_TARGET) -> list[str]:
     if runs.spectrum is not None:
         alone, rated = runs.spectrum
         lines.append(f"* `fegear solve {' '.join(rb.SPECTRUM_ARGS)}` with a 4-level "
-                     f"`--spectrum`: {rated:.2f} s against {alone:.2f} s alone, "
+                     f"`--spectrum` at `--KA {rb.SPECTRUM_KA}`: {rated:.2f} s against "
+                     f"{alone:.2f} s alone, "
                      f"{rated / alone:.2f}× (target <= {rb.SPECTRUM_TARGET:g}×): "
                      f"{_status(rated / alone <= rb.SPECTRUM_TARGET)}")
     if runs.sector is not None:
