@@ -90,6 +90,8 @@ class Input:
     a cache key leaves it out (:meth:`InputTable.keyed`). ``aliases``: other names the command
     line and study files take for it (an earlier name, say). ``repeat``: a text input the
     command line takes more than once, as a list of its texts (a list of entries).
+    ``metavar``: what ``--help`` shows for the value (default: the unit, else N for an
+    integer, X for a number, TEXT).
     """
 
     name: str
@@ -107,6 +109,7 @@ class Input:
     limits: str = ""
     rule: str = ""
     repeat: bool = False
+    metavar: str = ""
 
     def __post_init__(self) -> None:
         if self.kind not in (float, int, str, bool):

@@ -12,6 +12,14 @@ from ..checks import Input
 EXIT_USAGE = 2
 
 
+class _NotTyped(list):
+    """The mark of an option not typed (:meth:`Parser.parse_known_args`): a list, since an
+    ``append`` option copies what the namespace holds before it appends."""
+
+
+_NOT_TYPED = _NotTyped()
+
+
 class Parser(argparse.ArgumentParser):
     """An argument parser whose usage errors are one line (no usage dump), exit code 2; an
     unknown option gets the nearest one of the command it was given to ("did you mean …?")."""
@@ -24,9 +32,27 @@ class Parser(argparse.ArgumentParser):
         # argparse leaves a command's unknown words to the top parser, which cannot tell
         # whose they were: each parser refuses its own, hinting from its own options
         # (`fegear solve --module-mm 2` is not told about `drive reducer`'s --module-mm)
+        namespace = argparse.Namespace() if namespace is None else namespace
+        # argparse sets a default only where the namespace has no value yet: a mark there
+        # that is still in place after parsing is an option not typed (typed at its default
+        # value is still typed: it wins over a --case file's value)
+        marked = {a.dest: a.default for a in self._actions if a.option_strings
+                  and a.default is not argparse.SUPPRESS and not hasattr(namespace, a.dest)}
+        for dest in marked:
+            setattr(namespace, dest, _NOT_TYPED)
         namespace, extras = super().parse_known_args(args, namespace)
         if extras:
             self.error(f"unrecognized arguments: {' '.join(extras)}")
+        typed = set(getattr(namespace, "typed", ()))
+        for dest, default in marked.items():
+            value = getattr(namespace, dest)
+            if value is _NOT_TYPED:
+                setattr(namespace, dest, default)
+                continue
+            typed.add(dest)
+            if isinstance(value, _NotTyped):   # the mark's copy an append option filled
+                setattr(namespace, dest, list(value))
+        namespace.typed = typed
         return namespace, extras
 
     def error(self, message: str) -> None:
@@ -70,8 +96,9 @@ def add_inputs(parser: argparse.ArgumentParser, rows: Iterable[Input],
         text = row.help + (f" [{row.unit}]" if row.unit else "")
         text += f"; admissible: {row.range_text}" if row.range_text else ""
         text += f"; default: {row.default_text}"
+        metavar = row.metavar or row.unit or {int: "N", float: "X"}.get(row.kind, "TEXT")
         group.add_argument(*names, type=_Read(row.kind), default=row.default, dest=row.dest,
-                           help=text.replace("%", "%%"),
+                           help=text.replace("%", "%%"), metavar=metavar,
                            **({"action": "append"} if row.repeat else {}))
 
 
@@ -101,9 +128,11 @@ def checked(a: argparse.Namespace, rows: Iterable[Input]) -> dict[str, object]:
     return {row.dest: row.check(getattr(a, row.dest), row.name) for row in rows}
 
 
-def input_values(a: argparse.Namespace, rows: Iterable[Input]) -> dict[str, object]:
-    """The parsed values of the schema rows' options, by input name."""
-    return {row.name: getattr(a, row.dest) for row in rows}
+def typed_values(a: argparse.Namespace, rows: Iterable[Input]) -> dict[str, object]:
+    """The parsed values of the schema rows' options typed on the command line (at their
+    default value too), by input name: those that win over a ``--case`` file's."""
+    typed = getattr(a, "typed", set())
+    return {row.name: getattr(a, row.dest) for row in rows if row.dest in typed}
 
 
 def given_values(a: argparse.Namespace, rows: Iterable[Input]) -> dict[str, object]:

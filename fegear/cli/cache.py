@@ -18,8 +18,9 @@ def add_parser(sub) -> None:
 CAP_TEXT = "FEGEAR_CACHE_GB (2 GB unless set)"
 
 
-def add_switch(p: argparse.ArgumentParser, default: bool) -> None:
-    """``--cache`` / ``--no-cache`` on a solving command whose own default is ``default``."""
+def add_switch(p, default: bool) -> None:
+    """``--cache`` / ``--no-cache`` on a solving command (or a group of its options) whose
+    own default is ``default``."""
     g = p.add_mutually_exclusive_group()
     state = "on" if default else "off"
     g.add_argument("--cache", dest="cache", action="store_const", const=True, default=None,

@@ -41,7 +41,7 @@ from pathlib import Path
 from ..checks import Input
 from ..errors import FegearError
 from ..provenance import code_version
-from ..toothpair import JOB_INPUTS, RENAMED, prepare_job
+from ..toothpair import FILE_INPUTS, JOB_INPUTS, RENAMED, is_file, prepare_job, relative_to
 
 MAX_CASES = 100_000
 _SECTIONS = ("study", "outputs", "base", "sweep")
@@ -159,7 +159,7 @@ def build_study(data: dict, path: Path) -> Study:
     code = code_version()
     cases, refused, seen = [], [], set()
     for block, swept in combos:
-        values = _relative_to_study(path, {**base, **swept})
+        values = relative_to(path, {**base, **swept})
         key = case_key(values, outputs, code)
         # cases that differ in an allowable stress alone share a key (one solve) but not a row
         same = (key, json.dumps(JOB_INPUTS.with_defaults(values), sort_keys=True))
@@ -193,33 +193,11 @@ def case_key(values: dict, outputs: Outputs, code: str) -> str:
     stresses), the kept outputs and the code version: equal keys are equal results."""
     full = {KEY_NAMES.get(k, k): v for k, v in JOB_INPUTS.keyed(values).items()}
     for name in FILE_INPUTS:   # a file decides by what it holds, not by its name
-        if _is_file(name, full.get(name)):
+        if is_file(name, full.get(name)):
             full[name] = _digest(Path(str(full[name])))
     kept = [outputs.vtu, outputs.png] + [True] * outputs.report   # older keys stay valid
     text = json.dumps({"inputs": full, "outputs": kept, "code": code}, sort_keys=True)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
-
-
-#: the solve's inputs that name a file: measured deviations, a load spectrum, a material (a
-#: name of the table, or a .toml file)
-FILE_INPUTS = ("deviations", "spectrum", "material")
-
-
-def _is_file(name: str, value) -> bool:
-    """Whether the input ``name`` = ``value`` names a file (:data:`FILE_INPUTS`)."""
-    if not isinstance(value, str) or not value:
-        return False
-    return name != "material" or value.endswith(".toml")
-
-
-def _relative_to_study(path: Path, values: dict) -> dict:
-    """``values`` with the files they name (:data:`FILE_INPUTS`) relative to the study file
-    made absolute: a study runs the same from any folder."""
-    for name in FILE_INPUTS:
-        value = values.get(name)
-        if _is_file(name, value) and not Path(value).is_absolute():
-            values = {**values, name: str((Path(path).parent / value).resolve())}
-    return values
 
 
 def _digest(file: Path) -> str:

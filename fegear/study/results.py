@@ -77,6 +77,7 @@ def rows(study: Study, out: Path) -> list[dict]:
             # in the case's record
             summary = dict(summary)
             samples, sens = summary.pop("samples", None), summary.pop("sensitivities", None)
+            summary.pop("case", None)   # the inputs as run: the row's own input columns
             if samples is not None:
                 row.update(samples_columns(samples))
             if sens is not None:

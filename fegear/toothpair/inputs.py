@@ -42,7 +42,7 @@ LOAD_INPUTS = (
 )
 
 MODEL_INPUTS = (
-    Input("quality", str, "standard", "mesh quality", choices=QUALITY),
+    Input("quality", str, "standard", "mesh quality", choices=QUALITY, metavar="LEVEL"),
     Input("tip-round", float, None, "gear-1 tip-edge round radius", "mm", low=0.0,
           limits="0 <= tip-round <= m/2 and fitting the tip edges",
           rule=f"{TIP_ROUND:g} m, or half the largest round that fits where that does not"),
@@ -62,21 +62,26 @@ MODEL_INPUTS = (
 DEVIATION_INPUTS = (
     Input("pitch-deviation", str, None, "teeth turned along their pitch circle (a tooth's "
           "position deviation), GEAR:TOOTH=µm, comma-separated, e.g. 1:11=5",
-          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True),
+          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True,
+          metavar="GEAR:TOOTH=µm"),
     Input("slope-deviation", str, None, "profile slope deviations: the loaded flank's normal "
           "departure growing from its root to the value at its tip, GEAR:TOOTH=µm",
-          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True),
+          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True,
+          metavar="GEAR:TOOTH=µm"),
     Input("form-deviation", str, None, "profile form deviations: a parabola along the loaded "
           "flank, the value at its middle, GEAR:TOOTH=µm",
-          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True),
+          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True,
+          metavar="GEAR:TOOTH=µm"),
     Input("centre-distance-deviation", float, 0.0, "the centres farther apart than "
           "m (z2 - z1)/2 by this", "µm", low=-1000.0, high=1000.0),
     Input("runout", str, None, "radial runout F_r of a gear and the angle of its high point "
-          "from tooth 0, GEAR=µm@deg, comma-separated, e.g. 1=10@90",
-          limits="GEAR 1 or 2, 0 <= µm <= 1000", rule="none", repeat=True),
+          "from tooth 0, GEAR=µm[@deg], comma-separated, e.g. 1=10@90 (without @deg, 0°: the "
+          "high point at tooth 0)",
+          limits="GEAR 1 or 2, 0 <= µm <= 1000", rule="none", repeat=True,
+          metavar="GEAR=µm[@deg]"),
     Input("deviations", str, None, "a CSV file of measured deviations, a row per tooth: gear, "
           "tooth and any of fp, fpt, fHa, ffa with their units, e.g. fp [µm]",
-          limits="a readable file (docs/geometry.md)", rule="none"),
+          limits="a readable file (docs/geometry.md)", rule="none", metavar="FILE"),
 )
 #: a tolerance class's sampled pairs (docs/tolerance.md): what most gears of the class carry
 TOLERANCE_INPUTS = (
@@ -104,7 +109,7 @@ RATING_INPUTS = (
           "(revolutions of gear 1 against gear 2), or with a share of the time and --speed, "
           "--life; each level solved at KA·KV·torque at the positions, each tooth's damage by "
           "Miner's rule on the --material's S-N lines, the life and the safety factors at the "
-          "required life; writes rating.csv", rule="none (no life rating)"),
+          "required life; writes rating.csv", rule="none (no life rating)", metavar="FILE"),
     Input("speed", float, None, "gear 1's speed against gear 2 (turns a spectrum's shares "
           "and its life into cycles; with cycles, the life in hours)", "rpm", low=0.0,
           low_open=True, high=1e5, rule="none"),
@@ -118,8 +123,14 @@ RATING_INPUTS = (
           high=5.0),
     Input("material", str, "42CrMo", "the gears' material for the life rating: 42CrMo (the "
           "seed paper's, default), 42CrMo-QT, 42CrMo-nitrided, 20CrMnTi, 18CrNiMo7-6, or a "
-          "TOML file with treatment, sigma_Hlim and sigma_FE (MPa)"),
+          "TOML file with treatment, sigma_Hlim and sigma_FE (MPa)", metavar="NAME|FILE"),
 )
+
+#: the inputs that only a feature reads, and the input that turns it on: given without it,
+#: they are refused by name (a class's draw, a life rating)
+REQUIRES = {**dict.fromkeys(("samples", "seed", "quantile", "centre-distance-tolerance"),
+                            "grade"),
+            **dict.fromkeys(("speed", "life", "KA", "KV", "material"), "spectrum")}
 
 #: the deviation inputs that name a deviation by text (the others: the centre distance)
 DEVIATION_TEXTS = tuple(row.name for row in DEVIATION_INPUTS if row.kind is str)

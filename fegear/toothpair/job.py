@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from .. import progress
@@ -20,12 +20,17 @@ from ..running import SERIAL, Executor
 from ..timing import Stopwatch
 from ..tolerance import Draw, grade_of
 from .case import SolveCase, cycle_positions
-from .inputs import JOB_INPUTS, PAIR_INPUTS, TIP_ROUND, check_tip_round
+from .case_file import case_record
+from .inputs import JOB_INPUTS, PAIR_INPUTS, REQUIRES, TIP_ROUND, check_tip_round
 from .levels import Rating
 from .revolution import PER_PITCH, phase_major, revolution_positions, revolution_summary
 from .safety import DEFAULT_ALLOWABLES, allowables_of
 
 PAIR_NAMES = {row.name for row in PAIR_INPUTS}
+#: what a rating solves where neither --positions nor --revolution is given (a tooth's
+#: largest stress is over its pass through the mesh, which one pitch's positions cover)
+RATING_CYCLE = (f"{PER_PITCH} positions over one pitch, the default cycle for a rating "
+                "(--positions N or --revolution sets another)")
 
 
 @dataclass(frozen=True)
@@ -36,7 +41,9 @@ class Job:
     whole revolution of gear 1 (:mod:`.revolution`), and the pairs of a tolerance class
     solved beside the exact one (``draw``, :mod:`.samples`) with the share of them the
     verdict's safety factors hold for (``quantile``), and whether the headlines' rates with
-    the deviations are formed (``sensitivities``, :mod:`.ring.sensitivity`)."""
+    the deviations are formed (``sensitivities``, :mod:`.ring.sensitivity`), and every input by
+    name as the job runs it, the derived defaults at their values (``record``:
+    :func:`~.case_file.case_record`, what ``--save-case`` writes)."""
 
     case: SolveCase
     betas: tuple[float, ...]
@@ -47,6 +54,8 @@ class Job:
     quantile: float = 0.95
     sensitivities: bool = False
     rating: Rating | None = None
+    record: Mapping[str, object] = field(default_factory=dict)
+    cycle_default: str | None = None   # what the output says of a cycle it was not given
 
 
 def prepare_job(values: Mapping[str, object]) -> Job:
@@ -62,6 +71,9 @@ def prepare_job(values: Mapping[str, object]) -> Job:
     position = JOB_INPUTS["position"].check(v["position"])
     positions = JOB_INPUTS["positions"].check(v["positions"])
     revolution = JOB_INPUTS["revolution"].check(v["revolution"])
+    cycle_default = None
+    if v["spectrum"] is not None and positions is None and not revolution:
+        positions, cycle_default = PER_PITCH, RATING_CYCLE
     n = 1 if positions is None else positions
     case = SolveCase(params, torque=v["torque"], beta=math.radians(position),
                      thickness=v["face-width"], E=v["E"], nu=v["nu"], quality=v["quality"],
@@ -73,11 +85,23 @@ def prepare_job(values: Mapping[str, object]) -> Job:
     else:
         betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
     draw = _draw(v, given=values, case=case)
-    rating = _rating(v, given=values, case=case, positions=positions, revolution=revolution,
-                     draw=draw)
+    rating = _rating(v, given=values, case=case, revolution=revolution, draw=draw)
     return Job(case, tuple(betas), not v["no-estimate"], allowables_of(v), revolution, draw,
                JOB_INPUTS["quantile"].check(v["quantile"]),
-               JOB_INPUTS["sensitivities"].check(v["sensitivities"]), rating)
+               JOB_INPUTS["sensitivities"].check(v["sensitivities"]), rating,
+               case_record(values, _derived(case, len(betas), revolution)),
+               cycle_default=cycle_default)
+
+
+def _derived(case: SolveCase, n: int, revolution: bool) -> dict[str, object]:
+    """The inputs whose defaults follow from the others (None in the schema), at the values
+    ``case`` took, and the positions solved per pitch (``n`` rolling angles in all)."""
+    p = case.params
+    per_pitch = n // p.z1 if revolution else n
+    return {"shift": p.shift, "rotation": p.rotation, "tip-clearance": p.tip_clearance,
+            "relief-extent": p.relief_extent if p.relief > 0 else None,
+            "tip-round": case.edge_radius, "rim1": case.rims[0], "rim2": case.rims[1],
+            "positions": per_pitch if revolution or n > 1 else None}
 
 
 def _draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | None:
@@ -85,7 +109,7 @@ def _draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | None:
     given (the class draws them); None without a class."""
     grade = v["grade"]
     if grade is None:
-        for name in ("samples", "seed", "quantile", "centre-distance-tolerance"):
+        for name in (name for name, switch in REQUIRES.items() if switch == "grade"):
             if given.get(name) is not None:
                 raise ParameterError(name, given[name], "with --grade only (the pairs of a "
                                      "tolerance class are drawn only where it is given)")
@@ -99,25 +123,22 @@ def _draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | None:
                 JOB_INPUTS["seed"].check(v["seed"]))
 
 
-def _rating(v: dict, given: Mapping[str, object], case: SolveCase, positions: int | None,
-            revolution: bool, draw: Draw | None) -> Rating | None:
-    """The life rating's inputs (``--spectrum``: the file read and every level checked),
-    refused by name: the rating's options without a spectrum, a spectrum at one position (a
-    tooth's largest stress is over its pass through the mesh), a deviated pair's over less
-    than a revolution (its teeth differ: each is rated over its whole pass) or with a
-    tolerance class; None without a spectrum."""
+def _rating(v: dict, given: Mapping[str, object], case: SolveCase, revolution: bool,
+            draw: Draw | None) -> Rating | None:
+    """The life rating's inputs (``--spectrum``: the file read and every level checked; its
+    positions a cycle, :data:`RATING_CYCLE` where none is given), refused by name: the
+    rating's options without a spectrum, a deviated pair's over less than a revolution (its
+    teeth differ: each is rated over its whole pass) or with a tolerance class; None without
+    a spectrum."""
     from ..rating import material, read_spectrum
 
     path = v["spectrum"]
     if path is None:
-        for name in ("speed", "life", "KA", "KV", "material"):
+        for name in (name for name, switch in REQUIRES.items() if switch == "spectrum"):
             if given.get(name) is not None:
                 raise ParameterError(name, given[name], "with --spectrum only (the options "
                                      "of a life rating)")
         return None
-    if positions is None and not revolution:
-        raise ParameterError("spectrum", path, "with --positions N or --revolution (a "
-                             "tooth's largest stress is over its pass through the mesh)")
     if case.deviations and not revolution:
         raise ParameterError("spectrum", path, "with --revolution for a pair with deviations "
                              "(its teeth differ: each is rated over its whole pass)")
@@ -253,12 +274,15 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
         estimate_s = after.s
     summary = pair_summary(sol, estimate, watch.s, other, job.allowables)
     summary["estimate_s"] = estimate_s
+    summary["case"] = dict(job.record)
     add_tooth_estimates(summary, teeth)
     rows = None
     if len(sols) > 1:
         rows = cycle_rows(sols, job.allowables)
         summary["cycle"] = {"positions": len(sols), "solve_s": cycle_s,
                             **cycle_summary(rows), "rows": rows}
+        if job.cycle_default:
+            summary["cycle"]["default"] = job.cycle_default
     if job.revolution and sampled is None:   # the exact pair's: its cycle, repeated
         summary["revolution"] = revolution_summary(tuple(sols), job.allowables)
     if sampled is not None:
