@@ -212,7 +212,7 @@ def _save_case(target, job, a: argparse.Namespace):
 
     title = (f"fegear {__version__}: a tooth-pair case, every input as run (the defaults "
              f"written out)\nfrom: {shlex.join(['fegear', *a.argv])}\n"
-             f"again: fegear solve --case {target.name}")
+             f"again: fegear solve --case {target}")
     text = case_toml(job.record, where=target.absolute().parent, title=title)
     target.parent.mkdir(parents=True, exist_ok=True)
     return write_atomic(target, lambda tmp: tmp.write_text(text, encoding="utf-8"))
