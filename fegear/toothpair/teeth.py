@@ -117,7 +117,8 @@ def refuse_interference(states) -> None:
 class Closure:
     """Where deviations take up the pair's backlash: at ``beta`` (rad) gear 1's ``tooth``
     stands ``into_um`` into gear 2 (µm of arc at r0) and the coast flanks leave gear 1
-    ``back_um`` to turn back."""
+    ``back_um`` to turn back (less than 0: the coast side is closed too, a coast flank that
+    far into gear 2)."""
 
     beta: float
     tooth: int
@@ -125,9 +126,12 @@ class Closure:
     back_um: float
 
     def __str__(self) -> str:
+        coast = (f"the coast flanks leave gear 1 {self.back_um:.3g} µm to turn back"
+                 if self.back_um >= 0 else "the coast side is closed too: a coast flank "
+                 f"stands {-self.back_um:.3g} µm into gear 2, leaving gear 1 no room to "
+                 "turn back")
         return (f"gear-1 tooth {self.tooth} stands {self.into_um:.3g} µm of arc at r0 into "
-                f"gear 2 at β = {math.degrees(self.beta):.4g}°, and the coast flanks leave "
-                f"gear 1 {self.back_um:.3g} µm to turn back")
+                f"gear 2 at β = {math.degrees(self.beta):.4g}°, and {coast}")
 
 
 def closed(behind) -> Closure | None:

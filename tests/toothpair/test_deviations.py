@@ -162,6 +162,24 @@ def test_a_pair_that_jams_elsewhere_in_the_turn_is_refused_at_any_position():
     assert exc.value.name == "centre-distance-deviation"
 
 
+def test_a_pair_closed_on_both_sides_says_so():
+    """30 µm more centre distance pushes the teeth into gear 2 on both flanks: the refusal
+    says the coast side is closed too and by how much, not that gear 1 has a negative room
+    to turn back (issue 67); a pair with room on the coast side is told how much."""
+    from fegear.toothpair import solve_positions
+    from fegear.toothpair.teeth import Closure
+
+    job = prepare_job({"centre-distance-deviation": 30.0, "quality": "coarse"})
+    with pytest.raises(ParameterError) as exc:
+        solve_positions(job.case, job.betas)
+    said = str(exc.value)
+    assert exc.value.name == "centre-distance-deviation"
+    assert "the coast side is closed too: a coast flank stands 11.5 µm into gear 2" in said, said
+    assert "-11" not in said and "leave gear 1" not in said
+    open_ = str(Closure(0.0, 11, 24.6, 9.6))
+    assert open_.endswith("and the coast flanks leave gear 1 9.6 µm to turn back"), open_
+
+
 def test_a_newton_step_divides_by_a_flank_s_lever_not_by_a_tip_s():
     """A closing point whose gap the turn barely moves (its normal through gear 1's axis, the
     rate near zero or of the wrong sign) is no place for a Newton step: the step divides by at
