@@ -298,6 +298,14 @@ def test_a_file_input_is_found_beside_the_study_and_keyed_by_what_it_holds(tmp_p
         c.key for c in first.cases}                      # another one: solved again
 
 
+def test_a_spectrum_without_positions_is_rated_over_the_default_cycle(tmp_path):
+    # as `fegear solve --spectrum` alone: a case is rated over 24 positions, not refused
+    (tmp_path / "duty.csv").write_text("torque,cycles\n100,1e6\n")
+    s = build_study({"base": {"spectrum": "duty.csv"}, "sweep": [{"torque": [100.0, 200.0]}]},
+                    tmp_path / "a.toml")
+    assert not s.refused and len(s.cases) == 2
+
+
 def test_a_material_of_the_table_is_a_name_not_a_file(tmp_path):
     (tmp_path / "duty.csv").write_text("torque,cycles\n100,1e6\n")
     doc = {"base": {**RATED, "spectrum": "duty.csv", "material": "20CrMnTi"},

@@ -164,7 +164,6 @@ def _solve(tmp_path, *args):
     ("", ["--positions", "4"], "at least one level"),
     ("torque,cycles\n100,-3\n", ["--positions", "4"], "cycles >= 0 at line 2"),
     ("torque,cycles\n100000,3\n", ["--positions", "4"], "the most the pair takes"),
-    ("torque,cycles\n100,3\n", [], "with --positions N or --revolution"),
     ("torque,share\n100,1\n", ["--positions", "4"], "--speed and --life"),
     ("torque,cycles\n100,3\n", ["--positions", "4", "--pitch-deviation", "1:11=5"],
      "with --revolution for a pair with deviations"),
@@ -177,6 +176,22 @@ def test_bad_spectra_exit_2_with_one_line_and_nothing_written(tmp_path, text, ar
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and "--spectrum" in lines[0] and fragment in lines[0], lines
     assert not out.exists()
+
+
+def test_a_spectrum_without_positions_takes_the_default_cycle_and_says_so(tmp_path):
+    # a rating always needs a cycle: without --positions or --revolution it takes one
+    # pitch's 24 positions, and the summary says it chose them (issue 67)
+    from fegear.toothpair.job import RATING_CYCLE
+    from fegear.toothpair.revolution import PER_PITCH
+
+    (tmp_path / "duty.csv").write_text("torque,cycles\n100,1e6\n")
+    job = prepare_job({"quality": "coarse", "no-estimate": True,
+                       "spectrum": str(tmp_path / "duty.csv")})
+    assert job.betas == prepare_job({"quality": "coarse", "positions": PER_PITCH}).betas
+    assert PER_PITCH == 24 and RATING_CYCLE.startswith("24 positions over one pitch")
+    cycle = solve_job(job).summary["cycle"]
+    assert cycle["positions"] == 24 and cycle["default"] == RATING_CYCLE
+    assert "default" not in solve_job(prepare_job(BASE)).summary["cycle"]   # one given
 
 
 def test_the_rating_options_want_a_spectrum(tmp_path):
