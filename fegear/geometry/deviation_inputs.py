@@ -3,37 +3,44 @@ as short texts, or as a file of measured deviations.
 
 * ``GEAR:TOOTH=µm``, comma-separated: a tooth's pitch, slope or form deviation
   (``--pitch-deviation 1:11=5,2:30=-3``);
-* ``GEAR=µm@deg``, comma-separated: a gear's radial runout and the angle of its high point
+* ``GEAR=µm[@deg]``, comma-separated: a gear's radial runout and the angle of its high point
   (``--runout 1=10@90``; without ``@deg``, 0°);
 * a CSV file, one row per tooth as a gear measuring machine reports them: columns ``gear``,
   ``tooth`` and any of ``fp`` (the tooth's position deviation; also ``pitch``), ``fpt`` (its
   single pitch deviation from the tooth before, summed into positions: every tooth of that gear
   then), ``fHa`` (profile slope) and ``ffa`` (profile form), each with its unit in brackets,
-  ``[µm]``, ``[um]`` or ``[mm]`` (``fp [µm]``); lines starting with ``#`` are comments.
+  ``[µm]``, ``[um]`` or ``[mm]`` (``fp [µm]``), in the header grammar of every input table
+  (:mod:`fegear.files`: commas, or semicolons with decimal commas; lines starting with ``#``
+  are comments). A tooth has one row.
 
 Whatever is wrong is refused in one line naming the option, the row or the column.
 """
 
 from __future__ import annotations
 
-import csv
 import math
 import re
 from collections.abc import Mapping
 from dataclasses import replace
-from pathlib import Path
 
 from ..errors import ParameterError
+from ..files import Column, read_table, read_text
 from .deviations import LIMIT_UM, Deviations, Runout, ToothDeviation
 
 #: the per-tooth options and the field each sets
 PER_TOOTH = {"pitch-deviation": "pitch", "slope-deviation": "slope", "form-deviation": "form"}
-#: the file's columns: name (lower case) → field; "fpt" is summed into positions
-COLUMNS = {"fp": "pitch", "pitch": "pitch", "fpt": "fpt", "fha": "slope", "slope": "slope",
-           "ffa": "form", "form": "form"}
-UNITS = {"µm": 1.0, "um": 1.0, "μm": 1.0, "mm": 1e3}
+#: a deviation column's units: one must be given (µm or mm, a factor of 1000 apart)
+UNITS = {"µm": 1.0, "um": 1.0, "mm": 1e3}
+#: the file's columns, and the field each deviation column sets ("fpt" is summed into
+#: positions)
+COLUMNS = (Column(("gear",)), Column(("tooth",)), Column(("fp", "pitch"), UNITS, None),
+           Column(("fpt",), UNITS, None), Column(("fHa", "slope"), UNITS, None),
+           Column(("ffa", "form"), UNITS, None))
+FIELDS = {"fp": "pitch", "fpt": "fpt", "fHa": "slope", "ffa": "form"}
+HEADER = "columns gear, tooth and any of fp (or pitch), fpt, fHa (or slope), ffa (or form)"
 TOOTH_SPEC = "GEAR:TOOTH=µm, comma-separated (e.g. 1:11=5,2:30=-3), GEAR 1 or 2"
-RUNOUT_SPEC = "GEAR=µm@deg, comma-separated (e.g. 1=10@90), GEAR 1 or 2, 0 <= µm <= 1000"
+RUNOUT_SPEC = ("GEAR=µm[@deg], comma-separated (e.g. 1=10@90; without @deg, 0°), GEAR 1 or 2, "
+               "0 <= µm <= 1000")
 
 
 def per_tooth(name: str, text) -> dict[tuple[int, int], float]:
@@ -49,7 +56,8 @@ def per_tooth(name: str, text) -> dict[tuple[int, int], float]:
 
 
 def runouts(text) -> dict[int, Runout]:
-    """``GEAR=µm@deg`` entries of ``--runout`` → {gear: Runout}."""
+    """``GEAR=µm[@deg]`` entries of ``--runout`` → {gear: Runout} (without ``@deg``, the high
+    point at 0°)."""
     out: dict[int, Runout] = {}
     for part in _parts(text):
         m = re.fullmatch(r"\s*([12])\s*=\s*([^@]+?)\s*(?:@\s*(.+?)\s*)?", part)
@@ -83,20 +91,31 @@ def deviations_of(values: Mapping[str, object], z1: int, z2: int) -> Deviations:
 def read_deviations(path, z1: int, z2: int) -> dict[tuple[int, int], ToothDeviation]:
     """The per-tooth deviations of the file ``path`` (module docstring) → {(gear, tooth):
     deviation}."""
-    rows, fields = _rows(Path(str(path)))
+    table = read_table(read_text(path, "deviations", "CSV file of measured deviations"),
+                       COLUMNS, "deviations", path, HEADER)
+    fields = [c for c in table.columns if c in FIELDS]
+    if not {"gear", "tooth"} <= set(table.columns) or not fields:
+        raise ParameterError("deviations", str(path), "a header with gear, tooth and at least "
+                             "one deviation column (with its unit: fp [µm]), and a row a "
+                             "tooth")
     z = {1: z1, 2: z2}
     got: dict[tuple[int, int], dict[str, float]] = {}
-    for line, row in rows:
-        gear, tooth = _whole(path, line, row, "gear"), _whole(path, line, row, "tooth")
+    lines: dict[tuple[int, int], int] = {}
+    for row in table.rows:
+        gear, tooth = _whole(path, row, "gear"), _whole(path, row, "tooth")
         if gear not in z or not 0 <= tooth < z[gear]:
-            raise ParameterError("deviations", str(path), f"line {line}: gear 1 (teeth 0 ... "
-                                 f"{z1 - 1}) or 2 (teeth 0 ... {z2 - 1}), not gear {gear} "
+            raise ParameterError("deviations", str(path), f"line {row.line}: gear 1 (teeth 0 "
+                                 f"... {z1 - 1}) or 2 (teeth 0 ... {z2 - 1}), not gear {gear} "
                                  f"tooth {tooth}")
-        got[(gear, tooth)] = {attr: scale * _cell(path, line, row, column)
-                              for column, (attr, scale) in fields.items()}
+        if (gear, tooth) in lines:   # measured twice: which row is meant is the user's call
+            raise ParameterError("deviations", str(path), f"one row a tooth (lines "
+                                 f"{lines[(gear, tooth)]} and {row.line} both give gear "
+                                 f"{gear} tooth {tooth})")
+        lines[(gear, tooth)] = row.line
+        got[(gear, tooth)] = {FIELDS[c]: row.values[c] for c in fields}
     for gear in (1, 2):   # single pitch deviations: each tooth's position is their running sum
         mine = sorted(t for g, t in got if g == gear)
-        if "fpt" in {a for a, _ in fields.values()} and mine:
+        if "fpt" in fields and mine:
             if mine != list(range(z[gear])):
                 raise ParameterError("deviations", str(path), f"every tooth 0 ... "
                                      f"{z[gear] - 1} of gear {gear}: fpt, the single pitch "
@@ -111,60 +130,11 @@ def read_deviations(path, z1: int, z2: int) -> dict[tuple[int, int], ToothDeviat
         raise ParameterError("deviations", str(path), err.admissible, err.reason) from None
 
 
-def _rows(path: Path):
-    """The file's data rows (line number, dict) and its deviation columns: name → (field,
-    factor to µm)."""
-    try:
-        lines = path.read_text().splitlines()
-    except (OSError, UnicodeDecodeError) as err:
-        raise ParameterError("deviations", str(path), "a readable CSV file of measured "
-                             f"deviations ({err.__class__.__name__})") from None
-    numbered = [(k + 1, text) for k, text in enumerate(lines)
-                if text.strip() and not text.lstrip().startswith("#")]
-    if not numbered:
-        raise ParameterError("deviations", str(path), "a header (gear, tooth and deviation "
-                             "columns with their units) and a row per tooth")
-    reader = csv.reader([text for _, text in numbered], skipinitialspace=True)
-    header = [h.strip() for h in next(reader)]
-    fields = {}
-    for h in header:
-        m = re.fullmatch(r"(.+?)\s*\[\s*(.+?)\s*\]", h)
-        name = (m.group(1) if m else h).strip().lower()
-        if name in ("gear", "tooth"):
-            continue
-        if name not in COLUMNS:
-            raise ParameterError("deviations", str(path), f"columns gear, tooth and any of "
-                                 f"{', '.join(sorted(set(COLUMNS)))}, not {h!r}")
-        if not m or m.group(2) not in UNITS:
-            raise ParameterError("deviations", str(path), f"the unit of column {h!r} in "
-                                 "brackets: [µm], [um] or [mm]")
-        fields[h] = (COLUMNS[name], UNITS[m.group(2)])
-    if not {"gear", "tooth"} <= {h.lower() for h in header} or not fields:
-        raise ParameterError("deviations", str(path), "a header with gear, tooth and at least "
-                             "one deviation column")
-    rows = []
-    for (line, _), cells in zip(numbered[1:], reader):
-        if len(cells) != len(header):
-            raise ParameterError("deviations", str(path), f"line {line}: {len(header)} cells "
-                                 f"as in the header, not {len(cells)}")
-        rows.append((line, {h.lower() if h.lower() in ("gear", "tooth") else h: c.strip()
-                            for h, c in zip(header, cells)}))
-    return rows, fields
-
-
-def _cell(path, line: int, row: dict, column: str) -> float:
-    value = _number(row[column])
-    if not math.isfinite(value):
-        raise ParameterError("deviations", str(path), f"line {line}: a number in column "
-                             f"{column!r}, not {row[column]!r}")
-    return value
-
-
-def _whole(path, line: int, row: dict, column: str) -> int:
-    value = _number(row[column])
-    if not math.isfinite(value) or value != int(value):
-        raise ParameterError("deviations", str(path), f"line {line}: a whole number in "
-                             f"column {column!r}, not {row[column]!r}")
+def _whole(path, row, column: str) -> int:
+    value = row.values[column]
+    if value != int(value):
+        raise ParameterError("deviations", str(path), f"line {row.line}: a whole number in "
+                             f"column {column!r}, not {value:g}")
     return int(value)
 
 

@@ -1,27 +1,33 @@
 """A load spectrum (``--spectrum FILE``): the duty cycle's torque levels and how often each is
-met (docs/rating.md, "Load spectra").
+met (docs/rating.md, "The spectrum file").
 
 A file gives levels of torque (N·m) with either their ``cycles`` (revolutions of gear 1
 against gear 2: each gear-1 tooth meshes once a revolution) or their ``share`` of the time, which
 a speed (rpm, gear 1 against gear 2) and a required life (hours) turn into cycles. CSV: a
-header ``torque,cycles`` or ``torque,share`` and a row a level; TOML: ``[[level]]`` tables
-with the same keys. Every fault (no level, a negative count, shares that do not add up to 1,
-shares without a speed and a life, a torque of zero or less) is one error naming the file,
-the line or level, and what it needs.
+header ``torque,cycles`` or ``torque,share`` and a row a level, in the header grammar of every
+input table (:mod:`fegear.files`: a unit in brackets where one is given, ``torque [kN·m]``,
+``share [%]``; commas, or semicolons with decimal commas); TOML: ``[[level]]`` tables with the
+same keys. Every fault (no level, a negative count, shares that do not add up to 1, shares
+without a speed and a life, a torque of zero or less) is one error naming the file, the line or
+level, and what it needs.
 """
 
 from __future__ import annotations
 
-import csv
 import math
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import ParameterError
+from ..files import Column, column_of, read_table, read_text
 
 #: how far the shares may add up from 1 (a table typed to three decimals)
 SHARE_TOLERANCE = 1e-3
+#: a level's columns (a CSV file's) or keys (a TOML file's), each in its own unit
+COLUMNS = (Column(("torque",), {"N·m": 1.0, "Nm": 1.0, "kN·m": 1e3, "kNm": 1e3}, "N·m"),
+           Column(("cycles",)), Column(("share",), {"-": 1.0, "1": 1.0, "%": 0.01}, "-"))
+HEADER = "a header torque,cycles or torque,share"
 
 
 @dataclass(frozen=True)
@@ -79,30 +85,47 @@ def read_spectrum(path, speed_rpm: float | None = None, life_h: float | None = N
 
 
 def _rows(path: Path) -> list[tuple[str, dict]]:
-    """The file's levels as (where, keys) pairs: "line 3" of a CSV, "level 2" of a TOML."""
-    try:
-        text = path.read_text()
-    except OSError as exc:
-        raise ParameterError("spectrum", str(path), f"a readable file ({exc.strerror})") \
-            from None
+    """The file's levels as (where, values by key in the keys' own units) pairs: "line 3" of
+    a CSV, "level 2" of a TOML."""
+    text = read_text(path, "spectrum", "file")
     if path.suffix == ".toml":
         try:
             levels = tomllib.loads(text).get("level", [])
         except tomllib.TOMLDecodeError as exc:
             raise ParameterError("spectrum", str(path), f"valid TOML ({exc})") from None
-        if not isinstance(levels, list):
+        if not isinstance(levels, list) or not all(isinstance(v, dict) for v in levels):
             raise ParameterError("spectrum", str(path), "[[level]] tables")
-        return [(f"level {k + 1}", dict(v)) for k, v in enumerate(levels)]
+        return [(f"level {k + 1}", _level(path, f"level {k + 1}", v))
+                for k, v in enumerate(levels)]
     if path.suffix != ".csv":
         raise ParameterError("spectrum", str(path), "a .csv or .toml file")
-    if not text.strip():
-        return []
-    reader = csv.DictReader(line for line in text.splitlines() if line.strip())
-    header = set(reader.fieldnames or ())
-    if header not in ({"torque", "cycles"}, {"torque", "share"}):
-        raise ParameterError("spectrum", str(path), "a header torque,cycles or torque,share "
-                             f"(not {','.join(reader.fieldnames or ()) or 'none'})")
-    return [(f"line {reader.line_num}", row) for row in reader]
+    table = read_table(text, COLUMNS, "spectrum", path, HEADER)
+    if table.columns and set(table.columns) not in ({"torque", "cycles"}, {"torque", "share"}):
+        raise ParameterError("spectrum", str(path), f"{HEADER} (not "
+                             f"{table.separator.join(table.columns)})")
+    return [(f"line {row.line}", row.values) for row in table.rows]
+
+
+def _level(path: Path, where: str, keys: dict) -> dict:
+    """A TOML level's keys by their names, the values in their own units (a key names its
+    unit as a CSV file's heading does: ``"torque [kN·m]" = 0.25``)."""
+    out: dict[str, object] = {}
+    for key, value in keys.items():
+        column, factor = column_of(key, COLUMNS, "spectrum", path, "keys torque and cycles, or "
+                                   "torque and share", where=where, word="key")
+        if column.name in out:
+            raise ParameterError("spectrum", str(path), f"{where}: each key once (two give "
+                                 f"{column.name})")
+        number = None if isinstance(value, bool) else _number(value)
+        out[column.name] = value if number is None else number * factor
+    return out
+
+
+def _number(value) -> float | None:
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        return None
 
 
 def _check_row(path: Path, where: str, row: dict) -> None:
@@ -115,8 +138,8 @@ def _check_row(path: Path, where: str, row: dict) -> None:
         try:
             value = float(row[key])
         except (TypeError, ValueError):
-            raise ParameterError("spectrum", str(path), f"a number for {key} at {where} "
-                                 f"(not {row[key]!r})") from None
+            raise ParameterError("spectrum", str(path), f"{where}: a number in key {key!r}, "
+                                 f"not {row[key]!r}") from None
         if not math.isfinite(value) or value < 0 or (key == "torque" and value == 0):
             need = "a torque > 0" if key == "torque" else f"{key} >= 0"
             raise ParameterError("spectrum", str(path), f"{need} at {where} (not {value:g})")

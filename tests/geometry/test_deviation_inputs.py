@@ -5,7 +5,13 @@ whatever is wrong is one ParameterError naming the option, the line or the colum
 import pytest
 
 from fegear.errors import ParameterError
-from fegear.geometry.deviation_inputs import deviations_of, per_tooth, read_deviations, runouts
+from fegear.geometry.deviation_inputs import (
+    RUNOUT_SPEC,
+    deviations_of,
+    per_tooth,
+    read_deviations,
+    runouts,
+)
 from fegear.geometry.deviations import Runout, ToothDeviation
 
 
@@ -21,7 +27,7 @@ def test_per_tooth_texts():
 def test_runout_texts():
     assert runouts("1=10@90,2=4") == {1: Runout(10.0, 90.0), 2: Runout(4.0, 0.0)}
     for bad in ("1=-2", "3=2", "1=x@3", "1=2@y", "1:2"):
-        with pytest.raises(ParameterError, match="GEAR=µm@deg"):
+        with pytest.raises(ParameterError, match=r"GEAR=µm\[@deg\]"):
             runouts(bad)
 
 
@@ -64,6 +70,11 @@ def test_single_pitch_deviations_add_up_to_the_teeth_s_positions(tmp_path):
     ("gear,tooth,fp [µm]\n3,2,1\n", "line 2: gear 1"),
     ("gear,tooth,fp [µm]\n1,50,1\n", "not gear 1 tooth 50"),
     ("gear,tooth,fp [µm]\n1,5,5000\n", "-1000 <= pitch-deviation <= 1000"),
+    # a tooth measured twice is a mistake to point out, not a row to overwrite (issue 67)
+    ("gear,tooth,fp [µm]\n1,11,5\n# again\n1,11,6\n",
+     r"one row a tooth \(lines 2 and 4 both give gear 1 tooth 11\)"),
+    ("gear,tooth,fp [µm],pitch [µm]\n1,11,5,6\n", r"'fp \[µm\]' and 'pitch \[µm\]' are both fp"),
+    ("gear,tooth,fp_um\n1,2,3\n", r"the unit goes in brackets: fp \[um\]"),
 ])
 def test_a_bad_file_is_one_line_naming_what_is_wrong(tmp_path, text, says):
     f = tmp_path / "bad.csv"
@@ -71,6 +82,24 @@ def test_a_bad_file_is_one_line_naming_what_is_wrong(tmp_path, text, says):
     with pytest.raises(ParameterError, match=says) as exc:
         read_deviations(f, 44, 45)
     assert exc.value.name == "deviations" and "\n" not in str(exc.value)
+
+
+def test_a_spreadsheet_s_semicolons_and_decimal_commas(tmp_path):
+    # the one header grammar of every input file (fegear/files.py), as a spectrum's too
+    f = tmp_path / "m.csv"
+    f.write_text("Gear;Tooth;FP [mm];fHa [µm]\n1;11;0,004;1,5\n")
+    assert read_deviations(f, 44, 45) == {(1, 11): ToothDeviation(4.0, 1.5)}
+
+
+def test_the_help_and_the_refusal_say_the_angle_of_a_runout_may_be_left_out():
+    # `--runout 1=10` is 10 µm at 0°: the grammar the user reads says so (issue 67)
+    from fegear.toothpair.inputs import JOB_INPUTS
+
+    assert runouts("1=10") == {1: Runout(10.0, 0.0)}
+    for text in (JOB_INPUTS["runout"].help, RUNOUT_SPEC):
+        assert "GEAR=µm[@deg]" in text and "without @deg, 0°" in text, text
+    with pytest.raises(ParameterError, match=r"GEAR=µm\[@deg\]"):
+        runouts("1=x")
 
 
 def test_a_missing_file_is_named():

@@ -23,6 +23,29 @@ def test_csv_and_toml_give_the_same_levels(tmp_path):
     assert a.cycles == 1e7 + 2e5 and a.hours is None
 
 
+@pytest.mark.parametrize("name, text", [
+    ("n.csv", "torque [N·m],cycles\n100,1e7\n250,2e5\n"),
+    ("k.csv", "Torque [kN·m], Cycles [-]\n0.1, 1e7\n0.25, 2e5\n"),
+    ("c.csv", "# a duty cycle\ntorque [Nm],cycles\n100,1e7\n250,2e5\n"),
+    ("s.csv", "torque;cycles\n100;1e7\n250;2e5\n"),                # a spreadsheet's CSV
+    ("d.csv", "torque [kN·m];cycles\n0,1;10000000\n0,25;200000\n"),  # with decimal commas
+    ("u.toml", "[[level]]\n'torque [kN·m]' = 0.1\ncycles = 1e7\n"
+               "[[level]]\n'torque [kN·m]' = 0.25\ncycles = 2e5\n"),
+])
+def test_a_spectrum_s_header_takes_units_as_a_deviations_file_does(tmp_path, name, text):
+    # one grammar for every input file: a name, its unit in brackets where given, converted
+    levels = read_spectrum(_write(tmp_path, name, text)).levels
+    assert [(lv.torque, lv.cycles) for lv in levels] == [(pytest.approx(100.0), 1e7),
+                                                         (pytest.approx(250.0), 2e5)]
+
+
+def test_shares_in_per_cent(tmp_path):
+    path = _write(tmp_path, "p.csv", "torque,share [%]\n100,75\n300,25\n")
+    s = read_spectrum(path, speed_rpm=1500.0, life_h=20000.0)
+    total = 1500.0 * 60.0 * 20000.0
+    assert [lv.cycles for lv in s.levels] == pytest.approx([0.75 * total, 0.25 * total])
+
+
 def test_shares_become_revolutions_over_the_life(tmp_path):
     path = _write(tmp_path, "s.csv", "torque,share\n100,0.75\n300,0.25\n")
     s = read_spectrum(path, speed_rpm=1500.0, life_h=20000.0)
@@ -36,8 +59,18 @@ def test_shares_become_revolutions_over_the_life(tmp_path):
     ("e.csv", "torque,cycles\n", "at least one level"),
     ("n.csv", "torque,cycles\n100,-5\n", "cycles >= 0 at line 2"),
     ("z.csv", "torque,cycles\n0,5\n", "a torque > 0 at line 2"),
-    ("x.csv", "torque,cycles\n100,many\n", "a number for cycles at line 2"),
+    ("x.csv", "torque,cycles\n100,many\n", "line 2: a number in column 'cycles', not 'many'"),
     ("h.csv", "load,cycles\n100,5\n", "a header torque,cycles or torque,share"),
+    ("c.csv", "torque\n100\n", "a header torque,cycles or torque,share (not torque)"),
+    ("u.csv", "torque [lbf·ft],cycles\n100,5\n",
+     "the unit of column 'torque [lbf·ft]' in brackets: [N·m], [Nm], [kN·m] or [kNm]"),
+    ("n.csv", "torque_Nm,cycles\n100,5\n", "the unit goes in brackets: torque [Nm]"),
+    ("a.csv", "Nm,cycles\n100,5\n", "a unit alone: torque [Nm]"),
+    ("d.csv", "torque;cycles\n1.000,5;5\n", "this file's decimal mark is the comma"),
+    ("k.toml", "[[level]]\n'torque [lbf·ft]' = 1\ncycles = 5\n",
+     "level 1: the unit of key 'torque [lbf·ft]'"),
+    ("w.toml", "[[level]]\ntorque = 'x'\ncycles = 5\n", "level 1: a number in key 'torque', "
+                                                          "not 'x'"),
     ("s.csv", "torque,share\n100,0.5\n200,0.3\n", "shares that add up to 1"),
     ("m.toml", "[[level]]\ntorque = 1\ncycles = 5\n[[level]]\ntorque = 2\nshare = 1.0\n",
      "not both"),
