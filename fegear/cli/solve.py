@@ -135,9 +135,11 @@ def run(a: argparse.Namespace) -> int:
     elif result.rows:
         print(cycle_table(result.rows))
         also = " (and the class's pairs)" if "samples" in result.summary else ""
+        default = result.summary["cycle"].get("default")
         print(f"\n{len(result.rows)} positions on one mesh{also} in "
               f"{result.summary['cycle']['solve_s']:.1f} s; the details below are at the "
-              "position of the largest gear-1 root stress\n")
+              "position of the largest gear-1 root stress"
+              + (f"\n(not given: {default})" if default else "") + "\n")
     print(pair_table(result.summary))
     if "samples" in result.summary:
         from ..toothpair.samples_report import samples_table

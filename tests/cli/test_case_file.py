@@ -139,3 +139,12 @@ def test_help_groups_hold_every_input_once_in_the_order_of_the_help(capsys):
     where = [text.index(f"\n{title}:\n") for title in titles]
     assert where == sorted(where)
     assert text.startswith("usage: fegear solve [--case FILE] [options]")
+
+
+def test_a_rating_without_positions_says_it_took_the_default_cycle(tmp_path, capsys):
+    spectrum = tmp_path / "duty.csv"
+    spectrum.write_text("torque [N·m];cycles\n10;1e6\n20;1e4\n")
+    assert main(["-q", "solve", *LIGHT_ARGS, "--spectrum", str(spectrum)]) == 0
+    out = capsys.readouterr().out
+    assert "24 positions on one mesh" in out
+    assert "(not given: 24 positions over one pitch, the default cycle for a rating" in out
