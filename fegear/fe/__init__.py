@@ -35,7 +35,8 @@ from ..exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
     "mesh": ("Segment", "Refinement", "Periodic", "BodyGeometry", "BodyMesh", "MeshQuality",
-             "MeshError", "mesh_bodies", "mesh_quality", "jiggle", "halved"),
+             "MeshError", "mesh_bodies", "mesh_quality", "jiggle", "halved", "Circle",
+             "write_step"),
     "libraries": ("import_libraries", "keep_freed_memory"),
     "material": ("Material", "MATERIAL_INPUTS", "ALLOWABLE_INPUTS", "Allowables",
                  "plane_modulus", "contact_modulus", "Plane", "PLANE_MODES", "STEEL_E",

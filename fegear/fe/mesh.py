@@ -20,6 +20,7 @@ import signal
 import threading
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field, replace
+from pathlib import Path
 
 import numpy as np
 from skfem import MeshTri2
@@ -321,6 +322,86 @@ def halved(curve, theta: np.ndarray, points: np.ndarray, tol: float,
         theta = np.concatenate([theta, mid[far]])[order]
         points = np.concatenate([points, at_mid[far]])[order]
     return points
+
+
+@dataclass(frozen=True)
+class Circle:
+    """A circle of ``radius`` (mm) about ``centre``: a loop of a plate (:func:`write_step`)."""
+
+    radius: float
+    centre: tuple[float, float] = (0.0, 0.0)
+
+
+def write_step(path: str | Path, outer: Sequence[Segment] | Circle, thickness: float,
+               holes: Sequence[Sequence[Segment] | Circle] = ()) -> Path:
+    """Write the plate that the face inside ``outer`` and outside ``holes`` makes, extruded
+    by ``thickness`` (mm) along +z from z = 0, as one solid in a STEP file (mm), built by
+    gmsh's OpenCASCADE kernel. A loop is a :class:`Circle` or closed segments, each a spline
+    through its points (a line through two) starting where the one before ended. Written
+    atomically; raises :class:`MeshError` where the kernel refuses the plate."""
+    from ..files import write_atomic
+
+    if not (np.isfinite(thickness) and thickness > 0):
+        raise MeshError(f"a plate's thickness must be > 0, not {thickness!r}")
+    with gmsh_session() as gmsh:
+        occ = gmsh.model.occ
+        gmsh.model.add("plate")
+        try:
+            loops = [_occ_loop(occ, loop) for loop in (outer, *holes)]
+            face = occ.addPlaneSurface(loops)
+            occ.extrude([(2, face)], 0.0, 0.0, float(thickness))
+            occ.synchronize()
+        except Exception as exc:  # gmsh raises plain Exception with its log message
+            if isinstance(exc, MeshError):
+                raise
+            raise MeshError(f"the kernel refused the plate: {exc}") from None
+        if len(gmsh.model.getEntities(3)) != 1:
+            raise MeshError("the plate is not one solid")
+        with _stdout_silenced():
+            return write_atomic(Path(path), lambda tmp: gmsh.write(str(tmp)))
+
+
+@contextlib.contextmanager
+def _stdout_silenced() -> Iterator[None]:
+    """The process's standard output (file descriptor 1) sent to the null device for a
+    while: OpenCASCADE's STEP writer prints its transfer statistics there whatever gmsh's
+    verbosity, which would mix into a command's printed JSON."""
+    import ctypes
+    import os
+    import sys
+
+    sys.stdout.flush()
+    saved, null = os.dup(1), os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(null, 1)
+        yield
+    finally:
+        try:                             # what C's stdio holds goes to the null device too
+            ctypes.CDLL(None).fflush(None)
+        except (OSError, AttributeError):    # no C library by that name (Windows)
+            pass
+        os.dup2(saved, 1)
+        os.close(saved)
+        os.close(null)
+
+
+def _occ_loop(occ, loop: Sequence[Segment] | Circle) -> int:
+    """An OpenCASCADE curve loop of a circle or of closed segments (:func:`write_step`),
+    neighbours sharing their end points by tag as :func:`_loop`'s do."""
+    if isinstance(loop, Circle):
+        return occ.addCurveLoop([occ.addCircle(*loop.centre, 0.0, loop.radius)])
+    first = start = occ.addPoint(*map(float, loop[0].points[0]), 0.0)
+    curves = []
+    for k, seg in enumerate(loop):
+        nxt = loop[(k + 1) % len(loop)].points[0]
+        if np.linalg.norm(seg.points[-1] - nxt) > 1e-9 * (1 + np.abs(nxt).max()):
+            raise MeshError(f"segment {seg.name!r} does not end where the next segment starts")
+        end = first if k == len(loop) - 1 else occ.addPoint(*map(float, seg.points[-1]), 0.0)
+        inner = [occ.addPoint(x, y, 0.0) for x, y in seg.points[1:-1]]
+        curves.append(occ.addSpline([start, *inner, end]) if inner else
+                      occ.addLine(start, end))
+        start = end
+    return occ.addCurveLoop(curves)
 
 
 def _polyline_length(points: np.ndarray) -> float:
