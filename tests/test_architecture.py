@@ -177,6 +177,8 @@ def test_heavy_libraries_are_imported_only_where_they_are_used():
             assert rel.startswith("cli/"), f"{rel} imports argparse"
         if "gmsh" in libs:
             assert rel == "fe/mesh.py", f"{rel} imports gmsh"
+        if "ezdxf" in libs:     # the drawings' writer, inside the function that writes
+            assert rel == "geometry/drawing.py" and not libs["ezdxf"], f"{rel} imports ezdxf"
         for lib in ("matplotlib", "pyvista"):
             if lib in libs:
                 # figures' face sets them up; its labels and pixels read the artists they are
@@ -187,7 +189,7 @@ def test_heavy_libraries_are_imported_only_where_they_are_used():
 
 def _loaded_after(code: str) -> list[str]:
     heavy = ("numpy", "scipy", "skfem", "gmsh", "meshio", "matplotlib", "pyvista", "pyarrow",
-             "distributed", "pandas")
+             "distributed", "pandas", "ezdxf")
     probe = (f"import sys\n{code}\n"
              f"print(' '.join(m for m in {heavy!r} if m in sys.modules))")
     r = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,

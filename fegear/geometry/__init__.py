@@ -8,7 +8,8 @@ Designs gear 1 cannot be built for, or that are not clear before any load, are r
 :mod:`.admissible` and :mod:`.refusal` with the admissible range of the input to change
 (:mod:`.space` maps them). :mod:`.clearance` turns gear 1 until each tooth touches (the
 clearance table, backlash, interference); :mod:`.tip_edge` rounds gear 1's tip edges for the
-stress model; :func:`build_geometry` runs the stage in one call (``fegear profile``).
+stress model; :func:`build_geometry` runs the stage in one call (``fegear profile``), and
+:mod:`.drawing` draws each gear's whole outline to manufacture from (DXF).
 Conventions and the seed paper's corrected parameters: docs/model.md.
 
 >>> import math
@@ -46,4 +47,5 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
                    "closing_points"),
     "deviation_inputs": ("deviations_of", "read_deviations"),
     "plot": ("pair_png", "map_png"),
+    "drawing": ("Outline", "gear1_outline", "gear2_outline", "write_dxf", "pitch_turns"),
 })
