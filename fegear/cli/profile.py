@@ -7,17 +7,21 @@ import json
 
 from ..checks import Input
 from ..geometry.parameters import PAIR_INPUTS
-from ..toothpair.inputs import DEVIATION_INPUTS
+from ..toothpair.inputs import DEVIATION_INPUTS, SOLVE_INPUTS
 from .args import add_inputs, checked, given_values
 
 #: the command's own inputs (the pair's are :data:`~fegear.geometry.PAIR_INPUTS`)
 PROFILE_INPUTS = (
-    Input("chord-error", float, 1e-4, "max chord error of the written polylines", "mm",
-          low=1e-7, high=0.1),
+    Input("chord-error", float, 1e-4, "max chord error of the written polylines and drawings",
+          "mm", low=1e-7, high=0.1),
     Input("positions", int, 16, "rolling positions scanned for the backlash", low=4,
           high=360),
     Input("map-size", int, 21, "designs along each axis of --map", low=5, high=101),
+    Input("step", bool, False, "with --out, also write gear1.step and gear2.step: each gear "
+          "extruded by --face-width as a solid of gmsh's OpenCASCADE kernel (about 2 s)"),
 )
+#: the drawn parts' bodies, as a solve takes them (docs/geometry.md, "Drawings for manufacture")
+BODY_INPUTS = tuple(SOLVE_INPUTS[name] for name in ("face-width", "tip-round", "rim1", "rim2"))
 
 
 def add_parser(sub) -> None:
@@ -25,7 +29,8 @@ def add_parser(sub) -> None:
     add_inputs(p, PAIR_INPUTS, "pair")
     add_inputs(p, PROFILE_INPUTS[:2])
     p.add_argument("--out", default=None, help="output directory for gear1.csv, gear2.csv, "
-                   "pair.png and summary.json (default: none, the table only)")
+                   "the drawings gear1.dxf and gear2.dxf, pair.png and summary.json "
+                   "(default: none, the table only)")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
     p.add_argument("--map", default=None, metavar="X,Y",
                    help="instead, map where the design is admissible over two inputs (the "
@@ -33,11 +38,15 @@ def add_parser(sub) -> None:
                         "as h1=0.1:0.8,f1=0:0.4 (default spans: h1 0.05-1, f1 0-0.6, the "
                         "input's range for the others); with --out writes map.png, "
                         "map_grid.csv and map_edges.csv")
-    add_inputs(p, PROFILE_INPUTS[2:])
-    add_inputs(p, DEVIATION_INPUTS, "deviations (with --out: deviations.png draws them)")
+    add_inputs(p, PROFILE_INPUTS[2:3])
+    add_inputs(p, (*PROFILE_INPUTS[3:], *BODY_INPUTS), "drawings (with --out: gear1.dxf, "
+               "gear2.dxf, the bodies a solve takes)")
+    add_inputs(p, DEVIATION_INPUTS, "deviations (with --out: deviations.png draws them, "
+                                    "gear1_deviated.dxf and gear2_deviated.dxf carry them)")
 
 
 def run(a: argparse.Namespace) -> int:
+    from ..errors import FegearError
     from ..files import check_dir, prepare_dir, write_json, write_points_csv
     from ..geometry import admissible_pair
 
@@ -47,6 +56,9 @@ def run(a: argparse.Namespace) -> int:
     params = admissible_pair(given_values(a, PAIR_INPUTS))
     chord, positions = own["chord_error"], own["positions"]
     deviations = _deviations(a, params)
+    body = _body(a, params)
+    if own["step"] and a.out is None:
+        raise FegearError("--step: with --out DIR (the files are written there)")
     out = None if a.out is None else check_dir(a.out)
     from ..geometry import build_geometry, pair_png  # the envelope needs scipy
     geo = build_geometry(params, chord, positions)
@@ -54,6 +66,7 @@ def run(a: argparse.Namespace) -> int:
     if out is None:
         print(json.dumps(summary, indent=2) if a.json else _profile_table(geo))
         return 0
+    outlines = _outlines(params, chord, body, deviations)
     out = prepare_dir(out)
     files = {
         "gear1_csv": write_points_csv(out / "gear1.csv", geo.gear1, None if geo.relief_depth
@@ -75,6 +88,8 @@ def run(a: argparse.Namespace) -> int:
             out / "deviations.png", geo.gear1, geo.gear2, params, gear1_profile(params),
             deviations,
             f"deviations: {deviations_words(deviations.summary())}")
+    files.update(_drawings(out, outlines, body, own["step"], params.describe()))
+    summary["drawings"] = _drawings_summary(outlines, body, own["step"])
     summary["files"] = {k: str(v) for k, v in files.items()}
     write_json(out / "summary.json", summary)
     if a.json:
@@ -95,6 +110,83 @@ def _deviations(a: argparse.Namespace, params):
         if row.kind is not str and row.name in values:
             values[row.name] = row.check(values[row.name])
     return deviations_of(values, params.z1, params.z2)
+
+
+def _body(a: argparse.Namespace, params) -> dict:
+    """The drawn parts' face width, gear 1's tip round and the bore and rim radii (mm),
+    checked and defaulted as ``fegear solve`` takes them (a round that does not fit is refused
+    with the largest that does; the rims by :class:`~fegear.toothpair.SolveCase`)."""
+    from ..geometry import RoundedProfile, default_round, gear1_profile
+    from ..toothpair.case import SolveCase
+    from ..toothpair.inputs import TIP_ROUND, check_tip_round, torque_limit
+
+    for row in BODY_INPUTS:              # the static ranges first: they answer at once
+        if not row.limits:
+            row.check(getattr(a, row.dest), row.name)
+    width, given = a.face_width, a.tip_round
+    profile = gear1_profile(params)      # built by the admissibility check, kept
+    if given is not None:
+        if check_tip_round(given, params.m) > 0:
+            RoundedProfile(profile, given)   # refused by name where it does not fit
+        tip = given
+    else:
+        tip = default_round(profile, TIP_ROUND * params.m)
+    # a drawing carries no load: the case's torque at its limit passes its check
+    case = SolveCase(params, torque=torque_limit(SOLVE_INPUTS["E"].default, params.m, width,
+                                                 params.r1),
+                     thickness=width, rim1=a.rim1, rim2=a.rim2, tip_round=tip)
+    rim1, rim2 = case.rims
+    return {"face_width": width, "tip_round": tip, "bore": case.root_radius1 - rim1,
+            "rim": params.r0 + 2 * params.e1 + rim2}
+
+
+def _outlines(params, chord: float, body: dict, deviations) -> dict:
+    """The drawn outlines (name → :class:`~fegear.geometry.Outline`): each gear's exact one,
+    and with deviations those of the gears they move."""
+    from ..geometry import NO_DEVIATIONS, gear1_outline, gear2_outline
+
+    def both(devs, suffix):
+        out = {}
+        if not suffix or devs.teeth(1) or devs.runout1.fr:
+            out[f"gear1{suffix}"] = gear1_outline(params, chord, body["tip_round"],
+                                                  body["bore"], devs)
+        if not suffix or devs.teeth(2) or devs.runout2.fr:
+            out[f"gear2{suffix}"] = gear2_outline(params, chord, body["rim"], devs)
+        return out
+
+    return {**both(NO_DEVIATIONS, ""), **(both(deviations, "_deviated") if deviations else {})}
+
+
+def _drawings(out, outlines: dict, body: dict, step: bool, title: str) -> dict:
+    """Write each outline as DXF and, with ``step``, as a STEP solid of the face width."""
+    from ..geometry import write_dxf
+
+    files = {}
+    for name, outline in outlines.items():
+        files[f"{name}_dxf"] = write_dxf(out / f"{name}.dxf", outline, title)
+    if step:
+        from ..fe import Circle, Segment, write_step
+
+        for name, outline in outlines.items():
+            teeth = [Segment(f"run {k}", run) for k, run in enumerate(outline.runs())]
+            circle = Circle(outline.circle)
+            files[f"{name}_step"] = (
+                write_step(out / f"{name}.step", teeth, body["face_width"], holes=[circle])
+                if outline.gear == 1 else
+                write_step(out / f"{name}.step", circle, body["face_width"], holes=[teeth]))
+    return files
+
+
+def _drawings_summary(outlines: dict, body: dict, step: bool) -> dict:
+    """What the drawings are: their tolerance, frame, bodies and the deviations they carry."""
+    out = {"chord_error_um": next(iter(outlines.values())).chord_error * 1e3,
+           "frame": "each gear about its own axis at the origin, as at β = 0 (mm)",
+           "tip_round_mm": body["tip_round"], "gear1_bore_radius_mm": body["bore"],
+           "gear2_rim_radius_mm": body["rim"], "deviated": sorted(
+               name.split("_")[0] for name in outlines if name.endswith("_deviated"))}
+    if step:
+        out["face_width_mm"] = body["face_width"]
+    return out
 
 
 def _profile_table(geo) -> str:
