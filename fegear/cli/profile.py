@@ -52,6 +52,11 @@ def run(a: argparse.Namespace) -> int:
 
     own = checked(a, PROFILE_INPUTS)
     if a.map is not None:
+        drawn = [row.name for row in (*PROFILE_INPUTS[3:], *BODY_INPUTS)
+                 if row.dest in getattr(a, "typed", ())]
+        if drawn:
+            raise FegearError(f"--{drawn[0]}: not with --map (a map draws no part; the "
+                              "drawings are written without --map)")
         return _map(a, own["map_size"])
     params = admissible_pair(given_values(a, PAIR_INPUTS))
     chord, positions = own["chord_error"], own["positions"]

@@ -55,10 +55,12 @@ def test_profile_step_writes_each_gear_as_a_solid_and_keeps_json_clean(tmp_path,
     (["--rim2", "0.1"], "--rim2 = 0.1 is not admissible"),
     (["--face-width", "0"], "--face-width = 0.0 is not admissible"),
     (["--step"], "--step: with --out DIR"),
+    (["--map", "h1,f1", "--step"], "--step: not with --map"),
+    (["--map", "h1,f1", "--rim1", "6"], "--rim1: not with --map"),
 ])
 def test_a_bad_drawing_input_is_one_line_and_writes_nothing(args, fragment, tmp_path, capsys):
     out = tmp_path / "out"
-    words = ["profile", *SMALL, *args] + ([] if args == ["--step"] else ["--out", str(out)])
+    words = ["profile", *SMALL, *args] + ([] if "--step" in args else ["--out", str(out)])
     assert main(words) == 2
     lines = capsys.readouterr().err.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("fegear: error: " + fragment), lines
