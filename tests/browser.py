@@ -1,7 +1,7 @@
 """Headless Chromium for the tests that look at a page: the system's browser (installed with
-apt-get where it is missing and the tests run as root), driven through the DevTools protocol
-over a websocket (tornado's client, which Dask already brings): the page's console errors,
-whether every picture loaded, and a screenshot."""
+apt-get where it is missing and the tests run as root: tests/system.py), driven through the
+DevTools protocol over a websocket (tornado's client, which Dask already brings): the page's
+console errors, whether every picture loaded, and a screenshot."""
 
 from __future__ import annotations
 
@@ -9,7 +9,6 @@ import base64
 import json
 import os
 import re
-import shutil
 import signal
 import subprocess
 import tempfile
@@ -17,25 +16,14 @@ import urllib.request
 from dataclasses import dataclass
 from pathlib import Path
 
-NAMES = ("chromium", "chromium-browser", "google-chrome", "google-chrome-stable")
+from system import installed, why_not
 
 
 def find_chromium() -> tuple[str | None, str]:
-    """The browser's path, installing Debian's ``chromium`` where none is found and apt-get
-    can (root); else None and why."""
-    for name in NAMES:
-        if shutil.which(name):
-            return shutil.which(name), ""
-    if shutil.which("apt-get") is None:
-        return None, "no Chromium on this machine and no apt-get to install it"
-    if os.geteuid() != 0:
-        return None, "no Chromium on this machine (apt-get install chromium needs root)"
-    for args in (["apt-get", "install", "-y", "-q", "chromium"],
-                 ["apt-get", "update", "-q"], ["apt-get", "install", "-y", "-q", "chromium"]):
-        done = subprocess.run(args, capture_output=True, text=True, timeout=900)
-        if done.returncode == 0 and shutil.which("chromium"):
-            return shutil.which("chromium"), ""
-    return None, f"apt-get could not install chromium: {done.stderr.strip()[-200:]}"
+    """The browser's path, installing Debian's ``chromium`` where none is found and the tests
+    can (tests/system.py); else None and why."""
+    found = installed("chromium")
+    return (found, "") if found else (None, why_not("chromium"))
 
 
 @dataclass

@@ -11,6 +11,17 @@ import pytest
 sys.path.insert(0, str(Path(__file__).parent))  # draws: a test helper
 sys.path.insert(0, str(Path(__file__).parent / "geometry"))  # swept_reference, a test helper
 
+import system  # noqa: E402  (a test helper, found on the path set above)
+
+
+def pytest_collection_finish(session):
+    """The system programs the collected tests ask for by fixture (``ccx``, ``chromium``) and
+    miss are installed in the background while the other tests run (tests/system.py)."""
+    if not session.config.option.collectonly:
+        system.start_installs(sorted({name for item in session.items
+                                      for name in getattr(item, "fixturenames", ())
+                                      if name in system.PROGRAMS}))
+
 
 #: where fegear would keep its models for the user running the tests (FEGEAR_CACHE_DIR, else
 #: $XDG_CACHE_HOME/fegear, else ~/.cache/fegear), read before the session changes anything

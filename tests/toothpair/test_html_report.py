@@ -62,11 +62,17 @@ def test_the_verdict_comes_first_and_every_part_is_there(page):
     assert "S_H" in body and "pitting gear 1" in body
 
 
-def test_the_page_renders_in_headless_chromium(page):
+@pytest.fixture
+def chromium():
+    """Headless Chromium, installed from Debian's chromium where it is missing and can be."""
     browser, why = find_chromium()
     if browser is None:
         pytest.skip(why)
-    seen = look(browser, page)
+    return browser
+
+
+def test_the_page_renders_in_headless_chromium(page, chromium):
+    seen = look(chromium, page)
     assert seen.errors == []
     assert len(seen.images) >= 3 and all(seen.images), seen.images
     assert seen.title.startswith("fegear: m 2")
