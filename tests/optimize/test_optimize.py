@@ -156,17 +156,24 @@ def test_a_trial_killed_while_its_design_was_drawn_is_drawn_whole_and_solved_aga
     assert _params(tmp_path) == cut
 
 
-def _wait_for(out: Path, complete: int, proc, timeout: float = 120.0) -> None:
-    """Until the search in ``out`` has ``complete`` finished trials."""
+def _complete(out: Path) -> int:
+    """How many trials the search in ``out`` has finished, as its journal says (its table is
+    written only at its end or a stop)."""
     from optuna.trial import TrialState
 
+    if not (out / "search.journal").exists():
+        return 0
+    study = open_study(SPACE_CLI, out)
+    return sum(t.state == TrialState.COMPLETE for t in study.get_trials())
+
+
+def _wait_for(out: Path, complete: int, proc, timeout: float = 120.0) -> None:
+    """Until the search in ``out`` has ``complete`` finished trials."""
     t0 = time.time()
     while time.time() - t0 < timeout:
         assert proc.poll() is None, proc.communicate()
-        if (out / "search.journal").exists():
-            study = open_study(SPACE_CLI, out)
-            if sum(t.state == TrialState.COMPLETE for t in study.get_trials()) >= complete:
-                return
+        if _complete(out) >= complete:
+            return
         time.sleep(0.3)
     raise AssertionError("the search did not get going")
 
@@ -178,27 +185,32 @@ ARGV = ["optimize", "--vary", "h1=0.25:0.35", "--vary", "relief=0:6", "--shift",
         "--no-baselines", "--trials", "6", "--workers", "2"]
 
 
-def _check_resumed(out: Path) -> None:
-    """Six finished trials, each design once; every trial a stop or a kill cut short was
-    queued again and finished with the same design."""
+def _check_resumed(out: Path, trials: int = 6) -> None:
+    """``trials`` finished trials, each design once; every trial a stop or a kill cut short
+    was queued again and finished with the same design."""
     done = _params(out)
-    assert len(done) == 6 and len(set(done)) == 6
+    assert len(done) == trials and len(set(done)) == trials
     cut = _params(out, "FAIL")
     assert cut and set(cut) <= set(done)
 
 
-def _cut(out: Path, why: str) -> None:
-    """Every trial cut short says ``why`` and which trial redoes its design; that one says
-    which it redoes."""
+def _cut(out: Path, *whys: str) -> None:
+    """Every trial cut short says one of ``whys`` (each of them said by one at least) and
+    which trial redoes its design; that one says which it redoes, or is cut short itself."""
     table = load_trials(out).set_index("trial")
     cut = table[table["state"] == "FAIL"]
     assert len(cut) and set(cut["status"]) == {"cut"}
+    said = set()
     for number, row in cut.iterrows():
         head, copy = row["reason"].split("; its design queued again as trial ")
-        assert head == why, row["reason"]
+        assert head in whys, row["reason"]
+        said.add(head)
         redo = table.loc[int(copy)]
+        if redo["status"] == "cut":     # cut short in its turn: it says so, checked in its turn
+            continue
         assert redo["state"] == "COMPLETE" or redo["reason"].startswith(
-            f"the design of trial {number} ({why})")
+            f"the design of trial {number} ({head})")
+    assert said == set(whys), said
 
 
 def _clean_exit(err: str) -> None:
@@ -207,6 +219,10 @@ def _clean_exit(err: str) -> None:
     assert "Traceback" not in err and "leaked" not in err and "Warning" not in err, err
 
 
+# The four tests below start the search seven times in all (a start takes 3-5 s before its
+# first trial: the imports, the pool's processes; the four 45-60 s): the default run has them
+# in one search of three starts, the test after them (17-21 s).
+@pytest.mark.slow
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
 def test_a_search_stopped_by_a_signal_resumes_with_no_trial_lost_or_repeated(tmp_path, sig):
     out = tmp_path / "search"
@@ -231,6 +247,7 @@ def test_a_search_stopped_by_a_signal_resumes_with_no_trial_lost_or_repeated(tmp
     _cut(out, f"stopped by {name}")
 
 
+@pytest.mark.slow
 def test_a_search_killed_outright_leaves_no_semaphore_and_says_what_it_cut(tmp_path):
     """SIGKILL leaves no time to clean up: the pool's workers remove its queues' semaphores
     (else multiprocessing's resource tracker does, with a warning on the terminal), and the
@@ -251,19 +268,69 @@ def test_a_search_killed_outright_leaves_no_semaphore_and_says_what_it_cut(tmp_p
     _cut(out, "the search ended while it ran (killed outright)")
 
 
+@pytest.mark.slow
 def test_a_killed_worker_costs_its_trial_a_second_start_and_nothing_else(tmp_path):
-    psutil = pytest.importorskip("psutil")
     out = tmp_path / "search"
     proc = subprocess.Popen([*FEGEAR, *ARGV, "--out", str(out)], stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     _wait_for(out, 1, proc)
+    _kill_a_worker(proc)
+    _, err = proc.communicate(timeout=300)
+    assert proc.returncode == 0, err
+    _check_resumed(out)
+
+
+def _kill_a_worker(proc) -> None:
+    """SIGKILL one of the worker processes of the search ``proc``."""
+    psutil = pytest.importorskip("psutil")
     workers = [p for p in psutil.Process(proc.pid).children()
                if any("spawn_main" in part for part in p.cmdline())]
     assert workers
     os.kill(workers[0].pid, signal.SIGKILL)
+
+
+def test_a_search_stopped_killed_and_short_of_a_worker_loses_no_trial_and_solves_none_twice(
+        tmp_path):
+    """The four tests above in one search of eight trials and three starts: stopped by SIGTERM
+    (its trials under way queued again, solved first by the next start), killed outright (the
+    next start finds its trials running and queues them again), a worker killed (the pool
+    started anew, its trials under way queued again); it ends with eight designs, each once,
+    and every trial cut short saying why."""
+    out = tmp_path / "search"
+    argv = [*FEGEAR, *ARGV[:ARGV.index("--trials")], "--trials", "8", "--workers", "2",
+            "--out", str(out)]
+
+    def start():
+        return subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                text=True)
+
+    proc = start()
+    _wait_for(out, 1, proc)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 128 + signal.SIGTERM, err
+    assert "queued again" in err
+    _clean_exit(err)
+    queued = load_trials(out).query("state == 'WAITING'")
+    assert len(queued) and set(queued["status"]) == {"queued"}
+    assert all("(stopped by SIGTERM), solved first" in r for r in queued["reason"])
+
+    done, proc = _complete(out), start()
+    _wait_for(out, done + 1, proc)
+    proc.kill()
+    _, err = proc.communicate(timeout=60)   # until the workers and the tracker have ended
+    assert proc.returncode == -signal.SIGKILL
+    _clean_exit(err)
+
+    done, proc = _complete(out), start()
+    _wait_for(out, done + 1, proc)
+    _kill_a_worker(proc)
     _, err = proc.communicate(timeout=300)
     assert proc.returncode == 0, err
-    _check_resumed(out)
+    _clean_exit(err)
+    _check_resumed(out, trials=8)
+    _cut(out, "stopped by SIGTERM", "the search ended while it ran (killed outright)",
+         "a worker process of the pool died")
 
 
 def test_the_printed_solve_line_gives_the_printed_numbers(tmp_path, capsys):
