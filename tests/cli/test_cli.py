@@ -42,6 +42,11 @@ def test_profile_table_output(tmp_path):
     assert "clearance at β = 0" in r.stdout and "backlash" in r.stdout
 
 
+SCHEDULER_ARGS = ["--grade", "6", "--samples", "2", "--quality", "coarse", "--scheduler",
+                  "tcp://127.0.0.1:9"]
+SCHEDULER_ERROR = "--scheduler 'tcp://127.0.0.1:9': cannot connect"
+
+
 @pytest.mark.parametrize("command,args,fragment", [
     ("profile", ["--m", "-1"], "m = -1.0 is not admissible"),
     ("profile", ["--m", "nan"], "m = nan is not admissible"),
@@ -71,8 +76,8 @@ def test_profile_table_output(tmp_path):
     ("solve", ["--grade", "6", "--quantile", "1.5"], "--quantile = 1.5 is not admissible"),
     ("solve", ["--samples", "50"], "--samples = 50 is not admissible"),
     ("solve", ["--scheduler", "tcp://127.0.0.1:9"], "--scheduler: with --grade only"),
-    ("solve", ["--grade", "6", "--samples", "2", "--quality", "coarse", "--scheduler",
-               "tcp://127.0.0.1:9"], "--scheduler 'tcp://127.0.0.1:9': cannot connect"),
+    # slow: it waits out the connection's 10 s timeout (the test after this one waits 0.5 s)
+    pytest.param("solve", SCHEDULER_ARGS, SCHEDULER_ERROR, marks=pytest.mark.slow),
 ])
 def test_user_errors_exit_2_with_one_line(tmp_path, command, args, fragment):
     out = tmp_path / "o"
@@ -83,6 +88,24 @@ def test_user_errors_exit_2_with_one_line(tmp_path, command, args, fragment):
     assert len(lines) == 1 and lines[0].startswith("fegear: error:")
     assert fragment in lines[0]
     assert "Traceback" not in r.stderr
+    assert not out.exists() or not any(out.iterdir())
+
+
+def test_a_scheduler_nobody_listens_at_is_one_line_and_writes_nothing(tmp_path, capsys,
+                                                                      monkeypatch):
+    """The slow case above in this process, the connection's timeout 0.5 s for its 10 s."""
+    distributed = pytest.importorskip("distributed")
+    from fegear.cli import main
+
+    client = distributed.Client
+    monkeypatch.setattr(distributed, "Client",
+                        lambda address, timeout: client(address, timeout="0.5s"))
+    out = tmp_path / "o"
+    assert main(["solve", *SCHEDULER_ARGS, "--out", str(out)]) == 2
+    std = capsys.readouterr()
+    lines = std.err.strip().splitlines()
+    assert std.out == "" and len(lines) == 1 and lines[0].startswith("fegear: error:")
+    assert SCHEDULER_ERROR in lines[0]
     assert not out.exists() or not any(out.iterdir())
 
 
