@@ -8,6 +8,12 @@ from pathlib import Path
 
 import pytest
 
+# BLAS and OpenMP on one thread in the tests and in the processes they start, read when numpy
+# loads: the two test workers keep the two cores busy, and OpenBLAS's threads beside a busy
+# process spin against it (fegear drive reducer's eigh took 35 s for 5 s on one thread)
+for _threads in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"):
+    os.environ.setdefault(_threads, "1")
+
 sys.path.insert(0, str(Path(__file__).parent))  # draws: a test helper
 sys.path.insert(0, str(Path(__file__).parent / "geometry"))  # swept_reference, a test helper
 
