@@ -66,9 +66,9 @@ def write_vtu(path: Path, points: np.ndarray, cells: np.ndarray,
         components = f' NumberOfComponents="{a.shape[1]}"' if a.ndim == 2 else ""
         head.append(f'<DataArray type="{_VTK_TYPES[a.dtype.str[1:]]}"{named}{components} '
                     f'format="appended" offset="{offset}"/>\n')
-        data = np.ascontiguousarray(a).tobytes()
-        blobs += [np.uint64(len(data)).tobytes(), data]
-        offset += 8 + len(data)
+        data = np.ascontiguousarray(a)
+        blobs += [np.uint64(data.nbytes).tobytes(), data]
+        offset += 8 + data.nbytes
     head.append(f'</{section}>\n</Piece>\n</UnstructuredGrid>\n'
                 '<AppendedData encoding="raw">\n_')
     tail = "\n</AppendedData>\n</VTKFile>\n"
@@ -76,8 +76,8 @@ def write_vtu(path: Path, points: np.ndarray, cells: np.ndarray,
     def w(tmp: Path) -> None:
         with open(tmp, "wb") as f:
             f.write("".join(head).encode("ascii"))
-            for blob in blobs:
-                f.write(blob)
+            for blob in blobs:     # an array's own memory, not a copy of it
+                f.write(memoryview(blob).cast("B"))
             f.write(tail.encode("ascii"))
 
     return write_atomic(path, w)
