@@ -206,7 +206,7 @@ def run_job(job: Job, out: Path | None, fields: bool = True, pictures: bool = Tr
     leaves nothing behind."""
     progress.plan(2 + len(job.betas) + job.estimate + (out is not None))
     solved = solve_job(job, executor)
-    files = {} if out is None else write_job(solved, out, fields, pictures)
+    files = {} if out is None else write_job(solved, out, fields, pictures, executor)
     if report is not None and out is not None:
         from .html_report import write_report
 
@@ -357,11 +357,12 @@ def _pictured(sols):
     return max(sols, key=lambda s: s.root_stress[0])
 
 
-def write_job(solved: Solved, out: Path, fields: bool = True,
-              pictures: bool = True) -> dict[str, Path]:
+def write_job(solved: Solved, out: Path, fields: bool = True, pictures: bool = True,
+              executor: Executor = SERIAL) -> dict[str, Path]:
     """Write a solved job's files into ``out`` (made here): summary.json, the VTUs
     (``fields``), the pictures (``pictures``) and, for a cycle, its table, PVD series and
-    plot. Returns name → path."""
+    plot; the pictures that need no fields drawn on ``executor`` meanwhile
+    (:func:`~.output.write_pair_outputs`). Returns name → path."""
     from ..files import prepare_dir
     from .output import (
         write_cycle_outputs,
@@ -403,5 +404,6 @@ def write_job(solved: Solved, out: Path, fields: bool = True,
     if "sensitivities" in summary:
         files.update(write_sensitivity_outputs(summary["sensitivities"], out, title, pictures))
     files.update(write_pair_outputs(solved.solution, out, {**summary, "files": {
-        k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures))
+        k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures,
+        executor=executor))
     return files

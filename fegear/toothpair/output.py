@@ -12,9 +12,11 @@ from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
 from ..fe import write_vtu
+from ..figures import pyplot, write_png
 from ..files import write_atomic, write_csv, write_json
+from ..running import SERIAL, Executor
 from .case import HEADLINE, PairSolution
-from .plot import cycle_png, flank_pressure_png, root_stress_png, von_mises_png
+from .plot import chart_pngs, cycle_png, von_mises_png
 
 
 def write_cycle_outputs(rows: list[dict], out: Path, title: str,
@@ -147,11 +149,21 @@ def _pitch_peaks(sols, rows: list[dict], pitches: int) -> list:
 
 
 def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool = True,
-                       pictures: bool = True) -> dict[str, Path]:
+                       pictures: bool = True, executor: Executor = SERIAL) -> dict[str, Path]:
     """gear1.vtu, gear2.vtu and the ring model's contact submodels (gear1_contact.vtu, …;
     fixed frame; ``fields``), von_mises.png, flank_pressure.png and root_stress.png
-    (``pictures``) and summary.json in ``out``."""
+    (``pictures``) and summary.json in ``out``.
+
+    The pictures that need no fields (:func:`~.plot.chart_pngs`) are handed to ``executor``
+    where it shares this process's memory (a one-off command's second core), to be drawn
+    while this process forms the fields, writes the VTUs and draws von Mises; they come back
+    as bytes, and every file is written here, atomically."""
     files = {}
+    charts = None
+    if pictures:
+        pyplot()   # imported before the copy is forked: it draws without importing it again
+        where = executor if executor.shares_memory else SERIAL
+        charts = where.submit(chart_pngs, sol, summary)
     bodies = sol.detail.body_fields() if fields or pictures else ()
     peaks = sol.detail.peak_fields() if fields or pictures else ()
     if fields:
@@ -159,10 +171,10 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
             files[b.name] = write_vtu(out / f"{b.name}.vtu", b.points, b.cells, b.data)
     if pictures:
         files["png"] = von_mises_png(out / "von_mises.png", sol, summary, bodies, peaks)
-        flank = flank_pressure_png(out / "flank_pressure.png", sol, summary)
-        if flank is not None:
-            files["flank_png"] = flank
-        files["root_png"] = root_stress_png(out / "root_stress.png", sol, summary)
+        drawn = charts.result()
+        for key, name in (("flank_png", "flank_pressure.png"), ("root_png", "root_stress.png")):
+            if name in drawn:
+                files[key] = write_png(out / name, drawn[name])
     summary = {**summary, "files": {**summary.get("files", {}),
                                     **{k: str(v) for k, v in files.items()}}}
     files["summary"] = write_json(out / "summary.json", summary)

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..figures import margins, pyplot, save_png
+from ..figures import margins, png_bytes, pyplot, save_png
 from ..figures.labels import Callout, place_callouts, place_legend
 from .case import PairSolution
 from .marks import (
@@ -279,11 +279,18 @@ def _scale_bar(ax, box, unit: str, avoid=None) -> None:
                                             "alpha": 0.8, "ec": "none"})
 
 
-def flank_pressure_png(path: Path, sol: PairSolution, summary: dict) -> Path | None:
-    """:func:`flank_pressure_figure` written to ``path``; None if the model keeps no grid
-    pressures (the sector model)."""
+def chart_pngs(sol: PairSolution, summary: dict) -> dict[str, bytes]:
+    """The pictures of a pair drawn from its results alone, without its fields, as PNG bytes
+    by file name: flank_pressure.png (:func:`flank_pressure_figure`; none where the model
+    keeps no grid pressures) and root_stress.png (:func:`root_stress_figure`). Bytes, not
+    files: the output stage may have them drawn in another process while it forms the fields,
+    and writes every file itself."""
+    drawn = {}
     fig = flank_pressure_figure(sol, summary)
-    return None if fig is None else save_png(fig, path, 100)
+    if fig is not None:
+        drawn["flank_pressure.png"] = png_bytes(fig, 100)
+    drawn["root_stress.png"] = png_bytes(root_stress_figure(sol, summary), 100)
+    return drawn
 
 
 def flank_pressure_figure(sol: PairSolution, summary: dict):
@@ -360,11 +367,6 @@ def _flank_panel(a, f, t) -> Callout | None:
 
 #: the box of a label on a chart
 PLAIN_BOX = {"boxstyle": "round,pad=0.2", "fc": "white", "ec": "none", "alpha": 0.85}
-
-
-def root_stress_png(path: Path, sol: PairSolution, summary: dict) -> Path:
-    """:func:`root_stress_figure` written to ``path``."""
-    return save_png(root_stress_figure(sol, summary), path, 100)
 
 
 def root_stress_figure(sol: PairSolution, summary: dict):

@@ -310,3 +310,98 @@ def test_the_zoom_window_on_pair_png_cuts_no_tooth_number(baseline, plt):
     legend = overview.get_legend()
     assert (legend_cover(overview, legend) == 0
             or legend.get_window_extent(renderer).x0 > overview.get_window_extent(renderer).x1)
+
+
+class Handed:
+    """An executor that keeps the name of each function it is handed and runs it here when
+    its result is read (as :data:`~fegear.running.SERIAL` does); ``stopped``: reading a
+    result raises KeyboardInterrupt instead, as a run stopped while its copy draws."""
+
+    workers = 2
+
+    def __init__(self, shares_memory: bool = True, stopped: bool = False) -> None:
+        self.shares_memory, self.stopped, self.handed = shares_memory, stopped, []
+
+    def submit(self, fn, /, *args):
+        from types import SimpleNamespace
+
+        from fegear.running import SERIAL
+
+        self.handed.append(fn.__name__)
+        if self.stopped:
+            def stop():
+                raise KeyboardInterrupt
+            return SimpleNamespace(result=stop, done=lambda: False)
+        return SERIAL.submit(fn, *args)
+
+    def close(self) -> None:
+        """Nothing runs elsewhere."""
+
+
+def _contents(out):
+    """Each file's bytes by name; summary.json's with the folder it lists its files in left
+    out."""
+    return {p.name: p.read_bytes().replace(str(out).encode(), b"OUT")
+            for p in sorted(out.iterdir())}
+
+
+@pytest.fixture(scope="module")
+def written_here(solved, summary, tmp_path_factory):
+    """The pair's files written by this process alone: what every other way must give."""
+    from fegear.toothpair import write_pair_outputs
+
+    out = tmp_path_factory.mktemp("here")
+    return write_pair_outputs(solved, out, summary), _contents(out)
+
+
+def test_the_pictures_without_fields_are_handed_to_the_executor(solved, summary, tmp_path,
+                                                                 written_here):
+    """flank_pressure.png and root_stress.png are drawn on the executor (a one-off command's
+    second core) while the fields and von Mises are formed here; the files are the same,
+    byte for byte. An executor that shares no memory with this process (a Dask cluster) is
+    handed none: the solution would travel by pickle."""
+    from fegear.toothpair import write_pair_outputs
+
+    files, contents = written_here
+    assert {"png", "flank_png", "root_png", "summary"} <= set(files)
+    for shares, handed in ((True, ["chart_pngs"]), (False, [])):
+        executor = Handed(shares_memory=shares)
+        out = tmp_path / str(shares)
+        out.mkdir()
+        got = write_pair_outputs(solved, out, summary, executor=executor)
+        assert executor.handed == handed
+        assert [(k, v.name) for k, v in got.items()] == [(k, v.name) for k, v in files.items()]
+        assert _contents(out) == contents
+
+
+def test_drawn_in_a_forked_copy_the_files_are_the_same_byte_for_byte(solved, summary, tmp_path,
+                                                                       written_here):
+    """As `fegear solve --out` writes them: the charts drawn in a forked copy of this process
+    (the spare core's executor) come back as the very PNG files drawn here alone, and the
+    VTUs and summary.json are the same too."""
+    from fegear.running import Forks
+    from fegear.toothpair import write_pair_outputs
+
+    _, contents = written_here
+    with Forks(2) as forks:
+        write_pair_outputs(solved, tmp_path, summary, executor=forks)
+    assert _contents(tmp_path) == contents
+    for name in ("von_mises.png", "flank_pressure.png", "root_stress.png"):
+        assert contents[name].startswith(PNG) and contents[name].endswith(b"IEND\xaeB`\x82")
+
+
+def test_a_run_stopped_while_the_charts_are_drawn_leaves_no_file_half_written(solved, summary,
+                                                                              tmp_path):
+    """What is there when a run stops while its copy draws is whole: every VTU and von
+    Mises complete, no temporary file, and neither the charts nor summary.json (written
+    last, it lists the files) half-written or there at all."""
+    from fegear.toothpair import write_pair_outputs
+
+    with pytest.raises(KeyboardInterrupt):
+        write_pair_outputs(solved, tmp_path, summary, executor=Handed(stopped=True))
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert names == sorted(["gear1.vtu", "gear2.vtu", "gear1_contact.vtu", "gear2_contact.vtu",
+                            "von_mises.png"])
+    for name in names:
+        data = (tmp_path / name).read_bytes()
+        assert data.endswith(b"</VTKFile>\n" if name.endswith(".vtu") else b"IEND\xaeB`\x82")
