@@ -6,7 +6,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 
-.PHONY: demo test test-all lint bench study clean
+.PHONY: demo test test-all lint bench study clean system-programs
 
 # PYTHONWARNINGS=ignore: setuptools' boxed notice on every editable install is no news to a user
 $(STAMP): pyproject.toml
@@ -21,14 +21,20 @@ demo: $(STAMP)
 lint: $(STAMP)
 	$(BIN)/ruff check fegear tests
 
-test: lint
+test: system-programs lint
 	$(BIN)/python -m pytest -q -n 2  # two workers: the CI machine's two cores
 
-test-all: lint
+test-all: system-programs lint
 	$(BIN)/python -m pytest -q -n 2 -m "" --ignore=tests/verify/sector
 	# the sector peer's files take 3-14 GB each (12.6 GB for test_stability, 13.7 for
 	# test_solve): one at a time, each in a process of its own, so two never share 24 GB
 	for f in tests/verify/sector/test_*.py; do $(BIN)/python -m pytest -q -m "" $$f || exit 1; done
+
+# the programs some tests need (CalculiX, Chromium), where they are missing and the tests can
+# install them (root, apt-get), installed in the background from here on: a first run's install
+# overlaps building .venv and the tests (tests/system.py)
+system-programs:
+	@$(PYTHON) tests/system.py start ccx chromium
 
 bench: $(STAMP)
 	# the paper's baseline pair; the sector model and CalculiX beside it, the paper study and

@@ -9,8 +9,9 @@ nothing (a first ``make test`` took 2.5 min longer than the next, the installs i
 set-up one after the other; both at once, 12 s on a machine with a near mirror), and a test that
 needs one waits for it in :func:`installed`.
 
-Run as a script, ``python system.py FD PACKAGE...`` installs the packages holding the lock it was
-handed as file descriptor FD (the background install)."""
+Run as a script, ``python tests/system.py start PROGRAM...`` starts that install (``make test``
+does, before it builds .venv); ``python system.py FD PACKAGE...`` is the install itself, holding
+the lock it was handed as file descriptor FD."""
 
 import fcntl
 import os
@@ -121,9 +122,15 @@ def why_not(program: str) -> str:
 
 
 if __name__ == "__main__":
-    # the background install: argv[1] is the lock's descriptor, held until this process ends
-    t0 = time.perf_counter()
-    failed = apt_get(sys.argv[2:])
-    with LOG.open("a") as log:
-        log.write(f"{time.strftime('%Y-%m-%d %H:%M:%S')} apt-get install {' '.join(sys.argv[2:])}"
-                  f": {failed or 'installed'} in {time.perf_counter() - t0:.1f} s\n")
+    if sys.argv[1] == "start":
+        # `make test`, before it builds .venv (this file needs Python alone): start installing
+        # the programs named after "start"
+        start_installs(sys.argv[2:])
+    else:
+        # the background install: argv[1] is the lock's descriptor, held until this ends
+        t0 = time.perf_counter()
+        failed = apt_get(sys.argv[2:])
+        with LOG.open("a") as log:
+            log.write(f"{time.strftime('%Y-%m-%d %H:%M:%S')} apt-get install "
+                      f"{' '.join(sys.argv[2:])}: {failed or 'installed'} in "
+                      f"{time.perf_counter() - t0:.1f} s\n")
