@@ -112,8 +112,11 @@ def _reducer(a: argparse.Namespace) -> int:
     if speeds is not None and len(speeds) > 2000:
         raise ParameterError("speeds", a.speeds, "at most 2000 speeds")
     out = None if a.out is None else check_dir(a.out)
-    mesh = mesh_source(a.mesh_stiffness, inputs, a.fe_quality, own["fe_positions"])
-    summary = reducer_summary(inputs, mesh, own["modes"], speeds)
+    from ..fe import blas_threads
+
+    with blas_threads():   # its eigenproblems as the FE solves: OpenBLAS's threads cost more
+        mesh = mesh_source(a.mesh_stiffness, inputs, a.fe_quality, own["fe_positions"])
+        summary = reducer_summary(inputs, mesh, own["modes"], speeds)
     files = write_reducer(prepare_dir(out), summary, own["plates"]) if out is not None else {}
     if a.json:
         print(json.dumps({**public(summary), "files": {k: str(v) for k, v in files.items()}},
