@@ -136,12 +136,6 @@ def submodel_problems(model: RingModel, contact: RingContact, pressure: np.ndarr
             for g, i in _peaks(contact, pressure, stresses.surface)]
 
 
-def submodel_keys(model: RingModel, contact: RingContact, pressure: np.ndarray,
-                  stresses: RingStresses) -> set:
-    """The patches (:func:`contact_submodel`'s keys) that :func:`with_submodels` solves on."""
-    return {pb.key for pb, _ in submodel_problems(model, contact, pressure, stresses)}
-
-
 def _bulk_von_mises(side: GearSide, stresses: dict, loaded: np.ndarray,
                     facets: np.ndarray) -> float:
     """The template's largest von Mises stress farther than SUB_FACETS of its largest facet
