@@ -36,7 +36,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "envelope": ("Branch", "BranchPoints", "NEAR", "FAR"),
     "gear1": ("Gear1Profile", "gear1_profile"),
     "admissible": ("Defect", "defect", "design_defect", "resolve"),
-    "refusal": ("check_admissible", "admissible_pair", "check_design", "interval"),
+    "refusal": ("admissible_pair", "check_design", "interval"),
     "clearance": ("ToothContact", "ContactState", "ToothClearance", "Backlash", "Interference",
                   "pitch_phase"),
     "tip_edge": ("RoundedProfile", "default_round", "largest_round"),

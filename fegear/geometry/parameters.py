@@ -31,7 +31,7 @@ RENAMED = {"tip-relief": "tip-clearance (the radial clearance at gear 1's tip; t
 
 #: the pair's inputs (``fegear profile``, ``solve`` and ``bench``, study files); the ranges of
 #: h1, shift, rotation and tip-clearance depend on the other inputs and are checked by
-#: :class:`PairParameters` and :func:`~fegear.geometry.refusal.check_admissible`
+#: :class:`PairParameters` and :func:`~fegear.geometry.refusal.check_design`
 PAIR_INPUTS = (
     Input("m", float, 2.0, "module", "mm", low=0.0, high=100.0, low_open=True),
     Input("z2", int, 45, "teeth of the internal gear (gear 2)", low=4, high=2000,

@@ -327,17 +327,3 @@ def admissible_pair(values: Mapping[str, object],
     if given is None:
         given = (k for k, x in pair.items() if x is not None)
     return check_design(pair, {g for g in given if g in pair})
-
-
-def check_admissible(p: PairParameters, given: Iterable[str] = ()) -> None:
-    """Raise :class:`ParameterError` if ``p`` is not admissible (blaming an input of
-    ``given`` where it can)."""
-    check_design(_values_of(p), given)
-
-
-def _values_of(p: PairParameters) -> dict[str, object]:
-    out = {row.name: getattr(p, row.dest) for row in PAIR_INPUTS}
-    out["tip-clearance"] = p.radial_tip_clearance
-    return out
-
-
