@@ -56,7 +56,6 @@ MATERIALS = {m.name: m for m in (
              "ISO 6336-5:2016, case-hardened wrought steel, quality MQ: sigma_Hlim 1500, "
              "sigma_Flim 500 MPa"),
 )}
-DEFAULT = "42CrMo"
 
 
 def material(name: str) -> Material:
