@@ -132,9 +132,6 @@ REQUIRES = {**dict.fromkeys(("samples", "seed", "quantile", "centre-distance-tol
                             "grade"),
             **dict.fromkeys(("speed", "life", "KA", "KV", "material"), "spectrum")}
 
-#: the deviation inputs that name a deviation by text (the others: the centre distance)
-DEVIATION_TEXTS = tuple(row.name for row in DEVIATION_INPUTS if row.kind is str)
-
 #: every input of ``fegear solve`` (and of a study case), in the order of ``--help``
 SOLVE_INPUTS = InputTable(PAIR_INPUTS, LOAD_INPUTS[:2], LOAD_INPUTS[2:], MATERIAL_INPUTS,
                           ALLOWABLE_INPUTS, MODEL_INPUTS, DEVIATION_INPUTS)
