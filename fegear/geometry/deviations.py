@@ -22,8 +22,8 @@ centre-distance deviation moves gear 1's centre away from gear 2's, which brings
 the pitch point deeper into the mesh.
 
 Everything here is exact geometry in mm and rad (:meth:`Deviations.turns`,
-:meth:`Deviations.centre_offset`, :meth:`Deviations.flank_offset`); the solve applies it to the
-rigid gaps of the model it keeps (docs/solve.md, "Deviations").
+:meth:`Deviations.flank_offset`, the centres and runouts where :class:`Placed` puts the gears);
+the solve applies it to the rigid gaps of the model it keeps (docs/solve.md, "Deviations").
 """
 
 from __future__ import annotations
@@ -202,14 +202,6 @@ class Deviations:
         inside = teeth < len(pitch)
         um[inside] = pitch[teeth[inside]]
         return sign * 1e-3 * um / r
-
-    def centre_offset(self, tooth0_1: float, tooth0_2: float) -> np.ndarray:
-        """Where gear 1's teeth stand relative to gear 2's, from the exact pair (mm, fixed
-        frame), with tooth 0 of gear 1 at polar angle ``tooth0_1`` about its axis and tooth 0
-        of gear 2 at ``tooth0_2`` about its own (rad, fixed frame): the centre distance's
-        deviation along the line of centres, each gear's runout turning with it."""
-        return (np.array([0.0, 1e-3 * self.centre_distance]) + self.runout1.offset(tooth0_1)
-                - self.runout2.offset(tooth0_2))
 
     def flank_offset(self, gear: int, teeth: np.ndarray, roll: np.ndarray) -> np.ndarray:
         """The normal departure (mm, + adds material) of ``gear``'s loaded flanks at points
