@@ -53,30 +53,28 @@ def second_quality(quality: str) -> str:
     return levels[k - 1] if k > 0 else levels[1]
 
 
-def second_level_estimate(sol: PairSolution, solve: Callable = solve_pair,
-                          ratio: Callable[[str, str], float] = mesh_ratio,
+def second_level_estimate(sol: PairSolution, ratio: Callable[[str, str], float] = mesh_ratio,
                           second: dict[str, float] | None = None,
                           floor: dict[str, float] | None = None
                           ) -> tuple[dict[str, float], str]:
     """Solve the same case at the :func:`second_quality` and estimate the headline errors
     (%) of ``sol``, each at least its ``floor`` (%; the ring model's mesh scatter,
     :data:`MESH_SCATTER_PCT`, by default). Returns the estimate and the other quality.
-    ``solve``, ``ratio`` and ``floor``: the model's solve, its mesh ratio between two qualities
-    and its mesh scatter (the product's by default; a peer passes its own); ``second``: the
+    ``ratio``: the mesh ratio between two qualities (:func:`mesh_ratio`); ``second``: the
     headline of that second solve if it is solved already (:func:`second_headline`'s, a task
     of its own)."""
     floor = MESH_SCATTER_PCT if floor is None else floor
-    estimate, other = _two_levels(sol, solve, ratio, second)
+    estimate, other = _two_levels(sol, ratio, second)
     return {k: max(v, floor.get(k, 0.0)) for k, v in estimate.items()}, other
 
 
-def _two_levels(sol: PairSolution, solve: Callable,
-                ratio: Callable[[str, str], float], second: dict[str, float] | None
+def _two_levels(sol: PairSolution, ratio: Callable[[str, str], float],
+                second: dict[str, float] | None
                 ) -> tuple[dict[str, float], str]:
     """:func:`second_level_estimate` without its floor."""
     other = second_quality(sol.case.quality)
     if second is None:
-        second = solve(replace(sol.case, quality=other)).headline()
+        second = solve_pair(replace(sol.case, quality=other)).headline()
     own = sol.headline()
     return _level_errors({k: own[k] for k in HEADLINE}, second, sol.case.quality, ratio), other
 

@@ -37,5 +37,5 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "case": ("SectorCase",),
     "compare": ("cross_check", "cross_table"),
     "recovery": ("contact_split",),
-    "solve": ("solve_pair", "solve_positions", "SectorSolver", "SectorDetail", "mesh_ratio"),
+    "solve": ("solve_pair", "solve_positions", "SectorSolver", "SectorDetail"),
 })

@@ -103,13 +103,6 @@ def solve_pair(case: SectorCase, profile: Gear1Profile | None = None) -> PairSol
     return solve_positions(case, (case.beta,), profile)[0]
 
 
-def mesh_ratio(coarse: str, fine: str) -> float:
-    """Element sizes at quality ``coarse`` over those at ``fine``: the sector model halves
-    them from level to level (for :func:`~fegear.toothpair.estimate.second_level_estimate`)."""
-    levels = tuple(SECTOR_LEVELS)
-    return 2.0 ** (levels.index(fine) - levels.index(coarse))
-
-
 class SectorSolver:
     """The sector model as a :class:`~fegear.toothpair.positions.PositionModel`. One scene
     covers every position's contact path for the teeth paired so far; a position whose solved
