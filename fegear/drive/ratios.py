@@ -59,11 +59,6 @@ def carrier_ratio(i_ab_h: float) -> float:
     return 1.0 - i_ab_h
 
 
-def differential_speed(i_ab_h: float, omega_b: float, omega_h: float) -> float:
-    """ω_a of a two-degree-of-freedom train: ``ω_a = i_ab^H ω_b − (i_ab^H − 1) ω_H``."""
-    return i_ab_h * omega_b - (i_ab_h - 1.0) * omega_h
-
-
 def ngw(za: int, zb: int) -> Ratio:
     """NGW (2K-H, negative): sun a in, ring b fixed, carrier H out; one planet meshes both.
     ``i_ab^H = −z_b/z_a``, ``i_aH^b = 1 + z_b/z_a``."""
