@@ -23,7 +23,7 @@ from ..exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
     "ratios": ("Ratio", "ngw", "nn", "khv", "two_kh", "internal_teeth", "carrier_ratio",
-               "differential_speed", "meshing_efficiency", "meshing_phase"),
+               "meshing_efficiency", "meshing_phase"),
     "bearings": ("RingDrive", "LOAD_CASES", "PAPER", "bearing_forces", "extremes",
                  "exact_extremes", "support_reactions", "inertia_force"),
     "dynamics": ("TorsionalPair", "Response", "steady_response", "default_inertias",
@@ -32,8 +32,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
                "dynamics_summary", "dynamics_table", "write_dynamics"),
     "plot": ("bearings_png", "dynamics_png", "reducer_campbell_png", "reducer_modes_png",
              "reducer_response_png"),
-    "beams": ("Section", "Material", "shaft_matrices", "pinned_euler_bernoulli",
-              "pinned_timoshenko", "fixed_free_torsion"),
+    "beams": ("Section", "Material", "shaft_matrices"),
     "reducer_inputs": ("ReducerInputs", "BUILDS"),
     "reducer": ("ReducerModel", "Mode", "build_reducer", "modes", "response", "whirl",
                 "sweep", "turning_sweep", "over_turn", "frequency_spread", "turning_geometry",

@@ -1,5 +1,5 @@
-"""Shaft elements of the reducer model (:mod:`.reducer`) and the closed forms they are checked
-against.
+"""Shaft elements of the reducer model (:mod:`.reducer`), checked against closed forms in the
+tests (tests/drive/test_reducer.py).
 
 A shaft node has 5 degrees of freedom, seed 003's (no axial motion): the lateral displacements
 x, y, the section's rotations in the xz and yz planes (the slopes dx/dz, dy/dz where shear is
@@ -124,35 +124,3 @@ def shaft_matrices(s: Section, z: np.ndarray, shear: bool = True,
         K[np.ix_(idx, idx)] += kt
         M[np.ix_(idx, idx)] += mt
     return K, M
-
-
-# --- closed forms ----------------------------------------------------------------------------
-
-def pinned_euler_bernoulli(s: Section, L: float, n: int = 1) -> float:
-    """The n-th bending frequency (rad/s) of a pinned–pinned Euler–Bernoulli beam,
-    (nπ/L)² sqrt(EI/(ρA))."""
-    m = s.material
-    return (n * math.pi / L) ** 2 * math.sqrt(m.E * s.I / (m.rho * s.A))
-
-
-def pinned_timoshenko(s: Section, L: float, n: int = 1) -> float:
-    """The n-th bending frequency (rad/s) of a pinned–pinned Timoshenko beam: with
-    w = W sin kx, ψ = Ψ cos kx (k = nπ/L), the lower root ω² of
-    (κGA k² − ρA ω²)(EI k² + κGA − ρI ω²) = (κGA k)²."""
-    m = s.material
-    k = n * math.pi / L
-    kga, ei = s.kappa * m.G * s.A, m.E * s.I
-    ra, ri = m.rho * s.A, m.rho * s.I
-    # a ω⁴ + b ω² + c = 0
-    a = ra * ri
-    b = -(ra * (ei * k ** 2 + kga) + ri * kga * k ** 2)
-    c = kga * k ** 2 * (ei * k ** 2 + kga) - (kga * k) ** 2
-    w2 = (-b - math.sqrt(b * b - 4 * a * c)) / (2 * a)
-    return math.sqrt(w2)
-
-
-def fixed_free_torsion(s: Section, L: float, n: int = 1) -> float:
-    """The n-th torsional frequency (rad/s) of a uniform shaft held at one end:
-    (2n − 1) π / (2L) sqrt(G/ρ)."""
-    m = s.material
-    return (2 * n - 1) * math.pi / (2.0 * L) * math.sqrt(m.G / m.rho)

@@ -18,9 +18,6 @@ from fegear.drive.beams import (
     Section,
     X,
     Y,
-    fixed_free_torsion,
-    pinned_euler_bernoulli,
-    pinned_timoshenko,
     shaft_matrices,
 )
 from fegear.drive.reducer import (
@@ -43,6 +40,36 @@ from fegear.toothpair import MeshStiffness
 
 SHAFT = Section(0.03875)   # the crank shafts of Table 1
 L = 0.465
+
+
+def pinned_euler_bernoulli(s: Section, L: float, n: int = 1) -> float:
+    """The n-th bending frequency (rad/s) of a pinned–pinned Euler–Bernoulli beam,
+    (nπ/L)² sqrt(EI/(ρA))."""
+    m = s.material
+    return (n * math.pi / L) ** 2 * math.sqrt(m.E * s.I / (m.rho * s.A))
+
+
+def pinned_timoshenko(s: Section, L: float, n: int = 1) -> float:
+    """The n-th bending frequency (rad/s) of a pinned–pinned Timoshenko beam: with
+    w = W sin kx, ψ = Ψ cos kx (k = nπ/L), the lower root ω² of
+    (κGA k² − ρA ω²)(EI k² + κGA − ρI ω²) = (κGA k)²."""
+    m = s.material
+    k = n * math.pi / L
+    kga, ei = s.kappa * m.G * s.A, m.E * s.I
+    ra, ri = m.rho * s.A, m.rho * s.I
+    # a ω⁴ + b ω² + c = 0
+    a = ra * ri
+    b = -(ra * (ei * k ** 2 + kga) + ri * kga * k ** 2)
+    c = kga * k ** 2 * (ei * k ** 2 + kga) - (kga * k) ** 2
+    w2 = (-b - math.sqrt(b * b - 4 * a * c)) / (2 * a)
+    return math.sqrt(w2)
+
+
+def fixed_free_torsion(s: Section, L: float, n: int = 1) -> float:
+    """The n-th torsional frequency (rad/s) of a uniform shaft held at one end:
+    (2n − 1) π / (2L) sqrt(G/ρ)."""
+    m = s.material
+    return (2 * n - 1) * math.pi / (2.0 * L) * math.sqrt(m.G / m.rho)
 
 
 def _eig(K, M, fixed):
