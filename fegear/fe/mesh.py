@@ -65,13 +65,6 @@ class Segment:
             raise MeshError(f"segment {self.name!r}: points must be a finite (n>=2, 2) array")
         object.__setattr__(self, "points", pts)
 
-    @classmethod
-    def from_curve(cls, name: str, curve: Callable[[np.ndarray], np.ndarray], t0: float,
-                   t1: float, samples: int = 64,
-                   project: Callable[[np.ndarray], np.ndarray] | None = None) -> Segment:
-        """Sample an exact parametric curve ``curve(t) -> (n, 2)`` on [t0, t1]."""
-        return cls(name, curve(np.linspace(t0, t1, max(int(samples), 2))), project)
-
 
 @dataclass(frozen=True)
 class Refinement:

@@ -32,15 +32,11 @@ def arc(a0, a1, n=40):
     return np.asarray(C) + R * np.column_stack([np.cos(a), np.sin(a)])
 
 
-def polar(a):
-    return np.asarray(C) + R * np.column_stack([np.cos(a), np.sin(a)])
-
-
 def half_disk(window_size=0.01, size=2.0):
     circle = Circle(C, R)
     down = 1.5 * math.pi
     return BodyGeometry("half_disk", (
-        Segment.from_curve("left", polar, math.pi, down - W, 40, circle.project),
+        Segment("left", arc(math.pi, down - W), circle.project),
         Segment("window", arc(down - W, down + W), circle.project),
         Segment("right", arc(down + W, 2 * math.pi), circle.project),
         Segment("cut", np.array([[R, R], [-R, R]])),
