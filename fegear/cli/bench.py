@@ -35,6 +35,8 @@ BENCH_INPUTS = (
           limits="numbers of teeth 12 <= z2 <= 400, comma-separated, or none"),
     Input("study-cases", int, 6, "solves in the study-runner overhead benchmark (0: skip)",
           low=0, high=1000, limits="an integer 0 (skip) or 2 <= study-cases <= 1000"),
+    Input("files", int, 5, "alternated pairs of the whole `fegear solve` without and with "
+          "--out that time what its files add (0: skip)", low=0, high=50),
 )
 _ROW = {row.name: row for row in BENCH_INPUTS}
 
@@ -55,6 +57,10 @@ def add_parser(sub) -> None:
                    help="do not run CalculiX beside the ladders even if ccx is installed")
     p.add_argument("--study-only", action="store_true",
                    help="run only the study-runner overhead benchmark")
+    p.add_argument("--files-only", action="store_true",
+                   help="run only what `fegear solve --out` adds to the solve: --files pairs "
+                        "of the whole command without and with --out, alternated (about half "
+                        "a minute)")
     p.add_argument("--contact-peer", action="store_true",
                    help="run only the contact-pressure comparison with CalculiX (an edge and a "
                         "flank-only case on the baseline pair at --sector-levels, default "
@@ -163,12 +169,13 @@ def _plan(a: argparse.Namespace) -> BenchPlan:
                           params.r1)
     out = check_dir(a.out)         # before any work: --sector writes nothing, the rest do
     only = ("study" if a.study_only else "contact-peer" if a.contact_peer
-            else "sector" if a.sector else "")
+            else "sector" if a.sector else "files" if a.files_only else "")
     return BenchPlan(params=params, torque=torque, out=out, quality=a.pair_quality,
                      repeat=own["repeat"], cycle=cycle, disk_levels=tuple(disk_levels),
                      pair_levels=tuple(pair_levels), sector_levels=tuple(sector_levels),
                      scaling=tuple(int(z) for z in teeth), study_cases=study_cases,
                      pair_args=tuple(x for k, v in given.items() for x in (f"--{k}", f"{v}")),
                      peer=not a.no_peer, paper_study=a.paper_study,
-                     tolerance_class=a.tolerance_class, spectrum=a.spectrum, only=only,
+                     tolerance_class=a.tolerance_class, spectrum=a.spectrum,
+                     files=own["files"], only=only,
                      history=None if a.history is None else Path(a.history))

@@ -5,7 +5,7 @@ meshes each twice as fine as the last and measure every level's error against th
 extrapolation of the three finest (:func:`richardson`); where CalculiX is installed, it solves
 the same meshes beside ours (:mod:`fegear.verify.calculix`). :func:`ladder_targets` checks the
 Hertz case's run-time-versus-error target; the ring model's pair benchmark is
-:mod:`.ring_bench`.
+:mod:`.ring_bench`. :func:`files_run` times what ``fegear solve --out`` adds to the solve.
 """
 
 from __future__ import annotations
@@ -14,6 +14,8 @@ import logging
 import math
 import os
 import platform
+import shutil
+import statistics
 import subprocess
 import tempfile
 import time
@@ -357,3 +359,70 @@ def ladder_json(ladders: Sequence[Ladder], targets: Sequence[Target]) -> dict:
                          "level": t.rung.level if t.rung else None,
                          "time_s": t.rung.total_s if t.rung else None, "met": t.met}
                         for t in targets]}
+
+
+# --- the files of `fegear solve --out` ------------------------------------------------------
+
+#: what the files of ``fegear solve --out`` (summary.json, the VTUs, three pictures) may add
+#: to the whole command: at most this many seconds (issue 67)
+FILES_TARGET_S = 0.5
+
+
+@dataclass(frozen=True)
+class FilesRun:
+    """Wall times (s) of whole ``fegear solve ARGS`` commands, each in a fresh process, run
+    in alternated pairs: ``without`` files and ``written`` with ``--out``, a pair per run."""
+
+    args: tuple[str, ...]
+    without: tuple[float, ...]
+    written: tuple[float, ...]
+
+    @property
+    def costs(self) -> list[float]:
+        """Each pair's difference (s): what its files added."""
+        return [w - o for o, w in zip(self.without, self.written)]
+
+    @property
+    def cost_s(self) -> float:
+        """The files' cost (s): the median of the pairs' differences."""
+        return statistics.median(self.costs)
+
+    @property
+    def met(self) -> bool:
+        return self.cost_s <= FILES_TARGET_S
+
+    def lines(self) -> list[str]:
+        """Markdown: the commands' medians and ranges, then the target line."""
+        def row(name: str, values) -> str:
+            return (f"| {name} | {statistics.median(values):.2f} | "
+                    f"{min(values):.2f}-{max(values):.2f} |")
+
+        command = " ".join(["fegear", "solve", *self.args])
+        return [f"### The files of `--out`: `{command}`, {len(self.costs)} alternated pairs "
+                "of whole commands", "",
+                "| | median [s] | range [s] |", "|---|---:|---:|",
+                row("without `--out`", self.without),
+                row("with `--out DIR` (summary.json, the VTUs, three pictures)", self.written),
+                row("the files: each pair's difference", self.costs), "",
+                f"* the files of `fegear solve --out`: {self.cost_s:.2f} s over the solve "
+                f"(median of {len(self.costs)} pairs, {min(self.costs):.2f}-"
+                f"{max(self.costs):.2f} s) (target <= {FILES_TARGET_S:g} s): "
+                f"{'met' if self.met else 'MISSED'}"]
+
+
+def files_run(args: Sequence[str], runs: int) -> FilesRun:
+    """``fegear solve ARGS`` without and with ``--out`` (a fresh folder each time, removed
+    after), ``runs`` pairs, which of the two goes first alternating from pair to pair; the
+    model cache off, as a first solve of a design runs."""
+    from .ring_bench import command_s
+
+    env = {"FEGEAR_CACHE": "off"}
+    without, written = [], []
+    with tempfile.TemporaryDirectory(prefix="fegear-bench-files-") as tmp:
+        for k in range(runs):
+            out = Path(tmp) / f"out{k}"
+            pair = [(without, []), (written, ["--out", str(out)])]
+            for times, extra in pair if k % 2 == 0 else pair[::-1]:
+                times.append(command_s([*args, *extra], env))
+            shutil.rmtree(out)
+    return FilesRun(tuple(args), tuple(without), tuple(written))

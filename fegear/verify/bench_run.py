@@ -18,13 +18,16 @@ from ..errors import ParameterError
 
 if TYPE_CHECKING:
     from ..geometry import PairParameters
-    from .bench import Ladder
+    from .bench import FilesRun, Ladder
     from .pair_targets import PairRuns
 
 #: what a bench can run alone instead of everything ("": everything)
-ONLY = ("", "study", "contact-peer", "sector")
+ONLY = ("", "study", "contact-peer", "sector", "files")
 
 Say = Callable[[str], None]
+
+#: the files' cost's name in the history (:func:`~.bench.files_run`)
+FILES_METRIC = "`fegear solve --out`, the files over the solve [s]"
 
 
 @dataclass(frozen=True)
@@ -43,7 +46,8 @@ class BenchPlan:
     also time studies/paper_trends.toml; ``tolerance_class``: also time a tolerance class's
     samples over the cycle (:func:`~.ring_bench.class_run`); ``spectrum``: also time a 4-level
     load spectrum over the cycle against the cycle (:func:`~.ring_bench.spectrum_run`);
-    ``only``: one of :data:`ONLY`;
+    ``files``: pairs of whole ``fegear solve`` commands without and with ``--out`` that time
+    the files' cost (:func:`~.bench.files_run`; 0: none); ``only``: one of :data:`ONLY`;
     ``out``: the directory (checked, made when there is something to write); ``history``: the
     file this run is appended to and compared with (None: :data:`~.history.HISTORY` in
     ``out``)."""
@@ -64,6 +68,7 @@ class BenchPlan:
     paper_study: bool = False
     tolerance_class: bool = False
     spectrum: bool = False
+    files: int = 0
     only: str = ""
     history: Path | None = None
 
@@ -80,6 +85,8 @@ def run_bench(plan: BenchPlan, say: Say) -> None:
         contact_peer_bench(plan, say)
     elif plan.only == "sector":
         sector_check(plan, say)
+    elif plan.only == "files":
+        files_bench(plan, say)
     else:
         _everything(plan, say)
 
@@ -102,7 +109,11 @@ def _everything(plan: BenchPlan, say: Say) -> None:
                    study=paper_study_s() if plan.paper_study else None,
                    tolerance=class_run(plan.pair_args) if plan.tolerance_class else None,
                    spectrum=spectrum_run(plan.pair_args) if plan.spectrum else None)
-    _report(plan, disks, runs, scale, say)
+    files = None
+    if plan.files:
+        say("")
+        files = files_bench(plan, say)
+    _report(plan, disks, runs, scale, say, files)
     if plan.study_cases:
         say("")
         study_bench(plan, say)
@@ -176,8 +187,10 @@ def _scaling(plan: BenchPlan, ring: list, say: Say) -> list:
     return scale
 
 
-def _report(plan: BenchPlan, disks: Ladder, runs: PairRuns, scale: list, say: Say) -> None:
-    """The targets, the plot, bench.json and the history, beside the last run's numbers."""
+def _report(plan: BenchPlan, disks: Ladder, runs: PairRuns, scale: list, say: Say,
+            files: FilesRun | None = None) -> None:
+    """The targets (the files' cost's with them, where it was timed), the plot, bench.json
+    and the history, beside the last run's numbers."""
     from ..files import write_json
     from ..provenance import code_version
     from . import history, ladder_json, ladder_png, ladder_targets
@@ -185,16 +198,18 @@ def _report(plan: BenchPlan, disks: Ladder, runs: PairRuns, scale: list, say: Sa
 
     say("")
     out = plan.out
-    lines = pair_targets(runs)
+    lines = pair_targets(runs) + (files.lines()[-1:] if files is not None else [])
     say("\n".join(lines))
     ladder_png(out / "bench.png", _series(plan, disks, runs))
     everything = {**ladder_json([disks] + ([runs.sector] if runs.sector else []),
                                 ladder_targets(disks)),
-                  "ring": _ring_record(runs, scale, lines)}
+                  "ring": _ring_record(runs, scale, lines, files)}
     kept = plan.history or out / history.HISTORY
     before = history.last_run(kept)
     write_json(out / "bench.json", everything)
     metrics = history.bench_metrics(everything)
+    if files is not None:
+        metrics[FILES_METRIC] = files.cost_s
     if before is not None:
         say("")
         say(f"### Beside the last run in {kept}")
@@ -205,7 +220,8 @@ def _report(plan: BenchPlan, disks: Ladder, runs: PairRuns, scale: list, say: Sa
         f"appended to {kept}")
 
 
-def _ring_record(runs: PairRuns, scale: list, targets: list[str]) -> dict:
+def _ring_record(runs: PairRuns, scale: list, targets: list[str],
+                 files: FilesRun | None = None) -> dict:
     """bench.json's record of the tooth pair's runs and targets."""
     cached = runs.cached
     record = {"ring": [r.__dict__ for r in runs.ring], "default": runs.default.__dict__,
@@ -222,6 +238,9 @@ def _ring_record(runs: PairRuns, scale: list, targets: list[str]) -> dict:
         record["tolerance_class"] = {"seconds": runs.tolerance[0], **runs.tolerance[1]}
     if runs.spectrum is not None:
         record["spectrum"] = {"cycle_s": runs.spectrum[0], "spectrum_s": runs.spectrum[1]}
+    if files is not None:
+        record["files"] = {"args": list(files.args), "without_s": list(files.without),
+                           "with_out_s": list(files.written), "cost_s": files.cost_s}
     record["targets"] = targets
     return record
 
@@ -264,6 +283,18 @@ def sector_check(plan: BenchPlan, say: Say) -> None:
     say(f"{params.describe()}, T {torque:g} N·m, β 0, quality {quality}: the ring model "
         "(fegear solve) and the sector model (its full-FE peer, docs/sector.md)\n")
     say(cross_table(ring, sector))
+
+
+def files_bench(plan: BenchPlan, say: Say) -> FilesRun:
+    """What ``fegear solve --out`` adds to the solve: ``plan.files`` alternated pairs of the
+    whole command at the pair, its torque and quality (at least one), without and with
+    ``--out``; their table and target line."""
+    from .bench import files_run
+
+    args = [*plan.pair_args, "--torque", f"{plan.torque:g}", "--quality", plan.quality]
+    run = files_run(args, max(plan.files, 1))
+    say("\n".join(run.lines()))
+    return run
 
 
 def study_bench(plan: BenchPlan, say: Say) -> None:
