@@ -94,8 +94,7 @@ def run(a: argparse.Namespace) -> int:
     from ..errors import FegearError
     from ..files import check_dir
     from ..running import Cluster, connect, spare_core
-    from ..toothpair import cycle_table, pair_table, run_job
-    from ..toothpair.revolution import revolution_table
+    from ..toothpair import run_job
     from .terminal import command_wall_s
 
     values, notes = _values(a)
@@ -126,44 +125,7 @@ def run(a: argparse.Namespace) -> int:
     if a.json:
         print(json.dumps({**result.summary, "files": files}, indent=2))
         return 0
-    if "revolution" in result.summary:
-        rev = result.summary["revolution"]
-        print(revolution_table(rev))
-        print(f"\n{rev['positions']} positions over {rev['pitches']} pitches (one turn of gear "
-              f"1) in {result.summary['cycle']['solve_s']:.1f} s; the details below are at the "
-              "position of the largest gear-1 root stress\n")
-    elif result.rows:
-        print(cycle_table(result.rows))
-        also = " (and the class's pairs)" if "samples" in result.summary else ""
-        default = result.summary["cycle"].get("default")
-        print(f"\n{len(result.rows)} positions on one mesh{also} in "
-              f"{result.summary['cycle']['solve_s']:.1f} s; the details below are at the "
-              "position of the largest gear-1 root stress"
-              + (f"\n(not given: {default})" if default else "") + "\n")
-    print(pair_table(result.summary))
-    if "samples" in result.summary:
-        from ..toothpair.samples_report import samples_table
-
-        sampled = result.summary["samples"]
-        over = ("the same positions" if sampled["over"] == "cycle" else
-                f"a whole revolution each ({sampled['positions_per_pair']} positions: the "
-                "cycle's at every pitch of gear 1)")
-        print(f"\nThe exact pair above; the pairs of its tolerance class over {over} (von "
-              "Mises from the templates' surface estimate, as the samples' is read):\n")
-        print(samples_table(sampled))
-    if "sensitivities" in result.summary:
-        from ..toothpair.sensitivity_report import sensitivity_table
-
-        print("\nSensitivities: each stress's rate with each deviation of the teeth in mesh "
-              "(the largest first):\n")
-        print(sensitivity_table(result.summary["sensitivities"]))
-    if "rating" in result.summary:
-        from ..toothpair.rating_report import rating_table
-
-        rating = result.summary["rating"]
-        print(f"\nRated for a life: each level of the spectrum solved over the positions "
-              f"({rating['solve_s']:.1f} s):\n")
-        print(rating_table(rating))
+    _print(result.summary)
     for k, v in files.items():
         print(f"{k:10s} {v}")
     if out is None:
@@ -171,6 +133,20 @@ def run(a: argparse.Namespace) -> int:
     print(f"wall {command_wall_s():.1f} s for the whole command")
     return 0
 
+
+def _print(summary: dict) -> None:
+    """The tables of a solve: each analysis's that comes before the pair's (a cycle's, a
+    revolution's), the pair's, then the others' (:mod:`fegear.toothpair.analyses`)."""
+    from ..toothpair import pair_table
+    from ..toothpair.analyses import shown
+
+    before = [a for a in shown(summary) if a.before_pair]
+    after = [a for a in shown(summary) if not a.before_pair]
+    texts = [a.printed(summary[a.key], summary) for a in before]
+    texts += [pair_table(summary)] + [a.printed(summary[a.key], summary) for a in after]
+    for text in texts:
+        if text:
+            print(text)
 
 
 def _prepared(values: dict, a: argparse.Namespace):

@@ -28,8 +28,7 @@ from ..toothpair import (
     damage_text,
     life_text,
     safety_text,
-    samples_columns,
-    sensitivity_columns,
+    shown,
     with_safety,
 )
 from .file import RefusedCase, Study
@@ -76,12 +75,12 @@ def rows(study: Study, out: Path) -> list[dict]:
             # a class's pairs and the sensitivities in a few columns each: their rows stay
             # in the case's record
             summary = dict(summary)
-            samples, sens = summary.pop("samples", None), summary.pop("sensitivities", None)
             summary.pop("case", None)   # the inputs as run: the row's own input columns
-            if samples is not None:
-                row.update(samples_columns(samples))
-            if sens is not None:
-                row.update(sensitivity_columns(sens))
+            for analysis in shown(summary):
+                columns = analysis.columns(summary[analysis.key])
+                if columns is not None:
+                    summary.pop(analysis.key)
+                    row.update(columns)
         row.update(_flatten(summary or {}))
         row.update({k: rec.get(k) for k in _TRAILER})
         row.update({f"versions.{k}": v for k, v in (rec.get("versions") or {}).items()})

@@ -73,6 +73,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
                "factor_cell", "stiffness_cell"),
     "output": ("write_pair_outputs", "write_cycle_outputs", "write_mesh_stiffness"),
     "stiffness": ("MeshStiffness", "read_mesh_stiffness", "mesh_stiffness_of_cycle"),
+    "analyses": ("ANALYSES", "Analysis", "Verdict", "asked", "shown"),
     "case_file": ("FILE_INPUTS", "CaseFileError", "case_record", "case_toml", "is_file",
                   "read_case", "relative_to"),
     "job": ("Job", "JobResult", "Solved", "prepare_job", "run_job", "solve_job", "write_job",

@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import base64
 import hashlib
-import html
 import json
 import math
 from datetime import UTC, datetime
 from pathlib import Path
 
-from .rating_report import damage_text, life_text
+from .analyses import Verdict, shown
+from .html_parts import escape, safety_cell, table
 
 #: the pictures a page shows, in order, with a caption each (the files' keys)
 PICTURES = {"png": "Von Mises stress on the loaded teeth and at the contact peak",
@@ -79,16 +79,15 @@ def report_html(summary: dict, files: dict[str, Path], command: str) -> str:
     i = summary["inputs"]
     title = (f"m {i['m']:g}, z {i['z2']}/{i['z1']}, h1 {i['h1']:g}, f1 {i['f1']:g}, "
              f"T {i['torque_Nm']:g} N·m")
-    parts = [f"<h1>fegear report: {_e(title)}</h1>",
-             f"<p class='design'>{_e(_design_words(i))}</p>",
+    parts = [f"<h1>fegear report: {escape(title)}</h1>",
+             f"<p class='design'>{escape(_design_words(i))}</p>",
              _verdict(summary),
              "<h2>Safety factors</h2>",
              f"<h3>Static, at {i['torque_Nm']:g} N·m</h3>", _static_table(summary)]
-    if "rating" in summary:
-        parts += ["<h3>For the life</h3>", _life_table(summary["rating"])]
+    slots = [(slot, part) for a in shown(summary) for slot, part in a.page(summary[a.key])]
+    parts += [part for slot, part in slots if slot == "safety"]
     parts += ["<h2>Stresses</h2>", _stress_table(summary)]
-    if "rating" in summary:
-        parts += ["<h2>The load spectrum</h2>", _spectrum_table(summary["rating"])]
+    parts += [part for slot, part in slots if slot == "sections"]
     parts += ["<h2>The design and its inputs</h2>", _inputs_table(i)]
     pictures = [_figure(files[key], caption) for key, caption in PICTURES.items()
                 if key in files and Path(files[key]).exists()]
@@ -96,7 +95,7 @@ def report_html(summary: dict, files: dict[str, Path], command: str) -> str:
         parts += ["<h2>Pictures</h2>", *pictures]
     parts += ["<h2>Where the numbers come from</h2>", _provenance(summary, command)]
     return ("<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
-            f"<title>fegear: {_e(title)}</title><style>{STYLE}</style></head><body>\n"
+            f"<title>fegear: {escape(title)}</title><style>{STYLE}</style></head><body>\n"
             + "\n".join(parts) + "\n</body></html>\n")
 
 
@@ -106,26 +105,26 @@ def index_html(title: str, cases: list[dict]) -> str:
     rows = []
     for c in cases:
         found = verdicts(c["summary"]) if c.get("summary") else []
-        passed = bool(found) and all(ok for ok, _ in found)
+        passed = bool(found) and all(v.passed for v in found)
         word = ("PASS" if passed else "FAIL") if found else c["status"]
-        link = (f"<a href='{_e(c['link'])}'>case {c['case']}</a>" if c.get("link")
+        link = (f"<a href='{escape(c['link'])}'>case {c['case']}</a>" if c.get("link")
                 else f"case {c['case']}")
         what = ", ".join(f"{k} {_value(v)}" for k, v in c["values"].items())
-        lines = "; ".join(line for _, line in found) or _e(c.get("error") or "")
+        lines = "; ".join(v.line for v in found) or escape(c.get("error") or "")
         cls = " class='bad'" if found and not passed else ""
-        rows.append(f"<tr><td>{link}</td><td class='text'>{_e(what)}</td><td{cls}>{word}</td>"
-                    f"<td class='text'>{_e(lines)}</td></tr>")
+        rows.append(f"<tr><td>{link}</td><td class='text'>{escape(what)}</td><td{cls}>{word}</td>"
+                    f"<td class='text'>{escape(lines)}</td></tr>")
     return ("<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
-            f"<title>fegear study: {_e(title)}</title><style>{STYLE}</style></head><body>\n"
-            f"<h1>fegear study: {_e(title)}</h1>\n<table><tr><th>case</th>"
+            f"<title>fegear study: {escape(title)}</title><style>{STYLE}</style></head><body>\n"
+            f"<h1>fegear study: {escape(title)}</h1>\n<table><tr><th>case</th>"
             "<th class='text'>inputs</th><th>verdict</th><th class='text'>why</th></tr>\n"
             + "\n".join(rows)
             + "</table>\n</body></html>\n")
 
 
-def verdicts(summary: dict) -> list[tuple[bool, str]]:
-    """Each verdict the summary holds as (passed, line): the static one (the smallest safety
-    factor over the positions, where, and on which tooth), the life's and the class's."""
+def verdicts(summary: dict) -> list[Verdict]:
+    """Each verdict the summary holds: the static one (the smallest safety factor over the
+    positions, where, and on which tooth), then each analysis's (the life's, the class's)."""
     out = []
     factors = _static_minima(summary)
     if factors:
@@ -138,22 +137,17 @@ def verdicts(summary: dict) -> list[tuple[bool, str]]:
             flank = factors.get("safety_contact_flank", (None,))[0]
             edge = (" on the tip round (edge contact" + (f"; S_H flank {flank:.2f}"
                                                          if flank else "") + ")")
-        out.append((value >= 1.0, f"static: {label} {value:.2f}{where}{tooth}{edge} limits "
-                                  f"({'at least 1' if value >= 1 else 'below 1'})"))
-    if "rating" in summary:
-        line = summary["rating"]["verdict"]
-        out.append((line.startswith("PASS"), f"for the life: {line}"))
-    if "samples" in summary:
-        line = summary["samples"]["verdict"]
-        out.append((line.startswith("PASS"), f"for the class: {line}"))
-    return out
+        out.append(Verdict(value >= 1.0, f"static: {label} {value:.2f}{where}{tooth}{edge} "
+                                         f"limits ({'at least 1' if value >= 1 else 'below 1'})"))
+    found = [a.verdict(summary[a.key]) for a in shown(summary)]
+    return out + [v for v in found if v is not None]
 
 
 def _verdict(summary: dict) -> str:
     found = verdicts(summary)
-    passed = all(ok for ok, _ in found)
+    passed = all(v.passed for v in found)
     word = "PASS" if passed else "FAIL"
-    lines = "".join(f"<li>{'✔' if ok else '✘'} {_e(line)}</li>" for ok, line in found)
+    lines = "".join(f"<li>{'✔' if v.passed else '✘'} {escape(v.line)}</li>" for v in found)
     return (f"<div class='verdict {'pass' if passed else 'fail'}' id='verdict'>"
             f"<strong>{word}</strong><ul>{lines}</ul></div>")
 
@@ -191,22 +185,9 @@ def _static_table(summary: dict) -> str:
     for key, (value, at) in _static_minima(summary).items():
         label, stress_key, allowable_key = STATIC[key]
         stress = i[allowable_key] / value
-        rows.append([label, _cell(value), f"{i[allowable_key]:g}", f"{stress:.1f}",
+        rows.append([label, safety_cell(value), f"{i[allowable_key]:g}", f"{stress:.1f}",
                      "" if at is None else f"{at:.3g}"])
-    return _table(["factor", "S", "allowable MPa", "stress MPa", "at β °"], rows)
-
-
-def _life_table(r: dict) -> str:
-    rows = []
-    for mode, m in r["modes"].items():
-        rows.append([mode, "all" if m["tooth"] is None else str(m["tooth"]),
-                     damage_text(m["miner"]), life_text(m), _cell(m["safety"])])
-    mat = r["material"]
-    note = (f"<p>{_e(mat['name'])} ({_e(mat['treatment'])}): σ_Hlim "
-            f"{mat['sigma_Hlim_MPa']:g} MPa, σ_FE {mat['sigma_FE_MPa']:g} MPa; "
-            f"{_e(mat['source'])}. KA {r['KA']:g}, KV {r['KV']:g}.</p>")
-    return _table(["mode", "tooth", "Miner's sum", "life", "S at the required life"],
-                  rows) + note
+    return table(["factor", "S", "allowable MPa", "stress MPa", "at β °"], rows)
 
 
 def _stress_table(summary: dict) -> str:
@@ -230,29 +211,16 @@ def _stress_table(summary: dict) -> str:
     note = ("<p>The largest over the positions solved. The error estimate compares the solve "
             "with a second mesh level (docs/model.md); a dash where it was not run "
             "(<code>--no-estimate</code>).</p>")
-    return _table(head, rows) + note
-
-
-def _spectrum_table(r: dict) -> str:
-    rows = []
-    modes = list(r["modes"].items())
-    for k, level in enumerate(r["levels"]):
-        rows.append([str(k + 1), f"{level['torque_Nm']:g}", f"{level['solved_torque_Nm']:.4g}",
-                     f"{level['cycles']:.3g}",
-                     *[f"{m['stress_MPa'][k]:.1f} / {damage_text(m['damage'][k])}"
-                       for _, m in modes]])
-    head = ["level", "torque N·m", "solved N·m", "cycles",
-            *[f"{name}: MPa / damage" for name, _ in modes]]
-    return _table(head, rows)
+    return table(head, rows) + note
 
 
 def _inputs_table(i: dict) -> str:
     from .report import deviations_words
 
-    rows = [[_e(k), _e(_value(v))] for k, v in i.items() if k != "deviations"]
-    rows.append(["deviations", _e(deviations_words(i.get("deviations"))
+    rows = [[escape(k), escape(_value(v))] for k, v in i.items() if k != "deviations"]
+    rows.append(["deviations", escape(deviations_words(i.get("deviations"))
                                   or "none (a perfect pair)")])
-    return _table(["input", "value"], rows, escape=False)
+    return table(["input", "value"], rows, raw=True)
 
 
 def _provenance(summary: dict, command: str) -> str:
@@ -261,36 +229,17 @@ def _provenance(summary: dict, command: str) -> str:
     key = json.dumps(summary["inputs"], sort_keys=True, separators=(",", ":"))
     digest = hashlib.sha256(key.encode()).hexdigest()[:16]
     when = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
-    return _table(["", ""], [["fegear", _e(code_version())],
+    return table(["", ""], [["fegear", escape(code_version())],
                              ["the inputs' hash (SHA-256 of summary.json's inputs)", digest],
                              ["the command that gives these numbers again",
-                              f"<code>{_e(command)}</code>"],
-                             ["written", when]], escape=False)
+                              f"<code>{escape(command)}</code>"],
+                             ["written", when]], raw=True)
 
 
 def _figure(path: Path, caption: str) -> str:
     data = base64.b64encode(Path(path).read_bytes()).decode("ascii")
-    return (f"<figure><img src='data:image/png;base64,{data}' alt='{_e(caption)}'>"
-            f"<figcaption>{_e(caption)}</figcaption></figure>")
-
-
-def _table(head: list[str], rows: list[list[str]], escape: bool = True) -> str:
-    def cell(tag: str, text: str) -> str:
-        if text.startswith("<td class="):
-            return text
-        return f"<{tag}>{_e(text) if escape else text}</{tag}>"
-
-    lines = ["<table><tr>" + "".join(f"<th>{_e(h)}</th>" for h in head) + "</tr>"]
-    lines += ["<tr>" + "".join(cell("td", c) for c in row) + "</tr>" for row in rows]
-    return "\n".join(lines) + "</table>"
-
-
-def _cell(value) -> str:
-    """A safety factor's cell, marked where it is below 1."""
-    if value == "inf" or value is None:
-        return "∞" if value == "inf" else "–"
-    text = f"{value:.2f}"
-    return f"<td class='bad'>{text}</td>" if value < 1.0 else text
+    return (f"<figure><img src='data:image/png;base64,{data}' alt='{escape(caption)}'>"
+            f"<figcaption>{escape(caption)}</figcaption></figure>")
 
 
 def _quantile(q: dict | None) -> str:
@@ -314,5 +263,3 @@ def _design_words(i: dict) -> str:
             f"{i['relief_um']:g} µm, quality {i['quality']}")
 
 
-def _e(text) -> str:
-    return html.escape(str(text), quote=True)

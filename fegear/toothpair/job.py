@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from .. import progress
@@ -19,11 +19,12 @@ from ..geometry import admissible_pair, deviations_of
 from ..running import SERIAL, Executor
 from ..timing import Stopwatch
 from ..tolerance import Draw, grade_of
+from .analyses import Run, Writing, asked, positions_of, shown
 from .case import SolveCase, cycle_positions
 from .case_file import case_record
 from .inputs import JOB_INPUTS, PAIR_INPUTS, REQUIRES, TIP_ROUND, check_tip_round
 from .levels import Rating
-from .revolution import PER_PITCH, phase_major, revolution_positions, revolution_summary
+from .revolution import PER_PITCH, revolution_positions
 from .safety import DEFAULT_ALLOWABLES, allowables_of
 
 PAIR_NAMES = {row.name for row in PAIR_INPUTS}
@@ -215,27 +216,18 @@ def run_job(job: Job, out: Path | None, fields: bool = True, pictures: bool = Tr
 
 
 def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
-    """Solve ``job`` at its positions, with its error estimate; no file written. The job hands
-    ``executor`` the work that can run in parallel: the estimate's second solve of one position
-    (submitted before the first starts: on a one-off command's second core it is solved in a
-    forked copy of this process meanwhile, the libraries imported once for both), and a
-    cycle's chains of positions (:func:`~.positions.drive`), and a cycle's estimate, at its
-    worst position (the largest gear-1 root stress, which the submodels do not change),
-    while this process solves the submodels where the cycle peaks."""
+    """Solve ``job`` at its positions, with its error estimate, then each analysis it asks
+    for (:mod:`.analyses`); no file written. The job hands ``executor`` the work that can run
+    in parallel: the estimate's second solve of one position (submitted before the first
+    starts: on a one-off command's second core it is solved in a forked copy of this process
+    meanwhile, the libraries imported once for both), and a cycle's chains of positions
+    (:func:`~.positions.drive`), and a cycle's estimate, at its worst position (the largest
+    gear-1 root stress, which the submodels do not change), while this process solves the
+    submodels where the cycle peaks."""
     from ..fe import import_libraries
     from ..geometry import gear1_profile
-    from .estimate import (
-        second_headline,
-        second_level_estimate,
-        second_quality,
-        tooth_estimates,
-    )
-    from .report import add_tooth_estimates, cycle_rows, cycle_summary, pair_summary
-    from .ring.sensitivity import solved_sensitivities
-    from .ring.solver import RingSolver
-    from .samples import solve_samples
-    from .samples_report import samples_summary
-    from .sensitivity_report import sensitivity_summary
+    from .estimate import second_headline
+    from .report import cycle_rows, cycle_summary
 
     watch = Stopwatch()
     second = None
@@ -244,26 +236,51 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
         second = executor.submit(second_headline, job.case)
     progress.stage("gear 1's profile")
     gear1_profile(job.case.params)
-    sampled = None
-    if job.draw is not None:
-        solver = RingSolver(repeats=True)
-        # a revolution: each pair over gear 1's turn from the first pitch's places
-        pitches = job.case.params.z1 if job.revolution else 1
-        sampled = solve_samples(job.case, job.betas[:len(job.betas) // pitches], job.draw,
-                                job.allowables, solver, executor, pitches=pitches)
-        sols = sampled.nominal
-    else:
-        solver = RingSolver(repeats=job.revolution)
-        sols = _positions(job, solver)(job.case, job.betas, executor)
-    # the exact pair's stresses as the samples' are read: von Mises from the surface estimate
-    estimated = None if sampled is None else cycle_rows(sols, job.allowables)
+    analyses = asked(job)
+    solver, sols, driven = _drive(job, analyses, executor)
     if job.estimate and len(job.betas) > 1:   # while the peaks' submodels are solved here
         second = executor.submit(second_headline, _pictured(sols).case)
     sols = solver.at_peaks(sols)
     cycle_s = watch.s
     sol = _pictured(sols)
+    summary = _core_summary(job, sols, sol, second, watch)
+    rows = None
+    if len(sols) > 1:
+        rows = cycle_rows(sols, job.allowables)
+        summary["cycle"] = {"positions": len(sols), "solve_s": cycle_s,
+                            **cycle_summary(rows), "rows": rows}
+        if job.cycle_default:
+            summary["cycle"]["default"] = job.cycle_default
+    run = Run(job, solver, tuple(sols), sol, executor, summary, driven)
+    for analysis in analyses:
+        entry = analysis.solve(run)
+        if entry is not None:
+            summary[analysis.key] = entry
+    return Solved(job, tuple(sols), sol, summary, rows, watch.s)
+
+
+def _drive(job: Job, analyses, executor: Executor):
+    """The positions solved: by the analysis that drives them (a class's samples), else by
+    the one driver; ``(solver, solutions, what the driving analysis kept)``."""
+    from .ring.solver import RingSolver
+
+    for analysis in analyses:
+        driven = analysis.drive(job, executor)
+        if driven is not None:
+            return driven
+    solver = RingSolver(repeats=job.revolution)
+    return solver, positions_of(job, solver)(job.case, job.betas, executor), None
+
+
+def _core_summary(job: Job, sols, sol, second, watch: Stopwatch) -> dict:
+    """The pictured position's summary (:func:`~.report.pair_summary`) with the error
+    estimate of the second mesh level (``second``: its future; None without an estimate)
+    and every input as run."""
+    from .estimate import second_level_estimate, second_quality, tooth_estimates
+    from .report import add_tooth_estimates, pair_summary
+
     estimate, other, estimate_s, teeth = None, None, None, None
-    if job.estimate:
+    if second is not None:
         after = Stopwatch()
         progress.stage("error estimate: the same case again at quality "
                        f"{second_quality(job.case.quality)}")
@@ -276,43 +293,7 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     summary["estimate_s"] = estimate_s
     summary["case"] = dict(job.record)
     add_tooth_estimates(summary, teeth)
-    rows = None
-    if len(sols) > 1:
-        rows = cycle_rows(sols, job.allowables)
-        summary["cycle"] = {"positions": len(sols), "solve_s": cycle_s,
-                            **cycle_summary(rows), "rows": rows}
-        if job.cycle_default:
-            summary["cycle"]["default"] = job.cycle_default
-    if job.revolution and sampled is None:   # the exact pair's: its cycle, repeated
-        summary["revolution"] = revolution_summary(tuple(sols), job.allowables)
-    if sampled is not None:
-        summary["samples"] = samples_summary(sampled.rows, estimated, job.draw.grade,
-                                             job.draw.seed, job.quantile, job.allowables,
-                                             len(job.betas), job.revolution)
-    if job.sensitivities:
-        progress.stage("sensitivities: each stress's rate with each deviation in mesh")
-        summary["sensitivities"] = sensitivity_summary(
-            solved_sensitivities(sol), math.degrees(sol.case.beta),
-            None if job.draw is None else job.draw.grade)
-    if job.rating is not None:
-        from .levels import rated, solve_levels
-        from .positions import drive_torques
-
-        after = Stopwatch()
-
-        def level(case: SolveCase, betas, torques, executor: Executor):
-            # the model kept, the roots and the pressures read alone; a revolution's kept
-            # phases hold solutions at one torque: there a solver of its own a level
-            if not job.revolution:
-                return drive_torques(case, betas, torques,
-                                     RingSolver(solver.model, roots_only=True), executor)
-            return [_positions(job, RingSolver(solver.model, repeats=True, roots_only=True))(
-                replace(case, torque=torque), betas, executor) for torque in torques]
-
-        levels = solve_levels(job.case, job.betas, job.rating, level, executor, sols)
-        summary["rating"] = {**rated(levels, job.rating, every_tooth=not job.case.deviations),
-                             "solve_s": after.s}
-    return Solved(job, tuple(sols), sol, summary, rows, watch.s)
+    return summary
 
 
 def solve_command(inputs: Mapping) -> str:
@@ -328,29 +309,6 @@ def solve_command(inputs: Mapping) -> str:
     return shlex.join(parts)
 
 
-def _positions(job: Job, solver):
-    """How ``job`` solves its positions with ``solver``: ``solve(case, betas, executor)``, a
-    revolution phase by phase (:func:`~.revolution.phase_major`), the solutions in the order
-    of ``betas``."""
-    from .positions import drive
-
-    def solve(case: SolveCase, betas, executor: Executor):
-        order = (phase_major(len(betas), case.params.z1) if job.revolution
-                 else range(len(betas)))
-        sols = drive(case, [betas[k] for k in order], solver, executor=executor)
-        return tuple(sol for _, sol in sorted(zip(order, sols), key=lambda pair: pair[0]))
-
-    return solve
-
-
-def _deviations_title(summary: dict) -> str:
-    """The deviations a revolution's pictures are of, in one line."""
-    from .report import deviations_words
-
-    words = deviations_words(summary["inputs"].get("deviations"))
-    return f"deviations: {words}" if words else "no deviations (a perfect pair)"
-
-
 def _pictured(sols):
     """The position the pictures, VTUs and the error estimate are of: the largest gear-1 root
     stress (which a position's submodels do not change)."""
@@ -359,51 +317,33 @@ def _pictured(sols):
 
 def write_job(solved: Solved, out: Path, fields: bool = True, pictures: bool = True,
               executor: Executor = SERIAL) -> dict[str, Path]:
-    """Write a solved job's files into ``out`` (made here): summary.json, the VTUs
-    (``fields``), the pictures (``pictures``) and, for a cycle, its table, PVD series and
-    plot; the pictures that need no fields drawn on ``executor`` meanwhile
+    """Write a solved job's files into ``out`` (made here): each analysis's that the summary
+    holds (:mod:`.analyses`: a cycle's table, PVD series and plot, a revolution's, …), then
+    summary.json, the VTUs (``fields``) and the pictures (``pictures``) of the pictured
+    position, those that need no fields drawn on ``executor`` meanwhile
     (:func:`~.output.write_pair_outputs`). Returns name → path."""
     from ..files import prepare_dir
-    from .output import (
-        write_cycle_outputs,
-        write_cycle_series,
-        write_mesh_stiffness,
-        write_pair_outputs,
-        write_rating_outputs,
-        write_revolution_outputs,
-        write_samples_outputs,
-        write_sensitivity_outputs,
-    )
+    from .output import write_pair_outputs
 
     progress.stage(f"writing files to {out}")
     out = prepare_dir(out)
-    rows, summary, case = solved.rows, solved.summary, solved.job.case
+    summary = solved.summary
+    writing = Writing(solved, out, _title(solved), fields, pictures)
     files: dict[str, Path] = {}
-    i = summary["inputs"]
-    n = len(solved.solutions)
-    where = f"{n} position{'s' if n > 1 else ''}"
-    if solved.job.revolution and "revolution" not in summary:   # a class's pairs turned
-        where += f" a pitch over a revolution ({len(solved.job.betas)})"
-    title = (f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T {i['torque_Nm']:g} N·m, "
-             f"{where}, quality {i['quality']}")
-    if "revolution" in summary:
-        files.update(write_revolution_outputs(
-            solved.solutions, rows, summary["revolution"], out,
-            f"{title}\n{_deviations_title(summary)}", solved.job.allowables, fields, pictures))
-    elif rows:
-        files.update(write_mesh_stiffness(out, rows, case))
-        if fields:
-            files.update(write_cycle_series(solved.solutions, out))
-        if pictures:
-            files.update(write_cycle_outputs(rows, out, title, solved.job.allowables))
-    if "rating" in summary:
-        files.update(write_rating_outputs(summary["rating"], out))
-    if "samples" in summary:
-        files.update(write_samples_outputs(summary["samples"], out, title,
-                                           solved.job.allowables, pictures))
-    if "sensitivities" in summary:
-        files.update(write_sensitivity_outputs(summary["sensitivities"], out, title, pictures))
+    for analysis in shown(summary):
+        files.update(analysis.write(summary[analysis.key], writing))
     files.update(write_pair_outputs(solved.solution, out, {**summary, "files": {
         k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures,
         executor=executor))
     return files
+
+
+def _title(solved: Solved) -> str:
+    """The pictures' title: the design, the torque, the positions and the quality."""
+    i = solved.summary["inputs"]
+    n = len(solved.solutions)
+    where = f"{n} position{'s' if n > 1 else ''}"
+    if solved.job.revolution and "revolution" not in solved.summary:   # a class's pairs
+        where += f" a pitch over a revolution ({len(solved.job.betas)})"
+    return (f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T {i['torque_Nm']:g} N·m, "
+            f"{where}, quality {i['quality']}")

@@ -1,0 +1,46 @@
+"""A whole revolution of the exact pair (``--revolution``): every pitch of gear 1's turn, the
+worst of each stress with its tooth, each tooth's largest, the loaded rotation's spectrum
+(:mod:`..revolution`); a class's pairs over a revolution are the samples' own."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .base import Analysis, Run, Writing
+
+
+class Revolution(Analysis):
+    key = "revolution"
+    replaces = ("cycle",)
+    before_pair = True
+
+    def wanted(self, job) -> bool:
+        return job.revolution and job.draw is None
+
+    def solve(self, run: Run) -> dict:
+        from ..revolution import revolution_summary
+
+        return revolution_summary(tuple(run.solutions), run.job.allowables)
+
+    def printed(self, entry: dict, summary: dict) -> str:
+        from ..revolution import revolution_table
+
+        return (f"{revolution_table(entry)}\n\n{entry['positions']} positions over "
+                f"{entry['pitches']} pitches (one turn of gear 1) in "
+                f"{summary['cycle']['solve_s']:.1f} s; the details below are at the position "
+                "of the largest gear-1 root stress\n")
+
+    def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
+        from ..output import write_revolution_outputs
+        from ..report import deviations_words
+
+        solved = writing.solved
+        words = deviations_words(solved.summary["inputs"].get("deviations"))
+        deviations = f"deviations: {words}" if words else "no deviations (a perfect pair)"
+        return write_revolution_outputs(solved.solutions, solved.rows, entry, writing.out,
+                                        f"{writing.title}\n{deviations}",
+                                        solved.job.allowables, writing.fields,
+                                        writing.pictures)
+
+
+REVOLUTION = Revolution()

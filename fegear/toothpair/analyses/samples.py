@@ -1,0 +1,67 @@
+"""A tolerance class's pairs (``--grade``): drawn, each solved at the job's positions on each
+position's kept contact (:mod:`..samples`) beside the exact pair, which they drive; their
+quantiles, the safety factors at the quantile and the verdict (:mod:`..samples_report`)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ...running import Executor
+from .base import Analysis, Run, Verdict, Writing
+
+
+class Samples(Analysis):
+    key = "samples"
+
+    def wanted(self, job) -> bool:
+        return job.draw is not None
+
+    def drive(self, job, executor: Executor):
+        from ..report import cycle_rows
+        from ..ring.solver import RingSolver
+        from ..samples import solve_samples
+
+        solver = RingSolver(repeats=True)
+        # a revolution: each pair over gear 1's turn from the first pitch's places
+        pitches = job.case.params.z1 if job.revolution else 1
+        sampled = solve_samples(job.case, job.betas[:len(job.betas) // pitches], job.draw,
+                                job.allowables, solver, executor, pitches=pitches)
+        # the exact pair's stresses as the samples' are read: von Mises from the surface
+        # estimate, before the peaks' submodels
+        return solver, sampled.nominal, (sampled, cycle_rows(sampled.nominal, job.allowables))
+
+    def solve(self, run: Run) -> dict:
+        from ..samples_report import samples_summary
+
+        sampled, estimated = run.driven
+        job = run.job
+        return samples_summary(sampled.rows, estimated, job.draw.grade, job.draw.seed,
+                               job.quantile, job.allowables, len(job.betas), job.revolution)
+
+    def printed(self, entry: dict, summary: dict) -> str:
+        from ..samples_report import samples_table
+
+        over = ("the same positions" if entry["over"] == "cycle" else
+                f"a whole revolution each ({entry['positions_per_pair']} positions: the "
+                "cycle's at every pitch of gear 1)")
+        return (f"\nThe exact pair above; the pairs of its tolerance class over {over} (von "
+                "Mises from the templates' surface estimate, as the samples' is read):\n\n"
+                + samples_table(entry))
+
+    def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
+        from ..output import write_samples_outputs
+
+        return write_samples_outputs(entry, writing.out, writing.title,
+                                     writing.solved.job.allowables, writing.pictures)
+
+    def verdict(self, entry: dict) -> Verdict:
+        line = entry["verdict"]
+        return Verdict(entry.get("passed", line.startswith("PASS")), f"for the class: {line}")
+
+    def columns(self, entry: dict) -> dict:
+        from ..samples_report import samples_columns
+
+        return samples_columns(entry)
+
+
+SAMPLES = Samples()
