@@ -72,8 +72,10 @@ def test_solve_saves_its_case_and_its_summary_loads_back(tmp_path, capsys):
     for case in (saved, out / "summary.json"):
         assert main(["-q", "solve", "--case", str(case), "--json"]) == 0
         again = json.loads(capsys.readouterr().out)
+        # to 1e-9, not to the bit: a model this process keeps may have formed its unit
+        # responses in other batches than a model built afresh (1e-13)
         for key in ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa"):
-            assert again[key] == summary[key]
+            assert again[key] == pytest.approx(summary[key], rel=1e-9)
         assert again["case"] == summary["case"]
     job = prepare_job(read_case(saved))
     assert _pinned(prepare_job(read_case(older)).case) == _pinned(job.case)
