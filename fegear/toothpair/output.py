@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 from xml.sax.saxutils import quoteattr
 
 from ..fe import write_vtu
@@ -16,7 +17,11 @@ from ..figures import pyplot, write_png
 from ..files import write_atomic, write_csv, write_json
 from ..running import SERIAL, Executor
 from .case import HEADLINE, PairSolution
-from .plot import chart_pngs, cycle_png, von_mises_png
+from .cycle_plot import cycle_png
+from .plot import chart_pngs, von_mises_png
+
+if TYPE_CHECKING:   # what an analysis hands its writer (the analyses call this module)
+    from .analyses import Writing
 
 
 def write_cycle_outputs(rows: list[dict], out: Path, title: str,
@@ -53,10 +58,9 @@ def write_cycle_series(sols, out: Path, name: str = "cycle") -> dict[str, Path]:
     return {"pvd": write_atomic(out / f"{name}.pvd", lambda tmp: tmp.write_text(xml))}
 
 
-def write_revolution_outputs(sols, rows: list[dict], revolution: dict, out: Path, title: str,
-                             allowables, fields: bool = True, pictures: bool = True
-                             ) -> dict[str, Path]:
-    """A revolution's files: revolution.csv (a row per position, gear 1's turn first),
+def write_revolution_outputs(revolution: dict, writing: Writing) -> dict[str, Path]:
+    """A revolution's files (its summary entry ``revolution``, the solved job's positions and
+    rows in ``writing``): revolution.csv (a row per position, gear 1's turn first),
     revolution_teeth.csv (each tooth's largest stresses), revolution_spectrum.csv (the
     loaded rotation's harmonics), revolution.png and revolution_teeth.png (``pictures``)
     and revolution.pvd (``fields``): a frame a pitch, at the pitch's position of the largest
@@ -64,6 +68,8 @@ def write_revolution_outputs(sols, rows: list[dict], revolution: dict, out: Path
     from .revolution import amplitudes, gear1_turn_deg, loaded_rotation
     from .revolution_plot import revolution_png, revolution_teeth_png
 
+    sols, rows, out, title = (writing.solved.solutions, writing.solved.rows, writing.out,
+                              writing.title)
     turn = gear1_turn_deg(sols)
     harmonics = amplitudes(loaded_rotation(sols))
     z1 = revolution["pitches"]
@@ -82,12 +88,13 @@ def write_revolution_outputs(sols, rows: list[dict], revolution: dict, out: Path
     files["revolution_spectrum_csv"] = write_csv(
         out / "revolution_spectrum.csv", ("order", "mesh_order", "amplitude_urad"),
         ((h, h / z1, a) for h, a in enumerate(harmonics) if h > 0))
-    if pictures:
+    if writing.pictures:
         files["revolution_png"] = revolution_png(out / "revolution.png", revolution, rows,
                                                  turn, harmonics, title)
         files["revolution_teeth_png"] = revolution_teeth_png(
-            out / "revolution_teeth.png", per, revolution["worst"], allowables, title)
-    if fields:
+            out / "revolution_teeth.png", per, revolution["worst"],
+            writing.solved.job.allowables, title)
+    if writing.fields:
         files["revolution_pvd"] = write_cycle_series(_pitch_peaks(sols, rows, z1), out,
                                                      "revolution")["pvd"]
     return files

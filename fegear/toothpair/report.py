@@ -205,7 +205,13 @@ def pair_table(summary: dict) -> str:
         *aligned_table(list(TOOTH_HEAD), [_tooth_cells(t) for t in summary["teeth"]
                                           if t["load_N"] > 0]),
     ]
-    unloaded = [t["tooth"] for t in summary["teeth"] if t["load_N"] <= 0]
+    return "\n".join(lines + _notes(summary) + _checks(summary))
+
+
+def _notes(summary: dict) -> list[str]:
+    """The notes under the pair's table: edge contact, under-resolved contacts and what the
+    columns err % and p ref mean, where they apply."""
+    lines = []
     edge = summary["edge_contact"]
     if edge["teeth"]:
         lines += ["", f"EDGE CONTACT: the tip rounds of teeth {edge['teeth']} carry "
@@ -230,27 +236,33 @@ def pair_table(summary: dict) -> str:
         lines += ["", "p ref: the flank pressure of two half-planes with the teeth's exact gap, "
                   "bent as the teeth bend, under the same load (Hertz without its constant "
                   "curvature and rigid teeth; docs/model.md, \"Hertz at load\")."]
-    lines += ["",
-              f"teeth in contact {summary['teeth_in_contact']} (paired but open: {unloaded}); "
-              f"load shares sum to {summary['load_share_sum']:.6f}; torque balance error "
-              f"{summary['torque_balance_error']:.1e}",
-              f"transmission error {summary['transmission_error_urad']:.1f} µrad (rotation "
-              f"{summary['rotation_urad']:.1f}, first touch {summary['first_touch_urad']:.1f}); "
-              f"mesh stiffness {stiffness_cell(summary['mesh_stiffness_Nm_per_rad'])} N·m/rad"
-              + _tangent(summary),
-              f"DOFs {summary['dofs']}, contact points {summary['contact_points']}, "
-              f"iterations {summary['iterations']}, max penetration "
-              f"{summary['max_penetration_um']:.3g} µm",
-              "time [s]: " + ", ".join(f"{k} {v:.2f}" for k, v in summary["timings_s"].items() if v)
-              + _estimate_time(summary)
-              + (f"; solve wall {summary['wall_s']:.1f}" if summary["wall_s"] else "")]
-    return "\n".join(lines)
+    return lines
+
+
+def _checks(summary: dict) -> list[str]:
+    """The lines under the notes: the contact's checks, the transmission error and the mesh
+    stiffness, the problem's size and the times."""
+    unloaded = [t["tooth"] for t in summary["teeth"] if t["load_N"] <= 0]
+    return ["",
+            f"teeth in contact {summary['teeth_in_contact']} (paired but open: {unloaded}); "
+            f"load shares sum to {summary['load_share_sum']:.6f}; torque balance error "
+            f"{summary['torque_balance_error']:.1e}",
+            f"transmission error {summary['transmission_error_urad']:.1f} µrad (rotation "
+            f"{summary['rotation_urad']:.1f}, first touch {summary['first_touch_urad']:.1f}); "
+            f"mesh stiffness {stiffness_cell(summary['mesh_stiffness_Nm_per_rad'])} N·m/rad"
+            + _tangent(summary),
+            f"DOFs {summary['dofs']}, contact points {summary['contact_points']}, "
+            f"iterations {summary['iterations']}, max penetration "
+            f"{summary['max_penetration_um']:.3g} µm",
+            "time [s]: " + ", ".join(f"{k} {v:.2f}" for k, v in summary["timings_s"].items() if v)
+            + _estimate_time(summary)
+            + (f"; solve wall {summary['wall_s']:.1f}" if summary["wall_s"] else "")]
 
 
 #: the per-tooth table's headers, each as wide as its column's usual values
 TOOTH_HEAD = ("tooth", "clear. µm", "load N", "share", "p_max MPa", "p flank", "p ref ",
-              "p edge", "edge N", "b mm  ", "Hertz p0", "b/R*  ", "root1", "root2", "S_F1 ",
-              "S_F2 ", "S_H  ", "err %")
+            "p edge", "edge N", "b mm  ", "Hertz p0", "b/R*  ", "root1", "root2", "S_F1 ",
+            "S_F2 ", "S_H  ", "err %")
 
 
 def _tooth_cells(t: dict) -> list[str]:

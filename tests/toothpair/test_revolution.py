@@ -5,12 +5,14 @@ order with its phase; the files hold what the summary says."""
 
 import csv
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from fegear.geometry import Deviations, Placed, Runout, ToothContact, gear1_profile
 from fegear.toothpair import prepare_job, solve_pair
+from fegear.toothpair.analyses import Writing
 from fegear.toothpair.job import solve_job
 from fegear.toothpair.output import write_revolution_outputs
 from fegear.toothpair.revolution import (
@@ -20,7 +22,6 @@ from fegear.toothpair.revolution import (
     revolution_positions,
     revolution_table,
 )
-from fegear.toothpair.safety import DEFAULT_ALLOWABLES
 
 BASE = {"shift": 0.016, "rotation": 0.002, "quality": "coarse", "revolution": True,
         "positions": 2, "no-estimate": True}
@@ -136,8 +137,7 @@ def test_a_gear_1_runout_turns_the_first_order_with_its_phase(perfect):
 
 def test_the_files_hold_what_the_summary_says(deviated, tmp_path):
     rev = deviated.summary["revolution"]
-    files = write_revolution_outputs(deviated.solutions, deviated.rows, rev, tmp_path,
-                                     "a title", DEFAULT_ALLOWABLES, fields=False)
+    files = write_revolution_outputs(rev, Writing(deviated, tmp_path, "a title", fields=False))
     with open(files["revolution_csv"]) as f:
         rows = list(csv.DictReader(f))
     assert len(rows) == len(deviated.solutions)
@@ -159,8 +159,8 @@ def test_the_series_has_a_frame_a_pitch_at_its_largest_root_stress(deviated, tmp
     # two pitches of the revolution, as the writer takes them
     sols, rows = deviated.solutions[:4], deviated.rows[:4]
     rev = {**deviated.summary["revolution"], "pitches": 2}
-    files = write_revolution_outputs(sols, rows, rev, tmp_path, "t", DEFAULT_ALLOWABLES,
-                                     pictures=False)
+    files = write_revolution_outputs(rev, Writing(replace(deviated, solutions=sols, rows=rows),
+                                                  tmp_path, "t", pictures=False))
     pvd = files["revolution_pvd"].read_text()
     steps = sorted({float(x.split('"')[1]) for x in pvd.split("timestep=")[1:]})
     want = [math.degrees(max(sols[k:k + 2], key=lambda s: s.headline()[

@@ -4,6 +4,7 @@ worst of each stress with its tooth, each tooth's largest, the loaded rotation's
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 from .base import Analysis, Run, Writing
@@ -34,13 +35,10 @@ class Revolution(Analysis):
         from ..output import write_revolution_outputs
         from ..report import deviations_words
 
-        solved = writing.solved
-        words = deviations_words(solved.summary["inputs"].get("deviations"))
+        words = deviations_words(writing.solved.summary["inputs"].get("deviations"))
         deviations = f"deviations: {words}" if words else "no deviations (a perfect pair)"
-        return write_revolution_outputs(solved.solutions, solved.rows, entry, writing.out,
-                                        f"{writing.title}\n{deviations}",
-                                        solved.job.allowables, writing.fields,
-                                        writing.pictures)
+        return write_revolution_outputs(entry, replace(writing,
+                                                       title=f"{writing.title}\n{deviations}"))
 
 
 REVOLUTION = Revolution()
