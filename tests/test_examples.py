@@ -10,7 +10,8 @@ from pathlib import Path
 import pytest
 
 README = Path(__file__).parents[1] / "README.md"
-STAGES = ("geometry", "tolerance", "fe", "contact", "toothpair", "toothpair.ring", "study",
+STAGES = ("geometry", "tolerance", "fe", "contact", "toothpair", "toothpair.ring",
+          "toothpair.analyses", "study",
           "verify",
           "verify.penalty", "verify.sector", "drive", "optimize", "cli", "api")
 FLAGS = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
