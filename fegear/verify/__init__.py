@@ -26,7 +26,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "disks": ("DiskResult", "solve_disks", "disk_geometries", "write_disk_outputs"),
     "bench": ("Ladder", "Rung", "Target", "richardson", "geometry_bench",
               "disk_ladder", "pair_ladder", "ladder_targets", "ladder_table", "ladder_json",
-              "peer_speedups", "PEER_TARGET", "machine"),
+              "PEER_TARGET", "machine"),
     "ring_bench": ("RingRun", "CacheRuns", "cache_runs", "cache_table", "run_fresh", "ring_ladder",
                    "scaling_runs", "ring_table",
                    "scaling_table", "scaling_png", "paper_study_s", "SECTOR_REFERENCE",

@@ -274,11 +274,6 @@ def ladder_targets(disks: Ladder | None) -> list[Target]:
     return out
 
 
-def peer_speedups(ladder: Ladder) -> list[tuple[Rung, float]]:
-    """CalculiX wall time over ours after meshing (both solve the same mesh), per rung."""
-    return [(r, r.peer_ratio) for r in ladder.rungs if r.peer_s]
-
-
 def ladder_table(ladder: Ladder) -> str:
     """Markdown: per rung DOFs, stage times, values and errors against the reference (and
     the analytic values), CalculiX's time and value beside ours."""
