@@ -190,6 +190,36 @@ def test_each_run_is_kept_and_the_last_one_printed_beside_the_next(tmp_path):
     assert "| a number the last run did not measure [s] | – | 1 |" in shown
 
 
+def test_show_history_prints_the_history_as_a_table(tmp_path, capsys):
+    """``fegear bench --show-history``: the kept runs as a table, a column a run (the last
+    eight), their notes beneath the dates, nothing run; none kept, one line saying so. The
+    repository's history ends with a bench run, so that the next ``make bench`` is printed
+    beside a run of its own kind; its ``--against`` lines (two a run: the other checkout's,
+    with its commit as the code, and this one's) sit among the day's runs."""
+    from pathlib import Path
+
+    from fegear.cli import main
+    from fegear.verify import history
+
+    repository = Path(__file__).parents[2] / "docs" / "bench" / "history.jsonl"
+    assert main(["bench", "--show-history", "--history", str(repository)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].count("|") == min(len(history.runs(repository)), 8) + 2
+    assert history.runs(repository)[-1]["code"].startswith("0.1.0+")
+    against = [line for line in repository.read_text().splitlines() if "--against" in line]
+    assert len(against) >= 12 and len(against) % 2 == 0
+    kept = tmp_path / "history.jsonl"
+    kept.write_text("\n".join(against[-2:]) + "\n")
+    assert main(["bench", "--show-history", "--history", str(kept)]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0].count("|") == 4 and lines[2].startswith("| note | ")
+    assert lines[2].count("--against") == 2
+    assert any(line.startswith("| one position: fegear solve --no-estimate [s] |")
+               for line in lines)
+    assert main(["bench", "--show-history", "--history", str(tmp_path / "none.jsonl")]) == 0
+    assert capsys.readouterr().out.strip() == "(no bench run kept there yet)"
+
+
 def test_commands_are_timed_here_and_in_another_checkout_alternately(tmp_path):
     """``fegear bench --against``: each command here and there, as many times each, the
     ratio of the medians; a checkout without its fegear, or a command failing there, is one
