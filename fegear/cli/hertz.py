@@ -23,9 +23,8 @@ def add_parser(sub) -> None:
 
 
 def run(a: argparse.Namespace) -> int:
-    import time
-
     from ..files import check_dir, prepare_dir
+    from ..timing import Stopwatch
     from ..verify import DISK_QUALITY, DiskCase
 
     quality = a.quality if a.quality in DISK_QUALITY else _number(a.quality)
@@ -37,9 +36,9 @@ def run(a: argparse.Namespace) -> int:
     summary = result.summary()
     if out is not None:
         out = prepare_dir(out)
-        t0 = time.perf_counter()
+        watch = Stopwatch()
         files = write_disk_outputs(result, out)
-        result.timings_s["output"] = time.perf_counter() - t0
+        result.timings_s["output"] = watch.s
         summary = result.summary()
         summary["files"] = {k: str(v) for k, v in files.items()}
     if a.json:

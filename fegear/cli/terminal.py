@@ -14,6 +14,8 @@ import sys
 import time
 from contextlib import contextmanager
 
+from ..timing import Stopwatch
+
 
 class StageBar:
     """A :mod:`fegear.progress` sink: on one line of stderr, the stage under way, its number
@@ -88,7 +90,7 @@ def command_wall_s() -> float:
 
         return time.time() - psutil.Process().create_time()
     except Exception:  # no process table (a restricted container)
-        return time.perf_counter() - _IMPORTED
+        return _IMPORTED.s
 
 
-_IMPORTED = time.perf_counter()
+_IMPORTED = Stopwatch()

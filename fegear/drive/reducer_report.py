@@ -5,13 +5,13 @@ checked, and what fegear's own mesh stiffness changes (:mod:`.reducer`)."""
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
 import numpy as np
 
 from ..files import write_csv, write_json
+from ..timing import Stopwatch
 from .reducer import (
     RESPONSES,
     build_reducer,
@@ -99,7 +99,7 @@ def _fe_cycle(inputs: ReducerInputs, quality: str, positions: int):
     width, the output torque on the gear (gear 1)."""
     from ..toothpair import mesh_stiffness_of_cycle, prepare_job, solve_job
 
-    t0 = time.perf_counter()
+    watch = Stopwatch()
     job = prepare_job({"z1": inputs.z_gear, "z2": inputs.z_plate, "m": inputs.module_mm,
                        "face-width": inputs.plate_thickness_mm,
                        "torque": inputs.output_torque, "positions": positions,
@@ -108,7 +108,7 @@ def _fe_cycle(inputs: ReducerInputs, quality: str, positions: int):
     p = job.case.params
     mesh = mesh_stiffness_of_cycle(solved.rows, p.z1, p.z2, p.m, job.case.thickness,
                                    job.case.torque)
-    return mesh, {"solve_s": time.perf_counter() - t0, "quality": quality,
+    return mesh, {"solve_s": watch.s, "quality": quality,
                   "positions": positions,
                   "teeth_in_contact": [r["teeth_in_contact"] for r in solved.rows]}
 
@@ -116,7 +116,7 @@ def _fe_cycle(inputs: ReducerInputs, quality: str, positions: int):
 def reducer_summary(inputs: ReducerInputs, mesh: MeshSource, count: int = 10,
                     speeds_rpm=None) -> dict:
     """Everything ``fegear drive reducer`` prints and writes, for the three builds."""
-    t0 = time.perf_counter()
+    watch = Stopwatch()
     km = mesh.stiffness
     if speeds_rpm is None:
         top = 1.5 * inputs.speed_rpm
@@ -175,7 +175,7 @@ def reducer_summary(inputs: ReducerInputs, mesh: MeshSource, count: int = 10,
     summary["findings"] = findings(summary)
     if mesh.source != "table":
         summary["mesh_comparison"] = _comparison(inputs, mesh, count)
-    summary["solve_s"] = time.perf_counter() - t0
+    summary["solve_s"] = watch.s
     return summary
 
 

@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import time
 from dataclasses import asdict, dataclass
 
 import numpy as np
 
+from ..timing import clocked, timed
 from .clearance import Backlash, ContactState, ToothContact
 from .gear1 import gear1_profile
 from .gear2 import gear2_curve
@@ -76,27 +76,24 @@ class PairGeometry:
 def build_geometry(params: PairParameters, chord_error: float = 1e-4,
                backlash_positions: int | None = 16) -> PairGeometry:
     """Generate both profiles, the β = 0 clearance table and (optionally) the backlash."""
-    t = {}
-    t0 = time.perf_counter()
-    g1 = gear1_profile(params)
-    t["gear1_envelope"] = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    poly1, depth = g1.polyline(chord_error, relief=True)
-    poly2 = gear2_curve(params).polyline(chord_error, -np.pi / params.z2,
-                                         2 * np.pi - np.pi / params.z2)[:-1]
-    t["polylines"] = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    tca = ToothContact(params, g1)
-    contact = tca.state(0.0)
-    t["clearance_table"] = time.perf_counter() - t0
     backlash = None
-    if backlash_positions:
-        t0 = time.perf_counter()
-        backlash = tca.backlash(backlash_positions)
-        t["backlash"] = time.perf_counter() - t0
+    with clocked() as clock:
+        with timed("gear1_envelope"):
+            g1 = gear1_profile(params)
+        with timed("polylines"):
+            poly1, depth = g1.polyline(chord_error, relief=True)
+            poly2 = gear2_curve(params).polyline(chord_error, -np.pi / params.z2,
+                                                 2 * np.pi - np.pi / params.z2)[:-1]
+        with timed("clearance_table"):
+            tca = ToothContact(params, g1)
+            contact = tca.state(0.0)
+        if backlash_positions:
+            with timed("backlash"):
+                backlash = tca.backlash(backlash_positions)
     tip = float(g1.radius(np.array([g1.tooth_center]))[0])
     root = float(g1.radius(np.array([g1.phi_space]))[0])
     return PairGeometry(params=params, gear1=poly1, gear2=poly2, chord_error=chord_error,
                         tip_radius=tip, root_radius=root, contact=contact, backlash=backlash,
-                        timings=t, relief_depth=depth if params.relief > 0 else None,
+                        timings=dict(clock.stages),
+                        relief_depth=depth if params.relief > 0 else None,
                         relief_chart=tuple(g1.relief_chart()))

@@ -48,17 +48,16 @@ class SearchOutcome:
 def run_optimize(settings: SearchSettings) -> SearchOutcome:
     """Search, solve the best again beside the baselines, write final.json, final.md and the
     pictures into ``settings.out``; raise :class:`~.search.SearchInterrupted` on a stop."""
-    import time
-
     from .. import progress
     from ..files import write_json
+    from ..timing import Stopwatch
     from . import best_trials, binding, load_trials, run_search
 
     s, space = settings, settings.space
-    t0 = time.perf_counter()
+    watch = Stopwatch()
     result = run_search(space, s.out, s.trials, s.workers, s.sampler, s.seed,
                         report=progress.stage, scheduler=s.scheduler)
-    search_s = time.perf_counter() - t0
+    search_s = watch.s
     table = load_trials(s.out)
     best = best_trials(result.study, space, max(s.best, 1))
     head = (f"{result.found} trials found finished, {result.solved} solved now in "

@@ -17,12 +17,12 @@ import statistics
 import subprocess
 import sys
 import tempfile
-import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import FegearError
+from ..timing import Stopwatch
 
 #: what is timed: a name and ``fegear``'s arguments ({tmp}: a fresh folder of the run's)
 COMMANDS = (
@@ -108,9 +108,9 @@ def _run(fegear: list[str], cwd: Path, args: tuple[str, ...]) -> float:
     try:
         env = {**os.environ, "FEGEAR_CACHE": "off", "FEGEAR_CACHE_DIR": f"{tmp}/cache"}
         argv = [*fegear, "-q", *(a.replace("{tmp}", tmp) for a in args)]
-        start = time.perf_counter()
+        watch = Stopwatch()
         done = subprocess.run(argv, cwd=cwd, env=env, capture_output=True, text=True)
-        wall = time.perf_counter() - start
+        wall = watch.s
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     if done.returncode != 0:

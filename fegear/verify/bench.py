@@ -18,7 +18,6 @@ import shutil
 import statistics
 import subprocess
 import tempfile
-import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -26,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from ..geometry import Gear1Profile, PairParameters, ToothContact, gear2_curve
+from ..timing import Stopwatch
 
 GEOMETRY_TARGET_S = 1.0
 
@@ -33,9 +33,9 @@ GEOMETRY_TARGET_S = 1.0
 def _best(fn, repeat: int):
     best, value = np.inf, None
     for _ in range(repeat):
-        t0 = time.perf_counter()
+        watch = Stopwatch()
         value = fn()
-        best = min(best, time.perf_counter() - t0)
+        best = min(best, watch.s)
     return best, value
 
 
@@ -163,9 +163,9 @@ def _timed_output(write, repeat: int = 2) -> float:
     best = math.inf
     for _ in range(max(2, repeat)):
         with tempfile.TemporaryDirectory() as tmp:
-            t0 = time.perf_counter()
+            watch = Stopwatch()
             write(Path(tmp))
-            best = min(best, time.perf_counter() - t0)
+            best = min(best, watch.s)
     return best
 
 

@@ -7,12 +7,12 @@ import os
 import re
 import shutil
 import subprocess
-import time
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import FegearError
+from ..timing import Stopwatch
 
 
 class PeerError(FegearError):
@@ -124,14 +124,14 @@ def execute(work: Path, jobname: str, threads: int = 1, timeout: float | None = 
                 "CCX_NPROC_RESULTS"):
         env[var] = str(threads)
     log = work / f"{jobname}.log"
-    t0 = time.perf_counter()
+    watch = Stopwatch()
     try:
         with open(log, "w") as out:
             proc = subprocess.run([exe, "-i", jobname], cwd=work, env=env, stdout=out,
                                   stderr=subprocess.STDOUT, timeout=timeout)
     except subprocess.TimeoutExpired:
         raise PeerError(f"ccx did not finish within {timeout} s (log: {log})") from None
-    wall = time.perf_counter() - t0
+    wall = watch.s
     text = read_text(log)
     out = text.splitlines() + [""]
     errors = [" ".join(f"{out[i]} {out[i + 1] if '*' not in out[i + 1] else ''}".split())
