@@ -22,9 +22,6 @@ LIMITS = {"S_F1": ("bending", "root_stress_gear1_MPa"),
           "S_H_flank": ("contact", "flank_contact_pressure_MPa")}
 #: what a design is measured by, and which way is better
 OBJECTIVES = {"safety": "maximize", "te": "minimize", "stiffness": "maximize"}
-OBJECTIVE_HELP = {"safety": "the smallest of S_F1, S_F2 and S_H on the flank over the cycle",
-                  "te": "the transmission error's peak to peak over the cycle (µrad)",
-                  "stiffness": "the mean mesh stiffness over the cycle (N·m/rad)"}
 
 
 def outer_diameter(values: Mapping) -> float:
