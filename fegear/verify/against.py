@@ -17,7 +17,6 @@ import statistics
 import subprocess
 import sys
 import tempfile
-from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -72,10 +71,9 @@ def checkout(path: str | Path) -> Path:
     return root
 
 
-def time_against(there: Path, repeat: int, say: Callable[[str], None] | None = None,
-                 commands=COMMANDS) -> list[Timed]:
+def time_against(there: Path, repeat: int, commands=COMMANDS) -> list[Timed]:
     """Each of ``commands`` run ``repeat`` times here and in the checkout ``there``,
-    alternately (module docstring); ``say`` is told of each command's result."""
+    alternately (module docstring)."""
     here = Path(__file__).resolve().parents[2]
     sides = {"here": ([sys.executable, "-m", "fegear"], here),
              "there": ([str(there / ".venv" / "bin" / "fegear")], there)}
@@ -97,8 +95,6 @@ def time_against(there: Path, repeat: int, say: Callable[[str], None] | None = N
                 break
         row = Timed(name, tuple(times["here"]), tuple(times["there"]), failed)
         out.append(row)
-        if say:
-            say(_line(row))
     return out
 
 
