@@ -234,12 +234,12 @@ MAPPED = ("h1", "f1", "shift", "rotation", "tip-clearance", "relief", "relief-ex
 def _map(a: argparse.Namespace, size: int) -> int:
     """``fegear profile --map X,Y``: the design-space map and its tables."""
     import os
-    from concurrent.futures import ProcessPoolExecutor
 
     from .. import progress
     from ..files import check_dir, prepare_dir, write_csv
     from ..geometry.plot import map_png
     from ..geometry.space import design_map, map_span, map_tables
+    from ..running import pool_or_serial
 
     (x, x_span), (y, y_span) = _map_axes(a.map)
     values = given_values(a, PAIR_INPUTS)
@@ -248,8 +248,10 @@ def _map(a: argparse.Namespace, size: int) -> int:
     progress.plan(size)
 
     def rows(fn, args):
-        with ProcessPoolExecutor(max_workers=min(2, os.cpu_count() or 1)) as pool:
-            for k, row in enumerate(pool.map(fn, args)):
+        # the rows on two spawned workers (where there are two cores), said as each arrives
+        with pool_or_serial(min(2, os.cpu_count() or 1)) as executor:
+            for k, task in enumerate([executor.submit(fn, x) for x in args]):
+                row = task.result()
                 progress.stage(f"{y} = {row.y:.4g} ({k + 1} of {size})")
                 yield row
 

@@ -24,16 +24,14 @@ from __future__ import annotations
 import json
 import math
 import signal
-import time
 from collections.abc import Callable
-from concurrent.futures import FIRST_COMPLETED, Future, wait
-from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import FegearError
 from ..files import write_csv, write_json
-from ..running import connect, local_pool
+from ..running import Supervisor, WorkerFailed, connect
+from ..timing import Stopwatch
 from .design import OBJECTIVES, evaluate
 from .space import SAMPLERS, Space
 
@@ -127,7 +125,7 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
     after each trial (a line: done, best, time left)."""
     from optuna.trial import TrialState
 
-    t_start = time.perf_counter()
+    watch = Stopwatch()
     client = connect(scheduler) if scheduler else None
     if client is not None:
         workers = max(1, sum(client.nthreads().values()))
@@ -141,68 +139,49 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
         _requeue(study, t.number, _whole_design(study, space, t),
                  "the search ended while it ran (killed outright)")
     found = sum(t.state == TrialState.COMPLETE for t in study.get_trials(deepcopy=False))
-    done, solved = found, 0
-    stop: list[int] = []
-    held = {s: signal.signal(s, lambda signum, frame: stop.append(signum))
-            for s in (signal.SIGTERM, signal.SIGINT)}
-    pool = local_pool(workers) if client is None else client.get_executor(pure=False)
-    running: dict = {}
+    done, solved, stop = found, 0, None
+    running: dict[str, tuple] = {}     # a trial's task → the trial and its design
     try:
-        while (done < trials or running) and not stop:
-            while len(running) < workers and done + len(running) < trials and not stop:
-                startup = len(study.get_trials(deepcopy=False)) < STARTUP
-                study.sampler = stages[0 if startup else 1]
-                trial = study.ask()
-                params = {v.name: trial.suggest_float(v.name, v.low, v.high)
-                          for v in space.variables}
-                try:
-                    future = pool.submit(evaluate, space.values(params), space.positions,
-                                         dict(space.constraints))
-                except BrokenProcessPool:      # a worker died before a result said so
-                    running[_failed()] = (trial, params)
-                    break
-                running[future] = (trial, params)
-            finished, _ = wait(running, timeout=0.5, return_when=FIRST_COMPLETED)
-            for f in finished:
-                trial, params = running.pop(f)
-                try:
-                    rec = f.result()
-                except BrokenProcessPool:      # a worker died: every trial under way again
-                    for t, p in [(trial, params), *running.values()]:
-                        _requeue(study, t.number, p, "a worker process of the pool died")
-                    running.clear()
-                    pool.stop()
-                    pool = local_pool(workers)
-                    break
-                except Exception as exc:  # noqa: BLE001  the cluster lost it (KilledWorker …)
-                    if client is None:
-                        raise
-                    _requeue(study, trial.number, params,
-                             f"the cluster lost it ({type(exc).__name__})")
-                    continue
-                _tell(study, trial, rec, space)
-                done += 1
-                solved += 1
-                if report:
-                    report(_progress(study, space, done, trials, solved,
-                                     time.perf_counter() - t_start))
-        if stop:
-            for t, p in running.values():
-                _requeue(study, t.number, p, f"stopped by {signal.Signals(stop[0]).name}")
-            running.clear()
+        # a worker's death cuts short every trial under way: each is queued again as a new
+        # trial (retries=0), which the trials table tells as cut
+        with Supervisor(workers, client) as tasks:
+            while (done < trials or running) and not tasks.stopped:
+                while (len(running) < workers and done + len(running) < trials
+                       and not tasks.stopped):
+                    startup = len(study.get_trials(deepcopy=False)) < STARTUP
+                    study.sampler = stages[0 if startup else 1]
+                    trial = study.ask()
+                    params = {v.name: trial.suggest_float(v.name, v.low, v.high)
+                              for v in space.variables}
+                    name = f"trial {trial.number}"
+                    running[name] = (trial, params)
+                    tasks.submit(name, evaluate, space.values(params), space.positions,
+                                 dict(space.constraints))
+                for o in tasks.ended():
+                    trial, params = running.pop(o.name)
+                    if o.lost is not None:
+                        why = ("a worker process of the pool died"
+                               if isinstance(o.lost, WorkerFailed)
+                               else f"the cluster lost it ({type(o.lost).__name__})")
+                        _requeue(study, trial.number, params, why)
+                        continue
+                    _tell(study, trial, o.value, space)
+                    done += 1
+                    solved += 1
+                    if report:
+                        report(_progress(study, space, done, trials, solved, watch.s))
+            stop = tasks.stopped
+            if stop:
+                for t, p in running.values():
+                    _requeue(study, t.number, p, f"stopped by {signal.Signals(stop).name}")
+                running.clear()
     finally:
-        if client is None:
-            pool.stop()
-        else:
-            for f in running:
-                f.cancel()
+        if client is not None:
             client.close()
-        for s, h in held.items():
-            signal.signal(s, h)
         table = write_trials(study, space, out)
     if stop:
-        raise SearchInterrupted(stop[0], done, trials)
-    return SearchReport(out, study, table, found, solved, time.perf_counter() - t_start)
+        raise SearchInterrupted(stop, done, trials)
+    return SearchReport(out, study, table, found, solved, watch.s)
 
 
 def _whole_design(study, space: Space, t) -> dict:
@@ -217,13 +196,6 @@ def _whole_design(study, space: Space, t) -> dict:
         live = Trial(study, t._trial_id)   # Optuna names a trial in its storage by this id
         params.update({v.name: live.suggest_float(v.name, v.low, v.high) for v in missing})
     return params
-
-
-def _failed() -> Future:
-    """A future that holds a broken pool's error (a trial the pool refused to take)."""
-    f: Future = Future()
-    f.set_exception(BrokenProcessPool("a worker process died"))
-    return f
 
 
 def _requeue(study, number: int, params: dict, why: str) -> None:

@@ -3,9 +3,10 @@
 A command makes an executor where it starts (:func:`spare_core` for a one-off command,
 :class:`Pool` for independent jobs, :data:`SERIAL` for none) and hands it to the code that has
 work to share, which submits tasks and reads their results without knowing where they ran. The
-study runner and the design search keep pools of their own (:mod:`.pools`, with a Dask cluster
-as the alternative), with what they do when a worker dies; a class's samples run on a
-:class:`Cluster` where one is given.
+study runner and the design search run their cases and trials on a :class:`Supervisor` (a
+local pool or a Dask cluster, what is done when a worker dies, SIGTERM and SIGINT); a class's
+samples run on a :class:`Cluster` where one is given; a benchmark's run takes a process of its
+own (:func:`in_fresh_process`).
 
 >>> from fegear.running import SERIAL, Forks
 >>> task = SERIAL.submit(pow, 2, 10)     # serial: run when its result is read
@@ -21,7 +22,8 @@ from ..exports import lazy
 __getattr__, __dir__, __all__ = lazy(__name__, {
     "executors": ("Executor", "Task", "Serial", "SERIAL", "Forks", "Pool", "Cluster",
                   "spare_core",
-                  "pool_or_serial", "strict", "STRICT"),
+                  "pool_or_serial", "in_fresh_process", "strict", "STRICT"),
     "forks": ("WorkerFailed",),
     "pools": ("LocalPool", "local_pool", "init_worker", "connect"),
+    "supervisor": ("Supervisor", "Outcome"),
 })

@@ -307,3 +307,21 @@ class Cluster:
 def pool_or_serial(workers: int) -> Executor:
     """A :class:`Pool` of ``workers`` processes, or :data:`SERIAL` for one."""
     return Pool(workers) if workers > 1 else SERIAL
+
+
+def in_fresh_process(fn: Callable, /, *args):
+    """``fn(*args)`` in a process spawned for it alone, its return value: nothing of this
+    process is carried over, so what the task measures of itself (its time after its imports,
+    its peak memory) is its own. Raises :class:`~.forks.WorkerFailed` if the process died
+    (strict or not: the task cannot run here instead)."""
+    from concurrent.futures.process import BrokenProcessPool
+
+    from .pools import LocalPool
+
+    pool = LocalPool(1)
+    try:
+        return pool.submit(fn, *args).result()
+    except BrokenProcessPool:
+        raise WorkerFailed("the process spawned for the task died") from None
+    finally:
+        pool.stop()

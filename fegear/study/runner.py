@@ -13,7 +13,6 @@ table rewritten.
 from __future__ import annotations
 
 import json
-import logging
 import os
 import signal
 import socket
@@ -22,8 +21,6 @@ import threading
 import time
 import traceback
 from collections.abc import Iterator
-from concurrent.futures import FIRST_COMPLETED, wait
-from concurrent.futures.process import BrokenProcessPool
 from contextlib import closing
 from dataclasses import dataclass
 from datetime import UTC, datetime
@@ -32,11 +29,10 @@ from pathlib import Path
 from ..errors import FegearError
 from ..files import prepare_dir, write_json
 from ..provenance import code_version
-from ..running import connect, local_pool
+from ..running import Supervisor, WorkerFailed, connect
+from ..timing import Stopwatch
 from .file import Outputs, Study, StudyCase, StudyError
 from .records import finished, store, study_json
-
-log = logging.getLogger(__name__)
 
 #: a case that was running when its worker process died this often is recorded as failed
 WORKER_DEATHS = 2
@@ -93,14 +89,14 @@ def run_study(study: Study, out: str | Path, workers: int | None = None,
     Raises :class:`StudyInterrupted` on SIGTERM or SIGINT, after writing the table of the
     finished cases; stopped before it finished a case, it leaves ``out`` as it found it (a
     folder it made, its parents too, removed)."""
-    t0 = time.perf_counter()
+    watch = Stopwatch()
     # a bad address creates no output
     client = connect(scheduler, StudyError) if scheduler else None
     made = _missing(Path(out))
     try:
         out = prepare_dir(out)
         with _exclusive(out):
-            return _run(study, out, workers, client, retry_failed, progress, on_start, t0)
+            return _run(study, out, workers, client, retry_failed, progress, on_start, watch)
     finally:
         if client is not None:
             client.close()
@@ -112,7 +108,7 @@ def run_study(study: Study, out: str | Path, workers: int | None = None,
 
 
 def _run(study: Study, out: Path, workers: int | None, client, retry_failed: bool,
-         progress: bool, on_start, t0: float) -> StudyReport:
+         progress: bool, on_start, watch: Stopwatch) -> StudyReport:
     from .results import write_results
 
     running = out / "cases" / ".running"
@@ -127,12 +123,14 @@ def _run(study: Study, out: Path, workers: int | None, client, retry_failed: boo
         on_start(len(done), len(todo))
     code = code_version()
     stats = {"computed": 0, "failed": 0, "solve_s": 0.0, "first_start": None}
+    # the workers' start-up is told by the first case's start (its record's, written in
+    # another process, on another host with Dask): wall-clock time on both sides
     started = time.time()
     files, table_s, ended = {}, 0.0, False
+    n = max(1, min(workers or os.cpu_count() or 1, len(todo)))
     try:
-        with _signals_raise():
-            results = (_dask_results(todo, study, client) if client is not None
-                       else _pool_results(todo, study, workers, running))
+        with Supervisor(n, client, marks=running, retries=WORKER_DEATHS - 1) as tasks:
+            results = _results(tasks, todo, study)
             bar = _progress(len(done) + len(todo), len(done), study.name, progress)
             with closing(results), bar:
                 for case, record, files in results:
@@ -159,14 +157,14 @@ def _run(study: Study, out: Path, workers: int | None, client, retry_failed: boo
         # the table shows what is in the folder, also after an interruption; a run stopped before
         # it finished a case leaves the folder as it found it
         if ended or stats["computed"]:
-            t1 = time.perf_counter()
+            writing = Stopwatch()
             files = write_results(study, out)
             if files:
                 write_json(out / "study.json", study_json(study))
-            table_s = time.perf_counter() - t1
+            table_s = writing.s
     startup = 0.0 if stats["first_start"] is None else max(stats["first_start"] - started, 0.0)
     return StudyReport(cases=len(study.cases), found=len(done), computed=stats["computed"],
-                       failed=stats["failed"], wall_s=time.perf_counter() - t0,
+                       failed=stats["failed"], wall_s=watch.s,
                        solve_s=stats["solve_s"], startup_s=startup, table_s=table_s,
                        files=files, refused=len(study.refused))
 
@@ -235,22 +233,18 @@ def _inode(path: Path) -> int | None:
         return None
 
 
-def run_case(key: str, values: dict, outputs: Outputs,
-             running: str | None = None) -> tuple[dict, dict[str, bytes]]:
+def run_case(key: str, values: dict, outputs: Outputs) -> tuple[dict, dict[str, bytes]]:
     """Solve one case (in a worker): its record and the bytes of its kept files. Never
-    raises for a failing case: the record says ``failed`` and why. ``running``: a directory
-    where the case is marked while it runs (so that a dead worker's case can be told)."""
+    raises for a failing case: the record says ``failed`` and why."""
     from .. import __version__
     from ..provenance import library_versions
     from ..toothpair import prepare_job, run_job, solve_command
 
-    t0 = time.perf_counter()
+    watch = Stopwatch()
+    # when it started, as a date: the study's start-up is counted from the first case's
     record = {"key": key, "status": "ok", "error": None, "inputs": values,
               "started_unix": time.time(), "host": socket.gethostname(), "pid": os.getpid()}
     files: dict[str, bytes] = {}
-    mark = Path(running) / f"{key}.{os.getpid()}" if running else None
-    if mark:
-        mark.touch()
     try:
         with _SOLVE_LOCK, tempfile.TemporaryDirectory(prefix="fegear-case-") as tmp:
             keep = outputs.vtu or outputs.png or outputs.report
@@ -271,48 +265,31 @@ def run_case(key: str, values: dict, outputs: Outputs,
     except Exception as exc:  # a bug, not a user error: keep the traceback with the case
         record.update(status="failed", error=f"{type(exc).__name__}: {exc}",
                       traceback=traceback.format_exc())
-    finally:
-        if mark:
-            mark.unlink(missing_ok=True)
-    record.update(case_wall_s=time.perf_counter() - t0, fegear=__version__,
+    record.update(case_wall_s=watch.s, fegear=__version__,
                   code_version=code_version(), versions=library_versions(),
                   finished_utc=datetime.now(UTC).isoformat(timespec="seconds"))
     return record, files
 
 
-def _pool_results(todo: list[StudyCase], study: Study, workers: int | None,
-                  running: Path) -> Iterator:
-    """Finished cases from a local process pool. A worker process that dies breaks the pool:
-    the unfinished cases go to a fresh pool, and a case that was running (marked in
-    ``running``) at WORKER_DEATHS such deaths is recorded as failed."""
-    n = workers or os.cpu_count() or 1
-    deaths: dict[str, int] = {}
-    pending = list(todo)
-    while pending:
-        for stale in running.glob("*"):
-            stale.unlink()
-        pool = local_pool(min(n, len(pending)))
-        futures = {pool.submit(run_case, c.key, c.values, study.outputs, str(running)): c
-                   for c in pending}
-        try:
-            while futures:
-                finished_now, _ = wait(futures, return_when=FIRST_COMPLETED)
-                for f in finished_now:
-                    record, files = f.result()  # raises BrokenProcessPool if a worker died
-                    case = futures.pop(f)
-                    pending.remove(case)
-                    yield case, record, files
-        except BrokenProcessPool:
-            culprits = {p.name.split(".")[0] for p in running.glob("*")}
-            for key in culprits:
-                deaths[key] = deaths.get(key, 0) + 1
-            log.warning("a worker process died running %s; %d unfinished cases go to a new "
-                        "pool", ", ".join(sorted(culprits)) or "?", len(pending))
-            for case in [c for c in pending if deaths.get(c.key, 0) >= WORKER_DEATHS]:
-                pending.remove(case)
-                yield case, _died(case), {}
-        finally:
-            pool.stop()
+def _results(tasks: Supervisor, todo: list[StudyCase], study: Study) -> Iterator:
+    """The cases of ``todo`` solved on ``tasks``, each as it finishes: a case whose worker
+    process died WORKER_DEATHS times while it ran, or that the Dask cluster lost, is recorded
+    as failed. Raises :class:`StudyInterrupted` once SIGTERM or SIGINT stopped the run."""
+    cases = {c.key: c for c in todo}
+    for c in todo:
+        tasks.submit(c.key, run_case, c.key, c.values, study.outputs)
+    while not tasks.stopped and tasks.under_way:
+        for o in tasks.ended():
+            case = cases[o.name]
+            if o.lost is None:
+                record, files = o.value
+            elif isinstance(o.lost, WorkerFailed):
+                record, files = _died(case), {}
+            else:   # the cluster lost it (KilledWorker …)
+                record, files = {**_died(case), "error": f"{type(o.lost).__name__}: {o.lost}"}, {}
+            yield case, record, files
+    if tasks.stopped:
+        raise StudyInterrupted(tasks.stopped)
 
 
 def _died(case: StudyCase) -> dict:
@@ -323,46 +300,6 @@ def _died(case: StudyCase) -> dict:
                      "(out of memory? a crash in gmsh?)", "started_unix": time.time(),
             "case_wall_s": None, "fegear": __version__,
             "finished_utc": datetime.now(UTC).isoformat(timespec="seconds")}
-
-
-def _dask_results(todo: list[StudyCase], study: Study, client) -> Iterator:
-    """Finished cases from a Dask distributed cluster (its workers need fegear installed)."""
-    from distributed import as_completed
-
-    futures = {}
-    try:
-        for c in todo:
-            futures[client.submit(run_case, c.key, c.values, study.outputs,
-                                  key=f"fegear-{c.key}", pure=False)] = c
-        for f in as_completed(futures):
-            case = futures[f]
-            try:
-                record, files = f.result()
-            except Exception as exc:  # the cluster lost it (KilledWorker …): record, go on
-                record, files = {**_died(case), "error": f"{type(exc).__name__}: {exc}"}, {}
-            yield case, record, files
-    finally:
-        for f in futures:
-            f.cancel()
-
-
-class _signals_raise:
-    """Within the block, SIGTERM and SIGINT raise :class:`StudyInterrupted`."""
-
-    def __enter__(self):
-        self.old = {}
-        if threading.current_thread() is threading.main_thread():
-            for sig in (signal.SIGTERM, signal.SIGINT):
-                self.old[sig] = signal.signal(sig, self._raise)
-        return self
-
-    def __exit__(self, *exc):
-        for sig, handler in self.old.items():
-            signal.signal(sig, handler)
-
-    @staticmethod
-    def _raise(signum, frame):
-        raise StudyInterrupted(signum)
 
 
 def _progress(total: int, initial: int, name: str, enabled: bool):

@@ -16,13 +16,11 @@ both are shown.
 from __future__ import annotations
 
 import math
-import multiprocessing
-import time
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..geometry import PairParameters
+from ..timing import Stopwatch
 
 #: the sector model's `fine` references (Richardson over fast/standard/fine), MPa
 SECTOR_REFERENCE = {"root_stress_gear1_MPa": 285.02, "root_stress_gear2_MPa": 266.53,
@@ -92,16 +90,16 @@ def _child(task: dict) -> dict:
     import_libraries()
     p = PairParameters(**task["params"])
     case = SolveCase(p, torque=task["torque"], quality=task["quality"])
-    t0 = time.perf_counter()
+    watch = Stopwatch()
     # as `fegear solve` builds it (kept, for the solve to take)
     gear1_profile(p)
-    t_profile = time.perf_counter() - t0
+    t_profile = watch.s
     if task.get("cycle"):  # the whole cycle from nothing: its first position builds the model
         # as `fegear solve --positions` solves it: its second chain on a second core if any
         with spare_core() as executor:
             sols = solve_positions(case, cycle_positions(0.0, task["cycle"], p.z2),
                                    executor=executor)
-        cycle_s = time.perf_counter() - t0
+        cycle_s = watch.s
         later = sols[1:]
         extra = {"cycle_s": cycle_s,
                  "cycle_later_s": {k: sum(s.timings_s.get(k, 0.0) for s in later) / len(later)
@@ -109,21 +107,21 @@ def _child(task: dict) -> dict:
         return _record(sols[0], t_profile, cycle_s, extra)
     # as `fegear solve --no-estimate` solves it
     sol = solve_positions(case, (0.0,))[0]
-    total = time.perf_counter() - t0
+    total = watch.s
     extra = {}
     if task.get("estimate"):
-        t1 = time.perf_counter()
+        estimating = Stopwatch()
         estimate, other = second_level_estimate(sol)
-        extra["estimate_s"] = total + time.perf_counter() - t1
+        extra["estimate_s"] = total + estimating.s
         extra["estimate_pct"] = estimate
         extra["estimate_from"] = other
     if task.get("output"):
         import tempfile
 
         with tempfile.TemporaryDirectory() as tmp:
-            t1 = time.perf_counter()
+            writing = Stopwatch()
             write_pair_outputs(sol, Path(tmp), pair_summary(sol))
-            extra["output_s"] = time.perf_counter() - t1
+            extra["output_s"] = writing.s
     return _record(sol, t_profile, total, extra)
 
 
@@ -156,10 +154,10 @@ def _peak_mb() -> float:
 def run_fresh(label: str, params: PairParameters, torque: float, quality: str,
               **task) -> RingRun:
     """Run one task in a fresh spawned process (see :func:`_child`)."""
+    from ..running import in_fresh_process
+
     payload = {"params": _fields(params), "torque": torque, "quality": quality, **task}
-    context = multiprocessing.get_context("spawn")
-    with ProcessPoolExecutor(max_workers=1, mp_context=context) as pool:
-        r = pool.submit(_child, payload).result()
+    r = in_fresh_process(_child, payload)
     return RingRun(label, r["timings_s"], r["total_s"], r["peak_mb"], r["dofs"],
                    r["ring_dofs"], r["values"], r["extra"])
 
@@ -236,10 +234,10 @@ def command_s(args: list[str], env: dict) -> float:
     import subprocess
     import sys
 
-    t0 = time.perf_counter()
+    watch = Stopwatch()
     subprocess.run([sys.executable, "-m", "fegear", "solve", "-q", *args],
                    env={**os.environ, **env}, check=True, stdout=subprocess.DEVNULL)
-    return time.perf_counter() - t0
+    return watch.s
 
 
 def cache_table(runs: CacheRuns, built: RingRun, built_estimate: RingRun) -> str:
@@ -354,10 +352,10 @@ def paper_study_s(workers: int = 2) -> tuple[float, int]:
     root = Path(__file__).resolve().parents[2] / "studies" / "paper_trends.toml"
     with tempfile.TemporaryDirectory(prefix="fegear-bench-paper-") as tmp, \
             model_cache(True, Path(tmp) / "cache"):
-        t0 = time.perf_counter()
+        watch = Stopwatch()
         report = run_study(load_study(root), Path(tmp) / "out", workers=workers,
                            progress=False)
-        return time.perf_counter() - t0, report.computed
+        return watch.s, report.computed
 
 
 def class_run(pair_args: tuple[str, ...]) -> tuple[float, dict]:
