@@ -93,9 +93,46 @@ def test_top_level_holds_only_the_stages_entry_points_and_shared_helpers():
     assert stages == set(ALLOWED) - FACES
 
 
-#: what names processes (the pattern of issue 55's acceptance)
-PROCESSES = re.compile(r"getpid|Forked|os\.fork|multiprocessing|ProcessPool|"
-                       r"concurrent\.futures|beside\s*[:=,)]")
+#: what starts or supervises worker processes, which fegear/running alone does: a fork, a pool,
+#: Dask's client
+STARTS_PROCESSES = re.compile(r"Forked|os\.fork|multiprocessing|ProcessPool|"
+                              r"concurrent\.futures|\b(?:from|import) distributed\b")
+#: what names processes (the pattern of issue 55's acceptance): also a pid, and ``beside=``,
+#: the worker a solve was handed before fegear/running
+PROCESSES = re.compile(STARTS_PROCESSES.pattern + r"|getpid|beside\s*[:=,)]")
+
+
+def _starting_processes(source: str) -> list[str]:
+    """The lines of ``source`` that start or supervise worker processes
+    (:data:`STARTS_PROCESSES`), numbered."""
+    return [f"{k}: {line.strip()}" for k, line in enumerate(source.splitlines(), 1)
+            if STARTS_PROCESSES.search(line)]
+
+
+def test_the_process_check_finds_a_pool_a_fork_and_a_cluster_and_no_pid():
+    source = ("import os, subprocess\n"
+              "from concurrent.futures import ProcessPoolExecutor\n"
+              "import multiprocessing as mp\n"
+              "child = os.fork()\n"
+              "from distributed import Client\n"
+              "record = {'pid': os.getpid()}\n"
+              "subprocess.run(['ccx', '-v'])\n"
+              "# the cases on a Dask distributed scheduler\n"
+              "beside = peer(case)\n")
+    found = _starting_processes(source)
+    assert [f.split(":")[0] for f in found] == ["2", "3", "4", "5"], found
+
+
+def test_only_fegear_running_starts_processes():
+    """fegear/running starts and supervises every worker process (docs/architecture.md,
+    "Where processes live"): a command asks it for an executor, the study runner and the
+    design search for a Supervisor, the benchmark for a fresh process. A pid read to say which
+    process holds a lock or solved a case starts none; a program run to its end (ccx, a whole
+    ``fegear`` command timed) is a call, not a worker."""
+    found = [f"{path.relative_to(PACKAGE.parent)}:{line}"
+             for path in sorted(PACKAGE.rglob("*.py")) if PACKAGE / "running" not in path.parents
+             for line in _starting_processes(path.read_text())]
+    assert not found, "\n".join(found)
 
 
 def test_the_solver_knows_nothing_of_processes():
@@ -106,6 +143,53 @@ def test_the_solver_knows_nothing_of_processes():
                     for path in (PACKAGE / stage).rglob("*.py")
                     if PROCESSES.search(path.read_text()))
     assert len(naming) <= 1, naming
+
+
+#: the clocks that measure a span: only fegear/timing reads them (Clock, Stopwatch)
+CLOCKS = {"perf_counter", "perf_counter_ns", "monotonic", "monotonic_ns", "process_time",
+          "process_time_ns"}
+
+
+def _clock_reads(source: str) -> list[str]:
+    """Where ``source`` reaches a clock of :data:`CLOCKS`: on the time module by any name
+    (``time.perf_counter``), or imported from it (the import and each use, under any name).
+    ``time.time()``, a date (a record's start, a process's age from its start date), is none
+    of them."""
+    tree = ast.parse(source)
+    modules, functions, out = set(), set(), []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            modules |= {a.asname or a.name for a in node.names if a.name == "time"}
+        elif isinstance(node, ast.ImportFrom) and node.module == "time" and not node.level:
+            clocks = [a for a in node.names if a.name in CLOCKS]
+            functions |= {a.asname or a.name for a in clocks}
+            out += [f"{node.lineno}: from time import {a.name}" for a in clocks]
+    return out + [f"{node.lineno}: {ast.unparse(node)}" for node in ast.walk(tree)
+                  if (isinstance(node, ast.Attribute) and node.attr in CLOCKS
+                      and isinstance(node.value, ast.Name) and node.value.id in modules)
+                  or (isinstance(node, ast.Name) and node.id in functions)]
+
+
+def test_the_clock_check_finds_each_way_a_module_can_read_one():
+    source = ("import time\n"
+              "import time as t\n"
+              "from time import monotonic as m, sleep\n"
+              "start = time.perf_counter()\n"
+              "spent = t.process_time() - m()\n"
+              "stamp = time.time()\n"
+              "sleep(0.1)\n"
+              "clock = time.perf_counter_ns\n")
+    found = _clock_reads(source)
+    assert sorted(f.split(":")[0] for f in found) == ["3", "4", "5", "5", "8"], found
+
+
+def test_only_fegear_timing_reads_a_clock():
+    """A span is measured through fegear/timing (``timed`` stages on a ``clocked`` block, a
+    ``Stopwatch`` for the rest): one clock for every time fegear reports."""
+    found = [f"{path.relative_to(PACKAGE.parent)}:{use}"
+             for path in sorted(PACKAGE.rglob("*.py")) if path != PACKAGE / "timing.py"
+             for use in _clock_reads(path.read_text())]
+    assert not found, "\n".join(found)
 
 
 def test_no_import_cycle():
