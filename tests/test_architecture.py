@@ -1,7 +1,8 @@
 """The house rules, checked on the source (docs/architecture.md): one subpackage per stage, data
 flowing one way with no import cycle, other stages reached only through a stage's public face,
-heavy libraries imported only where they are used, and a study's cache key that covers every
-module that computes results."""
+heavy libraries imported only where they are used, timing only through fegear/timing,
+processes only in fegear/running, and a study's cache key that covers every module that
+computes results."""
 
 import ast
 import re
