@@ -1,5 +1,5 @@
 """``fegear relief``: the smallest tip relief that keeps the loaded teeth off their tip rounds
-over a mesh cycle (:mod:`fegear.toothpair.relief_rule`)."""
+over a mesh cycle (:mod:`fegear.optimize.relief_rule`)."""
 
 from __future__ import annotations
 
@@ -55,8 +55,8 @@ def add_parser(sub) -> None:
 
 def run(a: argparse.Namespace) -> int:
     from .. import progress
+    from ..optimize.relief_rule import ReliefSearch, size_relief, sizing_table
     from ..running import pool_or_serial
-    from ..toothpair.relief_rule import ReliefSearch, size_relief, sizing_table
 
     values = given_values(a, TAKEN)
     own = checked(a, RELIEF_INPUTS)
@@ -86,8 +86,8 @@ def _graded(values: dict, given: dict):
     its inputs checked as ``fegear solve`` checks them."""
     from functools import partial
 
+    from ..optimize.relief_rule import graded_cycle_result
     from ..toothpair import prepare_job
-    from ..toothpair.relief_rule import graded_cycle_result
 
     if given.get("grade") is None:
         prepare_job({**values, **given})   # refuses a class's input without the class

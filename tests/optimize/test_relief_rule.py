@@ -1,4 +1,4 @@
-"""The relief search (fegear.toothpair.relief_rule) on trials whose outcome is known, and once
+"""The relief search (fegear.optimize.relief_rule) on trials whose outcome is known, and once
 on the baseline pair (slow)."""
 
 from collections import Counter
@@ -7,7 +7,7 @@ from concurrent.futures import ThreadPoolExecutor
 import pytest
 
 from fegear.errors import FegearError
-from fegear.toothpair.relief_rule import CycleResult, ReliefSearch, size_relief, sizing_table
+from fegear.optimize.relief_rule import CycleResult, ReliefSearch, size_relief, sizing_table
 
 BASE = {"shift": 0.016, "rotation": 0.002, "torque": 200.0, "relief-extent": 0.5,
         "quality": "coarse"}
@@ -150,7 +150,7 @@ def class4():
 
 def test_a_class_s_trial_loads_a_round_where_more_of_its_pairs_do_than_the_quantile_leaves(
         class4):
-    from fegear.toothpair.relief_rule import cycle_result, graded_cycle_result, near
+    from fegear.optimize.relief_rule import cycle_result, graded_cycle_result, near
 
     # 2.5 µm keeps the exact pair off its rounds; some class-4 pairs still press a round by
     # the pitch point: at the 95th percentile of 8 pairs (any one of them) that fails, at the
@@ -170,8 +170,8 @@ def test_a_class_s_trial_loads_a_round_where_more_of_its_pairs_do_than_the_quant
 def test_a_class_whose_pairs_mostly_jam_has_no_relief_and_says_why():
     from fegear.errors import ParameterError
     from fegear.geometry import PairParameters
+    from fegear.optimize.relief_rule import graded_cycle_result
     from fegear.tolerance import Draw, grade_of
-    from fegear.toothpair.relief_rule import graded_cycle_result
 
     draw = Draw(grade_of(6, PairParameters(shift=0.016, rotation=0.002)), 6, 0)
     with pytest.raises(ParameterError, match="jam: no relief frees them") as err:

@@ -96,8 +96,7 @@ def cycle_result(values: Mapping, amount_um: float, torque: float, positions: in
     """Solve the pair of ``values`` (``fegear solve`` inputs) with a relief of ``amount_um``
     at ``torque`` over ``positions`` rolling angles."""
     from ..geometry import gear1_profile
-    from .job import prepare_job
-    from .pair import solve_positions
+    from ..toothpair import prepare_job, solve_positions
 
     job = prepare_job({**values, "relief": amount_um, "torque": torque,
                        "positions": positions, "no-estimate": True})
@@ -126,9 +125,7 @@ def graded_cycle_result(values: Mapping, amount_um: float, torque: float, positi
     from dataclasses import replace
 
     from ..geometry import gear1_profile
-    from .job import prepare_job
-    from .safety import DEFAULT_ALLOWABLES
-    from .samples import class_samples
+    from ..toothpair import DEFAULT_ALLOWABLES, class_samples, prepare_job
 
     job = prepare_job({**values, "relief": amount_um, "torque": torque,
                        "positions": positions, "no-estimate": True})
@@ -229,7 +226,7 @@ def size_relief(values: Mapping, search: ReliefSearch = ReliefSearch(),
     where it has a worker free. ``solve`` evaluates one trial (values, amount µm, torque,
     positions) → :class:`CycleResult` (default :func:`cycle_result`), ``report`` is told of
     each trial."""
-    from .job import prepare_job
+    from ..toothpair import prepare_job
 
     # every input checked before any solve, the extent and shape with a relief in place
     params = prepare_job({**values, "relief": FIRST_UM, "positions": search.positions,
