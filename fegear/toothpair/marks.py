@@ -100,7 +100,7 @@ def pressure_curve(f, tooth) -> PressureCurve:
 
 
 @dataclass(frozen=True)
-class Verdict:
+class VerdictCaption:
     """A solve's verdict in two lines: each safety factor beside its allowable, then the
     smallest and whether it is at least 1 (``colour``: green if so, red if not)."""
 
@@ -108,7 +108,7 @@ class Verdict:
     colour: str
 
     @classmethod
-    def of(cls, summary: dict) -> Verdict:
+    def of(cls, summary: dict) -> VerdictCaption:
         s, i = summary, summary["inputs"]
         bending = {f"S_F gear {g}": s[f"safety_bending_gear{g}"] for g in (1, 2)}
         contact = {"S_H": s["safety_contact"]}

@@ -12,7 +12,7 @@ from ..figures import margins, png_bytes, pyplot, save_png
 from ..figures.labels import Callout, place_callouts, place_legend
 from .case import PairSolution
 from .marks import (
-    Verdict,
+    VerdictCaption,
     field_max,
     labelled_box,
     peak_zoom,
@@ -75,7 +75,7 @@ def von_mises_figure(sol: PairSolution, summary: dict, bodies, peaks=()):
     _scale_bar(az, zbox, "µm")
     fig.colorbar(im, ax=az, orientation="horizontal", fraction=0.05, pad=0.03,
                  label="von Mises [MPa]")
-    verdict = Verdict.of(summary)
+    verdict = VerdictCaption.of(summary)
     fig.suptitle(verdict.text, fontsize=10.5, weight="bold", color=verdict.colour)
     margins(fig, left=0.25, right=0.25, bottom=0.55, top=1.1, wspace=0.4)
 

@@ -233,16 +233,16 @@ def test_the_von_mises_labels_cover_no_mark_and_their_leaders_do_not_cross(solve
 
 
 def test_the_verdict_names_the_smallest_factor_and_whether_it_passes():
-    from fegear.toothpair.marks import Verdict
+    from fegear.toothpair.marks import VerdictCaption
 
     s = {"inputs": {"allowable_bending_MPa": 558.0, "allowable_contact_MPa": 745.0},
          "safety_bending_gear1": 1.95, "safety_bending_gear2": 2.09, "safety_contact": 0.40,
          "safety_contact_flank": 1.19, "contact_peak_on_tip_round": True,
          "contact_pressure_MPa": 1880.0, "flank_contact_pressure_MPa": 624.0}
-    fails = Verdict.of(s)
+    fails = VerdictCaption.of(s)
     assert fails.text.endswith("S_H 0.40 below 1: the stress exceeds the allowable")
     assert "S_H flank 1.19 at 624 MPa" in fails.text
-    passes = Verdict.of({**s, "safety_contact": 1.19, "contact_peak_on_tip_round": False,
+    passes = VerdictCaption.of({**s, "safety_contact": 1.19, "contact_peak_on_tip_round": False,
                          "contact_pressure_MPa": 624.0})
     assert "every safety factor at least 1" in passes.text and "S_H flank" not in passes.text
     assert passes.colour != fails.colour
