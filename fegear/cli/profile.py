@@ -121,28 +121,21 @@ def _body(a: argparse.Namespace, params) -> dict:
     """The drawn parts' face width, gear 1's tip round and the bore and rim radii (mm),
     checked and defaulted as ``fegear solve`` takes them (a round that does not fit is refused
     with the largest that does; the rims by :class:`~fegear.toothpair.SolveCase`)."""
-    from ..geometry import RoundedProfile, default_round, gear1_profile
-    from ..toothpair.case import SolveCase
-    from ..toothpair.inputs import TIP_ROUND, check_tip_round, torque_limit
+    from ..toothpair import SolveCase, tip_round_of
+    from ..toothpair.inputs import torque_limit
 
     for row in BODY_INPUTS:              # the static ranges first: they answer at once
         if not row.limits:
             row.check(getattr(a, row.dest), row.name)
-    width, given = a.face_width, a.tip_round
-    profile = gear1_profile(params)      # built by the admissibility check, kept
-    if given is not None:
-        if check_tip_round(given, params.m) > 0:
-            RoundedProfile(profile, given)   # refused by name where it does not fit
-        tip = given
-    else:
-        tip = default_round(profile, TIP_ROUND * params.m)
+    width = a.face_width
     # a drawing carries no load: the case's torque at its limit passes its check
     case = SolveCase(params, torque=torque_limit(SOLVE_INPUTS["E"].default, params.m, width,
                                                  params.r1),
-                     thickness=width, rim1=a.rim1, rim2=a.rim2, tip_round=tip)
+                     thickness=width, rim1=a.rim1, rim2=a.rim2,
+                     tip_round=tip_round_of(params, a.tip_round))
     rim1, rim2 = case.rims
-    return {"face_width": width, "tip_round": tip, "bore": case.root_radius1 - rim1,
-            "rim": params.r0 + 2 * params.e1 + rim2}
+    return {"face_width": width, "tip_round": case.edge_radius,
+            "bore": case.root_radius1 - rim1, "rim": params.r0 + 2 * params.e1 + rim2}
 
 
 def _outlines(params, chord: float, body: dict, deviations) -> dict:

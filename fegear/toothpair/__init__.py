@@ -77,7 +77,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "case_file": ("FILE_INPUTS", "CaseFileError", "case_record", "case_toml", "is_file",
                   "read_case", "relative_to"),
     "job": ("Job", "JobResult", "Solved", "prepare_job", "run_job", "solve_job", "write_job",
-            "solve_command"),
+            "solve_command", "tip_round_of"),
     "html_report": ("write_report", "report_html", "verdicts", "index_html"),
     "positions": ("PositionModel", "Trial", "Attempt", "SHARE_GUESS", "ATTEMPTS", "CHAINED",
                   "drive", "expected_elastic_um", "first_teeth"),

@@ -68,7 +68,7 @@ def prepare_job(values: Mapping[str, object]) -> Job:
         if name not in PAIR_NAMES and not row.limits:   # those with limits: at the others'
             row.check(v[name])                          # values, by the case they build
     params = admissible_pair(v, given=values)
-    v["tip-round"] = _tip_round(params, v["tip-round"])
+    v["tip-round"] = tip_round_of(params, v["tip-round"])
     position = JOB_INPUTS["position"].check(v["position"])
     positions = JOB_INPUTS["positions"].check(v["positions"])
     revolution = JOB_INPUTS["revolution"].check(v["revolution"])
@@ -155,7 +155,7 @@ def _rating(v: dict, given: Mapping[str, object], case: SolveCase, revolution: b
     return rating
 
 
-def _tip_round(params, given: float | None) -> float | None:
+def tip_round_of(params, given: float | None) -> float | None:
     """The tip round a solve takes: the one given, refused by name with the largest that fits
     if it does not; else the default :data:`~.inputs.TIP_ROUND` m, or half the largest that
     fits where that does not (``None``: the default as it is)."""
