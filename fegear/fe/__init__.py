@@ -11,14 +11,14 @@ projects the stresses onto the nodes; :func:`line_contact` is Hertz. Nothing her
 A bar 20 × 2 mm, its left end held, its right end pulled along x by one translation unknown:
 
 >>> import numpy as np
->>> from fegear.fe import (BodyGeometry, Material, RigidLink, Segment, assemble_body,
+>>> from fegear.fe import (BodyGeometry, ElasticMaterial, RigidLink, Segment, assemble_body,
 ...                        line_contact, mesh_bodies, recover)
 >>> corners = np.array([[0.0, 0.0], [20.0, 0.0], [20.0, 2.0], [0.0, 2.0]])
 >>> names = ("bottom", "end", "top", "wall")
 >>> bar = BodyGeometry("bar", tuple(Segment(name, corners[[i, (i + 1) % 4]])
 ...                                 for i, name in enumerate(names)), size=0.5)
 >>> (mesh,) = mesh_bodies([bar])
->>> body = assemble_body(mesh, Material(thickness=1.0), fixed=("wall",),
+>>> body = assemble_body(mesh, ElasticMaterial(thickness=1.0), fixed=("wall",),
 ...                      link=RigidLink("end", "translation", direction=(1.0, 0.0)))
 >>> round(body.link_stiffness / (206000.0 * 2.0 / 20.0), 3)  # k against E A / L (N/mm)
 1.002
@@ -38,7 +38,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
              "MeshError", "mesh_bodies", "mesh_quality", "jiggle", "halved", "Circle",
              "write_step"),
     "libraries": ("import_libraries", "keep_freed_memory"),
-    "material": ("Material", "MATERIAL_INPUTS", "ALLOWABLE_INPUTS", "Allowables",
+    "material": ("ElasticMaterial", "MATERIAL_INPUTS", "ALLOWABLE_INPUTS", "Allowables",
                  "plane_modulus", "contact_modulus", "Plane", "PLANE_MODES", "STEEL_E",
                  "STEEL_NU"),
     "assembly": ("Body", "RigidLink", "Placement", "SupportError", "assemble_body"),

@@ -29,7 +29,7 @@ from ..planar import rotate
 from .dofs import facet_nodes, node_dofs
 from .flexibility import WindowFlexibility
 from .forms import stiffness
-from .material import Material
+from .material import ElasticMaterial
 from .mesh import BodyMesh
 
 
@@ -107,7 +107,7 @@ class Body:
 
     name: str
     mesh_data: BodyMesh
-    material: Material
+    material: ElasticMaterial
     basis: Basis = field(repr=False)
     K: sp.csr_matrix = field(repr=False)
     free: np.ndarray = field(repr=False)
@@ -167,7 +167,7 @@ class Body:
         return float(np.linalg.norm(r) / scale)
 
 
-def assemble_body(body_mesh: BodyMesh, material: Material, fixed: tuple[str, ...] = (),
+def assemble_body(body_mesh: BodyMesh, material: ElasticMaterial, fixed: tuple[str, ...] = (),
                   link: RigidLink | None = None) -> Body:
     """Assemble K = t ∫ σ(u):ε(v), apply supports, factorise the free block once."""
     mesh = body_mesh.mesh

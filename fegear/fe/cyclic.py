@@ -31,7 +31,7 @@ import scipy.sparse as sp
 from ..errors import FegearError
 from .dofs import facet_nodes, node_dofs
 from .forms import stiffness
-from .material import Material
+from .material import ElasticMaterial
 from .mesh import BodyMesh
 from .solvers import Factor
 
@@ -52,7 +52,7 @@ class CyclicBody:
 
     name: str
     mesh_data: BodyMesh
-    material: Material
+    material: ElasticMaterial
     count: int
     pitch: float
     K: sp.csr_matrix = field(repr=False)
@@ -215,7 +215,7 @@ def cyclic_parts(body: CyclicBody) -> dict:
     return {**{k: getattr(body, k) for k in PARTS}, "cache": pickled_cache(body.cache)}
 
 
-def restore_cyclic(mesh: BodyMesh, material: Material, parts: dict) -> CyclicBody:
+def restore_cyclic(mesh: BodyMesh, material: ElasticMaterial, parts: dict) -> CyclicBody:
     """The cyclic body of template ``mesh`` from its :func:`cyclic_parts`: its interior
     factorised again (the static modes and the ring's flexibility, which cost the solves,
     come from ``parts``)."""
@@ -226,7 +226,7 @@ def restore_cyclic(mesh: BodyMesh, material: Material, parts: dict) -> CyclicBod
                       dict(parts.get("cache", {})))
 
 
-def assemble_cyclic(mesh: BodyMesh, material: Material, count: int, cut: str,
+def assemble_cyclic(mesh: BodyMesh, material: ElasticMaterial, count: int, cut: str,
                     fixed: tuple[str, ...]) -> CyclicBody:
     """Assemble the template ``mesh`` (one sector; its periodic pair named by the slave segment
     ``cut``), hold the ``fixed`` boundaries, factorise the interior once, condense onto the

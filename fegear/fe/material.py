@@ -58,7 +58,7 @@ _ROW = {row.name: row for row in (*MATERIAL_INPUTS, *ALLOWABLE_INPUTS)}
 
 
 @dataclass(frozen=True)
-class Material:
+class ElasticMaterial:
     """Isotropic linear-elastic plane body: Young's modulus ``E`` (MPa), Poisson ratio ``nu``,
     ``thickness`` (mm) and the plane assumption: ``"stress"`` (σzz = 0, thin gear) or
     ``"strain"`` (εzz = 0)."""

@@ -25,7 +25,7 @@ import numpy as np
 from ..errors import FegearError
 from .dofs import facet_nodes, node_dofs
 from .forms import stiffness
-from .material import Material
+from .material import ElasticMaterial
 from .mesh import BodyGeometry, BodyMesh, Refinement, Segment, halved, mesh_bodies
 from .stress import StressField, pickled_cache, recover
 
@@ -91,7 +91,7 @@ class _Piece:
     """What :func:`~fegear.fe.stress.recover` needs of a body."""
 
     mesh: object
-    material: Material
+    material: ElasticMaterial
     cache: dict
 
 
@@ -151,7 +151,7 @@ def submodel_meshes(kept: dict) -> dict:
             for k, v in kept.items()}
 
 
-def solve_submodels(problems: list[SubmodelProblem], material: Material,
+def solve_submodels(problems: list[SubmodelProblem], material: ElasticMaterial,
                     kept: dict | None = None) -> list[Submodel]:
     """Solve each submodel (those not prepared yet are meshed, a key asked for twice once).
     A problem whose ``key`` is in ``kept`` reuses that mesh and factorisation (the caller
@@ -176,7 +176,7 @@ def solve_submodels(problems: list[SubmodelProblem], material: Material,
     return out
 
 
-def prepare_submodels(problems: list[SubmodelProblem], material: Material,
+def prepare_submodels(problems: list[SubmodelProblem], material: ElasticMaterial,
                       kept: dict) -> dict:
     """Mesh, assemble and factorise the submodels of ``problems`` whose key is not in
     ``kept`` (a key asked for twice once), keep them there under their keys, and return them
@@ -198,7 +198,7 @@ def prepare_submodels(problems: list[SubmodelProblem], material: Material,
     return fresh
 
 
-def _prepare(mesh: BodyMesh, centre, angles, material: Material, K=None,
+def _prepare(mesh: BodyMesh, centre, angles, material: ElasticMaterial, K=None,
              cache: dict | None = None) -> _Prepared:
     """Assemble (unless its stiffness ``K`` is given) and factorise a submodel's mesh;
     ``cache``: its stress recovery's matrices, if kept."""

@@ -13,7 +13,7 @@ from typing import Protocol
 import numpy as np
 
 from ..checks import require_range
-from ..fe import Material
+from ..fe import ElasticMaterial
 from ..geometry import NO_DEVIATIONS, Deviations, PairParameters
 from ..planar import wrap
 from .inputs import (
@@ -58,7 +58,7 @@ class SolveCase:
     def __post_init__(self) -> None:
         # a position's own input is ±π; a revolution runs on up to one turn of gear 1 beyond
         require_range("position", self.beta, -math.pi, 3 * math.pi, unit="rad")
-        Material(self.E, self.nu, self.thickness)  # validates E, nu, thickness
+        ElasticMaterial(self.E, self.nu, self.thickness)  # validates E, nu, thickness
         check_torque(self.torque, self.E, self.params.m, self.thickness, self.params.r1)
         SOLVE_INPUTS["quality"].check(self.quality)
         m = self.params.m
@@ -80,8 +80,8 @@ class SolveCase:
         return torque_limit(self.E, self.params.m, self.thickness, self.params.r1)
 
     @property
-    def material(self) -> Material:
-        return Material(self.E, self.nu, self.thickness, "stress")
+    def material(self) -> ElasticMaterial:
+        return ElasticMaterial(self.E, self.nu, self.thickness, "stress")
 
     @property
     def edge_radius(self) -> float:

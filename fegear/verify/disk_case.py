@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 from ..checks import number, require_finite, require_range
 from ..errors import ParameterError
-from ..fe import STEEL_E, STEEL_NU, HertzLine, Material, Plane, line_contact
+from ..fe import STEEL_E, STEEL_NU, ElasticMaterial, HertzLine, Plane, line_contact
 from .disk_inputs import DISK_INPUTS, DISK_QUALITY
 from .penalty import ContactSettings
 
@@ -36,7 +36,7 @@ class DiskCase:
         r2 = require_finite("r2", self.r2, bore)
         if not (0 < r2 <= 1e4 or -1e4 <= r2 < -r1):
             raise ParameterError("r2", self.r2, bore)
-        Material(self.E, self.nu, self.thickness, self.plane)  # validates E, ν, t, plane
+        ElasticMaterial(self.E, self.nu, self.thickness, self.plane)  # validates E, ν, t, plane
         if not (isinstance(self.quality, str) and self.quality in DISK_QUALITY
                 or 1 <= (number(self.quality) or 0) <= 200):
             raise ParameterError("quality", self.quality, _ROW["quality"].range_text)
@@ -52,8 +52,8 @@ class DiskCase:
         return (0.5 * min(self.r1, abs(self.r2)) / unit.b) ** 2
 
     @property
-    def material(self) -> Material:
-        return Material(self.E, self.nu, self.thickness, self.plane)
+    def material(self) -> ElasticMaterial:
+        return ElasticMaterial(self.E, self.nu, self.thickness, self.plane)
 
     @property
     def hertz(self) -> HertzLine:

@@ -9,11 +9,11 @@ import pytest
 import scipy.sparse as sp
 from scipy.sparse.linalg import spsolve
 
-from fegear.fe import BodyGeometry, Material, Periodic, Refinement, Segment, mesh_bodies
+from fegear.fe import BodyGeometry, ElasticMaterial, Periodic, Refinement, Segment, mesh_bodies
 from fegear.fe.cyclic import assemble_cyclic
 from fegear.fe.dofs import facet_nodes
 
-MAT = Material(thickness=2.0)
+MAT = ElasticMaterial(thickness=2.0)
 
 
 def sector(count, a0=0.3, r_in=6.0, r_out=10.0, size=0.9):

@@ -9,7 +9,7 @@ from skfem import ElementTriP2, ElementVector, FacetBasis, LinearForm, asm, cond
 from skfem.helpers import dot
 
 from fegear.fe.assembly import RigidLink, assemble_body, facet_nodes
-from fegear.fe.material import Material
+from fegear.fe.material import ElasticMaterial
 from fegear.fe.mesh import BodyGeometry, Segment, mesh_bodies
 from fegear.fe.stress import quadrature_stress, recover, recover_many
 from fegear.verify.penalty.model import Circle
@@ -24,12 +24,12 @@ def arc(c, r, a0, a1, n=40):
 
 def test_plane_stress_constants_are_lame_parameters():
     # scikit-fem 12.0.2 returns Lamé (λ*, μ) from plane_stress: λ* = Eν/(1−ν²), μ = E/(2(1+ν))
-    lam, mu = Material(E, NU, T, "stress").lame
+    lam, mu = ElasticMaterial(E, NU, T, "stress").lame
     assert lam == pytest.approx(E * NU / (1 - NU**2), rel=1e-14)
     assert mu == pytest.approx(E / (2 * (1 + NU)), rel=1e-14)
-    lam, mu = Material(E, NU, T, "strain").lame
+    lam, mu = ElasticMaterial(E, NU, T, "strain").lame
     assert lam == pytest.approx(E * NU / ((1 + NU) * (1 - 2 * NU)), rel=1e-14)
-    assert Material(E, NU, T, "strain").plane_modulus == pytest.approx(E / (1 - NU**2))
+    assert ElasticMaterial(E, NU, T, "strain").plane_modulus == pytest.approx(E / (1 - NU**2))
 
 
 def irregular_plate():
@@ -48,7 +48,7 @@ def irregular_plate():
 
 @pytest.mark.parametrize("plane", ["stress", "strain"])
 def test_patch_test_linear_field_is_reproduced(plane):
-    body = assemble_body(irregular_plate(), Material(E, NU, T, plane), fixed=("left",))
+    body = assemble_body(irregular_plate(), ElasticMaterial(E, NU, T, plane), fixed=("left",))
     x, y = body.mesh.doflocs
     A = np.array([[1e-3, -4e-4], [7e-4, 2e-3]])
     exact = np.column_stack([1e-2 + A[0, 0] * x + A[0, 1] * y,
@@ -88,7 +88,7 @@ def lame_error(size, a=10.0, b=20.0, p=100.0):
         Segment("bore", arc((0, 0), a, math.pi / 2, 0, 60), inner.project),
     ), size=size)
     (bm,) = mesh_bodies([geo])
-    body = assemble_body(bm, Material(E, NU, T), fixed=("sym_y",))  # K only; BCs below
+    body = assemble_body(bm, ElasticMaterial(E, NU, T), fixed=("sym_y",))  # K only; BCs below
     m = body.mesh
     nodes_y = np.unique(facet_nodes(m, m.boundaries["sym_y"]))
     nodes_x = np.unique(facet_nodes(m, m.boundaries["sym_x"]))
@@ -136,7 +136,7 @@ def annulus(a, b, size):
 def test_annulus_turned_through_its_bore_rotates_by_closed_form():
     a, b, torque = 5.0, 20.0, 2.0e5  # mm, mm, N·mm
     bm = annulus(a, b, size=1.5)
-    mat = Material(E, NU, T)
+    mat = ElasticMaterial(E, NU, T)
     body = assemble_body(bm, mat, fixed=("rim",), link=RigidLink("bore", "rotation"))
     assert not body.is_mechanism
     theta = torque / body.link_stiffness
@@ -152,6 +152,6 @@ def test_annulus_turned_through_its_bore_rotates_by_closed_form():
 def test_mechanism_link_gives_rigid_response():
     b = 20.0
     bm = annulus(5.0, b, size=4.0)
-    body = assemble_body(bm, Material(E, NU, T), link=RigidLink("bore", "rotation"))
+    body = assemble_body(bm, ElasticMaterial(E, NU, T), link=RigidLink("bore", "rotation"))
     assert body.is_mechanism and body.link_stiffness == 0.0
     assert np.abs(body.K @ body.psi).max() < 1e-8 * np.abs(body.K).max() * b

@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from fegear.fe import Material, forms
+from fegear.fe import ElasticMaterial, forms
 
-MAT = Material(E=206e3, nu=0.3, thickness=3.0)  # plane stress
+MAT = ElasticMaterial(E=206e3, nu=0.3, thickness=3.0)  # plane stress
 
 
 def _close(a, b, rel):

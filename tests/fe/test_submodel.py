@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from fegear.errors import FegearError
-from fegear.fe import Material, Probe, StarCurve, SubmodelProblem, solve_submodels
+from fegear.fe import ElasticMaterial, Probe, StarCurve, SubmodelProblem, solve_submodels
 
-MAT = Material(thickness=3.0)  # plane stress
+MAT = ElasticMaterial(thickness=3.0)  # plane stress
 
 
 def test_probe_evaluates_fields_as_the_elements_do_also_under_curved_edges(annulus):

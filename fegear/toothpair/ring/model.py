@@ -17,7 +17,7 @@ from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 
 from ...fe import (
-    Material,
+    ElasticMaterial,
     assemble_cyclic,
     cyclic_parts,
     mesh_bodies,
@@ -212,7 +212,7 @@ def build_ring(case: SolveCase, profile: Gear1Profile | None = None,
         t1, t2 = _templates(case, shape, meshed)
         m1, m2 = mesh_bodies([t1.geometry, t2.geometry])
     with timed("assemble_factor"):
-        mat = Material(case.E, case.nu, case.thickness, "stress")
+        mat = ElasticMaterial(case.E, case.nu, case.thickness, "stress")
         sides = (GearSide(assemble_cyclic(m1, mat, p.z1, t1.cut, (t1.held,)), t1),
                  GearSide(assemble_cyclic(m2, mat, p.z2, t2.cut, (t2.held,)), t2))
     return RingModel(case, profile, shape, samples, sides, level, meshed=meshed)
@@ -279,7 +279,7 @@ def _from_cache(case: SolveCase, profile: Gear1Profile | None) -> RingModel | No
         return None
     profile, shape, samples = _shapes(case, profile)
     with timed("cache"):
-        mat = Material(case.E, case.nu, case.thickness, "stress")
+        mat = ElasticMaterial(case.E, case.nu, case.thickness, "stress")
         sides = []
         for part in data["gears"]:
             side = GearSide(restore_cyclic(part["mesh"], mat, part["body"]), part["template"])

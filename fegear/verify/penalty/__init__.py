@@ -33,15 +33,15 @@ re-evaluated exactly until it changes by less than ``link_tol``.
 The Hertz case: two 10 mm disks pressed together by 1000 N over 5 mm, coarse (4 elements across
 the Hertz half-width):
 
->>> from fegear.fe import Material, RigidLink, assemble_body, mesh_bodies
+>>> from fegear.fe import ElasticMaterial, RigidLink, assemble_body, mesh_bodies
 >>> from fegear.verify import DiskCase, disk_geometries
 >>> from fegear.verify.penalty import ContactPair, build_contact, solve_contact
 >>> case = DiskCase(quality="coarse")
 >>> g1, g2, _, circle2 = disk_geometries(case)   # named windows, disk 2's exact circle
 >>> m1, m2 = mesh_bodies([g1, g2])
->>> b1 = assemble_body(m1, Material(), link=RigidLink("cut", "translation",
+>>> b1 = assemble_body(m1, ElasticMaterial(), link=RigidLink("cut", "translation",
 ...                                                    direction=(0.0, -1.0)))
->>> b2 = assemble_body(m2, Material(), fixed=("cut",))
+>>> b2 = assemble_body(m2, ElasticMaterial(), fixed=("cut",))
 >>> model = build_contact([b1, b2], [ContactPair("disks", 0, "contact", 1, "contact", circle2)])
 >>> solution = solve_contact(model, load=1000.0)
 >>> zone = solution.zones[0]                    # the pair's contact zone

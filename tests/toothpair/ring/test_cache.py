@@ -159,7 +159,13 @@ def test_a_submodel_meshes_the_same_whatever_was_meshed_before_it(baseline, base
     what else was meshed in the same call. The baseline's two peaks at `standard`: meshed in
     one gmsh session after gear 2's, gear 1's submodel came out with 1696 nodes instead of
     1692."""
-    from fegear.fe import Material, StarCurve, SubmodelProblem, prepare_submodels, submodel_meshes
+    from fegear.fe import (
+        ElasticMaterial,
+        StarCurve,
+        SubmodelProblem,
+        prepare_submodels,
+        submodel_meshes,
+    )
     from fegear.geometry import RoundedProfile, gear2_curve
 
     shape = RoundedProfile(baseline_profile, 0.25)
@@ -179,8 +185,8 @@ def test_a_submodel_meshes_the_same_whatever_was_meshed_before_it(baseline, base
                           0.1011093291354564, 0.29730177875068026, size, focus, unused, unused,
                           key="two")
     kept_alone, kept_after = {}, {}
-    prepare_submodels([one], Material(), kept_alone)          # its disk meshed alone …
-    prepare_submodels([two, one], Material(), kept_after)     # … and after gear 2's, at once
+    prepare_submodels([one], ElasticMaterial(), kept_alone)          # its disk meshed alone …
+    prepare_submodels([two, one], ElasticMaterial(), kept_after)     # … and after gear 2's, at once
     alone, after = (submodel_meshes(kept)["one"].mesh.mesh for kept in (kept_alone, kept_after))
     assert np.array_equal(alone.p, after.p)
     assert np.array_equal(alone.t, after.t)
