@@ -19,7 +19,7 @@ from ..exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
     "life": ("LifeCurve", "BENDING", "CONTACT", "TREATMENTS"),
-    "materials": ("Material", "MATERIALS", "material"),
+    "materials": ("GearMaterial", "MATERIALS", "material"),
     "miner": ("damage", "safety_at_life"),
     "spectrum": ("Level", "Spectrum", "read_spectrum"),
     "modes": ("MODES", "rate", "verdict"),

@@ -18,7 +18,7 @@ from .life import TREATMENTS
 
 
 @dataclass(frozen=True)
-class Material:
+class GearMaterial:
     """A gear material: ``name``, ``treatment`` (one of
     :data:`~.life.TREATMENTS`), the endurance limits ``sigma_Hlim`` (contact pressure, MPa)
     and ``sigma_FE`` (local root stress, MPa) and where they come from (``source``)."""
@@ -40,27 +40,27 @@ class Material:
 
 #: the materials fegear knows by name; the first is the default
 MATERIALS = {m.name: m for m in (
-    Material("42CrMo", "through-hardened", 745.0, 558.0,
-             "seed paper 001: 42CrMo's allowable contact 745 MPa and bending 558 MPa, taken "
-             "as the endurance limits (the paper gives no S-N curve)"),
-    Material("42CrMo-QT", "through-hardened", 770.0, 630.0,
-             "ISO 6336-5:2016, through-hardened wrought alloy steel, quality MQ, at 300 HV: "
-             "sigma_Hlim 770, sigma_Flim 315 MPa (sigma_FE = 2 sigma_Flim)"),
-    Material("42CrMo-nitrided", "nitrided", 1000.0, 740.0,
-             "ISO 6336-5:2016, through-hardening steel nitrided, quality MQ: sigma_Hlim 1000, "
-             "sigma_Flim 370 MPa"),
-    Material("20CrMnTi", "case-hardened", 1500.0, 1000.0,
-             "ISO 6336-5:2016, case-hardened wrought steel, quality MQ (GB/T 3480.5 gives "
-             "the same for 20CrMnTi carburised): sigma_Hlim 1500, sigma_Flim 500 MPa"),
-    Material("18CrNiMo7-6", "case-hardened", 1500.0, 1000.0,
-             "ISO 6336-5:2016, case-hardened wrought steel, quality MQ: sigma_Hlim 1500, "
-             "sigma_Flim 500 MPa"),
+    GearMaterial("42CrMo", "through-hardened", 745.0, 558.0,
+                 "seed paper 001: 42CrMo's allowable contact 745 MPa and bending 558 MPa, taken "
+                 "as the endurance limits (the paper gives no S-N curve)"),
+    GearMaterial("42CrMo-QT", "through-hardened", 770.0, 630.0,
+                 "ISO 6336-5:2016, through-hardened wrought alloy steel, quality MQ, at 300 HV: "
+                 "sigma_Hlim 770, sigma_Flim 315 MPa (sigma_FE = 2 sigma_Flim)"),
+    GearMaterial("42CrMo-nitrided", "nitrided", 1000.0, 740.0,
+                 "ISO 6336-5:2016, through-hardening steel nitrided, quality MQ: sigma_Hlim 1000, "
+                 "sigma_Flim 370 MPa"),
+    GearMaterial("20CrMnTi", "case-hardened", 1500.0, 1000.0,
+                 "ISO 6336-5:2016, case-hardened wrought steel, quality MQ (GB/T 3480.5 gives "
+                 "the same for 20CrMnTi carburised): sigma_Hlim 1500, sigma_Flim 500 MPa"),
+    GearMaterial("18CrNiMo7-6", "case-hardened", 1500.0, 1000.0,
+                 "ISO 6336-5:2016, case-hardened wrought steel, quality MQ: sigma_Hlim 1500, "
+                 "sigma_Flim 500 MPa"),
 )}
 
 
-def material(name: str) -> Material:
+def material(name: str) -> GearMaterial:
     """The material of that name, or one read from a TOML file of that path (its keys
-    :class:`Material`'s fields, ``name`` and ``source`` optional), refused by name."""
+    :class:`GearMaterial`'s fields, ``name`` and ``source`` optional), refused by name."""
     if name in MATERIALS:
         return MATERIALS[name]
     path = Path(name)
@@ -71,7 +71,7 @@ def material(name: str) -> Material:
         values = tomllib.loads(path.read_text())
     except (OSError, tomllib.TOMLDecodeError) as exc:
         raise ParameterError("material", name, f"a readable TOML file ({exc})") from None
-    known = {f.name for f in fields(Material)}
+    known = {f.name for f in fields(GearMaterial)}
     unknown = sorted(set(values) - known)
     if unknown:
         raise ParameterError("material", name, f"keys among {', '.join(sorted(known))}, "
@@ -79,4 +79,4 @@ def material(name: str) -> Material:
     missing = sorted({"treatment", "sigma_Hlim", "sigma_FE"} - set(values))
     if missing:
         raise ParameterError("material", name, f"a file giving {', '.join(missing)}")
-    return Material(**{"name": path.stem, "source": f"given in {path.name}", **values})
+    return GearMaterial(**{"name": path.stem, "source": f"given in {path.name}", **values})

@@ -15,7 +15,7 @@ import math
 from collections.abc import Mapping, Sequence
 
 from .life import BENDING, CONTACT
-from .materials import Material
+from .materials import GearMaterial
 from .miner import damage, safety_at_life
 
 #: the modes rated: name → (the stress key of a level's teeth, gear, "bending" or "contact")
@@ -26,7 +26,7 @@ MODES = {"bending gear 1": ("root1", 1, "bending"),
 
 
 def rate(levels: Sequence[Mapping[str, Mapping]], cycles: Sequence[float],
-         z: tuple[int, int], material: Material, hours: float | None = None) -> dict:
+         z: tuple[int, int], material: GearMaterial, hours: float | None = None) -> dict:
     """Each mode's rating: the levels' stresses by tooth (``levels[i][key][tooth]``, MPa; a
     tooth None: every tooth alike), each level met ``cycles[i]`` revolutions of gear 1
     against gear 2 over the required life (``hours`` long where known). Per mode: the

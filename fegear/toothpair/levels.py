@@ -18,7 +18,7 @@ from ..running import SERIAL, Executor
 from .case import PairSolution, SolveCase
 
 if TYPE_CHECKING:   # the job module holds a Rating: a user error answers before scipy loads
-    from ..rating import Material, Spectrum
+    from ..rating import GearMaterial, Spectrum
 
 
 @dataclass(frozen=True)
@@ -28,7 +28,7 @@ class Rating:
     gear 1's ``speed_rpm`` against gear 2 (None: the life as repeats of the spectrum)."""
 
     spectrum: Spectrum
-    material: Material
+    material: GearMaterial
     KA: float = 1.0
     KV: float = 1.0
     speed_rpm: float | None = None

@@ -10,7 +10,7 @@ from dataclasses import replace
 
 import pytest
 
-from fegear.rating import BENDING, CONTACT, Material, rate
+from fegear.rating import BENDING, CONTACT, GearMaterial, rate
 from fegear.toothpair import prepare_job, solve_job
 from fegear.toothpair.positions import drive, drive_torques, families
 from fegear.toothpair.rating_report import rating_rows, rating_table
@@ -111,10 +111,10 @@ def test_torques_go_by_families_of_a_quarter_of_their_heaviest():
     assert families([50.0]) == [[0]]
 
 
-def material_of(text: str) -> Material:
+def material_of(text: str) -> GearMaterial:
     values = dict(line.split(" = ") for line in text.strip().splitlines())
-    return Material("weak", values["treatment"].strip('"'), float(values["sigma_Hlim"]),
-                    float(values["sigma_FE"]), "test")
+    return GearMaterial("weak", values["treatment"].strip('"'), float(values["sigma_Hlim"]),
+                        float(values["sigma_FE"]), "test")
 
 
 def test_miners_sum_read_back_from_the_levels_stresses(rated):
