@@ -32,7 +32,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
                "dynamics_summary", "dynamics_table", "write_dynamics"),
     "plot": ("bearings_png", "dynamics_png", "reducer_campbell_png", "reducer_modes_png",
              "reducer_response_png"),
-    "beams": ("Section", "Material", "shaft_matrices"),
+    "beams": ("Section", "ShaftMaterial", "shaft_matrices"),
     "reducer_inputs": ("ReducerInputs", "BUILDS"),
     "reducer": ("ReducerModel", "Mode", "build_reducer", "modes", "response", "whirl",
                 "sweep", "turning_sweep", "over_turn", "frequency_spread", "turning_geometry",

@@ -22,8 +22,8 @@ X, Y, SX, SY, TZ = range(DOF)
 
 
 @dataclass(frozen=True)
-class Material:
-    """Young's modulus E (Pa), Poisson ratio ν, density ρ (kg/m³)."""
+class ShaftMaterial:
+    """A shaft's material: Young's modulus E (Pa), Poisson ratio ν, density ρ (kg/m³)."""
 
     E: float = 2.06e11
     nu: float = 0.3
@@ -34,7 +34,7 @@ class Material:
         return self.E / (2.0 * (1.0 + self.nu))
 
 
-STEEL = Material()
+STEEL = ShaftMaterial()
 
 
 @dataclass(frozen=True)
@@ -43,7 +43,7 @@ class Section:
     factor κ of a solid circle (6(1 + ν)/(7 + 6ν), Cowper's)."""
 
     d: float
-    material: Material = STEEL
+    material: ShaftMaterial = STEEL
 
     @property
     def A(self) -> float:

@@ -44,7 +44,7 @@ from functools import cached_property
 import numpy as np
 
 from ..errors import ParameterError
-from .beams import DOF, SX, SY, TZ, Material, Section, X, Y, shaft_matrices
+from .beams import DOF, SX, SY, TZ, Section, ShaftMaterial, X, Y, shaft_matrices
 from .reducer_inputs import BUILDS, ReducerInputs
 
 SHAFTS = ("input", "support 1", "support 2", "output")
@@ -175,7 +175,7 @@ def build_reducer(inputs: ReducerInputs, plates: int,
         raise ParameterError("plates", plates, "1, 2 or 3")
     ip = inputs
     km = ip.mesh_stiffness if mesh_stiffness is None else mesh_stiffness
-    steel = Material()
+    steel = ShaftMaterial()
     span, length_out = 1e-3 * ip.input_length_mm, 1e-3 * ip.output_length_mm
     st = stations(ip, plates)
     marks = [s.z for s in st]

@@ -14,8 +14,8 @@ from fegear.cli import main
 from fegear.drive.beams import (
     DOF,
     TZ,
-    Material,
     Section,
+    ShaftMaterial,
     X,
     Y,
     shaft_matrices,
@@ -101,7 +101,7 @@ def test_a_shaft_on_two_stiff_bearings_is_the_pinned_beam(shear):
 def test_a_rigid_shaft_on_two_soft_bearings_bounces_and_rocks():
     """A shaft stiff beyond bending on springs k at its ends: bounce sqrt(2k/m), rocking
     sqrt(k L²/2 / J_d), J_d = m L²/12 + ρ I L (its rotary inertia), within 0.1 %."""
-    rigid = Section(0.03875, Material(E=2.06e17, nu=0.3, rho=7850.0))
+    rigid = Section(0.03875, ShaftMaterial(E=2.06e17, nu=0.3, rho=7850.0))
     z = np.linspace(0, L, 11)
     K, M = shaft_matrices(rigid, z)
     k = 1e8
