@@ -41,7 +41,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "material": ("ElasticMaterial", "MATERIAL_INPUTS", "ALLOWABLE_INPUTS", "Allowables",
                  "plane_modulus", "contact_modulus", "Plane", "PLANE_MODES", "STEEL_E",
                  "STEEL_NU"),
-    "assembly": ("Body", "RigidLink", "Placement", "SupportError", "assemble_body"),
+    "assembly": ("Body", "RigidLink", "BodyPlacement", "SupportError", "assemble_body"),
     "dofs": ("node_dofs", "facet_nodes"),
     "flexibility": ("WindowFlexibility",),
     "stress": ("StressField", "recover", "recover_many", "projection_matrices", "projector",

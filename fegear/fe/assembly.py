@@ -70,7 +70,7 @@ class RigidLink:
 
 
 @dataclass(frozen=True)
-class Placement:
+class BodyPlacement:
     """Where a body sits in the fixed frame: x_fixed = R(angle) x_body + offset (rad, mm).
 
     Meshes, stiffness and factors live in the body frame, so a body can be placed at any
@@ -116,7 +116,7 @@ class Body:
     psi: np.ndarray = field(repr=False)
     link_stiffness: float
     factor: object = field(repr=False)
-    placement: Placement = Placement()
+    placement: BodyPlacement = BodyPlacement()
     cache: dict = field(default_factory=dict, repr=False)  # shared by placed copies
 
     @property

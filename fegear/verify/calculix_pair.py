@@ -68,7 +68,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ..fe import Body, Placement, StressField, contact_modulus
+from ..fe import Body, BodyPlacement, StressField, contact_modulus
 from ..planar import rotate
 from ..toothpair import PairSolution
 from .calculix import write_deck
@@ -244,7 +244,7 @@ def turned_body(body: Body, theta: float) -> Body:
     c = np.asarray([body.link.center], dtype=float)
     pl = body.placement
     offset = np.asarray(pl.offset) + pl.vec_to_fixed(c - rotate(c, theta))[0]
-    return replace(body, placement=Placement(pl.angle + theta, tuple(map(float, offset))))
+    return replace(body, placement=BodyPlacement(pl.angle + theta, tuple(map(float, offset))))
 
 
 def _face_owner(inp: Path, npairs: int) -> dict[tuple[int, int], int]:

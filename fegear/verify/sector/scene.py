@@ -2,7 +2,7 @@
 
 Frames (README "Conventions"): gear 2 centred at the origin, gear 1 at O1 = (0, e); at rolling
 angle β gear 2 is turned by β and gear 1 by α = (z2/z1) β. Each body is meshed in its own frame
-and placed at β (:class:`fegear.fe.Placement`), so one factorisation serves every position.
+and placed at β (:class:`fegear.fe.BodyPlacement`), so one factorisation serves every position.
 
 * Gear 1 is an annular sector: its exact profile over the chosen teeth, radial cuts through the
   middle of the ``extra``-th unpaired tooth beyond them at each end, and a bore of radius

@@ -23,7 +23,7 @@ import numpy as np
 from ... import progress
 from ...fe import (
     Body,
-    Placement,
+    BodyPlacement,
     RigidLink,
     assemble_body,
     mesh_bodies,
@@ -292,8 +292,8 @@ def place(model: PairModel, beta: float) -> tuple[Body, Body]:
     and caches are shared."""
     p = model.case.params
     e = p.e + 1e-3 * model.case.deviations.centre_distance
-    return (replace(model.bodies[0], placement=Placement(p.ratio * beta, (0.0, e))),
-            replace(model.bodies[1], placement=Placement(beta)))
+    return (replace(model.bodies[0], placement=BodyPlacement(p.ratio * beta, (0.0, e))),
+            replace(model.bodies[1], placement=BodyPlacement(beta)))
 
 
 def pair_contact(scene: Scene, bodies: tuple[Body, Body], beta: float,
