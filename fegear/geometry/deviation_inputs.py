@@ -14,14 +14,19 @@ as short texts, or as a file of measured deviations.
   are comments). A tooth has one row.
 
 Whatever is wrong is refused in one line naming the option, the row or the column.
+
+The texts are read here once, each per-tooth entry into a :class:`ToothEntry` and each runout
+into a :class:`~.deviations.Runout`; whatever quotes one back (a refusal, a case file) writes it
+with :attr:`ToothEntry.text` or :func:`runout_text`, so this module alone knows the grammar,
+both ways.
 """
 
 from __future__ import annotations
 
 import math
 import re
-from collections.abc import Mapping
-from dataclasses import replace
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, replace
 
 from ..errors import ParameterError
 from ..files import Column, read_table, read_text
@@ -41,51 +46,113 @@ HEADER = "columns gear, tooth and any of fp (or pitch), fpt, fHa (or slope), ffa
 TOOTH_SPEC = "GEAR:TOOTH=µm, comma-separated (e.g. 1:11=5,2:30=-3), GEAR 1 or 2"
 RUNOUT_SPEC = ("GEAR=µm[@deg], comma-separated (e.g. 1=10@90; without @deg, 0°), GEAR 1 or 2, "
                "0 <= µm <= 1000")
+#: what stands before an entry's ``=``: ``GEAR:TOOTH`` (a per-tooth option's), ``GEAR`` (a runout's)
+_TOOTH = re.compile(r"\s*([12])\s*:\s*(\d+)\s*")
+_GEAR = re.compile(r"\s*([12])\s*")
 
 
-def per_tooth(name: str, text) -> dict[tuple[int, int], float]:
-    """``GEAR:TOOTH=µm`` entries of option ``name`` → {(gear, tooth): µm}."""
-    out: dict[tuple[int, int], float] = {}
-    for part in _parts(text):
-        m = re.fullmatch(r"\s*([12])\s*:\s*(\d+)\s*=\s*([^=]+?)\s*", part)
-        value = _number(m.group(3)) if m else math.nan
-        if not m or not math.isfinite(value) or abs(value) > LIMIT_UM:
-            raise ParameterError(name, text, f"{TOOTH_SPEC}, |µm| <= {LIMIT_UM:g}")
-        out[(int(m.group(1)), int(m.group(2)))] = value
-    return out
+@dataclass(frozen=True)
+class ToothEntry:
+    """One entry of a per-tooth option, ``GEAR:TOOTH=µm``, as read (:func:`per_tooth`): the
+    ``option`` it was given to (a key of :data:`PER_TOOTH`), the ``gear`` (1 or 2), its
+    ``tooth`` (index from 0) and the deviation ``um`` (µm; + moves the tooth's loaded flank
+    towards its mate). :attr:`text` writes it back: the one writer of the grammar, as
+    :func:`per_tooth` is its one reader."""
+
+    option: str
+    gear: int
+    tooth: int
+    um: float
+
+    def __post_init__(self) -> None:
+        if self.option not in PER_TOOTH:
+            raise ValueError(f"a per-tooth option ({', '.join(PER_TOOTH)}), not "
+                             f"{self.option!r}")
+        if (self.gear not in (1, 2) or self.tooth < 0 or not math.isfinite(self.um)
+                or abs(self.um) > LIMIT_UM):
+            raise ParameterError(self.option, self.text, f"{TOOTH_SPEC}, |µm| <= {LIMIT_UM:g}")
+
+    @classmethod
+    def of(cls, deviation: ToothDeviation, gear: int, tooth: int) -> ToothEntry | None:
+        """The entry that gives ``deviation`` of ``gear``'s ``tooth`` (its pitch deviation,
+        else its slope, else its form: what a message about the tooth quotes), or None where
+        it has none of them (a measured form curve alone)."""
+        for option, field in PER_TOOTH.items():
+            if getattr(deviation, field):
+                return cls(option, gear, tooth, getattr(deviation, field))
+        return None
+
+    @property
+    def field(self) -> str:
+        """The :class:`~.deviations.ToothDeviation` field the entry sets."""
+        return PER_TOOTH[self.option]
+
+    @property
+    def where(self) -> str:
+        """The tooth in the grammar, ``GEAR:TOOTH``."""
+        return f"{self.gear}:{self.tooth}"
+
+    @property
+    def text(self) -> str:
+        """The entry in the grammar, ``GEAR:TOOTH=µm``, which :func:`per_tooth` reads back to
+        the same entry."""
+        return f"{self.where}={_number_text(self.um)}"
 
 
-def runouts(text) -> dict[int, Runout]:
+def runout_text(gear: int, runout: Runout) -> str:
+    """``gear``'s runout in the grammar of ``--runout``, ``GEAR=µm@deg``, which
+    :func:`runouts` reads back to the same :class:`~.deviations.Runout`."""
+    return f"{gear}={_number_text(runout.fr)}@{_number_text(runout.phase)}"
+
+
+def per_tooth(name: str, given) -> tuple[ToothEntry, ...]:
+    """The ``GEAR:TOOTH=µm`` entries of option ``name`` (module docstring; :func:`_entries`
+    for the forms ``given`` takes), in the order given; an entry that is not one is refused
+    quoting it."""
+    out = []
+    for entry, where, value in _entries(given):
+        m, um = _TOOTH.fullmatch(where), _number(value)
+        if not m or not math.isfinite(um):
+            raise ParameterError(name, entry, f"{TOOTH_SPEC}, |µm| <= {LIMIT_UM:g}")
+        out.append(ToothEntry(name, int(m.group(1)), int(m.group(2)), um))
+    return tuple(out)
+
+
+def runouts(given) -> dict[int, Runout]:
     """``GEAR=µm[@deg]`` entries of ``--runout`` → {gear: Runout} (without ``@deg``, the high
-    point at 0°)."""
+    point at 0°); an entry that is not one is refused quoting it."""
     out: dict[int, Runout] = {}
-    for part in _parts(text):
-        m = re.fullmatch(r"\s*([12])\s*=\s*([^@]+?)\s*(?:@\s*(.+?)\s*)?", part)
-        fr = _number(m.group(2)) if m else math.nan
-        phase = _number(m.group(3)) if m and m.group(3) is not None else 0.0
+    for entry, gear, value in _entries(given):
+        m = _GEAR.fullmatch(gear)
+        fr, at, deg = str(value).partition("@")
+        fr, phase = _number(fr), _number(deg) if at else 0.0
         if not m or not (math.isfinite(fr) and 0 <= fr <= LIMIT_UM and math.isfinite(phase)):
-            raise ParameterError("runout", text, RUNOUT_SPEC)
+            raise ParameterError("runout", entry, RUNOUT_SPEC)
         out[int(m.group(1))] = Runout(fr, phase)
     return out
 
 
 def deviations_of(values: Mapping[str, object], z1: int, z2: int) -> Deviations:
     """The deviations the solve inputs name (by their option names: the file first, then the
-    per-tooth options over it, the centre distance and the runouts), their teeth checked
-    against ``z1`` and ``z2``."""
+    per-tooth options over it, the centre distance and the runouts), each tooth refused by
+    name where ``z1`` or ``z2`` has no such tooth."""
     teeth: dict[tuple[int, int], ToothDeviation] = {}
     if values.get("deviations"):
         teeth.update(read_deviations(values["deviations"], z1, z2))
-    for name, attr in PER_TOOTH.items():
-        for key, um in per_tooth(name, values.get(name)).items():
-            teeth[key] = replace(teeth.get(key, ToothDeviation()), **{attr: um})
+    z = {1: z1, 2: z2}
+    for name in PER_TOOTH:
+        for entry in per_tooth(name, values.get(name)):
+            g = entry.gear
+            if entry.tooth >= z[g]:
+                raise ParameterError(name, entry.where, f"a tooth 0 ... {z[g] - 1} of gear {g} "
+                                     f"(z{g} = {z[g]})")
+            key = (g, entry.tooth)
+            teeth[key] = replace(teeth.get(key, ToothDeviation()), **{entry.field: entry.um})
     runout = runouts(values.get("runout"))
-    found = Deviations({t: d for (g, t), d in teeth.items() if g == 1},
-                       {t: d for (g, t), d in teeth.items() if g == 2},
-                       float(values.get("centre-distance-deviation") or 0.0),
-                       runout.get(1, Runout()), runout.get(2, Runout()))
-    found.check_teeth(z1, z2)
-    return found
+    return Deviations({t: d for (g, t), d in teeth.items() if g == 1},
+                      {t: d for (g, t), d in teeth.items() if g == 2},
+                      float(values.get("centre-distance-deviation") or 0.0),
+                      runout.get(1, Runout()), runout.get(2, Runout()))
 
 
 def read_deviations(path, z1: int, z2: int) -> dict[tuple[int, int], ToothDeviation]:
@@ -138,19 +205,32 @@ def _whole(path, row, column: str) -> int:
     return int(value)
 
 
-def _parts(given) -> list[str]:
-    """The entries of a deviation option: a text of comma-separated entries, a list of such
-    texts (the option given more than once, a study file's list) or a mapping of entries to
-    values (``{"1:11": 5}`` from Python)."""
+def _entries(given) -> Iterator[tuple[object, str, object]]:
+    """The entries of a deviation option, each as (the entry as given, for a refusal to quote;
+    the text before its ``=``; its value): a text of comma-separated entries, a list of such
+    texts (the option given more than once, a study file's list) or a mapping of the texts
+    before ``=`` to values (``{"1:11": 5}`` from Python)."""
     if isinstance(given, Mapping):
-        given = [f"{k}={v}" for k, v in given.items()]
+        yield from (({k: v}, str(k), v) for k, v in given.items())
+        return
     if isinstance(given, (list, tuple)):
         given = ",".join(str(g) for g in given)
-    return [p for p in str(given or "").split(",") if p.strip()]
+    for part in str(given or "").split(","):
+        if part.strip():
+            before, _, after = part.partition("=")
+            yield part.strip(), before, after
 
 
 def _number(text) -> float:
+    if isinstance(text, bool):   # True is no number of µm
+        return math.nan
     try:
         return float(text)
     except (TypeError, ValueError):
         return math.nan
+
+
+def _number_text(x: float) -> str:
+    """``x`` as short as it reads back exactly: 5 for 5.0, 0.1 for 0.1."""
+    short = f"{x:g}"
+    return short if float(short) == x else repr(float(x))

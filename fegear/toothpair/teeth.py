@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import GeometryError, ParameterError
-from ..geometry import PairParameters, RoundedProfile, gear2_curve
+from ..geometry import PairParameters, RoundedProfile, ToothEntry, gear2_curve
 from ..planar import rotate
 
 TOOTH_STIFFNESS = 14.0   # N/(mm·µm): ISO 6336 single-pair stiffness c', for the load estimate
@@ -166,24 +166,23 @@ def refuse_closed(behind, deviations) -> None:
     where = closed(behind)
     if where is None:
         return
-    on_tooth = deviations.teeth(1).get(where.tooth)
-    name = ("pitch-deviation" if on_tooth is not None and on_tooth.pitch else
-            "slope-deviation" if on_tooth is not None and on_tooth.slope else
-            "form-deviation" if on_tooth is not None and on_tooth.profiled else
-            "centre-distance-deviation" if deviations.centre_distance else
-            "deviations")
-    raise ParameterError(name, _given(deviations, name, where.tooth), "deviations within the "
-                         f"pair's backlash ({where})", "the pair closes before any load")
+    name, given = _blamed(deviations, where.tooth)
+    raise ParameterError(name, given, "deviations within the pair's backlash "
+                         f"({where})", "the pair closes before any load")
 
 
-def _given(deviations, name: str, tooth: int) -> object:
-    """The value a refusal of ``name`` quotes."""
-    d = deviations.teeth(1).get(tooth)
-    if name == "centre-distance-deviation":
-        return deviations.centre_distance
-    if d is not None and name.endswith("-deviation"):
-        return f"1:{tooth}={getattr(d, name.split('-')[0])}"
-    return "as given"
+def _blamed(deviations, tooth: int) -> tuple[str, object]:
+    """The input a refusal of a closed pair names and the value it quotes: gear 1's
+    ``tooth``'s own deviation as its option's entry (``1:11=30``, written by
+    :class:`~fegear.geometry.ToothEntry`), else the centre distance's, else the deviations as
+    given."""
+    on_tooth = deviations.teeth(1).get(tooth)
+    entry = None if on_tooth is None else ToothEntry.of(on_tooth, 1, tooth)
+    if entry is not None:
+        return entry.option, entry.text
+    if deviations.centre_distance:
+        return "centre-distance-deviation", deviations.centre_distance
+    return "deviations", "as given"
 
 
 def tension_fillets(tooth_centre: float, pitch1: float, theta2: float,

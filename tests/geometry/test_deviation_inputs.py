@@ -7,28 +7,60 @@ import pytest
 from fegear.errors import ParameterError
 from fegear.geometry.deviation_inputs import (
     RUNOUT_SPEC,
+    ToothEntry,
     deviations_of,
     per_tooth,
     read_deviations,
+    runout_text,
     runouts,
 )
 from fegear.geometry.deviations import Runout, ToothDeviation
 
 
 def test_per_tooth_texts():
-    assert per_tooth("pitch-deviation", "1:11=5, 2:30=-3.5") == {(1, 11): 5.0, (2, 30): -3.5}
-    assert per_tooth("pitch-deviation", None) == {}
-    for bad in ("11=5", "3:1=5", "1:x=5", "1:2=abc", "1:2=nan", "1:2=2000", "1:2"):
+    assert per_tooth("pitch-deviation", "1:11=5, 2:30=-3.5") == (
+        ToothEntry("pitch-deviation", 1, 11, 5.0), ToothEntry("pitch-deviation", 2, 30, -3.5))
+    assert per_tooth("pitch-deviation", None) == ()
+    # a list (the option typed twice, a study file's) and a mapping (from Python) read alike
+    assert per_tooth("form-deviation", ["1:3=2", "2:4=1"]) == per_tooth(
+        "form-deviation", {"1:3": 2, " 2 : 4 ": "1"})
+    for bad in ("11=5", "3:1=5", "1:x=5", "1:2=abc", "1:2=nan", "1:2=2000", "1:2", "1:2=3=4"):
         with pytest.raises(ParameterError, match="GEAR:TOOTH=µm") as exc:
-            per_tooth("slope-deviation", bad)
+            per_tooth("slope-deviation", ["1:1=1", f" {bad} "])
         assert exc.value.name == "slope-deviation"
+        assert exc.value.value == bad   # the entry that is not one, not the whole option
+
+
+def test_an_entry_written_back_reads_as_itself():
+    """One place knows the grammar both ways: what a message quotes or a case file writes is
+    what the option reads."""
+    for um in (5.0, -3.5, 0.1, 1 / 3, 1000.0, 2e-7):
+        entry = ToothEntry("slope-deviation", 2, 30, um)
+        assert per_tooth("slope-deviation", entry.text) == (entry,)
+    assert ToothEntry("pitch-deviation", 1, 11, 30.0).text == "1:11=30"
+    assert ToothEntry("pitch-deviation", 1, 11, 30.0).where == "1:11"
+    for runout in (Runout(10.0, 90.0), Runout(0.1, -1 / 3), Runout(4.0)):
+        assert runouts(runout_text(2, runout)) == {2: runout}
+    assert runout_text(1, Runout(10.0, 90.0)) == "1=10@90"
+
+
+def test_an_entry_is_the_one_a_tooth_s_deviation_is_given_by():
+    assert ToothEntry.of(ToothDeviation(pitch=4.0, slope=1.0), 1, 11) == ToothEntry(
+        "pitch-deviation", 1, 11, 4.0)
+    assert ToothEntry.of(ToothDeviation(form=2.0), 2, 3).text == "2:3=2"
+    assert ToothEntry.of(ToothDeviation(curve=((0.0, 1.0), (1.0, 2.0))), 1, 2) is None
+    with pytest.raises(ParameterError, match=r"'1:11=2000' is not admissible"):
+        ToothEntry("pitch-deviation", 1, 11, 2000.0)
+    with pytest.raises(ValueError, match="a per-tooth option"):
+        ToothEntry("runout", 1, 11, 2.0)
 
 
 def test_runout_texts():
     assert runouts("1=10@90,2=4") == {1: Runout(10.0, 90.0), 2: Runout(4.0, 0.0)}
-    for bad in ("1=-2", "3=2", "1=x@3", "1=2@y", "1:2"):
-        with pytest.raises(ParameterError, match=r"GEAR=µm\[@deg\]"):
-            runouts(bad)
+    for bad in ("1=-2", "3=2", "1=x@3", "1=2@y", "1:2", "1=10@"):
+        with pytest.raises(ParameterError, match=r"GEAR=µm\[@deg\]") as exc:
+            runouts(f"2=1,{bad}")
+        assert exc.value.value == bad
 
 
 def test_the_inputs_of_a_solve_make_one_set_of_deviations(tmp_path):
@@ -42,8 +74,10 @@ def test_the_inputs_of_a_solve_make_one_set_of_deviations(tmp_path):
     assert d.teeth(2) == {3: ToothDeviation(form=1.0)}                            # wins
     assert d.centre_distance == 10.0 and d.runout2 == Runout(8.0, 45.0) and d
     assert not deviations_of({}, 44, 45)
-    with pytest.raises(ParameterError, match="a tooth 0 ... 43 of gear 1"):
-        deviations_of({"pitch-deviation": "1:44=5"}, 44, 45)
+    with pytest.raises(ParameterError, match="'1:44' is not admissible.*a tooth 0 ... 43 of "
+                       "gear 1") as exc:
+        deviations_of({"slope-deviation": "1:44=5"}, 44, 45)
+    assert exc.value.name == "slope-deviation"   # the option that named the tooth
 
 
 def test_single_pitch_deviations_add_up_to_the_teeth_s_positions(tmp_path):
