@@ -45,7 +45,7 @@ from .contact import RingContactSolution, rigid_gap, solve_ring_contact, touch_r
 from .grid import ToothGrid
 from .influence import ColumnRule, Matching, RingContact, assemble_contact
 from .model import RingModel
-from .placement import PLACEMENT, REACH, REACH_FLOOR, Placement, place_grids
+from .placement import PLACEMENT, REACH, REACH_FLOOR, GridPlacement, place_grids
 from .readout import SurfaceStrains
 from .results import RingDetail, tooth_result
 from .side import Located
@@ -257,7 +257,7 @@ class Phases:
         base = REACH * elastic_um * 1e-3 + REACH_FLOOR * p.m
         reach = {t: 1.0 + 1e-3 * (widest - case.deviations.reach_um(t)) / base for t in teeth}
         grids = place_grids(model, case, Trial(tuple(sorted(teeth)), elastic_um),
-                            Placement(frozenset(teeth), reach), first_um)
+                            GridPlacement(frozenset(teeth), reach), first_um)
         placed = Placed(case.deviations, p, case.beta) if case.deviations else None
         contact = assemble_contact(model, grids, case.beta,
                                    p.ratio * case.beta + settled.rotation, ColumnRule(), placed)

@@ -44,7 +44,7 @@ BEFORE_POINTS = 4    # fraction of its loaded stretch, and this many points, of 
 
 
 @dataclass(frozen=True)
-class Placement:
+class GridPlacement:
     """What an attempt placed its grids for, handed to the next attempt at the same position
     (:attr:`~fegear.toothpair.positions.Trial.own`): the teeth with fine grids (``full``;
     None: those the expected rotation closes, :func:`expected_teeth`) and the factors their
@@ -53,6 +53,9 @@ class Placement:
 
     full: frozenset[int] | None = None
     reach: dict = field(default_factory=dict)
+
+
+Placement = GridPlacement   # (until toothpair/ring/solver.py is moved over)
 
 
 def by_tooth(before: RingDetail) -> dict:
@@ -111,7 +114,7 @@ def expected_teeth(state, closure_um: float) -> set[int]:
             if c.plus_um is not None and c.plus_um <= closure_um + PROBE_MARGIN_UM}
 
 
-def place_grids(model: RingModel, case: SolveCase, trial: Trial, placement: Placement,
+def place_grids(model: RingModel, case: SolveCase, trial: Trial, placement: GridPlacement,
                 first_um: float, coarse: dict | None = None) -> tuple[ToothGrid, ...]:
     """A grid on each of ``trial``'s teeth whose profile the trial's rotation (``first_um``,
     the first touch, plus its elastic part; µm of arc at r0) brings within reach of gear 2,
