@@ -62,7 +62,7 @@ NEAR = 1.5
 
 
 @dataclass(frozen=True)
-class Solved:
+class SolvedPitch:
     """A position's solution kept for the pitches of its phase whose rigid gaps, at its solved
     rotation, are its ``gaps`` (mm): solved ``pitch`` gear-2 pitches from zero."""
 
@@ -110,8 +110,8 @@ class Phases:
     def __init__(self, reach_um: float = 0.0) -> None:
         self.reach_um = reach_um
         self._kept: dict[int, Kept] = {}
-        self._solved: dict[int, Solved] = {}
-        self._seen: dict[int, dict[tuple, Solved]] = {}   # phase → what it saw → solution
+        self._solved: dict[int, SolvedPitch] = {}
+        self._seen: dict[int, dict[tuple, SolvedPitch]] = {}   # phase → what it saw → solution
         self._circles: dict[int, FootCircles] = {}   # phase → its kept contact's feet …
         self._strains: dict[int, SurfaceStrains] = {}   # … and surface strains
 
@@ -196,7 +196,7 @@ class Phases:
         if kept is None or contact.formed is not kept.contact.formed:
             self._solved.pop(phase, None)
             return
-        self._solved[phase] = Solved(pitch, gaps, sol)
+        self._solved[phase] = SolvedPitch(pitch, gaps, sol)
         seen = kept.seen(case.deviations, pitch - kept.pitch, (case.params.z1, case.params.z2))
         if seen is not None:
             self._seen.setdefault(phase, {})[seen] = self._solved[phase]
@@ -288,8 +288,8 @@ def seen_teeth(contact: RingContact, z2: int) -> tuple[tuple[int, ...], tuple[in
     return tuple(g.tooth for g in contact.grids), tuple(int(t) for t in near)
 
 
-def _moved_only(model: RingModel, case: SolveCase, state, kept: Kept, base: Solved,
-                placed: Placed | None) -> Solved | None:
+def _moved_only(model: RingModel, case: SolveCase, state, kept: Kept, base: SolvedPitch,
+                placed: Placed | None) -> SolvedPitch | None:
     """``base`` renumbered to ``case.beta`` where it solves that contact too
     (:meth:`Phases.repeat`), kept with its rigid gaps there; else None."""
     pitch = pitch_phase(case.beta, case.params.z2)[1]
@@ -301,7 +301,7 @@ def _moved_only(model: RingModel, case: SolveCase, state, kept: Kept, base: Solv
     rigid = rigid_gap(model, contact, turn, contact.feet.copy())
     moved = np.abs(rigid[0] - base.gaps) > SAME_GAP
     if not moved.any():
-        return Solved(pitch, rigid[0], _renumbered(sol, pitches, case, state, contact))
+        return SolvedPitch(pitch, rigid[0], _renumbered(sol, pitches, case, state, contact))
     pressure = sol.detail.solution.pressure
     loaded = np.array([pressure[contact.block(k)].max() > 0
                        for k in range(len(contact.grids))])[contact.grid_index]
@@ -309,8 +309,8 @@ def _moved_only(model: RingModel, case: SolveCase, state, kept: Kept, base: Solv
     if (moved & loaded).any() or (opened[moved] <= 0).any():
         return None
     again = sorted({int(k) for k in contact.grid_index[moved]})
-    return Solved(pitch, rigid[0], _renumbered(sol, pitches, case, state, contact,
-                                               (rigid, again)))
+    return SolvedPitch(pitch, rigid[0], _renumbered(sol, pitches, case, state, contact,
+                                                    (rigid, again)))
 
 
 def _holds(case: SolveCase, state, kept: Kept, pitches: int, contact: RingContact,
