@@ -21,6 +21,6 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "life": ("LifeCurve", "BENDING", "CONTACT", "TREATMENTS"),
     "materials": ("GearMaterial", "MATERIALS", "material"),
     "miner": ("damage", "safety_at_life"),
-    "spectrum": ("Level", "Spectrum", "read_spectrum"),
+    "spectrum": ("LoadLevel", "Spectrum", "read_spectrum"),
     "modes": ("MODES", "rate", "verdict"),
 })

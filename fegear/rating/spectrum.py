@@ -31,9 +31,9 @@ HEADER = "a header torque,cycles or torque,share"
 
 
 @dataclass(frozen=True)
-class Level:
-    """One level: ``torque`` (N·m) met ``cycles`` times (revolutions of gear 1 against gear
-    2)."""
+class LoadLevel:
+    """One load level of a spectrum: ``torque`` (N·m) met ``cycles`` times (revolutions of
+    gear 1 against gear 2)."""
 
     torque: float
     cycles: float
@@ -44,7 +44,7 @@ class Spectrum:
     """The levels of a duty cycle, their cycles over the required life, and the ``hours``
     that life is (None where the file gives cycles and no life is asked for)."""
 
-    levels: tuple[Level, ...]
+    levels: tuple[LoadLevel, ...]
     hours: float | None = None
 
     @property
@@ -69,7 +69,7 @@ def read_spectrum(path, speed_rpm: float | None = None, life_h: float | None = N
         raise ParameterError("spectrum", str(path), "cycles at every level or shares at "
                              "every level, not both")
     if kinds == {True}:
-        levels = tuple(Level(float(r["torque"]), float(r["cycles"])) for _, r in rows)
+        levels = tuple(LoadLevel(float(r["torque"]), float(r["cycles"])) for _, r in rows)
         hours = None if life_h is None or speed_rpm is None else life_h
         return Spectrum(levels, hours)
     total = sum(float(r["share"]) for _, r in rows)
@@ -80,7 +80,7 @@ def read_spectrum(path, speed_rpm: float | None = None, life_h: float | None = N
         raise ParameterError("spectrum", str(path), "--speed and --life with shares of "
                              "time (they turn them into cycles)")
     revolutions = speed_rpm * 60.0 * life_h
-    return Spectrum(tuple(Level(float(r["torque"]), float(r["share"]) / total * revolutions)
+    return Spectrum(tuple(LoadLevel(float(r["torque"]), float(r["share"]) / total * revolutions)
                           for _, r in rows), life_h)
 
 
