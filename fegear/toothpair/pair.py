@@ -20,9 +20,9 @@ def solve_positions(case: SolveCase, betas, *, model=None, submodels: str = "pea
     for a caller that reads only the contact. ``executor``: where a cycle's chains of
     positions are solved (:func:`~.positions.drive`)."""
     from .positions import drive
-    from .ring.solver import RingSolver
+    from .ring.solver import RingSolver, SolverModes
 
-    solver = RingSolver(model, submodels, contact_only)
+    solver = RingSolver(model, SolverModes(submodels=submodels, contact_only=contact_only))
     return solver.at_peaks(drive(case, betas, solver, executor=executor))
 
 

@@ -43,7 +43,7 @@ from .case import HEADLINE, PairSolution, SolveCase
 from .positions import TURN_CHECK, solve_position
 from .revolution import revolution_positions
 from .ring.phases import Phases
-from .ring.solver import RingSolver
+from .ring.solver import RingSolver, SolverModes
 from .safety import safety_factors
 from .teeth import choose_teeth, closure, refuse_interference
 
@@ -76,7 +76,7 @@ def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
                   read: Callable[[PairSolution], object] | None = None, pitches: int = 1
                   ) -> Sampled:
     """The exact pair and ``draw``'s samples solved at the rolling angles ``betas`` (rad) with
-    ``solver``, a ring solver that keeps a contact a position (``repeats``), its grids set
+    ``solver``, a ring solver that keeps a contact a position (``keep_phases``), its grids set
     here to reach as far as the drawn deviations move a tooth (module docstring); ``read``:
     what to keep of each sample's solution at each position beside its headlines (a relief
     search's tip-round loads, say). ``pitches`` > 1: each sample at ``betas`` and at each of
@@ -142,7 +142,8 @@ def class_samples(job, allowables: Allowables, read=None, contact_only: bool = F
     """A checked job's class (``job.draw``) solved at its positions (:func:`solve_samples`)
     on a ring solver made for it: the stresses without submodels, or the contact alone
     (``contact_only``: a relief search's trial)."""
-    solver = RingSolver(repeats=True, submodels="none", contact_only=contact_only)
+    solver = RingSolver(None, SolverModes(submodels="none", contact_only=contact_only,
+                                         keep_phases=True))
     return solve_samples(job.case, job.betas, job.draw, allowables, solver, executor, read)
 
 
@@ -209,7 +210,7 @@ def _jammed(states: _States, deviations) -> str | None:
 
 def _exact(case: SolveCase, states: _States, solver: RingSolver) -> dict[int, PairSolution]:
     """The exact pair at the positions, one after the other, on ``solver``'s model."""
-    placed = RingSolver(solver.model, submodels="none")
+    placed = RingSolver(solver.model, SolverModes(submodels="none"))
     near, out = None, {}
     for i, (beta, state) in enumerate(states.loaded):
         near = out[i] = solve_position(replace(case, beta=beta), state, placed, near)
@@ -238,7 +239,8 @@ def _chain(case: SolveCase, states: _States, pairs, solver: RingSolver, span, jo
     nominal: dict[int, PairSolution] = {}
     found: dict[int, list] = {}
     took: dict[int, list] = {}
-    placed = RingSolver(solver.model, submodels="none")   # a sample the kept grids miss
+    # a sample the kept grids miss
+    placed = RingSolver(solver.model, SolverModes(submodels="none"))
     p = case.params
     near = None
     for i in span:

@@ -14,12 +14,14 @@ from fegear.rating import BENDING, CONTACT, GearMaterial, rate
 from fegear.toothpair import prepare_job, solve_job
 from fegear.toothpair.positions import drive, drive_torques, families
 from fegear.toothpair.rating_report import rating_rows, rating_table
-from fegear.toothpair.ring.solver import RingSolver
+from fegear.toothpair.ring.solver import RingSolver, SolverModes
 
 SPECTRUM = "torque,cycles\n60,1e8\n120,5e6\n160,3e5\n200,2e4\n"
 #: a material weak enough that every mode takes damage from the spectrum
 WEAK = 'treatment = "through-hardened"\nsigma_Hlim = 480\nsigma_FE = 220\n'
 BASE = {"quality": "coarse", "positions": 4, "no-estimate": True}
+#: the levels' solver: the roots and the pressures read alone
+ROOTS = SolverModes(roots_only=True)
 
 
 @pytest.fixture(scope="module")
@@ -75,13 +77,13 @@ def test_the_lighter_levels_are_solved_on_the_heaviest_ones_contact(coarse_cycle
     # 75 N·m is within a quarter of 250 and shares its contacts; 20 N·m is not, and is the
     # pair solved alone at its torque
     case, betas = coarse_cycle
-    sols = drive_torques(case, betas, [250.0, 75.0, 20.0], RingSolver(roots_only=True))
+    sols = drive_torques(case, betas, [250.0, 75.0, 20.0], RingSolver(None, ROOTS))
     assert [s.case.torque for s in sols[1]] == [75.0] * len(betas)
     for heavy, light, least in zip(*sols):
         assert light.detail.contact.grids is heavy.detail.contact.grids
         assert least.detail.contact.grids is not heavy.detail.contact.grids
     alone = drive(replace(case, torque=20.0), betas,
-                  RingSolver(sols[0][0].detail.model, roots_only=True))
+                  RingSolver(sols[0][0].detail.model, ROOTS))
     for a, b in zip(sols[2], alone):
         assert a.root_stress == pytest.approx(b.root_stress, rel=1e-12)
         assert a.rotation == pytest.approx(b.rotation, rel=1e-12)
@@ -96,9 +98,9 @@ class _Refusing(RingSolver):
 
 def test_a_torque_the_contact_does_not_hold_is_solved_as_alone(coarse_cycle):
     case, betas = coarse_cycle
-    sols = drive_torques(case, betas, [250.0, 75.0], _Refusing(roots_only=True))
+    sols = drive_torques(case, betas, [250.0, 75.0], _Refusing(None, ROOTS))
     alone = drive(replace(case, torque=75.0), betas,
-                  RingSolver(sols[0][0].detail.model, roots_only=True))
+                  RingSolver(sols[0][0].detail.model, ROOTS))
     for a, b in zip(sols[1], alone):
         assert a.root_stress == pytest.approx(b.root_stress, rel=1e-12)
         assert max(t.flank_p_MPa for t in a.teeth) == pytest.approx(

@@ -15,7 +15,7 @@ from fegear.geometry import PairParameters
 from fegear.running import spare_core
 from fegear.tolerance import Draw, grade_of
 from fegear.toothpair import SolveCase, prepare_job, solve_pair
-from fegear.toothpair.ring.solver import RingSolver
+from fegear.toothpair.ring.solver import RingSolver, SolverModes
 from fegear.toothpair.safety import DEFAULT_ALLOWABLES
 from fegear.toothpair.samples import solve_samples
 from fegear.toothpair.samples_report import samples_summary
@@ -23,11 +23,13 @@ from fegear.toothpair.samples_report import samples_summary
 PAIR = PairParameters(shift=0.016, rotation=0.002)
 CASE = SolveCase(PAIR, torque=200.0, quality="coarse")
 DRAW = Draw(grade_of(5, PAIR), 8, 0)
+#: a class's solver keeps each position's contact for its samples
+KEEP = SolverModes(keep_phases=True)
 
 
 @pytest.fixture(scope="module")
 def sampled(baseline_ring):
-    solver = RingSolver(baseline_ring, repeats=True)
+    solver = RingSolver(baseline_ring, KEEP)
     return solve_samples(CASE, (0.0,), DRAW, DEFAULT_ALLOWABLES, solver)
 
 
@@ -99,13 +101,13 @@ def test_a_revolution_sample_reads_as_the_same_pair_turned_alone(baseline_ring):
     draw = Draw(grade_of(5, p), 3, 1)
     betas = revolution_positions(0.0, 2, p.z1, p.z2)
     sampled = solve_samples(CASE, betas[:2], draw, DEFAULT_ALLOWABLES,
-                            RingSolver(baseline_ring, repeats=True), pitches=p.z1)
+                            RingSolver(baseline_ring, KEEP), pitches=p.z1)
     solved = [r for r in sampled.rows if r["status"] == "solved"]
     assert solved, "class 5 leaves this pair's backlash in two thirds of its pairs"
     for row in solved[:2]:
         order = phase_major(len(betas), p.z1)
         alone = drive(replace(CASE, deviations=draw.pair(row["sample"])),
-                      [betas[k] for k in order], RingSolver(baseline_ring, repeats=True))
+                      [betas[k] for k in order], RingSolver(baseline_ring, KEEP))
         for key in list(HEADLINE)[:4]:
             worst = max(alone, key=lambda s: s.headline()[key])
             # the roots as for one position; a peak pressure to 1 % (other grids' points)
@@ -116,7 +118,7 @@ def test_a_revolution_sample_reads_as_the_same_pair_turned_alone(baseline_ring):
                 assert at == pytest.approx(math.degrees(worst.case.beta)), key
     # the worst over a revolution is at least the worst over its first pitch
     first = solve_samples(CASE, betas[:2], draw, DEFAULT_ALLOWABLES,
-                          RingSolver(baseline_ring, repeats=True))
+                          RingSolver(baseline_ring, KEEP))
     for row, one in zip(sampled.rows, first.rows):
         assert row["status"] == one["status"]
         if row["status"] == "solved":
@@ -136,7 +138,7 @@ def test_a_dask_cluster_gives_the_local_rows():
 
     def solved(executor):
         return solve_samples(case, betas, draw, DEFAULT_ALLOWABLES,
-                             RingSolver(repeats=True), executor)
+                             RingSolver(None, KEEP), executor)
 
     with Forks(2) as forks:
         local = solved(forks)

@@ -23,18 +23,21 @@ class Rating(Analysis):
     def solve(self, run: Run) -> dict:
         from ..levels import rated, solve_levels
         from ..positions import drive_torques
-        from ..ring.solver import RingSolver
+        from ..ring.solver import RingSolver, SolverModes
 
         job, model = run.job, run.solver.model
         watch = Stopwatch()
 
+        # the model kept, the roots and the pressures read alone
+        roots = SolverModes(roots_only=True)
+
         def level(case, betas, torques, executor: Executor):
-            # the model kept, the roots and the pressures read alone; a revolution's kept
-            # phases hold solutions at one torque: there a solver of its own a level
+            # a revolution's kept phases hold solutions at one torque: there a solver of its
+            # own a level
             if not job.revolution:
-                return drive_torques(case, betas, torques,
-                                     RingSolver(model, roots_only=True), executor)
-            return [positions_of(job, RingSolver(model, repeats=True, roots_only=True))(
+                return drive_torques(case, betas, torques, RingSolver(model, roots), executor)
+            keeping = replace(roots, keep_phases=True)
+            return [positions_of(job, RingSolver(model, keeping))(
                 replace(case, torque=torque), betas, executor) for torque in torques]
 
         levels = solve_levels(job.case, job.betas, job.rating, level, run.executor,

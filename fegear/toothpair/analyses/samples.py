@@ -18,10 +18,10 @@ class Samples(Analysis):
 
     def drive(self, job, executor: Executor):
         from ..report import cycle_rows
-        from ..ring.solver import RingSolver
+        from ..ring.solver import RingSolver, SolverModes
         from ..samples import solve_samples
 
-        solver = RingSolver(repeats=True)
+        solver = RingSolver(None, SolverModes(keep_phases=True))
         # a revolution: each pair over gear 1's turn from the first pitch's places
         pitches = job.case.params.z1 if job.revolution else 1
         sampled = solve_samples(job.case, job.betas[:len(job.betas) // pitches], job.draw,

@@ -71,33 +71,59 @@ class RingAttempt:
     teeth: tuple[int, ...] = ()
 
 
+@dataclass(frozen=True)
+class SolverModes:
+    """What a :class:`RingSolver` gives beyond a position's contact and what it keeps between
+    positions; the defaults give a position whole. Variants by :func:`dataclasses.replace`.
+
+    ``submodels``: where the contact submodels are solved (:data:`SUBMODELS`,
+    :meth:`RingSolver.at_peaks`): "peaks" where a cycle's headline stresses peak, "all" at
+    every position, "none" nowhere; without one, the von Mises stress at a contact is the
+    template's surface estimate (:func:`~.stresses.ring_stresses`) and all else the same: for
+    a caller that reads the estimate or no von Mises stress (a class's samples).
+    ``contact_only``: no stresses at all, for a caller that reads only the contact (loads,
+    shares, pressures, flank and edge apart, rotations: the tip-relief search), which then
+    skips their projection and readout; the root and von Mises stresses NaN, the teeth's Hertz
+    values and half-plane references None.
+    ``roots_only``: the contact and the root stresses read without fields
+    (:func:`~.readout.brief_stresses`), as a sample's are, for a caller that reads those alone
+    (a load spectrum's levels); the von Mises stress and the tangent stiffness NaN. Not with
+    ``contact_only``.
+    ``keep_phases``: each position's contact kept for its phase and the positions whole gear-2
+    pitches on solved on it (:mod:`.phases`), for positions that repeat over whole pitches (a
+    revolution) or one position solved for many deviation sets (a class's samples:
+    :meth:`RingSolver.on_kept`): a contact solve each instead of a placement. The kept grids
+    reach as far beyond the exact pair's as the deviations there, or the sets to be solved on
+    them (:meth:`RingSolver.reach`), need; the kept solutions are at one torque, so no lighter
+    torque is solved on a position's contact (:meth:`RingSolver.again`)."""
+
+    submodels: str = "peaks"
+    contact_only: bool = False
+    roots_only: bool = False
+    keep_phases: bool = False
+
+    def __post_init__(self) -> None:
+        if self.submodels not in SUBMODELS:
+            raise ValueError(f"submodels must be one of {SUBMODELS}, not {self.submodels!r}")
+        if self.contact_only and self.roots_only:
+            raise ValueError("contact_only reads no stresses, roots_only the roots': not both")
+
+    @property
+    def solved_submodels(self) -> str:
+        """Where the submodels are solved in effect: ``submodels``, or "none" where no von
+        Mises stress is read (``contact_only``, ``roots_only``)."""
+        return "none" if self.contact_only or self.roots_only else self.submodels
+
+
 class RingSolver:
     """The ring model as a :class:`~fegear.toothpair.positions.PositionModel`: ``model``, a
-    ring model built before, is kept if it fits the case; ``submodels`` one of
-    :data:`SUBMODELS` (:meth:`at_peaks`). Without a submodel, a position's von Mises stress at
-    the contacts is the template's surface estimate (:func:`~.stresses.ring_stresses`).
-    ``contact_only``: no stresses at all, for a caller that reads only the contact (loads,
-    shares, pressures, flank and edge apart, rotations: the tip-relief search); the root and
-    von Mises stresses are NaN, the teeth's Hertz values and half-plane references None.
-    ``roots_only``: the contact and the root stresses read without fields (:func:`~.readout.
-    brief_stresses`), as a sample's are, for a caller that reads those alone (a spectrum's
-    levels); the von Mises stress and the tangent stiffness are NaN.
-    ``repeats``: the positions repeat over whole pitches (a revolution), or one position is
-    solved for many deviation sets (:meth:`on_kept`): each position's contact is kept for its
-    phase and the others solved on it (:mod:`.phases`), its grids reaching as far beyond the
-    exact pair's as the deviations of the position it is kept at, or the sets to be solved
-    on it (:meth:`reach`), need."""
+    ring model built before, is kept if it fits the case; ``modes``: what it gives and keeps
+    (:class:`SolverModes`)."""
 
-    def __init__(self, model: RingModel | None = None, submodels: str = "peaks",
-                 contact_only: bool = False, repeats: bool = False,
-                 roots_only: bool = False) -> None:
-        if submodels not in SUBMODELS:
-            raise ValueError(f"submodels must be one of {SUBMODELS}, not {submodels!r}")
+    def __init__(self, model: RingModel | None = None, modes: SolverModes = SolverModes()) -> None:
         self.model = model
-        self.submodels = "none" if contact_only or roots_only else submodels
-        self.contact_only = contact_only
-        self.roots_only = roots_only
-        self.phases = Phases() if repeats else None
+        self.modes = modes
+        self.phases = Phases() if modes.keep_phases else None
 
     def __getstate__(self) -> dict:
         """What another process receives: the settings and the kept grids' reach, without
@@ -117,7 +143,7 @@ class RingSolver:
                 progress.stage("model: both gears meshed and condensed at quality "
                                f"{case.quality}")
                 self.model = ring_model(case, profile)
-        if not self.contact_only:   # the stresses' projection, which every position shares
+        if not self.modes.contact_only:   # the stresses' projection, which every position shares
             with timed("assemble_factor"):
                 for side in self.model.gears:
                     projector(side.body)
@@ -286,24 +312,25 @@ class RingSolver:
         with timed("stresses"):
             touch = (math.nan if brief else
                      touch_rotation(model, contact, case.params.turn_of(first_um)))
-            tangent = (math.nan if brief or self.roots_only else
+            roots_only = self.modes.roots_only
+            tangent = (math.nan if brief or roots_only else
                        tangent_stiffness(model, contact, sol))
-            if self.contact_only:
+            if self.modes.contact_only:
                 stresses, cands = None, ()
-            elif brief or self.roots_only:
-                strains = None if self.roots_only else self.phases.strains(model, case.beta)
+            elif brief or roots_only:
+                strains = None if roots_only else self.phases.strains(model, case.beta)
                 stresses, cands = brief_stresses(model, contact, sol.pressure, strains), ()
             else:
                 stresses = ring_stresses(model, contact, sol.pressure,
-                                         self.submodels == "all", clamped)
+                                         self.modes.solved_submodels == "all", clamped)
                 cands = candidate_data(
                     case.params, model.shape, state, tuple(g.tooth for g in solved.grids),
                     case.beta)
             detail = RingDetail(model, case, replace(contact, A=None), sol, stresses)
             rigid = formed if formed is not None else solved_rigid_gap(detail)
             teeth = tooth_results(detail, state, cands, rigid,
-                                  references=not (brief or self.roots_only))
-        residuals = () if stresses is None or brief or self.roots_only else tuple(
+                                  references=not (brief or roots_only))
+        residuals = () if stresses is None or brief or roots_only else tuple(
             _residuals(model, contact, sol, stresses))
         return PairSolution(
             case=case, teeth=teeth,
@@ -319,9 +346,9 @@ class RingSolver:
 
     def at_peaks(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
         """``sols`` with their contact submodels where the cycle peaks
-        (:func:`~.peaks.with_peak_submodels`, with ``submodels`` "peaks"); the model is then
-        kept in the model cache if it is on (:func:`~.model.keep_cached`)."""
-        out = with_peak_submodels(sols) if self.submodels == "peaks" else sols
+        (:func:`~.peaks.with_peak_submodels`, with :attr:`SolverModes.submodels` "peaks"); the
+        model is then kept in the model cache if it is on (:func:`~.model.keep_cached`)."""
+        out = with_peak_submodels(sols) if self.modes.solved_submodels == "peaks" else sols
         if self.model is not None:
             keep_cached(self.model)
         return out

@@ -15,7 +15,7 @@ from fegear.toothpair.positions import drive
 from fegear.toothpair.ring.contact import rigid_gap
 from fegear.toothpair.ring.influence import ColumnRule, assemble_contact
 from fegear.toothpair.ring.phases import Phases, turned, turned_grid
-from fegear.toothpair.ring.solver import RingSolver
+from fegear.toothpair.ring.solver import RingSolver, SolverModes
 
 
 @pytest.fixture(scope="module")
@@ -74,10 +74,10 @@ AGREE = {"root_stress_gear1_MPa": (3e-4, 1e-3), "root_stress_gear2_MPa": (3e-4, 
          "flank_contact_pressure_MPa": (3e-4, 3e-2)}
 
 
-def _revolution(inputs, repeats):
+def _revolution(inputs, keep_phases):
     job = prepare_job({"shift": 0.016, "rotation": 0.002, "quality": "coarse",
                        "revolution": True, "positions": 2, "no-estimate": True, **inputs})
-    solver = RingSolver(repeats=repeats)
+    solver = RingSolver(None, SolverModes(keep_phases=keep_phases))
     return drive(job.case, job.betas, solver), solver
 
 

@@ -2,7 +2,8 @@
 the baseline pair's load shares, edge contacts and root stresses, a tip relief, the attempts
 placed again (candidate columns, probe grids), the mesh cycle's period, more teeth with grids,
 an interfering pair refused, clearances and extreme shapes, the sector model beside it, a
-contact-only solve and a cycle's second chain in a fork."""
+contact-only solve, a cycle's second chain in a fork, and the solver's modes refused where they
+contradict."""
 
 import math
 from dataclasses import replace
@@ -210,3 +211,15 @@ def test_a_cycle_s_second_chain_solved_in_a_fork_is_the_one_solved_here(baseline
         assert len(beside[k].detail.stresses.submodels) == len(here[k].detail.stresses.submodels)
     later = beside[-1]
     assert {f.name for f in later.detail.body_fields(around=1)} == {"gear1", "gear2"}
+
+
+def test_the_solver_modes_refuse_what_they_cannot_do():
+    from fegear.toothpair.ring import SolverModes
+
+    with pytest.raises(ValueError, match="submodels must be one of"):
+        SolverModes(submodels="some")
+    with pytest.raises(ValueError, match="not both"):
+        SolverModes(contact_only=True, roots_only=True)
+    # no von Mises stress read, no submodel solved for it
+    assert SolverModes(contact_only=True).solved_submodels == "none"
+    assert replace(SolverModes(roots_only=True), roots_only=False).solved_submodels == "peaks"
