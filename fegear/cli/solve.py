@@ -87,13 +87,29 @@ def _text(value) -> str:
 
 
 def run(a: argparse.Namespace) -> int:
+    from ..running import spare_core
+    from ..toothpair import prepare_pictures
+
+    # the processes that will draw the pictures, made now: they import matplotlib on the core
+    # that idles while this one reads the inputs and imports the solver's libraries
+    spare = None if a.scheduler else spare_core(
+        prepare_pictures if a.out is not None else None, ready=2)
+    try:
+        return _run(a, spare)
+    finally:
+        if spare is not None:
+            spare.close()
+
+
+def _run(a: argparse.Namespace, spare) -> int:
+    """:func:`run` on ``spare`` (None: on the cluster of ``--scheduler``)."""
     import shlex
     import shutil
     import sys
 
     from ..errors import FegearError
     from ..files import check_dir
-    from ..running import Cluster, connect, spare_core
+    from ..running import Cluster, connect
     from ..toothpair import run_job
     from .terminal import command_wall_s
 
@@ -110,7 +126,7 @@ def run(a: argparse.Namespace) -> int:
     out = None if a.out is None else check_dir(a.out)
     made = out is not None and not out.exists()
     try:
-        with Cluster(connect(a.scheduler)) if a.scheduler else spare_core() as executor:
+        with Cluster(connect(a.scheduler)) if spare is None else spare as executor:
             result = run_job(job, out, executor=executor,
                              report=shlex.join(["fegear", *a.argv]) if a.report else None)
     except BaseException:

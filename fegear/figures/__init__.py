@@ -7,37 +7,13 @@ off a drawn axes; neither imports matplotlib.
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 
 from ..files import write_atomic
-from ..running import Background, meanwhile
-
-#: matplotlib being imported beside the solve (:func:`import_soon`)
-_importing: Background | None = None
-
-
-def import_soon() -> None:
-    """Start importing matplotlib in a thread of this process (:func:`~fegear.running.meanwhile`)
-    so that :func:`pyplot` finds it imported: a solve that will draw starts it while gmsh
-    meshes and the factorisations run, which leave Python's lock to other threads."""
-    global _importing
-    if _importing is None and "matplotlib.pyplot" not in sys.modules:
-        _importing = meanwhile(_pyplot_now)
 
 
 def pyplot():
-    """``matplotlib.pyplot`` on the file-only Agg backend (once :func:`import_soon`'s import
-    has ended)."""
-    if _importing is not None:
-        try:
-            _importing.result()
-        except Exception:   # noqa: BLE001  imported again below, failing with its own message
-            pass
-    return _pyplot_now()
-
-
-def _pyplot_now():
+    """``matplotlib.pyplot`` on the file-only Agg backend."""
     import matplotlib
 
     matplotlib.use("Agg")

@@ -311,9 +311,14 @@ def _leader_cost(exits, anchor, placed, scene: _Scene) -> np.ndarray:
             cost += GRAZE * segment_near(exits, anchor, m[:2], m[2])
     for t in scene.texts:
         cost += GRAZE * segment_hits_box(exits, anchor, t)
-    if len(scene.samples):
+    # only the samples within SAMPLE_PX of the leaders' bounding box can be near one
+    ends = np.vstack([exits, anchor])
+    low, high = ends.min(axis=0) - SAMPLE_PX, ends.max(axis=0) + SAMPLE_PX
+    samples = scene.samples[((scene.samples >= low) & (scene.samples <= high)).all(axis=1)] \
+        if len(scene.samples) else scene.samples
+    if len(samples):
         d = anchor - exits                                  # (k, 2)
-        rel = scene.samples[None, :, :] - exits[:, None, :]
+        rel = samples[None, :, :] - exits[:, None, :]
         t = np.clip((rel * d[:, None, :]).sum(axis=2)
                     / np.maximum((d * d).sum(axis=1), 1e-12)[:, None], 0.0, 1.0)
         near = np.hypot(*(rel - t[..., None] * d[:, None, :]).transpose(2, 0, 1)) < SAMPLE_PX

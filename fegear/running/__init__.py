@@ -6,8 +6,9 @@ work to share, which submits tasks and reads their results without knowing where
 study runner and the design search run their cases and trials on a :class:`Supervisor` (a
 local pool or a Dask cluster, what is done when a worker dies, SIGTERM and SIGINT); a class's
 samples run on a :class:`Cluster` where one is given; a benchmark's run takes a process of its
-own (:func:`in_fresh_process`). :func:`meanwhile` runs work in a thread of this process while
-its main thread waits outside Python (an import the next stage needs, during the meshing).
+own (:func:`in_fresh_process`). A one-off command's executor can hold processes made ready
+at its start (:class:`Primed`: matplotlib imported while the command starts up) for the
+pictures it draws after its solve.
 
 >>> from fegear.running import SERIAL, Forks
 >>> task = SERIAL.submit(pow, 2, 10)     # serial: run when its result is read
@@ -24,8 +25,8 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "executors": ("Executor", "Task", "Serial", "SERIAL", "Forks", "Pool", "Cluster",
                   "spare_core",
                   "pool_or_serial", "in_fresh_process", "strict", "STRICT"),
-    "background": ("meanwhile", "Background"),
     "forks": ("WorkerFailed",),
+    "primed": ("Primed",),
     "pools": ("LocalPool", "local_pool", "init_worker", "connect"),
     "supervisor": ("Supervisor", "Outcome"),
 })

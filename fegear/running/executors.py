@@ -31,6 +31,7 @@ from collections.abc import Callable, Iterable
 from typing import Protocol
 
 from .forks import Forked, WorkerFailed, available
+from .primed import Primed
 
 log = logging.getLogger(__name__)
 
@@ -65,6 +66,10 @@ class Executor(Protocol):
     def close(self) -> None:
         """End what still runs for it."""
 
+    def ready(self) -> Primed | None:
+        """A process made ready when the executor was made (:func:`spare_core`'s
+        ``prepare``), taken for its one task: None where there is none (left)."""
+
 
 class _Later:
     """A task run here, when its result is first read."""
@@ -96,6 +101,9 @@ class Serial:
 
     def close(self) -> None:
         """Nothing to end: every task ran in this process when it was asked for."""
+
+    def ready(self) -> None:
+        return None
 
     def __enter__(self) -> Serial:
         return self
@@ -154,13 +162,18 @@ class Forks:
     """Tasks in forked copies of this process (where it can fork: :func:`.forks.available`),
     ``workers - 1`` at once in parallel with it; a task submitted while they are all busy runs
     here when its result is read. A forked task sees everything this process had built when it
-    was submitted, and what it builds is lost with it: only its return value comes back."""
+    was submitted, and what it builds is lost with it: only its return value comes back.
+    With ``prepare``, ``ready`` copies are forked at once and run it (:meth:`ready` hands them
+    out, :meth:`close` ends them, used or not)."""
 
     shares_memory = True
 
-    def __init__(self, workers: int = 2) -> None:
+    def __init__(self, workers: int = 2, prepare: Callable[[], object] | None = None,
+                 ready: int = 0) -> None:
         self.workers = workers
         self._running: list[_InFork] = []
+        self._primed = [Primed(prepare) for _ in range(ready if prepare and available() else 0)]
+        self._ready = list(self._primed)
 
     def submit(self, fn: Callable, /, *args) -> Task:
         if not available() or len(self._running) >= self.workers - 1:
@@ -184,10 +197,17 @@ class Forks:
         if task in self._running:
             self._running.remove(task)
 
+    def ready(self) -> Primed | None:
+        return self._ready.pop(0) if self._ready else None
+
     def close(self) -> None:
         for task in list(self._running):
             task.stop()
         self._running.clear()
+        for primed in self._primed:   # taken or not: one taken and not used still waits
+            primed.close()
+        self._primed.clear()
+        self._ready.clear()
 
     def __enter__(self) -> Forks:
         return self
@@ -196,11 +216,13 @@ class Forks:
         self.close()
 
 
-def spare_core() -> Executor:
+def spare_core(prepare: Callable[[], object] | None = None, ready: int = 0) -> Executor:
     """The executor of a one-off command: a forked copy of the process on a second core where
-    the machine has one and the process can fork, else :data:`SERIAL`."""
+    the machine has one and the process can fork, else :data:`SERIAL`. With ``prepare``,
+    ``ready`` copies are forked at once and run it (:class:`~.primed.Primed`: an import done
+    on the idle core while the command starts up, for work it hands them after its solve)."""
     if (os.cpu_count() or 1) >= 2 and available():
-        return Forks(2)
+        return Forks(2, prepare, ready)
     return SERIAL
 
 
@@ -249,6 +271,9 @@ class Pool:
         wanted)."""
         self._pool.stop()
 
+    def ready(self) -> None:
+        return None
+
     def __enter__(self) -> Pool:
         return self
 
@@ -296,6 +321,9 @@ class Cluster:
     def close(self) -> None:
         """Close the client (the cluster itself is its owner's)."""
         self.client.close()
+
+    def ready(self) -> None:
+        return None
 
     def __enter__(self) -> Cluster:
         return self

@@ -72,6 +72,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "report": ("pair_summary", "pair_table", "cycle_rows", "cycle_summary", "cycle_table",
                "factor_cell", "stiffness_cell"),
     "output": ("write_pair_outputs", "write_cycle_outputs", "write_mesh_stiffness"),
+    "plot": ("prepare_pictures",),
     "stiffness": ("MeshStiffness", "read_mesh_stiffness", "mesh_stiffness_of_cycle"),
     "analyses": ("ANALYSES", "Analysis", "Verdict", "asked", "shown"),
     "case_file": ("FILE_INPUTS", "CaseFileError", "case_record", "case_toml", "is_file",

@@ -8,14 +8,13 @@ the same checks, the same JSON summary.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from .. import progress
 from ..errors import ParameterError
 from ..fe import Allowables
-from ..figures import import_soon
 from ..geometry import admissible_pair, deviations_of
 from ..running import SERIAL, Executor
 from ..timing import Stopwatch
@@ -207,7 +206,7 @@ def run_job(job: Job, out: Path | None, fields: bool = True, pictures: bool = Tr
     (:mod:`.html_report`). ``out`` is made only after the solve, so a solve that fails
     leaves nothing behind."""
     progress.plan(2 + len(job.betas) + job.estimate + (out is not None))
-    solved = solve_job(job, executor, import_soon if out is not None and pictures else None)
+    solved = solve_job(job, executor)
     files = {} if out is None else write_job(solved, out, fields, pictures, executor)
     if report is not None and out is not None:
         from .html_report import write_report
@@ -216,8 +215,7 @@ def run_job(job: Job, out: Path | None, fields: bool = True, pictures: bool = Tr
     return JobResult(solved.summary, files, solved.rows, solved.solve_s)
 
 
-def solve_job(job: Job, executor: Executor = SERIAL,
-              prepare: Callable[[], None] | None = None) -> Solved:
+def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     """Solve ``job`` at its positions, with its error estimate, then each analysis it asks
     for (:mod:`.analyses`); no file written. The job hands ``executor`` the work that can run
     in parallel: the estimate's second solve of one position (submitted before the first
@@ -225,8 +223,7 @@ def solve_job(job: Job, executor: Executor = SERIAL,
     meanwhile, the libraries imported once for both), and a cycle's chains of positions
     (:func:`~.positions.drive`), and a cycle's estimate, at its worst position (the largest
     gear-1 root stress, which the submodels do not change), while this process solves the
-    submodels where the cycle peaks. ``prepare`` is called once that first fork is made: what
-    this process starts beside its solve for the stage after it (the pictures' import)."""
+    submodels where the cycle peaks."""
     from ..fe import import_libraries
     from ..geometry import gear1_profile
     from .estimate import second_headline
@@ -237,8 +234,6 @@ def solve_job(job: Job, executor: Executor = SERIAL,
     if job.estimate and len(job.betas) == 1:
         import_libraries()
         second = executor.submit(second_headline, job.case)
-    if prepare is not None:
-        prepare()
     progress.stage("gear 1's profile")
     gear1_profile(job.case.params)
     analyses = asked(job)

@@ -7,18 +7,19 @@ into that frame; invariants (von Mises, σ1, σ2) need no rotation.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 from xml.sax.saxutils import quoteattr
 
 from ..fe import write_vtu
-from ..figures import pyplot, write_png
+from ..figures import write_png
 from ..files import write_atomic, write_csv, write_json
 from ..running import SERIAL, Executor
 from .case import HEADLINE, PairSolution
 from .cycle_plot import cycle_png
-from .plot import chart_pngs, von_mises_png
+from .plot import PicturedDetail, chart_pngs, for_pictures, von_mises_bytes
 
 if TYPE_CHECKING:   # what an analysis hands its writer (the analyses call this module)
     from .analyses import Writing
@@ -161,23 +162,28 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
     fixed frame; ``fields``), von_mises.png, flank_pressure.png and root_stress.png
     (``pictures``) and summary.json in ``out``.
 
-    The pictures that need no fields (:func:`~.plot.chart_pngs`) are handed to ``executor``
-    where it shares this process's memory (a one-off command's second core), to be drawn
-    while this process forms the fields, writes the VTUs and draws von Mises; they come back
-    as bytes, and every file is written here, atomically."""
+    Where ``executor`` holds processes made ready to draw (a one-off command's:
+    :func:`~fegear.running.spare_core` with :func:`~.plot.prepare_pictures`, which imported
+    matplotlib while the command started up), the charts go to one at once and von Mises,
+    from the part of the fields it shows (:func:`~.plot.for_pictures`), to the other as soon
+    as the fields are formed, while this process writes the VTUs; else every picture is
+    drawn here. They come back as bytes, the same either way, and every file is written
+    here, atomically."""
     files = {}
-    charts = None
-    if pictures:
-        pyplot()   # imported before the copy is forked: it draws without importing it again
-        where = executor if executor.shares_memory else SERIAL
-        charts = where.submit(chart_pngs, sol, summary)
+    painters = [executor.ready(), executor.ready()] if pictures else []
+    charts = _drawn(painters[0] if painters else None, chart_pngs, sol, summary) \
+        if pictures else None
     bodies = sol.detail.body_fields() if fields or pictures else ()
     peaks = sol.detail.peak_fields() if fields or pictures else ()
+    if pictures:
+        shown = for_pictures(sol, bodies, peaks)
+        von_mises = _drawn(painters[1], von_mises_bytes, shown.sol, summary, shown.bodies,
+                           shown.peaks, shown.spots)
     if fields:
         for b in (*bodies, *peaks):
             files[b.name] = write_vtu(out / f"{b.name}.vtu", b.points, b.cells, b.data)
     if pictures:
-        files["png"] = von_mises_png(out / "von_mises.png", sol, summary, bodies, peaks)
+        files["png"] = write_png(out / "von_mises.png", von_mises.result())
         drawn = charts.result()
         for key, name in (("flank_png", "flank_pressure.png"), ("root_png", "root_stress.png")):
             if name in drawn:
@@ -186,6 +192,17 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
                                     **{k: str(v) for k, v in files.items()}}}
     files["summary"] = write_json(out / "summary.json", summary)
     return files
+
+
+def _drawn(painter, fn, sol: PairSolution, *args):
+    """``fn(sol, *args)`` handed to ``painter`` (a :class:`~fegear.running.Primed`) with the
+    solution made light to send (:class:`~.plot.PicturedDetail`), or here where there is
+    none; a task either way."""
+    if painter is None:
+        return SERIAL.submit(fn, sol, *args)
+    light = sol if isinstance(sol.detail, PicturedDetail) else \
+        dataclasses.replace(sol, detail=PicturedDetail(sol.detail))
+    return painter.submit(fn, light, *args)
 
 
 def write_mesh_stiffness(out: Path, rows: list[dict], case) -> dict[str, Path]:

@@ -313,17 +313,26 @@ def test_the_zoom_window_on_pair_png_cuts_no_tooth_number(baseline, plt):
             or legend.get_window_extent(renderer).x0 > overview.get_window_extent(renderer).x1)
 
 
-class Handed:
-    """An executor that keeps the name of each function it is handed and runs it here when
-    its result is read (as :data:`~fegear.running.SERIAL` does); ``stopped``: reading a
-    result raises KeyboardInterrupt instead, as a run stopped while its copy draws."""
+class Painters:
+    """An executor whose processes made ready to draw keep the name of the function each is
+    handed and run it here when its result is read, with what it was sent pickled and loaded
+    again (as a :class:`~fegear.running.Primed` copy gets it); ``stopped``: reading a result
+    raises KeyboardInterrupt instead, as a run stopped while its copies draw."""
 
     workers = 2
+    shares_memory = True
 
-    def __init__(self, shares_memory: bool = True, stopped: bool = False) -> None:
-        self.shares_memory, self.stopped, self.handed = shares_memory, stopped, []
+    def __init__(self, stopped: bool = False) -> None:
+        self.stopped, self.handed, self._left = stopped, [], 2
+
+    def ready(self):
+        if not self._left:
+            return None
+        self._left -= 1
+        return self
 
     def submit(self, fn, /, *args):
+        import pickle
         from types import SimpleNamespace
 
         from fegear.running import SERIAL
@@ -333,7 +342,7 @@ class Handed:
             def stop():
                 raise KeyboardInterrupt
             return SimpleNamespace(result=stop, done=lambda: False)
-        return SERIAL.submit(fn, *args)
+        return SERIAL.submit(fn, *pickle.loads(pickle.dumps(args)))
 
     def close(self) -> None:
         """Nothing runs elsewhere."""
@@ -355,37 +364,49 @@ def written_here(solved, summary, tmp_path_factory):
     return write_pair_outputs(solved, out, summary), _contents(out)
 
 
-def test_the_pictures_without_fields_are_handed_to_the_executor(solved, summary, tmp_path,
-                                                                 written_here):
-    """flank_pressure.png and root_stress.png are drawn on the executor (a one-off command's
-    second core) while the fields and von Mises are formed here; the files are the same,
-    byte for byte. An executor that shares no memory with this process (a Dask cluster) is
-    handed none: the solution would travel by pickle."""
+def test_the_pictures_are_handed_to_the_processes_made_ready_to_draw(solved, summary, tmp_path,
+                                                                   written_here):
+    """The charts go to one process made ready to draw, von Mises (from the part of the
+    fields it shows) to the other, each by pickle; the files are the same, byte for byte, as
+    those drawn here from the whole fields. An executor without such processes (SERIAL, a
+    Dask cluster) has every picture drawn here."""
     from fegear.toothpair import write_pair_outputs
 
     files, contents = written_here
     assert {"png", "flank_png", "root_png", "summary"} <= set(files)
-    for shares, handed in ((True, ["chart_pngs"]), (False, [])):
-        executor = Handed(shares_memory=shares)
-        out = tmp_path / str(shares)
-        out.mkdir()
-        got = write_pair_outputs(solved, out, summary, executor=executor)
-        assert executor.handed == handed
-        assert [(k, v.name) for k, v in got.items()] == [(k, v.name) for k, v in files.items()]
-        assert _contents(out) == contents
+    executor = Painters()
+    got = write_pair_outputs(solved, tmp_path, summary, executor=executor)
+    assert executor.handed == ["chart_pngs", "von_mises_bytes"]
+    assert [(k, v.name) for k, v in got.items()] == [(k, v.name) for k, v in files.items()]
+    assert _contents(tmp_path) == contents
+
+
+def test_von_mises_from_the_part_it_shows_is_the_picture_of_the_whole_fields(solved, summary):
+    """The cells sent to draw von Mises are a few of the whole bodies', and the picture of
+    them is the very picture of the whole fields (what `fegear solve --out` drew before)."""
+    from fegear.figures import png_bytes
+    from fegear.toothpair.plot import for_pictures, von_mises_bytes, von_mises_figure
+
+    bodies, peaks = solved.detail.body_fields(), solved.detail.peak_fields()
+    shown = for_pictures(solved, bodies, peaks)
+    assert sum(len(b.cells) for b in shown.bodies) < 0.5 * sum(len(b.cells) for b in bodies)
+    whole = png_bytes(von_mises_figure(solved, summary, bodies, peaks), 100)
+    assert von_mises_bytes(shown.sol, summary, shown.bodies, shown.peaks, shown.spots) == whole
 
 
 def test_drawn_in_a_forked_copy_the_files_are_the_same_byte_for_byte(solved, summary, tmp_path,
                                                                        written_here):
-    """As `fegear solve --out` writes them: the charts drawn in a forked copy of this process
-    (the spare core's executor) come back as the very PNG files drawn here alone, and the
-    VTUs and summary.json are the same too."""
+    """As `fegear solve --out` writes them: the pictures drawn in the copies of this process
+    that the spare core's executor made ready come back as the very PNG files drawn here
+    alone, and the VTUs and summary.json are the same too."""
     from fegear.running import Forks
     from fegear.toothpair import write_pair_outputs
+    from fegear.toothpair.plot import prepare_pictures
 
     _, contents = written_here
-    with Forks(2) as forks:
+    with Forks(2, prepare_pictures, ready=2) as forks:
         write_pair_outputs(solved, tmp_path, summary, executor=forks)
+        assert forks.ready() is None   # both were used
     assert _contents(tmp_path) == contents
     for name in ("von_mises.png", "flank_pressure.png", "root_stress.png"):
         assert contents[name].startswith(PNG) and contents[name].endswith(b"IEND\xaeB`\x82")
@@ -393,16 +414,15 @@ def test_drawn_in_a_forked_copy_the_files_are_the_same_byte_for_byte(solved, sum
 
 def test_a_run_stopped_while_the_charts_are_drawn_leaves_no_file_half_written(solved, summary,
                                                                               tmp_path):
-    """What is there when a run stops while its copy draws is whole: every VTU and von
-    Mises complete, no temporary file, and neither the charts nor summary.json (written
-    last, it lists the files) half-written or there at all."""
+    """What is there when a run stops while its copies draw is whole: every VTU complete,
+    no temporary file, and neither a picture nor summary.json (written last, it lists the
+    files) half-written or there at all."""
     from fegear.toothpair import write_pair_outputs
 
     with pytest.raises(KeyboardInterrupt):
-        write_pair_outputs(solved, tmp_path, summary, executor=Handed(stopped=True))
+        write_pair_outputs(solved, tmp_path, summary, executor=Painters(stopped=True))
     names = sorted(p.name for p in tmp_path.iterdir())
-    assert names == sorted(["gear1.vtu", "gear2.vtu", "gear1_contact.vtu", "gear2_contact.vtu",
-                            "von_mises.png"])
+    assert names == sorted(["gear1.vtu", "gear2.vtu", "gear1_contact.vtu", "gear2_contact.vtu"])
     for name in names:
         data = (tmp_path / name).read_bytes()
         assert data.endswith(b"</VTKFile>\n" if name.endswith(".vtu") else b"IEND\xaeB`\x82")

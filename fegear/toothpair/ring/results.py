@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ...contact import gap_contact, surface_matrix
-from ...fe import contact_modulus, recover, vtu_fields
+from ...fe import contact_modulus, recover_many, vtu_fields
 from ...planar import rotate
 from ..case import BodyField, ContactZone, FlankPressure, SolveCase, ToothResult
 from ..edge import flank_and_edge, flank_centre
@@ -214,9 +214,9 @@ class RingDetail:
             m = side.body.mesh
             n = m.doflocs.shape[1]
             points, cells, parts = [], [], []
-            for j, k in enumerate(sectors):
+            recovered = recover_many(side.body, np.column_stack([fields[k] for k in sectors]))
+            for j, (k, s) in enumerate(zip(sectors, recovered)):
                 u = fields[k]
-                s = recover(side.body, u)
                 data = vtu_fields(u, s, {"contact_pressure": pressure.get(k, np.zeros(n))})
                 angle = k * side.pitch + turn
                 data["displacement"][:, :2] = rotate(data["displacement"][:, :2], angle)
