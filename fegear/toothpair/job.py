@@ -262,13 +262,13 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
 def _drive(job: Job, analyses, executor: Executor):
     """The positions solved: by the analysis that drives them (a class's samples), else by
     the one driver; ``(solver, solutions, what the driving analysis kept)``."""
-    from .ring.solver import RingSolver
+    from .ring.solver import RingSolver, SolverModes
 
     for analysis in analyses:
         driven = analysis.drive(job, executor)
         if driven is not None:
             return driven
-    solver = RingSolver(repeats=job.revolution)
+    solver = RingSolver(None, SolverModes(keep_phases=job.revolution))
     return solver, positions_of(job, solver)(job.case, job.betas, executor), None
 
 
