@@ -15,6 +15,11 @@ settled attempt's stresses are recovered. A model supplies the pieces in
 :class:`PositionModel`; the loop, the first guess, the stage timings and the progress live
 here.
 
+The loop is a chain of positions (:func:`chain`), each from the one before; what is done at a
+position is the caller's :class:`AtPosition`: here a position placed and settled
+(:func:`drive`) or several torques on one contact (:func:`drive_torques`), and a tolerance
+class's samples solved on the exact pair's contact kept for them (:mod:`.samples`).
+
 A cycle of :data:`CHAINED` positions or more is solved as two chains, its halves, each from a
 first guess of its own, handed to the executor the caller gives (``executor``: one chain here
 and one in parallel where it has a worker to spare, else one after the other here). The numbers
@@ -108,6 +113,16 @@ class SharesContacts(PositionModel, Protocol):
         that attempt's contact, stresses and all; None where that contact does not hold it."""
 
 
+class AtPosition(Protocol):
+    """What a chain does at each position (:func:`chain`): how the position's contact is found
+    and kept, and what of it the chain gives."""
+
+    def __call__(self, k: int, case: SolveCase, state, near: tuple | None) -> tuple:
+        """Position ``k`` of the chain's states: ``case`` at its rolling angle, its clearance
+        ``state``; ``near``: what the position before gave (None at a chain's first), its
+        first entry the solution to start from."""
+
+
 def _unsettled(case: SolveCase, trial: Trial, err: Exception) -> str:
     """Why the contact did not settle, with the input that changes it: how far the load had
     turned gear 1 past its first touch at the attempt before, against what the teeth's
@@ -149,7 +164,7 @@ def drive(case: SolveCase, betas, solver: PositionModel,
     first's with the one-off ones (the clearance states, the model's build). BLAS runs on one
     thread meanwhile (:data:`~fegear.fe.BLAS_THREADS`); the process's allocator keeps the
     memory a solve frees (:func:`~fegear.fe.keep_freed_memory`)."""
-    def one(at: SolveCase, state, near: tuple | None) -> tuple[PairSolution]:
+    def one(k: int, at: SolveCase, state, near: tuple | None) -> tuple[PairSolution]:
         return (_clocked(solve_position, at, state, solver, near and near[0]),)
 
     return tuple(sols[0] for sols in _chains(case, betas, solver, profile, executor, one))
@@ -168,7 +183,7 @@ def drive_torques(case: SolveCase, betas, torques, solver: SharesContacts,
     to twice as coarse (:data:`SHARED`)."""
     groups = families(torques)
 
-    def each(at: SolveCase, state, near: tuple | None) -> tuple[PairSolution, ...]:
+    def each(k: int, at: SolveCase, state, near: tuple | None) -> tuple[PairSolution, ...]:
         out: list = [None] * len(torques)
         for family in groups:
             head = replace(at, torque=torques[family[0]])
@@ -198,19 +213,19 @@ def families(torques) -> list[list[int]]:
 
 
 def _chains(case: SolveCase, betas, solver: PositionModel, profile: Gear1Profile | None,
-            executor: Executor, position) -> list[tuple[PairSolution, ...]]:
-    """The driver's loop (:func:`drive`), each position's solutions from ``position(case at
-    the position, its clearance state, the solutions of the position before or None)``."""
+            executor: Executor, position: AtPosition) -> list[tuple[PairSolution, ...]]:
+    """The driver's loop (:func:`drive`): a chain or two (:func:`chain`), each position's
+    solutions what ``position`` gives there."""
     keep_freed_memory()
     with blas_threads(), clocked() as once:
         profile = profile if profile is not None else gear1_profile(case.params)
-        states = _Clearances(case, profile, betas, executor)
+        states = Clearances(case, profile, betas, executor)
         solver.build(case, profile, states.get)
         states = states.get()
         cut = len(states) // 2 if len(states) >= CHAINED else len(states)
         spans = [range(cut), range(cut, len(states))] if cut < len(states) else [range(cut)]
-        chains = executor.map(lambda span: _chain(case, states, span, position), spans)
-    sols = [sol for chain in chains for sol in chain]
+        chains = executor.map(lambda span: chain(case, states, span, position), spans)
+    sols = [sol for done in chains for sol in done]
     first = sols[0][0]
     sols[0] = (replace(first, timings_s={**once.stages, **first.timings_s}), *sols[0][1:])
     return sols
@@ -222,18 +237,19 @@ _FOUND: OrderedDict = OrderedDict()
 KEEP_FOUND = 4
 
 
-class _Clearances:
+class Clearances:
     """The clearance states of every position ((β, state) pairs, the + torque's side, one
     search), a long cycle's found on the executor while the model is built, each tooth's moved
     by the case's deviations; a pair that interferes before any load, or that its deviations
-    close, is refused when they are first read."""
+    close, is refused when they are first read (:meth:`get`). ``find``: the pair's clearance
+    search (:meth:`~fegear.geometry.ToothContact.states`), for other angles."""
 
-    def __init__(self, case: SolveCase, profile: Gear1Profile, betas, executor: Executor
-                 ) -> None:
+    def __init__(self, case: SolveCase, profile: Gear1Profile, betas,
+                 executor: Executor = SERIAL) -> None:
         self._betas, self._case = tuple(betas), case
-        self._find = ToothContact(case.params, profile).states
+        self.find = ToothContact(case.params, profile).states
         self._key = (case.params, self._betas)
-        self._task = executor.submit(self._find, self._betas, None, True, (+1,)) \
+        self._task = executor.submit(self.find, self._betas, None, True, (+1,)) \
             if len(self._betas) >= CHAINED and self._key not in _FOUND else None
         self._states: list | None = None
 
@@ -243,7 +259,7 @@ class _Clearances:
                 found = _FOUND.pop(self._key, None)
                 if found is None:
                     found = self._task.result() if self._task is not None else \
-                        self._find(self._betas, directions=(+1,))
+                        self.find(self._betas, directions=(+1,))
                 _FOUND[self._key] = found
                 while len(_FOUND) > KEEP_FOUND:
                     _FOUND.popitem(last=False)
@@ -265,7 +281,7 @@ class _Clearances:
         if len({pitch_phase(b, params.z2)[1] for b in self._betas}) < params.z1:
             turn = revolution_positions(self._betas[0], TURN_CHECK, params.z1, params.z2)
             self._refuse_closed(list(zip(turn, moved_clearances(
-                dev, params, self._find(turn, directions=(+1,))))))
+                dev, params, self.find(turn, directions=(+1,))))))
         return states
 
     def _refuse_closed(self, states) -> None:
@@ -275,20 +291,22 @@ class _Clearances:
         behind = [(b, st) for b, st in states if st.closest(+1).plus_um < 0]
         if behind:
             dev, params = self._case.deviations, self._case.params
-            coast = moved_clearances(dev, params, self._find([b for b, _ in behind],
+            coast = moved_clearances(dev, params, self.find([b for b, _ in behind],
                                                              directions=(-1,)), -1)
             refuse_closed([(b, st, back) for (b, st), back in zip(behind, coast)], dev)
 
 
-def _chain(case: SolveCase, states, span: range, position) -> list[tuple[PairSolution, ...]]:
-    """The positions ``span`` of ``states`` ((β, clearance state) pairs), each from the one
-    before, the first from the first guess (``position``: :func:`_chains`)."""
-    sols: list[tuple[PairSolution, ...]] = []
+def chain(case: SolveCase, states, span, position: AtPosition, label: str = "contact"
+          ) -> list[tuple]:
+    """What ``position`` gives at each position ``span`` (indices, in order) of ``states``
+    ((β, clearance state) pairs), each from what the one before gave, the first from its own
+    first guess; ``label``: what the progress names at each."""
+    sols: list[tuple] = []
     for k in span:
         beta, state = states[k]
-        progress.stage(f"contact at β {math.degrees(beta):.3g}°"
+        progress.stage(f"{label} at β {math.degrees(beta):.3g}°"
                        + (f" ({k + 1} of {len(states)})" if len(states) > 1 else ""))
-        sols.append(position(replace(case, beta=beta), state, sols[-1] if sols else None))
+        sols.append(position(k, replace(case, beta=beta), state, sols[-1] if sols else None))
     return sols
 
 

@@ -14,38 +14,47 @@ deviated solve checks it) cannot be turned: it is counted as jammed, with where,
 stresses. A sample whose contact does not settle is counted as failed, with why: no sample
 leaves the tables unseen.
 
-The positions are the parallel work: two chains, each every other position with every sample
-(one position: half the samples each), on the executor the caller gives.
+The positions are the parallel work: two chains of the driver's (:func:`~.positions.chain`),
+each every other position with every sample (one position: half the samples each), on the
+executor the caller gives; what a chain does at a position is this module's
+(:class:`~.positions.AtPosition`: the exact pair's contact found, then kept for the samples).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from itertools import groupby
 
 import numpy as np
 
-from .. import progress
 from ..errors import FegearError
 from ..fe import Allowables, blas_threads, keep_freed_memory
-from ..geometry import (
-    ToothContact,
-    closing_points,
-    gear1_profile,
-    least_clearances,
-    moved_clearances,
-)
+from ..geometry import closing_points, gear1_profile, least_clearances, moved_clearances
 from ..running import SERIAL, Executor
 from ..tolerance import Draw, tooth_positions
 from .case import HEADLINE, PairSolution, SolveCase
-from .positions import TURN_CHECK, solve_position
+from .positions import TURN_CHECK, Clearances, chain, solve_position
 from .revolution import revolution_positions
 from .ring.phases import Phases
 from .ring.solver import RingSolver, SolverModes
 from .safety import safety_factors
-from .teeth import choose_teeth, closure, refuse_interference
+from .teeth import choose_teeth, closure
+
+
+@dataclass(frozen=True)
+class SampleCase:
+    """A tolerance class's pairs to solve: the exact pair's ``case`` at the rolling angles
+    ``betas`` (rad) and ``draw``'s samples, their safety factors against ``allowables``;
+    ``pitches`` > 1: each sample at ``betas`` and at each of that many gear-2 pitches on (a
+    revolution: z1), its worst over all of them."""
+
+    case: SolveCase
+    betas: Sequence[float]
+    draw: Draw
+    allowables: Allowables
+    pitches: int = 1
 
 
 @dataclass(frozen=True)
@@ -71,70 +80,36 @@ class Sampled:
         return sum(r["status"] == "jammed" for r in self.rows) / len(self.rows)
 
 
-def solve_samples(case: SolveCase, betas, draw: Draw, allowables: Allowables,
-                  solver: RingSolver, executor: Executor = SERIAL,
-                  read: Callable[[PairSolution], object] | None = None, pitches: int = 1
-                  ) -> Sampled:
-    """The exact pair and ``draw``'s samples solved at the rolling angles ``betas`` (rad) with
-    ``solver``, a ring solver that keeps a contact a position (``keep_phases``), its grids set
-    here to reach as far as the drawn deviations move a tooth (module docstring); ``read``:
-    what to keep of each sample's solution at each position beside its headlines (a relief
-    search's tip-round loads, say). ``pitches`` > 1: each sample at ``betas`` and at each of
-    that many gear-2 pitches on (a revolution: z1), its worst over all of them."""
+def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = SERIAL,
+                  read: Callable[[PairSolution], object] | None = None) -> Sampled:
+    """The exact pair and the class's samples (``samples``) solved with ``solver``, a ring
+    solver that keeps a contact a position (:attr:`~.ring.solver.SolverModes.keep_phases`),
+    its grids set here to reach as far as the drawn deviations move a tooth (module
+    docstring), through the driver's chains (:func:`~.positions.chain`) on ``executor``;
+    ``read``: what to keep of each sample's solution at each position beside its headlines (a
+    relief search's tip-round loads, say)."""
     keep_freed_memory()
-    p = case.params
+    case, count = samples.case, samples.draw.count
     with blas_threads():
-        profile = gear1_profile(p)
-        pairs = [draw.pair(k) for k in range(draw.count)]   # drawn once, here
-        reach = max(d.widest_um() for d in pairs)          # … and how far they move a tooth
-        states = _States(case, profile, tuple(betas), reach, pitches)
+        profile = gear1_profile(case.params)
+        pairs = [samples.draw.pair(k) for k in range(count)]   # drawn once, here
+        reach = max(d.widest_um() for d in pairs)              # … and how far they move a tooth
+        states = _States(case, profile, tuple(samples.betas), reach, samples.pitches)
         solver.reach(reach)
         parts = max(2, executor.workers)
         jams = executor.map(lambda ks: [_jammed(states, pairs[k]) for k in ks],
-                            _parts(range(draw.count), parts))
+                            _parts(range(count), parts))
         jammed = [j for part in jams for j in part]
         solver.build(case, profile, lambda: states.loaded)
-        free = [k for k in range(draw.count) if jammed[k] is None]
-        if len(betas) > 1:
-            # every parts-th position a chain: a cycle's positions where more teeth carry
-            # (more points in contact, dearer solves) come in a run
-            jobs = _every(free, len(betas), pitches)
-            work = [(range(k, len(betas), parts), jobs) for k in range(min(parts, len(betas)))]
-        else:   # one position: a share of the samples each
-            work = [(range(1), _every(part, 1, pitches)) for part in _parts(free, parts)]
-        # a chain's exact solutions refer to the model it solved them on: they come back
-        # from a process that shares this one's; elsewhere they are solved here meanwhile
-        if executor.shares_memory:
-            nominal = {}
-            chains = executor.map(lambda job: _chain(case, states, pairs, solver, *job, read),
-                                  work)
-        else:
-            tasks = [executor.submit(_chain, case, states, pairs, solver, span, jobs, read,
-                                     False) for span, jobs in work]
-            nominal = _exact(case, states, solver)
-            chains = [task.result() for task in tasks]
-    found: dict[int, list] = {}
-    readings: dict[int, list] = {}
-    for done_nominal, done, took in chains:
-        nominal.update(done_nominal)
-        for k, got in done.items():
-            found.setdefault(k, []).extend(got)
-        for k, got in took.items():
-            readings.setdefault(k, []).extend(got)
-    rows = []
-    for k in range(draw.count):
-        brief = _brief(pairs[k], (p.z1, p.z2))
-        if jammed[k] is not None:
-            rows.append({"sample": k, **brief, "status": "jammed", "why": jammed[k]})
-            continue
-        got = found.get(k, [])
-        failed = [why for _, why in got if isinstance(why, str)]
-        if failed:
-            rows.append({"sample": k, **brief, "status": "failed", "why": failed[0]})
-            continue
-        rows.append({"sample": k, **brief, "status": "solved", "why": "",
-                     **_worst([(beta, head) for beta, head in got], allowables)})
-    return Sampled(tuple(nominal[i] for i in range(len(betas))), tuple(rows), readings)
+        free = [k for k in range(count) if jammed[k] is None]
+        work = [(span, _OnKept(states, pairs, solver, jobs, read))
+                for span, jobs in _work(free, len(samples.betas), samples.pitches, parts)]
+        nominal, chains = _run_chains(case, states, solver, work, executor)
+    found, readings = _gathered(chains)
+    z = (case.params.z1, case.params.z2)
+    rows = tuple(_row(k, pairs[k], jammed[k], found.get(k, []), samples.allowables, z)
+                 for k in range(count))
+    return Sampled(tuple(nominal[i] for i in range(len(samples.betas))), rows, readings)
 
 
 def class_samples(job, allowables: Allowables, read=None, contact_only: bool = False,
@@ -144,7 +119,8 @@ def class_samples(job, allowables: Allowables, read=None, contact_only: bool = F
     (``contact_only``: a relief search's trial)."""
     solver = RingSolver(None, SolverModes(submodels="none", contact_only=contact_only,
                                          keep_phases=True))
-    return solve_samples(job.case, job.betas, job.draw, allowables, solver, executor, read)
+    return solve_samples(SampleCase(job.case, job.betas, job.draw, allowables), solver,
+                         executor, read)
 
 
 def _parts(items, parts: int) -> list:
@@ -156,21 +132,22 @@ def _parts(items, parts: int) -> list:
 
 class _States:
     """The exact pair's clearance states at the positions (``loaded``: (β, state) pairs, the
-    loaded flanks; with ``pitches`` > 1, ``at(i, n)``: position i's state n gear-2 pitches on)
-    and, for the check that a sample leaves the pair its backlash, over a whole turn of gear 1
-    and at the positions (``turn``: :data:`~.positions.TURN_CHECK` angles a pitch and the
-    positions, both sides of each state found in one search) and the loaded sides' closing
-    points that deviations reaching ``reach_um`` could close (``closing``, whose feet on gear
-    2 the first pair checked finds and the others' searches start from)."""
+    loaded flanks, as the driver finds them: :class:`~.positions.Clearances`; with
+    ``pitches`` > 1, ``at(i, n)``: position i's state n gear-2 pitches on) and, for the check
+    that a sample leaves the pair its backlash, over a whole turn of gear 1 and at the
+    positions (``turn``: :data:`~.positions.TURN_CHECK` angles a pitch and the positions, both
+    sides of each state found in one search) and the loaded sides' closing points that
+    deviations reaching ``reach_um`` could close (``closing``, whose feet on gear 2 the first
+    pair checked finds and the others' searches start from)."""
 
     def __init__(self, case: SolveCase, profile, betas: tuple[float, ...],
                  reach_um: float, pitches: int = 1) -> None:
         p = case.params
-        find = ToothContact(p, profile).states
+        clearances = Clearances(case, profile, betas)
+        find = clearances.find
         self.case = case
         self.pitches = pitches
-        self.loaded = list(zip(betas, find(betas, directions=(+1,))))
-        refuse_interference(self.loaded)
+        self.loaded = clearances.get()
         # the positions too, as a deviated solve checks them: a pair that jams exactly
         # there may turn at the turn's angles beside them
         turn = (*revolution_positions(betas[0], TURN_CHECK, p.z1, p.z2), *betas)
@@ -192,8 +169,10 @@ class _States:
 
 def _jammed(states: _States, deviations) -> str | None:
     """Where ``deviations`` take up the pair's backlash over a whole turn (:func:`~.teeth.
-    closure`, in words), else None: the smallest clearances alone, the loaded sides' over the
-    turn in one batch of gaps, the coast sides' where a loaded side overlaps in another."""
+    closure`, in words), else None: the check a deviated solve makes
+    (:class:`~.positions.Clearances`), for many pairs against one set of closing points: the
+    smallest clearances alone, the loaded sides' over the turn in one batch of gaps, the coast
+    sides' where a loaded side overlaps in another."""
     p = states.case.params
     least, teeth = least_clearances(deviations, p, states.closing)
     behind = np.flatnonzero(least < 0)
@@ -208,13 +187,17 @@ def _jammed(states: _States, deviations) -> str | None:
     return None
 
 
-def _exact(case: SolveCase, states: _States, solver: RingSolver) -> dict[int, PairSolution]:
-    """The exact pair at the positions, one after the other, on ``solver``'s model."""
-    placed = RingSolver(solver.model, SolverModes(submodels="none"))
-    near, out = None, {}
-    for i, (beta, state) in enumerate(states.loaded):
-        near = out[i] = solve_position(replace(case, beta=beta), state, placed, near)
-    return out
+def _work(free: list[int], positions: int, pitches: int, parts: int
+          ) -> list[tuple[range, dict[int, list[tuple[int, int]]]]]:
+    """The chains: each one's positions (indices) and by position the (sample, gear-2
+    pitches on) pairs it solves there, of the samples ``free`` (not jammed). Every
+    ``parts``-th position a chain, every sample at each (a cycle's positions where more teeth
+    carry, more points in contact and dearer solves, come in a run); one position: a share of
+    the samples each."""
+    if positions > 1:
+        jobs = _every(free, positions, pitches)
+        return [(range(k, positions, parts), jobs) for k in range(min(parts, positions))]
+    return [(range(1), _every(part, 1, pitches)) for part in _parts(free, parts)]
 
 
 def _every(samples, positions: int, pitches: int) -> dict[int, list[tuple[int, int]]]:
@@ -223,53 +206,130 @@ def _every(samples, positions: int, pitches: int) -> dict[int, list[tuple[int, i
     return {i: [(k, n) for k in samples for n in range(pitches)] for i in range(positions)}
 
 
-def _chain(case: SolveCase, states: _States, pairs, solver: RingSolver, span, jobs,
-           read=None, exact: bool = True
-           ) -> tuple[dict[int, PairSolution], dict[int, list], dict]:
-    """The positions ``span`` (indices) of the exact pair and, at each position i, of the
-    samples ``jobs[i]`` names ((index into the drawn ``pairs``' deviations, gear-2 pitches
-    on)): the exact pair's solutions by position, and each sample's (β, headline) a position,
-    or (β, why) where it failed, and what ``read`` took of each solution. The exact pair is
-    solved as any position, then its contact kept with grids on every tooth that any of the
-    samples pairs (:func:`_paired`), and let go of when they are solved; not ``exact``: its
-    solutions left out of what it gives back (plain data alone, for another process). A
-    solver received without its model (from another process) builds or finds one here."""
-    if solver.model is None:
-        solver.build(case, gear1_profile(case.params), lambda: states.loaded)
-    nominal: dict[int, PairSolution] = {}
-    found: dict[int, list] = {}
-    took: dict[int, list] = {}
-    # a sample the kept grids miss
+def _run_chains(case: SolveCase, states: _States, solver: RingSolver, work,
+                executor: Executor) -> tuple[dict[int, PairSolution], list[list[tuple]]]:
+    """The chains of ``work`` ((positions, what is done at each) pairs) on ``executor``: the
+    exact pair's solutions by position and what each chain gave at its positions
+    (:meth:`_OnKept.__call__`). A chain's exact solutions refer to the model it solved them
+    on: they come back from a process that shares this one's; elsewhere (a cluster) a chain
+    gives plain data alone and the exact pair is solved here meanwhile."""
+    if executor.shares_memory:
+        chains = executor.map(lambda job: chain(case, states.loaded, *job, label="samples"),
+                              work)
+        return {i: got[0] for (span, _), done in zip(work, chains)
+                for i, got in zip(span, done)}, chains
+    tasks = [executor.submit(_plain, case, states.loaded, span, at) for span, at in work]
+    nominal = _exact(case, states, solver)
+    return nominal, [task.result() for task in tasks]
+
+
+def _plain(case: SolveCase, loaded, span, at: _OnKept) -> list[tuple]:
+    """A chain of the samples (:func:`~.positions.chain`) in another process: what it gave
+    without the exact pair's solutions (plain data alone)."""
+    return [(None, *got[1:]) for got in chain(case, loaded, span, at, label="samples")]
+
+
+def _exact(case: SolveCase, states: _States, solver: RingSolver) -> dict[int, PairSolution]:
+    """The exact pair at the positions, one chain, on ``solver``'s model."""
     placed = RingSolver(solver.model, SolverModes(submodels="none"))
-    p = case.params
-    near = None
-    for i in span:
-        beta, state = states.loaded[i]
-        progress.stage(f"samples at β {math.degrees(beta):.3g}°")
-        at = replace(case, beta=beta)
-        near = nominal[i] = solve_position(at, state, placed, near)
-        moved = {}
-        for k, run in groupby(jobs[i], key=lambda job: job[0]):   # a sample's pitches at once
-            ns = [n for _, n in run]
-            moved.update(zip(((k, n) for n in ns), moved_clearances(
-                pairs[k], p, [states.at(i, n) for n in ns])))
-        solver.widen(at, state, near, _paired(case, near, state, moved))
-        for k, n in jobs[i]:
-            one = replace(at, beta=states.beta(i, n), deviations=pairs[k])
+
+    def settled(k: int, at: SolveCase, state, near: tuple | None) -> tuple[PairSolution]:
+        return (solve_position(at, state, placed, near and near[0]),)
+
+    sols = chain(case, states.loaded, range(len(states.loaded)), settled)
+    return {i: got[0] for i, got in enumerate(sols)}
+
+
+@dataclass(frozen=True)
+class _OnKept:
+    """What a chain of the samples does at a position (:class:`~.positions.AtPosition`):
+    the exact pair is solved as any position, then its contact kept with grids on every tooth
+    that the samples solved there pair (:func:`_paired`), each sample solved on it
+    (:meth:`~.ring.solver.RingSolver.on_kept`), and the contact let go of; ``jobs``: by
+    position, the samples solved there ((index into the drawn ``pairs``' deviations, gear-2
+    pitches on) pairs). A solver received without its model (from another process) builds or
+    finds one here."""
+
+    states: _States
+    pairs: list
+    solver: RingSolver
+    jobs: dict[int, list[tuple[int, int]]]
+    read: Callable[[PairSolution], object] | None = None
+
+    def __call__(self, i: int, at: SolveCase, state, near: tuple | None
+                 ) -> tuple[PairSolution, dict[int, list], dict[int, list]]:
+        """The exact pair's solution at position ``i`` and, by sample, each one's (β, headline)
+        a pitch, or (β, why) where it failed, and what ``read`` took of each solution."""
+        solver = self.solver
+        if solver.model is None:
+            solver.build(at, gear1_profile(at.params), lambda: self.states.loaded)
+        placed = RingSolver(solver.model, SolverModes(submodels="none"))
+        exact = solve_position(at, state, placed, near and near[0])
+        moved = self._moved(i, at.params)
+        solver.widen(at, state, exact, _paired(at, exact, state, moved))
+        found: dict[int, list] = {}
+        took: dict[int, list] = {}
+        for k, n in self.jobs[i]:
+            one = replace(at, beta=self.states.beta(i, n), deviations=self.pairs[k])
             try:
-                sol = solver.on_kept(one, moved[k, n], brief=True)
-                if sol is None:   # placed on its own, and its teeth kept for those after it
-                    sol = solve_position(one, moved[k, n], placed,
-                                         Phases.beside(solver.model, near, one.beta))
-                    solver.widen(one, moved[k, n], sol)
+                sol = self._sample(one, moved[k, n], placed, exact)
             except FegearError as err:
                 found.setdefault(k, []).append((one.beta, str(err)))
                 continue
             found.setdefault(k, []).append((one.beta, sol.headline()))
-            if read is not None:
-                took.setdefault(k, []).append(read(sol))
+            if self.read is not None:
+                took.setdefault(k, []).append(self.read(sol))
         solver.forget(at)
-    return nominal if exact else {}, found, took
+        return exact, found, took
+
+    def _moved(self, i: int, params) -> dict:
+        """The clearance states at position i of the samples ``jobs[i]`` names, by (sample,
+        gear-2 pitches on): a sample's pitches moved at once."""
+        moved = {}
+        for k, run in groupby(self.jobs[i], key=lambda job: job[0]):
+            ns = [n for _, n in run]
+            moved.update(zip(((k, n) for n in ns), moved_clearances(
+                self.pairs[k], params, [self.states.at(i, n) for n in ns])))
+        return moved
+
+    def _sample(self, one: SolveCase, state, placed: RingSolver, exact: PairSolution
+                ) -> PairSolution:
+        """A sample (``one``, its clearance ``state``) on the kept contact, or where the kept
+        grids miss it placed on its own (from ``exact``) and its teeth kept for those after
+        it."""
+        sol = self.solver.on_kept(one, state, brief=True)
+        if sol is None:
+            sol = solve_position(one, state, placed,
+                                 Phases.beside(self.solver.model, exact, one.beta))
+            self.solver.widen(one, state, sol)
+        return sol
+
+
+def _gathered(chains) -> tuple[dict[int, list], dict[int, list]]:
+    """By sample, its (β, headline or why) and what was read of it, over the chains'
+    positions (:meth:`_OnKept.__call__`) in order."""
+    found: dict[int, list] = {}
+    readings: dict[int, list] = {}
+    for done in chains:
+        for _, got, took in done:
+            for k, each in got.items():
+                found.setdefault(k, []).extend(each)
+            for k, each in took.items():
+                readings.setdefault(k, []).extend(each)
+    return found, readings
+
+
+def _row(k: int, deviations, jammed: str | None, got: list, allowables: Allowables,
+         z: tuple[int, int]) -> dict:
+    """Sample k's row: its deviations in brief (:func:`_brief`), its status and why, and
+    where it turns its worst over its positions (``got``: (β, headline or why) pairs)."""
+    brief = _brief(deviations, z)
+    if jammed is not None:
+        return {"sample": k, **brief, "status": "jammed", "why": jammed}
+    failed = [why for _, why in got if isinstance(why, str)]
+    if failed:
+        return {"sample": k, **brief, "status": "failed", "why": failed[0]}
+    return {"sample": k, **brief, "status": "solved", "why": "", **_worst(got, allowables)}
 
 
 #: a sample's teeth are those the driver's rule pairs at its first touch plus this many times

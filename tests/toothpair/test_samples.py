@@ -17,7 +17,7 @@ from fegear.tolerance import Draw, grade_of
 from fegear.toothpair import SolveCase, prepare_job, solve_pair
 from fegear.toothpair.ring.solver import RingSolver, SolverModes
 from fegear.toothpair.safety import DEFAULT_ALLOWABLES
-from fegear.toothpair.samples import solve_samples
+from fegear.toothpair.samples import SampleCase, solve_samples
 from fegear.toothpair.samples_report import samples_summary
 
 PAIR = PairParameters(shift=0.016, rotation=0.002)
@@ -30,7 +30,7 @@ KEEP = SolverModes(keep_phases=True)
 @pytest.fixture(scope="module")
 def sampled(baseline_ring):
     solver = RingSolver(baseline_ring, KEEP)
-    return solve_samples(CASE, (0.0,), DRAW, DEFAULT_ALLOWABLES, solver)
+    return solve_samples(SampleCase(CASE, (0.0,), DRAW, DEFAULT_ALLOWABLES), solver)
 
 
 def test_each_sample_reads_as_the_same_pair_solved_alone(sampled, baseline_ring):
@@ -100,8 +100,8 @@ def test_a_revolution_sample_reads_as_the_same_pair_turned_alone(baseline_ring):
     p = PAIR
     draw = Draw(grade_of(5, p), 3, 1)
     betas = revolution_positions(0.0, 2, p.z1, p.z2)
-    sampled = solve_samples(CASE, betas[:2], draw, DEFAULT_ALLOWABLES,
-                            RingSolver(baseline_ring, KEEP), pitches=p.z1)
+    sampled = solve_samples(SampleCase(CASE, betas[:2], draw, DEFAULT_ALLOWABLES, p.z1),
+                            RingSolver(baseline_ring, KEEP))
     solved = [r for r in sampled.rows if r["status"] == "solved"]
     assert solved, "class 5 leaves this pair's backlash in two thirds of its pairs"
     for row in solved[:2]:
@@ -117,7 +117,7 @@ def test_a_revolution_sample_reads_as_the_same_pair_turned_alone(baseline_ring):
                 at = row[f"{key.removesuffix('_MPa')}_at_deg"]
                 assert at == pytest.approx(math.degrees(worst.case.beta)), key
     # the worst over a revolution is at least the worst over its first pitch
-    first = solve_samples(CASE, betas[:2], draw, DEFAULT_ALLOWABLES,
+    first = solve_samples(SampleCase(CASE, betas[:2], draw, DEFAULT_ALLOWABLES),
                           RingSolver(baseline_ring, KEEP))
     for row, one in zip(sampled.rows, first.rows):
         assert row["status"] == one["status"]
@@ -137,7 +137,7 @@ def test_a_dask_cluster_gives_the_local_rows():
     betas = (0.0, 0.05)
 
     def solved(executor):
-        return solve_samples(case, betas, draw, DEFAULT_ALLOWABLES,
+        return solve_samples(SampleCase(case, betas, draw, DEFAULT_ALLOWABLES),
                              RingSolver(None, KEEP), executor)
 
     with Forks(2) as forks:

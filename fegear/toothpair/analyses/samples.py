@@ -19,13 +19,14 @@ class Samples(Analysis):
     def drive(self, job, executor: Executor):
         from ..report import cycle_rows
         from ..ring.solver import RingSolver, SolverModes
-        from ..samples import solve_samples
+        from ..samples import SampleCase, solve_samples
 
         solver = RingSolver(None, SolverModes(keep_phases=True))
         # a revolution: each pair over gear 1's turn from the first pitch's places
         pitches = job.case.params.z1 if job.revolution else 1
-        sampled = solve_samples(job.case, job.betas[:len(job.betas) // pitches], job.draw,
-                                job.allowables, solver, executor, pitches=pitches)
+        samples = SampleCase(job.case, job.betas[:len(job.betas) // pitches], job.draw,
+                             job.allowables, pitches)
+        sampled = solve_samples(samples, solver, executor)
         # the exact pair's stresses as the samples' are read: von Mises from the surface
         # estimate, before the peaks' submodels
         return solver, sampled.nominal, (sampled, cycle_rows(sampled.nominal, job.allowables))
