@@ -32,7 +32,7 @@ def _versions(names: tuple[str, ...]) -> dict[str, str | None]:
 #: the others (cli, study, verify, drive) run, schedule, present or compare results, and
 #: editing them keeps a study's finished cases valid
 IN_RESULTS = ("geometry", "fe", "contact", "toothpair", "figures", "checks.py", "errors.py",
-              "files.py", "planar.py")
+              "files.py", "planar.py", "quantities.py")
 
 
 @functools.cache

@@ -19,7 +19,7 @@ PACKAGE = Path(__file__).parents[1] / "fegear"
 MAP = PACKAGE.parent / "docs" / "architecture.md"
 #: modules and packages allowed beside the stages: entry points and shared helpers
 SHARED = {"__init__", "__main__", "checks", "errors", "exports", "figures", "files", "planar",
-          "progress", "provenance", "running", "timing"}
+          "progress", "provenance", "quantities", "running", "timing"}
 #: which stages each stage may import (the shared helpers are open to all)
 ALLOWED = {
     "geometry": set(),
@@ -315,6 +315,7 @@ def test_the_code_version_covers_every_module_that_computes_results(tmp_path):
                          ("toothpair/ring/influence.py", True),
                          ("fe/assembly.py", True), ("geometry/gear1.py", True),
                          ("toothpair/report.py", True), ("files.py", True),
+                         ("quantities.py", True),
                          ("cli/solve.py", False), ("study/runner.py", False),
                          ("verify/bench.py", False), ("verify/penalty/solve.py", False),
                          ("drive/dynamics.py", False)):
