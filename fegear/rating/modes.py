@@ -14,15 +14,17 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping, Sequence
 
+from ..quantities import LEVEL_STRESSES
 from .life import BENDING, CONTACT
 from .materials import GearMaterial
 from .miner import damage, safety_at_life
 
-#: the modes rated: name → (the stress key of a level's teeth, gear, "bending" or "contact")
-MODES = {"bending gear 1": ("root1", 1, "bending"),
-         "bending gear 2": ("root2", 2, "bending"),
-         "pitting gear 1": ("flank1", 1, "contact"),
-         "pitting gear 2": ("flank2", 2, "contact")}
+#: how a tooth wears out under a stress held against each allowable
+WEAR = {"bending": "bending", "contact": "pitting"}
+#: the modes rated: name → (the stress key of a level's teeth, gear, "bending" or "contact"):
+#: each of :data:`fegear.quantities.LEVEL_STRESSES`
+MODES = {f"{WEAR[q.allowable]} gear {gear}": (key, gear, q.allowable)
+         for key, (q, gear) in LEVEL_STRESSES.items()}
 
 
 def rate(levels: Sequence[Mapping[str, Mapping]], cycles: Sequence[float],

@@ -16,6 +16,7 @@ from ..checks import require_range
 from ..fe import ElasticMaterial
 from ..geometry import NO_DEVIATIONS, Deviations, PairParameters
 from ..planar import wrap
+from ..quantities import HEADLINES
 from .inputs import (
     SOLVE_INPUTS,
     TIP_ROUND,
@@ -25,10 +26,8 @@ from .inputs import (
     torque_limit,
 )
 
-#: headline stresses: JSON key (MPa) → label in the table and the cycle plot
-HEADLINE = {"root_stress_gear1_MPa": "root σ1, gear 1", "root_stress_gear2_MPa": "root σ1, gear 2",
-            "contact_pressure_MPa": "contact pressure", "flank_contact_pressure_MPa":
-            "flank pressure", "von_mises_max_MPa": "von Mises max"}
+#: headline stresses: JSON key (MPa) → label (:data:`fegear.quantities.HEADLINES`)
+HEADLINE = {q.key: q.label for q in HEADLINES}
 #: gear 1's rim reaches at most this share of its root radius: the bore keeps the rest (a gear
 #: of few teeth and deep teeth has a root radius below the default 3 m; the rim stops short)
 RIM1_SHARE = 0.6

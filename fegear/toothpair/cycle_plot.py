@@ -8,11 +8,11 @@ from pathlib import Path
 
 from ..figures import margins, pyplot, save_png
 from ..figures.labels import place_legend
+from ..quantities import FACTORS, QUANTITIES
 
-#: the verdict drawn on a cycle's stress panels: safety factor key, its stress, its label
-CYCLE_VERDICT = {1: (("safety_bending_gear1", "root_stress_gear1_MPa", "S_F gear 1"),
-                     ("safety_bending_gear2", "root_stress_gear2_MPa", "S_F gear 2")),
-                 2: (("safety_contact", "contact_pressure_MPa", "S_H"),)}
+#: the verdict drawn on a cycle's stress panels: the safety factors of each panel
+CYCLE_VERDICT = {1: (FACTORS["safety_bending_gear1"], FACTORS["safety_bending_gear2"]),
+                 2: (FACTORS["safety_contact"],)}
 
 
 def cycle_png(path: Path, rows: list[dict], title: str, stresses: dict[str, str],
@@ -38,8 +38,8 @@ def cycle_figure(rows: list[dict], title: str, stresses: dict[str, str], allowab
             ax[0].plot(beta, v, marker="o", ms=3, label=f"tooth {k[6:]}")
     ax[0].set_ylabel("load share")
     # the root stresses on their own axis: beside the contact pressures they would be flat
-    for panel, keys in ((1, [k for k in stresses if "root" in k]),
-                        (2, [k for k in stresses if "root" not in k])):
+    bending = [k for k in stresses if QUANTITIES[k].allowable == "bending"]
+    for panel, keys in ((1, bending), (2, [k for k in stresses if k not in bending])):
         for k in keys:
             line, = ax[panel].plot(beta, [r[k] for r in rows], marker="o", ms=3,
                                    label=stresses[k])
@@ -75,18 +75,19 @@ def cycle_figure(rows: list[dict], title: str, stresses: dict[str, str], allowab
 
 def _verdict(ax, rows: list[dict], limit: float, name: str, factors) -> None:
     """The allowable ``limit`` (MPa) on a cycle's stress panel and each of ``factors``
-    (safety key, stress key, label) marked where it is smallest, its value in the legend."""
-    top = max(r[stress] for _, stress, _ in factors for r in rows)
+    (:class:`~fegear.quantities.Factor`) marked where it is smallest, its value in the
+    legend."""
+    top = max(r[f.stress.key] for f in factors for r in rows)
     if limit <= 2.0 * top:
         ax.axhline(limit, color="C3", ls="--", lw=1.2, label=f"allowable {name} {limit:g} MPa")
     else:
         ax.plot([], [], " ", label=f"allowable {name} {limit:g} MPa (off the scale)")
-    for key, stress, label in factors:
-        have = [r for r in rows if r.get(key) is not None]
+    for f in factors:
+        have = [r for r in rows if r.get(f.key) is not None]
         if not have:
             continue
-        worst = min(have, key=lambda r: r[key])
-        ax.plot(worst["position_deg"], worst[stress], "v", mfc="none", mec="C3", mew=1.5,
-                ms=9, label=f"smallest {label} {worst[key]:.2f}, at β "
+        worst = min(have, key=lambda r: r[f.key])
+        ax.plot(worst["position_deg"], worst[f.stress.key], "v", mfc="none", mec="C3", mew=1.5,
+                ms=9, label=f"smallest {f.label} {worst[f.key]:.2f}, at β "
                             f"{worst['position_deg']:.3g}°")
     ax.legend(fontsize=8)

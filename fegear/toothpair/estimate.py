@@ -7,6 +7,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
+from ..quantities import HELD
 from .case import HEADLINE, PairSolution, SolveCase
 from .inputs import QUALITY
 from .pair import solve_pair, solve_positions
@@ -93,10 +94,9 @@ def _level_errors(own: dict[str, float], second: dict[str, float], quality: str,
     return {f: r ** 2 * v for f, v in _gci(own, second, r).items()}
 
 
-#: each loaded tooth's stresses that get an estimate of their own: the tooth's field → the
-#: headline stress whose mesh scatter floors it
-TOOTH_STRESSES = {"root1_MPa": "root_stress_gear1_MPa", "root2_MPa": "root_stress_gear2_MPa",
-                  "p_max_MPa": "contact_pressure_MPa", "flank_p_MPa": "flank_contact_pressure_MPa"}
+#: each loaded tooth's stresses that get an estimate of their own, those held against an
+#: allowable: the tooth's field → the headline stress whose mesh scatter floors it
+TOOTH_STRESSES = {q.attribute: q.key for q in HELD}
 
 
 @dataclass(frozen=True)

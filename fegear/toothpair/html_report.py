@@ -17,8 +17,10 @@ import math
 from datetime import UTC, datetime
 from pathlib import Path
 
+from ..quantities import FACTORS, HEADLINES
 from .analyses import Verdict, shown
 from .html_parts import escape, safety_cell, table
+from .safety import ALLOWABLE_KEYS
 
 #: the pictures a page shows, in order, with a caption each (the files' keys)
 PICTURES = {"png": "Von Mises stress on the loaded teeth and at the contact peak",
@@ -29,20 +31,6 @@ PICTURES = {"png": "Von Mises stress on the loaded teeth and at the contact peak
             "revolution_teeth_png": "Each tooth's largest stresses over the revolution",
             "samples_png": "Each safety factor over the tolerance class's pairs",
             "sensitivities_png": "Which deviation decides the stress"}
-#: the static safety factors: summary key → (label, stress key, allowable key)
-STATIC = {"safety_bending_gear1": ("S_F gear 1", "root_stress_gear1_MPa",
-                                   "allowable_bending_MPa"),
-          "safety_bending_gear2": ("S_F gear 2", "root_stress_gear2_MPa",
-                                   "allowable_bending_MPa"),
-          "safety_contact": ("S_H", "contact_pressure_MPa", "allowable_contact_MPa"),
-          "safety_contact_flank": ("S_H flank", "flank_contact_pressure_MPa",
-                                   "allowable_contact_MPa")}
-#: the headline stresses as the page names them
-HEADLINES = {"root_stress_gear1_MPa": "root σ1, gear 1",
-             "root_stress_gear2_MPa": "root σ1, gear 2",
-             "contact_pressure_MPa": "contact pressure",
-             "flank_contact_pressure_MPa": "flank pressure",
-             "von_mises_max_MPa": "von Mises max"}
 
 STYLE = """
 body { font-family: system-ui, sans-serif; max-width: 60rem; margin: 1.5rem auto;
@@ -129,7 +117,7 @@ def verdicts(summary: dict) -> list[Verdict]:
     factors = _static_minima(summary)
     if factors:
         key, (value, at) = min(factors.items(), key=lambda kv: kv[1][0])
-        label = STATIC[key][0]
+        label = FACTORS[key].label
         tooth = _tooth_of(summary, key, at)
         where = f" at β {at:.3g}°" if at is not None else ""
         edge = ""
@@ -156,7 +144,7 @@ def _static_minima(summary: dict) -> dict[str, tuple[float, float | None]]:
     """Each static safety factor's smallest over the positions and where (β, degrees)."""
     cycle = summary.get("cycle")
     out = {}
-    for key in STATIC:
+    for key in FACTORS:
         if cycle is not None and isinstance(cycle.get(key), dict):
             out[key] = (cycle[key]["min"], cycle[key]["at_position_deg"])
         elif summary.get(key) is not None:
@@ -183,9 +171,9 @@ def _static_table(summary: dict) -> str:
     i = summary["inputs"]
     rows = []
     for key, (value, at) in _static_minima(summary).items():
-        label, stress_key, allowable_key = STATIC[key]
-        stress = i[allowable_key] / value
-        rows.append([label, safety_cell(value), f"{i[allowable_key]:g}", f"{stress:.1f}",
+        allowable = i[ALLOWABLE_KEYS[FACTORS[key].stress.allowable]]
+        stress = allowable / value
+        rows.append([FACTORS[key].label, safety_cell(value), f"{allowable:g}", f"{stress:.1f}",
                      "" if at is None else f"{at:.3g}"])
     return table(["factor", "S", "allowable MPa", "stress MPa", "at β °"], rows)
 
@@ -198,12 +186,13 @@ def _stress_table(summary: dict) -> str:
     if band:
         head += ["class P50", "class P95"]
     rows = []
-    for key, label in HEADLINES.items():
+    for headline in HEADLINES:
+        key = headline.key
         value = cycle[key]["max"] if isinstance(cycle.get(key), dict) else summary.get(key)
         if value is None:
             continue
         err = estimate.get(key)
-        row = [label, f"{value:.1f}", "–" if err is None else f"±{err:.1f}"]
+        row = [headline.label, f"{value:.1f}", "–" if err is None else f"±{err:.1f}"]
         if band:
             qs = {q["q"]: q for q in band[key]["quantiles"]}
             row += [_quantile(qs.get(0.5)), _quantile(qs.get(0.95))]

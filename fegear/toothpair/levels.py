@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING
 
 from .. import progress
 from ..errors import ParameterError
+from ..quantities import LEVEL_STRESSES
 from ..running import SERIAL, Executor
 from .case import PairSolution, SolveCase
 
@@ -73,21 +74,20 @@ def solve_levels(case: SolveCase, betas, rating: Rating, solve, executor: Execut
 
 
 def tooth_stresses(sols: tuple[PairSolution, ...], every_tooth: bool) -> dict[str, dict]:
-    """Each tooth's largest stresses over ``sols`` (MPa), by key: ``root1`` and ``flank1`` by
-    gear-1 tooth, ``root2`` and ``flank2`` by gear-2 tooth. ``every_tooth``: the positions of
-    a perfect pair within a pitch, where each tooth passes every place a tooth is seen at:
-    one value for every tooth of a gear, tooth None."""
-    out: dict[str, dict] = {"root1": {}, "flank1": {}, "root2": {}, "flank2": {}}
+    """Each tooth's largest stresses over ``sols`` (MPa), by key
+    (:data:`~fegear.quantities.LEVEL_STRESSES`): ``root1`` and ``flank1`` by gear-1 tooth,
+    ``root2`` and ``flank2`` by gear-2 tooth (where the tooth it presses on is known).
+    ``every_tooth``: the positions of a perfect pair within a pitch, where each tooth passes
+    every place a tooth is seen at: one value for every tooth of a gear, tooth None."""
+    out: dict[str, dict] = {key: {} for key in LEVEL_STRESSES}
     for sol in sols:
         for t in sol.teeth:
             if t.load_N <= 0:
                 continue
-            one, two = (None, None) if every_tooth else (t.tooth, t.tooth2)
-            _keep(out["root1"], one, t.root1_MPa)
-            _keep(out["flank1"], one, t.flank_p_MPa)
-            if t.tooth2 is not None:
-                _keep(out["root2"], two, t.root2_MPa)
-                _keep(out["flank2"], two, t.flank_p_MPa)
+            for key, (q, gear) in LEVEL_STRESSES.items():
+                tooth = t.tooth if gear == 1 else t.tooth2
+                if tooth is not None:
+                    _keep(out[key], None if every_tooth else tooth, getattr(t, q.attribute))
     return out
 
 

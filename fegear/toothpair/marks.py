@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..quantities import FACTORS
 from .case import PairSolution
 from .edge import flank_centre
 
@@ -110,17 +111,19 @@ class VerdictCaption:
     @classmethod
     def of(cls, summary: dict) -> VerdictCaption:
         s, i = summary, summary["inputs"]
-        bending = {f"S_F gear {g}": s[f"safety_bending_gear{g}"] for g in (1, 2)}
-        contact = {"S_H": s["safety_contact"]}
+        peak, flank = FACTORS["safety_contact"], FACTORS["safety_contact_flank"]
+        bending = {FACTORS[k].label: s[k] for k in ("safety_bending_gear1",
+                                                     "safety_bending_gear2")}
+        contact = {peak.label: s[peak.key]}
         where = "a tip round's" if s["contact_peak_on_tip_round"] else "the flank's"
         line = (", ".join(f"{k} {v:.2f}" for k, v in bending.items() if v)
                 + f" (σ_FP {i['allowable_bending_MPa']:g} MPa)")
-        if contact["S_H"]:
-            line += (f";  S_H {contact['S_H']:.2f} at {where} {s['contact_pressure_MPa']:.0f} "
-                     "MPa")
-            if s["contact_peak_on_tip_round"] and s["safety_contact_flank"]:
-                line += (f", S_H flank {s['safety_contact_flank']:.2f} at "
-                         f"{s['flank_contact_pressure_MPa']:.0f} MPa")
+        if s[peak.key]:
+            line += (f";  {peak.label} {s[peak.key]:.2f} at {where} "
+                     f"{s[peak.stress.key]:.0f} MPa")
+            if s["contact_peak_on_tip_round"] and s[flank.key]:
+                line += (f", {flank.label} {s[flank.key]:.2f} at "
+                         f"{s[flank.stress.key]:.0f} MPa")
             line += f" (σ_HP {i['allowable_contact_MPa']:g} MPa)"
         have = {k: v for k, v in {**bending, **contact}.items() if v}
         if not have:

@@ -5,8 +5,11 @@ and as rating.csv's rows."""
 
 from __future__ import annotations
 
-#: a level's stresses as the table heads them
-LEVEL_KEYS = {"root1_MPa": "root σ1 g1", "root2_MPa": "root σ1 g2", "flank1_MPa": "flank p"}
+from ..quantities import LEVEL_STRESSES
+
+#: a level's stresses as the table heads them: each gear's root stress and the flank pressure
+#: (gear 1's teeth's: the flanks in contact carry the same)
+LEVEL_KEYS = {f"{key}_MPa": LEVEL_STRESSES[key][0].short for key in ("root1", "root2", "flank1")}
 
 
 def rating_table(r: dict) -> str:

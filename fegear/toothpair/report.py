@@ -6,7 +6,9 @@ from __future__ import annotations
 import math
 from dataclasses import fields
 
+from .. import quantities
 from ..fe import Allowables
+from ..quantities import FACTORS, HELD
 from .case import HEADLINE, PairSolution, SolveCase, ToothResult
 from .safety import (
     ALLOWABLE_KEYS,
@@ -81,8 +83,7 @@ def add_tooth_estimates(summary: dict, estimates: dict[int, dict[str, float]] | 
     """Each loaded tooth of ``summary`` with its own error estimate (%; :func:`~.estimate.
     tooth_estimates`): ``error_estimate_pct`` the largest of its stresses', and by stress
     under the summary's names; None without an estimate."""
-    names = {"root1_MPa": "root_stress_gear1_MPa", "root2_MPa": "root_stress_gear2_MPa",
-             "p_max_MPa": "p_max_MPa", "flank_p_MPa": "flank_pressure_MPa"}
+    names = {h.attribute: h.tooth_key for h in HELD}
     for t in summary["teeth"]:
         own = (estimates or {}).get(t["tooth"])
         t["error_estimate_pct"] = max(own.values()) if own else None
@@ -107,12 +108,8 @@ def _tooth_row(t: ToothResult) -> dict:
             "gear2_tooth": t.tooth2}
 
 
-#: the pair's safety factors in the printed table; the per-tooth and cycle tables show the
-#: first three (S_F1, S_F2, S_H)
-SAFETY_LABELS = {"safety_bending_gear1": "S_F gear 1 (root σ1)",
-                 "safety_bending_gear2": "S_F gear 2 (root σ1)",
-                 "safety_contact": "S_H (peak pressure)",
-                 "safety_contact_flank": "S_H flank (flank only)"}
+#: the safety factors the per-tooth and cycle tables show (S_F1, S_F2, S_H); the pair's
+#: table shows every one of :data:`~fegear.quantities.FACTORS`
 TABLE_SAFETY = ("safety_bending_gear1", "safety_bending_gear2", "safety_contact")
 
 
@@ -156,19 +153,18 @@ def safety_table(summary: dict) -> list[str]:
     allowable = {w: i[k] for w, k in ALLOWABLE_KEYS.items()}
     edge = summary["contact_peak_on_tip_round"]
     rows = []
-    for k, label in SAFETY_LABELS.items():
-        which, stress = SAFETY[k]
+    for k, f in FACTORS.items():
         mark = "e" if edge and k == "safety_contact" else " "
-        rows.append([label, factor_cell(summary[k]), f"{allowable[which]:.0f}",
-                     f"{summary[stress]:.1f}{mark}"])
+        rows.append([f"{f.label} ({f.stress.short})", factor_cell(summary[k]),
+                     f"{allowable[f.stress.allowable]:.0f}",
+                     f"{summary[f.stress.key]:.1f}{mark}"])
     lines = aligned_table(["safety factor [-]      ", "    S", "allowable MPa", "stress MPa"],
                           rows, labels=1)
     notes = []
     if edge:
         notes.append("e: the peak pressure, and so S_H, sits on a tip round (EDGE CONTACT "
                      "below); S_H flank is the flanks' own.")
-    low = [SAFETY_LABELS[k].split(" (")[0] for k in SAFETY
-           if summary[k] is not None and summary[k] < 1.0]
+    low = [f.label for k, f in FACTORS.items() if summary[k] is not None and summary[k] < 1.0]
     if low:
         notes.append(f"{', '.join(low)} below 1: the stress exceeds the allowable.")
     return lines + ([" ".join(notes)] if notes else [])
@@ -260,9 +256,11 @@ def _checks(summary: dict) -> list[str]:
 
 
 #: the per-tooth table's headers, each as wide as its column's usual values
-TOOTH_HEAD = ("tooth", "clear. µm", "load N", "share", "p_max MPa", "p flank", "p ref ",
-            "p edge", "edge N", "b mm  ", "Hertz p0", "b/R*  ", "root1", "root2", "S_F1 ",
-            "S_F2 ", "S_H  ", "err %")
+TOOTH_HEAD = ("tooth", "clear. µm", "load N", "share", quantities.PEAK.head,
+              quantities.FLANK.short, "p ref ", quantities.EDGE_PRESSURE.short,
+              quantities.EDGE_LOAD.head, "b mm  ", "Hertz p0", "b/R*  ", quantities.ROOT1.short,
+              quantities.ROOT2.short, *(FACTORS[k].symbol.ljust(5) for k in TABLE_SAFETY),
+              "err %")
 
 
 def _tooth_cells(t: dict) -> list[str]:
@@ -373,8 +371,10 @@ def cycle_table(rows: list[dict]) -> str:
     safety factors over it."""
     share_keys = [k for k in rows[0] if k.startswith("share_")]
     shown = [k for k in share_keys if any(r[k] > 0 for r in rows)]
-    head = ["β [deg]", "root1", "root2", "p_max", "p flank", "edge N", "vM max", "S_F1", "S_F2",
-            "S_H", "TE µrad", "k N·m/rad", "teeth", *(f"tooth {k[6:]}" for k in shown)]
+    head = ["β [deg]", *(h.short for h in HELD), quantities.EDGE_LOAD.head,
+            quantities.VON_MISES.short, *(FACTORS[k].symbol for k in TABLE_SAFETY),
+            quantities.TRANSMISSION_ERROR.head, quantities.MESH_STIFFNESS.head, "teeth",
+            *(f"tooth {k[6:]}" for k in shown)]
     lines = aligned_table(head, [[
         f"{r['position_deg']:.3f}", f"{r['root_stress_gear1_MPa']:.1f}",
         f"{r['root_stress_gear2_MPa']:.1f}", f"{r['contact_pressure_MPa']:.0f}",
@@ -390,6 +390,6 @@ def cycle_table(rows: list[dict]) -> str:
     least = smallest(rows)
     if any(v["min"] is not None for v in least.values()):
         lines += ["", "smallest safety factors over the cycle: " + ", ".join(
-            f"{SAFETY_LABELS[k].split(' (')[0]} {v['min']:.2f} at β {v['at_position_deg']:.3f}°"
+            f"{FACTORS[k].label} {v['min']:.2f} at β {v['at_position_deg']:.3f}°"
             for k, v in least.items() if v["min"] is not None)]
     return "\n".join(lines)

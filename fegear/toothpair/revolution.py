@@ -18,6 +18,7 @@ import math
 import numpy as np
 
 from ..fe import Allowables
+from ..quantities import FACTORS, PEAK, QUANTITIES, ROOT1, ROOT2
 from .case import HEADLINE, PairSolution
 from .safety import DEFAULT_ALLOWABLES, safety_factors
 
@@ -91,7 +92,7 @@ def worst(sols: tuple[PairSolution, ...], allowables: Allowables = DEFAULT_ALLOW
     for key in HEADLINE:
         s = max(sols, key=lambda x: x.headline()[key])
         out[key] = {"max": s.headline()[key], "at_position_deg": math.degrees(s.case.beta),
-                    "gear": 2 if key == "root_stress_gear2_MPa" else 1,
+                    "gear": 2 if QUANTITIES[key].gear == 2 else 1,
                     "tooth": _tooth_of(s, key)}
     for key in safety_factors(sols[0].headline(), allowables):
         values = [safety_factors(s.headline(), allowables)[key] for s in sols]
@@ -106,10 +107,10 @@ def _tooth_of(sol: PairSolution, key: str) -> int | None:
     loaded = [t for t in sol.teeth if t.load_N > 0]
     if not loaded:
         return None
-    if key == "root_stress_gear2_MPa":
-        return max(loaded, key=lambda t: t.root2_MPa).tooth2
-    field = {"root_stress_gear1_MPa": "root1_MPa", "flank_contact_pressure_MPa": "flank_p_MPa"}
-    return max(loaded, key=lambda t: getattr(t, field.get(key, "p_max_MPa"))).tooth
+    q = QUANTITIES[key]
+    field = q.attribute or PEAK.attribute     # the von Mises maximum's: where the peak sits
+    top = max(loaded, key=lambda t: getattr(t, field))
+    return top.tooth2 if q.gear == 2 else top.tooth
 
 
 def loaded_rotation(sols: tuple[PairSolution, ...]) -> np.ndarray:
@@ -160,7 +161,7 @@ def revolution_table(rev: dict) -> str:
     """The text ``fegear solve --revolution`` prints: the worst of each headline with its tooth
     and position, the smallest safety factors, the most loaded teeth of each gear against the
     median tooth, and the loaded rotation with its largest harmonics."""
-    from .report import SAFETY_LABELS, aligned_table
+    from .report import aligned_table
 
     worst = rev["worst"]
     lines = aligned_table(["worst over the revolution", "    MPa", "tooth", "β [deg]"], [
@@ -168,19 +169,16 @@ def revolution_table(rev: dict) -> str:
          "-" if worst[k]["tooth"] is None else f"{worst[k]['gear']}:{worst[k]['tooth']}",
          f"{worst[k]['at_position_deg']:.2f}"] for k in HEADLINE], labels=1)
     lines += ["", "smallest safety factors: " + ", ".join(
-        f"{SAFETY_LABELS[k].split(' (')[0]} {worst[k]['min']:.2f} at β "
-        f"{worst[k]['at_position_deg']:.2f}°" for k in SAFETY_LABELS if k in worst)]
-    for key, label in (("root_stress_gear1_MPa", "gear 1 root σ1"),
-                       ("root_stress_gear2_MPa", "gear 2 root σ1"),
-                       ("contact_pressure_MPa", "gear 1 contact p_max")):
-        per = rev["per_tooth"][key]
+        f"{f.label} {worst[k]['min']:.2f} at β {worst[k]['at_position_deg']:.2f}°"
+        for k, f in FACTORS.items() if k in worst)]
+    for q in (ROOT1, ROOT2, PEAK):
+        per = rev["per_tooth"][q.key]
         if not per:
             continue
-        gear = key[len("root_stress_gear")] if key.startswith("root") else "1"
-        cut = rev["per_tooth"]["cut"][f"gear{gear}"]
+        cut = rev["per_tooth"]["cut"][f"gear{q.gear}"]
         median = median_tooth(per, cut)
         top = sorted(per.items(), key=lambda kv: -kv[1])[:4]
-        lines.append(f"{label}: median tooth {median:.1f} MPa; most loaded " + ", ".join(
+        lines.append(f"{q.label}: median tooth {median:.1f} MPa; most loaded " + ", ".join(
             f"tooth {t}{'*' if t in cut else ''} {v:.1f} ({100 * (v / median - 1):+.0f} %)"
             for t, v in top)
             + (f" (*: seen in part, teeth {', '.join(map(str, cut))}: the revolution's ends "

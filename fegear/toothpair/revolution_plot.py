@@ -10,12 +10,11 @@ import numpy as np
 
 from ..figures import margins, pyplot, save_png
 from ..figures.labels import place_legend
+from ..quantities import PEAK, ROOT1, ROOT2
 from .revolution import median_tooth
 
-#: the per-tooth panels: summary key, label, the gear whose teeth, the allowable's name
-TOOTH_PANELS = (("root_stress_gear1_MPa", "root stress σ1, gear 1", 1, "bending"),
-                ("root_stress_gear2_MPa", "root stress σ1, gear 2", 2, "bending"),
-                ("contact_pressure_MPa", "contact pressure p_max, gear 1's teeth", 1, "contact"))
+#: the per-tooth panels, each over its gear's teeth against its allowable
+TOOTH_PANELS = (ROOT1, ROOT2, PEAK)
 
 
 def revolution_png(path: Path, revolution: dict, rows: list[dict], turn: np.ndarray,
@@ -92,14 +91,14 @@ def revolution_teeth_figure(per_tooth: dict, worst: dict, allowables, title: str
     (whose pass the revolution's ends cut: :func:`~.revolution.per_tooth`) pale."""
     plt = pyplot()
     fig, ax = plt.subplots(len(TOOTH_PANELS), 1, figsize=(9, 10))
-    for a, (key, label, gear, kind) in zip(ax, TOOTH_PANELS):
-        values = per_tooth[key]
+    for a, q in zip(ax, TOOTH_PANELS):
+        values = per_tooth[q.key]
         teeth = np.array([int(t) for t in values])
         v = np.array(list(values.values()))
         if not len(v):
             a.text(0.5, 0.5, "no tooth loaded", transform=a.transAxes, ha="center")
             continue
-        cut = per_tooth["cut"][f"gear{gear}"]
+        cut = per_tooth["cut"][f"gear{q.gear}"]
         k = int(np.argmax(v))
         colours = ["C3" if i == k else "#b9c7d6" if t in cut else "C0"
                    for i, t in enumerate(teeth)]
@@ -109,7 +108,7 @@ def revolution_teeth_figure(per_tooth: dict, worst: dict, allowables, title: str
         if cut:   # a zero bar: the legend's swatch in the pale colour
             a.bar([teeth[0]], [0.0], color="#b9c7d6", label="seen in part (the revolution's "
                   "ends cut its pass)")
-        limit = allowables.bending if kind == "bending" else allowables.contact
+        limit = getattr(allowables, q.allowable)
         if limit <= 2 * v.max():
             a.axhline(limit, color="C3", ls=":", lw=1.2, label=f"allowable {limit:g} MPa")
         part = " (seen in part)" if teeth[k] in cut else ""
@@ -118,8 +117,8 @@ def revolution_teeth_figure(per_tooth: dict, worst: dict, allowables, title: str
                    color="C3")
         a.set_ylim(0, 1.2 * max(v.max(), limit if limit <= 2 * v.max() else 0))
         a.set_xlim(teeth.min() - 1, teeth.max() + 1)
-        a.set_xlabel(f"gear-{gear} tooth")
-        a.set_ylabel(f"{label} [MPa]", fontsize=9)
+        a.set_xlabel(f"gear-{q.gear} tooth")
+        a.set_ylabel(q.axis, fontsize=9)
         a.grid(alpha=0.3, axis="y")
     fig.suptitle(title, fontsize=10)
     margins(fig, left=0.85, right=0.25, bottom=0.6, top=0.6, hspace=0.55)

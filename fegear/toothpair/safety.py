@@ -19,20 +19,15 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from ..fe import Allowables
+from ..quantities import FACTORS
 
 #: the allowables when none are given: 42CrMo's (σ_FP 558, σ_HP 745 MPa)
 DEFAULT_ALLOWABLES = Allowables()
 
 #: the pair's safety factors: key → (the allowable, the summary's headline stress it divides)
-SAFETY = {"safety_bending_gear1": ("bending", "root_stress_gear1_MPa"),
-          "safety_bending_gear2": ("bending", "root_stress_gear2_MPa"),
-          "safety_contact": ("contact", "contact_pressure_MPa"),
-          "safety_contact_flank": ("contact", "flank_contact_pressure_MPa")}
+SAFETY = {f.key: (f.stress.allowable, f.stress.key) for f in FACTORS.values()}
 #: a tooth's safety factors, from its own stresses in the summary's ``teeth``
-TOOTH_SAFETY = {"safety_bending_gear1": ("bending", "root_stress_gear1_MPa"),
-                "safety_bending_gear2": ("bending", "root_stress_gear2_MPa"),
-                "safety_contact": ("contact", "p_max_MPa"),
-                "safety_contact_flank": ("contact", "flank_pressure_MPa")}
+TOOTH_SAFETY = {f.key: (f.stress.allowable, f.stress.tooth_key) for f in FACTORS.values()}
 #: the summary's inputs that record the allowables (MPa)
 ALLOWABLE_KEYS = {"bending": "allowable_bending_MPa", "contact": "allowable_contact_MPa"}
 

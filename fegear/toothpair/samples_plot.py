@@ -10,8 +10,7 @@ import numpy as np
 
 from ..figures import margins, pyplot, save_png
 from ..figures.labels import place_legend
-from .safety import SAFETY
-from .samples_report import NAMES
+from ..quantities import FACTORS
 
 
 def samples_png(path: Path, samples: dict, allowables, title: str) -> Path:
@@ -27,8 +26,9 @@ def samples_figure(samples: dict, allowables, title: str):
     rows = [r for r in samples["rows"] if r["status"] == "solved"]
     fig, axes = plt.subplots(2, 2, figsize=(10, 8.5))
     q = samples["quantile"]
-    for ax, (key, (which, stress)) in zip(axes.ravel(), SAFETY.items()):
-        s = np.array([getattr(allowables, which) / r[stress] for r in rows if r[stress] > 0])
+    for ax, (key, f) in zip(axes.ravel(), FACTORS.items()):
+        allowable, stress = getattr(allowables, f.stress.allowable), f.stress.key
+        s = np.array([allowable / r[stress] for r in rows if r[stress] > 0])
         v = samples["safety"][key]
         if len(s):
             ax.hist(s, bins=min(40, max(8, len(s) // 8)), color="tab:blue", alpha=0.6,
@@ -42,7 +42,7 @@ def samples_figure(samples: dict, allowables, title: str):
         if at:
             ax.axvline(at, color="tab:orange", lw=1.8,
                        label=f"{100 * (1 - q):g} % of pairs below {at:.2f}")
-        ax.set_title(NAMES[key], fontsize=10)
+        ax.set_title(f.label, fontsize=10)
         ax.set_xlabel("safety factor S [-]")
         ax.set_ylabel("pairs")
         ax.grid(alpha=0.3)

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 
 from ..fe import Allowables
+from ..quantities import FACTORS
 from ..tolerance import QUANTILES, quantiles
 from .case import HEADLINE
 from .safety import SAFETY, safety_factor
@@ -100,13 +101,8 @@ def verdict(safety: dict, jammed_share: float, quantile: float, grade: int) -> s
         return f"no safety factor: no stress at the quantile ({share})"
     key = min(have, key=have.get)
     word = "PASS" if have[key] >= 1.0 else "FAIL"
-    return (f"{word}: {share} meet {NAMES[key]} >= {have[key]:.2f} (the limiting factor; "
-            f"nominal {safety[key]['nominal']:.2f})")
-
-
-#: the safety factors as a table names them
-NAMES = {"safety_bending_gear1": "S_F gear 1", "safety_bending_gear2": "S_F gear 2",
-         "safety_contact": "S_H", "safety_contact_flank": "S_H flank"}
+    return (f"{word}: {share} meet {FACTORS[key].label} >= {have[key]:.2f} (the limiting "
+            f"factor; nominal {safety[key]['nominal']:.2f})")
 
 
 def samples_table(s: dict) -> str:
@@ -134,12 +130,12 @@ def samples_table(s: dict) -> str:
                      for x in s["stresses"][key]["turning"] if x["q"] in _shown(s)]
             lines.append(f"| {label} | " + " | ".join(cells) + " |")
     lines += ["", f"| safety factor | nominal | at P{100 * q:g} | worst |", "|---|---:|---:|---:|"]
-    for key, label in NAMES.items():
+    for key, f in FACTORS.items():
         v = s["safety"][key]
         at = ("jams" if v["at_quantile"] == 0.0 else "-" if v["at_quantile"] is None else
               f"{v['at_quantile']:.2f}" + (f" ± {v['at_quantile_error']:.2f}"
                                            if v["at_quantile_error"] is not None else ""))
-        lines.append(f"| {label} | {_num(v['nominal'])} | {at} | {_num(v['worst'])} |")
+        lines.append(f"| {f.label} | {_num(v['nominal'])} | {at} | {_num(v['worst'])} |")
     g = s["grade"]
     lines += ["", f"{s['samples']} pairs of ISO 1328-1:2013 class {g['grade']} (seed "
               f"{s['seed']}): {s['solved']} solved, {s['jammed']} jammed "

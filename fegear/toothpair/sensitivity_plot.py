@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..figures import margins, pyplot, save_png
-from .sensitivity_report import SHOWN
+from ..quantities import FLANK, ROOT1, ROOT2
 
 #: deviations a panel shows, the largest first
 TOP = 12
@@ -25,11 +25,10 @@ def sensitivities_figure(s: dict, title: str):
     of each moves it with a class (``--grade``), else its rate per µm; red where the stress
     rises with the deviation, blue where it falls (a runout's bar is a size: grey)."""
     plt = pyplot()
-    keys = ["root_stress_gear1_MPa", "root_stress_gear2_MPa", "flank_contact_pressure_MPa"]
     graded = s["grade"] is not None
     fig, axes = plt.subplots(1, 3, figsize=(14, 6.2))
-    for ax, key in zip(axes, keys):
-        stem = key.removesuffix("_MPa")
+    for ax, q in zip(axes, (ROOT1, ROOT2, FLANK)):
+        stem = q.key.removesuffix("_MPa")
         col = f"{stem}_at_tolerance" if graded else f"{stem}_per_um"
         rows = [r for r in s["rows"] if r.get(col) is not None]
         rows = sorted(rows, key=lambda r: abs(r[col]), reverse=True)[:TOP][::-1]
@@ -41,9 +40,9 @@ def sensitivities_figure(s: dict, title: str):
         ax.set_yticks(y)
         ax.set_yticklabels([r["deviation"] for r in rows], fontsize=8)
         ax.axvline(0.0, color="black", lw=0.8)
-        ax.set_xlabel(f"{SHOWN[key]} [MPa" + (" at one tolerance]" if graded else " per µm]"))
+        ax.set_xlabel(f"{q.label} [{q.unit}" + (" at one tolerance]" if graded else " per µm]"))
         ax.grid(axis="x", alpha=0.3)
-        ax.set_title(SHOWN[key], fontsize=10)
+        ax.set_title(q.label, fontsize=10)
     how = (f"one class-{s['grade']} tolerance of each deviation" if graded
            else "per µm of each deviation")
     fig.suptitle(f"{title}\nwhat {how} moves, at β = {s['position_deg']:.4g}°; red: the "

@@ -6,9 +6,7 @@ moves: which tooth's pitch, which profile, the centre distance or a runout decid
 
 from __future__ import annotations
 
-#: the headlines a table and the picture show, with their labels
-SHOWN = {"root_stress_gear1_MPa": "root σ1 gear 1", "root_stress_gear2_MPa": "root σ1 gear 2",
-         "contact_pressure_MPa": "contact p", "flank_contact_pressure_MPa": "flank p"}
+from ..quantities import HELD, ROOT1
 
 
 def tolerance_of(kind: str, gear: int | None, grade) -> float | None:
@@ -49,15 +47,15 @@ def sensitivity_summary(sens, position_deg: float, grade=None) -> dict:
 def sensitivity_table(s: dict, top: int = 12) -> str:
     """The ``top`` rows of :func:`sensitivity_summary` as the terminal shows them."""
     graded = s["grade"] is not None
-    head = ["deviation", *(f"{v} MPa/µm" for v in SHOWN.values())]
+    head = ["deviation", *(f"{q.head}/µm" for q in HELD)]
     if graded:
-        head += ["tolerance µm", "root σ1 gear 1 at it"]
+        head += ["tolerance µm", f"{ROOT1.short} at it"]
     lines = ["| " + " | ".join(head) + " |", "|" + "|".join(["---"] + ["---:"] * (len(head) - 1))
              + "|"]
     for r in s["rows"][:top]:
         cells = [r["deviation"] + (f" (worst at {r['phase_deg']:.0f}°)"
                                    if r["phase_deg"] is not None else "")]
-        cells += [f"{r[k.removesuffix('_MPa') + '_per_um']:+.2f}" for k in SHOWN]
+        cells += [f"{r[q.key.removesuffix('_MPa') + '_per_um']:+.2f}" for q in HELD]
         if graded:
             tol = r["tolerance_um"]
             cells += ["-", "-"] if tol is None else [

@@ -80,7 +80,7 @@ def test_the_tip_round_sets_the_contact_factor(summary):
     assert summary["safety_contact"] == pytest.approx(745.0 / edge)
     assert summary["safety_contact"] < 0.5 < 1.0 < summary["safety_contact_flank"]
     text = pair_table(summary)
-    assert (f"| S_H (peak pressure)     | {summary['safety_contact']:5.2f} |           745 | "
+    assert (f"| S_H (p_max)             | {summary['safety_contact']:5.2f} |           745 | "
             f"{summary['contact_pressure_MPa']:9.1f}e |") in text
     assert "S_H below 1: the stress exceeds the allowable" in text
     assert "e: the peak pressure, and so S_H, sits on a tip round" in text

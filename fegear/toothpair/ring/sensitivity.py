@@ -35,6 +35,7 @@ from scipy.linalg import lu_factor, lu_solve
 
 from ...fe import contact_modulus
 from ...geometry import Deviations, Placed, Runout, ToothDeviation, gear2_tooth
+from ...quantities import HELD
 from ..edge import flank_and_edge
 from .contact import RingContactSolution, rigid_gap, solved_system
 from .influence import RingContact
@@ -46,9 +47,9 @@ STEP_UM = 0.01
 #: the pressures are moved along dp by this share of their largest to read the headlines'
 #: derivatives (central differences of functions linear or smooth in the pressures)
 NUDGE = 1e-4
-#: the headlines whose derivatives are formed (those of the pressures alone)
-HEADLINES = ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa",
-             "flank_contact_pressure_MPa")
+#: the headlines whose derivatives are formed: those held against an allowable, each a
+#: function of the pressures alone (the von Mises maximum needs the submodels)
+HEADLINES = tuple(q.key for q in HELD)
 
 
 @dataclass(frozen=True)
