@@ -13,13 +13,15 @@ import math
 from collections.abc import Mapping
 
 from ..errors import FegearError
+from ..quantities import FACTORS, HELD, QUANTITIES
 from ..timing import Stopwatch
 
-#: the safety factors the default objective takes the smallest of: S_F of each gear from its
-#: root σ1, S_H from the flank pressure (a load on a tip round is a constraint of its own)
-LIMITS = {"S_F1": ("bending", "root_stress_gear1_MPa"),
-          "S_F2": ("bending", "root_stress_gear2_MPa"),
-          "S_H_flank": ("contact", "flank_contact_pressure_MPa")}
+#: the safety factors the default objective takes the smallest of, each under its name in a
+#: trial's record (:attr:`~fegear.quantities.Factor.name`): S_F of each gear from its root
+#: σ1, S_H from the flank pressure (a load on a tip round is a constraint of its own)
+LIMITS = {f.name: f for f in (FACTORS[k] for k in ("safety_bending_gear1",
+                                                   "safety_bending_gear2",
+                                                   "safety_contact_flank"))}
 #: what a design is measured by, and which way is better
 OBJECTIVES = {"safety": "maximize", "te": "minimize", "stiffness": "maximize"}
 
@@ -81,14 +83,14 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
     except FegearError as exc:
         return _infeasible(rec, "failed", str(exc), watch)
     allow = allowables_of(values)
-    for key in ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa",
-                "flank_contact_pressure_MPa"):
+    for key in (q.key for q in HELD):
         i = max(range(len(sols)), key=lambda k: sols[k].headline()[key])
         rec[key] = sols[i].headline()[key]
         rec[key.replace("_MPa", "_beta_deg")] = math.degrees(sols[i].case.beta)
         rec[key.replace("_MPa", "_tooth")] = carrying_tooth(sols[i], key)
-    for name, (which, key) in LIMITS.items():
-        rec[name] = getattr(allow, which) / rec[key] if rec[key] > 0 else math.inf
+    for name, f in LIMITS.items():
+        stress = rec[f.stress.key]
+        rec[name] = getattr(allow, f.stress.allowable) / stress if stress > 0 else math.inf
     rec["S_H"] = allow.contact / rec["contact_pressure_MPa"]
     limit = min(LIMITS, key=lambda n: rec[n])
     rec["limited_by"] = limit
@@ -124,11 +126,9 @@ def _graded(job, allow) -> dict:
     summary = samples_summary(sampled.rows, cycle_rows(sampled.nominal, allow), draw.grade,
                               draw.seed, q, allow)
     out = {"jammed_share": summary["jammed_share"]}
-    names = {"S_F1": "safety_bending_gear1", "S_F2": "safety_bending_gear2",
-             "S_H_flank": "safety_contact_flank"}
-    for name, key in names.items():
-        out[f"{name}_P{100 * q:g}"] = summary["safety"][key]["at_quantile"] or 0.0
-    out["objective_safety"] = min(out[f"{n}_P{100 * q:g}"] for n in names)
+    for name, f in LIMITS.items():
+        out[f"{name}_P{100 * q:g}"] = summary["safety"][f.key]["at_quantile"] or 0.0
+    out["objective_safety"] = min(out[f"{n}_P{100 * q:g}"] for n in LIMITS)
     turning = sampled.turning
     loads = [max(sampled.readings.get(k, [0.0])) for k in turning]
     loaded = [x for x in loads if x > 0]
@@ -139,9 +139,7 @@ def _graded(job, allow) -> dict:
 
 def carrying_tooth(sol, key: str) -> int:
     """The gear-1 tooth of the position ``sol`` that carries the headline stress ``key``."""
-    attr = {"root_stress_gear1_MPa": "root1_MPa", "root_stress_gear2_MPa": "root2_MPa",
-            "contact_pressure_MPa": "p_max_MPa",
-            "flank_contact_pressure_MPa": "flank_p_MPa"}[key]
+    attr = QUANTITIES[key].attribute
     return max(sol.teeth, key=lambda t: getattr(t, attr) or 0.0).tooth
 
 

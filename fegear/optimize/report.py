@@ -9,6 +9,8 @@ import math
 from collections.abc import Mapping
 from pathlib import Path
 
+from .. import quantities
+from ..quantities import HELD
 from ..toothpair import solve_command
 from .design import carrying_tooth
 from .space import Space
@@ -16,9 +18,10 @@ from .space import Space
 #: the relief ``fegear relief`` sizes for the seed pair at 200 N·m (docs/solve.md): the
 #: relieved baseline a search is compared with
 BASELINE_RELIEF = {"relief": 3.0, "relief-extent": 0.5, "tip-clearance": 0.02}
-#: the safety factors a design is judged by, by the cycle summary's keys
-FACTORS = {"S_F1": "safety_bending_gear1", "S_F2": "safety_bending_gear2",
-           "S_H_flank": "safety_contact_flank", "S_H": "safety_contact"}
+#: the safety factors a design is judged by, by the cycle summary's keys, each under its
+#: name in the final table (:attr:`~fegear.quantities.Factor.name`)
+FACTORS = {quantities.FACTORS[k].name: k for k in ("safety_bending_gear1", "safety_bending_gear2",
+                                                    "safety_contact_flank", "safety_contact")}
 CHECK_QUALITY = "standard"
 
 
@@ -45,9 +48,8 @@ def resolve(values: Mapping, positions: int, out: Path | None) -> dict:
     row["safety"], row["limited_by"] = row[limit], limit
     row["limited_tooth"] = _tooth(solved.solutions, row[f"{limit}_beta_deg"], limit)
     row["edge_load_N"] = max(r["edge_load_N"] for r in c["rows"])
-    for key in ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa",
-                "flank_contact_pressure_MPa"):
-        row[key] = c[key]["max"]
+    for q in HELD:
+        row[q.key] = c[q.key]["max"]
     row["estimate_pct"] = s.get("error_estimate_by_stress_pct") or {}
     row["te_p2p_urad"] = c["transmission_error_urad"]["peak_to_peak"]
     row["stiffness_Nm_per_rad"] = c["mesh_stiffness_Nm_per_rad"]["mean"]
@@ -56,10 +58,8 @@ def resolve(values: Mapping, positions: int, out: Path | None) -> dict:
 
 def _tooth(solutions, beta_deg: float, factor: str) -> int:
     """The gear-1 tooth that sets ``factor`` at the rolling angle ``beta_deg``."""
-    from ..toothpair import SAFETY
-
     sol = min(solutions, key=lambda x: abs(math.degrees(x.case.beta) - beta_deg))
-    return carrying_tooth(sol, SAFETY[FACTORS[factor]][1])
+    return carrying_tooth(sol, quantities.FACTORS[FACTORS[factor]].stress.key)
 
 
 def baselines(space: Space) -> dict[str, dict]:
@@ -106,9 +106,8 @@ def _f(v) -> str:
     return "-" if v is None or not math.isfinite(v) else f"{v:.2f}"
 
 
-HEADLINES = {"root_stress_gear1_MPa": "root σ1 gear 1", "root_stress_gear2_MPa": "root σ1 gear 2",
-             "contact_pressure_MPa": "peak pressure", "flank_contact_pressure_MPa": "flank "
-             "pressure"}
+#: the headline stresses of the final table: those held against an allowable
+HEADLINES = {q.key: q.label for q in HELD}
 
 
 def headline_table(rows: Mapping[str, dict]) -> str:

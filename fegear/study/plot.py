@@ -10,15 +10,16 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from ..figures import pyplot, save_png
+from ..quantities import EDGE_LOAD, FACTORS
 
 #: the panels, a row per concern: bending, contact, the rest and the key
 PANELS = (("root_stress_gear1_MPa", "root_stress_gear2_MPa", "bending"),
           ("contact_pressure_MPa", "flank_contact_pressure_MPa", "contact"),
           ("von_mises_max_MPa", "edge", "key"))
-#: the safety factors each safety panel draws: key → (label, marker, line style)
-SAFETY_PANELS = {"bending": {"safety_bending_gear1": ("S_F gear 1", "o", "-"),
-                             "safety_bending_gear2": ("S_F gear 2", "s", ":")},
-                 "contact": {"safety_contact": ("S_H", "o", "-")}}
+#: the safety factors each safety panel draws: key → (marker, line style)
+SAFETY_PANELS = {"bending": {"safety_bending_gear1": ("o", "-"),
+                             "safety_bending_gear2": ("s", ":")},
+                 "contact": {"safety_contact": ("o", "-")}}
 
 
 @dataclass(frozen=True)
@@ -121,8 +122,8 @@ def _key(ax, plot: StudyPlot) -> None:
     marks.append(Line2D([], [], color="red", marker="o", ms=10, mfc="none", ls="none",
                         label="a tip round of gear 1 carries load"))
     if plot.allowables is not None:
-        marks += [Line2D([], [], marker=m, ls=ls, **grey, label=label)
-                  for label, m, ls in SAFETY_PANELS["bending"].values()]
+        marks += [Line2D([], [], marker=m, ls=ls, **grey, label=FACTORS[k].label)
+                  for k, (m, ls) in SAFETY_PANELS["bending"].items()]
         marks.append(Line2D([], [], color="C3", ls="--", lw=1.2,
                             label="S = 1: the stress at its allowable"))
     if len(plot.lines) > 1 or plot.lines[0].label != "all":
@@ -147,8 +148,7 @@ def _edge_panel(ax, plot: StudyPlot) -> None:
     for n, line in enumerate(plot.lines):
         ax.plot(line.x, line.edge_N, color=f"C{n}", marker="o", ms=4)
         _rings(ax, line.x, line.edge_N, [e > 0 for e in line.edge_N])
-    ax.set_ylabel("load on gear 1's tip rounds [N]"
-                  + ("\n(largest over the cycle)" if plot.positions else ""))
+    ax.set_ylabel(EDGE_LOAD.axis + ("\n(largest over the cycle)" if plot.positions else ""))
     ax.set_ylim(bottom=0.0)
     ax.grid(alpha=0.3)
 
@@ -158,10 +158,10 @@ def _rings(ax, xs, ys, where) -> None:
             ms=11, mfc="none", color="red")
 
 
-def _safety_panel(ax, plot: StudyPlot, factors: dict[str, tuple[str, str, str]]) -> None:
-    """The factors (key → label, marker, line style; the key explains them) of every line,
-    and S = 1. Nothing but a note where the cases differ in their allowables."""
-    which = " / ".join(label for label, _, _ in factors.values())
+def _safety_panel(ax, plot: StudyPlot, factors: dict[str, tuple[str, str]]) -> None:
+    """The factors (key → marker, line style; the key explains them) of every line, and
+    S = 1. Nothing but a note where the cases differ in their allowables."""
+    which = " / ".join(FACTORS[k].label for k in factors)
     ax.set_ylabel(f"{which} [-]" + ("\n(smallest over the cycle)" if plot.positions else ""))
     ax.grid(alpha=0.3)
     if plot.allowables is None:
@@ -169,7 +169,7 @@ def _safety_panel(ax, plot: StudyPlot, factors: dict[str, tuple[str, str, str]])
                 transform=ax.transAxes, ha="center", va="center", fontsize=9)
         return
     for n, line in enumerate(plot.lines):
-        for k, (_, marker, ls) in factors.items():
+        for k, (marker, ls) in factors.items():
             pts = [(a, s) for a, s in zip(line.x, line.safety[k]) if s is not None]
             ax.plot([a for a, _ in pts], [s for _, s in pts], color=f"C{n}", marker=marker,
                     ms=4, ls=ls)

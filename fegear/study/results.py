@@ -21,6 +21,7 @@ import math
 from pathlib import Path
 
 from ..files import write_atomic
+from ..quantities import FACTORS, FLANK, QUANTITIES, ROOT1
 from ..toothpair import (
     HEADLINE,
     JOB_INPUTS,
@@ -34,14 +35,9 @@ from ..toothpair import (
 from .file import RefusedCase, Study
 from .plot import Line, StudyPlot
 
-#: headline stresses in the study table's head
-SHORT = {"root_stress_gear1_MPa": "root σ1 g1", "root_stress_gear2_MPa": "root σ1 g2",
-         "contact_pressure_MPa": "p_max", "flank_contact_pressure_MPa": "p flank",
-         "von_mises_max_MPa": "vM max"}
-
-#: the smallest safety factors over the teeth in the study table's head
-SAFETY_SHORT = {"safety_bending_gear1": "S_F g1", "safety_bending_gear2": "S_F g2",
-                "safety_contact": "S_H"}
+#: the smallest safety factors over the teeth in the study table's head, by their symbols
+SAFETY_SHORT = {k: FACTORS[k].symbol for k in ("safety_bending_gear1", "safety_bending_gear2",
+                                               "safety_contact")}
 
 #: columns after the summary
 _TRAILER = ("case_wall_s", "solve_s", "fegear", "code_version", "host", "pid", "finished_utc")
@@ -209,9 +205,9 @@ def markdown(study: Study, table: list[dict]) -> str:
     cycled = any(r.get("cycle.positions") for r in table)
     sampled = any(r.get("samples.n") for r in table)
     rated = any(_modes(r) for r in table)
-    head = (list(study.varied) + [SHORT[k] for k in HEADLINE] + list(SAFETY_SHORT.values())
-            + ["edge N"]
-            + ([f"{SHORT[k]} cycle" for k in HEADLINE]
+    head = (list(study.varied) + [QUANTITIES[k].short for k in HEADLINE]
+            + list(SAFETY_SHORT.values()) + [QUANTITIES["edge_load_N"].head]
+            + ([f"{QUANTITIES[k].short} cycle" for k in HEADLINE]
                + [f"{s} cycle" for s in SAFETY_SHORT.values()] if cycled else [])
             + (list(SAMPLES_SHORT) if sampled else [])
             + (list(RATING_SHORT) if rated else [])
@@ -260,10 +256,9 @@ def markdown(study: Study, table: list[dict]) -> str:
 
 #: a class's samples in the table: header → the results' column
 SAMPLES_SHORT = {"jammed %": "samples.jammed_share",
-                 "σ1 g1 P95": "samples.root_stress_gear1_MPa.P95",
-                 "p flank P95": "samples.flank_contact_pressure_MPa.P95",
-                 "S_F1 at q": "samples.safety_bending_gear1.at_quantile",
-                 "S_H flank at q": "samples.safety_contact_flank.at_quantile"}
+                 **{f"{q.short} P95": f"samples.{q.key}.P95" for q in (ROOT1, FLANK)},
+                 **{f"{FACTORS[q.safety].symbol} at q": f"samples.{q.safety}.at_quantile"
+                    for q in (ROOT1, FLANK)}}
 
 
 #: a life rating in the table: its headers (the limiting mode's, :func:`_rating_cells`)

@@ -605,7 +605,7 @@ def test_new_allowables_recompute_the_factors_not_the_cases(pool_run, tmp_path):
         teeth = json.loads(r["teeth"])
         assert all(t["safety_bending_gear1"] == pytest.approx(
             bending / t["root_stress_gear1_MPa"]) for t in teeth if t["load_N"] > 0)
-    assert "S_F g1" in (out / "results.md").read_text()
+    assert "S_F1" in (out / "results.md").read_text()
     assert not (out / "plots" / "allowable-bending.png").exists()
 
 
