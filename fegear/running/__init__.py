@@ -24,8 +24,8 @@ from ..exports import lazy
 __getattr__, __dir__, __all__ = lazy(__name__, {
     "executors": ("Executor", "Task", "Serial", "SERIAL", "Forks", "Pool", "Cluster",
                   "spare_core",
-                  "pool_or_serial", "in_fresh_process", "strict", "STRICT"),
-    "forks": ("WorkerFailed",),
+                  "pool_or_serial", "in_fresh_process"),
+    "forks": ("WorkerFailed", "strict", "STRICT"),
     "primed": ("Primed",),
     "pools": ("LocalPool", "local_pool", "init_worker", "connect"),
     "supervisor": ("Supervisor", "Outcome"),

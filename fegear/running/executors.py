@@ -25,18 +25,12 @@ speed); otherwise a warning is logged and the task runs again here.
 
 from __future__ import annotations
 
-import logging
 import os
 from collections.abc import Callable, Iterable
 from typing import Protocol
 
-from .forks import Forked, WorkerFailed, available
+from .forks import Forked, WorkerFailed, again_here, available
 from .primed import Primed
-
-log = logging.getLogger(__name__)
-
-#: the environment variable that makes a failed worker an error instead of a warning
-STRICT = "FEGEAR_STRICT_WORKERS"
 
 
 class Task(Protocol):
@@ -116,20 +110,6 @@ class Serial:
 SERIAL = Serial()
 
 
-def strict() -> bool:
-    """Whether a task that fails in a worker is an error (:data:`STRICT` set)."""
-    return os.environ.get(STRICT, "") not in ("", "0")
-
-
-def _again_here(err: WorkerFailed, fn: Callable, args: tuple):
-    """A task that failed in a worker: raised if workers are strict, else run here."""
-    if strict():
-        raise err
-    log.warning("a task failed in a worker process (%s); it runs here instead",
-                str(err).strip().splitlines()[-1])
-    return fn(*args)
-
-
 class _InFork:
     """A task under way in a forked copy of this process."""
 
@@ -143,7 +123,7 @@ class _InFork:
             try:
                 self._got = (self._child.result(),)
             except WorkerFailed as err:
-                self._got = (_again_here(err, self._fn, self._args),)
+                self._got = (again_here(err, self._fn, self._args),)
             finally:
                 self._child = None
                 self._owner._ended(self)
@@ -239,7 +219,7 @@ class _InPool:
             return self._future.result()
         except BrokenProcessPool:   # a worker died (killed, out of memory)
             self._owner.broken = True
-            return _again_here(WorkerFailed("a worker process died"), self._fn, self._args)
+            return again_here(WorkerFailed("a worker process died"), self._fn, self._args)
 
     def done(self) -> bool:
         return self._future.done()
@@ -293,7 +273,7 @@ class _OnCluster:
         try:
             return self._future.result()
         except KilledWorker as err:   # its workers died under it
-            return _again_here(WorkerFailed(f"a Dask worker died: {err}"), self._fn,
+            return again_here(WorkerFailed(f"a Dask worker died: {err}"), self._fn,
                                self._args)
 
     def done(self) -> bool:

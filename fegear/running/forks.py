@@ -13,6 +13,7 @@ a fork after Apple's BLAS has run may crash, which is why multiprocessing spawns
 
 from __future__ import annotations
 
+import logging
 import os
 import pickle
 import signal
@@ -23,9 +24,28 @@ import traceback
 from ..errors import FegearError
 from .pools import exit_with_parent
 
+log = logging.getLogger(__name__)
+
+#: the environment variable that makes a failed worker an error instead of a warning
+STRICT = "FEGEAR_STRICT_WORKERS"
+
 
 class WorkerFailed(FegearError):
     """Work given to another process failed there, or the process died."""
+
+
+def strict() -> bool:
+    """Whether a task that fails in a worker is an error (:data:`STRICT` set)."""
+    return os.environ.get(STRICT, "") not in ("", "0")
+
+
+def again_here(err: WorkerFailed, fn, args: tuple):
+    """A task that failed in a worker: raised if workers are strict, else run here."""
+    if strict():
+        raise err
+    log.warning("a task failed in a worker process (%s); it runs here instead",
+                str(err).strip().splitlines()[-1])
+    return fn(*args)
 
 
 def available() -> bool:

@@ -16,7 +16,7 @@ import os
 import pickle
 from collections.abc import Callable
 
-from .forks import Forked, WorkerFailed
+from .forks import Forked, WorkerFailed, again_here
 
 
 class Primed:
@@ -73,8 +73,6 @@ class _InPrimed:
         self._got: tuple | None = None
 
     def result(self):
-        from .executors import _again_here
-
         if self._got is None:
             forked = self._owner._forked
             try:
@@ -82,7 +80,7 @@ class _InPrimed:
                     raise WorkerFailed("the primed process was closed before it answered")
                 self._got = (forked.result(),)
             except WorkerFailed as err:
-                self._got = (_again_here(err, self._fn, self._args),)
+                self._got = (again_here(err, self._fn, self._args),)
             finally:
                 self._owner.close()
         return self._got[0]

@@ -19,7 +19,8 @@ from ..files import write_atomic, write_csv, write_json
 from ..running import SERIAL, Executor
 from .case import HEADLINE, PairSolution
 from .cycle_plot import cycle_png
-from .plot import PicturedDetail, chart_pngs, for_pictures, von_mises_bytes
+from .pictured import PicturedDetail, for_pictures
+from .plot import chart_pngs, von_mises_bytes
 
 if TYPE_CHECKING:   # what an analysis hands its writer (the analyses call this module)
     from .analyses import Writing
@@ -165,7 +166,7 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
     Where ``executor`` holds processes made ready to draw (a one-off command's:
     :func:`~fegear.running.spare_core` with :func:`~.plot.prepare_pictures`, which imported
     matplotlib while the command started up), the charts go to one at once and von Mises,
-    from the part of the fields it shows (:func:`~.plot.for_pictures`), to the other as soon
+    from the part of the fields it shows (:func:`~.pictured.for_pictures`), to the other as soon
     as the fields are formed, while this process writes the VTUs; else every picture is
     drawn here. They come back as bytes, the same either way, and every file is written
     here, atomically."""
@@ -196,7 +197,7 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
 
 def _drawn(painter, fn, sol: PairSolution, *args):
     """``fn(sol, *args)`` handed to ``painter`` (a :class:`~fegear.running.Primed`) with the
-    solution made light to send (:class:`~.plot.PicturedDetail`), or here where there is
+    solution made light to send (:class:`~.pictured.PicturedDetail`), or here where there is
     none; a task either way."""
     if painter is None:
         return SERIAL.submit(fn, sol, *args)

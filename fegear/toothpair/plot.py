@@ -4,23 +4,15 @@ peak, the pressure along each loaded flank and the root stress per tooth (the me
 
 from __future__ import annotations
 
-import dataclasses
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from ..figures import margins, png_bytes, pyplot, save_png
 from ..figures.labels import Callout, place_callouts, place_legend
-from .case import BodyField, PairSolution
-from .marks import (
-    VerdictCaption,
-    field_max,
-    labelled_box,
-    peak_zoom,
-    pressure_curve,
-    root_hot_spots,
-)
+from .case import PairSolution
+from .marks import VerdictCaption, peak_zoom, pressure_curve, root_hot_spots
+from .pictured import frame_of, in_box
 from .report import factor_cell
 
 
@@ -40,92 +32,9 @@ def von_mises_png(path: Path, sol: PairSolution, summary: dict, bodies, peaks=()
 
 
 def von_mises_bytes(sol: PairSolution, summary: dict, bodies, peaks=(), spots=None) -> bytes:
-    """:func:`von_mises_figure` as PNG bytes (drawn in another process: :func:`for_pictures`)."""
+    """:func:`von_mises_figure` as PNG bytes (drawn in another process:
+    :func:`~.pictured.for_pictures`)."""
     return png_bytes(von_mises_figure(sol, summary, bodies, peaks, spots), 100)
-
-
-class PicturedDetail:
-    """What the pictures read of a solved position's own record (its flank pressures and its
-    contact zone), without the model behind it: a :class:`~.case.PairSolution` carrying this
-    pickles in a few kilobytes (:func:`for_pictures`)."""
-
-    def __init__(self, detail) -> None:
-        self._flanks, self._zone = detail.flank_pressures(), detail.contact_zone()
-
-    def flank_pressures(self):
-        return self._flanks
-
-    def contact_zone(self):
-        return self._zone
-
-
-@dataclass(frozen=True)
-class ToDraw:
-    """A solved pair made ready to send to a process that draws it: the solution with a
-    :class:`PicturedDetail`, the bodies' cells that von Mises shows (every node of the
-    pictured box and its margin, with their von Mises and σ1) and the root hot spots found on
-    the whole bodies."""
-
-    sol: PairSolution
-    bodies: tuple[BodyField, ...]
-    peaks: tuple[BodyField, ...]
-    spots: tuple
-
-
-def for_pictures(sol: PairSolution, bodies, peaks=()) -> ToDraw:
-    """:class:`ToDraw` of a solved pair and its fields: von Mises from it is the same picture
-    as from the whole fields, byte for byte."""
-    spots = root_hot_spots(sol, bodies)
-    box = _frame(sol, bodies, peaks, spots).box
-    light = dataclasses.replace(sol, detail=PicturedDetail(sol.detail))
-    shown = tuple(part for b in bodies if (part := _cropped(b, box)) is not None)
-    return ToDraw(light, shown, tuple(peaks), spots)
-
-
-def _cropped(b: BodyField, box) -> BodyField | None:
-    """The cells of ``b`` that :func:`_draw` would draw in ``box`` (or in a box inside it), with
-    the fields the picture reads; None if there are none."""
-    keep = _in_box(b, box)
-    if not keep.any():
-        return None
-    used, local = np.unique(b.cells[keep], return_inverse=True)
-    return BodyField(b.name, b.points[used], local.reshape(-1, b.cells.shape[1]),
-                     {k: b.data[k][used] for k in ("von_mises", "s1")})
-
-
-def _in_box(b: BodyField, box) -> np.ndarray:
-    """Which corner triangles of ``b`` have their centroid in ``box`` and a tenth of its width
-    around it."""
-    tri = b.cells[:, :3]
-    # the corners' centroids a coordinate at a time: a whole ring's (n, 3, 2) gather costs
-    # three times as much
-    x, y = ((b.points[tri[:, 0], k] + b.points[tri[:, 1], k] + b.points[tri[:, 2], k]) / 3
-            for k in (0, 1))
-    pad = 0.1 * (box[1] - box[0])
-    return (x > box[0] - pad) & (x < box[1] + pad) & (y > box[2] - pad) & (y < box[3] + pad)
-
-
-@dataclass(frozen=True)
-class _Frame:
-    """Where von Mises looks: the box of the loaded teeth, the largest von Mises and where it
-    is, and the contact's points."""
-
-    box: tuple[float, float, float, float]
-    peak_at: np.ndarray
-    peak: float
-    contact: list
-
-
-def _frame(sol: PairSolution, bodies, peaks, spots) -> _Frame:
-    """The :class:`_Frame` of a solved pair: the box around its contact's points and its root
-    hot spots."""
-    fine = list(peaks)
-    # where the submodels resolve the peak, the bodies' nodes under them are not the answer
-    peak_at, peak = field_max(fine or list(bodies), "von_mises")
-    contact = [f.points[f.pressure > 0] for f in sol.detail.flank_pressures()] \
-        or [np.array([peak_at])]
-    box = labelled_box(np.vstack([*contact, *[sp.point for sp in spots]]), sol.case.params.m)
-    return _Frame(box, peak_at, peak, contact)
 
 
 def von_mises_figure(sol: PairSolution, summary: dict, bodies, peaks=(), spots=None):
@@ -139,14 +48,14 @@ def von_mises_figure(sol: PairSolution, summary: dict, bodies, peaks=(), spots=N
     contact peak with the submodels that resolve it (``peaks``; the ring model) over the
     bodies, on the full range, its maximum marked, and the peak pressure's S_H. A length
     scale in each. ``bodies`` and ``peaks``: :class:`~.case.BodyField` s; ``spots``: the
-    root hot spots where they were found before (:func:`for_pictures`)."""
+    root hot spots where they were found before (:func:`~.pictured.for_pictures`)."""
     plt = pyplot()
     p, case = sol.case.params, sol.case
     flanks = sol.detail.flank_pressures()
     spots = root_hot_spots(sol, bodies) if spots is None else spots
     clip = 2.0 * max(sol.root_stress)
     fine = list(peaks)
-    frame = _frame(sol, bodies, peaks, spots)
+    frame = frame_of(sol, bodies, peaks, spots)
     box, peak_at, peak, contact = frame.box, frame.peak_at, frame.peak, frame.contact
     zone = sol.detail.contact_zone()
     zoom = peak_zoom(fine, zone.half_width, p.m)
@@ -249,7 +158,7 @@ def _draw(ax, bodies, box, clim):
 
     im = None
     for b in bodies:
-        keep = _in_box(b, box)
+        keep = in_box(b, box)
         if not keep.any():
             continue
         used, local = np.unique(b.cells[keep, :3], return_inverse=True)

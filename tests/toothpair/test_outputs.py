@@ -385,7 +385,8 @@ def test_von_mises_from_the_part_it_shows_is_the_picture_of_the_whole_fields(sol
     """The cells sent to draw von Mises are a few of the whole bodies', and the picture of
     them is the very picture of the whole fields (what `fegear solve --out` drew before)."""
     from fegear.figures import png_bytes
-    from fegear.toothpair.plot import for_pictures, von_mises_bytes, von_mises_figure
+    from fegear.toothpair.pictured import for_pictures
+    from fegear.toothpair.plot import von_mises_bytes, von_mises_figure
 
     bodies, peaks = solved.detail.body_fields(), solved.detail.peak_fields()
     shown = for_pictures(solved, bodies, peaks)
