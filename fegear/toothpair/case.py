@@ -79,6 +79,11 @@ class SolveCase:
         return torque_limit(self.E, self.params.m, self.thickness, self.params.r1)
 
     @property
+    def torque_Nmm(self) -> float:
+        """The torque in N·mm: the contact's units are mm, N and MPa."""
+        return self.torque * 1e3
+
+    @property
     def material(self) -> ElasticMaterial:
         return ElasticMaterial(self.E, self.nu, self.thickness, "stress")
 

@@ -147,7 +147,7 @@ def expected_elastic_um(case: SolveCase, near: PairSolution | None = None) -> fl
         elastic = p.arc_um(near.rotation - near.first_touch)
         if math.isfinite(elastic):   # a solution read without its first touch has none
             return elastic
-    return case.torque * 1e3 / p.r0 / (case.thickness * TOOTH_STIFFNESS) / SHARE_GUESS
+    return case.torque_Nmm / p.r0 / (case.thickness * TOOTH_STIFFNESS) / SHARE_GUESS
 
 
 def first_teeth(case: SolveCase, state, elastic_um: float) -> tuple[int, ...]:

@@ -181,7 +181,7 @@ def ccx_pair(case: SectorCase, workdir: str | os.PathLike, threads: int = 1,
     if solution is not None and solution.case != case:
         raise PeerError("the solution given is not of this case")
     sol = solve_pair(case) if solution is None else solution
-    torque = sol.case.torque * 1e3
+    torque = sol.case.torque_Nmm
     pairs, owner = pair_surfaces(sol, penalty, penalty_factor)
     if start == "solution":
         turned, theta0 = sol.rotation, 0.0

@@ -224,7 +224,7 @@ class Phases:
         if phase not in self._circles:
             self._circles[phase] = foot_circles(model, kept.contact, kept.rotation)
         try:
-            sol = solve_ring_contact(model, contact, case.torque * 1e3, kept.rotation,
+            sol = solve_ring_contact(model, contact, case.torque_Nmm, kept.rotation,
                                      start=kept.active,
                                      within=NEAR * 1e-3 * max(kept.elastic_um, 1.0),
                                      circles=self._circles[phase])
@@ -262,7 +262,7 @@ class Phases:
         contact = assemble_contact(model, grids, case.beta,
                                    p.ratio * case.beta + settled.rotation, ColumnRule(), placed)
         try:
-            sol = solve_ring_contact(model, contact, case.torque * 1e3, settled.rotation,
+            sol = solve_ring_contact(model, contact, case.torque_Nmm, settled.rotation,
                                      guess=settled.rotation)
         except ContactError:
             return None

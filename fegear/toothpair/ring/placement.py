@@ -55,9 +55,6 @@ class GridPlacement:
     reach: dict = field(default_factory=dict)
 
 
-Placement = GridPlacement   # (until toothpair/ring/solver.py is moved over)
-
-
 def by_tooth(before: RingDetail) -> dict:
     """The grids of a solved position by tooth, each with its pressures (a later position's
     start and columns read them)."""
@@ -126,7 +123,7 @@ def place_grids(model: RingModel, case: SolveCase, trial: Trial, placement: Grid
     base = REACH * elastic_um * 1e-3 + REACH_FLOOR * p.m
     turn = p.ratio * case.beta + p.turn_of(first_um)   # at the first touch
     E_star = contact_modulus(case.E, case.E)
-    load = case.torque * 1e3 / p.r0 / SHARE_GUESS / case.thickness
+    load = case.torque_Nmm / p.r0 / SHARE_GUESS / case.thickness
     # the grids' largest spacing follows the reach of the expected rotation without a solution
     # before, so that a position solved in a cycle has the grid it has alone
     canonical = REACH * expected_elastic_um(case) * 1e-3 + REACH_FLOOR * p.m

@@ -112,7 +112,7 @@ def tooth_result(detail: RingDetail, k: int, rigid: tuple[np.ndarray, np.ndarray
     per_b = b / spacing if load > 0 else 0.0
     return ToothResult(
         tooth=grid.tooth, clearance_um=clearance_um, load_N=load,
-        load_share=float(-(w[blk] * pk) @ rate[blk] / (case.torque * 1e3)),
+        load_share=float(-(w[blk] * pk) @ rate[blk] / (case.torque_Nmm)),
         p_max_MPa=float(pk.max()),
         half_width_mm=b,
         hertz_p0_MPa=hz.p0 if hz else None, hertz_b_mm=hz.b if hz else None,

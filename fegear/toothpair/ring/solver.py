@@ -38,7 +38,7 @@ from .phases import Phases
 from .placement import (
     CANDIDATES,
     PLACEMENT,
-    Placement,
+    GridPlacement,
     by_tooth,
     columns_before,
     expected_teeth,
@@ -164,7 +164,7 @@ class RingSolver:
         # without a solution before, the expected rotation is an estimate (20-50 % off): a
         # first solve on probe grids only finds the rotation to place the fine grids at
         predict = near is None and trial.own is None
-        placement = trial.own or Placement()
+        placement = trial.own or GridPlacement()
         if placement.full is None:
             placement = replace(placement, full=frozenset() if predict else frozenset(
                 expected_teeth(state, first_um + trial.elastic_um)))
@@ -212,7 +212,7 @@ class RingSolver:
         solved = attempt.solved
         try:
             with timed("contact"):
-                sol = solve_ring_contact(self.model, solved.contact, case.torque * 1e3,
+                sol = solve_ring_contact(self.model, solved.contact, case.torque_Nmm,
                                          solved.solution.rotation,
                                          start=solved.solution.pressure > 0)
         except ContactError:
@@ -278,7 +278,7 @@ class RingSolver:
                     # the rotation's linearisations start at the expected rotation after a
                     # solved position (its elastic part off by a few per cent: three, not
                     # four), else at the first touch
-                    sol = solve_ring_contact(self.model, contact, case.torque * 1e3,
+                    sol = solve_ring_contact(self.model, contact, case.torque_Nmm,
                                              theta if near is not None else p.turn_of(first_um),
                                              guess=theta, start=start)
             except ContactError:   # the candidates alone cannot carry the torque: on
@@ -354,7 +354,7 @@ class RingSolver:
         return out
 
 
-def _judged(case: SolveCase, state, trial: Trial, placement: Placement, solved: RingAttempt,
+def _judged(case: SolveCase, state, trial: Trial, placement: GridPlacement, solved: RingAttempt,
             predict: bool) -> Attempt:
     """The attempt settled, or the trial to solve again from: the driver's rule at the solved
     rotation chooses a tooth without a grid, a grid carries pressure at an end, a probe
@@ -370,7 +370,7 @@ def _judged(case: SolveCase, state, trial: Trial, placement: Placement, solved: 
         reach[t] = 2.0 * reach.get(t, 1.0)
     full = placement.full | touched | expected_teeth(state, p.arc_um(sol.rotation))
     again = Trial(tuple(sorted(set(trial.teeth) | more)), max(solved_um, 1e-6),
-                  Placement(frozenset(full), reach))
+                  GridPlacement(frozenset(full), reach))
     why = ("probe grids first: " if predict else "") + (
         f"teeth {sorted(more - set(trial.teeth))}, ends {ends}, probes touched "
         f"{sorted(touched)}, elastic {solved_um:.3g} µm, expected {trial.elastic_um:.3g}")

@@ -50,7 +50,7 @@ def tooth_results(case: SectorCase, scene: Scene, bodies: tuple[Body, Body],
     p = case.params
     g1, g2 = bodies
     pitch1, pitch2 = scene.shape.pitch, 2 * math.pi / p.z2
-    torque = case.torque * 1e3
+    torque = case.torque_Nmm
     contact_zones = {z.pair: z for z in sol.zones}
     a = contact.gap0(sol.link_value)[1]
     by_tooth = {c.tooth: c for c in cands}

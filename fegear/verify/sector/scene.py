@@ -136,7 +136,7 @@ def element_sizes(case: SectorCase, shape: RoundedProfile, first: list[Candidate
     Hertz half-width at the shared load."""
     p = case.params
     n_b, root_m, global_m = SECTOR_LEVELS[case.quality]
-    torque_nmm = case.torque * 1e3
+    torque_nmm = case.torque_Nmm
     b_full = max(hertz_half_width(p, torque_nmm, c, case.thickness, case.E, case.nu)
                  for c in first)
     b_shared = b_full / math.sqrt(SHARE_GUESS)  # b ∝ sqrt(load)
@@ -215,7 +215,7 @@ def build_scene(case: SectorCase, profile: Gear1Profile, positions, teeth: tuple
     # window half-length per candidate: WINDOW_B Hertz half-widths of its own curvatures at
     # the shared load, at least WINDOW_MIN modules (a contact that only just closes)
     reach = reach or {}
-    half = [(c, max(WINDOW_B * hertz_half_width(p, case.torque * 1e3, c, case.thickness, case.E,
+    half = [(c, max(WINDOW_B * hertz_half_width(p, case.torque_Nmm, c, case.thickness, case.E,
                                                 case.nu) / math.sqrt(SHARE_GUESS),
                     WINDOW_MIN * p.m) * reach.get(c.tooth, 1.0)) for _, c in cands]
     sector = gear1_sector(p, shape, teeth, case.extra_teeth)

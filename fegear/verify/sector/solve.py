@@ -225,7 +225,7 @@ def solve_position(model: PairModel, beta: float, state,
         bodies = place(model, beta)
         contact = pair_contact(model.scene, bodies, beta, case.penalty_factor)
     with timed("contact"):   # the flexibility columns it forms meanwhile: "condense"
-        sol = _solve_loaded(contact, case.torque * 1e3, near, beta)
+        sol = _solve_loaded(contact, case.torque_Nmm, near, beta)
     with timed("recovery"):
         stresses = tuple(recover(b, u) for b, u in zip(bodies, sol.displacements))
         cands = candidate_data(case.params, model.scene.shape, state, model.scene.paired, beta)
