@@ -30,6 +30,7 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from ..errors import FegearError
+from ..geometry import PER_TOOTH, Runout, ToothEntry, runout_text
 from .inputs import JOB_INPUTS, REQUIRES
 
 #: the solve's inputs that name a file: measured deviations, a load spectrum, a material (a
@@ -138,14 +139,13 @@ def _deviation_texts(summary: Mapping, path: Path) -> dict:
                 raise CaseFileError(f"{path}: gear {gear} tooth {tooth} has a measured form "
                                     "curve, which only its deviations file holds: give that "
                                     "file with --deviations")
-            for name, key in (("pitch-deviation", "pitch_um"), ("slope-deviation",
-                                                                 "slope_um"),
-                              ("form-deviation", "form_um")):
-                if d.get(key):
-                    out.setdefault(name, []).append(f"{gear}:{tooth}={d[key]:g}")
+            for name, field in PER_TOOTH.items():
+                if d.get(f"{field}_um"):
+                    out.setdefault(name, []).append(
+                        ToothEntry(name, gear, int(tooth), d[f"{field}_um"]).text)
     if summary.get("centre_distance_um"):
         out["centre-distance-deviation"] = summary["centre_distance_um"]
-    runouts = [f"{g}={r['fr_um']:g}@{r['phase_deg']:g}" for g in (1, 2)
+    runouts = [runout_text(g, Runout(r["fr_um"], r["phase_deg"])) for g in (1, 2)
                if (r := summary.get(f"runout{g}") or {}).get("fr_um")]
     if runouts:
         out["runout"] = runouts

@@ -150,3 +150,18 @@ def test_a_rating_without_positions_says_it_took_the_default_cycle(tmp_path, cap
     out = capsys.readouterr().out
     assert "24 positions on one mesh" in out
     assert "(not given: 24 positions over one pitch, the default cycle for a rating" in out
+
+
+def test_a_summary_s_deviations_read_back_in_the_options_grammar_to_every_digit(tmp_path):
+    """A summary.json's deviations come back as the options that give them (through the
+    grammar's one writer), every digit kept: `:g` kept six."""
+    from fegear.toothpair import read_case
+
+    summary = {"inputs": {"torque_Nm": 20.0, "deviations": {
+        "gear1": {"11": {"pitch_um": 5.1234567, "slope_um": 0.0}},
+        "runout2": {"fr_um": 10.25, "phase_deg": 90.0}}}}
+    path = tmp_path / "summary.json"
+    path.write_text(json.dumps(summary))
+    values = read_case(path)
+    assert values["pitch-deviation"] == ["1:11=5.1234567"]
+    assert values["runout"] == ["2=10.25@90"]
