@@ -1,6 +1,6 @@
 """The results' one vocabulary: each quantity fegear reports, under the key the JSON summary
 gives it, with its symbol, its labels, its unit, the tooth's field it is read from and the
-allowable it is held against, and each safety factor (issue 68).
+allowable it is held against, and each safety factor.
 
 The summary, the printed tables, the report page, the pictures, the sensitivities, a study's
 table and the design search name a quantity through here, so no two places name one
