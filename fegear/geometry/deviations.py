@@ -38,7 +38,8 @@ import numpy as np
 from ..checks import require_finite
 from ..errors import ParameterError
 from ..planar import rotate
-from .gear2 import gear2_tooth
+from .gear1 import gear1_profile
+from .gear2 import gear2_curve, gear2_tooth
 
 #: the largest deviation fegear takes, µm: far beyond ISO 1328-1's coarsest class for any
 #: module fegear solves (class 11, m 100, d 2 m: about 900 µm) and below what closes a pair
@@ -254,8 +255,6 @@ LEVER_FLOOR = 0.02
 @lru_cache(maxsize=64)
 def _gear1_radii(params) -> tuple[float, float]:
     """Gear 1's root and tip radii (mm), where its flanks' roll runs from 0 to 1."""
-    from .gear1 import gear1_profile
-
     g1 = gear1_profile(params)
     return (float(g1.radius(np.array([g1.phi_space]))[0]),
             float(g1.radius(np.array([g1.tooth_center]))[0]))
@@ -274,9 +273,6 @@ class Placed:
     r0 ± 2 e1."""
 
     def __init__(self, deviations: Deviations, params, beta: float) -> None:
-        from .gear1 import gear1_profile
-        from .gear2 import gear2_curve
-
         self.deviations, self.params, self.beta = deviations, params, beta
         self.curve2 = gear2_curve(params)
         g1 = gear1_profile(params)

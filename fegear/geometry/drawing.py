@@ -27,8 +27,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ..files import write_atomic
 from ..planar import rotate
 from .deviations import NO_DEVIATIONS, Deviations
+from .gear1 import gear1_profile
 from .gear2 import adaptive_parameters, gear2_curve
 from .parameters import PairParameters
 from .relief import RelievedBranch
@@ -80,8 +82,6 @@ def gear1_outline(params: PairParameters, chord_error: float, tip_round: float,
     (mm; 0 leaves them sharp), all z1 teeth, chords within ``chord_error`` (mm), closed by its
     bore of radius ``bore`` (mm), with ``deviations``' gear-1 teeth and runout (module
     docstring)."""
-    from .gear1 import gear1_profile
-
     profile = gear1_profile(params)
     shape = RoundedProfile(profile, tip_round)
     phi, pts, bulges, breaks = _gear1_period(profile, shape, chord_error)
@@ -252,8 +252,6 @@ def write_dxf(path: Path, outline: Outline, title: str) -> Path:
     descriptions and the header's custom properties. Written atomically."""
     import ezdxf
     from ezdxf import units
-
-    from ..files import write_atomic
 
     teeth, ring = LAYERS[outline.gear]
     what = "bore" if outline.gear == 1 else "outer rim"
