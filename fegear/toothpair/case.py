@@ -264,3 +264,20 @@ class PairSolution:
 def cycle_positions(beta0: float, n: int, z2: int) -> tuple[float, ...]:
     """``n`` rolling angles evenly across one tooth pitch 2π/z2 of gear 2, from β0."""
     return tuple(float(wrap(beta0 + k * 2 * math.pi / z2 / n)) for k in range(n))
+
+
+def revolution_positions(beta0: float, per_pitch: int, z1: int, z2: int) -> tuple[float, ...]:
+    """Rolling angles β (rad) from ``beta0`` over z1 pitches of gear 2 (one turn of gear 1),
+    ``per_pitch`` evenly in each."""
+    step = 2 * math.pi / z2 / per_pitch
+    return tuple(beta0 + k * step for k in range(z1 * per_pitch))
+
+
+def phase_major(count: int, z1: int) -> list[int]:
+    """The ``count`` positions of a revolution over ``z1`` pitches (:func:`revolution_positions`)
+    in the order a solve takes them: each place within a pitch over every pitch, then the
+    next. A solve kept for the first pitch of a place serves the others (the ring model's
+    :mod:`~.ring.phases`), and a mesh cycle's two chains, its halves, then carry alike
+    whichever teeth the deviations are on."""
+    per_pitch = count // z1
+    return sorted(range(count), key=lambda k: (k % per_pitch, k // per_pitch))

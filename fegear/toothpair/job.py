@@ -11,6 +11,7 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .. import progress
 from ..errors import ParameterError
@@ -19,19 +20,55 @@ from ..geometry import admissible_pair, deviations_of
 from ..running import SERIAL, Executor
 from ..timing import Stopwatch
 from ..tolerance import Draw, grade_of
-from .analyses import Run, Writing, asked, positions_of, shown
-from .case import SolveCase, cycle_positions
+from .analyses import Run, Writing, asked, shown
+from .case import SolveCase, cycle_positions, revolution_positions
 from .case_file import case_record
 from .inputs import JOB_INPUTS, PAIR_INPUTS, REQUIRES, TIP_ROUND, check_tip_round
-from .levels import Rating
-from .revolution import PER_PITCH, revolution_positions
 from .safety import DEFAULT_ALLOWABLES, allowables_of
 
+if TYPE_CHECKING:   # a Rating's parts: a user error answers before scipy loads
+    from ..rating import GearMaterial, Spectrum
+
 PAIR_NAMES = {row.name for row in PAIR_INPUTS}
+#: the positions per pitch of a revolution where none are given
+PER_PITCH = 24
 #: what a rating solves where neither --positions nor --revolution is given (a tooth's
 #: largest stress is over its pass through the mesh, which one pitch's positions cover)
 RATING_CYCLE = (f"{PER_PITCH} positions over one pitch, the default cycle for a rating "
                 "(--positions N or --revolution sets another)")
+
+
+@dataclass(frozen=True)
+class Rating:
+    """What a life rating takes besides the solve (``--spectrum``, solved by
+    :mod:`.analyses.rating`): the ``spectrum``, the ``material``, the application and dynamic
+    factors (every level's torque is solved times ``KA``·``KV``) and gear 1's ``speed_rpm``
+    against gear 2 (None: the life as repeats of the spectrum)."""
+
+    spectrum: Spectrum
+    material: GearMaterial
+    KA: float = 1.0
+    KV: float = 1.0
+    speed_rpm: float | None = None
+    source: str = ""
+
+    def check(self, case: SolveCase) -> None:
+        """Every level's solved torque within what a solve takes, refused by name."""
+        limit = case.torque_limit
+        for k, level in enumerate(self.spectrum.levels, 1):
+            if level.torque * self.KA * self.KV > limit:
+                raise ParameterError("spectrum", self.source, f"torques whose KA·KV·torque "
+                                     f"is at most {limit:.4g} N·m, the most the pair takes "
+                                     f"(level {k}: {level.torque:g} N·m)")
+
+    @property
+    def hours(self) -> float | None:
+        """The spectrum's duration (h): given, or its revolutions at the speed."""
+        if self.spectrum.hours is not None:
+            return self.spectrum.hours
+        if self.speed_rpm is None:
+            return None
+        return self.spectrum.cycles / (self.speed_rpm * 60.0)
 
 
 @dataclass(frozen=True)
@@ -262,6 +299,7 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
 def _drive(job: Job, analyses, executor: Executor):
     """The positions solved: by the analysis that drives them (a class's samples), else by
     the one driver; ``(solver, solutions, what the driving analysis kept)``."""
+    from .positions import positions_of
     from .ring.solver import RingSolver, SolverModes
 
     for analysis in analyses:
@@ -269,7 +307,7 @@ def _drive(job: Job, analyses, executor: Executor):
         if driven is not None:
             return driven
     solver = RingSolver(None, SolverModes(keep_phases=job.revolution))
-    return solver, positions_of(job, solver)(job.case, job.betas, executor), None
+    return solver, positions_of(solver, job.revolution)(job.case, job.betas, executor), None
 
 
 def _core_summary(job: Job, sols, sol, second, watch: Stopwatch) -> dict:

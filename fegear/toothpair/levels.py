@@ -9,49 +9,15 @@ pair rated for its life (:func:`fegear.rating.rate`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from .. import progress
-from ..errors import ParameterError
 from ..quantities import LEVEL_STRESSES
 from ..running import SERIAL, Executor
 from .case import PairSolution, SolveCase
 
-if TYPE_CHECKING:   # the job module holds a Rating: a user error answers before scipy loads
-    from ..rating import GearMaterial, Spectrum
-
-
-@dataclass(frozen=True)
-class Rating:
-    """What a life rating takes besides the solve: the ``spectrum``, the ``material``, the
-    application and dynamic factors (every level's torque is solved times ``KA``·``KV``) and
-    gear 1's ``speed_rpm`` against gear 2 (None: the life as repeats of the spectrum)."""
-
-    spectrum: Spectrum
-    material: GearMaterial
-    KA: float = 1.0
-    KV: float = 1.0
-    speed_rpm: float | None = None
-    source: str = ""
-
-    def check(self, case: SolveCase) -> None:
-        """Every level's solved torque within what a solve takes, refused by name."""
-        limit = case.torque_limit
-        for k, level in enumerate(self.spectrum.levels, 1):
-            if level.torque * self.KA * self.KV > limit:
-                raise ParameterError("spectrum", self.source, f"torques whose KA·KV·torque "
-                                     f"is at most {limit:.4g} N·m, the most the pair takes "
-                                     f"(level {k}: {level.torque:g} N·m)")
-
-    @property
-    def hours(self) -> float | None:
-        """The spectrum's duration (h): given, or its revolutions at the speed."""
-        if self.spectrum.hours is not None:
-            return self.spectrum.hours
-        if self.speed_rpm is None:
-            return None
-        return self.spectrum.cycles / (self.speed_rpm * 60.0)
+if TYPE_CHECKING:   # the job's input, which the job hands over: the analyses never import it
+    from .job import Rating
 
 
 def solve_levels(case: SolveCase, betas, rating: Rating, solve, executor: Executor = SERIAL,

@@ -18,7 +18,8 @@ here.
 The loop is a chain of positions (:func:`chain`), each from the one before; what is done at a
 position is the caller's :class:`AtPosition`: here a position placed and settled
 (:func:`drive`) or several torques on one contact (:func:`drive_torques`), and a tolerance
-class's samples solved on the exact pair's contact kept for them (:mod:`.samples`).
+class's samples solved on the exact pair's contact kept for them
+(:mod:`.analyses.samples.solve`).
 
 A cycle of :data:`CHAINED` positions or more is solved as two chains, its halves, each from a
 first guess of its own, handed to the executor the caller gives (``executor``: one chain here
@@ -45,8 +46,7 @@ from ..fe import blas_threads, keep_freed_memory
 from ..geometry import Gear1Profile, ToothContact, gear1_profile, moved_clearances, pitch_phase
 from ..running import SERIAL, Executor
 from ..timing import clocked, timed
-from .case import PairSolution, SolveCase
-from .revolution import revolution_positions
+from .case import PairSolution, SolveCase, phase_major, revolution_positions
 from .teeth import TOOTH_STIFFNESS, choose_teeth, refuse_closed, refuse_interference
 
 log = logging.getLogger(__name__)
@@ -196,6 +196,19 @@ def drive_torques(case: SolveCase, betas, torques, solver: SharesContacts,
 
     sols = _chains(case, betas, solver, None, executor, each)
     return [tuple(at[k] for at in sols) for k in range(len(torques))]
+
+
+def positions_of(solver: PositionModel, revolution: bool = False):
+    """How a job solves its positions with ``solver``: ``solve(case, betas, executor)``, a
+    revolution (``revolution``) phase by phase (:func:`~.case.phase_major`), the solutions in
+    the order of ``betas``."""
+
+    def solve(case: SolveCase, betas, executor: Executor):
+        order = phase_major(len(betas), case.params.z1) if revolution else range(len(betas))
+        sols = drive(case, [betas[k] for k in order], solver, executor=executor)
+        return tuple(sol for _, sol in sorted(zip(order, sols), key=lambda pair: pair[0]))
+
+    return solve
 
 
 def families(torques) -> list[list[int]]:

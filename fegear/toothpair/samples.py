@@ -34,9 +34,8 @@ from ..fe import Allowables, blas_threads, keep_freed_memory
 from ..geometry import closing_points, gear1_profile, least_clearances, moved_clearances
 from ..running import SERIAL, Executor
 from ..tolerance import Draw, tooth_positions
-from .case import HEADLINE, PairSolution, SolveCase
+from .case import HEADLINE, PairSolution, SolveCase, revolution_positions
 from .positions import TURN_CHECK, Clearances, chain, solve_position
-from .revolution import revolution_positions
 from .ring.phases import Phases
 from .ring.solver import RingSolver, SolverModes
 from .safety import safety_factors

@@ -183,8 +183,7 @@ def test_bad_spectra_exit_2_with_one_line_and_nothing_written(tmp_path, text, ar
 def test_a_spectrum_without_positions_takes_the_default_cycle_and_says_so(tmp_path):
     # a rating always needs a cycle: without --positions or --revolution it takes one
     # pitch's 24 positions, and the summary says it chose them (issue 67)
-    from fegear.toothpair.job import RATING_CYCLE
-    from fegear.toothpair.revolution import PER_PITCH
+    from fegear.toothpair.job import PER_PITCH, RATING_CYCLE
 
     (tmp_path / "duty.csv").write_text("torque,cycles\n100,1e6\n")
     job = prepare_job({"quality": "coarse", "no-estimate": True,

@@ -13,13 +13,12 @@ import pytest
 from fegear.geometry import Deviations, Placed, Runout, ToothContact, gear1_profile
 from fegear.toothpair import prepare_job, solve_pair
 from fegear.toothpair.analyses import Writing
+from fegear.toothpair.case import phase_major, revolution_positions
 from fegear.toothpair.job import solve_job
 from fegear.toothpair.output import write_revolution_outputs
 from fegear.toothpair.revolution import (
     amplitudes,
     loaded_rotation,
-    phase_major,
-    revolution_positions,
     revolution_table,
 )
 

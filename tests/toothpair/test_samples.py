@@ -95,7 +95,7 @@ def test_a_revolution_sample_reads_as_the_same_pair_turned_alone(baseline_ring):
     # (the deviated solve's own path): each headline's worst, and where it falls
     from fegear.toothpair.case import HEADLINE
     from fegear.toothpair.positions import drive
-    from fegear.toothpair.revolution import phase_major, revolution_positions
+    from fegear.toothpair.case import phase_major, revolution_positions
 
     p = PAIR
     draw = Draw(grade_of(5, p), 3, 1)

@@ -18,7 +18,7 @@ here and a line in :data:`ANALYSES` (docs/architecture.md, "Adding an analysis")
 
 from __future__ import annotations
 
-from .base import Analysis, Run, Verdict, Writing, positions_of
+from .base import Analysis, Run, Verdict, Writing
 from .cycle import CYCLE
 from .rating import RATING
 from .revolution import REVOLUTION
@@ -42,5 +42,4 @@ def shown(summary: dict) -> list[Analysis]:
     return [a for a in present if a.key not in replaced]
 
 
-__all__ = ["ANALYSES", "Analysis", "Run", "Verdict", "Writing", "asked", "positions_of",
-           "shown"]
+__all__ = ["ANALYSES", "Analysis", "Run", "Verdict", "Writing", "asked", "shown"]

@@ -9,7 +9,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from ...running import SERIAL, Executor
-from ..revolution import phase_major
 
 if TYPE_CHECKING:   # the job hands itself over; the analyses never import it
     from ..job import Job, Solved
@@ -96,18 +95,3 @@ class Analysis:
     def columns(self, entry: dict) -> dict | None:
         """Its columns in a study's table; None: its entry flattened as the rest."""
         return None
-
-
-def positions_of(job: Job, solver):
-    """How ``job`` solves its positions with ``solver``: ``solve(case, betas, executor)``, a
-    revolution phase by phase (:func:`~..revolution.phase_major`), the solutions in the order
-    of ``betas``."""
-    from ..positions import drive
-
-    def solve(case, betas, executor: Executor):
-        order = (phase_major(len(betas), case.params.z1) if job.revolution
-                 else range(len(betas)))
-        sols = drive(case, [betas[k] for k in order], solver, executor=executor)
-        return tuple(sol for _, sol in sorted(zip(order, sols), key=lambda pair: pair[0]))
-
-    return solve

@@ -11,7 +11,8 @@ from pathlib import Path
 from ...running import Executor
 from ...timing import Stopwatch
 from ..html_parts import escape, safety_cell, table
-from .base import Analysis, Run, Verdict, Writing, positions_of
+from ..positions import positions_of
+from .base import Analysis, Run, Verdict, Writing
 
 
 class Rating(Analysis):
@@ -37,7 +38,7 @@ class Rating(Analysis):
             if not job.revolution:
                 return drive_torques(case, betas, torques, RingSolver(model, roots), executor)
             keeping = replace(roots, keep_phases=True)
-            return [positions_of(job, RingSolver(model, keeping))(
+            return [positions_of(RingSolver(model, keeping), job.revolution)(
                 replace(case, torque=torque), betas, executor) for torque in torques]
 
         levels = solve_levels(job.case, job.betas, job.rating, level, run.executor,
