@@ -100,7 +100,7 @@ TOOTH_STRESSES = {q.attribute: q.key for q in HELD}
 
 
 @dataclass(frozen=True)
-class SecondLevel:
+class SecondSolve:
     """The estimate's second solve: its headline, and each loaded tooth's stresses
     (:data:`TOOTH_STRESSES`) by tooth."""
 
@@ -108,12 +108,12 @@ class SecondLevel:
     teeth: dict[int, dict[str, float]]
 
 
-def second_headline(case: SolveCase) -> SecondLevel:
+def second_headline(case: SolveCase) -> SecondSolve:
     """``case`` solved at its :func:`second_quality`: the estimate's second solve, as a task
     of its own (:func:`~.job.solve_job` hands it to an executor)."""
     second = replace(case, quality=second_quality(case.quality))
     sol = solve_positions(second, (second.beta,))[0]
-    return SecondLevel(sol.headline(), {t.tooth: {k: getattr(t, k) for k in TOOTH_STRESSES}
+    return SecondSolve(sol.headline(), {t.tooth: {k: getattr(t, k) for k in TOOTH_STRESSES}
                                         for t in sol.teeth if t.load_N > 0})
 
 
@@ -121,7 +121,7 @@ def tooth_estimates(sol: PairSolution, second: dict[int, dict[str, float]],
                     ratio: Callable[[str, str], float] = mesh_ratio,
                     floor: dict[str, float] | None = None) -> dict[int, dict[str, float]]:
     """Each loaded tooth's own error estimate (%) of its stresses (:data:`TOOTH_STRESSES`),
-    from the same tooth at the second level (``second``: :attr:`SecondLevel.teeth`) as the
+    from the same tooth at the second level (``second``: :attr:`SecondSolve.teeth`) as the
     headline's, each at least its headline's floor. A tooth that a deviation or a
     neighbour's relief loads lightly is resolved by fewer grid points than the headline tooth:
     its estimate is its own, not the headline's. A tooth loaded at one level only is compared

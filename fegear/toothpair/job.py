@@ -323,9 +323,9 @@ def _core_summary(job: Job, sols, sol, second, watch: Stopwatch) -> dict:
         progress.stage("error estimate: the same case again at quality "
                        f"{second_quality(job.case.quality)}")
         with progress.reporting(None):  # one stage, however the second solve goes
-            level = second.result()
-            estimate, other = second_level_estimate(sol, second=level.headline)
-            teeth = tooth_estimates(sol, level.teeth)
+            again = second.result()     # a SecondSolve
+            estimate, other = second_level_estimate(sol, second=again.headline)
+            teeth = tooth_estimates(sol, again.teeth)
         estimate_s = after.s
     summary = pair_summary(sol, estimate, watch.s, other, job.allowables)
     summary["estimate_s"] = estimate_s
