@@ -34,6 +34,7 @@ from .forms import stiffness
 from .material import ElasticMaterial
 from .mesh import BodyMesh
 from .solvers import Factor
+from .stress import pickled_cache
 
 LOW_RANK_TOL = 1e-12  # a far coupling W(Δ) is kept as a product of thin factors within this
                       # fraction of the norm of W(0) (rounding leaves about 1e-16) …
@@ -210,8 +211,6 @@ def cyclic_parts(body: CyclicBody) -> dict:
     """The arrays of ``body`` :func:`restore_cyclic` rebuilds it from (a model cache's), with
     what its ``cache`` holds that pickles (the stress projector's matrices, the far
     couplings' factors; not a factorisation)."""
-    from .stress import pickled_cache
-
     return {**{k: getattr(body, k) for k in PARTS}, "cache": pickled_cache(body.cache)}
 
 

@@ -41,9 +41,10 @@ def import_libraries() -> None:
     import scipy.spatial  # noqa: F401
     import skfem.models.elasticity  # noqa: F401
 
-    from . import assembly, cyclic, mesh, probe, stress, submodel  # noqa: F401
+    from . import assembly, cyclic, probe, stress, submodel  # noqa: F401  # lazy: heavy: skfem
+    from .mesh import import_gmsh  # lazy: heavy: gmsh, imported when asked: the purpose
 
-    mesh.import_gmsh()
+    import_gmsh()
     try:
         import cholespy  # noqa: F401
     except ImportError:  # pragma: no cover - the wheel is a dependency

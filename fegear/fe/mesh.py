@@ -26,6 +26,7 @@ import numpy as np
 from skfem import MeshTri2
 
 from ..errors import FegearError
+from ..files import write_atomic
 from .dofs import facet_nodes
 from .probe import p2_grad
 
@@ -332,8 +333,6 @@ def write_step(path: str | Path, outer: Sequence[Segment] | Circle, thickness: f
     gmsh's OpenCASCADE kernel. A loop is a :class:`Circle` or closed segments, each a spline
     through its points (a line through two) starting where the one before ended. Written
     atomically; raises :class:`MeshError` where the kernel refuses the plate."""
-    from ..files import write_atomic
-
     if not (np.isfinite(thickness) and thickness > 0):
         raise MeshError(f"a plate's thickness must be > 0, not {thickness!r}")
     with gmsh_session() as gmsh:

@@ -27,6 +27,7 @@ from .dofs import facet_nodes, node_dofs
 from .forms import stiffness
 from .material import ElasticMaterial
 from .mesh import BodyGeometry, BodyMesh, Refinement, Segment, halved, mesh_bodies
+from .solvers import Factor
 from .stress import StressField, pickled_cache, recover
 
 CORE = 0.6          # stresses are read within this fraction of the radius of the centre
@@ -202,8 +203,6 @@ def _prepare(mesh: BodyMesh, centre, angles, material: ElasticMaterial, K=None,
              cache: dict | None = None) -> _Prepared:
     """Assemble (unless its stiffness ``K`` is given) and factorise a submodel's mesh;
     ``cache``: its stress recovery's matrices, if kept."""
-    from .solvers import Factor
-
     m = mesh.mesh
     if K is None:
         K = stiffness(m, *material.lame, material.thickness)
