@@ -30,6 +30,7 @@ from collections.abc import Callable, Iterable
 from typing import Protocol
 
 from .forks import Forked, WorkerFailed, again_here, available
+from .pools import LocalPool
 from .primed import Primed
 
 
@@ -232,8 +233,6 @@ class Pool:
     shares_memory = False
 
     def __init__(self, workers: int) -> None:
-        from .pools import LocalPool
-
         self.workers = workers
         self.broken = False
         self._pool = LocalPool(workers)
@@ -323,8 +322,6 @@ def in_fresh_process(fn: Callable, /, *args):
     its peak memory) is its own. Raises :class:`~.forks.WorkerFailed` if the process died
     (strict or not: the task cannot run here instead)."""
     from concurrent.futures.process import BrokenProcessPool
-
-    from .pools import LocalPool
 
     pool = LocalPool(1)
     try:

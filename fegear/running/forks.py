@@ -21,6 +21,7 @@ import sys
 import threading
 import traceback
 
+from .. import progress
 from ..errors import FegearError
 from .pools import exit_with_parent
 
@@ -172,8 +173,6 @@ def _child(fn, fd: int, memory: int | None) -> None:
     ``memory`` and then :data:`_IN_MEMORY` to ``fd`` (without that file, the pickle itself to
     ``fd``)."""
     import logging
-
-    from .. import progress
 
     code = 1
     try:
