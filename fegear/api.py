@@ -24,7 +24,8 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .errors import ParameterError
-from .toothpair import HEADLINE, SAFETY
+from .files import check_dir
+from .toothpair import HEADLINE, JOB_INPUTS, SAFETY, model_cache, prepare_job, solve_job, write_job
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -140,9 +141,6 @@ class Result:
         """Write the files ``fegear solve --out`` writes into ``out``: summary.json, the VTU
         fields (``fields``), the pictures (``pictures``), and a cycle's table, PVD series and
         plot. Returns name → path."""
-        from .files import check_dir
-        from .toothpair import write_job
-
         return write_job(self.solved, check_dir(str(out)), fields, pictures)
 
 
@@ -155,8 +153,6 @@ def solve(cache: bool | None = None, **inputs: object) -> Result:
     there (``fegear solve --cache``; None: as the FEGEAR_CACHE environment variable says,
     off where it is unset). Within one Python process a design's model is kept in memory
     anyway: the model cache serves the next process, a restarted kernel."""
-    from .toothpair import model_cache, prepare_job, solve_job
-
     try:
         job = prepare_job(_named(inputs))
     except ParameterError as err:   # the input as the caller spelt it: tip_clearance
@@ -171,8 +167,6 @@ def _named(inputs: dict[str, object]) -> dict[str, object]:
     """Python names → the schema's (``face_width`` → ``face-width``); an unknown name is
     refused with the nearest known one."""
     import difflib
-
-    from .toothpair import JOB_INPUTS
 
     known = [row.dest for row in JOB_INPUTS.values()]
     known += [a.replace("-", "_") for row in JOB_INPUTS.values() for a in row.aliases]

@@ -7,6 +7,8 @@ import hashlib
 from importlib import metadata
 from pathlib import Path
 
+from . import __version__
+
 #: the libraries whose versions a result records (those that can change a number, and its files)
 LIBRARIES = ("numpy", "scipy", "scikit-fem", "gmsh", "meshio", "pyvista", "matplotlib")
 
@@ -55,7 +57,5 @@ def code_version() -> str:
     """fegear's version and source hash plus the numerical libraries' versions, e.g.
     ``0.1.0+3f2a…; numpy 2.3.1; scipy 1.16.0; …``: two results with equal inputs and equal
     code versions are the same result."""
-    from . import __version__
-
     libs = library_versions(("numpy", "scipy", "scikit-fem", "gmsh"))
     return "; ".join([f"{__version__}+{source_hash()}"] + [f"{k} {v}" for k, v in libs.items()])

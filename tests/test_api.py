@@ -84,9 +84,9 @@ def test_a_class_gives_its_samples_as_data_frames(result):
     ({"position": True}, "position", "position = True is not admissible"),
 ])
 def test_a_refused_design_raises_before_any_work(inputs, name, text, monkeypatch):
-    import fegear.toothpair
+    import fegear.api
 
-    monkeypatch.setattr(fegear.toothpair, "solve_job", lambda *a: pytest.fail("the work started"))
+    monkeypatch.setattr(fegear.api, "solve_job", lambda *a: pytest.fail("the work started"))
     with pytest.raises(fegear.ParameterError) as exc:
         fegear.solve(**inputs)
     assert exc.value.name == name
