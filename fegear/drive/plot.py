@@ -7,6 +7,8 @@ from pathlib import Path
 import numpy as np
 
 from ..figures import pyplot, save_png
+from .beams import DOF, TZ, X, Y
+from .reducer import RESPONSES, SHAFTS
 
 
 def bearings_png(path: Path, phi, curves: dict) -> Path:
@@ -103,9 +105,6 @@ def reducer_modes_png(path: Path, model, modes) -> Path:
     (solid) and its torsion times its lever (dashed: the eccentricity on a crank, the base
     radius on the output), each plate's translation (square) and rotation times the crank
     circle's radius (triangle), every mode scaled to its largest displacement."""
-    from .beams import DOF, TZ, X, Y
-    from .reducer import SHAFTS
-
     plt = pyplot()
     ip = model.inputs
     lever = [1e-3 * ip.eccentricity_mm] * 3 + [ip.base_radius]
@@ -156,8 +155,6 @@ def reducer_response_png(path: Path, s: dict, key: str) -> Path:
     """One of the seed's Figs. 2–6: the amplitude of ``key`` against crank speed for the three
     builds, the turning mechanism (solid) and the seed's frozen model (dashed), with the
     working speed and the natural frequencies below 1.5× it marked."""
-    from .reducer import RESPONSES
-
     plt = pyplot()
     n = np.array(s["speeds_rpm"])
     fig, ax = plt.subplots(figsize=(8, 5))

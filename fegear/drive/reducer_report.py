@@ -10,8 +10,11 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import FegearError, ParameterError
 from ..files import write_csv, write_json
 from ..timing import Stopwatch
+from ..toothpair import mesh_stiffness_of_cycle, prepare_job, read_mesh_stiffness, solve_job
+from .plot import reducer_campbell_png, reducer_modes_png, reducer_response_png
 from .reducer import (
     RESPONSES,
     build_reducer,
@@ -55,9 +58,6 @@ def mesh_source(spec: str, inputs: ReducerInputs, quality: str = "coarse",
     with the plate held; the model's spring acts along the line of action at the base radius
     r_b, so k = k_θ / r_b² keeps the torsional mesh stiffness. The model's spring is the mean
     tangent stiffness (a linearised model's), the secant beside it."""
-    from ..errors import FegearError, ParameterError
-    from ..toothpair import read_mesh_stiffness
-
     if spec == "table":
         return MeshSource(inputs.mesh_stiffness, "table")
     try:
@@ -97,8 +97,6 @@ def mesh_source(spec: str, inputs: ReducerInputs, quality: str = "coarse",
 def _fe_cycle(inputs: ReducerInputs, quality: str, positions: int):
     """fegear's mesh cycle of the pair of the reducer's teeth and module: one plate's face
     width, the output torque on the gear (gear 1)."""
-    from ..toothpair import mesh_stiffness_of_cycle, prepare_job, solve_job
-
     watch = Stopwatch()
     job = prepare_job({"z1": inputs.z_gear, "z2": inputs.z_plate, "m": inputs.module_mm,
                        "face-width": inputs.plate_thickness_mm,
@@ -462,8 +460,6 @@ def _comparison_table(s: dict) -> str:
 
 def write_reducer(out: Path, s: dict, shown: int) -> dict[str, Path]:
     """reducer.json, frequencies.csv, response.csv and the pictures."""
-    from .plot import reducer_campbell_png, reducer_modes_png, reducer_response_png
-
     files = {"json": write_json(out / "reducer.json", public(s))}
     rows = [(int(p), mo["mode"], mo["rad_s"], mo["Hz"], mo["kind"])
             for p, b in s["builds"].items() for mo in b["modes"]]

@@ -21,6 +21,7 @@ from .bearings import (
     support_reactions,
 )
 from .dynamics import Response, TorsionalPair
+from .plot import bearings_png, dynamics_png
 
 
 def bearings_summary(drive: RingDrive, step_deg: float) -> dict:
@@ -84,8 +85,6 @@ def bearings_table(s: dict) -> str:
 def write_bearings(out: Path, drive: RingDrive, summary: dict, step_deg: float) -> dict:
     """bearings.json, bearings.csv (F_A, F_B of each case over the crank angle) and
     bearings.png (the paper's Fig. 6)."""
-    from .plot import bearings_png
-
     phi = np.arange(0.0, 360.0, step_deg)
     curves = {}
     for c, (g, i) in LOAD_CASES.items():
@@ -167,8 +166,6 @@ def _other_spring(s: dict) -> str:
 
 def write_dynamics(out: Path, summary: dict) -> dict:
     """dynamics.json, dynamics.csv (one row per speed) and dynamics.png."""
-    from .plot import dynamics_png
-
     rows = summary["speeds"]
     cols = list(rows[0])
     return {"json": write_json(out / "dynamics.json", summary),
