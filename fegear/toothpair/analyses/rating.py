@@ -11,7 +11,6 @@ from pathlib import Path
 from ...running import Executor
 from ...timing import Stopwatch
 from ..html_parts import escape, safety_cell, table
-from ..positions import positions_of
 from .base import Analysis, Run, Verdict, Writing
 
 
@@ -23,7 +22,7 @@ class Rating(Analysis):
 
     def solve(self, run: Run) -> dict:
         from ..levels import rated, solve_levels
-        from ..positions import drive_torques
+        from ..positions import drive_torques, positions_of
         from ..ring.solver import RingSolver, SolverModes
 
         job, model = run.job, run.solver.model
