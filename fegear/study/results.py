@@ -27,13 +27,15 @@ from ..toothpair import (
     JOB_INPUTS,
     allowables_of,
     damage_text,
+    index_html,
     life_text,
     safety_text,
     shown,
     with_safety,
 )
 from .file import RefusedCase, Study
-from .plot import Line, StudyPlot
+from .plot import Line, StudyPlot, study_png
+from .records import finished
 
 #: the smallest safety factors over the teeth in the study table's head, by their symbols
 SAFETY_SHORT = {k: FACTORS[k].symbol for k in ("safety_bending_gear1", "safety_bending_gear2",
@@ -46,8 +48,6 @@ _TRAILER = ("case_wall_s", "solve_s", "fegear", "code_version", "host", "pid", "
 def rows(study: Study, out: Path) -> list[dict]:
     """One flat row per finished case, in the study's order, and one per refused case
     (``status`` "refused", ``error`` the refusal) once any case has finished."""
-    from .records import finished
-
     done = finished(study, out)
     if not done:
         return []
@@ -133,9 +133,6 @@ def write_results(study: Study, out: Path) -> dict[str, Path]:
 def write_index(study: Study, table: list[dict], out: Path) -> Path:
     """report.html: the study's index page, a row a case with its verdict and a link to its
     own page (``cases/<key>/report.html``)."""
-    from ..toothpair import index_html
-    from .records import finished
-
     done = finished(study, out)
     cases = []
     for row in table:
@@ -153,8 +150,6 @@ def write_index(study: Study, table: list[dict], out: Path) -> Path:
 
 def plot_input(path: Path, study: Study, table: list[dict], x: str) -> Path | None:
     """The picture of input ``x`` (:func:`study_plot`); None where it has no line."""
-    from .plot import study_png
-
     plot = study_plot(study, table, x)
     return None if plot is None else study_png(path, plot, HEADLINE)
 

@@ -26,13 +26,16 @@ from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
 
+from .. import __version__
 from ..errors import FegearError
 from ..files import prepare_dir, write_json
-from ..provenance import code_version
+from ..provenance import code_version, library_versions
 from ..running import Supervisor, WorkerFailed, connect
 from ..timing import Stopwatch
+from ..toothpair import prepare_job, run_job, solve_command
 from .file import Outputs, Study, StudyCase, StudyError
 from .records import finished, store, study_json
+from .results import write_results
 
 #: a case that was running when its worker process died this often is recorded as failed
 WORKER_DEATHS = 2
@@ -109,8 +112,6 @@ def run_study(study: Study, out: str | Path, workers: int | None = None,
 
 def _run(study: Study, out: Path, workers: int | None, client, retry_failed: bool,
          progress: bool, on_start, watch: Stopwatch) -> StudyReport:
-    from .results import write_results
-
     running = out / "cases" / ".running"
     running.mkdir(parents=True, exist_ok=True)
     done = finished(study, out, retry_failed)
@@ -236,10 +237,6 @@ def _inode(path: Path) -> int | None:
 def run_case(key: str, values: dict, outputs: Outputs) -> tuple[dict, dict[str, bytes]]:
     """Solve one case (in a worker): its record and the bytes of its kept files. Never
     raises for a failing case: the record says ``failed`` and why."""
-    from .. import __version__
-    from ..provenance import library_versions
-    from ..toothpair import prepare_job, run_job, solve_command
-
     watch = Stopwatch()
     # when it started, as a date: the study's start-up is counted from the first case's
     record = {"key": key, "status": "ok", "error": None, "inputs": values,
@@ -293,8 +290,6 @@ def _results(tasks: Supervisor, todo: list[StudyCase], study: Study) -> Iterator
 
 
 def _died(case: StudyCase) -> dict:
-    from .. import __version__
-
     return {"key": case.key, "status": "failed", "inputs": case.values,
             "error": f"the worker process died {WORKER_DEATHS} times while solving this case "
                      "(out of memory? a crash in gmsh?)", "started_unix": time.time(),
