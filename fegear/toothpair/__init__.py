@@ -83,8 +83,8 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "positions": ("PositionModel", "Trial", "Attempt", "SHARE_GUESS", "ATTEMPTS", "CHAINED",
                   "drive", "expected_elastic_um", "first_teeth"),
     "ring.cache": ("model_cache",),
-    "samples": ("class_samples", "Sampled"),
-    "samples_report": ("samples_columns", "samples_summary", "samples_table"),
+    "analyses.samples.solve": ("class_samples", "Sampled"),
+    "analyses.samples.report": ("samples_columns", "samples_summary", "samples_table"),
     "rating_report": ("damage_text", "life_text", "safety_text"),
     "sensitivity_report": ("sensitivity_columns", "sensitivity_table"),
 })

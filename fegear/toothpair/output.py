@@ -102,23 +102,6 @@ def write_revolution_outputs(revolution: dict, writing: Writing) -> dict[str, Pa
     return files
 
 
-def write_samples_outputs(samples: dict, out: Path, title: str, allowables,
-                          pictures: bool = True) -> dict[str, Path]:
-    """A tolerance class's files: samples.csv (a row a pair drawn: its deviations in brief,
-    whether it was solved, jammed or failed and why, its largest stresses over the positions
-    with where, its safety factors) and samples.png (``pictures``: each safety factor's
-    distribution)."""
-    from .samples_plot import samples_png
-
-    rows = samples["rows"]
-    cols = list(dict.fromkeys(k for r in rows for k in r))
-    files = {"samples_csv": write_csv(out / "samples.csv", cols,
-                                      ([r.get(c, "") for c in cols] for r in rows))}
-    if pictures:
-        files["samples_png"] = samples_png(out / "samples.png", samples, allowables, title)
-    return files
-
-
 def write_sensitivity_outputs(sens: dict, out: Path, title: str, pictures: bool = True
                               ) -> dict[str, Path]:
     """sensitivities.csv (a row a deviation of the teeth in mesh: each headline's rate,

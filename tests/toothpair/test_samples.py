@@ -17,8 +17,8 @@ from fegear.tolerance import Draw, grade_of
 from fegear.toothpair import SolveCase, prepare_job, solve_pair
 from fegear.toothpair.ring.solver import RingSolver, SolverModes
 from fegear.toothpair.safety import DEFAULT_ALLOWABLES
-from fegear.toothpair.samples import SampleCase, solve_samples
-from fegear.toothpair.samples_report import samples_summary
+from fegear.toothpair.analyses.samples.solve import SampleCase, solve_samples
+from fegear.toothpair.analyses.samples.report import samples_summary
 
 PAIR = PairParameters(shift=0.016, rotation=0.002)
 CASE = SolveCase(PAIR, torque=200.0, quality="coarse")

@@ -1,13 +1,14 @@
 """A tolerance class's pairs (``--grade``): drawn, each solved at the job's positions on each
-position's kept contact (:mod:`..samples`) beside the exact pair, which they drive; their
-quantiles, the safety factors at the quantile and the verdict (:mod:`..samples_report`)."""
+position's kept contact (:mod:`.solve`) beside the exact pair, which they drive; their
+quantiles, the safety factors at the quantile and the verdict, samples.csv (:mod:`.report`)
+and each safety factor's distribution (:mod:`.plot`)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from ...running import Executor
-from .base import Analysis, Run, Verdict, Writing
+from ....running import Executor
+from ..base import Analysis, Run, Verdict, Writing
 
 
 class Samples(Analysis):
@@ -17,9 +18,9 @@ class Samples(Analysis):
         return job.draw is not None
 
     def drive(self, job, executor: Executor):
-        from ..report import cycle_rows
-        from ..ring.solver import RingSolver, SolverModes
-        from ..samples import SampleCase, solve_samples
+        from ...report import cycle_rows
+        from ...ring.solver import RingSolver, SolverModes
+        from .solve import SampleCase, solve_samples
 
         solver = RingSolver(None, SolverModes(keep_phases=True))
         # a revolution: each pair over gear 1's turn from the first pitch's places
@@ -32,7 +33,7 @@ class Samples(Analysis):
         return solver, sampled.nominal, (sampled, cycle_rows(sampled.nominal, job.allowables))
 
     def solve(self, run: Run) -> dict:
-        from ..samples_report import samples_summary
+        from .report import samples_summary
 
         sampled, estimated = run.driven
         job = run.job
@@ -40,7 +41,7 @@ class Samples(Analysis):
                                job.quantile, job.allowables, len(job.betas), job.revolution)
 
     def printed(self, entry: dict, summary: dict) -> str:
-        from ..samples_report import samples_table
+        from .report import samples_table
 
         over = ("the same positions" if entry["over"] == "cycle" else
                 f"a whole revolution each ({entry['positions_per_pair']} positions: the "
@@ -50,7 +51,7 @@ class Samples(Analysis):
                 + samples_table(entry))
 
     def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
-        from ..output import write_samples_outputs
+        from .report import write_samples_outputs
 
         return write_samples_outputs(entry, writing.out, writing.title,
                                      writing.solved.job.allowables, writing.pictures)
@@ -60,7 +61,7 @@ class Samples(Analysis):
         return Verdict(entry.get("passed", line.startswith("PASS")), f"for the class: {line}")
 
     def columns(self, entry: dict) -> dict:
-        from ..samples_report import samples_columns
+        from .report import samples_columns
 
         return samples_columns(entry)
 

@@ -5,18 +5,22 @@ safety factors that the ``--quantile`` share of the class's pairs meet, and the 
 
 A pair that jams (its deviations take up the backlash) carries no stress a solve can give, and
 it fails: its stresses count as beyond every other's, so a quantile is taken of all the pairs
-drawn, and where the jammed share reaches past it the quantile is "jams".
+drawn, and where the jammed share reaches past it the quantile is "jams". Its files:
+samples.csv and samples.png (:func:`write_samples_outputs`).
 """
 
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
-from ..fe import Allowables
-from ..quantities import FACTORS
-from ..tolerance import QUANTILES, quantiles
-from .case import HEADLINE
-from .safety import SAFETY, safety_factor
+from ....fe import Allowables
+from ....files import write_csv
+from ....quantities import FACTORS
+from ....tolerance import QUANTILES, quantiles
+from ...case import HEADLINE
+from ...safety import SAFETY, safety_factor
+from .plot import samples_png
 
 #: a jammed pair's stresses, beyond every solved one's (module docstring)
 JAMMED = math.inf
@@ -175,3 +179,18 @@ def samples_columns(s: dict) -> dict:
         out[f"samples.{key}.at_quantile"] = v["at_quantile"]
     out["samples.verdict"] = s["verdict"]
     return out
+
+
+def write_samples_outputs(samples: dict, out: Path, title: str, allowables,
+                          pictures: bool = True) -> dict[str, Path]:
+    """A tolerance class's files: samples.csv (a row a pair drawn: its deviations in brief,
+    whether it was solved, jammed or failed and why, its largest stresses over the positions
+    with where, its safety factors) and samples.png (``pictures``: each safety factor's
+    distribution)."""
+    rows = samples["rows"]
+    cols = list(dict.fromkeys(k for r in rows for k in r))
+    files = {"samples_csv": write_csv(out / "samples.csv", cols,
+                                      ([r.get(c, "") for c in cols] for r in rows))}
+    if pictures:
+        files["samples_png"] = samples_png(out / "samples.png", samples, allowables, title)
+    return files

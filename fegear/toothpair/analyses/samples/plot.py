@@ -8,9 +8,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..figures import margins, pyplot, save_png
-from ..figures.labels import place_legend
-from ..quantities import FACTORS
+from ....figures import margins, pyplot, save_png
+from ....figures.labels import place_legend
+from ....quantities import FACTORS
 
 
 def samples_png(path: Path, samples: dict, allowables, title: str) -> Path:

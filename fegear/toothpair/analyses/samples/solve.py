@@ -29,17 +29,17 @@ from itertools import groupby
 
 import numpy as np
 
-from ..errors import FegearError
-from ..fe import Allowables, blas_threads, keep_freed_memory
-from ..geometry import closing_points, gear1_profile, least_clearances, moved_clearances
-from ..running import SERIAL, Executor
-from ..tolerance import Draw, tooth_positions
-from .case import HEADLINE, PairSolution, SolveCase, revolution_positions
-from .positions import TURN_CHECK, Clearances, chain, solve_position
-from .ring.phases import Phases
-from .ring.solver import RingSolver, SolverModes
-from .safety import safety_factors
-from .teeth import choose_teeth, closure
+from ....errors import FegearError
+from ....fe import Allowables, blas_threads, keep_freed_memory
+from ....geometry import closing_points, gear1_profile, least_clearances, moved_clearances
+from ....running import SERIAL, Executor
+from ....tolerance import Draw, tooth_positions
+from ...case import HEADLINE, PairSolution, SolveCase, revolution_positions
+from ...positions import TURN_CHECK, Clearances, chain, solve_position
+from ...ring.phases import Phases
+from ...ring.solver import RingSolver, SolverModes
+from ...safety import safety_factors
+from ...teeth import choose_teeth, closure
 
 
 @dataclass(frozen=True)
