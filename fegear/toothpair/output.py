@@ -10,7 +10,6 @@ from __future__ import annotations
 import dataclasses
 import math
 from pathlib import Path
-from typing import TYPE_CHECKING
 from xml.sax.saxutils import quoteattr
 
 from ..fe import write_vtu
@@ -21,9 +20,6 @@ from .case import HEADLINE, PairSolution
 from .cycle_plot import cycle_png
 from .pictured import PicturedDetail, for_pictures
 from .plot import chart_pngs, von_mises_bytes
-
-if TYPE_CHECKING:   # what an analysis hands its writer (the analyses call this module)
-    from .analyses import Writing
 
 
 def write_cycle_outputs(rows: list[dict], out: Path, title: str,
@@ -60,48 +56,6 @@ def write_cycle_series(sols, out: Path, name: str = "cycle") -> dict[str, Path]:
     return {"pvd": write_atomic(out / f"{name}.pvd", lambda tmp: tmp.write_text(xml))}
 
 
-def write_revolution_outputs(revolution: dict, writing: Writing) -> dict[str, Path]:
-    """A revolution's files (its summary entry ``revolution``, the solved job's positions and
-    rows in ``writing``): revolution.csv (a row per position, gear 1's turn first),
-    revolution_teeth.csv (each tooth's largest stresses), revolution_spectrum.csv (the
-    loaded rotation's harmonics), revolution.png and revolution_teeth.png (``pictures``)
-    and revolution.pvd (``fields``): a frame a pitch, at the pitch's position of the largest
-    gear-1 root stress (every position's fields would be z1 times a cycle's series)."""
-    from .revolution import amplitudes, gear1_turn_deg, loaded_rotation
-    from .revolution_plot import revolution_png, revolution_teeth_png
-
-    sols, rows, out, title = (writing.solved.solutions, writing.solved.rows, writing.out,
-                              writing.title)
-    turn = gear1_turn_deg(sols)
-    harmonics = amplitudes(loaded_rotation(sols))
-    z1 = revolution["pitches"]
-    cols = ["gear1_turn_deg", *rows[0]]
-    files = {"revolution_csv": write_csv(out / "revolution.csv", cols, (
-        [t, *(r[c] for c in cols[1:])] for t, r in zip(turn, rows)))}
-    per = revolution["per_tooth"]
-    teeth = [(1, t) for t in per["root_stress_gear1_MPa"]] + \
-        [(2, t) for t in per["root_stress_gear2_MPa"]]
-    files["revolution_teeth_csv"] = write_csv(
-        out / "revolution_teeth.csv", ("gear", "tooth", "root_stress_MPa",
-                                       "contact_pressure_MPa", "whole_pass"),
-        ((g, t, per[f"root_stress_gear{g}_MPa"][t],
-          per["contact_pressure_MPa"].get(t, "") if g == 1 else "",
-          t not in per["cut"][f"gear{g}"]) for g, t in teeth))
-    files["revolution_spectrum_csv"] = write_csv(
-        out / "revolution_spectrum.csv", ("order", "mesh_order", "amplitude_urad"),
-        ((h, h / z1, a) for h, a in enumerate(harmonics) if h > 0))
-    if writing.pictures:
-        files["revolution_png"] = revolution_png(out / "revolution.png", revolution, rows,
-                                                 turn, harmonics, title)
-        files["revolution_teeth_png"] = revolution_teeth_png(
-            out / "revolution_teeth.png", per, revolution["worst"],
-            writing.solved.job.allowables, title)
-    if writing.fields:
-        files["revolution_pvd"] = write_cycle_series(_pitch_peaks(sols, rows, z1), out,
-                                                     "revolution")["pvd"]
-    return files
-
-
 def write_sensitivity_outputs(sens: dict, out: Path, title: str, pictures: bool = True
                               ) -> dict[str, Path]:
     """sensitivities.csv (a row a deviation of the teeth in mesh: each headline's rate,
@@ -130,14 +84,6 @@ def _rows_csv(path: Path, rows: list[dict]) -> Path:
     cols = list(dict.fromkeys(k for r in rows for k in r))
     return write_csv(path, cols, (["" if r.get(c) is None else r[c] for c in cols]
                                   for r in rows))
-
-
-def _pitch_peaks(sols, rows: list[dict], pitches: int) -> list:
-    """Of each pitch's positions (``sols`` in order, as many a pitch), the one of the largest
-    gear-1 root stress."""
-    per = len(sols) // pitches
-    return [sols[k * per + max(range(per), key=lambda i: rows[k * per + i][
-        "root_stress_gear1_MPa"])] for k in range(pitches)]
 
 
 def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool = True,

@@ -13,14 +13,10 @@ import pytest
 from fegear.geometry import Deviations, Placed, Runout, ToothContact, gear1_profile
 from fegear.toothpair import prepare_job, solve_pair
 from fegear.toothpair.analyses import Writing
+from fegear.toothpair.analyses.revolution.report import revolution_table, write_revolution_outputs
+from fegear.toothpair.analyses.revolution.solve import amplitudes, loaded_rotation
 from fegear.toothpair.case import phase_major, revolution_positions
 from fegear.toothpair.job import solve_job
-from fegear.toothpair.output import write_revolution_outputs
-from fegear.toothpair.revolution import (
-    amplitudes,
-    loaded_rotation,
-    revolution_table,
-)
 
 BASE = {"shift": 0.016, "rotation": 0.002, "quality": "coarse", "revolution": True,
         "positions": 2, "no-estimate": True}

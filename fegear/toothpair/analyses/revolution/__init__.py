@@ -1,13 +1,14 @@
 """A whole revolution of the exact pair (``--revolution``): every pitch of gear 1's turn, the
 worst of each stress with its tooth, each tooth's largest, the loaded rotation's spectrum
-(:mod:`..revolution`); a class's pairs over a revolution are the samples' own."""
+(:mod:`.solve`), its table and files (:mod:`.report`) and pictures (:mod:`.plot`); a class's
+pairs over a revolution are the samples' own."""
 
 from __future__ import annotations
 
 from dataclasses import replace
 from pathlib import Path
 
-from .base import Analysis, Run, Writing
+from ..base import Analysis, Run, Writing
 
 
 class Revolution(Analysis):
@@ -19,12 +20,12 @@ class Revolution(Analysis):
         return job.revolution and job.draw is None
 
     def solve(self, run: Run) -> dict:
-        from ..revolution import revolution_summary
+        from .solve import revolution_summary
 
         return revolution_summary(tuple(run.solutions), run.job.allowables)
 
     def printed(self, entry: dict, summary: dict) -> str:
-        from ..revolution import revolution_table
+        from .report import revolution_table
 
         return (f"{revolution_table(entry)}\n\n{entry['positions']} positions over "
                 f"{entry['pitches']} pitches (one turn of gear 1) in "
@@ -32,8 +33,8 @@ class Revolution(Analysis):
                 "of the largest gear-1 root stress\n")
 
     def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
-        from ..output import write_revolution_outputs
-        from ..report import deviations_words
+        from ...report import deviations_words
+        from .report import write_revolution_outputs
 
         words = deviations_words(writing.solved.summary["inputs"].get("deviations"))
         deviations = f"deviations: {words}" if words else "no deviations (a perfect pair)"

@@ -8,10 +8,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..figures import margins, pyplot, save_png
-from ..figures.labels import place_legend
-from ..quantities import PEAK, ROOT1, ROOT2
-from .revolution import median_tooth
+from ....figures import margins, pyplot, save_png
+from ....figures.labels import place_legend
+from ....quantities import PEAK, ROOT1, ROOT2
+from .solve import median_tooth
 
 #: the per-tooth panels, each over its gear's teeth against its allowable
 TOOTH_PANELS = (ROOT1, ROOT2, PEAK)

@@ -17,10 +17,10 @@ import math
 
 import numpy as np
 
-from ..fe import Allowables
-from ..quantities import FACTORS, PEAK, QUANTITIES, ROOT1, ROOT2
-from .case import HEADLINE, PairSolution
-from .safety import DEFAULT_ALLOWABLES, safety_factors
+from ....fe import Allowables
+from ....quantities import PEAK, QUANTITIES
+from ...case import HEADLINE, PairSolution
+from ...safety import DEFAULT_ALLOWABLES, safety_factors
 
 #: the largest harmonics of the spectrum a summary keeps
 HARMONICS = 12
@@ -136,38 +136,3 @@ def revolution_summary(sols: tuple[PairSolution, ...],
                                         "mean": float(te.mean()),
                                         "peak_to_peak": float(te.max() - te.min())},
             "spectrum": spectrum(te, z1)}
-
-
-def revolution_table(rev: dict) -> str:
-    """The text ``fegear solve --revolution`` prints: the worst of each headline with its tooth
-    and position, the smallest safety factors, the most loaded teeth of each gear against the
-    median tooth, and the loaded rotation with its largest harmonics."""
-    from .report import aligned_table
-
-    worst = rev["worst"]
-    lines = aligned_table(["worst over the revolution", "    MPa", "tooth", "β [deg]"], [
-        [HEADLINE[k], f"{worst[k]['max']:.1f}",
-         "-" if worst[k]["tooth"] is None else f"{worst[k]['gear']}:{worst[k]['tooth']}",
-         f"{worst[k]['at_position_deg']:.2f}"] for k in HEADLINE], labels=1)
-    lines += ["", "smallest safety factors: " + ", ".join(
-        f"{f.label} {worst[k]['min']:.2f} at β {worst[k]['at_position_deg']:.2f}°"
-        for k, f in FACTORS.items() if k in worst)]
-    for q in (ROOT1, ROOT2, PEAK):
-        per = rev["per_tooth"][q.key]
-        if not per:
-            continue
-        cut = rev["per_tooth"]["cut"][f"gear{q.gear}"]
-        median = median_tooth(per, cut)
-        top = sorted(per.items(), key=lambda kv: -kv[1])[:4]
-        lines.append(f"{q.label}: median tooth {median:.1f} MPa; most loaded " + ", ".join(
-            f"tooth {t}{'*' if t in cut else ''} {v:.1f} ({100 * (v / median - 1):+.0f} %)"
-            for t, v in top)
-            + (f" (*: seen in part, teeth {', '.join(map(str, cut))}: the revolution's ends "
-               "cut their pass)" if cut else ""))
-    te = rev["rotation_urad"]
-    top = sorted(rev["spectrum"], key=lambda h: -h["amplitude_urad"])[:5]
-    lines.append(f"loaded rotation (transmission error): {te['min']:.1f} ... {te['max']:.1f} µrad "
-                 f"({te['peak_to_peak']:.1f} peak to peak); largest harmonics (order per turn "
-                 "of gear 1: amplitude): " + ", ".join(
-                     f"{h['order']}: {h['amplitude_urad']:.2f} µrad" for h in top))
-    return "\n".join(lines)
