@@ -86,5 +86,5 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "analyses.samples.solve": ("class_samples", "Sampled"),
     "analyses.samples.report": ("samples_columns", "samples_summary", "samples_table"),
     "rating_report": ("damage_text", "life_text", "safety_text"),
-    "sensitivity_report": ("sensitivity_columns", "sensitivity_table"),
+    "analyses.sensitivities.report": ("sensitivity_columns", "sensitivity_table"),
 })

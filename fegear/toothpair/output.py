@@ -56,31 +56,18 @@ def write_cycle_series(sols, out: Path, name: str = "cycle") -> dict[str, Path]:
     return {"pvd": write_atomic(out / f"{name}.pvd", lambda tmp: tmp.write_text(xml))}
 
 
-def write_sensitivity_outputs(sens: dict, out: Path, title: str, pictures: bool = True
-                              ) -> dict[str, Path]:
-    """sensitivities.csv (a row a deviation of the teeth in mesh: each headline's rate,
-    MPa/µm, and with a class what one tolerance moves) and sensitivities.png (``pictures``:
-    the tornado of the largest)."""
-    from .sensitivity_plot import sensitivities_png
-
-    files = {"sensitivities_csv": _rows_csv(out / "sensitivities.csv", sens["rows"])}
-    if pictures:
-        files["sensitivities_png"] = sensitivities_png(out / "sensitivities.png", sens, title)
-    return files
-
-
 def write_rating_outputs(rating: dict, out: Path) -> dict[str, Path]:
     """rating.csv: a row a level and mode of a life rating (docs/rating.md): the limiting
     tooth, the level's stress, the tooth's load cycles, the damage, the line's limit and
     exponent, Miner's sum and the safety factor at the required life."""
     from .rating_report import rating_rows
 
-    return {"rating_csv": _rows_csv(out / "rating.csv", rating_rows(rating))}
+    return {"rating_csv": write_rows(out / "rating.csv", rating_rows(rating))}
 
 
-def _rows_csv(path: Path, rows: list[dict]) -> Path:
-    """``rows`` as a CSV table, a column a key in the order they first come, a key a row
-    lacks (or holds None) blank."""
+def write_rows(path: Path, rows: list[dict]) -> Path:
+    """``rows`` (a summary entry's: the sensitivities', the rating's) as a CSV table, a
+    column a key in the order they first come, a key a row lacks (or holds None) blank."""
     cols = list(dict.fromkeys(k for r in rows for k in r))
     return write_csv(path, cols, (["" if r.get(c) is None else r[c] for c in cols]
                                   for r in rows))

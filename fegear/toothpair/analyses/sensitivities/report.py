@@ -2,11 +2,16 @@
 rate with each deviation of the teeth in mesh at the position of the largest gear-1 root
 stress, and, with a class (``--grade``), the stress that one tolerance of each deviation
 moves: which tooth's pitch, which profile, the centre distance or a runout decides the stress
-(docs/tolerance.md, "Sensitivities")."""
+(docs/tolerance.md, "Sensitivities"). Its files: sensitivities.csv and the tornado
+(:func:`write_sensitivity_outputs`)."""
 
 from __future__ import annotations
 
-from ..quantities import HELD, ROOT1
+from pathlib import Path
+
+from ....quantities import HELD, ROOT1
+from ...output import write_rows
+from .plot import sensitivities_png
 
 
 def tolerance_of(kind: str, gear: int | None, grade) -> float | None:
@@ -77,3 +82,14 @@ def sensitivity_columns(s: dict) -> dict:
             "sensitivities.largest.root_stress_gear1_per_um": top["root_stress_gear1_per_um"],
             "sensitivities.largest.root_stress_gear1_at_tolerance":
                 top.get("root_stress_gear1_at_tolerance")}
+
+
+def write_sensitivity_outputs(sens: dict, out: Path, title: str, pictures: bool = True
+                              ) -> dict[str, Path]:
+    """sensitivities.csv (a row a deviation of the teeth in mesh: each headline's rate,
+    MPa/µm, and with a class what one tolerance moves) and sensitivities.png (``pictures``:
+    the tornado of the largest)."""
+    files = {"sensitivities_csv": write_rows(out / "sensitivities.csv", sens["rows"])}
+    if pictures:
+        files["sensitivities_png"] = sensitivities_png(out / "sensitivities.png", sens, title)
+    return files

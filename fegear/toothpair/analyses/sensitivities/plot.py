@@ -7,8 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
-from ..figures import margins, pyplot, save_png
-from ..quantities import FLANK, ROOT1, ROOT2
+from ....figures import margins, pyplot, save_png
+from ....quantities import FLANK, ROOT1, ROOT2
 
 #: deviations a panel shows, the largest first
 TOP = 12
