@@ -269,8 +269,8 @@ def _modes(row: dict) -> list[str]:
 def _rating_cells(row: dict) -> list[str]:
     """The life rating's cells: the mode with the smallest safety factor at the required
     life, that factor, its Miner's sum and its life, as the solve's rating table writes them
-    (:mod:`fegear.toothpair.rating_report`); dashes without a spectrum. The summary writes an
-    infinity as "inf"."""
+    (:mod:`fegear.toothpair.analyses.rating.report`); dashes without a spectrum. The summary
+    writes an infinity as "inf"."""
     modes = _modes(row)
     if row["status"] != "ok" or not modes:
         return ["–"] * len(RATING_SHORT)

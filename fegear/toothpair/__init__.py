@@ -85,6 +85,6 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "ring.cache": ("model_cache",),
     "analyses.samples.solve": ("class_samples", "Sampled"),
     "analyses.samples.report": ("samples_columns", "samples_summary", "samples_table"),
-    "rating_report": ("damage_text", "life_text", "safety_text"),
+    "analyses.rating.report": ("damage_text", "life_text", "safety_text"),
     "analyses.sensitivities.report": ("sensitivity_columns", "sensitivity_table"),
 })

@@ -56,15 +56,6 @@ def write_cycle_series(sols, out: Path, name: str = "cycle") -> dict[str, Path]:
     return {"pvd": write_atomic(out / f"{name}.pvd", lambda tmp: tmp.write_text(xml))}
 
 
-def write_rating_outputs(rating: dict, out: Path) -> dict[str, Path]:
-    """rating.csv: a row a level and mode of a life rating (docs/rating.md): the limiting
-    tooth, the level's stress, the tooth's load cycles, the damage, the line's limit and
-    exponent, Miner's sum and the safety factor at the required life."""
-    from .rating_report import rating_rows
-
-    return {"rating_csv": write_rows(out / "rating.csv", rating_rows(rating))}
-
-
 def write_rows(path: Path, rows: list[dict]) -> Path:
     """``rows`` (a summary entry's: the sensitivities', the rating's) as a CSV table, a
     column a key in the order they first come, a key a row lacks (or holds None) blank."""

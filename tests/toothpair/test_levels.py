@@ -12,8 +12,8 @@ import pytest
 
 from fegear.rating import BENDING, CONTACT, GearMaterial, rate
 from fegear.toothpair import prepare_job, solve_job
+from fegear.toothpair.analyses.rating.report import rating_rows, rating_table
 from fegear.toothpair.positions import drive, drive_torques, families
-from fegear.toothpair.rating_report import rating_rows, rating_table
 from fegear.toothpair.ring.solver import RingSolver, SolverModes
 
 SPECTRUM = "torque,cycles\n60,1e8\n120,5e6\n160,3e5\n200,2e4\n"
@@ -205,7 +205,7 @@ def test_an_unloaded_mode_reads_as_an_unlimited_factor():
     # a mode no level loads has no limit: its safety factor is "inf" in the summary (JSON
     # has no infinity) and ∞ in the table
     from fegear.rating import material
-    from fegear.toothpair.levels import json_ready
+    from fegear.toothpair.analyses.rating.solve import json_ready
 
     modes = rate([{"root1": {None: 100.0}, "root2": {None: 0.0}, "flank1": {None: 300.0},
                    "flank2": {None: 300.0}}], [1e6], (44, 45), material("42CrMo"))

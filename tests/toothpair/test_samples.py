@@ -15,10 +15,10 @@ from fegear.geometry import PairParameters
 from fegear.running import spare_core
 from fegear.tolerance import Draw, grade_of
 from fegear.toothpair import SolveCase, prepare_job, solve_pair
+from fegear.toothpair.analyses.samples.report import samples_summary
+from fegear.toothpair.analyses.samples.solve import SampleCase, solve_samples
 from fegear.toothpair.ring.solver import RingSolver, SolverModes
 from fegear.toothpair.safety import DEFAULT_ALLOWABLES
-from fegear.toothpair.analyses.samples.solve import SampleCase, solve_samples
-from fegear.toothpair.analyses.samples.report import samples_summary
 
 PAIR = PairParameters(shift=0.016, rotation=0.002)
 CASE = SolveCase(PAIR, torque=200.0, quality="coarse")
@@ -93,9 +93,8 @@ def test_a_revolution_sample_reads_as_the_same_pair_turned_alone(baseline_ring):
     # every sample over a whole turn of gear 1 (2 positions a pitch, 88 in all) on the kept
     # contacts, against the same deviated pair's revolution placed position by position
     # (the deviated solve's own path): each headline's worst, and where it falls
-    from fegear.toothpair.case import HEADLINE
+    from fegear.toothpair.case import HEADLINE, phase_major, revolution_positions
     from fegear.toothpair.positions import drive
-    from fegear.toothpair.case import phase_major, revolution_positions
 
     p = PAIR
     draw = Draw(grade_of(5, p), 3, 1)

@@ -11,13 +11,13 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from .. import progress
-from ..quantities import LEVEL_STRESSES
-from ..running import SERIAL, Executor
-from .case import PairSolution, SolveCase
+from .... import progress
+from ....quantities import LEVEL_STRESSES
+from ....running import SERIAL, Executor
+from ...case import PairSolution, SolveCase
 
 if TYPE_CHECKING:   # the job's input, which the job hands over: the analyses never import it
-    from .job import Rating
+    from ...job import Rating
 
 
 def solve_levels(case: SolveCase, betas, rating: Rating, solve, executor: Executor = SERIAL,
@@ -60,7 +60,7 @@ def tooth_stresses(sols: tuple[PairSolution, ...], every_tooth: bool) -> dict[st
 def rated(levels: list[tuple[PairSolution, ...]], rating: Rating, every_tooth: bool) -> dict:
     """The summary's ``rating``: the inputs, each level's torque, cycles and largest stresses,
     and the four modes rated (:func:`fegear.rating.rate`)."""
-    from ..rating import rate
+    from ....rating import rate
 
     z = (levels[0][0].case.params.z1, levels[0][0].case.params.z2)
     stresses = [tooth_stresses(sols, every_tooth) for sols in levels]

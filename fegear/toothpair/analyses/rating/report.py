@@ -1,11 +1,15 @@
 """What a life rating gives a designer (``fegear solve --spectrum``, docs/rating.md): the
 levels with their solved torques and largest stresses, each mode's limiting tooth, Miner's
-sum, life and safety factor at the required life, and the verdict; as the terminal shows it
-and as rating.csv's rows."""
+sum, life and safety factor at the required life, and the verdict; as the terminal shows it,
+as rating.csv's rows (:func:`write_rating_outputs`) and as the report page's sections."""
 
 from __future__ import annotations
 
-from ..quantities import LEVEL_STRESSES
+from pathlib import Path
+
+from ....quantities import LEVEL_STRESSES
+from ...html_parts import escape, safety_cell, table
+from ...output import write_rows
 
 #: a level's stresses as the table heads them: each gear's root stress and the flank pressure
 #: (gear 1's teeth's: the flanks in contact carry the same)
@@ -46,6 +50,42 @@ def rating_rows(r: dict) -> list[dict]:
              "damage": m["damage"][k], "limit_MPa": m["limit_MPa"], "exponent": m["exponent"],
              "miner": m["miner"], "safety_at_life": m["safety"]}
             for mode, m in r["modes"].items() for k in range(len(r["levels"]))]
+
+
+def write_rating_outputs(rating: dict, out: Path) -> dict[str, Path]:
+    """rating.csv: a row a level and mode of a life rating (docs/rating.md): the limiting
+    tooth, the level's stress, the tooth's load cycles, the damage, the line's limit and
+    exponent, Miner's sum and the safety factor at the required life."""
+    return {"rating_csv": write_rows(out / "rating.csv", rating_rows(rating))}
+
+
+def life_html(r: dict) -> str:
+    """Each mode's Miner's sum, life and safety factor at the required life, and the
+    material's lines."""
+    rows = []
+    for mode, m in r["modes"].items():
+        rows.append([mode, "all" if m["tooth"] is None else str(m["tooth"]),
+                     damage_text(m["miner"]), life_text(m), safety_cell(m["safety"])])
+    mat = r["material"]
+    note = (f"<p>{escape(mat['name'])} ({escape(mat['treatment'])}): σ_Hlim "
+            f"{mat['sigma_Hlim_MPa']:g} MPa, σ_FE {mat['sigma_FE_MPa']:g} MPa; "
+            f"{escape(mat['source'])}. KA {r['KA']:g}, KV {r['KV']:g}.</p>")
+    return table(["mode", "tooth", "Miner's sum", "life", "S at the required life"],
+                 rows) + note
+
+
+def spectrum_html(r: dict) -> str:
+    """Each level's torque, solved torque, cycles and each mode's stress and damage."""
+    rows = []
+    modes = list(r["modes"].items())
+    for k, level in enumerate(r["levels"]):
+        rows.append([str(k + 1), f"{level['torque_Nm']:g}", f"{level['solved_torque_Nm']:.4g}",
+                     f"{level['cycles']:.3g}",
+                     *[f"{m['stress_MPa'][k]:.1f} / {damage_text(m['damage'][k])}"
+                       for _, m in modes]])
+    head = ["level", "torque N·m", "solved N·m", "cycles",
+            *[f"{name}: MPa / damage" for name, _ in modes]]
+    return table(head, rows)
 
 
 def safety_text(x) -> str:

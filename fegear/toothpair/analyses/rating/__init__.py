@@ -1,0 +1,69 @@
+"""A rating for a life (``--spectrum``): each level of the load spectrum solved on the kept
+model over the job's positions, each gear's root and flank rated on the material's S-N lines
+by Miner's rule (:mod:`.solve`, :mod:`fegear.rating`); its table, rating.csv and its two parts
+of the report page (:mod:`.report`), its verdict."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+from ....running import Executor
+from ....timing import Stopwatch
+from ..base import Analysis, Run, Verdict, Writing
+
+
+class Rating(Analysis):
+    key = "rating"
+
+    def wanted(self, job) -> bool:
+        return job.rating is not None
+
+    def solve(self, run: Run) -> dict:
+        from ...positions import drive_torques, positions_of
+        from ...ring.solver import RingSolver, SolverModes
+        from .solve import rated, solve_levels
+
+        job, model = run.job, run.solver.model
+        watch = Stopwatch()
+
+        # the model kept, the roots and the pressures read alone
+        roots = SolverModes(roots_only=True)
+
+        def level(case, betas, torques, executor: Executor):
+            # a revolution's kept phases hold solutions at one torque: there a solver of its
+            # own a level
+            if not job.revolution:
+                return drive_torques(case, betas, torques, RingSolver(model, roots), executor)
+            keeping = replace(roots, keep_phases=True)
+            return [positions_of(RingSolver(model, keeping), job.revolution)(
+                replace(case, torque=torque), betas, executor) for torque in torques]
+
+        levels = solve_levels(job.case, job.betas, job.rating, level, run.executor,
+                              run.solutions)
+        return {**rated(levels, job.rating, every_tooth=not job.case.deviations),
+                "solve_s": watch.s}
+
+    def printed(self, entry: dict, summary: dict) -> str:
+        from .report import rating_table
+
+        return (f"\nRated for a life: each level of the spectrum solved over the positions "
+                f"({entry['solve_s']:.1f} s):\n\n" + rating_table(entry))
+
+    def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
+        from .report import write_rating_outputs
+
+        return write_rating_outputs(entry, writing.out)
+
+    def verdict(self, entry: dict) -> Verdict:
+        line = entry["verdict"]
+        return Verdict(entry.get("passed", line.startswith("PASS")), f"for the life: {line}")
+
+    def page(self, entry: dict) -> list[tuple[str, str]]:
+        from .report import life_html, spectrum_html
+
+        return [("safety", "<h3>For the life</h3>\n" + life_html(entry)),
+                ("sections", "<h2>The load spectrum</h2>\n" + spectrum_html(entry))]
+
+
+RATING = Rating()
