@@ -402,7 +402,7 @@ def test_the_private_name_check_finds_each_way_a_test_can_reach_one():
     source = ("import fegear.toothpair.ring.model as ring_model\n"
               "import fegear.toothpair.ring.contact\n"
               "from fegear.toothpair.ring import grid\n"
-              "from fegear.toothpair.cycle_plot import CYCLE_VERDICT, _verdict\n"
+              "from fegear.toothpair.analyses.cycle.plot import CYCLE_VERDICT, _verdict\n"
               "def test(monkeypatch):\n"
               "    ring_model.KEPT.clear(), ring_model.RingModel.__name__, grid.windows\n"
               "    grid._split, fegear.toothpair.ring.contact._on\n"

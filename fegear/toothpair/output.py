@@ -16,21 +16,9 @@ from ..fe import write_vtu
 from ..figures import write_png
 from ..files import write_atomic, write_csv, write_json
 from ..running import SERIAL, Executor
-from .case import HEADLINE, PairSolution
-from .cycle_plot import cycle_png
+from .case import PairSolution
 from .pictured import PicturedDetail, for_pictures
 from .plot import chart_pngs, von_mises_bytes
-
-
-def write_cycle_outputs(rows: list[dict], out: Path, title: str,
-                        allowables=None) -> dict[str, Path]:
-    """cycle.csv (one row per position) and cycle.png (load shares, stresses with the
-    ``allowables`` and the smallest safety factors, TE)."""
-    cols = list(rows[0])
-    files = {"csv": write_csv(out / "cycle.csv", cols, ([r[c] for c in cols] for r in rows))}
-    files["cycle_png"] = cycle_png(out / "cycle.png", rows, title, HEADLINE, allowables)
-    return files
-
 
 #: sectors written either side of the loaded ones at each position of a cycle's series
 SERIES_AROUND = 1
@@ -111,23 +99,3 @@ def _drawn(painter, fn, sol: PairSolution, *args):
     light = sol if isinstance(sol.detail, PicturedDetail) else \
         dataclasses.replace(sol, detail=PicturedDetail(sol.detail))
     return painter.submit(fn, light, *args)
-
-
-def write_mesh_stiffness(out: Path, rows: list[dict], case) -> dict[str, Path]:
-    """mesh_stiffness.json (for ``fegear drive dynamics`` and ``reducer``) and
-    mesh_stiffness.csv: secant and tangent stiffness and unloaded transmission error over one
-    mesh period, by mesh phase."""
-    from ..files import write_csv, write_json
-    from .stiffness import mesh_stiffness_of_cycle
-
-    p = case.params
-    mesh = mesh_stiffness_of_cycle(rows, p.z1, p.z2, p.m, case.thickness, case.torque)
-    beta0 = rows[0]["position_deg"]
-    tangent = mesh.tangent if mesh.tangent is not None else [""] * len(mesh.phase)
-    table = ((ph, beta0 + ph * 360.0 / p.z2, k, kt, e)
-             for ph, k, kt, e in zip(mesh.phase, mesh.stiffness, tangent, mesh.error))
-    return {"mesh_stiffness": write_json(out / "mesh_stiffness.json", mesh.to_json()),
-            "mesh_stiffness_csv": write_csv(
-                out / "mesh_stiffness.csv",
-                ("phase", "position_deg", "stiffness_Nm_per_rad", "tangent_stiffness_Nm_per_rad",
-                 "error_rad"), table)}

@@ -1,6 +1,6 @@
 """Pictures of a tooth-pair solve (matplotlib): von Mises on the loaded teeth and at the contact
 peak, the pressure along each loaded flank and the root stress per tooth (the mesh cycle's:
-:mod:`.cycle_plot`)."""
+:mod:`.analyses.cycle.plot`)."""
 
 from __future__ import annotations
 

@@ -364,32 +364,3 @@ def cycle_summary(rows: list[dict]) -> dict:
     n = [r["teeth_in_contact"] for r in rows]
     out["teeth_in_contact"] = {"min": min(n), "max": max(n)}
     return out
-
-
-def cycle_table(rows: list[dict]) -> str:
-    """Markdown table of a cycle (the `fegear solve --positions` output) and the smallest
-    safety factors over it."""
-    share_keys = [k for k in rows[0] if k.startswith("share_")]
-    shown = [k for k in share_keys if any(r[k] > 0 for r in rows)]
-    head = ["β [deg]", *(h.short for h in HELD), quantities.EDGE_LOAD.head,
-            quantities.VON_MISES.short, *(FACTORS[k].symbol for k in TABLE_SAFETY),
-            quantities.TRANSMISSION_ERROR.head, quantities.MESH_STIFFNESS.head, "teeth",
-            *(f"tooth {k[6:]}" for k in shown)]
-    lines = aligned_table(head, [[
-        f"{r['position_deg']:.3f}", f"{r['root_stress_gear1_MPa']:.1f}",
-        f"{r['root_stress_gear2_MPa']:.1f}", f"{r['contact_pressure_MPa']:.0f}",
-        f"{r['flank_contact_pressure_MPa']:.0f}", f"{r['edge_load_N']:.1f}",
-        ("~" if r.get("von_mises_estimated") else "") + f"{r['von_mises_max_MPa']:.0f}",
-        *(factor_cell(r.get(k)) for k in TABLE_SAFETY),
-        f"{r['transmission_error_urad']:.1f}", stiffness_cell(r["mesh_stiffness_Nm_per_rad"]),
-        str(r["teeth_in_contact"]),
-        *(f"{r[k]:.3f}" if abs(r[k]) >= 5e-4 else "0.000" for k in shown)] for r in rows])
-    if any(r.get("von_mises_estimated") for r in rows):
-        lines += ["", "~ von Mises from the surface estimate: the contact submodels are solved "
-                  "where the cycle's stresses peak (the estimate is within 1 % of them)"]
-    least = smallest(rows)
-    if any(v["min"] is not None for v in least.values()):
-        lines += ["", "smallest safety factors over the cycle: " + ", ".join(
-            f"{FACTORS[k].label} {v['min']:.2f} at β {v['at_position_deg']:.3f}°"
-            for k, v in least.items() if v["min"] is not None)]
-    return "\n".join(lines)

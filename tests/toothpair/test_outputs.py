@@ -168,7 +168,7 @@ def test_the_cycle_picture_carries_the_allowable_and_the_smallest_factors():
     import matplotlib.pyplot as plt
 
     from fegear.fe import Allowables
-    from fegear.toothpair.cycle_plot import cycle_figure
+    from fegear.toothpair.analyses.cycle.plot import cycle_figure
 
     rows = [{"position_deg": b, "share_10": 1.0, "root_stress_gear1_MPa": s1,
              "root_stress_gear2_MPa": s2, "contact_pressure_MPa": 1000.0,
@@ -274,7 +274,7 @@ def test_the_flank_panels_share_one_legend_above_them(solved, summary, plt):
 def test_the_legends_of_root_stress_and_cycle_cover_no_data(cycle, solved, summary, plt):
     from fegear.figures.labels import legend_cover
     from fegear.toothpair import DEFAULT_ALLOWABLES, HEADLINE
-    from fegear.toothpair.cycle_plot import cycle_figure
+    from fegear.toothpair.analyses.cycle.plot import cycle_figure
     from fegear.toothpair.plot import root_stress_figure
 
     fig = root_stress_figure(solved, summary)

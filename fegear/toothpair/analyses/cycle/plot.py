@@ -6,9 +6,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..figures import margins, pyplot, save_png
-from ..figures.labels import place_legend
-from ..quantities import FACTORS, QUANTITIES
+from ....figures import margins, pyplot, save_png
+from ....figures.labels import place_legend
+from ....quantities import FACTORS, QUANTITIES
 
 #: the verdict drawn on a cycle's stress panels: the safety factors of each panel
 CYCLE_VERDICT = {1: (FACTORS["safety_bending_gear1"], FACTORS["safety_bending_gear2"]),

@@ -1,12 +1,12 @@
 """The mesh cycle (``--positions N``): the core solves the positions and its summary holds
 their rows (``summary["cycle"]``); this analysis prints their table and writes cycle.csv, the
-mesh stiffness, the ParaView series and cycle.png."""
+mesh stiffness (:mod:`.report`), the ParaView series and cycle.png (:mod:`.plot`)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-from .base import Analysis, Writing
+from ..base import Analysis, Writing
 
 
 class Cycle(Analysis):
@@ -17,7 +17,7 @@ class Cycle(Analysis):
         return len(job.betas) > 1
 
     def printed(self, entry: dict, summary: dict) -> str:
-        from ..report import cycle_table
+        from .report import cycle_table
 
         also = " (and the class's pairs)" if "samples" in summary else ""
         default = entry.get("default")
@@ -27,7 +27,8 @@ class Cycle(Analysis):
                 + (f"\n(not given: {default})" if default else "") + "\n")
 
     def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
-        from ..output import write_cycle_outputs, write_cycle_series, write_mesh_stiffness
+        from ...output import write_cycle_series
+        from .report import write_cycle_outputs, write_mesh_stiffness
 
         solved, out = writing.solved, writing.out
         files = dict(write_mesh_stiffness(out, solved.rows, solved.job.case))
