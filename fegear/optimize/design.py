@@ -15,6 +15,7 @@ from collections.abc import Mapping
 from ..errors import FegearError
 from ..quantities import FACTORS, HELD, QUANTITIES
 from ..timing import Stopwatch
+from ..toothpair import JOB_INPUTS
 
 #: the safety factors the default objective takes the smallest of, each under its name in a
 #: trial's record (:attr:`~fegear.quantities.Factor.name`): S_F of each gear from its root
@@ -29,8 +30,6 @@ OBJECTIVES = {"safety": "maximize", "te": "minimize", "stiffness": "maximize"}
 def outer_diameter(values: Mapping) -> float:
     """Gear 2's outer diameter (mm): its root circle r0 + 2 e1 and the rim beyond it
     (``rim2``, default 3 m), the size the pair takes in a housing."""
-    from ..toothpair import JOB_INPUTS
-
     v = JOB_INPUTS.with_defaults(values)
     m, z2, h1 = float(v["m"]), int(v["z2"]), float(v["h1"])
     rim2 = v["rim2"]
@@ -41,8 +40,6 @@ def outer_diameter(values: Mapping) -> float:
 def centre_distance(values: Mapping) -> float:
     """The pair's centre distance e = m (z2 − z1) / 2 (mm): with the ratio fixed, the module's
     size."""
-    from ..toothpair import JOB_INPUTS
-
     v = JOB_INPUTS.with_defaults(values)
     return 0.5 * float(v["m"]) * (int(v["z2"]) - int(v["z1"]))
 
@@ -55,7 +52,11 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
     over the cycle with the rolling angle (°) and tooth of each, the safety factors,
     ``objective_*``, the constraint values (``violation_*``, > 0 violated) and the solve's
     time."""
-    from ..toothpair import allowables_of, prepare_job, solve_positions
+    from ..toothpair import (  # lazy: heavy: numpy; `fegear --help` imports this module
+        allowables_of,
+        prepare_job,
+        solve_positions,
+    )
 
     watch = Stopwatch()
     rec: dict = {"status": "ok", "reason": ""}
@@ -70,7 +71,10 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
     except FegearError as exc:       # outside the admissible region, named (ParameterError)
         return _infeasible(rec, "refused", str(exc), watch)
     if constraints.get("min_backlash") is not None or constraints.get("max_backlash") is not None:
-        from ..geometry import ToothContact, gear1_profile
+        from ..geometry import (  # lazy: heavy: numpy; `fegear --help` imports this module
+            ToothContact,
+            gear1_profile,
+        )
 
         b = ToothContact(job.case.params, gear1_profile(job.case.params)).backlash()
         rec["backlash_um"] = b.plus_um + b.minus_um
@@ -119,7 +123,11 @@ def _graded(job, allow) -> dict:
     of the pairs (0 where more of them jam), the smallest the objective, and the tip rounds'
     constraint violated where more of the pairs that turn load a round than the quantile
     leaves (by the largest such load, N)."""
-    from ..toothpair import class_samples, cycle_rows, samples_summary
+    from ..toothpair import (  # lazy: heavy: scikit-fem; `fegear --help` imports this module
+        class_samples,
+        cycle_rows,
+        samples_summary,
+    )
 
     draw, q = job.draw, job.quantile
     sampled = class_samples(job, allow, read=lambda sol: sum(t.edge_load_N for t in sol.teeth))

@@ -13,6 +13,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
+from .. import progress
+from ..errors import FegearError
+from ..files import write_json
+from ..timing import Stopwatch
+from .plot import search_pngs
+from .report import baselines, final_table, headline_table, resolve
+from .search import best_trials, binding, load_trials, run_search
 from .space import Space
 
 
@@ -48,11 +55,6 @@ class SearchOutcome:
 def run_optimize(settings: SearchSettings) -> SearchOutcome:
     """Search, solve the best again beside the baselines, write final.json, final.md and the
     pictures into ``settings.out``; raise :class:`~.search.SearchInterrupted` on a stop."""
-    from .. import progress
-    from ..files import write_json
-    from ..timing import Stopwatch
-    from . import best_trials, binding, load_trials, run_search
-
     s, space = settings, settings.space
     watch = Stopwatch()
     result = run_search(space, s.out, s.trials, s.workers, s.sampler, s.seed,
@@ -83,10 +85,6 @@ def _solve_again(s: SearchSettings, best: list) -> tuple[dict[str, dict], list[s
     """The baselines (unless left out) and the ``s.best`` best trials solved again at
     standard over the cycle with the estimate (the first's files in ``best/``); a design that
     cannot be is said, not fatal: the search's results stand."""
-    from .. import progress
-    from ..errors import FegearError
-    from . import baselines, resolve
-
     rows: dict[str, dict] = {}
     failed: list[str] = []
 
@@ -108,8 +106,6 @@ def _solve_again(s: SearchSettings, best: list) -> tuple[dict[str, dict], list[s
 
 def _pictures(s: SearchSettings, table, rows: dict[str, dict]) -> dict[str, Path]:
     """The search's pictures, the baselines' safety marked where safety is the objective."""
-    from . import search_pngs
-
     space = s.space
     safety = space.objectives[0] == "safety"
     return search_pngs(table, [v.name for v in space.variables], list(space.objectives), s.out,
@@ -121,8 +117,6 @@ def _pictures(s: SearchSettings, table, rows: dict[str, dict]) -> dict[str, Path
 
 def _final_md(space: Space, rows: dict[str, dict]) -> str:
     """final.md: the designs solved again and their headline stresses (empty: none)."""
-    from . import final_table, headline_table
-
     return (final_table(rows, space) + "\n\nthe headline stresses over the cycle (MPa) and "
             "their error estimates:\n\n" + headline_table(rows)) if rows else ""
 

@@ -23,8 +23,10 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 from ..errors import FegearError, ParameterError
+from ..geometry import gear1_profile
 from ..planar import wrap
 from ..running import SERIAL, Executor, Task
+from ..toothpair import DEFAULT_ALLOWABLES, prepare_job, solve_positions
 
 FIRST_UM = 2.0       # the scan's first amount
 MARGIN = 0.2         # torque overload the relief must cover
@@ -95,9 +97,6 @@ class ReliefSizing:
 def cycle_result(values: Mapping, amount_um: float, torque: float, positions: int) -> CycleResult:
     """Solve the pair of ``values`` (``fegear solve`` inputs) with a relief of ``amount_um``
     at ``torque`` over ``positions`` rolling angles."""
-    from ..geometry import gear1_profile
-    from ..toothpair import prepare_job, solve_positions
-
     job = prepare_job({**values, "relief": amount_um, "torque": torque,
                        "positions": positions, "no-estimate": True})
     profile = gear1_profile(job.case.params)
@@ -124,8 +123,7 @@ def graded_cycle_result(values: Mapping, amount_um: float, torque: float, positi
     which more pairs jam than the quantile leaves has no relief: refused by name."""
     from dataclasses import replace
 
-    from ..geometry import gear1_profile
-    from ..toothpair import DEFAULT_ALLOWABLES, class_samples, prepare_job
+    from ..toothpair import class_samples  # lazy: heavy: scikit-fem; `fegear relief` imports this
 
     job = prepare_job({**values, "relief": amount_um, "torque": torque,
                        "positions": positions, "no-estimate": True})
@@ -226,8 +224,6 @@ def size_relief(values: Mapping, search: ReliefSearch = ReliefSearch(),
     where it has a worker free. ``solve`` evaluates one trial (values, amount µm, torque,
     positions) → :class:`CycleResult` (default :func:`cycle_result`), ``report`` is told of
     each trial."""
-    from ..toothpair import prepare_job
-
     # every input checked before any solve, the extent and shape with a relief in place
     params = prepare_job({**values, "relief": FIRST_UM, "positions": search.positions,
                           "no-estimate": True}).case.params

@@ -11,7 +11,14 @@ from pathlib import Path
 
 from .. import quantities
 from ..quantities import HELD
-from ..toothpair import solve_command
+from ..toothpair import (
+    prepare_job,
+    solve_command,
+    solve_job,
+    stiffness_cell,
+    write_job,
+    write_report,
+)
 from .design import carrying_tooth
 from .space import Space
 
@@ -31,8 +38,6 @@ def resolve(values: Mapping, positions: int, out: Path | None) -> dict:
     final table. ``safety`` is the smallest of every safety factor over the cycle, S_H with
     a loaded tip round included (for a design that keeps its rounds unloaded, the search's
     objective); ``limited_by`` names it, with the rolling angle and the tooth."""
-    from ..toothpair import prepare_job, solve_job, write_job, write_report
-
     inputs = {**values, "quality": CHECK_QUALITY, "positions": positions}
     solved = solve_job(prepare_job(inputs))
     if out is not None:   # its files and its one-page report
@@ -75,8 +80,6 @@ def final_table(rows: Mapping[str, dict], space: Space) -> str:
     safety factors over the cycle, the largest estimate of the stresses behind them, the load on
     the tip rounds, the transmission error's peak to peak and the mean mesh stiffness over the
     cycle, and what limits it."""
-    from ..toothpair import stiffness_cell
-
     names = [v.name for v in space.variables]
     head = ("| design | " + " | ".join(names) + " | S_F1 | S_F2 | S_H flank | S_H | smallest "
             "| gain % | est. % | tip rounds N | TE p-p µrad | k N·m/rad | limited by |")

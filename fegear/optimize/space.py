@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 
 from ..checks import Input, number, require_range
 from ..errors import FegearError, ParameterError
+from ..toothpair import JOB_INPUTS
 from .design import OBJECTIVES, centre_distance, outer_diameter
 
 #: the solve inputs a search may vary: the pair's shape and modifications and the gears' size
@@ -106,8 +107,6 @@ def parse_variables(texts: Sequence[str]) -> tuple[Variable, ...]:
 def check_variable(v: Variable) -> Variable:
     """``v`` with its bounds checked: numbers (a bool is none), low < high, each inside the
     input's own range (refused by the input's name)."""
-    from ..toothpair import JOB_INPUTS
-
     if v.name not in VARIABLES:
         raise ParameterError("vary", v.name, "one of " + ", ".join(VARIABLES),
                              f"unknown variable {v.name!r}")
@@ -124,8 +123,6 @@ def check_space(space: Space) -> None:
     """Refuse, by name, a space no design of which can meet its constraints or be solved: the
     fixed inputs must be valid, a variable not also fixed, the objectives known, the outer
     diameter reachable inside the bounds, the backlash bounds in order."""
-    from ..toothpair import JOB_INPUTS
-
     JOB_INPUTS.with_defaults(space.fixed)    # an unknown input: refused by its name
     for name, value in space.fixed.items():   # those with limits: by prepare_job, below
         if value is not None and not JOB_INPUTS[name].limits:
@@ -148,7 +145,7 @@ def check_space(space: Space) -> None:
         require_range("max-backlash", hi, 0.0 if lo is None else number(lo), 1e4,
                       lo_open=lo is not None, unit="µm" if lo is None else "µm (above "
                       "min-backlash)")
-    from ..toothpair import prepare_job
+    from ..toothpair import prepare_job  # lazy: heavy: numpy; `fegear --help` imports this module
 
     # the fixed pair itself (with the varied inputs at their defaults) must be one fegear
     # builds: a refusal names the fixed input (z2 <= z1, a tip clearance past e1, …)

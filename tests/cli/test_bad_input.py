@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 import fegear.geometry
-import fegear.optimize
+import fegear.optimize.job
 import fegear.optimize.relief_rule
 import fegear.study
 import fegear.toothpair.pair
@@ -115,7 +115,7 @@ def no_work(monkeypatch):
                          (fegear.verify, "geometry_bench"), (fegear.verify, "disk_ladder"),
                          (fegear.verify, "pair_ladder"), (fegear.verify, "ring_ladder"),
                          (fegear.verify, "run_fresh"), (fegear.study, "run_study"),
-                         (fegear.verify, "study_overhead"), (fegear.optimize, "run_search"),
+                         (fegear.verify, "study_overhead"), (fegear.optimize.job, "run_search"),
                          (fegear.optimize.relief_rule, "cycle_result")):
         monkeypatch.setattr(module, name, accepted)
 
