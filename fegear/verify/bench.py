@@ -24,8 +24,14 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import __version__
 from ..geometry import Gear1Profile, PairParameters, ToothContact, gear2_curve
+from ..provenance import library_versions
 from ..timing import Stopwatch
+from ..toothpair import pair_summary, write_pair_outputs
+from . import ring_bench
+from .ccx_files import PeerError
+from .sector import SectorCase
 
 GEOMETRY_TARGET_S = 1.0
 
@@ -173,8 +179,15 @@ def disk_ladder(levels: Sequence[float] = DISK_LEVELS, repeat: int = 3,
                 peer: bool = True) -> Ladder:
     """The Hertz case (two 10 mm disks, 1000 N, 5 mm, plane stress) at each number of
     elements across b; CalculiX beside it if ``peer`` and installed."""
-    from .calculix import ccx_available, ccx_disks
-    from .disks import DiskCase, solve_disks, write_disk_outputs
+    from .calculix import (  # lazy: heavy: scikit-fem, off `fegear bench`'s check
+        ccx_available,
+        ccx_disks,
+    )
+    from .disks import (  # lazy: heavy: scikit-fem, off `fegear bench`'s check
+        DiskCase,
+        solve_disks,
+        write_disk_outputs,
+    )
 
     def disk_peer(case, r):
         with tempfile.TemporaryDirectory() as tmp:
@@ -199,8 +212,7 @@ def pair_ladder(params: PairParameters, torque: float = 200.0,
                 levels: Sequence[str] = PAIR_LEVELS, peer: bool = False) -> Ladder:
     """The sector model's tooth pair at one position at each quality level (headline
     stresses), CalculiX beside it on the same meshes (``peer``)."""
-    from ..toothpair import pair_summary, write_pair_outputs
-    from .sector import SectorCase, solve_pair
+    from .sector import solve_pair  # lazy: heavy: scikit-fem, off `fegear bench`'s check
 
     rungs = []
     for quality in levels:
@@ -218,8 +230,6 @@ def pair_ladder(params: PairParameters, torque: float = 200.0,
 def _peer(run, case, ours) -> tuple[float | None, dict | None, str | None]:
     """CalculiX's wall time and values beside ours, or why it gave none: a failed peer is
     reported in the table, it does not stop the benchmark."""
-    from .ccx_files import PeerError
-
     try:
         return (*run(case, ours), None)
     except PeerError as err:
@@ -231,8 +241,8 @@ PEER_PAIR_LEVELS = ("coarse", "fast")  # CalculiX takes minutes per position bey
 
 
 def _pair_peer(case, sol) -> tuple[float | None, dict | None]:
-    from .calculix import ccx_available
-    from .calculix_pair import ccx_pair
+    from .calculix import ccx_available  # lazy: heavy: scikit-fem, off `fegear bench`'s check
+    from .calculix_pair import ccx_pair  # lazy: heavy: scikit-fem, off `fegear bench`'s check
 
     if not ccx_available() or case.quality not in PEER_PAIR_LEVELS:
         return None, None
@@ -317,9 +327,6 @@ def ladder_table(ladder: Ladder) -> str:
 
 def machine() -> dict:
     """Machine, Python and library versions for the benchmark JSON."""
-    from .. import __version__
-    from ..provenance import library_versions
-
     libs = library_versions()
     try:
         ccx = subprocess.run(["ccx", "-v"], capture_output=True, text=True, timeout=30)
@@ -409,8 +416,6 @@ def files_run(args: Sequence[str], runs: int) -> FilesRun:
     """``fegear solve ARGS`` without and with ``--out`` (a fresh folder each time, removed
     after), ``runs`` pairs, which of the two goes first alternating from pair to pair; the
     model cache off, as a first solve of a design runs."""
-    from .ring_bench import command_s
-
     env = {"FEGEAR_CACHE": "off"}
     without, written = [], []
     with tempfile.TemporaryDirectory(prefix="fegear-bench-files-") as tmp:
@@ -418,6 +423,6 @@ def files_run(args: Sequence[str], runs: int) -> FilesRun:
             out = Path(tmp) / f"out{k}"
             pair = [(without, []), (written, ["--out", str(out)])]
             for times, extra in pair if k % 2 == 0 else pair[::-1]:
-                times.append(command_s([*args, *extra], env))
+                times.append(ring_bench.command_s([*args, *extra], env))
             shutil.rmtree(out)
     return FilesRun(tuple(args), tuple(without), tuple(written))

@@ -14,12 +14,21 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from .. import verify
 from ..errors import ParameterError
+from ..files import prepare_dir, write_json
+from ..provenance import code_version
+from ..toothpair import SolveCase
+from . import bench, history
+from .ccx_files import PeerError
+from .pair_targets import PEER_KEYS, PairRuns, pair_targets, sector_error
+from .peer_contact import CASES, LEVELS, contact_peer, peer_table
+from .ring_bench import SINGLE_TARGET, class_run, spectrum_run
+from .sector import cross_check, cross_table
 
 if TYPE_CHECKING:
     from ..geometry import PairParameters
     from .bench import FilesRun, Ladder
-    from .pair_targets import PairRuns
 
 #: what a bench can run alone instead of everything ("": everything)
 ONLY = ("", "study", "contact-peer", "sector", "files")
@@ -93,12 +102,8 @@ def run_bench(plan: BenchPlan, say: Say) -> None:
 
 def _everything(plan: BenchPlan, say: Say) -> None:
     """Every benchmark of ``plan``, in the report's order (the command without a mode)."""
-    from ..files import prepare_dir
-    from . import geometry_bench, paper_study_s
-    from .ring_bench import class_run, spectrum_run
-
     prepare_dir(plan.out)
-    say(geometry_bench(plan.params, plan.repeat))
+    say(verify.geometry_bench(plan.params, plan.repeat))
     say("")
     disks = _disk_ladder(plan, say)
     say("")
@@ -106,7 +111,7 @@ def _everything(plan: BenchPlan, say: Say) -> None:
     sector = _sector_ladder(plan, say)
     scale = _scaling(plan, runs.ring, say)
     runs = replace(runs, sector=sector,
-                   study=paper_study_s() if plan.paper_study else None,
+                   study=verify.paper_study_s() if plan.paper_study else None,
                    tolerance=class_run(plan.pair_args) if plan.tolerance_class else None,
                    spectrum=spectrum_run(plan.pair_args) if plan.spectrum else None)
     files = None
@@ -121,12 +126,10 @@ def _everything(plan: BenchPlan, say: Say) -> None:
 
 def _disk_ladder(plan: BenchPlan, say: Say) -> Ladder:
     """The Hertz case's ladder, its table and its target."""
-    from . import disk_ladder, ladder_table, ladder_targets
-
-    disks = disk_ladder(plan.disk_levels, plan.repeat, peer=plan.peer)
-    say(ladder_table(disks))
+    disks = verify.disk_ladder(plan.disk_levels, plan.repeat, peer=plan.peer)
+    say(verify.ladder_table(disks))
     say("")
-    for t in ladder_targets(disks):
+    for t in verify.ladder_targets(disks):
         say(f"* {t.line()}")
     return disks
 
@@ -135,27 +138,24 @@ def _ring_runs(plan: BenchPlan, say: Say) -> PairRuns:
     """The ring model's ladder, one position at the default quality (from the ladder if it is
     on it), with the estimate, over a mesh cycle and with the model cache, each in a fresh
     process; their tables."""
-    from . import cache_runs, cache_table, ring_ladder, ring_table, run_fresh
-    from .pair_targets import PairRuns
-
     params, torque, quality = plan.params, plan.torque, plan.quality
     say(f"### Tooth pair, ring model: {params.describe()}, T {torque:g} N·m, one position, "
         "each level in a fresh process")
     say("")
-    ring = ring_ladder(params, torque, list(plan.pair_levels))
-    say(ring_table(ring))
+    ring = verify.ring_ladder(params, torque, list(plan.pair_levels))
+    say(verify.ring_table(ring))
     default = next((r for r in ring if r.label == quality), None)
     if default is None:
-        default = run_fresh(quality, params, torque, quality)
-    extra = run_fresh(f"{quality}, with estimate", params, torque, quality, estimate=True)
-    cycle = (run_fresh(f"{quality}, {plan.cycle}-position cycle", params, torque, quality,
-                       cycle=plan.cycle) if plan.cycle else None)
-    cached = cache_runs(params, torque, quality, list(plan.pair_args))
+        default = verify.run_fresh(quality, params, torque, quality)
+    extra = verify.run_fresh(f"{quality}, with estimate", params, torque, quality, estimate=True)
+    cycle = (verify.run_fresh(f"{quality}, {plan.cycle}-position cycle", params, torque,
+                              quality, cycle=plan.cycle) if plan.cycle else None)
+    cached = verify.cache_runs(params, torque, quality, list(plan.pair_args))
     say("")
     say(f"### The model cache (`--cache`): the model built, or read back (`{quality}`, "
         "each in a fresh process)")
     say("")
-    say(cache_table(cached, default, extra))
+    say(verify.cache_table(cached, default, extra))
     return PairRuns(default, extra, ring, cycle=cycle, cached=cached)
 
 
@@ -163,27 +163,24 @@ def _sector_ladder(plan: BenchPlan, say: Say) -> Ladder | None:
     """The sector model's ladder, with CalculiX on its meshes, where levels are asked for."""
     if not plan.sector_levels:
         return None
-    from . import ladder_table, pair_ladder
-
     say("")
-    sector = pair_ladder(plan.params, plan.torque, list(plan.sector_levels), peer=plan.peer)
-    say(ladder_table(sector))
+    sector = verify.pair_ladder(plan.params, plan.torque, list(plan.sector_levels),
+                                peer=plan.peer)
+    say(verify.ladder_table(sector))
     return sector
 
 
 def _scaling(plan: BenchPlan, ring: list, say: Say) -> list:
     """How the cost grows with more, smaller teeth: the runs, their table and picture."""
-    from . import scaling_png, scaling_runs, scaling_table
-
-    scale = (scaling_runs(plan.params, plan.torque, plan.quality, list(plan.scaling))
+    scale = (verify.scaling_runs(plan.params, plan.torque, plan.quality, list(plan.scaling))
              if plan.scaling else [])
     if scale:
         say("")
         say("### How the cost grows: the same pair with more, smaller teeth "
             f"(`{plan.quality}`)")
         say("")
-        say(scaling_table(scale))
-        scaling_png(plan.out / "bench_scaling.png", ring, scale)
+        say(verify.scaling_table(scale))
+        verify.scaling_png(plan.out / "bench_scaling.png", ring, scale)
     return scale
 
 
@@ -191,18 +188,13 @@ def _report(plan: BenchPlan, disks: Ladder, runs: PairRuns, scale: list, say: Sa
             files: FilesRun | None = None) -> None:
     """The targets (the files' cost's with them, where it was timed), the plot, bench.json
     and the history, beside the last run's numbers."""
-    from ..files import write_json
-    from ..provenance import code_version
-    from . import history, ladder_json, ladder_png, ladder_targets
-    from .pair_targets import pair_targets
-
     say("")
     out = plan.out
     lines = pair_targets(runs) + (files.lines()[-1:] if files is not None else [])
     say("\n".join(lines))
-    ladder_png(out / "bench.png", _series(plan, disks, runs))
-    everything = {**ladder_json([disks] + ([runs.sector] if runs.sector else []),
-                                ladder_targets(disks)),
+    verify.ladder_png(out / "bench.png", _series(plan, disks, runs))
+    everything = {**verify.ladder_json([disks] + ([runs.sector] if runs.sector else []),
+                                       verify.ladder_targets(disks)),
                   "ring": _ring_record(runs, scale, lines, files)}
     kept = plan.history or out / history.HISTORY
     before = history.last_run(kept)
@@ -247,37 +239,30 @@ def _ring_record(runs: PairRuns, scale: list, targets: list[str],
 
 def _series(plan: BenchPlan, disks: Ladder, runs: PairRuns) -> list:
     """bench.png's lines: run time against error for each ladder, CalculiX beside them."""
-    from . import Series
-    from .bench import HERTZ_TARGET
-    from .pair_targets import PEER_KEYS, sector_error
-    from .ring_bench import SINGLE_TARGET
-
     read = runs.cached.read
-    series = [Series("Hertz disks", [(r.total_s, disks.error_pct(r.values, disks.judged),
-                                      r.level) for r in disks.rungs],
-                     [(r.peer_s, disks.error_pct(r.peer_values, disks.judged))
-                      for r in disks.rungs if r.peer_s], HERTZ_TARGET),
-              Series("tooth pair, ring model",
-                     [(r.total_s, sector_error(r.values), r.label) for r in runs.ring],
-                     target=SINGLE_TARGET),
-              Series("tooth pair, ring model read from the model cache",
-                     [(read.total_s, sector_error(read.values),
-                       f"{plan.quality}, read back")])]
+    series = [verify.Series("Hertz disks",
+                            [(r.total_s, disks.error_pct(r.values, disks.judged), r.level)
+                             for r in disks.rungs],
+                            [(r.peer_s, disks.error_pct(r.peer_values, disks.judged))
+                             for r in disks.rungs if r.peer_s], bench.HERTZ_TARGET),
+              verify.Series("tooth pair, ring model",
+                            [(r.total_s, sector_error(r.values), r.label) for r in runs.ring],
+                            target=SINGLE_TARGET),
+              verify.Series("tooth pair, ring model read from the model cache",
+                            [(read.total_s, sector_error(read.values),
+                              f"{plan.quality}, read back")])]
     if runs.sector is not None:
-        series.append(Series("tooth pair, sector model",
-                             [(r.total_s, sector_error(r.values), r.level)
-                              for r in runs.sector.rungs],
-                             [(r.peer_s, sector_error(r.peer_values, PEER_KEYS))
-                              for r in runs.sector.rungs if r.peer_s],
-                             peer_note=" (root stresses)"))
+        series.append(verify.Series("tooth pair, sector model",
+                                    [(r.total_s, sector_error(r.values), r.level)
+                                     for r in runs.sector.rungs],
+                                    [(r.peer_s, sector_error(r.peer_values, PEER_KEYS))
+                                     for r in runs.sector.rungs if r.peer_s],
+                                    peer_note=" (root stresses)"))
     return series
 
 
 def sector_check(plan: BenchPlan, say: Say) -> None:
     """The design by both models, side by side (one position, ``plan.quality``)."""
-    from ..toothpair import SolveCase
-    from .sector import cross_check, cross_table
-
     params, torque, quality = plan.params, plan.torque, plan.quality
     ring, sector = cross_check(SolveCase(params, torque=torque, quality=quality))
     say(f"{params.describe()}, T {torque:g} N·m, β 0, quality {quality}: the ring model "
@@ -289,29 +274,23 @@ def files_bench(plan: BenchPlan, say: Say) -> FilesRun:
     """What ``fegear solve --out`` adds to the solve: ``plan.files`` alternated pairs of the
     whole command at the pair, its torque and quality (at least one), without and with
     ``--out``; their table and target line."""
-    from .bench import files_run
-
     args = [*plan.pair_args, "--torque", f"{plan.torque:g}", "--quality", plan.quality]
-    run = files_run(args, max(plan.files, 1))
+    run = bench.files_run(args, max(plan.files, 1))
     say("\n".join(run.lines()))
     return run
 
 
 def study_bench(plan: BenchPlan, say: Say) -> None:
     """The study runner's overhead over ``plan.study_cases`` solves on one worker."""
-    from . import overhead_table, study_overhead
-
-    say(overhead_table(study_overhead(plan.params, plan.study_cases, workers=1), workers=1))
+    say(verify.overhead_table(verify.study_overhead(plan.params, plan.study_cases, workers=1),
+                              workers=1))
 
 
 def contact_peer_bench(plan: BenchPlan, say: Say) -> None:
     """The contact pressures beside CalculiX's, read alike (:mod:`.peer_contact`), at
     ``plan.sector_levels`` (none: its ``LEVELS``); the table said and kept in
     ``contact_peer.json``."""
-    from ..files import prepare_dir, write_json
-    from .calculix import ccx_available
-    from .ccx_files import PeerError
-    from .peer_contact import CASES, LEVELS, contact_peer, peer_table
+    from .calculix import ccx_available  # lazy: heavy: scikit-fem, off `fegear bench`'s check
 
     if not ccx_available():
         raise PeerError("fegear bench --contact-peer needs CalculiX's ccx on the PATH "

@@ -88,7 +88,10 @@ def contact_peer(name: str, torque: float, beta: float, level: str,
                  timeout: float | None = None) -> CasePeer:
     """Solve one case with fegear (sector model) and CalculiX on the same meshes and compare
     the loaded teeth; ccx is killed after ``timeout`` s."""
-    from .calculix_pair import ccx_pair, facet_reading
+    from .calculix_pair import (  # lazy: heavy: scikit-fem, off `fegear bench`'s check
+        ccx_pair,
+        facet_reading,
+    )
 
     case = SectorCase(params or baseline_pair(), torque=torque, beta=beta, quality=level)
     with tempfile.TemporaryDirectory() as tmp:

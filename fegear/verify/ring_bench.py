@@ -19,8 +19,21 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..geometry import PairParameters
+from ..fe import import_libraries
+from ..figures import pyplot, save_png
+from ..geometry import PairParameters, gear1_profile
+from ..running import in_fresh_process, spare_core
+from ..study import load_study, run_study
 from ..timing import Stopwatch
+from ..toothpair import (
+    SolveCase,
+    cycle_positions,
+    model_cache,
+    pair_summary,
+    second_level_estimate,
+    solve_positions,
+    write_pair_outputs,
+)
 
 #: the sector model's `fine` references (Richardson over fast/standard/fine), MPa
 SECTOR_REFERENCE = {"root_stress_gear1_MPa": 285.02, "root_stress_gear2_MPa": 266.53,
@@ -70,18 +83,6 @@ def _child(task: dict) -> dict:
     """Runs in a fresh process: import fegear and the libraries its solve uses (the targets
     are "after import"), then time the task: one position (with the estimate and outputs if
     asked), or a whole mesh cycle from nothing (``cycle``: its total is the cycle's)."""
-    from ..fe import import_libraries
-    from ..geometry import gear1_profile
-    from ..running import spare_core
-    from ..toothpair import (
-        SolveCase,
-        cycle_positions,
-        pair_summary,
-        second_level_estimate,
-        solve_positions,
-        write_pair_outputs,
-    )
-
     if task.get("cache"):   # the model cache on, in the folder given
         import os
 
@@ -154,8 +155,6 @@ def _peak_mb() -> float:
 def run_fresh(label: str, params: PairParameters, torque: float, quality: str,
               **task) -> RingRun:
     """Run one task in a fresh spawned process (see :func:`_child`)."""
-    from ..running import in_fresh_process
-
     payload = {"params": _fields(params), "torque": torque, "quality": quality, **task}
     r = in_fresh_process(_child, payload)
     return RingRun(label, r["timings_s"], r["total_s"], r["peak_mb"], r["dofs"],
@@ -306,8 +305,6 @@ def scaling_png(path: Path, ladder: list[RingRun], teeth: list[RingRun]) -> Path
     log-log, with a slope-1 guide, each segment's slope and plain-number ticks at the runs."""
     import math
 
-    from ..figures import pyplot, save_png
-
     plt = pyplot()
     fig, ax = plt.subplots(1, 2, figsize=(11, 4.5))
     for a, runs, xs, name in ((ax[0], ladder, [r.dofs for r in ladder], "template DOFs"),
@@ -345,9 +342,6 @@ def paper_study_s(workers: int = 2) -> tuple[float, int]:
     a temporary directory, and the cases computed; with the model cache on in an empty folder
     of its own, as ``fegear study`` runs it the first time."""
     import tempfile
-
-    from ..study import load_study, run_study
-    from ..toothpair import model_cache
 
     root = Path(__file__).resolve().parents[2] / "studies" / "paper_trends.toml"
     with tempfile.TemporaryDirectory(prefix="fegear-bench-paper-") as tmp, \

@@ -4,16 +4,17 @@ peer, side by side (``fegear bench --sector``)."""
 from __future__ import annotations
 
 from ...geometry import Gear1Profile, gear1_profile
-from ...toothpair import HEADLINE, PairSolution, SolveCase
+from ...toothpair import HEADLINE, PairSolution, SolveCase, solve_pair
+from .case import SectorCase
 
 
 def cross_check(case: SolveCase, profile: Gear1Profile | None = None, **sector: object
                 ) -> tuple[PairSolution, PairSolution]:
     """``case`` (one position) solved by the ring model and by the sector model (its own
     inputs ``sector``: ``extra_teeth``, ``penalty_factor``)."""
-    from ...toothpair import solve_pair
-    from .case import SectorCase
-    from .solve import solve_pair as sector_pair
+    from .solve import (
+        solve_pair as sector_pair,  # lazy: heavy: scikit-fem, off `fegear bench`'s check
+    )
 
     profile = profile if profile is not None else gear1_profile(case.params)
     return solve_pair(case), sector_pair(SectorCase.of(case, **sector), profile)

@@ -28,6 +28,7 @@ from ...fe import (
     assemble_body,
     mesh_bodies,
     recover,
+    vtu_fields,
 )
 from ...geometry import Gear1Profile
 from ...planar import wrap
@@ -53,6 +54,7 @@ from ..penalty import (
     ContactSolution,
     build_contact,
     first_touch,
+    nodal_pressure,
     solve_contact,
 )
 from .case import SectorCase
@@ -258,9 +260,6 @@ class SectorDetail:
         """Both sectors in the fixed frame with displacement, stresses (components turned into
         the fixed frame) and contact pressure (``around``: no effect, the sectors are the
         loaded teeth already)."""
-        from ...fe import vtu_fields
-        from ..penalty import nodal_pressure
-
         out = []
         for i, (b, u, s) in enumerate(zip(self.bodies, self.contact.displacements,
                                           self.stresses)):
