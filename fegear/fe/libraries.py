@@ -41,8 +41,8 @@ def import_libraries() -> None:
     import scipy.spatial  # noqa: F401
     import skfem.models.elasticity  # noqa: F401
 
-    from . import assembly, cyclic, probe, stress, submodel  # noqa: F401  # lazy: heavy: skfem
-    from .mesh import import_gmsh  # lazy: heavy: gmsh, imported when asked: the purpose
+    from . import assembly, cyclic, probe, stress, submodel  # noqa: F401  # lazy: heavy: scikit-fem
+    from .mesh import import_gmsh  # lazy: heavy: scikit-fem, imported here when asked
 
     import_gmsh()
     try:
