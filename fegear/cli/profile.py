@@ -86,7 +86,7 @@ def run(a: argparse.Namespace) -> int:
     if deviations:
         from ..geometry import gear1_profile
         from ..geometry.deviation_plot import deviations_png
-        from ..toothpair.report import deviations_words
+        from ..toothpair.present.tables import deviations_words
 
         summary["deviations"] = deviations.summary()
         files["deviations_png"] = deviations_png(

@@ -8,10 +8,12 @@ from the half-plane; seconds a position) solves it; :func:`solve_pair` and
 :func:`solve_positions` run it through the one driver over positions (:mod:`.positions`), which
 the sector model, the full-FE peer in :mod:`fegear.verify.sector`, shares. :mod:`.teeth`
 chooses the teeth that can touch; :mod:`.estimate`
-solves a second mesh level for the discretisation error; :mod:`.report`, :mod:`.output` and
-:mod:`.plot` write what a designer reads; :mod:`.safety` divides allowable stresses by the
-results (safety factors). :func:`run_job` does all of it for ``fegear solve``
-and a study case.
+solves a second mesh level for the discretisation error; :mod:`.safety` divides allowable
+stresses by the results (safety factors); :mod:`.summary` gathers the numbers. Those are the
+solve core; a run's further analyses (a cycle's table, a revolution, a tolerance class, the
+sensitivities, a life rating) are one folder each in :mod:`.analyses`, and what a designer
+reads (tables, the report page, pictures, files) is :mod:`.present`. :func:`run_job` does all
+of it for ``fegear solve`` and a study case.
 
 A light pair (25/24 teeth) at 20 N·m, coarse:
 
@@ -55,6 +57,8 @@ True
 from ..exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
+    # the solve core: the inputs, the case and its results, the driver, the ring model, the
+    # job, the summary and what it is judged by
     "inputs": ("SOLVE_INPUTS", "JOB_INPUTS", "QUALITY", "TIP_ROUND", "RENAMED"),
     "case": ("SolveCase", "PairSolution", "ToothResult", "ContactChecks", "BodyField",
              "ContactZone", "HEADLINE", "cycle_positions"),
@@ -62,6 +66,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "teeth": ("choose_teeth", "candidate_data", "refuse_interference", "Candidate",
               "tension_fillets", "TOOTH_STIFFNESS"),
     "ring.master": ("Gear2Master",),   # the sector model's master curve too
+    "ring.cache": ("model_cache",),
     "edge": ("flank_and_edge", "FlankEdge", "EDGE_ZONE"),
     "segments": ("ROOT_BAND", "Layout", "PairProfiles", "PolarCurve", "gear2_outline",
                  "gear2_polar", "path_windows", "profile_segments", "root_half_angle",
@@ -69,23 +74,23 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "estimate": ("error_estimate", "second_level_estimate"),
     "safety": ("Allowables", "DEFAULT_ALLOWABLES", "SAFETY", "TOOTH_SAFETY", "allowables_of",
                "safety_factor", "safety_factors", "with_safety"),
-    "report": ("pair_summary", "pair_table", "cycle_rows", "cycle_summary", "factor_cell",
-               "stiffness_cell"),
-    "output": ("write_pair_outputs",),
-    "analyses.cycle.report": ("cycle_table", "write_cycle_outputs", "write_mesh_stiffness"),
-    "plot": ("prepare_pictures",),
+    "summary": ("pair_summary", "cycle_rows", "cycle_summary"),
     "stiffness": ("MeshStiffness", "read_mesh_stiffness", "mesh_stiffness_of_cycle"),
-    "analyses": ("ANALYSES", "Analysis", "Verdict", "asked", "shown"),
     "case_file": ("FILE_INPUTS", "CaseFileError", "case_record", "case_toml", "is_file",
                   "read_case", "relative_to"),
-    "job": ("Job", "JobResult", "Solved", "prepare_job", "run_job", "solve_job", "write_job",
-            "solve_command", "tip_round_of"),
-    "html_report": ("write_report", "report_html", "verdicts", "index_html"),
+    "job": ("Job", "Solved", "prepare_job", "solve_job", "solve_command", "tip_round_of"),
     "positions": ("PositionModel", "Trial", "Attempt", "SHARE_GUESS", "ATTEMPTS", "CHAINED",
                   "drive", "expected_elastic_um", "first_teeth"),
-    "ring.cache": ("model_cache",),
+    # the analyses: their registry, and what other stages read of one
+    "analyses": ("ANALYSES", "Analysis", "Verdict", "asked", "shown"),
+    "analyses.cycle.report": ("cycle_table", "write_cycle_outputs", "write_mesh_stiffness"),
     "analyses.samples.solve": ("class_samples", "Sampled"),
     "analyses.samples.report": ("samples_columns", "samples_summary", "samples_table"),
     "analyses.rating.report": ("damage_text", "life_text", "safety_text"),
     "analyses.sensitivities.report": ("sensitivity_columns", "sensitivity_table"),
+    # the presentation: tables, the report page, pictures, files
+    "present.tables": ("pair_table", "factor_cell", "stiffness_cell"),
+    "present.output": ("JobResult", "run_job", "write_job", "write_pair_outputs"),
+    "present.plot": ("prepare_pictures",),
+    "present.html_report": ("write_report", "report_html", "verdicts", "index_html"),
 })

@@ -1,8 +1,12 @@
-"""One ``fegear solve`` job: its inputs checked, the solve, the estimate and the files.
+"""One ``fegear solve`` job: its inputs checked (:func:`prepare_job`), and the solve, the
+estimate, the summary and each analysis the job asks for (:func:`solve_job`); the files are
+the presentation's (:func:`~.present.output.run_job`, :func:`~.present.output.write_job`).
 
 The command line and the study runner share this module, so a study case is exactly a
 ``fegear solve`` call: the same inputs under the same names (:data:`~.inputs.JOB_INPUTS`),
-the same checks, the same JSON summary.
+the same checks, the same JSON summary. It is the one module of the core that runs the
+analyses, and it reaches them only through their registry (:func:`~.analyses.asked`, each
+handed a :class:`~.analyses.Run`).
 """
 
 from __future__ import annotations
@@ -10,7 +14,6 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .. import progress
@@ -20,7 +23,7 @@ from ..geometry import admissible_pair, deviations_of
 from ..running import SERIAL, Executor
 from ..timing import Stopwatch
 from ..tolerance import Draw, grade_of
-from .analyses import Run, Writing, asked, shown
+from .analyses import Run, asked
 from .case import SolveCase, cycle_positions, revolution_positions
 from .case_file import case_record
 from .inputs import JOB_INPUTS, PAIR_INPUTS, REQUIRES, TIP_ROUND, check_tip_round
@@ -223,35 +226,6 @@ class Solved:
     solve_s: float
 
 
-@dataclass(frozen=True)
-class JobResult:
-    """What a solve produced: the JSON summary (``fegear solve --json``), the files written
-    (name → path), the cycle rows (``--positions``; else None) and the time of the solve
-    itself (s, without writing files)."""
-
-    summary: dict
-    files: dict[str, Path]
-    rows: list[dict] | None
-    solve_s: float
-
-
-def run_job(job: Job, out: Path | None, fields: bool = True, pictures: bool = True,
-            executor: Executor = SERIAL, report: str | None = None) -> JobResult:
-    """Solve ``job`` (on ``executor``: :func:`solve_job`); write summary.json, and the VTUs
-    (``fields``) and pictures (``pictures``) into ``out`` unless it is None, and with
-    ``report`` (the command that gives the numbers again) report.html
-    (:mod:`.html_report`). ``out`` is made only after the solve, so a solve that fails
-    leaves nothing behind."""
-    progress.plan(2 + len(job.betas) + job.estimate + (out is not None))
-    solved = solve_job(job, executor)
-    files = {} if out is None else write_job(solved, out, fields, pictures, executor)
-    if report is not None and out is not None:
-        from .html_report import write_report
-
-        files["report"] = write_report(solved.summary, files, out, report)
-    return JobResult(solved.summary, files, solved.rows, solved.solve_s)
-
-
 def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     """Solve ``job`` at its positions, with its error estimate, then each analysis it asks
     for (:mod:`.analyses`); no file written. The job hands ``executor`` the work that can run
@@ -264,7 +238,7 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     from ..fe import import_libraries
     from ..geometry import gear1_profile
     from .estimate import second_headline
-    from .report import cycle_rows, cycle_summary
+    from .summary import cycle_rows, cycle_summary
 
     watch = Stopwatch()
     second = None
@@ -315,7 +289,7 @@ def _core_summary(job: Job, sols, sol, second, watch: Stopwatch) -> dict:
     estimate of the second mesh level (``second``: its future; None without an estimate)
     and every input as run."""
     from .estimate import second_level_estimate, second_quality, tooth_estimates
-    from .report import add_tooth_estimates, pair_summary
+    from .summary import add_tooth_estimates, pair_summary
 
     estimate, other, estimate_s, teeth = None, None, None, None
     if second is not None:
@@ -351,37 +325,3 @@ def _pictured(sols):
     """The position the pictures, VTUs and the error estimate are of: the largest gear-1 root
     stress (which a position's submodels do not change)."""
     return max(sols, key=lambda s: s.root_stress[0])
-
-
-def write_job(solved: Solved, out: Path, fields: bool = True, pictures: bool = True,
-              executor: Executor = SERIAL) -> dict[str, Path]:
-    """Write a solved job's files into ``out`` (made here): each analysis's that the summary
-    holds (:mod:`.analyses`: a cycle's table, PVD series and plot, a revolution's, …), then
-    summary.json, the VTUs (``fields``) and the pictures (``pictures``) of the pictured
-    position, those that need no fields drawn on ``executor`` meanwhile
-    (:func:`~.output.write_pair_outputs`). Returns name → path."""
-    from ..files import prepare_dir
-    from .output import write_pair_outputs
-
-    progress.stage(f"writing files to {out}")
-    out = prepare_dir(out)
-    summary = solved.summary
-    writing = Writing(solved, out, _title(solved), fields, pictures)
-    files: dict[str, Path] = {}
-    for analysis in shown(summary):
-        files.update(analysis.write(summary[analysis.key], writing))
-    files.update(write_pair_outputs(solved.solution, out, {**summary, "files": {
-        k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures,
-        executor=executor))
-    return files
-
-
-def _title(solved: Solved) -> str:
-    """The pictures' title: the design, the torque, the positions and the quality."""
-    i = solved.summary["inputs"]
-    n = len(solved.solutions)
-    where = f"{n} position{'s' if n > 1 else ''}"
-    if solved.job.revolution and "revolution" not in solved.summary:   # a class's pairs
-        where += f" a pitch over a revolution ({len(solved.job.betas)})"
-    return (f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T {i['torque_Nm']:g} N·m, "
-            f"{where}, quality {i['quality']}")

@@ -112,7 +112,7 @@ def _periodic_mean(x: np.ndarray, v: np.ndarray) -> float:
 def mesh_stiffness_of_cycle(rows: list[dict], z1: int, z2: int, module: float, thickness: float,
                torque: float) -> MeshStiffness:
     """The mesh stiffness of a ``fegear solve --positions`` cycle (rows of
-    :func:`fegear.toothpair.report.cycle_rows`): phase = (β − β0)·z2/360°."""
+    :func:`fegear.toothpair.summary.cycle_rows`): phase = (β − β0)·z2/360°."""
     beta = np.array([r["position_deg"] for r in rows])
     phase = np.mod((beta - beta[0]) * z2 / 360.0, 1.0)
     order = np.argsort(phase)

@@ -78,7 +78,7 @@ def solved(baseline, baseline_ring):
 
 def test_the_root_hot_spots_are_the_reported_root_stresses(solved):
     """The marks on the von Mises picture sit where each gear's reported root stress is."""
-    from fegear.toothpair.marks import root_hot_spots
+    from fegear.toothpair.present.marks import root_hot_spots
 
     spots = root_hot_spots(solved, solved.detail.body_fields())
     assert [s.gear for s in spots] == [1, 2]
@@ -87,7 +87,7 @@ def test_the_root_hot_spots_are_the_reported_root_stresses(solved):
 
 
 def test_the_flank_curves_peak_at_the_reported_pressures(solved):
-    from fegear.toothpair.marks import pressure_curve
+    from fegear.toothpair.present.marks import pressure_curve
 
     teeth = {t.tooth: t for t in solved.teeth}
     flanks = solved.detail.flank_pressures()
@@ -216,7 +216,7 @@ def test_the_von_mises_labels_cover_no_mark_and_their_leaders_do_not_cross(solve
     leaders crossing; the verdict above it names each factor and its allowable."""
     from labels import label_boxes, label_faults
 
-    from fegear.toothpair.plot import von_mises_figure
+    from fegear.toothpair.present.plot import von_mises_figure
 
     fig = von_mises_figure(solved, summary, solved.detail.body_fields(),
                            solved.detail.peak_fields())
@@ -233,7 +233,7 @@ def test_the_von_mises_labels_cover_no_mark_and_their_leaders_do_not_cross(solve
 
 
 def test_the_verdict_names_the_smallest_factor_and_whether_it_passes():
-    from fegear.toothpair.marks import VerdictCaption
+    from fegear.toothpair.present.marks import VerdictCaption
 
     s = {"inputs": {"allowable_bending_MPa": 558.0, "allowable_contact_MPa": 745.0},
          "safety_bending_gear1": 1.95, "safety_bending_gear2": 2.09, "safety_contact": 0.40,
@@ -253,7 +253,7 @@ def test_the_flank_panels_share_one_legend_above_them(solved, summary, plt):
     panel; each panel's values in its title; the edge peak's label covers no curve."""
     from labels import label_faults
 
-    from fegear.toothpair.plot import flank_pressure_figure
+    from fegear.toothpair.present.plot import flank_pressure_figure
 
     fig = flank_pressure_figure(solved, summary)
     fig.canvas.draw()
@@ -275,7 +275,7 @@ def test_the_legends_of_root_stress_and_cycle_cover_no_data(cycle, solved, summa
     from fegear.figures.labels import legend_cover
     from fegear.toothpair import DEFAULT_ALLOWABLES, HEADLINE
     from fegear.toothpair.analyses.cycle.plot import cycle_figure
-    from fegear.toothpair.plot import root_stress_figure
+    from fegear.toothpair.present.plot import root_stress_figure
 
     fig = root_stress_figure(solved, summary)
     ax, = fig.axes
@@ -385,8 +385,8 @@ def test_von_mises_from_the_part_it_shows_is_the_picture_of_the_whole_fields(sol
     """The cells sent to draw von Mises are a few of the whole bodies', and the picture of
     them is the very picture of the whole fields (what `fegear solve --out` drew before)."""
     from fegear.figures import png_bytes
-    from fegear.toothpair.pictured import for_pictures
-    from fegear.toothpair.plot import von_mises_bytes, von_mises_figure
+    from fegear.toothpair.present.pictured import for_pictures
+    from fegear.toothpair.present.plot import von_mises_bytes, von_mises_figure
 
     bodies, peaks = solved.detail.body_fields(), solved.detail.peak_fields()
     shown = for_pictures(solved, bodies, peaks)
@@ -402,7 +402,7 @@ def test_drawn_in_a_forked_copy_the_files_are_the_same_byte_for_byte(solved, sum
     alone, and the VTUs and summary.json are the same too."""
     from fegear.running import Forks
     from fegear.toothpair import write_pair_outputs
-    from fegear.toothpair.plot import prepare_pictures
+    from fegear.toothpair.present.plot import prepare_pictures
 
     _, contents = written_here
     with Forks(2, prepare_pictures, ready=2) as forks:

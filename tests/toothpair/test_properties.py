@@ -18,7 +18,7 @@ from fegear.errors import FegearError
 from fegear.geometry.admissible import design_defect
 from fegear.toothpair.job import prepare_job
 from fegear.toothpair.pair import solve_positions
-from fegear.toothpair.report import pair_summary
+from fegear.toothpair.summary import pair_summary
 
 #: accepted draws that may still fail, each named in the summary: 1 % (the issue's bound)
 MAX_REFUSED = 0.01

@@ -162,7 +162,7 @@ def test_a_cycle_table_marks_the_von_mises_estimates(cycle):
                                      (43.45, "43.5"), (151.95, "152"), (999.4, "999"),
                                      (999.6, ">999"), (16381.83, ">999"), (None, "-")])
 def test_a_safety_factor_takes_at_most_four_characters(s, cell):
-    from fegear.toothpair.report import factor_cell
+    from fegear.toothpair.present.tables import factor_cell
 
     assert factor_cell(s) == cell
 

@@ -27,7 +27,7 @@ class Cycle(Analysis):
                 + (f"\n(not given: {default})" if default else "") + "\n")
 
     def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
-        from ...output import write_cycle_series
+        from ...present.writers import write_cycle_series
         from .report import write_cycle_outputs, write_mesh_stiffness
 
         solved, out = writing.solved, writing.out

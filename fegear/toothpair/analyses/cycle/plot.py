@@ -24,7 +24,7 @@ def cycle_png(path: Path, rows: list[dict], title: str, stresses: dict[str, str]
 def cycle_figure(rows: list[dict], title: str, stresses: dict[str, str], allowables=None):
     """Load share per tooth, the root stresses, the contact stresses (``stresses``: row key →
     label) and gear 1's rotation against position, on linear axes, from the rows of
-    :func:`fegear.toothpair.report.cycle_rows`. With ``allowables`` the stress panels carry
+    :func:`fegear.toothpair.summary.cycle_rows`. With ``allowables`` the stress panels carry
     the verdict: the allowable as a line (or, where it is over twice the largest stress, in
     the legend) and the smallest S_F and S_H marked at their β. Each legend where it covers
     no curve."""

@@ -10,7 +10,7 @@ from .... import quantities
 from ....files import write_csv, write_json
 from ....quantities import FACTORS, HELD
 from ...case import HEADLINE
-from ...report import TABLE_SAFETY, aligned_table, factor_cell, stiffness_cell
+from ...present.tables import TABLE_SAFETY, aligned_table, factor_cell, stiffness_cell
 from ...safety import smallest
 from ...stiffness import mesh_stiffness_of_cycle
 from .plot import cycle_png

@@ -8,8 +8,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from ....quantities import LEVEL_STRESSES
-from ...html_parts import escape, safety_cell, table
-from ...output import write_rows
+from ...present.html_parts import escape, safety_cell, table
+from ...present.writers import write_rows
 
 #: a level's stresses as the table heads them: each gear's root stress and the flank pressure
 #: (gear 1's teeth's: the flanks in contact carry the same)

@@ -33,7 +33,7 @@ class Revolution(Analysis):
                 "of the largest gear-1 root stress\n")
 
     def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
-        from ...report import deviations_words
+        from ...present.tables import deviations_words
         from .report import write_revolution_outputs
 
         words = deviations_words(writing.solved.summary["inputs"].get("deviations"))

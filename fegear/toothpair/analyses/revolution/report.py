@@ -11,8 +11,8 @@ from typing import TYPE_CHECKING
 from ....files import write_csv
 from ....quantities import FACTORS, PEAK, ROOT1, ROOT2
 from ...case import HEADLINE
-from ...output import write_cycle_series
-from ...report import aligned_table
+from ...present.tables import aligned_table
+from ...present.writers import write_cycle_series
 from .plot import revolution_png, revolution_teeth_png
 from .solve import amplitudes, gear1_turn_deg, loaded_rotation, median_tooth
 

@@ -18,8 +18,8 @@ class Samples(Analysis):
         return job.draw is not None
 
     def drive(self, job, executor: Executor):
-        from ...report import cycle_rows
         from ...ring.solver import RingSolver, SolverModes
+        from ...summary import cycle_rows
         from .solve import SampleCase, solve_samples
 
         solver = RingSolver(None, SolverModes(keep_phases=True))

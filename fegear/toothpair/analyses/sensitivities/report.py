@@ -10,7 +10,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ....quantities import HELD, ROOT1
-from ...output import write_rows
+from ...present.writers import write_rows
 from .plot import sensitivities_png
 
 

@@ -10,7 +10,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .case import BodyField, PairSolution
+from ..case import BodyField, PairSolution
 from .marks import field_max, labelled_box, root_hot_spots
 
 

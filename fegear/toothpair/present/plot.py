@@ -8,12 +8,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ..figures import margins, png_bytes, pyplot, save_png
-from ..figures.labels import Callout, place_callouts, place_legend
-from .case import PairSolution
+from ...figures import margins, png_bytes, pyplot, save_png
+from ...figures.labels import Callout, place_callouts, place_legend
+from ..case import PairSolution
 from .marks import VerdictCaption, peak_zoom, pressure_curve, root_hot_spots
 from .pictured import frame_of, in_box
-from .report import factor_cell
+from .tables import factor_cell
 
 
 def prepare_pictures() -> None:

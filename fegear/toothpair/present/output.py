@@ -1,0 +1,135 @@
+"""A solved job's files (:func:`write_job`): each analysis's the summary holds, through the
+registry (:mod:`..analyses`), then the pair's own: summary.json, the VTU fields and the
+pictures of the pictured position (:func:`write_pair_outputs`); and :func:`run_job`, a job
+solved (:func:`~..job.solve_job`) and its files written, what ``fegear solve`` and a study
+case call.
+
+Files are written in the fixed frame (gear 2 centred at the origin, gear 1 at (0, e), both at
+the solved rolling angle), so the two VTUs overlay in ParaView. Stress components are rotated
+into that frame; invariants (von Mises, σ1, σ2) need no rotation.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from pathlib import Path
+
+from ... import progress
+from ...fe import write_vtu
+from ...figures import write_png
+from ...files import prepare_dir, write_json
+from ...running import SERIAL, Executor
+from ..analyses import Writing, shown
+from ..case import PairSolution
+from ..job import Job, Solved, solve_job
+from .html_report import write_report
+from .pictured import PicturedDetail, for_pictures
+from .plot import chart_pngs, von_mises_bytes
+
+
+def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool = True,
+                       pictures: bool = True, executor: Executor = SERIAL) -> dict[str, Path]:
+    """gear1.vtu, gear2.vtu and the ring model's contact submodels (gear1_contact.vtu, …;
+    fixed frame; ``fields``), von_mises.png, flank_pressure.png and root_stress.png
+    (``pictures``) and summary.json in ``out``.
+
+    Where ``executor`` holds processes made ready to draw (a one-off command's:
+    :func:`~fegear.running.spare_core` with :func:`~.plot.prepare_pictures`, which imported
+    matplotlib while the command started up), the charts go to one at once and von Mises,
+    from the part of the fields it shows (:func:`~.pictured.for_pictures`), to the other as soon
+    as the fields are formed, while this process writes the VTUs; else every picture is
+    drawn here. They come back as bytes, the same either way, and every file is written
+    here, atomically."""
+    files = {}
+    painters = [executor.ready(), executor.ready()] if pictures else []
+    charts = _drawn(painters[0] if painters else None, chart_pngs, sol, summary) \
+        if pictures else None
+    bodies = sol.detail.body_fields() if fields or pictures else ()
+    peaks = sol.detail.peak_fields() if fields or pictures else ()
+    if pictures:
+        shown = for_pictures(sol, bodies, peaks)
+        von_mises = _drawn(painters[1], von_mises_bytes, shown.sol, summary, shown.bodies,
+                           shown.peaks, shown.spots)
+    if fields:
+        for b in (*bodies, *peaks):
+            files[b.name] = write_vtu(out / f"{b.name}.vtu", b.points, b.cells, b.data)
+    if pictures:
+        files["png"] = write_png(out / "von_mises.png", von_mises.result())
+        drawn = charts.result()
+        for key, name in (("flank_png", "flank_pressure.png"), ("root_png", "root_stress.png")):
+            if name in drawn:
+                files[key] = write_png(out / name, drawn[name])
+    summary = {**summary, "files": {**summary.get("files", {}),
+                                    **{k: str(v) for k, v in files.items()}}}
+    files["summary"] = write_json(out / "summary.json", summary)
+    return files
+
+
+def _drawn(painter, fn, sol: PairSolution, *args):
+    """``fn(sol, *args)`` handed to ``painter`` (a :class:`~fegear.running.Primed`) with the
+    solution made light to send (:class:`~.pictured.PicturedDetail`), or here where there is
+    none; a task either way."""
+    if painter is None:
+        return SERIAL.submit(fn, sol, *args)
+    light = sol if isinstance(sol.detail, PicturedDetail) else \
+        dataclasses.replace(sol, detail=PicturedDetail(sol.detail))
+    return painter.submit(fn, light, *args)
+
+
+@dataclass(frozen=True)
+class JobResult:
+    """What a solve produced: the JSON summary (``fegear solve --json``), the files written
+    (name → path), the cycle rows (``--positions``; else None) and the time of the solve
+    itself (s, without writing files)."""
+
+    summary: dict
+    files: dict[str, Path]
+    rows: list[dict] | None
+    solve_s: float
+
+
+def run_job(job: Job, out: Path | None, fields: bool = True, pictures: bool = True,
+            executor: Executor = SERIAL, report: str | None = None) -> JobResult:
+    """Solve ``job`` (on ``executor``: :func:`solve_job`); write summary.json, and the VTUs
+    (``fields``) and pictures (``pictures``) into ``out`` unless it is None, and with
+    ``report`` (the command that gives the numbers again) report.html
+    (:mod:`.html_report`). ``out`` is made only after the solve, so a solve that fails
+    leaves nothing behind."""
+    progress.plan(2 + len(job.betas) + job.estimate + (out is not None))
+    solved = solve_job(job, executor)
+    files = {} if out is None else write_job(solved, out, fields, pictures, executor)
+    if report is not None and out is not None:
+        files["report"] = write_report(solved.summary, files, out, report)
+    return JobResult(solved.summary, files, solved.rows, solved.solve_s)
+
+
+def write_job(solved: Solved, out: Path, fields: bool = True, pictures: bool = True,
+              executor: Executor = SERIAL) -> dict[str, Path]:
+    """Write a solved job's files into ``out`` (made here): each analysis's that the summary
+    holds (:mod:`.analyses`: a cycle's table, PVD series and plot, a revolution's, …), then
+    summary.json, the VTUs (``fields``) and the pictures (``pictures``) of the pictured
+    position, those that need no fields drawn on ``executor`` meanwhile
+    (:func:`write_pair_outputs`). Returns name → path."""
+    progress.stage(f"writing files to {out}")
+    out = prepare_dir(out)
+    summary = solved.summary
+    writing = Writing(solved, out, _title(solved), fields, pictures)
+    files: dict[str, Path] = {}
+    for analysis in shown(summary):
+        files.update(analysis.write(summary[analysis.key], writing))
+    files.update(write_pair_outputs(solved.solution, out, {**summary, "files": {
+        k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures,
+        executor=executor))
+    return files
+
+
+def _title(solved: Solved) -> str:
+    """The pictures' title: the design, the torque, the positions and the quality."""
+    i = solved.summary["inputs"]
+    n = len(solved.solutions)
+    where = f"{n} position{'s' if n > 1 else ''}"
+    if solved.job.revolution and "revolution" not in solved.summary:   # a class's pairs
+        where += f" a pitch over a revolution ({len(solved.job.betas)})"
+    return (f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T {i['torque_Nm']:g} N·m, "
+            f"{where}, quality {i['quality']}")
