@@ -22,8 +22,6 @@ NAMES = ({q.key for q in QUANTITIES.values()} | set(FACTORS)
 #: a name (``edge``, ``bending``, ``S_H``) or a mark (``-``, ``:``), not a label: a label has
 #: a letter and a space or a sign (``root σ1, gear 1``, ``p flank``)
 IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_.]*\Z")
-#: the modules that keep a table of their own until their owners move them over (only shrinks)
-NOT_YET = {"toothpair/present/plot.py"}   # root_stress_figure's bars: ("root1_MPa", "gear 1"), …
 
 
 def test_the_walkthrough_runs():
@@ -112,12 +110,6 @@ def test_no_label_table_outside_the_registry():
     units, fields and allowables from there (issue 68, "Names that drift")."""
     found = [f"{path.relative_to(PACKAGE.parent)}:{hit}"
              for path in sorted(PACKAGE.rglob("*.py"))
-             if path.relative_to(PACKAGE).as_posix() not in {"quantities.py", *NOT_YET}
+             if path.relative_to(PACKAGE).as_posix() != "quantities.py"
              for hit in _label_tables(path.read_text())]
     assert not found, "\n".join(found)
-
-
-def test_the_modules_not_yet_moved_over_still_keep_their_table():
-    """:data:`NOT_YET` only shrinks: a module that reads the registry now comes off it."""
-    for name in NOT_YET:
-        assert _label_tables((PACKAGE / name).read_text()), f"{name}: take it off NOT_YET"

@@ -10,6 +10,7 @@ import numpy as np
 
 from ...figures import margins, png_bytes, pyplot, save_png
 from ...figures.labels import Callout, place_callouts, place_legend
+from ...quantities import ROOT1, ROOT2
 from ..case import PairSolution
 from .marks import VerdictCaption, peak_zoom, pressure_curve, root_hot_spots
 from .pictured import frame_of, in_box
@@ -301,9 +302,9 @@ def root_stress_figure(sol: PairSolution, summary: dict):
     x = np.arange(len(loaded))
     # 0.8 in a bar: its value and S_F over it stay apart from the next bar's
     fig, ax = plt.subplots(figsize=(max(6.0, 1.6 * len(loaded) + 2.5), 4.6))
-    for k, (key, label) in enumerate((("root1_MPa", "gear 1"), ("root2_MPa", "gear 2"))):
-        v = np.array([getattr(t, key) for t in loaded])
-        bars = ax.bar(x + (k - 0.5) * 0.38, v, 0.36, label=f"root σ1, {label}")
+    for k, q in enumerate((ROOT1, ROOT2)):
+        v = np.array([getattr(t, q.attribute) for t in loaded])
+        bars = ax.bar(x + (k - 0.5) * 0.38, v, 0.36, label=q.label)
         for b, value in zip(bars, v):
             text = f"{value:.0f}" + (f"\nS_F {factor_cell(allow / value)}"
                                      if allow and value > 0 else "")
