@@ -53,15 +53,17 @@ def _modules() -> dict[str, Path]:
 MODULES = _modules()
 
 
-def _imports(name: str) -> list[tuple[str, str, int]]:
+def _imports(name: str, source: str | None = None) -> list[tuple[str, str, int]]:
     """(imported module, imported name or '', line) of every import of fegear code in module
-    ``name``, relative ones resolved; imports under ``if TYPE_CHECKING`` are left out."""
-    path = MODULES[name]
-    tree = ast.parse(path.read_text())
+    ``name`` (its file, or ``source`` read as that module: a synthetic case), relative ones
+    resolved; imports under ``if TYPE_CHECKING`` are left out."""
+    path = MODULES.get(name)
+    tree = ast.parse(path.read_text() if source is None else source)
     typing_only = {id(n) for node in ast.walk(tree)
                    if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test)
                    for n in ast.walk(node)}
-    package = name if path.name == "__init__.py" else name.rsplit(".", 1)[0]
+    package = name if path is not None and path.name == "__init__.py" else \
+        name.rsplit(".", 1)[0]
     out = []
     for node in ast.walk(tree):
         if id(node) in typing_only or not isinstance(node, ast.ImportFrom):
@@ -234,6 +236,133 @@ def test_the_fe_core_knows_no_gears():
     for name in MODULES:
         if _stage(name) in ("fe", "contact"):
             assert all(_stage(t) not in ("geometry", "toothpair") for t, _, _ in _imports(name))
+
+
+#: the tooth-pair stage's three floors (docs/architecture.md, "Three floors"): the solve core
+#: (toothpair's own modules and its ring model), the analyses (their registry and protocol,
+#: and one subpackage each) and the presentation
+TOOTHPAIR = "fegear.toothpair"
+ANALYSES = f"{TOOTHPAIR}.analyses"
+PRESENT = f"{TOOTHPAIR}.present"
+#: the core's one module that runs the analyses, and what it takes from their registry: which
+#: ones the job asks for, and what each is handed to solve
+JOB = f"{TOOTHPAIR}.job"
+JOB_TAKES = {"asked", "Run"}
+
+
+def _within(name: str, package: str) -> bool:
+    return name == package or name.startswith(package + ".")
+
+
+def _analysis(name: str) -> str | None:
+    """The analysis subpackage module ``name`` is in (``fegear.toothpair.analyses.samples``),
+    None outside one (the registry and ``base`` are none)."""
+    parts = name.split(".")
+    if not _within(name, ANALYSES) or len(parts) < 4 or parts[3] == "base":
+        return None
+    return ".".join(parts[:4])
+
+
+def _core_reaching_up(name: str, source: str | None = None) -> list[str]:
+    """Where a module of the core imports the presentation or an analysis; the job may take
+    :data:`JOB_TAKES` from the analyses' registry and nothing else of them."""
+    if not _within(name, TOOTHPAIR) or _within(name, ANALYSES) or _within(name, PRESENT):
+        return []
+    return [f"{line}: {target} {imported}".rstrip() for target, imported, line
+            in _imports(name, source)
+            if _within(target, PRESENT) or (_within(target, ANALYSES) and not (
+                name == JOB and target == ANALYSES and imported in JOB_TAKES))]
+
+
+def _reaching_another_analysis(name: str, source: str | None = None) -> list[str]:
+    """Where a module of an analysis imports another analysis, or the registry that holds them
+    all (its protocol, ``base``, and the core and the presentation are open to it)."""
+    own = _analysis(name)
+    if own is None:
+        return []
+    return [f"{line}: {target} {imported}".rstrip() for target, imported, line
+            in _imports(name, source)
+            if target == ANALYSES or _analysis(target) not in (None, own)]
+
+
+def _around_the_registry(name: str, source: str | None = None) -> list[str]:
+    """Where a module outside the analyses (the core, the presentation, another stage, the
+    command line) imports an analysis's module or their protocol itself rather than the
+    registry, the analyses' one face (``fegear.toothpair.analyses``)."""
+    if _within(name, ANALYSES):
+        return []
+    return [f"{line}: {target} {imported}".rstrip() for target, imported, line
+            in _imports(name, source) if _within(target, ANALYSES) and target != ANALYSES]
+
+
+def test_the_floor_checks_find_a_core_module_reaching_up():
+    source = ("from .present.tables import aligned_table\n"
+              "from .analyses.samples.solve import solve_samples\n"
+              "from .analyses import asked, Run, shown\n"
+              "from .safety import safety_factors\n"
+              "from ..quantities import ROOT1\n"
+              "from .ring.solver import RingSolver\n")
+    assert [f.split(":")[0] for f in _core_reaching_up(f"{TOOTHPAIR}.summary", source)] == \
+        ["1", "2", "3", "3", "3"]
+    # the job may ask the registry which analyses run and hand each a Run: no more
+    found = _core_reaching_up(JOB, source)
+    assert [f.split(":")[0] for f in found] == ["1", "2", "3"], found
+    assert found[2].endswith("shown")
+    assert _core_reaching_up(f"{TOOTHPAIR}.ring.solver", "from ..present import plot\n")
+    assert not _core_reaching_up(f"{PRESENT}.tables", source)
+
+
+def test_the_floor_checks_find_an_analysis_reaching_another():
+    source = ("from ..revolution.solve import median_tooth\n"
+              "from .. import ANALYSES\n"
+              "from ..base import Analysis\n"
+              "from .solve import solve_samples\n"
+              "from ...present.tables import aligned_table\n"
+              "from ...summary import cycle_rows\n")
+    found = _reaching_another_analysis(f"{ANALYSES}.samples.report", source)
+    assert [f.split(":")[0] for f in found] == ["1", "2"], found
+    # a plug-in, its subpackage's __init__, is its analysis's module too
+    assert [f.split(":")[0] for f in _reaching_another_analysis(
+        f"{ANALYSES}.samples", "from .solve import x\nfrom ..rating import RATING\n")] == ["2"]
+    assert not _reaching_another_analysis(f"{ANALYSES}.base", source)
+
+
+def test_the_floor_checks_find_a_reach_around_the_registry():
+    source = ("from ..analyses import Verdict, shown\n"
+              "from ..analyses.base import Writing\n"
+              "from ..analyses.samples.report import samples_table\n"
+              "from .tables import aligned_table\n")
+    found = _around_the_registry(f"{PRESENT}.html_report", source)
+    assert [f.split(":")[0] for f in found] == ["2", "3"], found
+    assert [f.split(":")[0] for f in _around_the_registry(
+        "fegear.cli.solve", "from ..toothpair.analyses.cycle import CYCLE\n")] == ["1"]
+    assert not _around_the_registry(f"{ANALYSES}.samples.report", source)
+
+
+def test_the_core_imports_neither_the_analyses_nor_the_presentation():
+    """The solve core is the ground floor: what it solves and sums up never depends on how an
+    analysis or a page uses it. The job runs the analyses through their registry alone."""
+    found = [f"{MODULES[m].relative_to(PACKAGE.parent)}:{hit}" for m in sorted(MODULES)
+             for hit in _core_reaching_up(m)]
+    assert not found, "\n".join(found)
+
+
+def test_an_analysis_imports_no_other_analysis():
+    """Each analysis lives in its own folder: adding one touches that folder and the
+    registry's line, and removing one breaks no other."""
+    found = [f"{MODULES[m].relative_to(PACKAGE.parent)}:{hit}" for m in sorted(MODULES)
+             for hit in _reaching_another_analysis(m)]
+    assert not found, "\n".join(found)
+
+
+def test_the_analyses_are_reached_only_through_their_registry():
+    """Outside the analyses, the registry (``fegear.toothpair.analyses``: which analyses a job
+    asks for and a summary shows, the Run and Writing they are handed, a Verdict) is their one
+    face; the tooth-pair stage's face maps a few names to an analysis's modules for the other
+    stages, without an import."""
+    found = [f"{MODULES[m].relative_to(PACKAGE.parent)}:{hit}" for m in sorted(MODULES)
+             for hit in _around_the_registry(m)]
+    assert not found, "\n".join(found)
 
 
 def _imported_libraries(path: Path) -> dict[str, bool]:

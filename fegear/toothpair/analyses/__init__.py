@@ -1,12 +1,14 @@
-"""Analyses of a solved pair, each one module: what it needs from the solve, how it solves,
-and how its result is printed, written, judged, shown on the report page and tabled in a
-study (:class:`~.base.Analysis`).
+"""Analyses of a solved pair, each one subpackage (its plug-in in its ``__init__``; its solve,
+report and pictures beside it): what it needs from the solve, how it solves, and how its
+result is printed, written, judged, shown on the report page and tabled in a study
+(:class:`~.base.Analysis`). This module is their registry, the one face the rest of the stage
+reaches them through.
 
 The job solves the core (the exact pair at its positions, the error estimate, the summary
 with the cycle's rows) and then each analysis the run asked for, in the order of
 :data:`ANALYSES`, each into its own entry of the summary. ``fegear solve``'s printer, the
-files, the report page and a study's table loop over the same list: a new analysis is a module
-here and a line in :data:`ANALYSES` (docs/architecture.md, "Adding an analysis").
+files, the report page and a study's table loop over the same list: a new analysis is a
+subpackage here and a line in :data:`ANALYSES` (docs/architecture.md, "Analyses plug in").
 
 >>> from fegear.toothpair import prepare_job
 >>> job = prepare_job({"z2": 25, "z1": 24, "positions": 4, "sensitivities": True})
