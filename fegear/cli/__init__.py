@@ -24,7 +24,7 @@ import os
 import signal
 import sys
 
-from .. import progress
+from .. import __version__, progress
 from ..errors import FegearError, ParameterError
 from . import bench, cache, drive, hertz, optimize, profile, relief, solve, study
 from .args import EXIT_USAGE, Parser
@@ -52,8 +52,6 @@ def _add_common(parser: Parser, default) -> None:
 
 
 def build_parser() -> Parser:
-    from .. import __version__
-
     parser = Parser(prog="fegear", description=DESCRIPTION)
     parser.add_argument("--version", action="version", version=f"fegear {__version__}")
     _add_common(parser, False)

@@ -14,7 +14,7 @@ import numpy as np
 
 from ..checks import require_range
 from ..fe import ElasticMaterial
-from ..geometry import NO_DEVIATIONS, Deviations, PairParameters
+from ..geometry import NO_DEVIATIONS, Deviations, PairParameters, gear1_profile
 from ..planar import wrap
 from ..quantities import HEADLINES
 from .inputs import (
@@ -95,8 +95,6 @@ class SolveCase:
     @property
     def root_radius1(self) -> float:
         """Gear 1's root radius (mm), from its exact profile."""
-        from ..geometry import gear1_profile
-
         g1 = gear1_profile(self.params)
         return float(g1.radius(np.array([g1.phi_space]))[0])
 
