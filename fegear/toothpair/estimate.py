@@ -41,7 +41,7 @@ def error_estimate(fine: dict[str, float], coarse: dict[str, float],
 def mesh_ratio(coarse: str, fine: str) -> float:
     """Element sizes at quality ``coarse`` over those at ``fine`` in the ring model: its
     templates (their root zones) shrink by about √2 up to ``standard`` and by 2 to ``fine``."""
-    from .ring.model import LEVELS
+    from .ring.model import LEVELS  # lazy: heavy: the ring model loads scikit-fem
 
     return LEVELS[coarse].root / LEVELS[fine].root
 

@@ -19,8 +19,8 @@ def solve_positions(case: SolveCase, betas, *, model=None, submodels: str = "pea
     everything else are the same: :mod:`.ring.peaks`). ``contact_only``: no stresses (NaN),
     for a caller that reads only the contact. ``executor``: where a cycle's chains of
     positions are solved (:func:`~.positions.drive`)."""
-    from .positions import drive
-    from .ring.solver import RingSolver, SolverModes
+    from .positions import drive  # lazy: heavy: the driver loads scipy
+    from .ring.solver import RingSolver, SolverModes  # lazy: heavy: scikit-fem
 
     solver = RingSolver(model, SolverModes(submodels=submodels, contact_only=contact_only))
     return solver.at_peaks(drive(case, betas, solver, executor=executor))

@@ -46,8 +46,7 @@ class Candidate:
         """Hertz's line contact of the two curvature radii under ``load`` (N) over
         ``thickness`` (mm), one material (E MPa, ν): a :class:`~fegear.fe.HertzLine`, or None
         where the radii are not a Hertz pair (a flank conformal or concave beyond)."""
-        from ..errors import ParameterError
-        from ..fe import line_contact
+        from ..fe import line_contact  # lazy: heavy: scikit-fem, off a refused input's path
 
         try:
             return line_contact(self.radius1, self.radius2, load, thickness, E, nu)

@@ -17,10 +17,12 @@ import math
 from datetime import UTC, datetime
 from pathlib import Path
 
+from ...provenance import code_version
 from ...quantities import FACTORS, HEADLINES
 from ..analyses import Verdict, shown
 from ..safety import ALLOWABLE_KEYS
 from .html_parts import escape, safety_cell, table
+from .tables import deviations_words
 
 #: the pictures a page shows, in order, with a caption each (the files' keys)
 PICTURES = {"png": "Von Mises stress on the loaded teeth and at the contact peak",
@@ -204,8 +206,6 @@ def _stress_table(summary: dict) -> str:
 
 
 def _inputs_table(i: dict) -> str:
-    from .tables import deviations_words
-
     rows = [[escape(k), escape(_value(v))] for k, v in i.items() if k != "deviations"]
     rows.append(["deviations", escape(deviations_words(i.get("deviations"))
                                   or "none (a perfect pair)")])
@@ -213,8 +213,6 @@ def _inputs_table(i: dict) -> str:
 
 
 def _provenance(summary: dict, command: str) -> str:
-    from ...provenance import code_version
-
     key = json.dumps(summary["inputs"], sort_keys=True, separators=(",", ":"))
     digest = hashlib.sha256(key.encode()).hexdigest()[:16]
     when = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")

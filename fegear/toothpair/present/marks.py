@@ -9,6 +9,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...geometry import gear1_profile
 from ...quantities import FACTORS
 from ..case import PairSolution
 from ..edge import flank_centre
@@ -27,8 +28,6 @@ class HotSpot:
 def root_hot_spots(sol: PairSolution, bodies) -> tuple[HotSpot, ...]:
     """Each gear's largest σ1 in its fillets: the lower 30 % of its tooth height, where the
     solve reads its root stresses (docs/model.md, "Results")."""
-    from ...geometry import gear1_profile
-
     p = sol.case.params
     g1 = gear1_profile(p)     # the solve's own, kept: building it again costs 0.04 s
     root1 = float(g1.radius(np.array([g1.phi_space]))[0])

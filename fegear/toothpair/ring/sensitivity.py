@@ -38,7 +38,7 @@ from ...geometry import Deviations, Placed, Runout, ToothDeviation, gear2_tooth
 from ...quantities import HELD
 from ..edge import flank_and_edge
 from .contact import RingContactSolution, rigid_gap, solved_system
-from .influence import RingContact
+from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel
 from .stresses import ring_stresses
 
@@ -180,8 +180,6 @@ def solved_sensitivities(sol) -> tuple[Sensitivity, ...]:
     """:func:`sensitivities` of a position the ring model solved (a
     :class:`~fegear.toothpair.case.PairSolution`): its contact assembled again on its grids
     for the influence matrix a solved record does not keep."""
-    from .influence import ColumnRule, assemble_contact
-
     d = sol.detail
     contact = assemble_contact(d.model, d.contact.grids, d.contact.beta, d.contact.turn,
                                ColumnRule(), d.contact.placed)
