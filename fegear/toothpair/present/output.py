@@ -11,7 +11,6 @@ into that frame; invariants (von Mises, σ1, σ2) need no rotation.
 
 from __future__ import annotations
 
-import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -24,7 +23,7 @@ from ..analyses import Writing, shown
 from ..case import PairSolution
 from ..job import Job, Solved, solve_job
 from .html_report import write_report
-from .pictured import PicturedDetail, for_pictures
+from .pictured import for_pictures, light
 from .plot import chart_pngs, von_mises_bytes
 
 
@@ -43,12 +42,13 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
     here, atomically."""
     files = {}
     painters = [executor.ready(), executor.ready()] if pictures else []
-    charts = _drawn(painters[0] if painters else None, chart_pngs, sol, summary) \
-        if pictures else None
+    # the solution as the pictures read it, formed once for both of them
+    drawn_sol = light(sol) if pictures else sol
+    charts = _drawn(painters[0], chart_pngs, drawn_sol, summary) if pictures else None
     bodies = sol.detail.body_fields() if fields or pictures else ()
     peaks = sol.detail.peak_fields() if fields or pictures else ()
     if pictures:
-        shown = for_pictures(sol, bodies, peaks)
+        shown = for_pictures(drawn_sol, bodies, peaks)
         von_mises = _drawn(painters[1], von_mises_bytes, shown.sol, summary, shown.bodies,
                            shown.peaks, shown.spots)
     if fields:
@@ -66,15 +66,10 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
     return files
 
 
-def _drawn(painter, fn, sol: PairSolution, *args):
-    """``fn(sol, *args)`` handed to ``painter`` (a :class:`~fegear.running.Primed`) with the
-    solution made light to send (:class:`~.pictured.PicturedDetail`), or here where there is
-    none; a task either way."""
-    if painter is None:
-        return SERIAL.submit(fn, sol, *args)
-    light = sol if isinstance(sol.detail, PicturedDetail) else \
-        dataclasses.replace(sol, detail=PicturedDetail(sol.detail))
-    return painter.submit(fn, light, *args)
+def _drawn(painter, fn, *args):
+    """``fn(*args)`` handed to ``painter`` (a :class:`~fegear.running.Primed`), or here where
+    there is none; a task either way."""
+    return (SERIAL if painter is None else painter).submit(fn, *args)
 
 
 @dataclass(frozen=True)

@@ -42,14 +42,22 @@ class ToDraw:
     spots: tuple
 
 
+def light(sol: PairSolution) -> PairSolution:
+    """``sol`` with a :class:`PicturedDetail` (itself where it has one already): what a
+    process that draws it is sent."""
+    if isinstance(sol.detail, PicturedDetail):
+        return sol
+    return dataclasses.replace(sol, detail=PicturedDetail(sol.detail))
+
+
 def for_pictures(sol: PairSolution, bodies, peaks=()) -> ToDraw:
     """:class:`ToDraw` of a solved pair and its fields: von Mises from it is the same picture
     as from the whole fields, byte for byte."""
+    sol = light(sol)
     spots = root_hot_spots(sol, bodies)
     box = frame_of(sol, bodies, peaks, spots).box
-    light = dataclasses.replace(sol, detail=PicturedDetail(sol.detail))
     shown = tuple(part for b in bodies if (part := _cropped(b, box)) is not None)
-    return ToDraw(light, shown, tuple(peaks), spots)
+    return ToDraw(sol, shown, tuple(peaks), spots)
 
 
 def _cropped(b: BodyField, box) -> BodyField | None:

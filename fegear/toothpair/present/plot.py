@@ -4,11 +4,9 @@ peak, the pressure along each loaded flank and the root stress per tooth (the me
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
-from ...figures import margins, png_bytes, pyplot, save_png
+from ...figures import margins, png_bytes, pyplot
 from ...figures.labels import Callout, place_callouts, place_legend
 from ...quantities import ROOT1, ROOT2
 from ..case import PairSolution
@@ -25,11 +23,6 @@ def prepare_pictures() -> None:
     fig = plt.figure(figsize=(1, 1))
     fig.text(0.5, 0.5, "σ1 µm", fontsize=10, weight="bold")
     png_bytes(fig, 10)
-
-
-def von_mises_png(path: Path, sol: PairSolution, summary: dict, bodies, peaks=()) -> Path:
-    """:func:`von_mises_figure` written to ``path``."""
-    return save_png(von_mises_figure(sol, summary, bodies, peaks), path, 100)
 
 
 def von_mises_bytes(sol: PairSolution, summary: dict, bodies, peaks=(), spots=None) -> bytes:
