@@ -23,7 +23,8 @@ from ..errors import FegearError
 
 class LocalPool(ProcessPoolExecutor):
     """A pool of spawned processes set up by :func:`init_worker` that can be stopped at once
-    (:meth:`stop`), broken or not."""
+    (:meth:`stop`), broken or not, and that breaks as soon as a worker dies, whichever
+    submission spawned it (:meth:`_spawn_process`)."""
 
     def __init__(self, workers: int) -> None:
         import multiprocessing
@@ -46,6 +47,17 @@ class LocalPool(ProcessPoolExecutor):
             return super().submit(fn, *args, **kwargs)
         finally:
             signal.pthread_sigmask(signal.SIG_SETMASK, held)
+
+    def _spawn_process(self) -> None:
+        """As the pool's, then a wake-up for its manager thread, which watches for a worker's
+        death only among the workers it knew when it last began to wait. ``submit`` wakes it
+        before it spawns the worker that takes the task (CPython 3.11 to 3.13), so the thread
+        often waits again without that worker, and its death would go unseen until another
+        task ended: a broken pool's tasks then wait for the longest of those still running."""
+        super()._spawn_process()
+        wakeup = getattr(self, "_executor_manager_thread_wakeup", None)
+        if wakeup is not None:   # None once shut down
+            wakeup.wakeup()
 
     def stop(self) -> None:
         """Shut down without waiting for the tasks under way: terminate the workers, the
