@@ -105,6 +105,19 @@ def runout_text(gear: int, runout: Runout) -> str:
     return f"{gear}={_number_text(runout.fr)}@{_number_text(runout.phase)}"
 
 
+def check_teeth(deviations: Deviations, z1: int, z2: int) -> None:
+    """Refuse, by its option and as it was given, an entry for a tooth that its gear of
+    ``z1``/``z2`` teeth does not have."""
+    for gear, z in ((1, z1), (2, z2)):
+        for tooth, d in deviations.teeth(gear).items():
+            if not 0 <= tooth < z:
+                entry = ToothEntry.of(d, gear, tooth)
+                option, text = (("form-curve", f"{gear}:{tooth}") if entry is None
+                                else (entry.option, entry.text))
+                raise ParameterError(option, text, f"a tooth 0 ... {z - 1} of gear {gear} "
+                                     f"(z{gear} = {z})")
+
+
 def per_tooth(name: str, given) -> tuple[ToothEntry, ...]:
     """The ``GEAR:TOOTH=µm`` entries of option ``name`` (module docstring; :func:`_entries`
     for the forms ``given`` takes), in the order given; an entry that is not one is refused

@@ -165,15 +165,6 @@ class Deviations:
                 "runout1": {"fr_um": self.runout1.fr, "phase_deg": self.runout1.phase},
                 "runout2": {"fr_um": self.runout2.fr, "phase_deg": self.runout2.phase}}
 
-    def check_teeth(self, z1: int, z2: int) -> None:
-        """Refuse, by name, a tooth that does not exist on its gear."""
-        for gear, z in ((1, z1), (2, z2)):
-            for tooth, d in self.teeth(gear).items():
-                if not 0 <= tooth < z:
-                    kind = "pitch" if d.pitch else "slope" if d.slope else "form"
-                    raise ParameterError(f"{kind}-deviation", f"{gear}:{tooth}", f"a tooth "
-                                         f"0 ... {z - 1} of gear {gear} (z{gear} = {z})")
-
     def reach_um(self, tooth: int) -> float:
         """How far (µm) the deviations can move gear 1's tooth ``tooth`` towards gear 2 or away
         at most: what a contact grid on it must reach beyond the exact pair's. Its own

@@ -14,7 +14,7 @@ import numpy as np
 
 from ..checks import require_range
 from ..fe import ElasticMaterial
-from ..geometry import NO_DEVIATIONS, Deviations, PairParameters, gear1_profile
+from ..geometry import NO_DEVIATIONS, Deviations, PairParameters, check_teeth, gear1_profile
 from ..planar import wrap
 from ..quantities import HEADLINES
 from .inputs import (
@@ -71,7 +71,7 @@ class SolveCase:
         SOLVE_INPUTS["extra-pairs"].check(self.extra_pairs)
         if self.tip_round is not None:
             check_tip_round(self.tip_round, m)
-        self.deviations.check_teeth(self.params.z1, self.params.z2)
+        check_teeth(self.deviations, self.params.z1, self.params.z2)
 
     @property
     def torque_limit(self) -> float:

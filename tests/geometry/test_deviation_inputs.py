@@ -8,13 +8,14 @@ from fegear.errors import ParameterError
 from fegear.geometry.deviation_inputs import (
     RUNOUT_SPEC,
     ToothEntry,
+    check_teeth,
     deviations_of,
     per_tooth,
     read_deviations,
     runout_text,
     runouts,
 )
-from fegear.geometry.deviations import Runout, ToothDeviation
+from fegear.geometry.deviations import Deviations, Runout, ToothDeviation
 
 
 def test_per_tooth_texts():
@@ -139,3 +140,14 @@ def test_the_help_and_the_refusal_say_the_angle_of_a_runout_may_be_left_out():
 def test_a_missing_file_is_named():
     with pytest.raises(ParameterError, match="a readable CSV file"):
         read_deviations("/nonexistent/d.csv", 44, 45)
+
+
+def test_a_tooth_its_gear_does_not_have_is_refused_as_it_was_given():
+    check_teeth(Deviations(gear1={43: ToothDeviation(pitch=5.0)}), 44, 45)
+    with pytest.raises(ParameterError, match="'1:44=-2.5' is not admissible.*a tooth 0 ... 43 "
+                       "of gear 1") as exc:
+        check_teeth(Deviations(gear1={44: ToothDeviation(slope=-2.5)}), 44, 45)
+    assert exc.value.name == "slope-deviation"
+    with pytest.raises(ParameterError, match="'2:45' is not admissible.*0 ... 44 of gear 2"):
+        check_teeth(Deviations(gear2={45: ToothDeviation(curve=((0.0, 1.0), (1.0, 2.0)))}),
+                    44, 45)
