@@ -614,18 +614,6 @@ def test_functions_are_short_and_modules_small_in_the_tooth_pair_stage_and_the_c
 #: (test_help_imports_no_heavy_library, test_a_user_error_needs_numpy_at_most) or close an
 #: import cycle (``# lazy: heavy: scikit-fem, …``, ``# lazy: cycle: X imports this module``)
 LAZY = re.compile(r"#\s*lazy:\s*\S")
-#: the files of fegear/toothpair whose functions still import fegear code without a reason
-#: (the stage is being restructured, issue 68), and fegear/cli/__init__.py, whose parser
-#: reads the version inside it: the set only shrinks, and a file that no longer does fails
-#: the test until it is taken off
-NOT_YET = {"toothpair/analyses/cycle/__init__.py",
-           "toothpair/analyses/rating/__init__.py",
-           "toothpair/analyses/rating/solve.py",
-           "toothpair/analyses/revolution/__init__.py",
-           "toothpair/analyses/samples/__init__.py",
-           "toothpair/analyses/sensitivities/__init__.py",
-           "toothpair/job.py",
-           "toothpair/ring/model.py"}
 
 
 def _imports_inside_functions(source: str) -> list[str]:
@@ -693,7 +681,5 @@ def test_fegear_imports_at_module_top():
     found = {str(path.relative_to(PACKAGE)): inside for path in sorted(PACKAGE.rglob("*.py"))
              if path not in commands
              and (inside := _imports_inside_functions(path.read_text()))}
-    assert set(found) - NOT_YET == set(), "\n".join(
-        f"{path}:{line}" for path in sorted(set(found) - NOT_YET) for line in found[path])
-    assert NOT_YET - set(found) == set(), "their imports are at the top now: take them off " \
-                                          "NOT_YET"
+    assert found == {}, "\n".join(f"{path}:{line}" for path in sorted(found)
+                                   for line in found[path])

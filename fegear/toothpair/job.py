@@ -18,16 +18,20 @@ from typing import TYPE_CHECKING
 
 from .. import progress
 from ..errors import ParameterError
-from ..fe import Allowables
-from ..geometry import admissible_pair, deviations_of
+from ..fe import Allowables, import_libraries
+from ..geometry import RoundedProfile, admissible_pair, default_round, deviations_of, gear1_profile
+from ..rating import material, read_spectrum
 from ..running import SERIAL, Executor
 from ..timing import Stopwatch
 from ..tolerance import Draw, grade_of
+from . import estimate
 from .analyses import Run, asked
 from .case import SolveCase, cycle_positions, revolution_positions
 from .case_file import case_record
+from .estimate import second_level_estimate, second_quality, tooth_estimates
 from .inputs import JOB_INPUTS, PAIR_INPUTS, REQUIRES, TIP_ROUND, check_tip_round
 from .safety import DEFAULT_ALLOWABLES, allowables_of
+from .summary import add_tooth_estimates, cycle_rows, cycle_summary, pair_summary
 
 if TYPE_CHECKING:   # a Rating's parts: a user error answers before scipy loads
     from ..rating import GearMaterial, Spectrum
@@ -171,8 +175,6 @@ def _rating(v: dict, given: Mapping[str, object], case: SolveCase, revolution: b
     rating's options without a spectrum, a deviated pair's over less than a revolution (its
     teeth differ: each is rated over its whole pass) or with a tolerance class; None without
     a spectrum."""
-    from ..rating import material, read_spectrum
-
     path = v["spectrum"]
     if path is None:
         for name in (name for name, switch in REQUIRES.items() if switch == "spectrum"):
@@ -199,8 +201,6 @@ def tip_round_of(params, given: float | None) -> float | None:
     """The tip round a solve takes: the one given, refused by name with the largest that fits
     if it does not; else the default :data:`~.inputs.TIP_ROUND` m, or half the largest that
     fits where that does not (``None``: the default as it is)."""
-    from ..geometry import RoundedProfile, default_round, gear1_profile
-
     nominal = TIP_ROUND * params.m
     profile = gear1_profile(params)          # built by the admissibility check, kept
     if given is not None:
@@ -235,22 +235,17 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     (:func:`~.positions.drive`), and a cycle's estimate, at its worst position (the largest
     gear-1 root stress, which the submodels do not change), while this process solves the
     submodels where the cycle peaks."""
-    from ..fe import import_libraries
-    from ..geometry import gear1_profile
-    from .estimate import second_headline
-    from .summary import cycle_rows, cycle_summary
-
     watch = Stopwatch()
     second = None
     if job.estimate and len(job.betas) == 1:
         import_libraries()
-        second = executor.submit(second_headline, job.case)
+        second = executor.submit(estimate.second_headline, job.case)
     progress.stage("gear 1's profile")
     gear1_profile(job.case.params)
     analyses = asked(job)
     solver, sols, driven = _drive(job, analyses, executor)
     if job.estimate and len(job.betas) > 1:   # while the peaks' submodels are solved here
-        second = executor.submit(second_headline, _pictured(sols).case)
+        second = executor.submit(estimate.second_headline, _pictured(sols).case)
     sols = solver.at_peaks(sols)
     cycle_s = watch.s
     sol = _pictured(sols)
@@ -273,8 +268,8 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
 def _drive(job: Job, analyses, executor: Executor):
     """The positions solved: by the analysis that drives them (a class's samples), else by
     the one driver; ``(solver, solutions, what the driving analysis kept)``."""
-    from .positions import positions_of
-    from .ring.solver import RingSolver, SolverModes
+    from .positions import positions_of  # lazy: heavy: scipy
+    from .ring.solver import RingSolver, SolverModes  # lazy: heavy: scikit-fem
 
     for analysis in analyses:
         driven = analysis.drive(job, executor)
@@ -288,20 +283,17 @@ def _core_summary(job: Job, sols, sol, second, watch: Stopwatch) -> dict:
     """The pictured position's summary (:func:`~.report.pair_summary`) with the error
     estimate of the second mesh level (``second``: its future; None without an estimate)
     and every input as run."""
-    from .estimate import second_level_estimate, second_quality, tooth_estimates
-    from .summary import add_tooth_estimates, pair_summary
-
-    estimate, other, estimate_s, teeth = None, None, None, None
+    errors, other, estimate_s, teeth = None, None, None, None
     if second is not None:
         after = Stopwatch()
         progress.stage("error estimate: the same case again at quality "
                        f"{second_quality(job.case.quality)}")
         with progress.reporting(None):  # one stage, however the second solve goes
             again = second.result()     # a SecondSolve
-            estimate, other = second_level_estimate(sol, second=again.headline)
+            errors, other = second_level_estimate(sol, second=again.headline)
             teeth = tooth_estimates(sol, again.teeth)
         estimate_s = after.s
-    summary = pair_summary(sol, estimate, watch.s, other, job.allowables)
+    summary = pair_summary(sol, errors, watch.s, other, job.allowables)
     summary["estimate_s"] = estimate_s
     summary["case"] = dict(job.record)
     add_tooth_estimates(summary, teeth)

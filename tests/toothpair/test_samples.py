@@ -15,6 +15,7 @@ from fegear.geometry import PairParameters
 from fegear.running import spare_core
 from fegear.tolerance import Draw, grade_of
 from fegear.toothpair import SolveCase, prepare_job, solve_pair
+from fegear.toothpair.analyses import SAMPLES
 from fegear.toothpair.analyses.samples.report import samples_summary
 from fegear.toothpair.analyses.samples.solve import SampleCase, solve_samples
 from fegear.toothpair.ring.solver import RingSolver, SolverModes
@@ -87,6 +88,12 @@ def test_the_summary_reads_the_rows(sampled):
     assert s["verdict"].startswith(("PASS", "FAIL"))
     if s["jammed_share"] > 0.5:
         assert "jam" in s["verdict"]
+    # the report page's stress table: the class's P50 and P95 beside each headline
+    heads, cells = SAMPLES.stress_columns(s)
+    assert heads == ["class P50", "class P95"] and set(cells) == set(s["stresses"])
+    p95 = next(q for q in s["stresses"][key]["quantiles"] if q["q"] == 0.95)
+    assert cells[key][1] == ("jams" if p95["jams"] else
+                             f"{p95['value']:.1f} ± {p95['error']:.1f}")
 
 
 def test_a_revolution_sample_reads_as_the_same_pair_turned_alone(baseline_ring):

@@ -61,6 +61,9 @@ class Analysis:
     key: str = ""
     replaces: tuple[str, ...] = ()
     before_pair: bool = False
+    #: its pictures on the report page, in order: the key of each among its files, with a
+    #: caption
+    pictures: dict[str, str] = {}
 
     def wanted(self, job: Job) -> bool:
         """Whether ``job`` asks for this analysis."""
@@ -91,6 +94,11 @@ class Analysis:
         """Its parts of the report page as (slot, HTML): ``safety`` under the static safety
         factors, ``sections`` after the stresses."""
         return []
+
+    def stress_columns(self, entry: dict) -> tuple[list[str], dict[str, list[str]]]:
+        """Its columns beside the report page's stress table: their heads, and each
+        headline's cells by its key (a headline it has no cells for gets dashes)."""
+        return [], {}
 
     def columns(self, entry: dict) -> dict | None:
         """Its columns in a study's table; None: its entry flattened as the rest."""

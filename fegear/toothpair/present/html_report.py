@@ -24,15 +24,11 @@ from ..safety import ALLOWABLE_KEYS
 from .html_parts import escape, safety_cell, table
 from .tables import deviations_words
 
-#: the pictures a page shows, in order, with a caption each (the files' keys)
+#: the pair's own pictures on a page, in order, with a caption each (the files' keys); each
+#: analysis's follow (:attr:`~.analyses.Analysis.pictures`)
 PICTURES = {"png": "Von Mises stress on the loaded teeth and at the contact peak",
             "root_png": "Root stresses: each fillet's largest σ1",
-            "flank_png": "Contact pressure along the flank against Hertz",
-            "cycle_png": "The stresses and safety factors over the mesh cycle",
-            "revolution_png": "The stresses over a whole revolution",
-            "revolution_teeth_png": "Each tooth's largest stresses over the revolution",
-            "samples_png": "Each safety factor over the tolerance class's pairs",
-            "sensitivities_png": "Which deviation decides the stress"}
+            "flank_png": "Contact pressure along the flank against Hertz"}
 
 STYLE = """
 body { font-family: system-ui, sans-serif; max-width: 60rem; margin: 1.5rem auto;
@@ -79,7 +75,8 @@ def report_html(summary: dict, files: dict[str, Path], command: str) -> str:
     parts += ["<h2>Stresses</h2>", _stress_table(summary)]
     parts += [part for slot, part in slots if slot == "sections"]
     parts += ["<h2>The design and its inputs</h2>", _inputs_table(i)]
-    pictures = [_figure(files[key], caption) for key, caption in PICTURES.items()
+    captions = PICTURES | {k: c for a in shown(summary) for k, c in a.pictures.items()}
+    pictures = [_figure(files[key], caption) for key, caption in captions.items()
                 if key in files and Path(files[key]).exists()]
     if pictures:
         parts += ["<h2>Pictures</h2>", *pictures]
@@ -183,10 +180,12 @@ def _static_table(summary: dict) -> str:
 def _stress_table(summary: dict) -> str:
     estimate = summary.get("error_estimate_by_stress_pct") or {}
     cycle = summary.get("cycle") or {}
-    band = (summary.get("samples") or {}).get("stresses", {})
     head = ["stress", "FE MPa", "error estimate %"]
-    if band:
-        head += ["class P50", "class P95"]
+    beside = []     # each analysis's columns: its cells by headline key, and how many
+    for a in shown(summary):
+        heads, cells = a.stress_columns(summary[a.key])
+        head += heads
+        beside.append((cells, len(heads)))
     rows = []
     for headline in HEADLINES:
         key = headline.key
@@ -195,9 +194,8 @@ def _stress_table(summary: dict) -> str:
             continue
         err = estimate.get(key)
         row = [headline.label, f"{value:.1f}", "–" if err is None else f"±{err:.1f}"]
-        if band:
-            qs = {q["q"]: q for q in band[key]["quantiles"]}
-            row += [_quantile(qs.get(0.5)), _quantile(qs.get(0.95))]
+        for cells, n in beside:
+            row += cells.get(key, ["–"] * n)
         rows.append(row)
     note = ("<p>The largest over the positions solved. The error estimate compares the solve "
             "with a second mesh level (docs/model.md); a dash where it was not run "
@@ -227,15 +225,6 @@ def _figure(path: Path, caption: str) -> str:
     data = base64.b64encode(Path(path).read_bytes()).decode("ascii")
     return (f"<figure><img src='data:image/png;base64,{data}' alt='{escape(caption)}'>"
             f"<figcaption>{escape(caption)}</figcaption></figure>")
-
-
-def _quantile(q: dict | None) -> str:
-    if q is None:
-        return "–"
-    if q["jams"]:
-        return "jams"
-    err = "" if q["error"] is None else f" ± {q['error']:.1f}"
-    return f"{q['value']:.1f}{err}"
 
 
 def _value(v) -> str:

@@ -16,6 +16,7 @@ import weakref
 from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 
+from ... import provenance
 from ...fe import (
     ElasticMaterial,
     assemble_cyclic,
@@ -249,10 +250,8 @@ _CACHED: dict = {}
 def _cache_key(case: SolveCase) -> str:
     """What a model's cache entry holds, in full: the pair its templates are meshed for, the
     body's inputs and the code version."""
-    from ...provenance import code_version
-
     body = tuple((k, getattr(case, k)) for k in GEOMETRY_KEYS if k != "params")
-    return f"ring model; {meshed_params(case)!r}; {body!r}; {code_version()}"
+    return f"ring model; {meshed_params(case)!r}; {body!r}; {provenance.code_version()}"
 
 
 def _held(model: RingModel) -> tuple:

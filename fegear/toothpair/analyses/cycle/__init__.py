@@ -6,19 +6,20 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ...present.writers import write_cycle_series
 from ..base import Analysis, Writing
+from .report import cycle_table, write_cycle_outputs, write_mesh_stiffness
 
 
 class Cycle(Analysis):
     key = "cycle"
+    pictures = {"cycle_png": "The stresses and safety factors over the mesh cycle"}
     before_pair = True
 
     def wanted(self, job) -> bool:
         return len(job.betas) > 1
 
     def printed(self, entry: dict, summary: dict) -> str:
-        from .report import cycle_table
-
         also = " (and the class's pairs)" if "samples" in summary else ""
         default = entry.get("default")
         return (f"{cycle_table(entry['rows'])}\n\n{len(entry['rows'])} positions on one "
@@ -27,9 +28,6 @@ class Cycle(Analysis):
                 + (f"\n(not given: {default})" if default else "") + "\n")
 
     def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
-        from ...present.writers import write_cycle_series
-        from .report import write_cycle_outputs, write_mesh_stiffness
-
         solved, out = writing.solved, writing.out
         files = dict(write_mesh_stiffness(out, solved.rows, solved.job.case))
         if writing.fields:

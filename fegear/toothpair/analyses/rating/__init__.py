@@ -11,6 +11,8 @@ from pathlib import Path
 from ....running import Executor
 from ....timing import Stopwatch
 from ..base import Analysis, Run, Verdict, Writing
+from .report import life_html, rating_table, spectrum_html, write_rating_outputs
+from .solve import rated, solve_levels
 
 
 class Rating(Analysis):
@@ -20,9 +22,8 @@ class Rating(Analysis):
         return job.rating is not None
 
     def solve(self, run: Run) -> dict:
-        from ...positions import drive_torques, positions_of
-        from ...ring.solver import RingSolver, SolverModes
-        from .solve import rated, solve_levels
+        from ...positions import drive_torques, positions_of  # lazy: heavy: scipy
+        from ...ring.solver import RingSolver, SolverModes  # lazy: heavy: scikit-fem
 
         job, model = run.job, run.solver.model
         watch = Stopwatch()
@@ -45,14 +46,10 @@ class Rating(Analysis):
                 "solve_s": watch.s}
 
     def printed(self, entry: dict, summary: dict) -> str:
-        from .report import rating_table
-
         return (f"\nRated for a life: each level of the spectrum solved over the positions "
                 f"({entry['solve_s']:.1f} s):\n\n" + rating_table(entry))
 
     def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
-        from .report import write_rating_outputs
-
         return write_rating_outputs(entry, writing.out)
 
     def verdict(self, entry: dict) -> Verdict:
@@ -60,8 +57,6 @@ class Rating(Analysis):
         return Verdict(entry.get("passed", line.startswith("PASS")), f"for the life: {line}")
 
     def page(self, entry: dict) -> list[tuple[str, str]]:
-        from .report import life_html, spectrum_html
-
         return [("safety", "<h3>For the life</h3>\n" + life_html(entry)),
                 ("sections", "<h2>The load spectrum</h2>\n" + spectrum_html(entry))]
 

@@ -60,8 +60,7 @@ def tooth_stresses(sols: tuple[PairSolution, ...], every_tooth: bool) -> dict[st
 def rated(levels: list[tuple[PairSolution, ...]], rating: Rating, every_tooth: bool) -> dict:
     """The summary's ``rating``: the inputs, each level's torque, cycles and largest stresses,
     and the four modes rated (:func:`fegear.rating.rate`)."""
-    from ....rating import rate
-
+    from ....rating import rate  # lazy: heavy: scipy, which a refused input must not load
     z = (levels[0][0].case.params.z1, levels[0][0].case.params.z2)
     stresses = [tooth_stresses(sols, every_tooth) for sols in levels]
     cycles = [level.cycles for level in rating.spectrum.levels]

@@ -8,19 +8,27 @@ from __future__ import annotations
 from pathlib import Path
 
 from ....running import Executor
+from ...summary import cycle_rows
 from ..base import Analysis, Run, Verdict, Writing
+from .report import (
+    samples_columns,
+    samples_summary,
+    samples_table,
+    stress_cells,
+    write_samples_outputs,
+)
 
 
 class Samples(Analysis):
     key = "samples"
+    pictures = {"samples_png": "Each safety factor over the tolerance class's pairs"}
 
     def wanted(self, job) -> bool:
         return job.draw is not None
 
     def drive(self, job, executor: Executor):
-        from ...ring.solver import RingSolver, SolverModes
-        from ...summary import cycle_rows
-        from .solve import SampleCase, solve_samples
+        from ...ring.solver import RingSolver, SolverModes  # lazy: heavy: scikit-fem
+        from .solve import SampleCase, solve_samples  # lazy: heavy: scikit-fem
 
         solver = RingSolver(None, SolverModes(keep_phases=True))
         # a revolution: each pair over gear 1's turn from the first pitch's places
@@ -33,16 +41,12 @@ class Samples(Analysis):
         return solver, sampled.nominal, (sampled, cycle_rows(sampled.nominal, job.allowables))
 
     def solve(self, run: Run) -> dict:
-        from .report import samples_summary
-
         sampled, estimated = run.driven
         job = run.job
         return samples_summary(sampled.rows, estimated, job.draw.grade, job.draw.seed,
                                job.quantile, job.allowables, len(job.betas), job.revolution)
 
     def printed(self, entry: dict, summary: dict) -> str:
-        from .report import samples_table
-
         over = ("the same positions" if entry["over"] == "cycle" else
                 f"a whole revolution each ({entry['positions_per_pair']} positions: the "
                 "cycle's at every pitch of gear 1)")
@@ -51,8 +55,6 @@ class Samples(Analysis):
                 + samples_table(entry))
 
     def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
-        from .report import write_samples_outputs
-
         return write_samples_outputs(entry, writing.out, writing.title,
                                      writing.solved.job.allowables, writing.pictures)
 
@@ -60,9 +62,10 @@ class Samples(Analysis):
         line = entry["verdict"]
         return Verdict(entry.get("passed", line.startswith("PASS")), f"for the class: {line}")
 
-    def columns(self, entry: dict) -> dict:
-        from .report import samples_columns
+    def stress_columns(self, entry: dict) -> tuple[list[str], dict[str, list[str]]]:
+        return stress_cells(entry)
 
+    def columns(self, entry: dict) -> dict:
         return samples_columns(entry)
 
 

@@ -109,6 +109,25 @@ def verdict(safety: dict, jammed_share: float, quantile: float, grade: int) -> s
             f"factor; nominal {safety[key]['nominal']:.2f})")
 
 
+def stress_cells(s: dict) -> tuple[list[str], dict[str, list[str]]]:
+    """The class's band beside the report page's stresses: each headline's P50 and P95 with
+    their bootstrap errors ("jams" where the quantile's pair jams), by headline key."""
+    cells = {}
+    for key, band in s["stresses"].items():
+        qs = {q["q"]: q for q in band["quantiles"]}
+        cells[key] = [_band_cell(qs.get(0.5)), _band_cell(qs.get(0.95))]
+    return ["class P50", "class P95"], cells
+
+
+def _band_cell(q: dict | None) -> str:
+    if q is None:
+        return "–"
+    if q["jams"]:
+        return "jams"
+    err = "" if q["error"] is None else f" ± {q['error']:.1f}"
+    return f"{q['value']:.1f}{err}"
+
+
 def samples_table(s: dict) -> str:
     """The samples' summary as the terminal shows it: the stresses' quantiles with their
     errors, the safety factors at the quantile, the counts and the verdict."""

@@ -10,17 +10,23 @@ from pathlib import Path
 
 from .... import progress
 from ..base import Analysis, Run, Writing
+from .report import (
+    sensitivity_columns,
+    sensitivity_summary,
+    sensitivity_table,
+    write_sensitivity_outputs,
+)
 
 
 class Sensitivities(Analysis):
     key = "sensitivities"
+    pictures = {"sensitivities_png": "Which deviation decides the stress"}
 
     def wanted(self, job) -> bool:
         return job.sensitivities
 
     def solve(self, run: Run) -> dict:
-        from ...ring.sensitivity import solved_sensitivities
-        from .report import sensitivity_summary
+        from ...ring.sensitivity import solved_sensitivities  # lazy: heavy: scikit-fem
 
         progress.stage("sensitivities: each stress's rate with each deviation in mesh")
         sol, draw = run.solution, run.job.draw
@@ -28,19 +34,13 @@ class Sensitivities(Analysis):
                                    None if draw is None else draw.grade)
 
     def printed(self, entry: dict, summary: dict) -> str:
-        from .report import sensitivity_table
-
         return ("\nSensitivities: each stress's rate with each deviation of the teeth in mesh "
                 "(the largest first):\n\n" + sensitivity_table(entry))
 
     def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
-        from .report import write_sensitivity_outputs
-
         return write_sensitivity_outputs(entry, writing.out, writing.title, writing.pictures)
 
     def columns(self, entry: dict) -> dict:
-        from .report import sensitivity_columns
-
         return sensitivity_columns(entry)
 
 
