@@ -177,13 +177,34 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
 def _influence(model: RingModel, contact: RingContact) -> np.ndarray:
     """A between the ``contact``'s formed points (module docstring): each gear's
     finite-element part, then the half-plane's near field on each grid."""
-    case, formed = model.case, contact.formed
-    on = np.flatnonzero(formed)
+    on = np.flatnonzero(contact.formed)
     place = np.full(contact.npoints, -1)
     place[on] = np.arange(len(on))
     A = np.zeros((len(on), len(on)), order="F")   # read by columns: the loaded points'
     for side, loads, m in zip(model.gears, contact.loads, contact.matching):
         _fe_part(side, loads, m.take(on), place, A)
+    _add_near_field(model, contact, place, A)
+    return A
+
+
+def near_field(model: RingModel, contact: RingContact) -> np.ndarray:
+    """A's half-plane part alone between the formed points: each grid's near field, the
+    surface's approach relative to the matching depth (zero between grids); A less it is the
+    finite-element part, the approach at that depth (the part that spreads along the face:
+    :mod:`.face`)."""
+    on = np.flatnonzero(contact.formed)
+    place = np.full(contact.npoints, -1)
+    place[on] = np.arange(len(on))
+    out = np.zeros((len(on), len(on)))
+    _add_near_field(model, contact, place, out)
+    return out
+
+
+def _add_near_field(model: RingModel, contact: RingContact, place: np.ndarray,
+                    A: np.ndarray) -> None:
+    """Add the half-plane's near field on each grid to ``A`` (the formed points' rows and
+    columns, at ``place``)."""
+    case, formed = model.case, contact.formed
     for k, g in enumerate(contact.grids):
         blk = contact.block(k)
         rows = np.flatnonzero(formed[blk])
@@ -198,7 +219,6 @@ def _influence(model: RingModel, contact: RingContact) -> np.ndarray:
             for m in contact.matching:
                 A[first:first + len(rows), c:c + hi - lo] += approach_matrix(
                     g.s[rows], m.depth[blk][rows], g.s[a:b], case.E, case.nu)[:, lo - a:hi - a]
-    return A
 
 
 def _true_runs(mask: np.ndarray) -> list[tuple[int, int]]:

@@ -234,6 +234,16 @@ class Phases:
             return None
         return contact, sol
 
+    def contact_at(self, model: RingModel, case: SolveCase) -> tuple[RingContact, Kept] | None:
+        """The contact kept for the phase of ``case.beta`` turned to it, its rigid gaps with
+        the case's deviations, and what was kept with it; None where none is kept."""
+        phase, pitch = pitch_phase(case.beta, case.params.z2)
+        kept = self._kept.get(phase)
+        if kept is None:
+            return None
+        placed = Placed(case.deviations, case.params, case.beta) if case.deviations else None
+        return turned(model, kept.contact, pitch - kept.pitch, case.beta, placed), kept
+
     def keep(self, model: RingModel, case: SolveCase, state, trial: Trial,
              settled: RingContactSolution, widen: bool = False
              ) -> tuple[RingContact, RingContactSolution] | None:
