@@ -1,0 +1,104 @@
+"""The contact across the face (:mod:`fegear.toothpair.ring.face_contact`): an even face is
+the 2D pair's solution in every section; the
+iterative solve is the bordered system's exact solution on its active set, complementary and
+in balance; a misalignment loads the end it closes; a helix slope on one tooth moves that
+tooth's load alone towards the end it closes."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from fegear.fe import blas_threads
+from fegear.running import SERIAL
+from fegear.toothpair.positions import positions_of
+from fegear.toothpair.ring.contact import rigid_gap, solve_ring_contact
+from fegear.toothpair.ring.face import Face, exponential_kernel, face_coupling
+from fegear.toothpair.ring.face_contact import FaceStart, solve_face_contact
+from fegear.toothpair.ring.influence import near_field
+from fegear.toothpair.ring.solver import RingSolver, SolverModes
+
+SECTIONS = 7
+COUPLING = face_coupling(SECTIONS, 5.0, exponential_kernel(1.5))
+
+
+@pytest.fixture(scope="module")
+def kept(baseline_ring):
+    """The baseline at β = 0 under 200 N·m on its kept contact (coarse): the contact, what
+    was kept and the case."""
+    case = replace(baseline_ring.case, torque=200.0)
+    solver = RingSolver(baseline_ring, SolverModes(keep_phases=True))
+    positions_of(solver, False)(case, (0.0,), SERIAL)
+    contact, kept = solver.phases.contact_at(baseline_ring, case)
+    return baseline_ring, contact, kept, case
+
+
+def _solve(kept, face: Face):
+    model, contact, k, case = kept
+    turn = case.params.ratio * contact.beta + k.rotation
+    offsets = face.offsets(contact, turn, COUPLING.zeta, case.thickness, case.params.z2)
+    with blas_threads():
+        return solve_face_contact(model, contact, FaceStart(k.rotation, k.active,
+                                                            1e-3 * k.elastic_um),
+                                  case.torque_Nmm, offsets, COUPLING), offsets
+
+
+def test_an_even_face_is_the_2d_pair_in_every_section(kept):
+    model, contact, k, case = kept
+    solved, _ = _solve(kept, Face(SECTIONS))
+    alone = solve_ring_contact(model, contact, case.torque_Nmm, k.rotation, start=k.active)
+    assert solved.rotation == pytest.approx(alone.rotation, rel=1e-12)
+    for s in range(SECTIONS):
+        np.testing.assert_allclose(solved.pressure[:, s], alone.pressure, rtol=0,
+                                   atol=1e-9 * alone.pressure.max())
+
+
+def test_the_solution_is_the_bordered_system_solved_directly_complementary_and_balanced(kept):
+    model, contact, k, case = kept
+    solved, offsets = _solve(kept, Face(SECTIONS, misalignment=8.0))
+    p = solved.pressure
+    assert (p >= 0).all()
+    scale = 1e-9 * np.abs(solved.gap).max()
+    assert solved.gap.min() >= -scale                        # no overlap anywhere
+    assert np.abs(solved.gap[p > 0]).max() <= scale          # closed where it presses
+    w = (contact.weight * case.thickness)[:, None] * COUPLING.share[None, :]
+    alpha = case.params.ratio * contact.beta
+    _, a = rigid_gap(model, contact, alpha + solved.rotation, contact.feet.copy())
+    torque = -np.sum(w * p * a[:, None])
+    assert torque == pytest.approx(case.torque_Nmm, rel=1e-9)
+    # the same active set solved densely: A_hp ⊗ 1 + A_fe ⊗ S on its points
+    near = near_field(model, contact)
+    far = contact.A - near
+    pts, sec = np.nonzero(p > 0)
+    dense = far[np.ix_(pts, pts)] * COUPLING.spread[np.ix_(sec, sec)] \
+        + near[np.ix_(pts, pts)] * (sec[:, None] == sec[None, :])
+    g = solved.gap[pts, sec] - (dense @ p[pts, sec])        # the rigid part at the solution
+    np.testing.assert_allclose(np.linalg.solve(dense, -g), p[pts, sec],
+                               rtol=1e-8, atol=1e-8 * p.max())
+
+
+def test_a_misalignment_loads_the_end_it_closes_and_keeps_the_torque(kept):
+    model, contact, k, case = kept
+    ends = []
+    for f in (6.0, -6.0):
+        solved, _ = _solve(kept, Face(SECTIONS, misalignment=f))
+        line = solved.line_loads(contact).sum(axis=0)        # N/mm, all teeth, by section
+        ends.append(line[[0, -1]])
+        assert (line * COUPLING.share).sum() * case.thickness > 0
+    (first_pos, second_pos), (first_neg, second_neg) = ends
+    assert second_pos > 1.3 * first_pos and first_neg > 1.3 * second_neg
+    assert second_pos == pytest.approx(first_neg, rel=1e-6)  # the same pair mirrored
+
+
+def test_a_helix_slope_moves_its_own_tooths_load_to_the_end_it_closes(kept):
+    model, contact, k, case = kept
+    even, _ = _solve(kept, Face(SECTIONS))
+    loads = even.line_loads(contact)
+    k_most = int(np.argmax(loads[:, 0]))
+    tooth = contact.grids[k_most].tooth
+    sloped, _ = _solve(kept, Face(SECTIONS, helix1=((tooth, 5.0, 0.0),)))
+    line = sloped.line_loads(contact)
+    assert line[k_most, -1] > 1.2 * line[k_most, 0]
+    others = [i for i in range(len(contact.grids)) if i != k_most and loads[i, 0] > 0]
+    for i in others:     # the others take what it sheds at its first end, there
+        assert line[i, 0] >= loads[i, 0]
