@@ -7,6 +7,7 @@ import json
 
 from ..toothpair.inputs import (
     DEVIATION_INPUTS,
+    FACE_INPUTS,
     JOB_INPUTS,
     LOAD_INPUTS,
     MODEL_INPUTS,
@@ -27,6 +28,7 @@ HELP_GROUPS = {
     "material, allowables and life rating (docs/rating.md)": (
         JOB_INPUTS["E"], JOB_INPUTS["nu"], JOB_INPUTS["allowable-bending"],
         JOB_INPUTS["allowable-contact"], *RATING_INPUTS),
+    "across the face width (docs/model.md)": FACE_INPUTS,
     "model and mesh": MODEL_INPUTS,
 }
 

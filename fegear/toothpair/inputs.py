@@ -103,6 +103,27 @@ TOLERANCE_INPUTS = (
           "sensitivities.png"),
 )
 
+#: across the face width (docs/model.md, "Across the face"): any of them solves the pair at
+#: sections across the face, coupled by the gears' stiffness, with their offsets
+FACE_INPUTS = (
+    Input("misalignment", float, None, "gear 1's axis displaced against gear 2's across the "
+          "line of centres, from the face's first end to its second; + in the direction gear "
+          "1's loaded flanks push at the pitch point, so that the second end closes first",
+          "µm", low=-200.0, high=200.0, rule="none (the 2D pair, unless another face input "
+          "is given)"),
+    Input("tilt", float, None, "the same along the line of centres: + the centre distance "
+          "grows towards the face's second end", "µm", low=-200.0, high=200.0, rule="0"),
+    Input("crowning", float, None, "lead crowning C_β of gear 1's teeth: a parabola across "
+          "the face, C_β thinner at each end", "µm", low=0.0, high=100.0, rule="0"),
+    Input("end-relief", float, None, "end relief C_I of gear 1's teeth at each end of the "
+          "face, linear over --end-length", "µm", low=0.0, high=100.0, rule="0"),
+    Input("end-length", float, None, "the end relief's length from each end", "mm",
+          low=0.0, low_open=True, limits="0 < end-length <= face-width / 2",
+          rule="a fifth of the face width"),
+    Input("face-sections", int, None, "sections across the face the line load is linear "
+          "between, both ends among them", low=3, high=65, rule="9"),
+)
+
 #: a rating for a life (docs/rating.md): a load spectrum on the material's S-N lines
 RATING_INPUTS = (
     Input("spectrum", str, None, "a load spectrum, CSV or TOML: torque (N·m) with cycles "
@@ -130,13 +151,14 @@ RATING_INPUTS = (
 #: they are refused by name (a class's draw, a life rating)
 REQUIRES = {**dict.fromkeys(("samples", "seed", "quantile", "centre-distance-tolerance"),
                             "grade"),
-            **dict.fromkeys(("speed", "life", "KA", "KV", "material"), "spectrum")}
+            **dict.fromkeys(("speed", "life", "KA", "KV", "material"), "spectrum"),
+            "end-length": "end-relief"}
 
 #: every input of ``fegear solve`` (and of a study case), in the order of ``--help``
 SOLVE_INPUTS = InputTable(PAIR_INPUTS, LOAD_INPUTS[:2], LOAD_INPUTS[2:], MATERIAL_INPUTS,
                           ALLOWABLE_INPUTS, MODEL_INPUTS, DEVIATION_INPUTS)
 #: ``fegear solve``'s inputs: a solve's and a tolerance class's samples (not yet a study's)
-JOB_INPUTS = InputTable(SOLVE_INPUTS.values(), TOLERANCE_INPUTS, RATING_INPUTS)
+JOB_INPUTS = InputTable(SOLVE_INPUTS.values(), TOLERANCE_INPUTS, RATING_INPUTS, FACE_INPUTS)
 
 
 def torque_limit(E: float, m: float, face_width: float, r1: float) -> float:

@@ -29,7 +29,8 @@ from .analyses import Run, asked
 from .case import SolveCase, cycle_positions, revolution_positions
 from .case_file import case_record
 from .estimate import second_level_estimate, second_quality, tooth_estimates
-from .inputs import JOB_INPUTS, PAIR_INPUTS, REQUIRES, TIP_ROUND, check_tip_round
+from .face import SECTIONS, Face
+from .inputs import FACE_INPUTS, JOB_INPUTS, PAIR_INPUTS, REQUIRES, TIP_ROUND, check_tip_round
 from .safety import DEFAULT_ALLOWABLES, allowables_of
 from .summary import add_tooth_estimates, cycle_rows, cycle_summary, pair_summary
 
@@ -86,7 +87,8 @@ class Job:
     whole revolution of gear 1 (:mod:`.revolution`), and the pairs of a tolerance class
     solved beside the exact one (``draw``, :mod:`.samples`) with the share of them the
     verdict's safety factors hold for (``quantile``), and whether the headlines' rates with
-    the deviations are formed (``sensitivities``, :mod:`.ring.sensitivity`), and every input by
+    the deviations are formed (``sensitivities``, :mod:`.ring.sensitivity`), what varies across
+    the face (``face``: solved across it, :mod:`.analyses.face`), and every input by
     name as the job runs it, the derived defaults at their values (``record``:
     :func:`~.case_file.case_record`, what ``--save-case`` writes)."""
 
@@ -101,6 +103,7 @@ class Job:
     rating: Rating | None = None
     record: Mapping[str, object] = field(default_factory=dict)
     cycle_default: str | None = None   # what the output says of a cycle it was not given
+    face: Face | None = None
 
 
 def prepare_job(values: Mapping[str, object]) -> Job:
@@ -135,7 +138,7 @@ def prepare_job(values: Mapping[str, object]) -> Job:
                JOB_INPUTS["quantile"].check(v["quantile"]),
                JOB_INPUTS["sensitivities"].check(v["sensitivities"]), rating,
                case_record(values, _derived(case, len(betas), revolution)),
-               cycle_default=cycle_default)
+               cycle_default=cycle_default, face=_face(v, values, case))
 
 
 def _derived(case: SolveCase, n: int, revolution: bool) -> dict[str, object]:
@@ -147,6 +150,23 @@ def _derived(case: SolveCase, n: int, revolution: bool) -> dict[str, object]:
             "relief-extent": p.relief_extent if p.relief > 0 else None,
             "tip-round": case.edge_radius, "rim1": case.rims[0], "rim2": case.rims[1],
             "positions": per_pitch if revolution or n > 1 else None}
+
+
+def _face(v: dict, given: Mapping[str, object], case: SolveCase) -> Face | None:
+    """What varies across the face (any of :data:`~.inputs.FACE_INPUTS` given), refused by
+    name: an end relief longer than half the face; None where none is given."""
+    if all(v[row.name] is None for row in FACE_INPUTS):
+        return None
+    if v["end-length"] is not None and v["end-relief"] is None:
+        raise ParameterError("end-length", given.get("end-length"), "with --end-relief only "
+                             "(the length of an end relief)")
+    length = v["end-length"] if v["end-length"] is not None else 0.2 * case.thickness
+    if length > 0.5 * case.thickness:
+        raise ParameterError("end-length", length, f"0 < end-length <= half the face width "
+                             f"({0.5 * case.thickness:g} mm)")
+    return Face(v["face-sections"] or SECTIONS, v["misalignment"] or 0.0, v["tilt"] or 0.0,
+                v["crowning"] or 0.0, v["end-relief"] or 0.0,
+                length if v["end-relief"] else 0.0)
 
 
 def _draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | None:
@@ -275,7 +295,8 @@ def _drive(job: Job, analyses, executor: Executor):
         driven = analysis.drive(job, executor)
         if driven is not None:
             return driven
-    solver = RingSolver(None, SolverModes(keep_phases=job.revolution))
+    keep = job.revolution or any(a.keeps_contacts for a in analyses)
+    solver = RingSolver(None, SolverModes(keep_phases=keep))
     return solver, positions_of(solver, job.revolution)(job.case, job.betas, executor), None
 
 

@@ -22,13 +22,14 @@ from __future__ import annotations
 
 from .base import Analysis, Run, Verdict, Writing
 from .cycle import CYCLE
+from .face import FACE
 from .rating import RATING
 from .revolution import REVOLUTION
 from .samples import SAMPLES
 from .sensitivities import SENSITIVITIES
 
 #: every analysis, in the order they solve, print and write
-ANALYSES: tuple[Analysis, ...] = (CYCLE, REVOLUTION, SAMPLES, SENSITIVITIES, RATING)
+ANALYSES: tuple[Analysis, ...] = (CYCLE, REVOLUTION, SAMPLES, SENSITIVITIES, RATING, FACE)
 
 
 def asked(job) -> list[Analysis]:

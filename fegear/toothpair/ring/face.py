@@ -1,6 +1,6 @@
-"""Across the face width: what varies across it (:class:`Face`) and how the gears couple the
-face's sections (:class:`FaceCoupling`); the contact solved over them is
-:mod:`.face_contact`'s (docs/model.md, "Across the face").
+"""Across the face width: how the gears couple the face's sections (:class:`FaceCoupling`);
+what varies across the face is :class:`~fegear.toothpair.face.Face`, the contact solved over
+the sections :mod:`.face_contact`'s (docs/model.md, "Across the face").
 
 The line load is taken linear between ``N`` sections at ζ = −½ … ½ of the face (both ends
 among them), each section holding the 2D contact's points with pressures of its own. A point's
@@ -13,7 +13,8 @@ tooth's and the rim's answer below that depth, spreads along the face,
 
 by the spread S (rows summing to one: a load even across the face is the 2D pair's, to
 rounding). Each section's rigid gap is the 2D one plus what the face's inputs add there
-(:meth:`Face.offsets`: misalignment, helix deviations, crowning, end relief).
+(:meth:`~fegear.toothpair.face.Face.offsets`: misalignment, helix deviations, crowning, end
+relief).
 """
 
 from __future__ import annotations
@@ -22,10 +23,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-
-from ...geometry import gear2_tooth
-from ...planar import rotate
-from .influence import RingContact
 
 #: the spread sums the mirrored loads until the kernel has fallen below this share of its peak
 #: (at most :data:`MOST_IMAGES` each side)
@@ -90,48 +87,3 @@ def face_coupling(sections: int, width: float,
             spread[s, t + 1] += (k * rising) @ wx
     spread /= spread.sum(axis=1, keepdims=True)
     return FaceCoupling(z / width - 0.5, share, spread)
-
-
-@dataclass(frozen=True)
-class Face:
-    """What varies across the face, in µm over the face width unless named otherwise.
-    ``sections``: how many sections the line load is linear between (both ends among them).
-    ``misalignment``: gear 1's axis displaced against gear 2's across the line of centres,
-    from the face's first end (ζ = −½) to its second, + in the direction gear 1's loaded
-    flanks push gear 2's at the pitch point (−x under a positive torque), so that the second
-    end closes first; ``tilt``: the same along the line of centres (+: the centre distance
-    grows towards the second end). ``crowning`` C_β: gear 1's teeth thinned by a parabola
-    across the face, zero at mid-face and C_β at each end; ``end_relief`` C_I over
-    ``end_length`` (mm) from each end, linear. ``helix1``/``helix2``: a tooth's helix slope
-    f_Hβ (+: its loaded flank towards its mate at the second end, as much away at the first)
-    and helix form f_fβ (+: towards its mate at mid-face, a parabola zero at the ends), as
-    (gear-1 or gear-2 tooth, f_Hβ, f_fβ)."""
-
-    sections: int = 9
-    misalignment: float = 0.0
-    tilt: float = 0.0
-    crowning: float = 0.0
-    end_relief: float = 0.0
-    end_length: float = 0.0
-    helix1: tuple[tuple[int, float, float], ...] = ()
-    helix2: tuple[tuple[int, float, float], ...] = ()
-
-    def offsets(self, contact: RingContact, turn: float, zeta: np.ndarray, width: float,
-                z2: int) -> np.ndarray:
-        """What the face's inputs add to the rigid gap (mm) of each of ``contact``'s points
-        (gear 1 turned by ``turn``, rad) at sections ``zeta`` (fractions of the face
-        ``width``, mm, from its middle): points × sections. A displacement d of gear 1 moves
-        a point's gap by −n · d (n its outward normal in the fixed frame)."""
-        n = rotate(contact.normal, turn)
-        closing = n[:, 0] * self.misalignment - n[:, 1] * self.tilt   # −n · d per unit ζ
-        out = np.outer(closing, zeta)
-        out += self.crowning * (2.0 * zeta) ** 2
-        if self.end_relief:
-            beyond = np.abs(zeta) * width - (0.5 * width - self.end_length)
-            out += self.end_relief * np.clip(beyond / self.end_length, 0.0, None)
-        for teeth, helix in ((contact.teeth, self.helix1),
-                             (gear2_tooth(contact.feet, z2), self.helix2)):
-            for tooth, slope, form in helix:
-                on = teeth == tooth
-                out[on] -= slope * zeta + form * (1.0 - (2.0 * zeta) ** 2)
-        return 1e-3 * out

@@ -17,8 +17,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..case import ContactChecks, PairSolution, SolveCase
+from ..face import Face
 from .contact import RingContactSolution, rigid_gap
-from .face import Face, FaceCoupling
+from .face import FaceCoupling
 from .face_contact import FaceSolution, FaceStart, solve_face_contact
 from .phases import Phases
 from .readout import brief_stresses
@@ -29,27 +30,44 @@ from .results import RingDetail, tooth_results
 class FaceSections:
     """One position across the face: the sections' places and coupling, the contact's
     solution over them, each gear-1 tooth's line load (N/mm) at each section (teeth ×
-    sections; the teeth with a grid, in ``teeth``) and each section's pair."""
+    sections; the teeth with a grid, in ``teeth``) and each section's pair; the face's
+    offsets of the rigid gaps (mm, points × sections), the rigid gap's rate with the turn at
+    the solution (mm/rad, by point) and each point's grid."""
 
     coupling: FaceCoupling
     solution: FaceSolution
     teeth: tuple[int, ...]
     line_loads: np.ndarray
     sections: tuple[PairSolution, ...]
+    offsets: np.ndarray
+    rate: np.ndarray
+    grid: np.ndarray
 
     @property
     def load_factor(self) -> float:
-        """K_Hβ: the largest line load of any tooth at any section over that tooth's mean
-        across the face (of the teeth that carry load), the face load factor as ISO 6336-1
-        defines it."""
+        """K_Hβ: the largest line load of any tooth at any section over the largest mean
+        line load of a tooth across the face (the most loaded tooth's, which the 2D pair
+        spreads evenly): ISO 6336-1's face load factor for a mesh whose load several teeth
+        share. A tooth barely touching at one end does not set it, as its own ratio would."""
         mean = self.line_loads @ self.coupling.share
-        loaded = mean > 0
-        return float((self.line_loads[loaded].max(axis=1) / mean[loaded]).max())
+        return float(self.line_loads.max() / mean.max())
+
+    def headline(self, s: int) -> dict[str, float]:
+        """Section ``s``'s headlines (:meth:`PairSolution.headline`); where the face's offsets
+        lift the section off every tooth its pressures are zero, its roots still bent by the
+        loads beside it."""
+        section = self.sections[s]
+        if any(t.load_N > 0 for t in section.teeth):
+            return section.headline()
+        return {"root_stress_gear1_MPa": section.root_stress[0],
+                "root_stress_gear2_MPa": section.root_stress[1],
+                "contact_pressure_MPa": 0.0, "flank_contact_pressure_MPa": 0.0,
+                "von_mises_max_MPa": section.von_mises_max}
 
     def worst(self, key: str) -> int:
         """The section where the headline ``key`` (a :meth:`PairSolution.headline` key) is
         largest."""
-        return int(np.argmax([s.headline()[key] for s in self.sections]))
+        return int(np.argmax([self.headline(s)[key] for s in range(len(self.sections))]))
 
 
 def face_sections(model, phases: Phases, case: SolveCase, state, face: Face,
@@ -90,4 +108,5 @@ def face_sections(model, phases: Phases, case: SolveCase, state, face: Face,
 
     return FaceSections(coupling, solved, tuple(g.tooth for g in contact.grids),
                         solved.line_loads(contact),
-                        tuple(section(s) for s in range(coupling.sections)))
+                        tuple(section(s) for s in range(coupling.sections)), offsets, rate,
+                        contact.grid_index)

@@ -1,0 +1,63 @@
+"""What the solve across the face gives a designer: K_Hβ beside ISO 6336-1's method C, each
+headline at its worst section and how far it is above the 2D pair's (for the roots, K_Fβ as
+fegear measures it), the table ``fegear solve`` prints, face.csv (each loaded tooth's line
+load at each section at each position) and the contact pattern (:mod:`.plot`)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from ....files import write_csv
+from ....quantities import HEADLINES
+from .plot import face_png
+
+
+def face_summary(rows: list[dict], coupling, face) -> dict:
+    """``summary["face"]``: the inputs across the face, the sections' places, a row a
+    position (:func:`~.solve.position_entry`), and over the positions the largest K_Hβ (with
+    method C's at that position) and each headline's largest, where and its ratio to the 2D
+    pair's at the same position."""
+    top = max(rows, key=lambda r: r["K_Hbeta"])
+    worst = {}
+    for q in HEADLINES:
+        row = max(rows, key=lambda r: r["worst"][q.key]["value"])
+        worst[q.key] = {**row["worst"][q.key], "position_deg": row["position_deg"]}
+    return {"inputs": {"sections": face.sections, "misalignment_um": face.misalignment,
+                       "tilt_um": face.tilt, "crowning_um": face.crowning,
+                       "end_relief_um": face.end_relief, "end_length_mm": face.end_length},
+            "zeta": [float(z) for z in coupling.zeta],
+            "K_Hbeta": top["K_Hbeta"], "K_Hbeta_method_c": top["K_Hbeta_method_c"],
+            "at_position_deg": top["position_deg"], "worst": worst, "positions": rows}
+
+
+def face_table(s: dict, width: float) -> str:
+    """The terminal's table: each headline's 2D value, its worst section's and their ratio,
+    then K_Hβ beside method C's."""
+    lines = ["| stress | 2D MPa | worst section MPa | ratio | where |",
+             "|---|---:|---:|---:|---|"]
+    for q in HEADLINES:
+        w = s["worst"][q.key]
+        ratio = w["ratio"]
+        flat = "–" if not ratio else f"{w['value'] / ratio:.1f}"
+        z = (w["zeta"] + 0.5) * width
+        lines.append(f"| {q.label} | {flat} | {w['value']:.1f} | "
+                     f"{'–' if ratio is None else f'{ratio:.3f}'} | {z:.2f} mm from the first "
+                     f"end, β {w['position_deg']:.3g}° |")
+    lines += ["", f"K_Hβ {s['K_Hbeta']:.3f} (largest line load over its tooth's mean, at β "
+                  f"{s['at_position_deg']:.3g}°); ISO 6336-1 method C for the same mismatch "
+                  f"and the pair's own approach: {s['K_Hbeta_method_c']:.3f}"]
+    return "\n".join(lines)
+
+
+def write_face_outputs(s: dict, out: Path, title: str, width: float,
+                       pictures: bool = True) -> dict[str, Path]:
+    """face.csv (a row a position, tooth and section: its place and the line load) and,
+    with ``pictures``, face.png."""
+    rows = ([r["position_deg"], int(tooth), k, (z + 0.5) * width, load]
+            for r in s["positions"] for tooth, loads in r["line_loads_N_per_mm"].items()
+            for k, (z, load) in enumerate(zip(s["zeta"], loads)))
+    files = {"face_csv": write_csv(out / "face.csv", ["position_deg", "tooth", "section",
+                                                      "z_mm", "line_load_N_per_mm"], rows)}
+    if pictures:
+        files["face_png"] = face_png(out / "face.png", s, title, width)
+    return files

@@ -1,0 +1,94 @@
+"""The pair solved across the face at the job's positions (``fegear solve --misalignment`` and
+the options beside it): each position on the contact the solver kept for it
+(:func:`~fegear.toothpair.ring.face_results.face_sections`), its sections' headlines, the
+teeth's line loads and K_Hβ, with ISO 6336-1's method C beside it for the same mismatch and
+the pair's own approach."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .... import progress
+from ....geometry import gear1_profile
+from ...case import HEADLINE
+from ...face import Face
+from ...positions import Clearances
+from ...ring.face import FaceCoupling, exponential_kernel, face_coupling
+from ...ring.face_results import FaceSections, face_sections
+
+#: the far field's decay along the face, in tooth heights (4 e1: gear 2's tip to its root)
+DECAY = 1.0
+
+
+def coupling_of(case, face: Face) -> FaceCoupling:
+    """The sections of ``face`` across ``case``'s face width and their coupling
+    (docs/model.md, "Across the face")."""
+    height = 4.0 * case.params.e1
+    return face_coupling(face.sections, case.thickness, exponential_kernel(DECAY * height))
+
+
+def method_c(mismatch_um: float, approach_um: float) -> float:
+    """ISO 6336-1's method C face load factor for a linear mismatch F_βy (µm over the face)
+    on a mesh whose mean load approaches it by ``approach_um`` (F_m/b over c_γβ): 1 + F_βy
+    c_γβ / (2 F_m/b) while that is at most 2, else √(2 F_βy c_γβ / (F_m/b)) (the face only
+    partly in contact).
+
+    >>> method_c(0.0, 5.0), method_c(5.0, 5.0), method_c(40.0, 5.0)
+    (1.0, 1.5, 4.0)
+    """
+    ratio = abs(mismatch_um) / approach_um
+    return 1.0 + 0.5 * ratio if ratio <= 2.0 else math.sqrt(2.0 * ratio)
+
+
+def solve_face(solver, solutions, face: Face) -> list[tuple[object, FaceSections]]:
+    """Each of ``solutions`` (the exact pair's, on ``solver``'s kept contacts) solved across
+    ``face``: (solution, its sections)."""
+    case = solutions[0].case
+    coupling = coupling_of(case, face)
+    betas = tuple(s.case.beta for s in solutions)
+    states = dict(Clearances(case, gear1_profile(case.params), betas).get())
+    out = []
+    for k, sol in enumerate(solutions, 1):
+        progress.stage(f"across the face: position {k} of {len(solutions)}, "
+                       f"{face.sections} sections")
+        found = face_sections(solver.model, solver.phases, sol.case, states[sol.case.beta],
+                              face, coupling)
+        if found is None:
+            raise RuntimeError("no contact kept at a position solved across the face")
+        out.append((sol, found))
+    return out
+
+
+def position_entry(sol, sections: FaceSections) -> dict:
+    """One position's summary row: K_Hβ, method C's, each headline at its worst section with
+    its ratio to the 2D pair's, and each tooth's line load along the face."""
+    flat = sol.headline()
+    worst = {}
+    for key in HEADLINE:
+        s = sections.worst(key)
+        value = sections.headline(s)[key]
+        worst[key] = {"value": value, "section": s,
+                      "zeta": float(sections.coupling.zeta[s]),
+                      "ratio": value / flat[key] if flat[key] else None}
+    mismatch, approach = _mismatch_and_approach(sol, sections)
+    loads = {str(t): [float(x) for x in row]
+             for t, row in zip(sections.teeth, sections.line_loads) if row.any()}
+    return {"position_deg": math.degrees(sol.case.beta), "K_Hbeta": sections.load_factor,
+            "K_Hbeta_method_c": method_c(mismatch, approach), "mismatch_um": mismatch,
+            "approach_um": approach, "worst": worst, "line_loads_N_per_mm": loads}
+
+
+def _mismatch_and_approach(sol, sections: FaceSections) -> tuple[float, float]:
+    """The most loaded tooth's mismatch across the face at its most loaded point (µm: the
+    face's offset of the rigid gap from the first end to the second there) and the 2D pair's
+    elastic approach there (µm: its rotation past the first touch times the gap's rate with
+    the turn)."""
+    mean = sections.solution.pressure @ sections.coupling.share
+    tooth = int(np.argmax(sections.line_loads @ sections.coupling.share))
+    on = np.flatnonzero(sections.grid == tooth)
+    i = on[int(np.argmax(mean[on]))]
+    offsets = sections.offsets[i]
+    approach = abs(sections.rate[i]) * (sol.rotation - sol.first_touch) * 1e3
+    return float(1e3 * (offsets[-1] - offsets[0])), float(approach)

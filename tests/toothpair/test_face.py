@@ -1,0 +1,58 @@
+"""The solve across the face as a job (``fegear solve --misalignment …``): its inputs refused
+by name; an even face's stresses are the 2D pair's (ratio one) and K_Hβ one; a misaligned face
+is worst at the end it closes, with method C formed from the mismatch and the approach it
+states; face.csv holds a row a tooth and section."""
+
+import csv
+
+import pytest
+
+from fegear.errors import ParameterError
+from fegear.toothpair import prepare_job, solve_job
+from fegear.toothpair.analyses.face.solve import method_c
+from fegear.toothpair.present.output import write_job
+
+BASE = {"quality": "coarse", "no-estimate": True}
+
+
+@pytest.mark.parametrize("values, name", [
+    ({"end-length": 1.0}, "end-length"),
+    ({"end-relief": 2.0, "end-length": 2.6}, "end-length"),
+    ({"misalignment": 250.0}, "misalignment"),
+    ({"face-sections": 2}, "face-sections"),
+    ({"crowning": -1.0}, "crowning"),
+])
+def test_bad_face_inputs_are_refused_by_name(values, name):
+    with pytest.raises(ParameterError) as exc:
+        prepare_job({**BASE, **values})
+    assert exc.value.name == name
+
+
+def test_no_face_input_no_face():
+    assert prepare_job(BASE).face is None
+    assert prepare_job({**BASE, "crowning": 3.0}).face.crowning == 3.0
+
+
+def test_an_even_face_is_the_2d_pair():
+    s = solve_job(prepare_job({**BASE, "misalignment": 0.0, "face-sections": 5})).summary
+    face = s["face"]
+    assert face["K_Hbeta"] == pytest.approx(1.0, abs=1e-9)
+    for key in ("root_stress_gear1_MPa", "root_stress_gear2_MPa", "contact_pressure_MPa",
+                "flank_contact_pressure_MPa"):
+        assert face["worst"][key]["ratio"] == pytest.approx(1.0, abs=1e-9), key
+
+
+def test_a_misaligned_face_is_worst_where_it_closes(tmp_path):
+    solved = solve_job(prepare_job({**BASE, "misalignment": 6.0, "face-sections": 5}))
+    face = solved.summary["face"]
+    root = face["worst"]["root_stress_gear1_MPa"]
+    assert root["zeta"] == 0.5 and root["ratio"] > 1.05
+    row = face["positions"][0]
+    assert row["mismatch_um"] == pytest.approx(-6.0 * 1.0, rel=0.5)   # about f along the load
+    assert row["K_Hbeta_method_c"] == method_c(row["mismatch_um"], row["approach_um"])
+    assert face["K_Hbeta"] > face["K_Hbeta_method_c"] > 1.0
+    files = write_job(solved, tmp_path, pictures=False)
+    with open(files["face_csv"]) as f:
+        rows = list(csv.DictReader(f))
+    assert len(rows) == 5 * len(row["line_loads_N_per_mm"])
+    assert {r["section"] for r in rows} == {"0", "1", "2", "3", "4"}
