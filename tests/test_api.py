@@ -30,7 +30,7 @@ def test_solve_gives_the_numbers_the_command_prints(result, capsys):
 
 def test_write_writes_what_out_writes(result, tmp_path):
     """The files of ``fegear solve --out`` (pictures left out here:
-    tests/toothpair/test_outputs.py draws them)."""
+    tests/toothpair/present/test_outputs.py draws them)."""
     files = result.write(tmp_path / "py", pictures=False)
     assert sorted(p.name for p in (tmp_path / "py").iterdir()) == [
         "gear1.vtu", "gear1_contact.vtu", "gear2.vtu", "gear2_contact.vtu", "summary.json"]

@@ -5,7 +5,8 @@ either end; each input moves the sections' rigid gaps as its definition says."""
 import numpy as np
 import pytest
 
-from fegear.toothpair.ring.face import Face, exponential_kernel, face_coupling
+from fegear.toothpair.face import Face
+from fegear.toothpair.ring.face import exponential_kernel, face_coupling
 
 
 class _Contact:

@@ -11,9 +11,10 @@ import pytest
 
 from fegear.fe import blas_threads
 from fegear.running import SERIAL
+from fegear.toothpair.face import Face
 from fegear.toothpair.positions import positions_of
 from fegear.toothpair.ring.contact import rigid_gap, solve_ring_contact
-from fegear.toothpair.ring.face import Face, exponential_kernel, face_coupling
+from fegear.toothpair.ring.face import exponential_kernel, face_coupling
 from fegear.toothpair.ring.face_contact import FaceStart, solve_face_contact
 from fegear.toothpair.ring.influence import near_field
 from fegear.toothpair.ring.solver import RingSolver, SolverModes

@@ -11,8 +11,9 @@ import pytest
 from fegear.fe import blas_threads
 from fegear.geometry import gear1_profile
 from fegear.running import SERIAL
+from fegear.toothpair.face import Face
 from fegear.toothpair.positions import Clearances, positions_of
-from fegear.toothpair.ring.face import Face, exponential_kernel, face_coupling
+from fegear.toothpair.ring.face import exponential_kernel, face_coupling
 from fegear.toothpair.ring.face_results import face_sections
 from fegear.toothpair.ring.solver import RingSolver, SolverModes
 

@@ -82,7 +82,7 @@ def _revolution(inputs, keep_phases):
 
 
 # the deviated revolutions slow (8-16 s each): in the default run a deviated revolution's worst
-# position is checked against a solve there placed anew (tests/toothpair/test_revolution.py)
+# position is checked against a solve there placed anew (tests/toothpair/analyses/test_revolution.py)
 @pytest.mark.parametrize("deviated, inputs", [
     (0, {}),
     pytest.param(1, {"pitch-deviation": ["1:11=5"]}, marks=pytest.mark.slow),
