@@ -4,10 +4,10 @@ gear-2 pitches away.
 Both gears are rings of identical sectors, so the pair at β + k·p2 (gear 2 turned k of its
 pitches, gear 1 k of its own) is the pair at β with every tooth and sector renumbered: the
 grids, the influence matrix A, the loads per unit hat pressure and the matching points are the
-same numbers (:func:`turned` renumbers them and turns the gear-frame points). Only the rigid
-gaps differ, where the pair's deviations differ from tooth to tooth. A revolution's z1 pitches
-meet each place within a pitch (a phase) z1 times; :class:`Phases` keeps one contact a phase
-and solves the other pitches as gap vectors on it:
+same numbers (:func:`~.turning.turned` renumbers them and turns the gear-frame points). Only
+the rigid gaps differ, where the pair's deviations differ from tooth to tooth. A revolution's
+z1 pitches meet each place within a pitch (a phase) z1 times; :class:`Phases` keeps one
+contact a phase and solves the other pitches as gap vectors on it:
 
 * the first position of a phase is placed and solved as any position; then the phase's
   contact is made for its rotation, with fine grids on every paired tooth and one more either
@@ -36,20 +36,18 @@ import numpy as np
 
 from ...errors import ContactError
 from ...geometry import Placed, gear2_tooth, pitch_phase
-from ...planar import rotate
 from ..case import PairSolution, SolveCase
 from ..positions import Trial
 from ..teeth import candidate_data, choose_teeth
 from .circles import FootCircles, foot_circles
 from .contact import RingContactSolution, rigid_gap, solve_ring_contact, touch_rotation
-from .grid import ToothGrid
-from .influence import ColumnRule, Matching, RingContact, assemble_contact
+from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel
 from .placement import PLACEMENT, REACH, REACH_FLOOR, GridPlacement, place_grids
 from .readout import SurfaceStrains
 from .results import RingDetail, tooth_result
-from .side import Located
 from .stresses import RingStresses, RootZone
+from .turning import turned
 
 #: rigid gaps (mm) that differ by less than this anywhere are the same contact problem: 0.1 nm,
 #: a ten-thousandth of the smallest deviation given in whole µm, far above the turned
@@ -399,39 +397,3 @@ def _teeth_hold(case: SolveCase, state, kept: Kept, pitches: int, contact: RingC
                 or elastic_um > (1.0 + PLACEMENT) * kept.elastic_um):
             return False
     return True
-
-
-def turned(model: RingModel, contact: RingContact, pitches: int, beta: float,
-           placed: Placed | None) -> RingContact:
-    """``contact`` at the rolling angle ``beta``, ``pitches`` gear-2 pitches after the one it
-    was assembled at (module docstring): gear 1 has turned ``pitches`` of its pitches, so the
-    tooth that stood at a place is the one ``pitches`` before it, and gear 2's likewise; the
-    gear-frame points turn back by as much, the template-frame numbers stay. ``placed``: the
-    pair's deviations at ``beta``."""
-    g1, g2 = model.gears
-    turn1, turn2 = pitches * g1.pitch, pitches * g2.pitch
-    grids = tuple(turned_grid(g, pitches, g1.count, g1.pitch) for g in contact.grids)
-    return RingContact(
-        beta, contact.turn + turn1, grids, contact.offsets, rotate(contact.x, -turn1),
-        rotate(contact.normal, -turn1), contact.weight,
-        ({(s - pitches) % g1.count: b for s, b in contact.loads[0].items()},
-         {(s - pitches) % g2.count: b for s, b in contact.loads[1].items()}),
-        (_turned_matching(contact.matching[0], pitches, g1.count, turn1),
-         _turned_matching(contact.matching[1], pitches, g2.count, turn2)),
-        (rotate(contact.facing[0], -turn2), rotate(contact.facing[1], -turn2)),
-        contact.A, contact.formed, contact.feet - turn2, placed)
-
-
-def turned_grid(grid: ToothGrid, pitches: int, count: int, pitch: float) -> ToothGrid:
-    """``grid`` on the tooth ``pitches`` before its own (its points turned back by as many
-    pitches, the tooth numbered within the gear)."""
-    tooth = (grid.tooth - pitches) % count
-    angle = (tooth - grid.tooth) * pitch
-    return replace(grid, tooth=tooth, phi=grid.phi + angle, x=rotate(grid.x, angle),
-                   normal=rotate(grid.normal, angle), coarse=None)
-
-
-def _turned_matching(m: Matching, pitches: int, count: int, turn: float) -> Matching:
-    """Matching points of sectors ``pitches`` before their own: the same template points."""
-    at = Located(np.mod(m.at.sector - pitches, count), m.at.local, m.at.turn - turn)
-    return replace(m, at=at)

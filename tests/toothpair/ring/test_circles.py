@@ -9,7 +9,7 @@ from fegear.geometry import Deviations, Placed, Runout, ToothDeviation, gear2_to
 from fegear.toothpair.ring.circles import TOLERANCE, circle_gaps, foot_circles, moved
 from fegear.toothpair.ring.contact import rigid_gap, solve_ring_contact
 from fegear.toothpair.ring.influence import ColumnRule, assemble_contact
-from fegear.toothpair.ring.phases import turned
+from fegear.toothpair.ring.turning import turned
 
 
 @pytest.fixture(scope="module")
