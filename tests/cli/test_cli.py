@@ -4,6 +4,7 @@ import json
 import os
 import subprocess
 import sys
+import warnings
 
 import numpy as np
 import pytest
@@ -80,7 +81,41 @@ SCHEDULER_ERROR = "--scheduler 'tcp://127.0.0.1:9': cannot connect"
     # slow: it waits out the connection's 10 s timeout (the test after this one waits 0.5 s)
     pytest.param("solve", SCHEDULER_ARGS, SCHEDULER_ERROR, marks=pytest.mark.slow),
 ])
-def test_user_errors_exit_2_with_one_line(tmp_path, command, args, fragment):
+def test_user_errors_exit_2_with_one_line(tmp_path, capsys, command, args, fragment):
+    """In this process (a process of its own costs 0.2-3 s; the test below starts one per
+    command), with the warnings a process would print on stderr counted as lines of it."""
+    from fegear.cli import main
+
+    out = tmp_path / "o"
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("default")
+        try:
+            code = main([command, *args, "--out", str(out)])
+        except SystemExit as exc:   # argparse's own refusals
+            code = exc.code
+    std = capsys.readouterr()
+    assert code == 2, std.err
+    assert std.out == ""
+    lines = std.err.strip().splitlines() + [
+        str(w.message) for w in seen if not issubclass(w.category, SHOWN_ONLY_IN_MAIN)]
+    assert len(lines) == 1 and lines[0].startswith("fegear: error:"), lines
+    assert fragment in lines[0]
+    assert not out.exists() or not any(out.iterdir())
+
+
+#: what Python's default warning filters do not print for a module other than __main__
+SHOWN_ONLY_IN_MAIN = (DeprecationWarning, PendingDeprecationWarning, ImportWarning,
+                      ResourceWarning)
+
+
+@pytest.mark.parametrize("command,args,fragment", [
+    ("profile", ["--h1", "0.9"], "admissible: 0.0500 <= h1 <= 0.83"),
+    ("hertz", ["--load", "nan"], "load = nan is not admissible"),
+    ("solve", ["--torque", "-5"], "torque = -5.0 is not admissible"),
+])
+def test_a_user_error_is_one_line_from_the_command_itself(tmp_path, command, args, fragment):
+    """The test above through ``python -m fegear``, once a command: exit 2, nothing on
+    stdout, one line on stderr and no traceback."""
     out = tmp_path / "o"
     r = run(command, *args, "--out", str(out))
     assert r.returncode == 2, r.stderr
