@@ -53,6 +53,9 @@ def add_parser(sub) -> None:
     p.add_argument("--spectrum", action="store_true",
                    help="also time fegear solve --positions 24 with a 4-level --spectrum "
                         "against the cycle alone, 3 runs each (about half a minute)")
+    p.add_argument("--face", action="store_true",
+                   help="also time fegear solve across the face (--misalignment 10) against "
+                        "the 2D pair, one position and 24, 3 runs each (about a minute)")
     p.add_argument("--no-peer", action="store_true",
                    help="do not run CalculiX beside the ladders even if ccx is installed")
     p.add_argument("--study-only", action="store_true",
@@ -176,6 +179,6 @@ def _plan(a: argparse.Namespace) -> BenchPlan:
                      scaling=tuple(int(z) for z in teeth), study_cases=study_cases,
                      pair_args=tuple(x for k, v in given.items() for x in (f"--{k}", f"{v}")),
                      peer=not a.no_peer, paper_study=a.paper_study,
-                     tolerance_class=a.tolerance_class, spectrum=a.spectrum,
+                     tolerance_class=a.tolerance_class, spectrum=a.spectrum, face=a.face,
                      files=own["files"], only=only,
                      history=None if a.history is None else Path(a.history))

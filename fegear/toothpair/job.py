@@ -138,7 +138,7 @@ def prepare_job(values: Mapping[str, object]) -> Job:
                JOB_INPUTS["quantile"].check(v["quantile"]),
                JOB_INPUTS["sensitivities"].check(v["sensitivities"]), rating,
                case_record(values, _derived(case, len(betas), revolution)),
-               cycle_default=cycle_default, face=_face(v, values, case))
+               cycle_default=cycle_default, face=_face(v, values, case, draw))
 
 
 def _derived(case: SolveCase, n: int, revolution: bool) -> dict[str, object]:
@@ -152,11 +152,17 @@ def _derived(case: SolveCase, n: int, revolution: bool) -> dict[str, object]:
             "positions": per_pitch if revolution or n > 1 else None}
 
 
-def _face(v: dict, given: Mapping[str, object], case: SolveCase) -> Face | None:
+def _face(v: dict, given: Mapping[str, object], case: SolveCase,
+          draw: Draw | None) -> Face | None:
     """What varies across the face (any of :data:`~.inputs.FACE_INPUTS` given), refused by
-    name: an end relief longer than half the face; None where none is given."""
+    name: an end relief longer than half the face, or a face with a tolerance class (its
+    pairs across the face are not built); None where none is given."""
     if all(v[row.name] is None for row in FACE_INPUTS):
         return None
+    if draw is not None:
+        name = next(row.name for row in FACE_INPUTS if v[row.name] is not None)
+        raise ParameterError(name, v[name], "without --grade (a class's pairs across the "
+                             "face are not built: solve the exact pair across the face)")
     if v["end-length"] is not None and v["end-relief"] is None:
         raise ParameterError("end-length", given.get("end-length"), "with --end-relief only "
                              "(the length of an end relief)")
@@ -295,8 +301,7 @@ def _drive(job: Job, analyses, executor: Executor):
         driven = analysis.drive(job, executor)
         if driven is not None:
             return driven
-    keep = job.revolution or any(a.keeps_contacts for a in analyses)
-    solver = RingSolver(None, SolverModes(keep_phases=keep))
+    solver = RingSolver(None, SolverModes(keep_phases=job.revolution))
     return solver, positions_of(solver, job.revolution)(job.case, job.betas, executor), None
 
 

@@ -170,6 +170,19 @@ def drive(case: SolveCase, betas, solver: PositionModel,
     return tuple(sols[0] for sols in _chains(case, betas, solver, profile, executor, one))
 
 
+def drive_along(case: SolveCase, betas, solver: PositionModel, also,
+                executor: Executor = SERIAL) -> tuple[tuple[PairSolution, object], ...]:
+    """:func:`drive`, with ``also(case, state, solution)`` done at each position as soon as it
+    is solved, in the process that solved it (where what the solver kept there lives: a
+    contact to solve across the face on): (solution, what ``also`` gave) a position, in the
+    order of ``betas``."""
+    def one(k: int, at: SolveCase, state, near: tuple | None) -> tuple:
+        sol = _clocked(solve_position, at, state, solver, near and near[0])
+        return sol, also(at, state, sol)
+
+    return tuple(_chains(case, betas, solver, None, executor, one))
+
+
 def drive_torques(case: SolveCase, betas, torques, solver: SharesContacts,
                   executor: Executor = SERIAL) -> list[tuple[PairSolution, ...]]:
     """``case`` at each torque of ``torques`` (N·m) and each rolling angle of ``betas``, as

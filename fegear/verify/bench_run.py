@@ -23,7 +23,7 @@ from . import bench, history
 from .ccx_files import PeerError
 from .pair_targets import PEER_KEYS, PairRuns, pair_targets, sector_error
 from .peer_contact import CASES, LEVELS, contact_peer, peer_table
-from .ring_bench import SINGLE_TARGET, class_run, spectrum_run
+from .ring_bench import SINGLE_TARGET, class_run, face_run, spectrum_run
 from .sector import cross_check, cross_table
 
 if TYPE_CHECKING:
@@ -55,6 +55,8 @@ class BenchPlan:
     also time studies/paper_trends.toml; ``tolerance_class``: also time a tolerance class's
     samples over the cycle (:func:`~.ring_bench.class_run`); ``spectrum``: also time a 4-level
     load spectrum over the cycle against the cycle (:func:`~.ring_bench.spectrum_run`);
+    ``face``: also time one position and a cycle across the face against the 2D pair
+    (:func:`~.ring_bench.face_run`);
     ``files``: pairs of whole ``fegear solve`` commands without and with ``--out`` that time
     the files' cost (:func:`~.bench.files_run`; 0: none); ``only``: one of :data:`ONLY`;
     ``out``: the directory (checked, made when there is something to write); ``history``: the
@@ -77,6 +79,7 @@ class BenchPlan:
     paper_study: bool = False
     tolerance_class: bool = False
     spectrum: bool = False
+    face: bool = False
     files: int = 0
     only: str = ""
     history: Path | None = None
@@ -113,7 +116,8 @@ def _everything(plan: BenchPlan, say: Say) -> None:
     runs = replace(runs, sector=sector,
                    study=verify.paper_study_s() if plan.paper_study else None,
                    tolerance=class_run(plan.pair_args) if plan.tolerance_class else None,
-                   spectrum=spectrum_run(plan.pair_args) if plan.spectrum else None)
+                   spectrum=spectrum_run(plan.pair_args) if plan.spectrum else None,
+                   face=face_run(plan.pair_args) if plan.face else None)
     files = None
     if plan.files:
         say("")
@@ -230,6 +234,9 @@ def _ring_record(runs: PairRuns, scale: list, targets: list[str],
         record["tolerance_class"] = {"seconds": runs.tolerance[0], **runs.tolerance[1]}
     if runs.spectrum is not None:
         record["spectrum"] = {"cycle_s": runs.spectrum[0], "spectrum_s": runs.spectrum[1]}
+    if runs.face is not None:
+        record["face"] = {name: {"flat_s": flat, "face_s": face}
+                          for name, (flat, face) in runs.face.items()}
     if files is not None:
         record["files"] = {"args": list(files.args), "without_s": list(files.without),
                            "with_out_s": list(files.written), "cost_s": files.cost_s}

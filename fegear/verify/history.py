@@ -59,6 +59,8 @@ def bench_metrics(record: dict) -> dict[str, float]:
     if ring.get("spectrum") is not None:
         s = ring["spectrum"]
         out["4-level spectrum / its cycle, whole commands [×]"] = s["spectrum_s"] / s["cycle_s"]
+    for name, f in (ring.get("face") or {}).items():
+        out[f"across the face / 2D, {name}, whole commands [×]"] = f["face_s"] / f["flat_s"]
     return out
 
 

@@ -32,7 +32,8 @@ class PairRuns:
     where they were run the mesh cycle, the sector model's ladder (with CalculiX's times on
     its meshes), the paper study (s, cases), the model cache's runs and a tolerance class's
     samples (s, their counts: :func:`~.ring_bench.class_run`) and a load spectrum's cycle (s
-    alone, s with the spectrum: :func:`~.ring_bench.spectrum_run`)."""
+    alone, s with the spectrum: :func:`~.ring_bench.spectrum_run`) and the pair across the
+    face against the 2D one (:func:`~.ring_bench.face_run`)."""
 
     default: RingRun
     extra: RingRun
@@ -43,6 +44,7 @@ class PairRuns:
     cached: CacheRuns | None = None
     tolerance: tuple[float, dict] | None = None
     spectrum: tuple[float, float] | None = None
+    face: dict[str, tuple[float, float]] | None = None
 
 
 def sector_error(values: dict, keys=None) -> float:
@@ -86,6 +88,11 @@ def pair_targets(runs: PairRuns, peer_target: float = PEER_TARGET) -> list[str]:
                      f"{alone:.2f} s alone, "
                      f"{rated / alone:.2f}× (target <= {rb.SPECTRUM_TARGET:g}×): "
                      f"{_status(rated / alone <= rb.SPECTRUM_TARGET)}")
+    for name, (flat, face) in (runs.face or {}).items():
+        target = rb.FACE_TARGETS[name]
+        lines.append(f"* {name} across the face (`{' '.join(rb.FACE_ARGS)}`): {face:.2f} s "
+                     f"against {flat:.2f} s for the 2D pair, {face / flat:.2f}× (target <= "
+                     f"{target:g}×): {_status(face / flat <= target)}")
     if runs.sector is not None:
         lines += _peer(runs.sector, runs.ring, peer_target)
     return lines

@@ -58,6 +58,14 @@ SPECTRUM_ARGS = ("--positions", "24", "--no-estimate")
 SPECTRUM_KA = "1.1"
 SPECTRUM_TARGET = 2.0
 SPECTRUM_RUNS = 3
+#: the pair across the face (issue 69): 10 µm of misalignment at the default sections, one
+#: position at most 2× the 2D one and a 24-position cycle at most 3× the 2D cycle, whole
+#: commands without the estimate
+FACE_ARGS = ("--misalignment", "10")
+FACE_CASES = {"one position": ("--no-estimate",),
+              "24 positions": ("--positions", "24", "--no-estimate")}
+FACE_TARGETS = {"one position": 2.0, "24 positions": 3.0}
+FACE_RUNS = 3
 
 
 @dataclass(frozen=True)
@@ -385,3 +393,22 @@ def spectrum_run(pair_args: tuple[str, ...]) -> tuple[float, float]:
             rated.append(command_s([*pair_args, *SPECTRUM_ARGS, "--spectrum", str(path),
                                     "--KA", SPECTRUM_KA], env))
     return statistics.median(alone), statistics.median(rated)
+
+
+def face_run(pair_args: tuple[str, ...]) -> dict[str, tuple[float, float]]:
+    """Wall times (s, medians of :data:`FACE_RUNS` alternated runs) of ``fegear solve`` for
+    each of :data:`FACE_CASES` (the pair's options ``pair_args``) as the 2D pair and across the
+    face (:data:`FACE_ARGS`), each the whole command in a fresh process: case → (2D, face)."""
+    import statistics
+    import tempfile
+
+    out = {}
+    with tempfile.TemporaryDirectory(prefix="fegear-bench-face-") as tmp:
+        env = {"FEGEAR_CACHE_DIR": f"{tmp}/cache"}
+        for name, args in FACE_CASES.items():
+            flat, face = [], []
+            for _ in range(FACE_RUNS):
+                flat.append(command_s([*pair_args, *args], env))
+                face.append(command_s([*pair_args, *args, *FACE_ARGS], env))
+            out[name] = (statistics.median(flat), statistics.median(face))
+    return out

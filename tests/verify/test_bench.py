@@ -285,3 +285,20 @@ def test_a_spectrum_is_judged_against_its_cycle_alone():
     assert line(2.5, 5.1).endswith("MISSED")
     got = bench_metrics({"ring": {"spectrum": {"cycle_s": 2.0, "spectrum_s": 3.0}}})
     assert got["4-level spectrum / its cycle, whole commands [×]"] == 1.5
+
+
+def test_the_face_is_judged_against_the_2d_pair():
+    from fegear.verify import ring_bench as rb
+    from fegear.verify.history import bench_metrics
+    from fegear.verify.pair_targets import PairRuns, pair_targets
+
+    ref = dict(rb.SECTOR_REFERENCE, von_mises_max_MPa=rb.VON_MISES_RESOLVED)
+    one = rb.RingRun("standard", {"mesh": 1.0}, 1.0, 500.0, 1, 1, ref, {})
+    runs = PairRuns(one, one, [one], face={"one position": (2.0, 3.9),
+                                           "24 positions": (3.0, 9.3)})
+    lines = [x for x in pair_targets(runs, 20.0) if "across the face" in x]
+    assert lines[0].startswith("* one position across the face")
+    assert lines[0].endswith("1.95× (target <= 2×): met")
+    assert lines[1].endswith("3.10× (target <= 3×): MISSED")
+    got = bench_metrics({"ring": {"face": {"one position": {"flat_s": 2.0, "face_s": 3.0}}}})
+    assert got["across the face / 2D, one position, whole commands [×]"] == 1.5

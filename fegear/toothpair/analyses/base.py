@@ -64,9 +64,6 @@ class Analysis:
     #: its pictures on the report page, in order: the key of each among its files, with a
     #: caption
     pictures: dict[str, str] = {}
-    #: whether it reads the contacts the solver keeps at each position (every column of A
-    #: formed, grids on every tooth that can touch): the core's solver keeps them then
-    keeps_contacts: bool = False
 
     def wanted(self, job: Job) -> bool:
         """Whether ``job`` asks for this analysis."""

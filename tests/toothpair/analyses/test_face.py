@@ -21,6 +21,7 @@ BASE = {"quality": "coarse", "no-estimate": True}
     ({"misalignment": 250.0}, "misalignment"),
     ({"face-sections": 2}, "face-sections"),
     ({"crowning": -1.0}, "crowning"),
+    ({"grade": 5, "tilt": 3.0}, "tilt"),
 ])
 def test_bad_face_inputs_are_refused_by_name(values, name):
     with pytest.raises(ParameterError) as exc:

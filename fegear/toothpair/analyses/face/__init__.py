@@ -13,19 +13,22 @@ from .report import face_summary, face_table, write_face_outputs
 
 class Face(Analysis):
     key = "face"
-    keeps_contacts = True
     pictures = {"face_png": "The line load across the face: the contact pattern"}
 
     def wanted(self, job) -> bool:
         return job.face is not None
 
+    def drive(self, job, executor):
+        from .solve import drive_face  # lazy: heavy: scikit-fem
+
+        solver, sols, rows = drive_face(job, executor)
+        return solver, sols, rows
+
     def solve(self, run: Run) -> dict:
-        from .solve import coupling_of, position_entry, solve_face  # lazy: heavy: scikit-fem
+        from .solve import coupling_of  # lazy: heavy: scikit-fem
 
         face = run.job.face
-        solved = solve_face(run.solver, run.solutions, face)
-        rows = [position_entry(sol, sections) for sol, sections in solved]
-        return face_summary(rows, coupling_of(run.job.case, face), face)
+        return face_summary(list(run.driven), coupling_of(run.job.case, face), face)
 
     def printed(self, entry: dict, summary: dict) -> str:
         width = summary["inputs"]["thickness_mm"]

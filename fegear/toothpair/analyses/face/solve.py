@@ -10,13 +10,13 @@ import math
 
 import numpy as np
 
-from .... import progress
-from ....geometry import gear1_profile
-from ...case import HEADLINE
+from ....running import Executor
+from ...case import HEADLINE, phase_major
 from ...face import Face
-from ...positions import Clearances
+from ...positions import drive_along
 from ...ring.face import FaceCoupling, exponential_kernel, face_coupling
 from ...ring.face_results import FaceSections, face_sections
+from ...ring.solver import RingSolver, SolverModes
 
 #: the far field's decay along the face, in tooth heights (4 e1: gear 2's tip to its root)
 DECAY = 1.0
@@ -42,23 +42,26 @@ def method_c(mismatch_um: float, approach_um: float) -> float:
     return 1.0 + 0.5 * ratio if ratio <= 2.0 else math.sqrt(2.0 * ratio)
 
 
-def solve_face(solver, solutions, face: Face) -> list[tuple[object, FaceSections]]:
-    """Each of ``solutions`` (the exact pair's, on ``solver``'s kept contacts) solved across
-    ``face``: (solution, its sections)."""
-    case = solutions[0].case
+def drive_face(job, executor: Executor):
+    """The job's positions solved by the one driver on a solver that keeps each position's
+    contact, each solved across the face as soon as it is solved, in the process that kept
+    it (:func:`~fegear.toothpair.positions.drive_along`): (solver, the 2D solutions, a
+    summary row a position)."""
+    solver = RingSolver(None, SolverModes(keep_phases=True))
+    face, case = job.face, job.case
     coupling = coupling_of(case, face)
-    betas = tuple(s.case.beta for s in solutions)
-    states = dict(Clearances(case, gear1_profile(case.params), betas).get())
-    out = []
-    for k, sol in enumerate(solutions, 1):
-        progress.stage(f"across the face: position {k} of {len(solutions)}, "
-                       f"{face.sections} sections")
-        found = face_sections(solver.model, solver.phases, sol.case, states[sol.case.beta],
-                              face, coupling)
-        if found is None:
+    order = phase_major(len(job.betas), case.params.z1) if job.revolution else \
+        range(len(job.betas))
+
+    def across(at, state, sol) -> dict:
+        sections = face_sections(solver.model, solver.phases, at, state, face, coupling)
+        if sections is None:
             raise RuntimeError("no contact kept at a position solved across the face")
-        out.append((sol, found))
-    return out
+        return position_entry(sol, sections)
+
+    solved = drive_along(case, [job.betas[k] for k in order], solver, across, executor)
+    ordered = [got for _, got in sorted(zip(order, solved), key=lambda pair: pair[0])]
+    return solver, tuple(sol for sol, _ in ordered), [row for _, row in ordered]
 
 
 def position_entry(sol, sections: FaceSections) -> dict:
