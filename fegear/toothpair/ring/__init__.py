@@ -8,7 +8,8 @@ assembles them as cyclic bodies (:class:`~fegear.fe.cyclic.CyclicBody`) for a qu
 pressure grids and :mod:`.placement` places them on the teeth that can touch (and starts a
 cycle's later position from the one before); :mod:`.master` places gear 2's exact curve at a
 rolling angle and :mod:`.influence` assembles how each grid point approaches it under each
-pressure hat; :mod:`.contact` solves the contact under the torque;
+pressure hat; :mod:`.contact` solves the contact under the torque, stepping on its linear
+system (:mod:`.contact_system`), and :mod:`.tangent` linearises the solved contact;
 :mod:`.stresses` reads the root stresses from the templates and the contact stresses from a
 submodel at each peak, which :mod:`.peaks` solves where a cycle's stresses peak;
 :mod:`.results` gives per-tooth results and the rings' fields; :mod:`.solver` is the model's

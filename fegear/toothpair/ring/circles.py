@@ -17,7 +17,7 @@ the third, about 2e-7 mm where a class-6 pair's teeth move 10 µm and turn 9 µm
 whole pair repeats over whole pitches, so the circles made at the kept pitch, in the fixed
 frame, serve every pitch of its phase. A solve's last evaluation is of the exact gaps at every
 point; where they differ from the circles' by more than :data:`TOLERANCE` on the points it
-iterated on, its iterations go on with the exact gaps (:func:`~.contact.solve_ring_contact`).
+iterated on, its iterations go on with the exact gaps (:func:`~.contact.solve_with`).
 """
 
 from __future__ import annotations

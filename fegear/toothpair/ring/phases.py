@@ -40,7 +40,7 @@ from ..case import PairSolution, SolveCase
 from ..positions import Trial
 from ..teeth import candidate_data, choose_teeth
 from .circles import FootCircles, foot_circles
-from .contact import RingContactSolution, rigid_gap, solve_ring_contact, touch_rotation
+from .contact import Iterations, RingContactSolution, rigid_gap, solve_with, touch_rotation
 from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel
 from .placement import PLACEMENT, REACH, REACH_FLOOR, GridPlacement, place_grids
@@ -55,7 +55,7 @@ from .turning import turned
 SAME_GAP = 1e-7
 #: a solve on a kept contact iterates on the points whose rigid gap is within this many times
 #: the kept position's elastic approach of the least one (its wide grids are mostly far from
-#: closing); the others are checked at the solution (:func:`~.contact.solve_ring_contact`)
+#: closing); the others are checked at the solution (:class:`~.contact.Iterations`)
 NEAR = 1.5
 
 
@@ -222,10 +222,9 @@ class Phases:
         if phase not in self._circles:
             self._circles[phase] = foot_circles(model, kept.contact, kept.rotation)
         try:
-            sol = solve_ring_contact(model, contact, case.torque_Nmm, kept.rotation,
-                                     start=kept.active,
-                                     within=NEAR * 1e-3 * max(kept.elastic_um, 1.0),
-                                     circles=self._circles[phase])
+            sol = solve_with(model, contact, case.torque_Nmm, kept.rotation, Iterations(
+                start=kept.active, within=NEAR * 1e-3 * max(kept.elastic_um, 1.0),
+                circles=self._circles[phase]))
         except ContactError:
             return None
         if sol is None or not _holds(case, state, kept, pitch - kept.pitch, contact, sol):
@@ -270,8 +269,8 @@ class Phases:
         contact = assemble_contact(model, grids, case.beta,
                                    p.ratio * case.beta + settled.rotation, ColumnRule(), placed)
         try:
-            sol = solve_ring_contact(model, contact, case.torque_Nmm, settled.rotation,
-                                     guess=settled.rotation)
+            sol = solve_with(model, contact, case.torque_Nmm, settled.rotation,
+                             Iterations(guess=settled.rotation))
         except ContactError:
             return None
         kept = Kept(pitch, replace(contact, feet=contact.feet.copy()), settled.rotation,

@@ -8,7 +8,7 @@ At the solution the active points' gaps are closed and the torque balanced:
 
 g0 the rigid gap, a its rate with gear 1's turn θ. A deviation δ moves g0 and a; with the
 active set kept, the pressures and the rotation move by the solution of the same bordered
-system the solve and the tangent stiffness solve (:func:`~.contact.tangent_stiffness`),
+system the solve and the tangent stiffness solve (:func:`~.tangent.tangent_stiffness`),
 
     A_aa dp + a_a dθ = −∂g0_a/∂δ,     Σ w a dp + (Σ w ∂a/∂θ p) dθ = −Σ w (∂a/∂δ) p,
 
@@ -37,10 +37,11 @@ from ...fe import contact_modulus
 from ...geometry import Deviations, Placed, Runout, ToothDeviation, gear2_tooth
 from ...quantities import HELD
 from ..edge import flank_and_edge
-from .contact import RingContactSolution, rigid_gap, solved_system
+from .contact import RingContactSolution, rigid_gap
 from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel
 from .stresses import ring_stresses
+from .tangent import solved_system
 
 #: the deviation (µm) of the rigid gap's central differences
 STEP_UM = 0.01

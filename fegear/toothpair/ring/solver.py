@@ -29,7 +29,7 @@ from ...timing import note, timed
 from ..case import ContactChecks, PairSolution, SolveCase
 from ..positions import Attempt, Trial
 from ..teeth import candidate_data, choose_teeth
-from .contact import RingContactSolution, solve_ring_contact, tangent_stiffness, touch_rotation
+from .contact import RingContactSolution, solve_ring_contact, touch_rotation
 from .grid import ToothGrid
 from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel, keep_cached, ring_model
@@ -48,6 +48,7 @@ from .placement import (
 from .readout import brief_stresses
 from .results import RingDetail, solved_rigid_gap, tooth_results
 from .stresses import ring_stresses
+from .tangent import tangent_stiffness
 
 #: the one-off stages a solve reports: the model built (profile, mesh, assembly and
 #: factorisation), read back from the model cache, or kept from an earlier solve
@@ -323,9 +324,8 @@ class RingSolver:
             else:
                 stresses = ring_stresses(model, contact, sol.pressure,
                                          self.modes.solved_submodels == "all", clamped)
-                cands = candidate_data(
-                    case.params, model.shape, state, tuple(g.tooth for g in solved.grids),
-                    case.beta)
+                cands = candidate_data(case.params, model.shape, state,
+                                       tuple(g.tooth for g in solved.grids), case.beta)
             detail = RingDetail(model, case, replace(contact, A=None), sol, stresses)
             rigid = formed if formed is not None else solved_rigid_gap(detail)
             teeth = tooth_results(detail, state, cands, rigid,

@@ -7,7 +7,7 @@ import pytest
 
 from fegear.geometry import Deviations, Placed, Runout, ToothDeviation, gear2_tooth
 from fegear.toothpair.ring.circles import TOLERANCE, circle_gaps, foot_circles, moved
-from fegear.toothpair.ring.contact import rigid_gap, solve_ring_contact
+from fegear.toothpair.ring.contact import Iterations, rigid_gap, solve_ring_contact, solve_with
 from fegear.toothpair.ring.influence import ColumnRule, assemble_contact
 from fegear.toothpair.ring.turning import turned
 
@@ -86,9 +86,9 @@ def test_a_contact_solved_on_the_circles_is_the_one_solved_on_the_exact_gaps(set
                      gear2={k: ToothDeviation(form=1.0) for k in range(p.z2)},
                      centre_distance=1.0, runout1=Runout(2.0, 40))
     placed = Placed(dev, p, contact.beta)
-    on_circles = solve_ring_contact(model, turned(model, contact, 0, contact.beta, placed),
-                                    torque, theta, start=settled.solution.pressure > 0,
-                                    circles=circles)
+    on_circles = solve_with(model, turned(model, contact, 0, contact.beta, placed), torque,
+                            theta, Iterations(start=settled.solution.pressure > 0,
+                                              circles=circles))
     exact = solve_ring_contact(model, turned(model, contact, 0, contact.beta, placed),
                                torque, theta, start=settled.solution.pressure > 0)
     assert on_circles.rotation != pytest.approx(theta, rel=1e-3)   # the deviations tell

@@ -1,8 +1,8 @@
 """The contact solve (:mod:`fegear.toothpair.ring.contact`): its two methods and its Newton on
 the rotation on the designs the random-pair property test (tests/toothpair/test_properties.py)
 found unsettled, the slower method against the fast one on problems both settle, a contact
-without its probe columns, a rotation started near its solution, and the tangent stiffness
-against two solves."""
+without its probe columns, a rotation started near its solution and one iterated on the points
+near closing."""
 
 from dataclasses import replace
 
@@ -54,22 +54,11 @@ def test_an_active_set_that_cycles_is_settled_by_the_primal_method():
     _solved(CYCLES, 3.35265978187051, 0.03798257795854814)
 
 
-def _problem(n, seed):
-    """A contact of n points: a symmetric positive compliance in the form the ring's (A = C W,
-    pressures times weights are forces), rigid gaps with a rotation rate a < 0 on most."""
-    rng = np.random.default_rng(seed)
-    x = np.sort(rng.uniform(0.0, 1.0, n))
-    C = 1e-4 * np.exp(-np.abs(x[:, None] - x[None, :]) / 0.2) + 1e-5 * np.eye(n)
-    w = rng.uniform(0.01, 0.05, n)
-    g0 = 1e-3 * (x - 0.4) ** 2 - 2e-5
-    a = -rng.uniform(5.0, 20.0, n)
-    return contact.ContactSystem(C * w[None, :], w, g0, a)
-
-
 @pytest.mark.parametrize("seed", range(5))
 @pytest.mark.parametrize("warm", [False, True])
-def test_the_primal_method_meets_the_contact_conditions_and_agrees_with_the_fast_one(seed, warm):
-    system = _problem(60, seed)
+def test_the_primal_method_meets_the_contact_conditions_and_agrees_with_the_fast_one(
+        contact_problem, seed, warm):
+    system = contact_problem(60, seed)
     A, w, g0, a = system.A, system.w, system.g0, system.a
     torque = 5.0
     fast = contact.active_set(system, torque, g0 <= g0.min())
@@ -187,24 +176,9 @@ def test_iterating_on_the_points_near_closing_solves_the_same_contact(baseline_2
     assembled = assemble_contact(d.model, d.contact.grids, 0.0, turn)
     assert assembled.complete            # every column formed: the cut applies
     every = contact.solve_ring_contact(d.model, assembled, torque, touch, guess=turn)
-    near = contact.solve_ring_contact(d.model, assembled, torque, touch, guess=turn,
-                                      within=1e-3 * within_um)
+    near = contact.solve_with(d.model, assembled, torque, touch,
+                              contact.Iterations(guess=turn, within=1e-3 * within_um))
     assert near.rotation == pytest.approx(every.rotation, rel=1e-12)
     assert np.abs(near.pressure - every.pressure).max() < 1e-9 * every.pressure.max()
     np.testing.assert_allclose(near.gap, every.gap, rtol=0, atol=1e-12)
     assert near.balance_error < 1e-9
-
-
-@pytest.mark.parametrize("torque", [50.0, 200.0, 400.0])
-def test_the_tangent_stiffness_is_the_slope_of_two_solves(baseline_ring, torque):
-    """dT/dθ with the contact set kept against the central difference of two solves at ±1 %
-    of the torque (measured within 0.5 % at `coarse`, 0.25 % at `standard`: the two solves'
-    grids are placed for their own loads); larger than the secant T/δ, the more the more
-    teeth the load brings in (1.1× at 50 N·m, 1.6× at 400)."""
-    case = replace(baseline_ring.case, torque=torque)
-    sol, lo, hi = (solve_positions(replace(case, torque=torque * f), (case.beta,),
-                                   model=baseline_ring, contact_only=True)[0]
-                   for f in (1.0, 0.99, 1.01))
-    difference = 0.02 * torque / (hi.rotation - lo.rotation)
-    assert sol.tangent_stiffness == pytest.approx(difference, rel=0.01)
-    assert sol.tangent_stiffness > 1.05 * sol.mesh_stiffness

@@ -1,0 +1,67 @@
+"""The contact's linear system at one linearisation (:mod:`fegear.toothpair.ring.contact_system`):
+a step on an active set against the bordered system solved whole, a system on some of A's
+points as the system of their block, and the blocks it keeps giving what fresh ones give."""
+
+import numpy as np
+import pytest
+
+from fegear.toothpair.ring.contact_system import BLOCKS, ContactSystem, gaps_at, solve_active
+
+TORQUE = 5.0   # N·mm
+
+
+def _active(system: ContactSystem, count: int) -> np.ndarray:
+    """The ``count`` points of least rigid gap."""
+    active = np.zeros(len(system.g0), bool)
+    active[np.argsort(system.g0)[:count]] = True
+    return active
+
+
+@pytest.mark.parametrize("arm_rate", [0.0, 40.0])
+@pytest.mark.parametrize("seed", range(3))
+def test_a_step_closes_the_active_gaps_and_balances_the_torque(contact_problem, seed, arm_rate):
+    system = contact_problem(40, seed)
+    A, w, g0, a = system.A, system.w, system.g0, system.a
+    active = _active(system, 12)
+    pressure, step = solve_active(system, TORQUE, active, arm_rate)
+    assert not pressure[~active].any()
+    gap = gaps_at(system, pressure, step, active)
+    np.testing.assert_allclose(gap, g0 + a * step + A @ pressure, rtol=0,
+                               atol=1e-15 * np.abs(g0).max())
+    assert np.abs(gap[active]).max() <= 1e-12 * np.abs(g0).max()
+    assert (w * a) @ pressure + arm_rate * step == pytest.approx(-TORQUE, rel=1e-12)
+    # the same step from the bordered system solved whole
+    idx = np.flatnonzero(active)
+    n = len(idx)
+    M = np.block([[A[np.ix_(idx, idx)], a[idx, None]],
+                  [(w * a)[None, idx], np.array([[arm_rate]])]])
+    whole = np.linalg.solve(M, np.concatenate([-g0[idx], [-TORQUE]]))
+    np.testing.assert_allclose(pressure[idx], whole[:n], rtol=1e-9)
+    assert step == pytest.approx(whole[n], rel=1e-9)
+
+
+def test_a_system_on_some_of_As_points_is_the_system_of_their_block(contact_problem):
+    every = contact_problem(60, 1)
+    rows = np.flatnonzero(np.arange(60) % 3 != 1)
+    some = ContactSystem(every.A, every.w[rows], every.g0[rows], every.a[rows], rows)
+    block = ContactSystem(every.A[np.ix_(rows, rows)], some.w, some.g0, some.a)
+    active = _active(block, 10)
+    (p, step), (q, other) = (solve_active(s, TORQUE, active, 0.0) for s in (some, block))
+    np.testing.assert_array_equal(p, q)
+    assert step == other
+    np.testing.assert_array_equal(gaps_at(some, p, step, active),
+                                  gaps_at(block, q, other, active))
+
+
+def test_the_blocks_a_system_keeps_give_what_fresh_ones_give(contact_problem):
+    # more active sets than the system keeps, each one point wider, then the first ones again:
+    # kept or formed again, a set's step is the same to the last bit
+    system = contact_problem(40, 2)
+    sets = [_active(system, k) for k in range(5, 5 + BLOCKS + 3)]
+    for active in sets + sets[:3]:
+        p, step = solve_active(system, TORQUE, active, 0.0)
+        fresh = ContactSystem(system.A, system.w, system.g0, system.a)
+        q, other = solve_active(fresh, TORQUE, active, 0.0)
+        np.testing.assert_array_equal(p, q)
+        assert step == other
+    assert len(system.blocks) == BLOCKS + 1     # BLOCKS sets kept, and the columns gathered
