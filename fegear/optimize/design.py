@@ -124,6 +124,7 @@ def _graded(job, allow) -> dict:
     constraint violated where more of the pairs that turn load a round than the quantile
     leaves (by the largest such load, N)."""
     from ..toothpair import (  # lazy: heavy: scikit-fem; `fegear --help` imports this module
+        ClassReading,
         class_samples,
         cycle_rows,
         samples_summary,
@@ -131,8 +132,8 @@ def _graded(job, allow) -> dict:
 
     draw, q = job.draw, job.quantile
     sampled = class_samples(job, allow, read=lambda sol: sum(t.edge_load_N for t in sol.teeth))
-    summary = samples_summary(sampled.rows, cycle_rows(sampled.nominal, allow), draw.grade,
-                              draw.seed, q, allow)
+    summary = samples_summary(sampled.rows, cycle_rows(sampled.nominal, allow),
+                              ClassReading(draw=draw, quantile=q, allowables=allow))
     out = {"jammed_share": summary["jammed_share"]}
     for name, f in LIMITS.items():
         out[f"{name}_P{100 * q:g}"] = summary["safety"][f.key]["at_quantile"] or 0.0

@@ -16,7 +16,7 @@ from fegear.running import spare_core
 from fegear.tolerance import Draw, grade_of
 from fegear.toothpair import SolveCase, prepare_job, solve_pair
 from fegear.toothpair.analyses import SAMPLES
-from fegear.toothpair.analyses.samples.report import samples_summary
+from fegear.toothpair.analyses.samples.report import ClassReading, samples_summary
 from fegear.toothpair.analyses.samples.solve import SampleCase, solve_samples
 from fegear.toothpair.ring.solver import RingSolver, SolverModes
 from fegear.toothpair.safety import DEFAULT_ALLOWABLES
@@ -68,7 +68,8 @@ def test_every_pair_drawn_is_in_the_table_and_the_exact_pair_beside(sampled):
 
 def test_the_summary_reads_the_rows(sampled):
     nominal = [dict(sampled.nominal[0].headline(), position_deg=0.0)]
-    s = samples_summary(sampled.rows, nominal, DRAW.grade, DRAW.seed, 0.5, DEFAULT_ALLOWABLES)
+    s = samples_summary(sampled.rows, nominal,
+                        ClassReading(draw=DRAW, quantile=0.5, allowables=DEFAULT_ALLOWABLES))
     solved = [r for r in sampled.rows if r["status"] == "solved"]
     key = "root_stress_gear1_MPa"
     assert s["solved"] + s["jammed"] + s["failed"] == DRAW.count

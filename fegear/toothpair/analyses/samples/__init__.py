@@ -11,6 +11,7 @@ from ....running import Executor
 from ...summary import cycle_rows
 from ..base import Analysis, Run, Verdict, Writing
 from .report import (
+    ClassReading,
     samples_columns,
     samples_summary,
     samples_table,
@@ -43,8 +44,9 @@ class Samples(Analysis):
     def solve(self, run: Run) -> dict:
         sampled, estimated = run.driven
         job = run.job
-        return samples_summary(sampled.rows, estimated, job.draw.grade, job.draw.seed,
-                               job.quantile, job.allowables, len(job.betas), job.revolution)
+        return samples_summary(sampled.rows, estimated, ClassReading(
+            draw=job.draw, quantile=job.quantile, allowables=job.allowables,
+            positions=len(job.betas), revolution=job.revolution))
 
     def printed(self, entry: dict, summary: dict) -> str:
         over = ("the same positions" if entry["over"] == "cycle" else

@@ -12,12 +12,13 @@ samples.csv and samples.png (:func:`write_samples_outputs`).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 from ....fe import Allowables
 from ....files import write_csv
 from ....quantities import FACTORS
-from ....tolerance import QUANTILES, quantiles
+from ....tolerance import QUANTILES, Draw, quantiles
 from ...case import HEADLINE
 from ...safety import SAFETY, safety_factor
 from .plot import samples_png
@@ -26,23 +27,53 @@ from .plot import samples_png
 JAMMED = math.inf
 
 
-def samples_summary(rows, nominal_rows: list[dict], grade, seed: int, quantile: float,
-                    allowables: Allowables, positions: int = 1, revolution: bool = False
-                    ) -> dict:
-    """The samples' summary (``summary["samples"]``): the class, the counts, the positions
-    each pair is solved at (``positions``, over a whole ``revolution`` or not), per headline
-    stress and per safety factor the nominal (the exact pair's largest over the positions),
-    the quantiles (of every pair drawn, and of the pairs that turn alone: ``turning``), the
-    value at ``quantile`` and the worst with its sample, the verdict and the rows (one a
-    sample)."""
+@dataclass(frozen=True)
+class ClassReading:
+    """How a class's samples are read: the class and seed they were drawn with (``draw``),
+    the share of the pairs (``quantile``) whose stresses the safety factors are stated at, the
+    ``allowables`` (MPa) and the positions each pair is solved at (``positions``, over a whole
+    ``revolution`` of gear 1 or a cycle)."""
+
+    draw: Draw
+    quantile: float
+    allowables: Allowables
+    positions: int = 1
+    revolution: bool = False
+
+
+def samples_summary(rows, nominal_rows: list[dict], reading: ClassReading) -> dict:
+    """The samples' summary (``summary["samples"]``) as ``reading`` reads them: the class,
+    the counts, the positions each pair is solved at, per headline stress and per safety
+    factor the nominal (the exact pair's largest over the positions), the quantiles (of every
+    pair drawn, and of the pairs that turn alone: ``turning``), the value at the quantile and
+    the worst with its sample, the verdict and the rows (one a sample)."""
     rows = list(rows)
     n = len(rows)
     solved = [r for r in rows if r["status"] == "solved"]
     jammed = sum(r["status"] == "jammed" for r in rows)
     failed = [r for r in rows if r["status"] == "failed"]
     share = jammed / n
+    grade, quantile = reading.draw.grade, reading.quantile
+    stresses = _stresses(rows, nominal_rows, quantile, reading.draw.seed)
+    safety = _safety(stresses, quantile, reading.allowables)
+    return {"grade": grade.summary(), "samples": n, "seed": reading.draw.seed,
+            "quantile": quantile, "positions_per_pair": reading.positions,
+            "over": "revolution" if reading.revolution else "cycle",
+            "solved": len(solved), "jammed": jammed, "failed": len(failed),
+            "jammed_share": share, "jammed_share_error": math.sqrt(share * (1 - share) / n),
+            "failures": sorted({r["why"] for r in failed}),
+            "stresses": stresses, "safety": safety,
+            "verdict": verdict(safety, share, quantile, grade.grade), "rows": rows}
+
+
+def _stresses(rows: list[dict], nominal_rows: list[dict], quantile: float, seed: int) -> dict:
+    """Per headline stress: the nominal (the exact pair's largest over the positions), the
+    quantiles of every pair drawn (a jammed pair's beyond every other's) and of the pairs that
+    turn (``turning``), both with ``quantile`` among them and bootstrapped with ``seed``, and
+    the worst with its sample."""
     qs = tuple(sorted({*QUANTILES, quantile}))
-    stresses, safety = {}, {}
+    solved = [r for r in rows if r["status"] == "solved"]
+    stresses = {}
     for key in HEADLINE:
         values = [r[key] if r["status"] == "solved" else JAMMED
                   for r in rows if r["status"] != "failed"]
@@ -55,6 +86,13 @@ def samples_summary(rows, nominal_rows: list[dict], grade, seed: int, quantile: 
             "turning": [_quantile(q) for q in turning],
             "worst": worst[key] if worst else None,
             "worst_sample": worst["sample"] if worst else None}
+    return stresses
+
+
+def _safety(stresses: dict, quantile: float, allowables: Allowables) -> dict:
+    """Per safety factor, from its stress's entry of ``stresses``: the nominal, the factor at
+    the ``quantile`` with its error, and the worst with its sample."""
+    safety = {}
     for name, (which, key) in SAFETY.items():
         allowable = getattr(allowables, which)
         at = next(q for q in stresses[key]["quantiles"] if q["q"] == quantile)
@@ -64,13 +102,7 @@ def samples_summary(rows, nominal_rows: list[dict], grade, seed: int, quantile: 
                         "at_quantile_error": _factor_error(allowable, at),
                         "worst": None if worst is None else safety_factor(allowable, worst),
                         "worst_sample": stresses[key]["worst_sample"]}
-    return {"grade": grade.summary(), "samples": n, "seed": seed, "quantile": quantile,
-            "positions_per_pair": positions, "over": "revolution" if revolution else "cycle",
-            "solved": len(solved), "jammed": jammed, "failed": len(failed),
-            "jammed_share": share, "jammed_share_error": math.sqrt(share * (1 - share) / n),
-            "failures": sorted({r["why"] for r in failed}),
-            "stresses": stresses, "safety": safety,
-            "verdict": verdict(safety, share, quantile, grade.grade), "rows": rows}
+    return safety
 
 
 def _quantile(q) -> dict:
