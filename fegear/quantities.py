@@ -137,11 +137,3 @@ FACTORS = {f.key: f for f in (Factor("safety_bending_gear1", "S_F1", "S_F gear 1
 #: lines were measured), by key → (quantity, the gear whose teeth)
 LEVEL_STRESSES = {"root1": (ROOT1, 1), "root2": (ROOT2, 2), "flank1": (FLANK, 1),
                   "flank2": (FLANK, 2)}
-
-
-def of_attribute(attribute: str) -> Quantity:
-    """The quantity a :class:`~fegear.toothpair.ToothResult`'s field ``attribute`` holds."""
-    for q in QUANTITIES.values():
-        if q.attribute == attribute:
-            return q
-    raise KeyError(attribute)

@@ -27,6 +27,6 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
                   "pool_or_serial", "in_fresh_process"),
     "forks": ("WorkerFailed", "strict", "STRICT"),
     "primed": ("Primed",),
-    "pools": ("LocalPool", "local_pool", "init_worker", "connect"),
+    "pools": ("LocalPool", "init_worker", "connect"),
     "supervisor": ("Supervisor", "Outcome"),
 })

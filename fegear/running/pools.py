@@ -89,11 +89,6 @@ class LocalPool(ProcessPoolExecutor):
         # multiprocessing, whose shutdown then waits forever
 
 
-def local_pool(workers: int) -> LocalPool:
-    """A pool of ``workers`` spawned processes set up by :func:`init_worker`."""
-    return LocalPool(workers)
-
-
 def _children() -> set[int]:
     import psutil
 

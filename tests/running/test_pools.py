@@ -7,7 +7,7 @@ import signal
 import time
 from concurrent.futures.process import BrokenProcessPool
 
-from fegear.running import local_pool
+from fegear.running import LocalPool
 
 
 def _pid() -> int:
@@ -38,7 +38,7 @@ def test_a_worker_spawned_for_a_later_task_that_dies_breaks_the_pool_at_once(mon
         start(process)
 
     monkeypatch.setattr(SpawnProcess, "start", slow_start)
-    pool = local_pool(2)
+    pool = LocalPool(2)
     try:
         pool.submit(_pid).result()        # the first worker, idle: it takes the next task
         beside = pool.submit(_sleep, 30)
@@ -55,7 +55,7 @@ def test_a_pool_worker_hit_by_ctrl_c_while_it_starts_lives_and_says_nothing(capf
     there and a broken pool, before)."""
     import psutil
 
-    pool = local_pool(1)
+    pool = LocalPool(1)
     try:
         before = {p.pid for p in psutil.Process().children()}
         future = pool.submit(_pid)
