@@ -18,15 +18,19 @@ class _Contact:
     feet = 2 * np.pi * np.array([0.0, 1.0, 2.0]) / 45
 
 
-def test_the_spread_keeps_an_even_load_even_and_is_the_same_from_either_end():
+def test_the_spread_keeps_an_even_and_a_linear_load_and_reads_the_same_from_either_end():
     for sections, decay in ((2, 0.5), (9, 1.5), (17, 20.0)):
         c = face_coupling(sections, 5.0, exponential_kernel(decay))
-        assert np.allclose(c.spread.sum(axis=1), 1.0, rtol=0, atol=1e-14)
+        z = c.zeta * 5.0
+        np.testing.assert_allclose(c.spread.sum(axis=1), 1.0, rtol=0, atol=1e-13)
+        np.testing.assert_allclose(c.spread @ z, z, rtol=0, atol=1e-12)
         assert c.share.sum() == pytest.approx(1.0, abs=1e-15)
-        np.testing.assert_allclose(c.spread[::-1, ::-1], c.spread, atol=1e-14)
-        assert (c.spread > 0).all()
+        np.testing.assert_allclose(c.spread[::-1, ::-1], c.spread, atol=1e-13)
     short = face_coupling(9, 5.0, exponential_kernel(0.05)).spread  # the tooth alone:
     assert np.diag(short).min() > 0.8                               # little reaches along
+    # a load at mid-face spreads to its neighbours, less the farther
+    mid = face_coupling(9, 5.0, exponential_kernel(1.5)).spread[4]
+    assert mid[4] > mid[3] > mid[2] > mid[1] and mid[3] == pytest.approx(mid[5])
 
 
 def test_each_input_moves_the_gaps_as_defined():
