@@ -4,10 +4,10 @@ import json
 import os
 import subprocess
 import sys
-import warnings
 
 import numpy as np
 import pytest
+from in_process import fegear
 
 FEGEAR = [sys.executable, "-m", "fegear"]
 
@@ -82,30 +82,15 @@ SCHEDULER_ERROR = "--scheduler 'tcp://127.0.0.1:9': cannot connect"
     pytest.param("solve", SCHEDULER_ARGS, SCHEDULER_ERROR, marks=pytest.mark.slow),
 ])
 def test_user_errors_exit_2_with_one_line(tmp_path, capsys, command, args, fragment):
-    """In this process (a process of its own costs 0.2-3 s; the test below starts one per
-    command), with the warnings a process would print on stderr counted as lines of it."""
-    from fegear.cli import main
-
+    """In this process, its warnings counted as lines of stderr (tests/in_process.py); the
+    test below starts a process of its own once a command."""
     out = tmp_path / "o"
-    with warnings.catch_warnings(record=True) as seen:
-        warnings.simplefilter("default")
-        try:
-            code = main([command, *args, "--out", str(out)])
-        except SystemExit as exc:   # argparse's own refusals
-            code = exc.code
-    std = capsys.readouterr()
-    assert code == 2, std.err
-    assert std.out == ""
-    lines = std.err.strip().splitlines() + [
-        str(w.message) for w in seen if not issubclass(w.category, SHOWN_ONLY_IN_MAIN)]
-    assert len(lines) == 1 and lines[0].startswith("fegear: error:"), lines
-    assert fragment in lines[0]
+    ran = fegear(capsys, command, *args, "--out", str(out))
+    assert ran.code == 2, ran.lines
+    assert ran.out == ""
+    assert len(ran.lines) == 1 and ran.lines[0].startswith("fegear: error:"), ran.lines
+    assert fragment in ran.lines[0]
     assert not out.exists() or not any(out.iterdir())
-
-
-#: what Python's default warning filters do not print for a module other than __main__
-SHOWN_ONLY_IN_MAIN = (DeprecationWarning, PendingDeprecationWarning, ImportWarning,
-                      ResourceWarning)
 
 
 @pytest.mark.parametrize("command,args,fragment", [

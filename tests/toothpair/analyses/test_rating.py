@@ -4,11 +4,10 @@ Miner's sum read back from the levels' stresses and the S-N line agrees with the
 and bad spectra are refused before anything is written."""
 
 import math
-import subprocess
-import sys
 from dataclasses import replace
 
 import pytest
+from in_process import fegear
 
 from fegear.rating import BENDING, CONTACT, GearMaterial, rate
 from fegear.toothpair import prepare_job, solve_job
@@ -154,12 +153,12 @@ def test_the_verdict_names_the_smallest_safety_factor(rated):
     assert len(rating_rows(rated)) == 4 * len(rated["modes"])
 
 
-def _solve(tmp_path, *args):
+def _solve(tmp_path, capsys, *args):
+    """``fegear solve`` in this process (tests/in_process.py: a process of its own cost 1 s a
+    test; tests/cli/test_cli.py starts one for a user error of solve's)."""
     out = tmp_path / "out"
-    r = subprocess.run([sys.executable, "-m", "fegear", "solve", "--quality", "coarse",
-                        "--no-estimate", *args, "--out", str(out)],
-                       capture_output=True, text=True)
-    return r, out
+    return fegear(capsys, "solve", "--quality", "coarse", "--no-estimate", *args, "--out",
+                  str(out)), out
 
 
 @pytest.mark.parametrize("text, args, fragment", [
@@ -170,13 +169,13 @@ def _solve(tmp_path, *args):
     ("torque,cycles\n100,3\n", ["--positions", "4", "--pitch-deviation", "1:11=5"],
      "with --revolution for a pair with deviations"),
 ])
-def test_bad_spectra_exit_2_with_one_line_and_nothing_written(tmp_path, text, args, fragment):
+def test_bad_spectra_exit_2_with_one_line_and_nothing_written(tmp_path, capsys, text, args,
+                                                              fragment):
     path = tmp_path / "duty.csv"
     path.write_text(text)
-    r, out = _solve(tmp_path, "--spectrum", str(path), *args)
-    assert r.returncode == 2, r.stderr
-    lines = r.stderr.strip().splitlines()
-    assert len(lines) == 1 and "--spectrum" in lines[0] and fragment in lines[0], lines
+    r, out = _solve(tmp_path, capsys, "--spectrum", str(path), *args)
+    assert r.code == 2, r.lines
+    assert len(r.lines) == 1 and "--spectrum" in r.lines[0] and fragment in r.lines[0], r.lines
     assert not out.exists()
 
 
@@ -195,9 +194,10 @@ def test_a_spectrum_without_positions_takes_the_default_cycle_and_says_so(tmp_pa
     assert "default" not in solve_job(prepare_job(BASE)).summary["cycle"]   # one given
 
 
-def test_the_rating_options_want_a_spectrum(tmp_path):
-    r, out = _solve(tmp_path, "--positions", "4", "--KA", "1.5")
-    assert r.returncode == 2 and "--KA = 1.5" in r.stderr and "with --spectrum only" in r.stderr
+def test_the_rating_options_want_a_spectrum(tmp_path, capsys):
+    r, out = _solve(tmp_path, capsys, "--positions", "4", "--KA", "1.5")
+    assert r.code == 2 and len(r.lines) == 1, r.lines
+    assert "--KA = 1.5" in r.lines[0] and "with --spectrum only" in r.lines[0]
     assert not out.exists()
 
 
