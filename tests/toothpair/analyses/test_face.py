@@ -9,6 +9,7 @@ import pytest
 
 from fegear.errors import ParameterError
 from fegear.toothpair import prepare_job, solve_job
+from fegear.toothpair.analyses import FACE
 from fegear.toothpair.analyses.face.solve import method_c
 from fegear.toothpair.present.output import write_job
 
@@ -52,6 +53,14 @@ def test_a_misaligned_face_is_worst_where_it_closes(tmp_path):
     assert row["mismatch_um"] == pytest.approx(-6.0 * 1.0, rel=0.5)   # about f along the load
     assert row["K_Hbeta_method_c"] == method_c(row["mismatch_um"], row["approach_um"])
     assert face["K_Hbeta"] > face["K_Hbeta_method_c"] > 1.0
+    # the verdict and the report page read the worst sections' stresses
+    verdict = FACE.verdict(face)
+    least = min(v for v in face["safety"].values() if v is not None)
+    assert verdict.passed == (least >= 1.0) and f"{least:.2f}" in verdict.line
+    assert face["safety"]["safety_bending_gear1"] == pytest.approx(
+        solved.job.allowables.bending / root["value"])
+    (slot, html), = FACE.page(face)
+    assert slot == "sections" and "misalignment 6 µm" in html and "K_Hβ" in html
     files = write_job(solved, tmp_path, pictures=False)
     with open(files["face_csv"]) as f:
         rows = list(csv.DictReader(f))

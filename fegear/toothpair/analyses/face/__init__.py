@@ -7,8 +7,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..base import Analysis, Run, Writing
-from .report import face_summary, face_table, write_face_outputs
+from ..base import Analysis, Run, Verdict, Writing
+from .report import face_html, face_summary, face_table, face_verdict, write_face_outputs
 
 
 class Face(Analysis):
@@ -28,17 +28,26 @@ class Face(Analysis):
         from .solve import coupling_of  # lazy: heavy: scikit-fem
 
         face = run.job.face
-        return face_summary(list(run.driven), coupling_of(run.job.case, face), face)
+        case = run.job.case
+        return face_summary(list(run.driven), coupling_of(case, face), face,
+                            run.job.allowables, case.thickness)
 
     def printed(self, entry: dict, summary: dict) -> str:
-        width = summary["inputs"]["thickness_mm"]
+        width = entry["width_mm"]
         return (f"\nAcross the face ({entry['inputs']['sections']} sections; each "
                 "stress at its worst section against the 2D pair's):\n\n"
                 + face_table(entry, width))
 
     def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
-        width = writing.solved.job.case.thickness
-        return write_face_outputs(entry, writing.out, writing.title, width, writing.pictures)
+        return write_face_outputs(entry, writing.out, writing.title, entry["width_mm"],
+                                  writing.pictures)
+
+    def verdict(self, entry: dict) -> Verdict:
+        passed, line = face_verdict(entry, entry["width_mm"])
+        return Verdict(passed, f"across the face: {line}")
+
+    def page(self, entry: dict) -> list[tuple[str, str]]:
+        return [("sections", "<h2>Across the face</h2>\n" + face_html(entry, entry["width_mm"]))]
 
 
 FACE = Face()

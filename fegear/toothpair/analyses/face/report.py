@@ -8,15 +8,18 @@ from __future__ import annotations
 from pathlib import Path
 
 from ....files import write_csv
-from ....quantities import HEADLINES
+from ....quantities import FACTORS, HEADLINES
+from ...present.html_parts import escape, table
+from ...safety import safety_factors
 from .plot import face_png
 
 
-def face_summary(rows: list[dict], coupling, face) -> dict:
+def face_summary(rows: list[dict], coupling, face, allowables, width: float) -> dict:
     """``summary["face"]``: the inputs across the face, the sections' places, a row a
-    position (:func:`~.solve.position_entry`), and over the positions the largest K_Hβ (with
+    position (:func:`~.solve.position_entry`), over the positions the largest K_Hβ (with
     method C's at that position) and each headline's largest, where and its ratio to the 2D
-    pair's at the same position."""
+    pair's at the same position, and the safety factors of those largest stresses against
+    ``allowables``; ``width``: the face width (mm)."""
     top = max(rows, key=lambda r: r["K_Hbeta"])
     worst = {}
     for q in HEADLINES:
@@ -25,9 +28,46 @@ def face_summary(rows: list[dict], coupling, face) -> dict:
     return {"inputs": {"sections": face.sections, "misalignment_um": face.misalignment,
                        "tilt_um": face.tilt, "crowning_um": face.crowning,
                        "end_relief_um": face.end_relief, "end_length_mm": face.end_length},
-            "zeta": [float(z) for z in coupling.zeta],
+            "width_mm": width, "zeta": [float(z) for z in coupling.zeta],
             "K_Hbeta": top["K_Hbeta"], "K_Hbeta_method_c": top["K_Hbeta_method_c"],
-            "at_position_deg": top["position_deg"], "worst": worst, "positions": rows}
+            "at_position_deg": top["position_deg"], "worst": worst,
+            "safety": safety_factors({k: w["value"] for k, w in worst.items()}, allowables),
+            "positions": rows}
+
+
+def face_verdict(s: dict, width: float) -> tuple[bool, str]:
+    """Whether every safety factor at the worst sections is at least one, and the line that
+    says which limits and where."""
+    have = {k: v for k, v in s["safety"].items() if v is not None}
+    key = min(have, key=have.get)
+    factor = FACTORS[key]
+    w = s["worst"][factor.stress.key]
+    word = "PASS" if have[key] >= 1.0 else "FAIL"
+    return have[key] >= 1.0, (f"{word}: {factor.label} {have[key]:.2f} at its worst section, "
+                              f"{(w['zeta'] + 0.5) * width:.2g} mm from the first end (K_Hβ "
+                              f"{s['K_Hbeta']:.2f})")
+
+
+def face_html(s: dict, width: float) -> str:
+    """The report page's section: each headline at its worst section against the 2D pair's,
+    and K_Hβ beside method C's."""
+    rows = []
+    for q in HEADLINES:
+        w = s["worst"][q.key]
+        ratio = w["ratio"]
+        rows.append([q.label, "–" if not ratio else f"{w['value'] / ratio:.1f}",
+                     f"{w['value']:.1f}", "–" if ratio is None else f"{ratio:.3f}",
+                     f"{(w['zeta'] + 0.5) * width:.2f}", f"{w['position_deg']:.3g}"])
+    i = s["inputs"]
+    given = ", ".join(f"{name} {i[key]:g} {unit}" for name, key, unit in (
+        ("misalignment", "misalignment_um", "µm"), ("tilt", "tilt_um", "µm"),
+        ("crowning", "crowning_um", "µm"), ("end relief", "end_relief_um", "µm"))
+        if i[key])
+    return (f"<p>{escape(given or 'an even face')}, {i['sections']} sections. K_Hβ "
+            f"{s['K_Hbeta']:.3f}; ISO 6336-1 method C for the same mismatch and the pair's "
+            f"own approach: {s['K_Hbeta_method_c']:.3f}.</p>"
+            + table(["stress", "2D MPa", "worst section MPa", "ratio", "at z mm",
+                     "at β °"], rows))
 
 
 def face_table(s: dict, width: float) -> str:
