@@ -42,10 +42,10 @@ def face_verdict(s: dict, width: float) -> tuple[bool, str]:
     key = min(have, key=have.get)
     factor = FACTORS[key]
     w = s["worst"][factor.stress.key]
-    word = "PASS" if have[key] >= 1.0 else "FAIL"
-    return have[key] >= 1.0, (f"{word}: {factor.label} {have[key]:.2f} at its worst section, "
-                              f"{(w['zeta'] + 0.5) * width:.2g} mm from the first end (K_Hβ "
-                              f"{s['K_Hbeta']:.2f})")
+    passed = have[key] >= 1.0
+    return passed, (f"{factor.label} {have[key]:.2f} at its worst section, "
+                    f"{(w['zeta'] + 0.5) * width:.2g} mm from the first end, limits "
+                    f"({'at least 1' if passed else 'below 1'}; K_Hβ {s['K_Hbeta']:.2f})")
 
 
 def face_html(s: dict, width: float) -> str:
