@@ -33,8 +33,9 @@ def test_profile_writes_csv_png_and_json(tmp_path):
     # each gear in its own frame: gear 1 within its tip radius, gear 2 within 43.8 … 46.2
     assert np.hypot(*g1.T).max() == pytest.approx(44.784, abs=1e-9)
     assert np.hypot(*g2.T).min() == pytest.approx(43.8, abs=1e-9)
-    # no temporary files left behind
-    assert not [p for p in os.listdir(tmp_path) if p.startswith(".")]
+    # no temporary files left behind, and no STEP solid unasked (--step:
+    # tests/cli/test_profile_drawings.py)
+    assert not [p for p in os.listdir(tmp_path) if p.startswith(".") or p.endswith(".step")]
 
 
 def test_profile_table_output():

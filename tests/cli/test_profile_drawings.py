@@ -3,6 +3,8 @@ as STEP solids), the deviated teeth in files of their own, what they are in the 
 bad body input refused in one line, exit 2, nothing written."""
 
 import json
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -13,13 +15,24 @@ from fegear.cli import main
 SMALL = ["--z2", "16", "--z1", "15", "--positions", "4"]
 
 
-def test_profile_out_writes_both_gears_drawings_and_the_deviated_ones(tmp_path, capfd):
+@pytest.fixture(scope="module")
+def profiled(tmp_path_factory):
+    """One ``fegear profile --out --json`` for both tests below, a tooth deviated and the
+    solids asked for (each run spends 4-5 s on the backlash); its folder and the summary read
+    from the process's stdout, so that nothing of the CAD kernel's comes in between. Without
+    --step no STEP file is written: tests/cli/test_cli.py's profile test."""
+    out = tmp_path_factory.mktemp("drawings") / "out"
+    r = subprocess.run([sys.executable, "-m", "fegear", "profile", *SMALL, "--pitch-deviation",
+                        "1:3=5", "--step", "--face-width", "8", "--out", str(out), "--json"],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    return out, json.loads(r.stdout)
+
+
+def test_profile_out_writes_both_gears_drawings_and_the_deviated_ones(profiled):
     import ezdxf
 
-    out = tmp_path / "out"
-    assert main(["profile", *SMALL, "--pitch-deviation", "1:3=5", "--out", str(out),
-                 "--json"]) == 0
-    summary = json.loads(capfd.readouterr().out)
+    out, summary = profiled
     drawn = summary["drawings"]
     assert drawn["chord_error_um"] == pytest.approx(0.1)
     assert drawn["tip_round_mm"] == 0.25 and drawn["deviated"] == ["gear1"]
@@ -34,14 +47,10 @@ def test_profile_out_writes_both_gears_drawings_and_the_deviated_ones(tmp_path, 
     csv = np.loadtxt(out / "gear1.csv", delimiter=",", skiprows=1)
     assert np.hypot(*a.T).max() == pytest.approx(np.hypot(*csv.T).max(), abs=1e-12)
     assert not [p for p in out.iterdir() if p.name.startswith(".")]
-    assert not list(out.glob("*.step"))                    # STEP only when asked (--step)
 
 
-def test_profile_step_writes_each_gear_as_a_solid_and_keeps_json_clean(tmp_path, capfd):
-    out = tmp_path / "out"
-    assert main(["profile", *SMALL, "--step", "--face-width", "8", "--out", str(out),
-                 "--json"]) == 0
-    summary = json.loads(capfd.readouterr().out)   # nothing of the CAD kernel's in between
+def test_profile_step_writes_each_gear_as_a_solid_and_keeps_json_clean(profiled):
+    out, summary = profiled   # its JSON read whole: nothing of the CAD kernel's
     assert summary["drawings"]["face_width_mm"] == 8
     for gear in (1, 2):
         text = (out / f"gear{gear}.step").read_text()
