@@ -163,6 +163,8 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase,
         name = next(row.name for row in FACE_INPUTS if v[row.name] is not None)
         raise ParameterError(name, v[name], "without --grade (a class's pairs across the "
                              "face are not built: solve the exact pair across the face)")
+    if v["end-length"] is not None:   # its value first, then whether it is read
+        JOB_INPUTS["end-length"].check(v["end-length"])
     if v["end-length"] is not None and v["end-relief"] is None:
         raise ParameterError("end-length", given.get("end-length"), "with --end-relief only "
                              "(the length of an end relief)")
