@@ -392,7 +392,10 @@ def _stop_in_first_case(toml: Path, out: Path, sig: int) -> subprocess.Completed
     return subprocess.CompletedProcess(proc.args, proc.returncode, stdout, stderr)
 
 
-@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
+# SIGINT's case in the slow run: the supervisor notes both signals by one handler, for both
+# tested in tests/running/test_supervisor.py (test_a_signal_is_noted_and_ends_the_waiting)
+@pytest.mark.parametrize("sig", [signal.SIGTERM,
+                                 pytest.param(signal.SIGINT, marks=pytest.mark.slow)])
 def test_a_study_stopped_before_its_first_case_finished_leaves_no_folder(tmp_path, sig):
     toml = tmp_path / "hang.toml"
     toml.write_text(SMALL.split("[[sweep]]")[0] + "[[sweep]]\ntorque = [7, 20]\n")
@@ -471,6 +474,11 @@ def test_dask_cluster_gives_the_local_pool_table(pool_run, tmp_path, monkeypatch
         _same(a, b)
 
 
+# slow (5 s of processes): in the default run the supervisor sends a dead worker's task to a
+# fresh pool (tests/running/test_supervisor.py's test_a_task_that_kills_its_worker_is_given_up_
+# after_its_retries_the_others_finish) and the design search loses no trial to a worker killed
+# mid-run (tests/optimize/test_optimize.py, the search stopped, killed and short of a worker)
+@pytest.mark.slow
 def test_worker_that_dies_costs_its_case_a_rerun_not_the_study(tmp_path):
     import psutil
 
