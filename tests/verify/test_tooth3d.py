@@ -1,0 +1,148 @@
+"""Gear 1's tooth in 3D (fegear.verify.tooth3d): its stiffness against scikit-fem's, its solver
+against CHOLMOD, the loads' unit force, and what the coarse model says along the face:
+Maxwell's symmetry, linearity, a decaying row, softer ends, and the plane answers around it."""
+
+import numpy as np
+import pytest
+from skfem import Basis, ElementTetP2, ElementVector, asm
+from skfem.models.elasticity import lame_parameters, linear_elasticity
+
+from fegear.errors import ParameterError
+from fegear.fe import STEEL_E, STEEL_NU, Factor
+from fegear.verify.tooth3d import (
+    PATCH,
+    SIZES,
+    Extrusion,
+    TwoLevel,
+    face_influence,
+    section_of,
+    table,
+    tet_stiffness,
+)
+
+
+@pytest.fixture(scope="module")
+def small(baseline):
+    """The coarse section in three layers over 1.5 mm (11k dofs) and its stiffness."""
+    body = Extrusion(section_of(baseline, 0.5, SIZES["coarse"]), 1.5, 3)
+    return body, tet_stiffness(body, STEEL_E, STEEL_NU)
+
+
+@pytest.fixture(scope="module")
+def coarse(baseline):
+    """The baseline's tooth at the coarse size, nine patches (62k dofs, 9-20 s)."""
+    return face_influence(baseline, size="coarse")
+
+
+def test_the_stiffness_is_scikit_fems(small):
+    body, K = small
+    vector = Basis(body.mesh, ElementVector(ElementTetP2()), intorder=2)
+    reference = asm(linear_elasticity(*lame_parameters(STEEL_E, STEEL_NU)), vector).tocsr()
+    ours = np.full((body.basis.N, 3), -1)                  # scikit-fem's dof → ours
+    ours[body.free >= 0] = 3 * body.free[body.free >= 0, None] + np.arange(3)
+    order = np.empty(K.shape[0], dtype=int)
+    for c in range(3):
+        for scalar, vectorial in ((body.basis.nodal_dofs[0], vector.nodal_dofs[c]),
+                                  (body.basis.edge_dofs[0], vector.edge_dofs[c])):
+            kept = ours[scalar, c] >= 0
+            order[ours[scalar, c][kept]] = vectorial[kept]
+    difference = K.tocsr() - reference[order][:, order]
+    assert abs(difference).max() < 1e-12 * abs(reference).max()
+
+
+def test_every_node_sits_at_one_section_node_and_level(small):
+    body, _ = small
+    assert (body.dof_at >= 0).all() and body.dof_at.size == body.basis.N
+    x = body.basis.doflocs
+    p, n = body.section.points, len(body.section.points)
+    section = np.hstack([p.T, 0.5 * (p[body.keys // n] + p[body.keys % n]).T])  # edge middles
+    rows, levels = np.nonzero(body.dof_at >= 0)
+    at = body.dof_at[rows, levels]
+    assert np.allclose(x[:2, at], section[:, rows], atol=1e-12)
+    assert np.allclose(x[2, at], body.level_z[levels], atol=1e-12)
+
+
+def test_each_patch_carries_a_unit_force_into_the_tooth(small):
+    body, _ = small
+    loads, means = body.band_loads(3)
+    force = loads.reshape(-1, 3, 3).sum(axis=0)           # (component, patch)
+    normal = body.section.normals.mean(axis=0)
+    # the flank turns by 0.01 rad over the band: the resultant falls short of 1 by 1e-4
+    assert np.allclose(force[:2].T @ -normal / np.linalg.norm(normal), 1.0, atol=1e-3)
+    assert np.allclose(force[2], 0.0)
+    # a unit motion into the tooth reads as one at every level
+    inward = np.zeros(loads.shape[0])
+    inward[0::3], inward[1::3] = -normal / np.linalg.norm(normal)
+    assert np.allclose(inward @ means, 1.0, atol=1e-3)
+    assert body.section.lengths.sum() == pytest.approx(PATCH * 2.0, rel=1e-3)
+
+
+def test_the_two_level_solver_gives_cholmods_answer(small):
+    body, K = small
+    loads, _ = body.band_loads(3)
+    solved, iterations = TwoLevel(body, K).solve(loads)
+    direct = Factor(K).solve(loads)
+    assert np.abs(solved - direct).max() < 1e-8 * np.abs(direct).max()
+    assert iterations < 100
+
+
+def test_the_influence_is_symmetric(coarse):
+    # Maxwell-Betti: G = Fᵀ K⁻¹ F, exact but for the solver's 1e-10 residuals (6e-12)
+    assert coarse.maxwell < 1e-9
+    # the face is symmetric about its middle, the tetrahedra are not: 0.5 % at coarse
+    assert coarse.mirror < 0.01
+
+
+def test_the_uniform_load_is_the_patches_loads_summed(coarse):
+    # each a separate load case: linear to the solver's tolerance
+    assert np.allclose(coarse.uniform, coarse.G.mean(axis=1), rtol=1e-8, atol=0)
+    assert np.allclose(coarse.along[:, -1], coarse.along[:, :-1].mean(axis=1), rtol=1e-8)
+
+
+def test_a_load_at_mid_face_moves_the_face_less_further_away(coarse):
+    row, mid = coarse.mid_row, len(coarse.z) // 2
+    assert np.all(np.diff(row[:mid + 1]) > 0) and np.all(np.diff(row[mid:]) < 0)
+    # the near field (indentation) is gone a patch away; 1.1 tooth heights away a tenth of
+    # the peak is left (coarse: 0.37, then 0.095)
+    assert row[mid + 1] < 0.5 * row[mid] and row[-1] < 0.2 * row[mid]
+    assert (coarse.z[-1] - coarse.z[mid]) / coarse.tooth_height == pytest.approx(1.111, 1e-3)
+
+
+def test_the_ends_bend_more_under_the_uniform_load(coarse):
+    u = coarse.uniform
+    assert u[0] > 1.02 * u[len(u) // 2] and u[-1] > 1.02 * u[len(u) // 2]
+    along = coarse.along[:, -1]
+    assert along[0] > u[0] and along[-1] > u[-1]       # the very ends more than their patch
+
+
+def test_the_face_lies_between_plane_strain_and_plane_stress(coarse):
+    # plane strain's field is one of the 3D mesh's (the same triangles, constant along the
+    # face), so the 3D compliance is at least its; plane stress's stresses balance the
+    # 3D body's loads, so the exact compliance is at most its (3.6 % below it here)
+    compliance = coarse.uniform.mean()
+    assert coarse.plane_strain < compliance < coarse.plane_stress
+    assert coarse.plane_stress / coarse.plane_strain == pytest.approx(1.08, abs=0.02)
+
+
+def test_the_table_names_the_checks(coarse):
+    text = table(coarse, coarse)
+    assert "Maxwell" in text and "plane stress" in text and "diagonal 0.00 %" in text
+    centres = np.interp(coarse.z, coarse.along_z, coarse.along[:, -1])
+    assert np.allclose(centres, coarse.at_centres[:, -1], rtol=1e-12, atol=0)
+    assert len(text.splitlines()) == 3 + len(coarse.z) + 4
+
+
+@pytest.mark.slow
+def test_the_coarse_influence_is_the_standards_within_15_percent(baseline, coarse):
+    # coarse → standard: the diagonal +9 %, the neighbour −12 %, the uniform load +0.4 %
+    standard = face_influence(baseline)
+    assert np.allclose(coarse.G, standard.G, rtol=0.15)
+    assert np.allclose(coarse.uniform, standard.uniform, rtol=0.01)
+    assert standard.plane_stress == pytest.approx(coarse.plane_stress, rel=0.01)
+
+
+@pytest.mark.parametrize("given", [{"height": 1.0}, {"size": "rough"}, {"patches": 1},
+                                   {"thickness": 0.0}])
+def test_an_input_out_of_range_is_refused_by_name(baseline, given):
+    with pytest.raises(ParameterError, match=next(iter(given))):
+        face_influence(baseline, **given)
