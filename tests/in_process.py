@@ -21,8 +21,9 @@ class Ran:
     lines: list[str]
 
 
-def fegear(capsys, *argv: str) -> Ran:
-    """Run ``fegear argv`` by :func:`fegear.cli.main`, its output read from ``capsys``."""
+def fegear(capture, *argv: str) -> Ran:
+    """Run ``fegear argv`` by :func:`fegear.cli.main`, its output read from ``capture``
+    (pytest's ``capsys``, or ``capfd`` for what is written at the file descriptors too)."""
     from fegear.cli import main
 
     with warnings.catch_warnings(record=True) as seen:
@@ -31,7 +32,7 @@ def fegear(capsys, *argv: str) -> Ran:
             code = main(list(argv))
         except SystemExit as exc:   # argparse's own refusals
             code = exc.code
-    std = capsys.readouterr()
+    std = capture.readouterr()
     printed = [f"{w.category.__name__}: {w.message}" for w in seen
                if not issubclass(w.category, NOT_PRINTED)]
     return Ran(code, std.out, std.err.strip().splitlines() + printed)

@@ -16,11 +16,13 @@ def run(*args, **kw):
     return subprocess.run([*FEGEAR, *args], capture_output=True, text=True, timeout=300, **kw)
 
 
-def test_profile_writes_csv_png_and_json(tmp_path):
-    r = run("profile", "--m", "2", "--h1", "0.3", "--f1", "0.15", "--shift", "0.016",
-            "--rotation", "0.002", "--positions", "6", "--out", str(tmp_path), "--json")
-    assert r.returncode == 0, r.stderr
-    s = json.loads(r.stdout)
+# The commands below run in this process (tests/in_process.py), their output read at the file
+# descriptors, so that what a library prints there breaks the JSON as it would the process's
+def test_profile_writes_csv_png_and_json(tmp_path, capfd):
+    r = fegear(capfd, "profile", "--m", "2", "--h1", "0.3", "--f1", "0.15", "--shift", "0.016",
+               "--rotation", "0.002", "--positions", "6", "--out", str(tmp_path), "--json")
+    assert r.code == 0, r.lines
+    s = json.loads(r.out)
     assert set(s["backlash_um"]) >= {"plus", "minus"}
     assert 4.0 < s["backlash_um"]["plus"] < 6.0
     assert len(s["clearance_um"]) == 44
@@ -38,11 +40,11 @@ def test_profile_writes_csv_png_and_json(tmp_path):
     assert not [p for p in os.listdir(tmp_path) if p.startswith(".") or p.endswith(".step")]
 
 
-def test_profile_table_output():
+def test_profile_table_output(capfd):
     # no --out: the table alone (the files --out writes: the test above)
-    r = run("profile", "--positions", "4")
-    assert r.returncode == 0, r.stderr
-    assert "clearance at β = 0" in r.stdout and "backlash" in r.stdout
+    r = fegear(capfd, "profile", "--positions", "4")
+    assert r.code == 0, r.lines
+    assert "clearance at β = 0" in r.out and "backlash" in r.out
 
 
 SCHEDULER_ARGS = ["--grade", "6", "--samples", "2", "--quality", "coarse", "--scheduler",
@@ -140,11 +142,11 @@ def test_unwritable_output_path(tmp_path):
     assert len(r.stderr.strip().splitlines()) == 1
 
 
-def test_hertz_prints_fe_beside_hertz_and_writes_vtu(tmp_path):
-    r = run("hertz", "--r1", "10", "--r2", "10", "--load", "1000", "--thickness", "5",
-            "--quality", "coarse", "--out", str(tmp_path), "--json")
-    assert r.returncode == 0, r.stderr
-    s = json.loads(r.stdout)
+def test_hertz_prints_fe_beside_hertz_and_writes_vtu(tmp_path, capfd):
+    r = fegear(capfd, "hertz", "--r1", "10", "--r2", "10", "--load", "1000", "--thickness",
+               "5", "--quality", "coarse", "--out", str(tmp_path), "--json")
+    assert r.code == 0, r.lines
+    s = json.loads(r.out)
     assert abs(s["error_pct"]["p_max"]) < 0.5 and abs(s["error_pct"]["half_width"]) < 2.0
     assert s["hertz"]["b_over_R"] == pytest.approx(0.0222, abs=1e-4)
     assert s["dofs"] > 0 and s["contact_iterations"] > 0
@@ -152,9 +154,9 @@ def test_hertz_prints_fe_beside_hertz_and_writes_vtu(tmp_path):
         s["timings_s"])
     for name in ("disk1.vtu", "disk2.vtu", "summary.json"):
         assert (tmp_path / name).stat().st_size > 0
-    table = run("hertz", "--r2", "-12", "--quality", "coarse")
-    assert table.returncode == 0, table.stderr
-    assert "disk in bore" in table.stdout and "b/R*" in table.stdout
+    table = fegear(capfd, "hertz", "--r2", "-12", "--quality", "coarse")
+    assert table.code == 0, table.lines
+    assert "disk in bore" in table.out and "b/R*" in table.out
 
 
 @pytest.mark.slow
@@ -202,12 +204,12 @@ def test_solve_positions_writes_cycle_csv_and_plot(tmp_path):
 
 
 def test_solve_grade_writes_the_samples_and_sensitivities_tables_pictures_and_summary(
-        tmp_path):
-    r = run("solve", "--shift", "0.03", "--rotation", "0.002", "--quality", "coarse",
-            "--grade", "5", "--samples", "4", "--no-estimate", "--sensitivities",
-            "--out", str(tmp_path))
-    assert r.returncode == 0, r.stderr
-    assert "pairs of ISO 1328-1:2013 class 5" in r.stdout and "verdict: " in r.stdout
+        tmp_path, capfd):
+    r = fegear(capfd, "solve", "--shift", "0.03", "--rotation", "0.002", "--quality", "coarse",
+               "--grade", "5", "--samples", "4", "--no-estimate", "--sensitivities",
+               "--out", str(tmp_path))
+    assert r.code == 0, r.lines
+    assert "pairs of ISO 1328-1:2013 class 5" in r.out and "verdict: " in r.out
     s = json.loads((tmp_path / "summary.json").read_text())["samples"]
     assert s["samples"] == 4 == len(s["rows"]) and s["grade"]["gear1"]["f_pT_um"] == 6.0
     rows = np.genfromtxt(tmp_path / "samples.csv", delimiter=",", names=True, dtype=None,
@@ -219,7 +221,7 @@ def test_solve_grade_writes_the_samples_and_sensitivities_tables_pictures_and_su
     assert abs(first["root_stress_gear1_at_tolerance"]) == max(
         abs(r["root_stress_gear1_at_tolerance"]) for r in sens["rows"]
         if r["tolerance_um"] is not None)
-    assert "Sensitivities:" in r.stdout and (tmp_path / "sensitivities.png").exists()
+    assert "Sensitivities:" in r.out and (tmp_path / "sensitivities.png").exists()
 
 
 @pytest.mark.parametrize("argv,hint", [
