@@ -30,16 +30,17 @@ def pytest_collection_finish(session):
 
 
 #: the modules run first, longest first: each shares a costly fixture among its tests (the killed
-#: study's three runs, 8-10 s; the light pair's sector solve, 5-6 s) or holds long runs of
-#: processes. xdist's workers take long runs of consecutive tests at the start and two at a time
-#: at the end, where such a module's tests went to both workers and each built its fixture (the
-#: light pair twice, the last one the run's last 6 s). Those that ask for CalculiX or Chromium
-#: come last of them: on a first run their install has had two minutes by then
+#: study's three runs, 8-10 s; the 3D tooth's coarse influence, 8-12 s; the light pair's sector
+#: solve, 5-6 s) or holds long runs of processes. xdist's workers take long runs of consecutive
+#: tests at the start and two at a time at the end, where such a module's tests went to both
+#: workers and each built its fixture (the light pair twice, the last one the run's last 6 s).
+#: Those that ask for CalculiX or Chromium come last of them: on a first run their install has
+#: had two minutes by then
 FIRST = ("optimize/test_optimize.py", "study/test_study.py", "toothpair/analyses/test_samples.py",
          "toothpair/ring/test_phases.py", "toothpair/present/test_outputs.py",
          "toothpair/analyses/test_revolution.py", "study/test_cycle.py",
-         "cli/test_profile_drawings.py", "toothpair/present/test_html_report.py",
-         "verify/test_calculix.py")
+         "verify/test_tooth3d.py", "cli/test_profile_drawings.py",
+         "toothpair/present/test_html_report.py", "verify/test_calculix.py")
 
 
 @pytest.hookimpl(trylast=True)
