@@ -21,8 +21,7 @@ class Face(Analysis):
     def drive(self, job, executor):
         from .solve import drive_face  # lazy: heavy: scikit-fem
 
-        solver, sols, rows = drive_face(job, executor)
-        return solver, sols, rows
+        return drive_face(job, executor)
 
     def solve(self, run: Run) -> dict:
         from .solve import coupling_of  # lazy: heavy: scikit-fem

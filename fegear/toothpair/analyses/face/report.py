@@ -51,13 +51,7 @@ def face_verdict(s: dict, width: float) -> tuple[bool, str]:
 def face_html(s: dict, width: float) -> str:
     """The report page's section: each headline at its worst section against the 2D pair's,
     and K_Hβ beside method C's."""
-    rows = []
-    for q in HEADLINES:
-        w = s["worst"][q.key]
-        ratio = w["ratio"]
-        rows.append([q.label, "–" if not ratio else f"{w['value'] / ratio:.1f}",
-                     f"{w['value']:.1f}", "–" if ratio is None else f"{ratio:.3f}",
-                     f"{(w['zeta'] + 0.5) * width:.2f}", f"{w['position_deg']:.3g}"])
+    rows = _worst_rows(s, width)
     i = s["inputs"]
     given = ", ".join(f"{name} {i[key]:g} {unit}" for name, key, unit in (
         ("misalignment", "misalignment_um", "µm"), ("tilt", "tilt_um", "µm"),
@@ -75,18 +69,27 @@ def face_table(s: dict, width: float) -> str:
     then K_Hβ beside method C's."""
     lines = ["| stress | 2D MPa | worst section MPa | ratio | where |",
              "|---|---:|---:|---:|---|"]
-    for q in HEADLINES:
-        w = s["worst"][q.key]
-        ratio = w["ratio"]
-        flat = "–" if not ratio else f"{w['value'] / ratio:.1f}"
-        z = (w["zeta"] + 0.5) * width
-        lines.append(f"| {q.label} | {flat} | {w['value']:.1f} | "
-                     f"{'–' if ratio is None else f'{ratio:.3f}'} | {z:.2f} mm from the first "
-                     f"end, β {w['position_deg']:.3g}° |")
+    for label, flat, worst, ratio, z, beta in _worst_rows(s, width):
+        lines.append(f"| {label} | {flat} | {worst} | {ratio} | {z} mm from the first end, "
+                     f"β {beta}° |")
     lines += ["", f"K_Hβ {s['K_Hbeta']:.3f} (largest line load over its tooth's mean, at β "
                   f"{s['at_position_deg']:.3g}°); ISO 6336-1 method C for the same mismatch "
                   f"and the pair's own approach: {s['K_Hbeta_method_c']:.3f}"]
     return "\n".join(lines)
+
+
+def _worst_rows(s: dict, width: float) -> list[list[str]]:
+    """Each headline's cells, as the table and the page show them: its label, the 2D
+    pair's value, its worst section's, their ratio, where across the face (mm from the
+    first end) and at which rolling angle (°)."""
+    rows = []
+    for q in HEADLINES:
+        w = s["worst"][q.key]
+        ratio = w["ratio"]
+        rows.append([q.label, "–" if not ratio else f"{w['value'] / ratio:.1f}",
+                     f"{w['value']:.1f}", "–" if ratio is None else f"{ratio:.3f}",
+                     f"{(w['zeta'] + 0.5) * width:.2f}", f"{w['position_deg']:.3g}"])
+    return rows
 
 
 def write_face_outputs(s: dict, out: Path, title: str, width: float,
