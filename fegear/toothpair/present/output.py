@@ -23,7 +23,7 @@ from ..analyses import Writing, shown
 from ..case import PairSolution
 from ..job import Job, Solved, solve_job
 from .html_report import write_report
-from .pictured import for_pictures, light
+from .pictured import PICTURED_AROUND, ToDraw, for_pictures, light, same_drawing
 from .plot import chart_pngs, von_mises_bytes
 
 
@@ -35,26 +35,30 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
 
     Where ``executor`` holds processes made ready to draw (a one-off command's:
     :func:`~fegear.running.spare_core` with :func:`~.plot.prepare_pictures`, which imported
-    matplotlib while the command started up), the charts go to one at once and von Mises,
-    from the part of the fields it shows (:func:`~.pictured.for_pictures`), to the other as soon
-    as the fields are formed, while this process writes the VTUs; else every picture is
-    drawn here. They come back as bytes, the same either way, and every file is written
-    here, atomically."""
+    matplotlib while the command started up), the charts go to one at once, and von Mises to
+    the other as soon as the loaded sectors' fields are formed (:data:`PICTURED_AROUND`: a
+    tenth of the whole gears'), while this process forms the whole fields and writes the
+    VTUs; else every picture is drawn here. The whole fields then confirm that the picture
+    had every cell it shows (:func:`~.pictured.for_pictures` of both is the same); where it
+    had not, von Mises is drawn again here from the whole fields. The pictures come back as
+    bytes, the same either way, and every file is written here, atomically."""
     files = {}
     painters = [executor.ready(), executor.ready()] if pictures else []
     # the solution as the pictures read it, formed once for both of them
     drawn_sol = light(sol) if pictures else sol
     charts = _drawn(painters[0], chart_pngs, drawn_sol, summary) if pictures else None
-    bodies = sol.detail.body_fields() if fields or pictures else ()
     peaks = sol.detail.peak_fields() if fields or pictures else ()
     if pictures:
-        shown = for_pictures(drawn_sol, bodies, peaks)
-        von_mises = _drawn(painters[1], von_mises_bytes, shown.sol, summary, shown.bodies,
-                           shown.peaks, shown.spots)
+        near = for_pictures(drawn_sol, sol.detail.body_fields(around=PICTURED_AROUND), peaks)
+        von_mises = _drawn(painters[1], von_mises_bytes, *_drawing(near, summary))
+    bodies = sol.detail.body_fields() if fields or pictures else ()
     if fields:
         for b in (*bodies, *peaks):
             files[b.name] = write_vtu(out / f"{b.name}.vtu", b.points, b.cells, b.data)
     if pictures:
+        whole = for_pictures(drawn_sol, bodies, peaks)
+        if not same_drawing(near, whole):
+            von_mises = SERIAL.submit(von_mises_bytes, *_drawing(whole, summary))
         files["png"] = write_png(out / "von_mises.png", von_mises.result())
         drawn = charts.result()
         for key, name in (("flank_png", "flank_pressure.png"), ("root_png", "root_stress.png")):
@@ -64,6 +68,11 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
                                     **{k: str(v) for k, v in files.items()}}}
     files["summary"] = write_json(out / "summary.json", summary)
     return files
+
+
+def _drawing(shown: ToDraw, summary: dict) -> tuple:
+    """The arguments of :func:`~.plot.von_mises_bytes` for ``shown``."""
+    return shown.sol, summary, shown.bodies, shown.peaks, shown.spots
 
 
 def _drawn(painter, fn, *args):

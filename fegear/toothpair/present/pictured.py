@@ -60,6 +60,35 @@ def for_pictures(sol: PairSolution, bodies, peaks=()) -> ToDraw:
     return ToDraw(sol, shown, tuple(peaks), spots)
 
 
+#: the sectors either side of the loaded ones whose fields von Mises is first drawn from: the
+#: picture frames the loaded teeth and their roots (:func:`same_drawing` confirms it)
+PICTURED_AROUND = 1
+
+
+def same_drawing(a: ToDraw, b: ToDraw) -> bool:
+    """Whether von Mises of ``a`` and of ``b`` is the same picture: the same cells in the same
+    order, the same hot spots, and the values within :data:`ROUNDING` of each field's largest
+    (the loaded sectors' stresses recovered on their own round apart from the whole gear's in
+    the last bits: the colours and the printed values cannot tell)."""
+    if len(a.bodies) != len(b.bodies) or len(a.spots) != len(b.spots):
+        return False
+
+    def close(x, y) -> bool:
+        return np.allclose(x, y, rtol=0.0, atol=ROUNDING * max(np.abs(y).max(), 1.0))
+
+    spots = all(s.gear == t.gear and np.array_equal(s.point, t.point)
+                and close(s.value, t.value) for s, t in zip(a.spots, b.spots))
+    return spots and all(
+        x.name == y.name and np.array_equal(x.points, y.points)
+        and np.array_equal(x.cells, y.cells) and x.data.keys() == y.data.keys()
+        and all(close(x.data[k], y.data[k]) for k in x.data)
+        for x, y in zip(a.bodies, b.bodies))
+
+
+#: the relative difference in the pictured values that :func:`same_drawing` takes for none
+ROUNDING = 1e-9
+
+
 def _cropped(b: BodyField, box) -> BodyField | None:
     """The cells of ``b`` that von Mises draws in ``box`` (or in a box inside it), with
     the fields the picture reads; None if there are none."""

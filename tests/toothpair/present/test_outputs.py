@@ -395,6 +395,73 @@ def test_von_mises_from_the_part_it_shows_is_the_picture_of_the_whole_fields(sol
     assert von_mises_bytes(shown.sol, summary, shown.bodies, shown.peaks, shown.spots) == whole
 
 
+def test_von_mises_drawn_from_the_loaded_sectors_is_the_picture_of_the_whole_fields(
+        solved, summary, written_here):
+    """von Mises is sent to draw from the loaded sectors' fields before the whole gears' are
+    formed, and the file is the picture of the whole fields."""
+    from fegear.figures import png_bytes
+    from fegear.toothpair.present.plot import von_mises_figure
+
+    _, contents = written_here
+    bodies, peaks = solved.detail.body_fields(), solved.detail.peak_fields()
+    assert contents["von_mises.png"] == png_bytes(
+        von_mises_figure(solved, summary, bodies, peaks), 100)
+
+
+def test_where_the_loaded_sectors_miss_a_shown_cell_von_mises_is_drawn_again(
+        solved, summary, tmp_path, written_here):
+    """Where the first drawing's fields lack cells the picture shows (here: every other
+    sector's cells cut from them), :func:`same_drawing` says so and the file is drawn again
+    here from the whole fields: the same picture."""
+    import dataclasses
+
+    from fegear.toothpair import write_pair_outputs
+
+    class Holed:
+        """The solved detail, its loaded sectors' fields with half their cells cut."""
+
+        def __init__(self, detail):
+            self._detail = detail
+
+        def __getattr__(self, name):
+            return getattr(self._detail, name)
+
+        def body_fields(self, around=None):
+            bodies = self._detail.body_fields(around)
+            if around is None:
+                return bodies
+            return tuple(dataclasses.replace(b, cells=b.cells[: len(b.cells) // 2])
+                         for b in bodies)
+
+    executor = Painters()
+    holed = dataclasses.replace(solved, detail=Holed(solved.detail))
+    write_pair_outputs(holed, tmp_path, summary, executor=executor)
+    assert executor.handed == ["chart_pngs", "von_mises_bytes"]
+    assert _contents(tmp_path) == written_here[1]
+
+
+def test_same_drawing_takes_rounding_for_none_and_a_changed_value_for_one(solved):
+    """Values within the last bits' rounding of each other draw the same; a stress changed
+    by a millionth, a cell fewer or a hot spot moved do not."""
+    import dataclasses
+
+    from fegear.toothpair.present.pictured import for_pictures, same_drawing
+
+    a = for_pictures(solved, solved.detail.body_fields(), solved.detail.peak_fields())
+
+    def scaled(factor: float, cut: int = 0):
+        b = a.bodies[0]
+        data = {k: v * factor for k, v in b.data.items()}
+        changed = dataclasses.replace(b, data=data, cells=b.cells[cut:])
+        return dataclasses.replace(a, bodies=(changed, *a.bodies[1:]))
+
+    assert same_drawing(scaled(1 + 1e-13), a)
+    assert not same_drawing(scaled(1 + 1e-6), a)
+    assert not same_drawing(scaled(1.0, cut=1), a)
+    moved = dataclasses.replace(a.spots[0], point=a.spots[0].point + 1e-3)
+    assert not same_drawing(dataclasses.replace(a, spots=(moved, *a.spots[1:])), a)
+
+
 def test_drawn_in_a_forked_copy_the_files_are_the_same_byte_for_byte(solved, summary, tmp_path,
                                                                        written_here):
     """As `fegear solve --out` writes them: the pictures drawn in the copies of this process
