@@ -2,13 +2,15 @@
 as short texts, or as a file of measured deviations.
 
 * ``GEAR:TOOTH=µm``, comma-separated: a tooth's pitch, slope or form deviation
-  (``--pitch-deviation 1:11=5,2:30=-3``);
+  (``--pitch-deviation 1:11=5,2:30=-3``), and across the face its helix slope or form
+  deviation (``--helix-slope-deviation 1:11=4``: :class:`Helix`);
 * ``GEAR=µm[@deg]``, comma-separated: a gear's radial runout and the angle of its high point
   (``--runout 1=10@90``; without ``@deg``, 0°);
 * a CSV file, one row per tooth as a gear measuring machine reports them: columns ``gear``,
   ``tooth`` and any of ``fp`` (the tooth's position deviation; also ``pitch``), ``fpt`` (its
   single pitch deviation from the tooth before, summed into positions: every tooth of that gear
-  then), ``fHa`` (profile slope) and ``ffa`` (profile form), each with its unit in brackets,
+  then), ``fHa`` (profile slope), ``ffa`` (profile form), ``fHb`` (helix slope) and ``ffb``
+  (helix form), each with its unit in brackets,
   ``[µm]``, ``[um]`` or ``[mm]`` (``fp [µm]``), in the header grammar of every input table
   (:mod:`fegear.files`: commas, or semicolons with decimal commas; lines starting with ``#``
   are comments). A tooth has one row.
@@ -34,15 +36,23 @@ from .deviations import LIMIT_UM, Deviations, Runout, ToothDeviation
 
 #: the per-tooth options and the field each sets
 PER_TOOTH = {"pitch-deviation": "pitch", "slope-deviation": "slope", "form-deviation": "form"}
+#: the per-tooth options across the face (a :class:`Helix`'s fields), which only a solve
+#: across the face reads (docs/model.md, "Across the face")
+HELIX = {"helix-slope-deviation": "helix_slope", "helix-form-deviation": "helix_form"}
+#: every option of the ``GEAR:TOOTH=µm`` grammar
+TOOTH_OPTIONS = {**PER_TOOTH, **HELIX}
 #: a deviation column's units: one must be given (µm or mm, a factor of 1000 apart)
 UNITS = {"µm": 1.0, "um": 1.0, "mm": 1e3}
 #: the file's columns, and the field each deviation column sets ("fpt" is summed into
 #: positions)
 COLUMNS = (Column(("gear",)), Column(("tooth",)), Column(("fp", "pitch"), UNITS, None),
            Column(("fpt",), UNITS, None), Column(("fHa", "slope"), UNITS, None),
-           Column(("ffa", "form"), UNITS, None))
-FIELDS = {"fp": "pitch", "fpt": "fpt", "fHa": "slope", "ffa": "form"}
-HEADER = "columns gear, tooth and any of fp (or pitch), fpt, fHa (or slope), ffa (or form)"
+           Column(("ffa", "form"), UNITS, None), Column(("fHb", "helix-slope"), UNITS, None),
+           Column(("ffb", "helix-form"), UNITS, None))
+FIELDS = {"fp": "pitch", "fpt": "fpt", "fHa": "slope", "ffa": "form", "fHb": "helix_slope",
+          "ffb": "helix_form"}
+HEADER = ("columns gear, tooth and any of fp (or pitch), fpt, fHa (or slope), ffa (or form), "
+          "fHb (or helix-slope), ffb (or helix-form)")
 TOOTH_SPEC = "GEAR:TOOTH=µm, comma-separated (e.g. 1:11=5,2:30=-3), GEAR 1 or 2"
 RUNOUT_SPEC = ("GEAR=µm[@deg], comma-separated (e.g. 1=10@90; without @deg, 0°), GEAR 1 or 2, "
                "0 <= µm <= 1000")
@@ -54,7 +64,7 @@ _GEAR = re.compile(r"\s*([12])\s*")
 @dataclass(frozen=True)
 class ToothEntry:
     """One entry of a per-tooth option, ``GEAR:TOOTH=µm``, as read (:func:`per_tooth`): the
-    ``option`` it was given to (a key of :data:`PER_TOOTH`), the ``gear`` (1 or 2), its
+    ``option`` it was given to (a key of :data:`TOOTH_OPTIONS`), the ``gear`` (1 or 2), its
     ``tooth`` (index from 0) and the deviation ``um`` (µm; + moves the tooth's loaded flank
     towards its mate). :attr:`text` writes it back: the one writer of the grammar, as
     :func:`per_tooth` is its one reader."""
@@ -65,8 +75,8 @@ class ToothEntry:
     um: float
 
     def __post_init__(self) -> None:
-        if self.option not in PER_TOOTH:
-            raise ValueError(f"a per-tooth option ({', '.join(PER_TOOTH)}), not "
+        if self.option not in TOOTH_OPTIONS:
+            raise ValueError(f"a per-tooth option ({', '.join(TOOTH_OPTIONS)}), not "
                              f"{self.option!r}")
         if (self.gear not in (1, 2) or self.tooth < 0 or not math.isfinite(self.um)
                 or abs(self.um) > LIMIT_UM):
@@ -84,8 +94,9 @@ class ToothEntry:
 
     @property
     def field(self) -> str:
-        """The :class:`~.deviations.ToothDeviation` field the entry sets."""
-        return PER_TOOTH[self.option]
+        """The :class:`~.deviations.ToothDeviation` or :class:`Helix` field the entry
+        sets."""
+        return TOOTH_OPTIONS[self.option]
 
     @property
     def where(self) -> str:
@@ -149,18 +160,8 @@ def deviations_of(values: Mapping[str, object], z1: int, z2: int) -> Deviations:
     """The deviations the solve inputs name (by their option names: the file first, then the
     per-tooth options over it, the centre distance and the runouts), each tooth refused by
     name where ``z1`` or ``z2`` has no such tooth."""
-    teeth: dict[tuple[int, int], ToothDeviation] = {}
-    if values.get("deviations"):
-        teeth.update(read_deviations(values["deviations"], z1, z2))
-    z = {1: z1, 2: z2}
-    for name in PER_TOOTH:
-        for entry in per_tooth(name, values.get(name)):
-            g = entry.gear
-            if entry.tooth >= z[g]:
-                raise ParameterError(name, entry.where, f"a tooth 0 ... {z[g] - 1} of gear {g} "
-                                     f"(z{g} = {z[g]})")
-            key = (g, entry.tooth)
-            teeth[key] = replace(teeth.get(key, ToothDeviation()), **{entry.field: entry.um})
+    teeth = {key: ToothDeviation(**{f: v for f, v in got.items() if f not in HELIX.values()})
+             for key, got in _given_teeth(values, PER_TOOTH, z1, z2).items()}
     runout = runouts(values.get("runout"))
     return Deviations({t: d for (g, t), d in teeth.items() if g == 1},
                       {t: d for (g, t), d in teeth.items() if g == 2},
@@ -168,9 +169,62 @@ def deviations_of(values: Mapping[str, object], z1: int, z2: int) -> Deviations:
                       runout.get(1, Runout()), runout.get(2, Runout()))
 
 
+@dataclass(frozen=True)
+class Helix:
+    """The helix deviations of the teeth across the face (µm), per gear: (tooth, f_Hβ, f_fβ)
+    for every tooth given one, by tooth. f_Hβ, the helix slope deviation: the loaded flank
+    towards its mate at the face's second end, as much away at its first; f_fβ, the helix
+    form deviation: towards its mate at mid-face, a parabola zero at the ends."""
+
+    gear1: tuple[tuple[int, float, float], ...] = ()
+    gear2: tuple[tuple[int, float, float], ...] = ()
+
+    def __bool__(self) -> bool:
+        return bool(self.gear1 or self.gear2)
+
+
+def helix_of(values: Mapping[str, object], z1: int, z2: int) -> Helix:
+    """The helix deviations the solve inputs name: the deviations file's fHb and ffb columns,
+    then ``--helix-slope-deviation`` and ``--helix-form-deviation`` over them; each tooth
+    refused by name where its gear has no such tooth."""
+    teeth = _given_teeth(values, HELIX, z1, z2)
+    rows = {g: tuple((t, got.get("helix_slope", 0.0), got.get("helix_form", 0.0))
+                     for (gear, t), got in sorted(teeth.items())
+                     if gear == g and (got.get("helix_slope") or got.get("helix_form")))
+            for g in (1, 2)}
+    return Helix(rows[1], rows[2])
+
+
+def _given_teeth(values: Mapping[str, object], options: Mapping[str, str], z1: int,
+                 z2: int) -> dict[tuple[int, int], dict[str, float]]:
+    """{(gear, tooth): {field: µm}} of the deviations file's columns and then the per-tooth
+    ``options`` over them (a key of ``options`` → the field it sets)."""
+    teeth: dict[tuple[int, int], dict[str, float]] = {}
+    if values.get("deviations"):
+        teeth.update(read_measured(values["deviations"], z1, z2))
+    z = {1: z1, 2: z2}
+    for name in options:
+        for entry in per_tooth(name, values.get(name)):
+            g = entry.gear
+            if entry.tooth >= z[g]:
+                raise ParameterError(name, entry.where, f"a tooth 0 ... {z[g] - 1} of gear {g} "
+                                     f"(z{g} = {z[g]})")
+            teeth.setdefault((g, entry.tooth), {})[entry.field] = entry.um
+    return teeth
+
+
 def read_deviations(path, z1: int, z2: int) -> dict[tuple[int, int], ToothDeviation]:
-    """The per-tooth deviations of the file ``path`` (module docstring) → {(gear, tooth):
-    deviation}."""
+    """The per-tooth deviations in the plane of the file ``path`` (module docstring) →
+    {(gear, tooth): deviation}; a tooth with only helix deviations has none."""
+    planar = {key: {f: v for f, v in got.items() if f not in HELIX.values()}
+              for key, got in read_measured(path, z1, z2).items()}
+    return {key: ToothDeviation(**got) for key, got in planar.items() if got}
+
+
+def read_measured(path, z1: int, z2: int) -> dict[tuple[int, int], dict[str, float]]:
+    """Every deviation of the file ``path`` (module docstring) → {(gear, tooth): {field:
+    µm}}, the fields those of :class:`~.deviations.ToothDeviation` and :class:`Helix`, each
+    checked as a tooth's is."""
     table = read_table(read_text(path, "deviations", "CSV file of measured deviations"),
                        COLUMNS, "deviations", path, HEADER)
     fields = [c for c in table.columns if c in FIELDS]
@@ -204,10 +258,14 @@ def read_deviations(path, z1: int, z2: int) -> dict[tuple[int, int], ToothDeviat
             for t in mine:
                 total += got[(gear, t)].pop("fpt")
                 got[(gear, t)]["pitch"] = got[(gear, t)].get("pitch", 0.0) + total
-    try:
-        return {key: ToothDeviation(**v) for key, v in got.items()}
-    except ParameterError as err:
-        raise ParameterError("deviations", str(path), err.admissible, err.reason) from None
+    for (gear, tooth), values in got.items():
+        for field, um in values.items():
+            if not (math.isfinite(um) and abs(um) <= LIMIT_UM):
+                option = next(o for o, f in TOOTH_OPTIONS.items() if f == field)
+                raise ParameterError("deviations", str(path), f"-{LIMIT_UM:g} <= {option} <= "
+                                     f"{LIMIT_UM:g} µm", f"line {lines[(gear, tooth)]}: "
+                                     f"{um:g}")
+    return got
 
 
 def _whole(path, row, column: str) -> int:

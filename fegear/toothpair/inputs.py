@@ -80,7 +80,8 @@ DEVIATION_INPUTS = (
           limits="GEAR 1 or 2, 0 <= µm <= 1000", rule="none", repeat=True,
           metavar="GEAR=µm[@deg]"),
     Input("deviations", str, None, "a CSV file of measured deviations, a row per tooth: gear, "
-          "tooth and any of fp, fpt, fHa, ffa with their units, e.g. fp [µm]",
+          "tooth and any of fp, fpt, fHa, ffa, fHb, ffb with their units, e.g. fp [µm] (fHb "
+          "and ffb, the helix's, are read across the face)",
           limits="a readable file (docs/geometry.md)", rule="none", metavar="FILE"),
 )
 #: a tolerance class's sampled pairs (docs/tolerance.md): what most gears of the class carry
@@ -120,6 +121,16 @@ FACE_INPUTS = (
     Input("end-length", float, None, "the end relief's length from each end", "mm",
           low=0.0, low_open=True, limits="0 < end-length <= face-width / 2",
           rule="a fifth of the face width"),
+    Input("helix-slope-deviation", str, None, "helix slope deviations f_Hβ: a tooth's "
+          "loaded flank towards its mate at the face's second end and as much away at its "
+          "first, GEAR:TOOTH=µm (a deviations file's fHb column too)",
+          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True,
+          metavar="GEAR:TOOTH=µm"),
+    Input("helix-form-deviation", str, None, "helix form deviations f_fβ: a tooth's loaded "
+          "flank towards its mate at mid-face, a parabola zero at the ends, GEAR:TOOTH=µm (a "
+          "deviations file's ffb column too)",
+          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True,
+          metavar="GEAR:TOOTH=µm"),
     Input("face-sections", int, None, "sections across the face the line load is linear "
           "between, both ends among them", low=3, high=65, rule="9"),
 )

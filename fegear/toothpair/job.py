@@ -19,7 +19,8 @@ from typing import TYPE_CHECKING
 from .. import progress
 from ..errors import ParameterError
 from ..fe import Allowables, import_libraries
-from ..geometry import RoundedProfile, admissible_pair, default_round, deviations_of, gear1_profile
+from ..geometry import (RoundedProfile, admissible_pair, default_round, deviations_of,
+                        gear1_profile, helix_of)
 from ..rating import material, read_spectrum
 from ..running import SERIAL, Executor
 from ..timing import Stopwatch
@@ -157,10 +158,12 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase,
     """What varies across the face (any of :data:`~.inputs.FACE_INPUTS` given), refused by
     name: an end relief longer than half the face, or a face with a tolerance class (its
     pairs across the face are not built); None where none is given."""
-    if all(v[row.name] is None for row in FACE_INPUTS):
+    helix = helix_of(v, case.params.z1, case.params.z2)
+    if all(v[row.name] is None for row in FACE_INPUTS) and not helix:
         return None
-    if draw is not None:
-        name = next(row.name for row in FACE_INPUTS if v[row.name] is not None)
+    if draw is not None:   # the face's option, else the file that gave helix deviations
+        name = next((row.name for row in FACE_INPUTS if v[row.name] is not None),
+                    "deviations")
         raise ParameterError(name, v[name], "without --grade (a class's pairs across the "
                              "face are not built: solve the exact pair across the face)")
     if v["end-length"] is not None:   # its value first, then whether it is read
@@ -174,7 +177,7 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase,
                              f"({0.5 * case.thickness:g} mm)")
     return Face(v["face-sections"] or SECTIONS, v["misalignment"] or 0.0, v["tilt"] or 0.0,
                 v["crowning"] or 0.0, v["end-relief"] or 0.0,
-                length if v["end-relief"] else 0.0)
+                length if v["end-relief"] else 0.0, helix.gear1, helix.gear2)
 
 
 def _draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | None:

@@ -151,3 +151,41 @@ def test_a_tooth_its_gear_does_not_have_is_refused_as_it_was_given():
     with pytest.raises(ParameterError, match="'2:45' is not admissible.*0 ... 44 of gear 2"):
         check_teeth(Deviations(gear2={45: ToothDeviation(curve=((0.0, 1.0), (1.0, 2.0)))}),
                     44, 45)
+
+
+def test_helix_deviations_from_the_options_and_a_file(tmp_path):
+    """fHb and ffb columns and --helix-slope/form-deviation give the teeth's helix deviations
+    (the options over the file), which are no deviation in the plane: a file of them alone
+    gives the 2D pair no deviation."""
+    from fegear.geometry import helix_of
+
+    f = tmp_path / "helix.csv"
+    f.write_text("gear,tooth,fHb [µm],ffb [mm]\n1,10,4,0.002\n2,3,-1.5,0\n")
+    assert read_deviations(f, 44, 45) == {}
+    assert not deviations_of({"deviations": str(f)}, 44, 45)
+    helix = helix_of({"deviations": str(f), "helix-slope-deviation": "1:10=5,1:2=1",
+                      "helix-form-deviation": "2:7=3"}, 44, 45)
+    assert helix.gear1 == ((2, 1.0, 0.0), (10, 5.0, 2.0))
+    assert helix.gear2 == ((3, -1.5, 0.0), (7, 0.0, 3.0))
+    assert not helix_of({}, 44, 45)
+
+
+@pytest.mark.parametrize("values, name, says", [
+    ({"helix-slope-deviation": "1:44=3"}, "helix-slope-deviation", "a tooth 0 ... 43"),
+    ({"helix-form-deviation": "1:4=x"}, "helix-form-deviation", "GEAR:TOOTH=µm"),
+    ({"helix-form-deviation": "1:4=2000"}, "helix-form-deviation", "|µm| <= 1000"),
+])
+def test_a_bad_helix_entry_is_refused_by_its_option(values, name, says):
+    from fegear.geometry import helix_of
+
+    with pytest.raises(ParameterError, match=says) as exc:
+        helix_of(values, 44, 45)
+    assert exc.value.name == name
+
+
+def test_a_helix_column_out_of_range_names_its_line(tmp_path):
+    f = tmp_path / "helix.csv"
+    f.write_text("gear,tooth,fHb [µm]\n1,10,4\n1,11,4000\n")
+    with pytest.raises(ParameterError, match=r"line 3: 4000.*helix-slope-deviation <= 1000") as exc:
+        read_deviations(f, 44, 45)
+    assert exc.value.name == "deviations"

@@ -23,6 +23,9 @@ BASE = {"quality": "coarse", "no-estimate": True}
     ({"face-sections": 2}, "face-sections"),
     ({"crowning": -1.0}, "crowning"),
     ({"grade": 5, "tilt": 3.0}, "tilt"),
+    ({"grade": 5, "helix-slope-deviation": "1:3=2"}, "helix-slope-deviation"),
+    ({"helix-form-deviation": "1:44=2"}, "helix-form-deviation"),
+    ({"helix-slope-deviation": "3:4=2"}, "helix-slope-deviation"),
 ])
 def test_bad_face_inputs_are_refused_by_name(values, name):
     with pytest.raises(ParameterError) as exc:
@@ -66,3 +69,30 @@ def test_a_misaligned_face_is_worst_where_it_closes(tmp_path):
         rows = list(csv.DictReader(f))
     assert len(rows) == 5 * len(row["line_loads_N_per_mm"])
     assert {r["section"] for r in rows} == {"0", "1", "2", "3", "4"}
+
+
+def test_helix_slope_on_the_loaded_teeth_closes_the_second_end():
+    """f_Hβ + on every loaded gear-1 tooth moves its flank towards its mate at the second end:
+    that end is the worst, as a misalignment closing it is, and method C reads the tooth's
+    own mismatch (about f_Hβ)."""
+    job = prepare_job({**BASE, "helix-slope-deviation": "1:9=6,1:10=6,1:11=6,1:12=6",
+                       "face-sections": 5})
+    assert job.face.helix1 == tuple((t, 6.0, 0.0) for t in (9, 10, 11, 12))
+    face = solve_job(job).summary["face"]
+    root = face["worst"]["root_stress_gear1_MPa"]
+    assert root["zeta"] == 0.5 and root["ratio"] > 1.05
+    assert face["positions"][0]["mismatch_um"] == pytest.approx(-6.0)
+    assert face["K_Hbeta_method_c"] > 1.0
+
+
+def test_helix_form_of_a_deviations_file_loads_mid_face(tmp_path):
+    """A deviations file's ffb column (every gear-2 tooth 5 µm towards its mate at mid-face):
+    the middle of the face carries most, its ends least."""
+    f = tmp_path / "helix.csv"
+    f.write_text("gear,tooth,ffb [µm]\n" + "".join(f"2,{t},5\n" for t in range(45)))
+    job = prepare_job({**BASE, "deviations": str(f), "face-sections": 5})
+    assert not job.case.deviations and len(job.face.helix2) == 45
+    face = solve_job(job).summary["face"]
+    assert face["worst"]["root_stress_gear1_MPa"]["zeta"] == 0.0
+    loads = max(face["positions"][0]["line_loads_N_per_mm"].values(), key=sum)
+    assert loads[2] > loads[1] > loads[0] and loads[2] > loads[3] > loads[4]
