@@ -65,3 +65,102 @@ class Face:
                 on = teeth == tooth
                 out[on] -= slope * zeta + form * (1.0 - (2.0 * zeta) ** 2)
         return 1e-3 * out
+
+
+@dataclass(frozen=True)
+class Room:
+    """How far gear 1 can turn across the whole face (:func:`face_room`): ``um``, the least
+    room over the positions checked (µm of arc at r0: the loaded side's clearance at the
+    face's tightest section plus the coast side's at its own tightest; below zero the pair
+    jams), at ``beta`` (rad), and ``scale``, the largest factor on the face's misalignment,
+    tilt and helix deviations that leaves the pair room everywhere (inf where they open it)."""
+
+    um: float
+    beta: float
+    scale: float
+
+
+def face_room(face: Face, params, drive, coast) -> Room:
+    """The room :class:`Room` a pair keeps with ``face``'s inputs, from its unloaded clearance
+    states (each a :class:`~fegear.geometry.ContactState` at its own β, with each tooth's
+    closing point) on the loaded flanks (``drive``) and the coast flanks (``coast``).
+
+    Gear 1 is one body along the face: where the face's inputs close the loaded flanks at one
+    section and the coast flanks at another, the pair's backlash has to cover both. A point's
+    offset (µm along its normal, + opens) is read as gear 1's turn that makes it up, in µm of
+    arc at r0: the offset times r0 over the normal's arm about gear 1's centre. The normal is
+    the line to the pitch point (every contact normal of a conjugate pair passes through it).
+    Crowning and end relief only open the gap and are left out; the coast flanks carry only
+    the axes' misalignment and tilt (a deviation is given for the loaded flank)."""
+    pitch_point = np.array([0.0, params.r0])
+    centre = np.array([0.0, params.e])
+    zeta = np.linspace(-0.5, 0.5, face.sections)
+    least, beta, scale = np.inf, 0.0, np.inf
+    for d, c in zip(drive, coast):
+        base_d, rate_d = _turns(face, params, d, +1, zeta, pitch_point, centre)
+        base_c, rate_c = _turns(face, params, c, -1, zeta, pitch_point, centre)
+        if not len(base_d) or not len(base_c):
+            continue
+        room = base_d[:, None] + base_c[None, :] + rate_d[:, None] + rate_c[None, :]
+        if room.min() < least:
+            least, beta = float(room.min()), d.beta
+        slope = rate_d[:, None] + rate_c[None, :]
+        closing = slope < 0
+        if closing.any():
+            gap = (base_d[:, None] + base_c[None, :])[closing]
+            scale = min(scale, float(np.min(np.maximum(gap, 0.0) / -slope[closing])))
+    return Room(least, beta, scale)
+
+
+def _turns(face: Face, params, state, direction: int, zeta, pitch_point, centre):
+    """Every closing point's clearance in ``direction`` (µm of arc at r0) and the turn the
+    face's inputs add to it at each of the sections ``zeta`` (the same unit), flattened over
+    the points and sections."""
+    key, point = ("plus_um", "plus_point") if direction > 0 else ("minus_um", "minus_point")
+    rows = [(t.tooth, getattr(t, key), getattr(t, point)) for t in state.teeth
+            if getattr(t, key) is not None and getattr(t, point) is not None]
+    if not rows:
+        return np.zeros(0), np.zeros(0)
+    teeth = np.array([r[0] for r in rows])
+    clearance = np.array([r[1] for r in rows])
+    x = np.array([r[2] for r in rows])
+    tangent = np.column_stack([-(x[:, 1] - centre[1]), x[:, 0] - centre[0]])  # d x / d turn
+    line = x - pitch_point
+    length = np.hypot(line[:, 0], line[:, 1])
+    # a point at the pitch point: its normal is the turn's own direction
+    u = np.where(length[:, None] > 1e-9, line / np.maximum(length, 1e-300)[:, None],
+                 tangent / np.hypot(tangent[:, 0], tangent[:, 1])[:, None])
+    along = np.einsum("ij,ij->i", u, tangent)
+    n = u * (direction * np.sign(along) + (along == 0))[:, None]   # outward: with the turn
+    arm = np.maximum(np.abs(along), 1e-9)
+    offset = np.outer(n[:, 0] * face.misalignment - n[:, 1] * face.tilt, zeta)
+    if direction > 0:
+        for tooth, slope, form in face.helix1:
+            offset[teeth == tooth] -= slope * zeta + form * (1.0 - (2.0 * zeta) ** 2)
+    turn = offset * params.r0 / arm[:, None]
+    return np.repeat(clearance, len(zeta)), turn.ravel()
+
+
+#: rolling angles a gear-2 pitch at which a face's room is checked: an exact pair's clearances
+#: repeat every pitch; a deviated pair's are checked at as many a pitch over a whole turn
+ROOM_ANGLES = 12
+
+
+def room_of(face: Face, case) -> Room:
+    """:func:`face_room` of ``case``'s pair (its deviations' clearances moved as the solve
+    moves them: over a whole turn of gear 1) with ``face``'s inputs."""
+    from ..geometry import ToothContact, gear1_profile, moved_clearances  # lazy: heavy: scipy
+    from .case import revolution_positions
+
+    params = case.params
+    pitch2 = 2.0 * np.pi / params.z2
+    if case.deviations:
+        betas = revolution_positions(case.beta, ROOM_ANGLES, params.z1, params.z2)
+    else:
+        betas = case.beta + pitch2 * np.arange(ROOM_ANGLES) / ROOM_ANGLES
+    states = ToothContact(params, gear1_profile(params)).states(betas, refine=False)
+    drive = coast = states
+    if case.deviations:
+        drive = moved_clearances(case.deviations, params, states, +1)
+        coast = moved_clearances(case.deviations, params, states, -1)
+    return face_room(face, params, drive, coast)

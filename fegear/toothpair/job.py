@@ -30,9 +30,10 @@ from .analyses import Run, asked
 from .case import SolveCase, cycle_positions, revolution_positions
 from .case_file import case_record
 from .estimate import second_level_estimate, second_quality, tooth_estimates
-from .face import SECTIONS, Face
+from .face import SECTIONS, Face, room_of
 from .inputs import FACE_INPUTS, JOB_INPUTS, PAIR_INPUTS, REQUIRES, TIP_ROUND, check_tip_round
 from .safety import DEFAULT_ALLOWABLES, allowables_of
+from .teeth import INTERFERENCE_UM
 from .summary import add_tooth_estimates, cycle_rows, cycle_summary, pair_summary
 
 if TYPE_CHECKING:   # a Rating's parts: a user error answers before scipy loads
@@ -175,9 +176,34 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase,
     if length > 0.5 * case.thickness:
         raise ParameterError("end-length", length, f"0 < end-length <= half the face width "
                              f"({0.5 * case.thickness:g} mm)")
-    return Face(v["face-sections"] or SECTIONS, v["misalignment"] or 0.0, v["tilt"] or 0.0,
+    face = Face(v["face-sections"] or SECTIONS, v["misalignment"] or 0.0, v["tilt"] or 0.0,
                 v["crowning"] or 0.0, v["end-relief"] or 0.0,
                 length if v["end-relief"] else 0.0, helix.gear1, helix.gear2)
+    if face.misalignment or face.tilt or face.helix1:
+        _refuse_jammed(face, v, case)
+    return face
+
+
+def _refuse_jammed(face: Face, v: dict, case: SolveCase) -> None:
+    """A face whose inputs close gear 1's loaded flanks at one section and its coast flanks at
+    another by more than the pair's backlash jams the pair (:func:`~.face.room_of`): refused
+    naming the first of its closing inputs given, with the largest value the others leave."""
+    room = room_of(face, case)
+    if room.um >= -INTERFERENCE_UM:
+        return
+    name = next(n for n in ("misalignment", "tilt", "helix-slope-deviation",
+                            "helix-form-deviation", "deviations") if v.get(n))
+    given = ",".join(v[name]) if isinstance(v[name], (list, tuple)) else v[name]
+    if name in ("misalignment", "tilt"):
+        admissible = (f"|{name}| <= {abs(given) * room.scale:.3g} µm with the face's other "
+                      "inputs as given")
+    else:
+        admissible = (f"helix deviations at most {room.scale:.3g} times as given, with the "
+                      "face's other inputs")
+    raise ParameterError(name, given, admissible, f"the pair jams at β = "
+                         f"{math.degrees(room.beta):.3g}°: gear 1's loaded flanks close at one "
+                         f"section of the face and its coast flanks at another, "
+                         f"{-room.um:.3g} µm of arc at r0 beyond its backlash")
 
 
 def _draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | None:

@@ -96,3 +96,37 @@ def test_helix_form_of_a_deviations_file_loads_mid_face(tmp_path):
     assert face["worst"]["root_stress_gear1_MPa"]["zeta"] == 0.0
     loads = max(face["positions"][0]["line_loads_N_per_mm"].values(), key=sum)
     assert loads[2] > loads[1] > loads[0] and loads[2] > loads[3] > loads[4]
+
+
+def test_the_room_is_the_backlash_and_closes_with_the_misalignment():
+    """With no input across the face the room is the pair's backlash (the loaded and coast
+    clearances at one β); a misalignment takes it up at about r0 over the normal's arm per
+    µm, and at its scale's limit the room is nil."""
+    import dataclasses
+
+    from fegear.toothpair.face import room_of
+
+    job = prepare_job({**BASE, "misalignment": 5.0})
+    flat = room_of(dataclasses.replace(job.face, misalignment=0.0), job.case)
+    assert flat.scale == float("inf") and 9.0 < flat.um < 12.0   # the baseline's, µm of arc
+    five = room_of(job.face, job.case)
+    assert flat.um - five.um == pytest.approx(5.0, rel=0.1)
+    at_limit = room_of(dataclasses.replace(job.face, misalignment=5.0 * five.scale), job.case)
+    assert at_limit.um == pytest.approx(0.0, abs=1e-9)
+
+
+@pytest.mark.parametrize("values, name, limit", [
+    ({"misalignment": 20.0}, "misalignment", "|misalignment| <= 10.1 µm"),
+    ({"misalignment": -20.0}, "misalignment", "|misalignment| <= 10.1 µm"),
+    ({"tilt": 40.0}, "tilt", "|tilt| <= 32.2 µm"),
+    ({"helix-slope-deviation": "1:9=25,1:10=25,1:11=25,1:12=25"}, "helix-slope-deviation",
+     "at most 0.809 times"),
+])
+def test_a_face_that_jams_the_pair_is_refused_by_name(values, name, limit):
+    """Inputs that close the loaded flanks at one section and the coast flanks at another
+    by more than the backlash: refused naming the input and the largest value it can take."""
+    with pytest.raises(ParameterError, match="the pair jams") as exc:
+        prepare_job({**BASE, **values})
+    assert exc.value.name == name and limit in exc.value.admissible
+    prepare_job({**BASE, **{k: v / 2.5 if isinstance(v, float) else
+                            "1:9=10,1:10=10,1:11=10,1:12=10" for k, v in values.items()}})
