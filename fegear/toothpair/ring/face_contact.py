@@ -7,10 +7,13 @@ A_hp p_s + A_fe Σ_t S_st p_t. The method is the 2D solve's (:func:`~.contact.ac
 violated point swapped at once; the rigid gap linearised in the turn and evaluated again until
 the rotation settles). The active points' system is never formed: N sections of n points
 would make a matrix N² times the 2D one, and its LU N³ times as costly. GMRES solves it from
-two products with the 2D parts a step, preconditioned by each section's own 2D block (A on
-its active points, factorised once per active set) with the torque row bordered exactly: the
-face's operator differs from that block only by the far field's spread, and on the baseline
-it reaches a residual of 1e-13 in about fifty steps.
+two products with the 2D parts a step, preconditioned by the face's own operator on the
+points active at any section, every one of them active at every section (:class:`_Modes`:
+exact in the spread's modes, one 2D-sized LU a section), with the torque row bordered
+exactly: it differs from the face's only where the sections' active points differ (the
+contact zones' edges). On the baseline at 10 µm it reaches a residual of 1e-13 in about
+thirty steps, where each section's own block alone took fifty and a quarter more time
+(docs/model.md).
 """
 
 from __future__ import annotations
@@ -150,6 +153,15 @@ class _Problem:
                             * ((ahead - a[loaded]) / ARM_STEP)[:, None]))
 
 
+def spread_modes(spread: np.ndarray):
+    """The spread S's eigenvalues Λ, eigenvectors V and V⁻ᵀ (S = V Λ V⁻¹), real where S's
+    are (to 1e-12 of the largest), else complex."""
+    lam, v = scipy.linalg.eig(spread)
+    if np.abs(lam.imag).max() <= 1e-12 * np.abs(lam).max() and np.abs(v.imag).max() <= 1e-12:
+        lam, v = lam.real, v.real
+    return lam, v, np.linalg.inv(v).T
+
+
 class _Sections:
     """The active-set method on the candidate points of every section (module docstring)."""
 
@@ -158,6 +170,7 @@ class _Sections:
         self.near = problem.near[np.ix_(points, points)]
         self.spread, self.torque = problem.spread, problem.torque
         self.within, self.w = within, problem.w[points]
+        self.eigen = spread_modes(problem.spread)
         self.factors: dict = {}
 
     def active_set(self, g0, a, active, arm_rate):
@@ -190,8 +203,7 @@ class _Sections:
         sec_major = np.nonzero(on.T)
         local = (sec_major[1], sec_major[0])      # (point, section), section by section
         order = (union[local[0]], local[1])
-        blocks = [self._factor(active[:, s]) for s in range(active.shape[1])]
-        split = np.cumsum([0] + [len(idx) for idx, _ in blocks])
+        modes = self._modes(union, near, far)
         a_on = a[order[0]]
         wa = self.w[order] * a_on
 
@@ -201,20 +213,17 @@ class _Sections:
             u = (far @ (p @ self.spread.T) + near @ p)[local] + a_on * x[-1]
             return np.append(u, wa @ x[:-1] + arm_rate * x[-1])
 
-        def sections(x):
-            out = np.empty_like(x)
-            for s, (idx, factor) in enumerate(blocks):
-                if len(idx):
-                    out[split[s]:split[s + 1]] = scipy.linalg.lu_solve(
-                        factor, x[split[s]:split[s + 1]], check_finite=False)
-            return out
+        def sections(x):   # the union's operator solved, read at the active entries
+            r = np.zeros(on.shape)
+            r[local] = x
+            return modes.solve(r)[local]
 
         pa = sections(a_on)
         schur = arm_rate - wa @ pa
         if not schur:
             raise RingContactError("the contact points cannot carry the torque")
 
-        def precondition(x):   # the sections' blocks with the torque row, solved exactly
+        def precondition(x):   # the coupled sections on the union, with the torque row
             y = sections(x[:-1])
             step = (x[-1] - wa @ y) / schur
             return np.append(y - pa * step, step)
@@ -231,13 +240,34 @@ class _Sections:
         pressure[order] = x[:-1]
         return pressure, float(x[-1])
 
-    def _factor(self, active: np.ndarray):
-        """One section's active points and their block of A (the 2D one) factorised, kept per
-        active set."""
-        key = active.tobytes()
+    def _modes(self, union: np.ndarray, near: np.ndarray, far: np.ndarray) -> _Modes:
+        """The face's operator on every point of ``union`` at every section, in the spread's
+        modes (:class:`_Modes`), kept per union."""
+        key = union.tobytes()
         if key not in self.factors:
-            idx = np.flatnonzero(active)
-            block = self.far[np.ix_(idx, idx)] + self.near[np.ix_(idx, idx)]
-            self.factors[key] = (idx, scipy.linalg.lu_factor(block, check_finite=False)
-                                 if len(idx) else None)
+            self.factors[key] = _Modes(near, far, self.eigen)
         return self.factors[key]
+
+
+class _Modes:
+    """The face's operator with every point of a set active at every section, near X + far X
+    Sᵀ (X: points × sections), solved exactly in the spread's modes: with S = V Λ V⁻¹, Z = X
+    V⁻ᵀ takes it to near z_k + λ_k far z_k, one 2D-sized system a mode. Where the sections'
+    active points are those of the set it is the face's operator itself; where they differ it
+    is what GMRES is preconditioned with. (Solving the differing sets exactly, by the
+    operator's inverse at the entries left out, cost two to three times the GMRES steps it
+    saved: on the baseline some 800 entries are left out of 2800.)"""
+
+    def __init__(self, near: np.ndarray, far: np.ndarray, eigen) -> None:
+        self.lam, self.v, self.v_inv_t = eigen
+        kind = self.lam.dtype
+        self.factors = [scipy.linalg.lu_factor((near + lam * far).astype(kind),
+                                               check_finite=False) for lam in self.lam]
+
+    def solve(self, r: np.ndarray) -> np.ndarray:
+        """X with near X + far X Sᵀ = ``r`` (points × sections; or right-hand sides ×
+        points × sections, each solved)."""
+        rt = r @ self.v_inv_t
+        z = np.stack([scipy.linalg.lu_solve(f, rt[..., k].T, check_finite=False).T
+                      for k, f in enumerate(self.factors)], axis=-1)
+        return np.real(z @ self.v.T)
