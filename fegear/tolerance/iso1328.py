@@ -12,6 +12,11 @@ the next, class 5 the base:
 * total profile       F_αT  = √(f_HαT² + f_fαT²)                           (formula 9)
 * runout              F_rT  = 0.9 F_pT                           (its informative annex)
 
+and across the face, with the face width b (mm; :func:`helix_tolerances`):
+
+* helix slope         f_HβT = (0.05 √d + 0.35 √b + 4) · √2^(A−5)
+* helix form          f_fβT = (0.07 √d + 0.45 √b + 4) · √2^(A−5)
+
 Each is rounded as the standard rounds them: above 10 µm to the whole µm, from 5 to 10 µm to
 0.5 µm, below 5 µm to 0.1 µm (F_αT from the unrounded two). The classes run from 1 (finest)
 to 11; the formulas hold for 0.5 <= m <= 70 mm, 5 <= d <= 15 000 mm and 5 <= z <= 1 000. A
@@ -107,3 +112,12 @@ def class_tolerances(grade: int, m: float, z: int) -> ClassTolerances:
     f_f = (0.55 * m + 5.0) * step
     return ClassTolerances(grade, m, z, rounded(f_p), rounded(F_p), rounded(f_H), rounded(f_f),
                            rounded(math.hypot(f_H, f_f)), rounded(0.9 * F_p))
+
+
+def helix_tolerances(grade: int, d: float, b: float) -> tuple[float, float]:
+    """Class ``grade``'s helix slope and helix form tolerances f_HβT and f_fβT (µm, rounded as
+    the others) for a gear of reference diameter ``d`` and face width ``b`` (mm; module
+    docstring)."""
+    step = math.sqrt(2.0) ** (check_grade(grade) - 5)
+    return (rounded((0.05 * math.sqrt(d) + 0.35 * math.sqrt(b) + 4.0) * step),
+            rounded((0.07 * math.sqrt(d) + 0.45 * math.sqrt(b) + 4.0) * step))

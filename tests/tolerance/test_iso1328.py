@@ -43,3 +43,15 @@ def test_a_class_outside_1_to_11_is_refused_by_name(grade):
 def test_a_gear_outside_the_formulas_range_is_refused_naming_the_class():
     with pytest.raises(ParameterError, match="0.5 <= m <= 70; this one's m is 0.3"):
         class_tolerances(6, 0.3, 44)
+
+
+def test_helix_tolerances_follow_the_formulas_with_the_face_width():
+    """f_HβT = (0.05 √d + 0.35 √b + 4) √2^(A−5), f_fβT = (0.07 √d + 0.45 √b + 4) √2^(A−5),
+    rounded: the baseline's gear 1 (d 88, b 5 mm) at classes 5 and 7, and a wider face."""
+    from fegear.tolerance.iso1328 import helix_tolerances
+
+    assert helix_tolerances(5, 88.0, 5.0) == (5.5, 5.5)      # 5.25 and 5.66 µm
+    assert helix_tolerances(7, 88.0, 5.0) == (11.0, 11.0)    # 10.50 and 11.33 µm
+    assert helix_tolerances(5, 88.0, 100.0) == (8.0, 9.0)    # 7.97 and 9.16 µm
+    with pytest.raises(ParameterError):
+        helix_tolerances(12, 88.0, 5.0)
