@@ -91,7 +91,8 @@ def face_room(face: Face, params, drive, coast) -> Room:
     arc at r0: the offset times r0 over the normal's arm about gear 1's centre. The normal is
     the line to the pitch point (every contact normal of a conjugate pair passes through it).
     Crowning and end relief only open the gap and are left out; the coast flanks carry only
-    the axes' misalignment and tilt (a deviation is given for the loaded flank)."""
+    the axes' misalignment and tilt (a deviation is given for the loaded flank). A gear-2
+    tooth's helix deviations reach the points in its pitch (gear 2 turned by β)."""
     pitch_point = np.array([0.0, params.r0])
     centre = np.array([0.0, params.e])
     zeta = np.linspace(-0.5, 0.5, face.sections)
@@ -134,9 +135,11 @@ def _turns(face: Face, params, state, direction: int, zeta, pitch_point, centre)
     n = u * (direction * np.sign(along) + (along == 0))[:, None]   # outward: with the turn
     arm = np.maximum(np.abs(along), 1e-9)
     offset = np.outer(n[:, 0] * face.misalignment - n[:, 1] * face.tilt, zeta)
-    if direction > 0:
-        for tooth, slope, form in face.helix1:
-            offset[teeth == tooth] -= slope * zeta + form * (1.0 - (2.0 * zeta) ** 2)
+    if direction > 0:   # gear 2's tooth: the one whose pitch holds the point's polar angle
+        teeth2 = gear2_tooth(np.arctan2(x[:, 1], x[:, 0]) - state.beta, params.z2)
+        for mine, helix in ((teeth, face.helix1), (teeth2, face.helix2)):
+            for tooth, slope, form in helix:
+                offset[mine == tooth] -= slope * zeta + form * (1.0 - (2.0 * zeta) ** 2)
     turn = offset * params.r0 / arm[:, None]
     return np.repeat(clearance, len(zeta)), turn.ravel()
 

@@ -179,7 +179,7 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase,
     face = Face(v["face-sections"] or SECTIONS, v["misalignment"] or 0.0, v["tilt"] or 0.0,
                 v["crowning"] or 0.0, v["end-relief"] or 0.0,
                 length if v["end-relief"] else 0.0, helix.gear1, helix.gear2)
-    if face.misalignment or face.tilt or face.helix1:
+    if face.misalignment or face.tilt or face.helix1 or face.helix2:
         _refuse_jammed(face, v, case)
     return face
 
@@ -194,6 +194,8 @@ def _refuse_jammed(face: Face, v: dict, case: SolveCase) -> None:
     name = next(n for n in ("misalignment", "tilt", "helix-slope-deviation",
                             "helix-form-deviation", "deviations") if v.get(n))
     given = ",".join(v[name]) if isinstance(v[name], (list, tuple)) else v[name]
+    if isinstance(given, str) and given.count(",") > 3:   # a tooth each: the first few
+        given = ",".join(given.split(",")[:3]) + f",… ({given.count(',') + 1} entries)"
     if name in ("misalignment", "tilt"):
         admissible = (f"|{name}| <= {abs(given) * room.scale:.3g} µm with the face's other "
                       "inputs as given")

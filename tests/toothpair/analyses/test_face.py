@@ -130,3 +130,15 @@ def test_a_face_that_jams_the_pair_is_refused_by_name(values, name, limit):
     assert exc.value.name == name and limit in exc.value.admissible
     prepare_job({**BASE, **{k: v / 2.5 if isinstance(v, float) else
                             "1:9=10,1:10=10,1:11=10,1:12=10" for k, v in values.items()}})
+
+
+def test_gear_2_s_helix_deviations_count_in_the_room():
+    """11 µm of helix slope on every tooth of gear 1 leaves the baseline its room; the same
+    on gear 2's teeth as well closes the loaded flanks at the second end by more than the
+    backlash: refused, quoting the first entries."""
+    one = ",".join(f"1:{t}=11" for t in range(44))
+    prepare_job({**BASE, "helix-slope-deviation": one})
+    both = one + "," + ",".join(f"2:{t}=11" for t in range(45))
+    with pytest.raises(ParameterError, match="the pair jams") as exc:
+        prepare_job({**BASE, "helix-slope-deviation": both})
+    assert exc.value.value == "1:0=11,1:1=11,1:2=11,… (89 entries)"
