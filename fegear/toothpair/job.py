@@ -140,7 +140,7 @@ def prepare_job(values: Mapping[str, object]) -> Job:
                JOB_INPUTS["quantile"].check(v["quantile"]),
                JOB_INPUTS["sensitivities"].check(v["sensitivities"]), rating,
                case_record(values, _derived(case, len(betas), revolution)),
-               cycle_default=cycle_default, face=_face(v, values, case, draw))
+               cycle_default=cycle_default, face=_face(v, values, case, draw, rating))
 
 
 def _derived(case: SolveCase, n: int, revolution: bool) -> dict[str, object]:
@@ -154,19 +154,21 @@ def _derived(case: SolveCase, n: int, revolution: bool) -> dict[str, object]:
             "positions": per_pitch if revolution or n > 1 else None}
 
 
-def _face(v: dict, given: Mapping[str, object], case: SolveCase,
-          draw: Draw | None) -> Face | None:
+def _face(v: dict, given: Mapping[str, object], case: SolveCase, draw: Draw | None,
+          rating: Rating | None = None) -> Face | None:
     """What varies across the face (any of :data:`~.inputs.FACE_INPUTS` given), refused by
     name: an end relief longer than half the face, or a face with a tolerance class (its
     pairs across the face are not built); None where none is given."""
     helix = helix_of(v, case.params.z1, case.params.z2)
     if all(v[row.name] is None for row in FACE_INPUTS) and not helix:
         return None
-    if draw is not None:   # the face's option, else the file that gave helix deviations
+    if draw is not None or rating is not None:   # the face's option, else the helix file
         name = next((row.name for row in FACE_INPUTS if v[row.name] is not None),
                     "deviations")
         raise ParameterError(name, v[name], "without --grade (a class's pairs across the "
-                             "face are not built: solve the exact pair across the face)")
+                             "face are not built: solve the exact pair across the face)"
+                             if draw is not None else "without --spectrum (a life across "
+                             "the face is not rated yet: its levels would be the 2D pair's)")
     if v["end-length"] is not None:   # its value first, then whether it is read
         JOB_INPUTS["end-length"].check(v["end-length"])
     if v["end-length"] is not None and v["end-relief"] is None:
