@@ -263,11 +263,16 @@ class _Modes:
         kind = self.lam.dtype
         self.factors = [scipy.linalg.lu_factor((near + lam * far).astype(kind),
                                                check_finite=False) for lam in self.lam]
+        # LAPACK's own solve: scipy's lu_solve checks its arguments each call, and GMRES
+        # calls it a section a step (most of its time on the baseline)
+        self.getrs = scipy.linalg.get_lapack_funcs("getrs", (self.factors[0][0],))
 
     def solve(self, r: np.ndarray) -> np.ndarray:
-        """X with near X + far X Sᵀ = ``r`` (points × sections; or right-hand sides ×
-        points × sections, each solved)."""
+        """X with near X + far X Sᵀ = ``r`` (points × sections)."""
         rt = r @ self.v_inv_t
-        z = np.stack([scipy.linalg.lu_solve(f, rt[..., k].T, check_finite=False).T
-                      for k, f in enumerate(self.factors)], axis=-1)
+        z = np.empty_like(rt)
+        for k, (lu, piv) in enumerate(self.factors):
+            z[:, k], info = self.getrs(lu, piv, rt[:, k])
+            if info:
+                raise RingContactError("a section's mode of the face's operator is singular")
         return np.real(z @ self.v.T)
