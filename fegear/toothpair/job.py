@@ -276,8 +276,9 @@ def tip_round_of(params, given: float | None) -> float | None:
 class Solved:
     """A solved job before any file is written: the solutions at every position, the one the
     pictures, VTUs and the error estimate take (the largest gear-1 root stress), the JSON
-    summary (``fegear solve --json``), the cycle rows (None for one position) and the time of
-    the solve (s)."""
+    summary (``fegear solve --json``), the cycle rows (None for one position), the time of
+    the solve (s) and what the analysis that drove the positions kept for its files (None
+    where none did)."""
 
     job: Job
     solutions: tuple
@@ -285,6 +286,7 @@ class Solved:
     summary: dict
     rows: list[dict] | None
     solve_s: float
+    driven: object = None
 
 
 def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
@@ -323,7 +325,7 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
         entry = analysis.solve(run)
         if entry is not None:
             summary[analysis.key] = entry
-    return Solved(job, tuple(sols), sol, summary, rows, watch.s)
+    return Solved(job, tuple(sols), sol, summary, rows, watch.s, driven)
 
 
 def _drive(job: Job, analyses, executor: Executor):

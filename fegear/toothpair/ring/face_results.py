@@ -16,6 +16,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from ...planar import rotate
 from ..case import ContactChecks, PairSolution, SolveCase
 from ..face import Face
 from .contact import RingContactSolution, rigid_gap
@@ -32,7 +33,8 @@ class FaceSections:
     solution over them, each gear-1 tooth's line load (N/mm) at each section (teeth ×
     sections; the teeth with a grid, in ``teeth``) and each section's pair; the face's
     offsets of the rigid gaps (mm, points × sections), the rigid gap's rate with the turn at
-    the solution (mm/rad, by point) and each point's grid."""
+    the solution (mm/rad, by point), each point's grid and where each point is (fixed frame,
+    mm: gear 1 turned to the solution and placed at its centre)."""
 
     coupling: FaceCoupling
     solution: FaceSolution
@@ -42,6 +44,7 @@ class FaceSections:
     offsets: np.ndarray
     rate: np.ndarray
     grid: np.ndarray
+    xy: np.ndarray
 
     @property
     def load_factor(self) -> float:
@@ -109,4 +112,6 @@ def face_sections(model, phases: Phases, case: SolveCase, state, face: Face,
     return FaceSections(coupling, solved, tuple(g.tooth for g in contact.grids),
                         solved.line_loads(contact),
                         tuple(section(s) for s in range(coupling.sections)), offsets, rate,
-                        contact.grid_index)
+                        contact.grid_index,
+                        rotate(contact.x, case.params.ratio * contact.beta + solved.rotation)
+                        + np.array([0.0, case.params.e]))

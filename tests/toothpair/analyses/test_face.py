@@ -5,6 +5,8 @@ states; face.csv holds a row a tooth and section."""
 
 import csv
 
+import numpy as np
+
 import pytest
 
 from fegear.errors import ParameterError
@@ -73,6 +75,17 @@ def test_a_misaligned_face_is_worst_where_it_closes(tmp_path):
         rows = list(csv.DictReader(f))
     assert len(rows) == 5 * len(row["line_loads_N_per_mm"])
     assert {r["section"] for r in rows} == {"0", "1", "2", "3", "4"}
+    # the slices for ParaView: each loaded tooth's grid at every section, its pressures
+    import meshio
+
+    mesh = meshio.read(files["face_vtu"])
+    z = np.unique(mesh.points[:, 2])
+    assert np.allclose(z, (np.array(face["zeta"]) + 0.5) * face["width_mm"])
+    pressure = mesh.point_data["contact_pressure_MPa"]
+    assert pressure.max() == pytest.approx(face["worst"]["contact_pressure_MPa"]["value"],
+                                           rel=1e-12)   # one position: the top one
+    assert {str(t) for t in np.unique(mesh.cell_data["tooth"][0])} >= set(
+        row["line_loads_N_per_mm"])
 
 
 def test_helix_slope_on_the_loaded_teeth_closes_the_second_end():

@@ -28,7 +28,7 @@ class Face(Analysis):
 
         face = run.job.face
         case = run.job.case
-        return face_summary(list(run.driven), coupling_of(case, face), face,
+        return face_summary(run.driven.rows, coupling_of(case, face), face,
                             run.job.allowables, case.thickness)
 
     def printed(self, entry: dict, summary: dict) -> str:
@@ -38,8 +38,9 @@ class Face(Analysis):
                 + face_table(entry, width))
 
     def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
+        patterns = writing.solved.driven.patterns if writing.fields else None
         return write_face_outputs(entry, writing.out, writing.title, entry["width_mm"],
-                                  writing.pictures)
+                                  writing.pictures, patterns)
 
     def verdict(self, entry: dict) -> Verdict:
         passed, line = face_verdict(entry, entry["width_mm"])

@@ -7,7 +7,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ....files import write_csv
+import numpy as np
+
+from ....files import write_atomic, write_csv
 from ....quantities import FACTORS, HEADLINES
 from ...present.html_parts import escape, table
 from ...safety import safety_factors
@@ -93,9 +95,11 @@ def _worst_rows(s: dict, width: float) -> list[list[str]]:
 
 
 def write_face_outputs(s: dict, out: Path, title: str, width: float,
-                       pictures: bool = True) -> dict[str, Path]:
-    """face.csv (a row a position, tooth and section: its place and the line load) and,
-    with ``pictures``, face.png."""
+                       pictures: bool = True, patterns=None) -> dict[str, Path]:
+    """face.csv (a row a position, tooth and section: its place and the line load), with
+    ``pictures`` face.png, and with ``patterns`` (each position's
+    :class:`~.solve.FacePattern`) face.vtu, the slices at the position of the largest K_Hβ
+    (:func:`write_slices`)."""
     rows = ([r["position_deg"], int(tooth), k, (z + 0.5) * width, load]
             for r in s["positions"] for tooth, loads in r["line_loads_N_per_mm"].items()
             for k, (z, load) in enumerate(zip(s["zeta"], loads)))
@@ -103,4 +107,29 @@ def write_face_outputs(s: dict, out: Path, title: str, width: float,
                                                       "z_mm", "line_load_N_per_mm"], rows)}
     if pictures:
         files["face_png"] = face_png(out / "face.png", s, title, width)
+    if patterns:
+        top = max(range(len(s["positions"])), key=lambda k: s["positions"][k]["K_Hbeta"])
+        files["face_vtu"] = write_slices(out / "face.vtu", patterns[top], s["zeta"], width)
     return files
+
+
+def write_slices(path: Path, pattern, zeta, width: float) -> Path:
+    """The contact across the face as a surface for ParaView (VTU, atomically): each loaded
+    tooth's grid points in the fixed frame (x, y, mm) at every section (z: its place from the
+    face's first end, mm), joined in quadrilaterals along the profile and across the face,
+    with the pressure (MPa) and the gap (µm) at each node and the tooth on each face."""
+    import meshio
+
+    n, sections = pattern.pressure.shape
+    z = (np.asarray(zeta) + 0.5) * width
+    points = np.column_stack([np.repeat(pattern.xy, sections, axis=0),
+                              np.tile(z, n)])            # node i * sections + s
+    along = np.flatnonzero(pattern.tooth[1:] == pattern.tooth[:-1])   # within one grid
+    s = np.arange(sections - 1)
+    first = (along[:, None] * sections + s[None, :]).ravel()
+    quads = np.column_stack([first, first + sections, first + sections + 1, first + 1])
+    mesh = meshio.Mesh(points, [("quad", quads)],
+                       point_data={"contact_pressure_MPa": pattern.pressure.ravel(),
+                                   "gap_um": pattern.gap_um.ravel()},
+                       cell_data={"tooth": [np.repeat(pattern.tooth[along], sections - 1)]})
+    return write_atomic(path, lambda tmp: meshio.write(tmp, mesh, file_format="vtu"))

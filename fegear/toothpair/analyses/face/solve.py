@@ -7,6 +7,7 @@ the pair's own approach."""
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -42,11 +43,41 @@ def method_c(mismatch_um: float, approach_um: float) -> float:
     return 1.0 + 0.5 * ratio if ratio <= 2.0 else math.sqrt(2.0 * ratio)
 
 
+@dataclass(frozen=True)
+class FacePattern:
+    """One position's contact across the face as the slices' VTU shows it: the loaded grids'
+    points in the fixed frame (mm), their gear-1 tooth, and their pressure (MPa) and gap
+    (µm) at each section (points × sections)."""
+
+    xy: np.ndarray
+    tooth: np.ndarray
+    pressure: np.ndarray
+    gap_um: np.ndarray
+
+
+@dataclass(frozen=True)
+class FaceDriven:
+    """What :func:`drive_face` keeps: a summary row a position (:func:`position_entry`) and
+    each position's :class:`FacePattern`."""
+
+    rows: list
+    patterns: list
+
+
+def pattern_of(sections: FaceSections) -> FacePattern:
+    """The :class:`FacePattern` of the grids that carry pressure at any section."""
+    loaded = np.flatnonzero([sections.solution.pressure[sections.grid == k].any()
+                             for k in range(len(sections.teeth))])
+    on = np.isin(sections.grid, loaded)
+    return FacePattern(sections.xy[on], np.asarray(sections.teeth)[sections.grid[on]],
+                       sections.solution.pressure[on], 1e3 * sections.solution.gap[on])
+
+
 def drive_face(job, executor: Executor):
     """The job's positions solved by the one driver on a solver that keeps each position's
     contact, each solved across the face as soon as it is solved, in the process that kept
     it (:func:`~fegear.toothpair.positions.drive_along`): (solver, the 2D solutions, a
-    summary row a position)."""
+    :class:`FaceDriven`)."""
     solver = RingSolver(None, SolverModes(keep_phases=True))
     face, case = job.face, job.case
     coupling = coupling_of(case, face)
@@ -57,11 +88,12 @@ def drive_face(job, executor: Executor):
         sections = face_sections(solver.model, solver.phases, at, state, face, coupling)
         if sections is None:
             raise RuntimeError("no contact kept at a position solved across the face")
-        return position_entry(sol, sections)
+        return position_entry(sol, sections), pattern_of(sections)
 
     solved = drive_along(case, [job.betas[k] for k in order], solver, across, executor)
     ordered = [got for _, got in sorted(zip(order, solved), key=lambda pair: pair[0])]
-    return solver, tuple(sol for sol, _ in ordered), [row for _, row in ordered]
+    return solver, tuple(sol for sol, _ in ordered), FaceDriven(
+        [row for _, (row, _) in ordered], [pattern for _, (_, pattern) in ordered])
 
 
 def position_entry(sol, sections: FaceSections) -> dict:
