@@ -1,5 +1,5 @@
-"""Command line: ``fegear profile``, ``hertz``, ``solve``, ``relief``, ``study``, ``optimize``,
-``drive``, ``bench`` and ``cache``.
+"""Command line: ``fegear profile``, ``hertz``, ``solve``, ``relief``, ``crowning``, ``study``,
+``optimize``, ``drive``, ``bench`` and ``cache``.
 
 One module per command, each with ``add_parser`` (its options) and ``run`` (the command). User
 errors (bad parameters, unwritable output) print one line ``fegear: error: …`` on stderr and exit
@@ -26,7 +26,7 @@ import sys
 
 from .. import __version__, progress
 from ..errors import FegearError, ParameterError
-from . import bench, cache, drive, hertz, optimize, profile, relief, solve, study
+from . import bench, cache, crowning, drive, hertz, optimize, profile, relief, solve, study
 from .args import EXIT_USAGE, Parser
 from .terminal import StageBar, Stopped, stop_on_signals
 
@@ -35,8 +35,8 @@ EXIT_BROKEN_PIPE = 128 + signal.SIGPIPE
 
 #: the commands in the order of ``fegear --help``
 COMMANDS = {"profile": profile, "hertz": hertz, "solve": solve, "relief": relief,
-            "study": study, "optimize": optimize, "drive": drive, "bench": bench,
-            "cache": cache}
+            "crowning": crowning, "study": study, "optimize": optimize, "drive": drive,
+            "bench": bench, "cache": cache}
 
 
 DESCRIPTION = ("Finite-element stresses of compound-cycloid internal gear tooth pairs: "
