@@ -25,13 +25,11 @@ reference BLAS, and the 3D factor took 42 s at 75k dofs and 168 s at 146k.
 
 from __future__ import annotations
 
-import math
 import sys
 from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
-from scipy.optimize import brentq
 from skfem import Basis, ElementTetP2, ElementTriP2, ElementVector, MeshTet1, MeshTri1, asm
 from skfem.models.elasticity import linear_elasticity
 
@@ -40,6 +38,7 @@ from ..fe import STEEL_E, STEEL_NU, BodyGeometry, Factor, Refinement, Segment, m
 from ..geometry import PairParameters, RoundedProfile, gear1_profile
 from ..timing import Stopwatch
 from ..toothpair import Layout, PolarCurve, SolveCase, profile_segments, tip_round_of
+from ..toothpair.ring.face import FlankBand, flank_band
 
 #: a patch's length along the profile, in modules (0.2 mm at m 2)
 PATCH = 0.1
@@ -201,18 +200,10 @@ def section_of(params: PairParameters, height: float, level: Resolution,
                pitches: int = PITCHES) -> Section:
     """Gear 1's ``pitches`` (odd) pitches about tooth 0, its loaded flank cut at the load
     band's ends, meshed (module docstring)."""
-    case = SolveCase(params=params, tip_round=tip_round_of(params, None))
-    shape = RoundedProfile(gear1_profile(params), case.edge_radius)
-    pitch, m = shape.pitch, params.m
-    space = shape.phi_space + pitch            # the tooth space after tooth 0's loaded flank
-    rounds = [(c - h, c + h) for c, h, _ in shape.fillet_angles(range(-1, 2))]
-    top = shape.profile.pieces[-1].phi0        # tooth 0's tip edge, or its round's end
-    top = max([top] + [hi for lo, hi in rounds if lo <= top <= hi])
+    case, shape, flank = load_band(params, height)
+    lo, hi, radius, centre = flank.lo, flank.hi, flank.radius, flank.centre
+    pitch, m, top, space = shape.pitch, params.m, flank.top, flank.space
     root, tip = (float(shape.radius(np.array([x]))[0]) for x in (space, shape.tooth_center))
-    upper = float(shape.radius(np.array([top]))[0])
-    radius = root + height * (upper - root)
-    centre = brentq(lambda x: shape.radius(np.array([x]))[0] - radius, top, space)
-    lo, hi = (_at_arc(shape, centre, s) for s in (-0.5 * PATCH * m, 0.5 * PATCH * m))
     a, b = (shape.phi_space + k * pitch for k in (-(pitches // 2), pitches // 2 + 1))
     # tooth 0 and its neighbours refined (the tip rounds, 0.1 mm at m 2, take the flank's
     # size), the teeth beyond them the body's
@@ -250,15 +241,15 @@ def section_of(params: PairParameters, height: float, level: Resolution,
     return Section(points, number[mesh.t].T, band, lengths, normals, bore, radius, tip - root)
 
 
-def _at_arc(shape: RoundedProfile, start: float, s: float) -> float:
-    """The polar angle at arc length ``s`` (mm, signed) along the profile from ``start``."""
-    def arc(x):
-        q = shape.point(np.linspace(start, x, 201))
-        return float(np.sum(np.hypot(*np.diff(q, axis=0).T)))
-
-    step = 2 * abs(s) / float(shape.radius(np.array([start]))[0])  # the flank is steeper
-    end = start + math.copysign(step, s)
-    return brentq(lambda x: arc(x) - abs(s), start, end)
+def load_band(params: PairParameters, height: float) -> tuple[SolveCase, RoundedProfile,
+                                                               FlankBand]:
+    """The solve's case of ``params``, gear 1's rounded profile (its tip rounds) and the load
+    band at ``height`` of its working flank, :data:`PATCH` m along the profile
+    (:func:`~fegear.toothpair.ring.face.flank_band`: the slice model reads its 2D parts on the
+    same band)."""
+    case = SolveCase(params=params, tip_round=tip_round_of(params, None))
+    shape = RoundedProfile(gear1_profile(params), case.edge_radius)
+    return case, shape, flank_band(shape, height, PATCH * params.m)
 
 
 class Extrusion:

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from fegear.toothpair.face import Face
-from fegear.toothpair.ring.face import exponential_kernel, face_coupling
+from fegear.toothpair.ring.face import exponential_kernel, face_coupling, measured_kernel
 
 
 class _Contact:
@@ -53,3 +53,34 @@ def test_each_input_moves_the_gaps_as_defined():
     gear2 = um(helix2=((1, 2.0, 0.0),))
     np.testing.assert_allclose(gear2[1], -2.0 * zeta)
     assert not gear2[[0, 2]].any()
+
+
+def test_a_mirrored_spread_keeps_an_even_load_and_lets_a_linear_one_level_off_at_the_ends():
+    # the measured coupling's form: each load's images in the free ends, rows scaled to one
+    kernel = measured_kernel(2.0, 0.2)
+    for sections in (2, 9, 17):
+        c = face_coupling(sections, 5.0, kernel, mirror=True, correction="scale")
+        np.testing.assert_allclose(c.spread.sum(axis=1), 1.0, rtol=0, atol=1e-13)
+        np.testing.assert_allclose(c.spread[::-1, ::-1], c.spread, atol=1e-13)
+        assert (c.spread >= 0).all()
+    c = face_coupling(9, 5.0, kernel, mirror=True, correction="scale")
+    slope = (c.spread @ c.zeta) / np.where(c.zeta, c.zeta, 1.0)
+    # a linear load's far-field answer: its slope is smaller than the load's, the more so at
+    # the ends (the 3D tooth's: 0.80 of the even load's at mid-face, 0.76 at the end patch)
+    assert 0.5 < slope[0] < slope[1] < slope[3] < 1.0
+
+
+def test_the_measured_kernel_is_the_3d_tooths_less_the_near_field():
+    h, share = 2.0, 0.25
+    kernel, whole = measured_kernel(h, share), measured_kernel(h, 0.0)
+    x = np.linspace(0.0, 5.0 * h, 20001)
+    mass = 2.0 * np.trapezoid(whole(x), x)
+    assert mass == pytest.approx(1.0, abs=0.03)        # the 3D answer per the even load's
+    # the near field's share comes off the first hat: the rest is the finite-element part's
+    np.testing.assert_allclose(2.0 * np.trapezoid(kernel(x), x), (mass - share) / (1 - share),
+                               rtol=1e-3)
+    assert kernel(np.array([3.0]))[0] == pytest.approx(whole(np.array([3.0]))[0] / (1 - share))
+    assert np.all(np.diff(whole(x)) <= 1e-15)          # it never rises with the distance
+    # in tooth heights: a tooth twice as high reaches twice as far
+    assert measured_kernel(2 * h, 0.0)(np.array([2.0 * 3.0]))[0] == pytest.approx(
+        0.5 * whole(np.array([3.0]))[0])
