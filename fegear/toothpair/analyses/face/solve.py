@@ -15,19 +15,17 @@ from ....running import Executor
 from ...case import HEADLINE, phase_major
 from ...face import Face
 from ...positions import drive_along
-from ...ring.face import FaceCoupling, exponential_kernel, face_coupling
+from ...ring.face import FaceCoupling, measured_coupling
 from ...ring.face_results import FaceSections, face_sections
+from ...ring.model import ring_model
 from ...ring.solver import RingSolver, SolverModes
-
-#: the far field's decay along the face, in tooth heights (4 e1: gear 2's tip to its root)
-DECAY = 1.0
 
 
 def coupling_of(case, face: Face) -> FaceCoupling:
-    """The sections of ``face`` across ``case``'s face width and their coupling
-    (docs/model.md, "Across the face")."""
-    height = 4.0 * case.params.e1
-    return face_coupling(face.sections, case.thickness, exponential_kernel(DECAY * height))
+    """The sections of ``face`` across ``case``'s face width and their coupling, the 3D
+    tooth's measured kernel mirrored in the free ends (:func:`~...ring.face
+    .measured_coupling`; docs/model.md, "Across the face")."""
+    return measured_coupling(ring_model(case), face.sections, case.thickness)
 
 
 def method_c(mismatch_um: float, approach_um: float) -> float:
