@@ -7,7 +7,8 @@ meshing-power efficiencies (seed 002); :mod:`.bearings`: seed 000's eccentric-be
 support reactions; :mod:`.dynamics`: a two-inertia torsional model over speed;
 :mod:`.reducer`: seed 003's three-axis reducer, a bending–torsional model of its shafts and
 plates (:mod:`.beams` its shaft elements, :mod:`.reducer_inputs` Table 1,
-:mod:`.reducer_report` its results and the seed's findings checked).
+:mod:`.reducer_report` its results and the seed's findings checked, :mod:`.reducer_tilt` the
+misalignment at each of its meshes under the rated torque as ``fegear solve`` takes it).
 
 >>> from fegear.drive import internal_teeth, ngw
 >>> drive = internal_teeth(44, 45)          # crank H in, gear 1 out, ring 2 translating
@@ -40,4 +41,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
                 "support_reactions", "RESPONSES"),
     "reducer_report": ("MeshSource", "mesh_source", "reducer_summary", "reducer_table",
                        "write_reducer", "findings"),
+    "reducer_tilt": ("MeshTilt", "mesh_tilts", "over_the_turn", "rated_misalignment",
+                     "rated_torque_load", "face_components", "solve_values",
+                     "misalignment_table"),
 })

@@ -64,9 +64,9 @@ class Station:
 @dataclass(eq=False)
 class ReducerModel:
     """The assembled model of one build at one crank angle: mass and stiffness over all dofs,
-    the mesh dampers, the dofs kept (the output's end torsion is held; a caller that holds more sets
-    ``free`` before the first solve: the reduced matrices are kept), the shafts' node
-    positions (m), the plates' stations, and the dof numbers by name."""
+    the mesh dampers and springs, the dofs kept (the output's end torsion is held; a caller
+    that holds more sets ``free`` before the first solve: the reduced matrices are kept), the
+    shafts' node positions (m), the plates' stations, and the dof numbers by name."""
 
     inputs: ReducerInputs
     plates: int
@@ -77,6 +77,8 @@ class ReducerModel:
     free: np.ndarray
     dampers: list = field(default_factory=list)   # the mesh dampers: (g over all dofs, c),
                                                   # each the term c g gᵀ of the damping
+    meshes: list = field(default_factory=list)    # the mesh springs, a plate each: (g, k),
+                                                  # δ = g · x along the line of action
 
     def dof(self, shaft: int, node: int, comp: int) -> int:
         """Global dof of ``comp`` (:data:`~.beams.X` …) at ``node`` of shaft ``shaft``."""
@@ -237,6 +239,7 @@ def build_reducer(inputs: ReducerInputs, plates: int,
         direction = np.zeros(n)
         direction[list(g)] = list(g.values())
         model.dampers.append((direction, s.fraction * cm))
+        model.meshes.append((direction, s.fraction * km))
     M[model.dof(0, 0, TZ), model.dof(0, 0, TZ)] += ip.motor_inertia   # at the drive end
     held = model.dof(3, len(out_z) - 1, TZ)   # the load holds the output end's torsion
     model.free = np.setdiff1d(np.arange(n), [held])

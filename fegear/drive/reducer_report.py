@@ -1,6 +1,7 @@
 """``fegear drive reducer``'s results: the three builds' natural frequencies side by side, the
-unbalance response of the seed's Figs. 2–6, the Campbell crossings, the seed's findings each
-checked, and what fegear's own mesh stiffness changes (:mod:`.reducer`)."""
+unbalance response of the seed's Figs. 2–6, the Campbell crossings, the misalignment at each
+mesh under the rated torque (:mod:`.reducer_tilt`), the seed's findings each checked, and what
+fegear's own mesh stiffness changes (:mod:`.reducer`)."""
 
 from __future__ import annotations
 
@@ -28,6 +29,7 @@ from .reducer import (
     unbalance_resultants,
 )
 from .reducer_inputs import BUILDS, ReducerInputs
+from .reducer_tilt import misalignment_table, rated_misalignment
 
 FAR = 0.3          # "far from the working speed": outside ±30 % of it
 CLOSE = 0.10       # the builds' frequencies "close": within 10 % of each other
@@ -169,6 +171,7 @@ def reducer_summary(inputs: ReducerInputs, mesh: MeshSource, count: int = 10,
                      "turning": {str(p): {k: v.tolist() for k, v in r.items()}
                                  for p, r in turning.items()}},
     }
+    summary["misalignment"] = rated_misalignment(inputs, km)
     summary["campbell"] = _crossings(summary)
     summary["findings"] = findings(summary)
     if mesh.source != "table":
@@ -425,6 +428,7 @@ def reducer_table(s: dict, shown: int) -> str:
               + ", ".join(f"{c['parametric_rpm']:.1f}" for c in cross) + ")"]
     if "mesh_comparison" in s:
         lines += ["", _comparison_table(s)]
+    lines += ["", misalignment_table(s["misalignment"])]
     lines += ["", "Seed 003's findings, checked:", "",
               "| finding | this model | verdict |", "|:---|:---|:---|"]
     for f in s["findings"]:

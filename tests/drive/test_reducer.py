@@ -279,6 +279,13 @@ def test_the_command_prints_the_three_builds_and_writes_the_pictures(tmp_path, c
     assert [len(b["modes"]) for b in s["builds"].values()] == [10, 10, 10]
     assert s["derived"]["ratio"] == 60 and s["derived"]["mesh_frequency_Hz"] == \
         pytest.approx(122 * 25)
+    # the misalignment at each mesh under the rated torque: a row and a command per plate
+    assert "Misalignment at each mesh under the rated torque" in text
+    rows = s["misalignment"]["meshes"]
+    assert [(r["plates"], r["plate"]) for r in rows] == [(1, 1), (2, 1), (2, 2), (3, 1),
+                                                         (3, 2), (3, 3)]
+    assert all(r["command"].startswith("fegear solve --z1 120 --z2 122") and r["command"]
+               in text for r in rows)
 
 
 @pytest.mark.parametrize("argv, words", [
