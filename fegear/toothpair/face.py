@@ -13,6 +13,7 @@ import numpy as np
 
 from ..geometry import gear2_tooth
 from ..planar import rotate
+from .case import revolution_positions
 
 if TYPE_CHECKING:   # a contact's points, normals and feet: read, never built here
     from .ring.influence import RingContact
@@ -93,13 +94,11 @@ def face_room(face: Face, params, drive, coast) -> Room:
     Crowning and end relief only open the gap and are left out; the coast flanks carry only
     the axes' misalignment and tilt (a deviation is given for the loaded flank). A gear-2
     tooth's helix deviations reach the points in its pitch (gear 2 turned by β)."""
-    pitch_point = np.array([0.0, params.r0])
-    centre = np.array([0.0, params.e])
     zeta = np.linspace(-0.5, 0.5, face.sections)
     least, beta, scale = np.inf, 0.0, np.inf
     for d, c in zip(drive, coast):
-        base_d, rate_d = _turns(face, params, d, +1, zeta, pitch_point, centre)
-        base_c, rate_c = _turns(face, params, c, -1, zeta, pitch_point, centre)
+        base_d, rate_d = _turns(face, params, d, +1, zeta)
+        base_c, rate_c = _turns(face, params, c, -1, zeta)
         if not len(base_d) or not len(base_c):
             continue
         room = base_d[:, None] + base_c[None, :] + rate_d[:, None] + rate_c[None, :]
@@ -113,10 +112,11 @@ def face_room(face: Face, params, drive, coast) -> Room:
     return Room(least, beta, scale)
 
 
-def _turns(face: Face, params, state, direction: int, zeta, pitch_point, centre):
+def _turns(face: Face, params, state, direction: int, zeta):
     """Every closing point's clearance in ``direction`` (µm of arc at r0) and the turn the
     face's inputs add to it at each of the sections ``zeta`` (the same unit), flattened over
-    the points and sections."""
+    the points and sections. Gear 1's centre is at (0, e), the pitch point at (0, r0)."""
+    pitch_point, centre = np.array([0.0, params.r0]), np.array([0.0, params.e])
     key, point = ("plus_um", "plus_point") if direction > 0 else ("minus_um", "minus_point")
     rows = [(t.tooth, getattr(t, key), getattr(t, point)) for t in state.teeth
             if getattr(t, key) is not None and getattr(t, point) is not None]
@@ -153,7 +153,6 @@ def room_of(face: Face, case) -> Room:
     """:func:`face_room` of ``case``'s pair (its deviations' clearances moved as the solve
     moves them: over a whole turn of gear 1) with ``face``'s inputs."""
     from ..geometry import ToothContact, gear1_profile, moved_clearances  # lazy: heavy: scipy
-    from .case import revolution_positions
 
     params = case.params
     pitch2 = 2.0 * np.pi / params.z2

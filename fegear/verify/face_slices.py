@@ -25,17 +25,17 @@ import numpy as np
 from scipy.optimize import nnls
 
 from ..geometry import PairParameters
-from ..toothpair import SolveCase
-from ..toothpair.ring.face import (
+from ..toothpair import (
     KERNEL_STEP,
+    SolveCase,
     correction_factors,
     exponential_kernel,
     face_coupling,
     flank_compliance,
     kernel_weights,
     measured_kernel,
+    ring_model,
 )
-from ..toothpair.ring.model import ring_model
 from .tooth3d import FaceInfluence, face_influence, load_band
 
 #: sections a patch's width when the slice model's S is formed on the patches (its limit:

@@ -37,8 +37,15 @@ from ..errors import FegearError, ParameterError
 from ..fe import STEEL_E, STEEL_NU, BodyGeometry, Factor, Refinement, Segment, mesh_bodies
 from ..geometry import PairParameters, RoundedProfile, gear1_profile
 from ..timing import Stopwatch
-from ..toothpair import Layout, PolarCurve, SolveCase, profile_segments, tip_round_of
-from ..toothpair.ring.face import FlankBand, flank_band
+from ..toothpair import (
+    FlankBand,
+    Layout,
+    PolarCurve,
+    SolveCase,
+    flank_band,
+    profile_segments,
+    tip_round_of,
+)
 
 #: a patch's length along the profile, in modules (0.2 mm at m 2)
 PATCH = 0.1
