@@ -1,5 +1,5 @@
-"""``fegear crowning``: the smallest lead crowning that keeps K_Hβ at most a target over a
-misalignment band (:mod:`fegear.optimize.crowning`)."""
+"""``fegear crowning``: the smallest lead crowning (or end relief) that keeps K_Hβ at most a
+target over a misalignment band (:mod:`fegear.optimize.crowning`)."""
 
 from __future__ import annotations
 
@@ -18,6 +18,10 @@ TAKEN = [row for name, row in SOLVE_INPUTS.items()
          if name not in ("positions", "revolution", "quality", "no-estimate") and not row.post]
 #: across the face: the sections only (the rest is what the search sets)
 SECTIONS = [row for row in FACE_INPUTS if row.name == "face-sections"]
+#: an end relief's length, when the search sizes an end relief
+END_LENGTH = replace(next(row for row in FACE_INPUTS if row.name == "end-length"),
+                     help="the end relief's length from each end (with --modification "
+                          "end-relief)")
 
 #: the search's own inputs (defaults: :mod:`fegear.optimize.crowning`)
 CROWNING_INPUTS = (
@@ -34,12 +38,16 @@ CROWNING_INPUTS = (
             help="mesh refinement of every solve (coarse: a trial in 3-5 s on two cores)"),
     Input("tolerance", float, 0.5, "the search ends when its bracket is this narrow", "µm",
           low=0.0, low_open=True, high=10.0),
+    Input("modification", str, "crowning", "what the search sizes: gear 1's lead crowning "
+          "C_β, or an end relief C_I over --end-length from each end",
+          choices=("crowning", "end-relief")),
+    END_LENGTH,
 )
 
 
 def add_parser(sub) -> None:
-    p = sub.add_parser("crowning", help="the smallest lead crowning that keeps K_Hβ under a "
-                                        "target over a misalignment band")
+    p = sub.add_parser("crowning", help="the smallest lead crowning (or end relief) that "
+                                        "keeps K_Hβ under a target over a misalignment band")
     add_inputs(p, TAKEN)
     add_inputs(p, SECTIONS)
     add_inputs(p, CROWNING_INPUTS, "the search")
@@ -57,7 +65,8 @@ def run(a: argparse.Namespace) -> int:
     prepare_job(values)   # the pair's and the load's inputs refused by name first, as solve's
     own = checked(a, CROWNING_INPUTS)
     search = CrowningSearch(own["misalignment_band"], own["target"], own["positions"],
-                            own["quality"], own["tolerance"])
+                            own["quality"], own["tolerance"], own["modification"],
+                            own["end_length"])
     apply_switch(a, default=True)   # before the forked copy starts: it inherits it
     with spare_core() as executor:   # a trial's positions on the machine's second core
         result = size_crowning(values, search, executor, report=progress.stage)

@@ -14,9 +14,14 @@ before any trial passes, a golden-section search in the last three trials' brack
 crowning that minimises it; a trial that passes on the way ends it in the same bisection, and
 none passing means no crowning reaches the target.
 
+With ``modification="end-relief"`` the same search sizes an end relief C_I over a given
+length from each end (``--end-relief``, ``--end-length``) instead: it too is even in ζ, opens
+the closing end and, on the aligned pair, takes load off both ends.
+
 Without helix deviations the pair is its own mirror across mid-face (−F at ζ is +F at −ζ;
-crowning is even in ζ): the band's −F end is then +F's, and a trial costs two solves (one for
-the even face, which is the 2D pair at every section: K_Hβ 1). With them, three.
+crowning and end relief are even in ζ): the band's −F end is then +F's, and a trial costs two
+solves (one for the even face, which is the 2D pair at every section: K_Hβ 1). With them,
+three.
 """
 
 from __future__ import annotations
@@ -42,8 +47,11 @@ QUALITY = "coarse"
 #: the bisection's and golden section's end (µm): finer than a crowning is ground to; within
 #: 0.5 µm of its least the baseline's worst K_Hβ moves by less than 0.005 (docs/optimize.md)
 TOLERANCE_UM = 0.5
-#: the most crowning the solve takes (µm; ``--crowning``'s range)
+#: the most crowning or end relief the solve takes (µm; ``--crowning``'s range and
+#: ``--end-relief``'s)
 MOST_UM = 100.0
+#: what the search can size: the solve's option, and the modification's name and symbol
+MODIFICATIONS = {"crowning": ("lead crowning", "C_β"), "end-relief": ("end relief", "C_I")}
 #: the golden section's step: the share of the larger interval a new trial goes into
 GOLDEN = (3.0 - math.sqrt(5.0)) / 2.0
 
@@ -68,10 +76,11 @@ class BandPoint:
 
 @dataclass(frozen=True)
 class Trial:
-    """A crowning (µm) solved over the band: its points (the solved misalignments; a mirrored
-    pair's −F end is its +F end's) and the number of solves it took."""
+    """A crowning or end relief (µm) solved over the band: its points (the solved
+    misalignments; a mirrored pair's −F end is its +F end's) and the number of solves it
+    took."""
 
-    crowning_um: float
+    amount_um: float
     points: tuple[BandPoint, ...]
     solves: int
 
@@ -97,7 +106,7 @@ class Trial:
         return max(p.pressure_ratio for p in self.points)
 
     def row(self) -> dict:
-        return {"crowning_um": self.crowning_um, "K_Hbeta": self.K_Hbeta,
+        return {"amount_um": self.amount_um, "K_Hbeta": self.K_Hbeta,
                 "root_ratio": self.root_ratio, "pressure_ratio": self.pressure_ratio,
                 "solves": self.solves, "points": [dict(p.__dict__) for p in self.points]}
 
@@ -106,13 +115,18 @@ class Trial:
 class CrowningSearch:
     """What the search covers: the misalignment band ±``band_um`` (µm over the face), the K_Hβ
     ``target``, ``positions`` rolling angles across one pitch (1: the one at ``--position``),
-    the solves' ``quality`` and the search's ``tolerance_um``; each checked by name."""
+    the solves' ``quality`` and the search's ``tolerance_um``, and what it sizes
+    (``modification``, one of :data:`MODIFICATIONS`; an end relief over ``end_length_mm``
+    from each end, None: the solve's default, a fifth of the face width); each checked by
+    name."""
 
     band_um: float | None
     target: float = TARGET
     positions: int = POSITIONS
     quality: str = QUALITY
     tolerance_um: float = TOLERANCE_UM
+    modification: str = "crowning"
+    end_length_mm: float | None = None
 
     def __post_init__(self) -> None:
         if self.band_um is None:
@@ -127,26 +141,38 @@ class CrowningSearch:
             raise ParameterError("positions", self.positions, "an integer 1 <= positions <= 360")
         if not 0.0 < self.tolerance_um <= 10.0:
             raise ParameterError("tolerance", self.tolerance_um, "0 < tolerance <= 10 µm")
+        if self.modification not in MODIFICATIONS:
+            raise ParameterError("modification", self.modification, " / ".join(MODIFICATIONS))
+        if self.end_length_mm is not None and self.modification != "end-relief":
+            raise ParameterError("end-length", self.end_length_mm, "with --modification "
+                                 "end-relief only (the length of the end relief sized)")
+
+    def inputs(self, amount_um: float) -> dict:
+        """The ``fegear solve`` inputs of the modification at ``amount_um``."""
+        if self.modification == "crowning":
+            return {"crowning": amount_um}
+        return {"end-relief": amount_um, "end-length": self.end_length_mm}
 
 
 @dataclass(frozen=True)
 class CrowningSizing:
-    """The search's trials in the order tried, the crowning chosen (µm), whether it keeps
+    """The search's trials in the order tried, the amount chosen (µm), whether it keeps
     K_Hβ at most the target (else it is the one that minimises K_Hβ over the band), whether
     the pair was mirrored (two solves a trial), the solves and the wall time (s), and the
-    ``fegear solve`` inputs of the pair as given (the crowning and misalignment aside)."""
+    ``fegear solve`` inputs of the pair as given (the modification and misalignment
+    aside)."""
 
     search: CrowningSearch
     trials: tuple[Trial, ...]
-    crowning_um: float
+    amount_um: float
     reached: bool
     mirrored: bool
     solves: int
     wall_s: float
     values: Mapping[str, object]
 
-    def trial(self, crowning_um: float) -> Trial:
-        return next(t for t in self.trials if t.crowning_um == crowning_um)
+    def trial(self, amount_um: float) -> Trial:
+        return next(t for t in self.trials if t.amount_um == amount_um)
 
     @property
     def before(self) -> Trial:
@@ -154,30 +180,31 @@ class CrowningSizing:
 
     @property
     def chosen(self) -> Trial:
-        return self.trial(self.crowning_um)
+        return self.trial(self.amount_um)
 
     def command(self) -> str:
-        """The ``fegear solve`` line of the chosen crowning at the band's +F end."""
+        """The ``fegear solve`` line of the amount chosen at the band's +F end."""
         s = self.search
         return solve_command({**self.values, "quality": s.quality,
                               "positions": s.positions if s.positions > 1 else None,
-                              "crowning": self.crowning_um, "misalignment": s.band_um})
+                              **s.inputs(self.amount_um), "misalignment": s.band_um})
 
     def summary(self) -> dict:
         s = self.search
-        return {"misalignment_band_um": s.band_um, "target": s.target,
+        return {"modification": s.modification, "end_length_mm": s.end_length_mm,
+                "misalignment_band_um": s.band_um, "target": s.target,
                 "positions": s.positions, "quality": s.quality, "tolerance_um": s.tolerance_um,
-                "crowning_um": self.crowning_um, "reached": self.reached,
+                "amount_um": self.amount_um, "reached": self.reached,
                 "K_Hbeta_before": self.before.K_Hbeta, "K_Hbeta": self.chosen.K_Hbeta,
                 "mirrored": self.mirrored, "solves": self.solves, "wall_s": self.wall_s,
                 "command": self.command(), "trials": [t.row() for t in self.trials]}
 
 
-def band_point(values: Mapping, crowning_um: float, misalignment_um: float,
+def band_point(values: Mapping, amount_um: float, misalignment_um: float,
                search: CrowningSearch, executor: Executor = SERIAL) -> BandPoint:
-    """The pair of ``values`` (``fegear solve`` inputs) with ``crowning_um`` at
-    ``misalignment_um``, solved across the face over the search's positions."""
-    job = prepare_job({**values, "crowning": crowning_um, "misalignment": misalignment_um,
+    """The pair of ``values`` (``fegear solve`` inputs) with the search's modification at
+    ``amount_um`` and ``misalignment_um``, solved across the face over its positions."""
+    job = prepare_job({**values, **search.inputs(amount_um), "misalignment": misalignment_um,
                        "quality": search.quality, "no-estimate": True,
                        "positions": search.positions if search.positions > 1 else None})
     face = solve_job(job, executor).summary["face"]
@@ -190,12 +217,14 @@ def band_point(values: Mapping, crowning_um: float, misalignment_um: float,
 
 def band_checked(values: Mapping, search: CrowningSearch) -> bool:
     """Whether the pair of ``values`` is its own mirror across mid-face (no helix
-    deviations); a band that jams it (the solve's own check of its room across the face) is
-    refused naming ``misalignment-band``."""
+    deviations), its inputs and the modification's checked as the solve checks them; a band
+    that jams it (the solve's own check of its room across the face) is refused naming
+    ``misalignment-band``."""
     mirrored = True
     for f in (search.band_um, -search.band_um):
         try:
-            job = prepare_job({**values, "misalignment": f, "quality": search.quality})
+            job = prepare_job({**values, **search.inputs(0.0), "misalignment": f,
+                               "quality": search.quality})
         except ParameterError as exc:
             if exc.name != "misalignment":
                 raise
@@ -209,7 +238,7 @@ def band_checked(values: Mapping, search: CrowningSearch) -> bool:
 
 
 class _Band:
-    """Trials by crowning, each solved once by ``solve`` (:func:`band_point`'s signature), in
+    """Trials by amount, each solved once by ``solve`` (:func:`band_point`'s signature), in
     the order tried; ``report`` is told of each solve (a stage on the progress bar)."""
 
     def __init__(self, values: Mapping, search: CrowningSearch, mirrored: bool,
@@ -219,10 +248,10 @@ class _Band:
         self.executor, self.report, self.solve = executor, report, solve
         self.trials: dict[float, Trial] = {}
 
-    def __call__(self, crowning_um: float) -> Trial:
-        if crowning_um not in self.trials:
-            self.trials[crowning_um] = self._solve(crowning_um)
-        return self.trials[crowning_um]
+    def __call__(self, amount_um: float) -> Trial:
+        if amount_um not in self.trials:
+            self.trials[amount_um] = self._solve(amount_um)
+        return self.trials[amount_um]
 
     def _solve(self, c: float) -> Trial:
         F = self.search.band_um
@@ -231,7 +260,7 @@ class _Band:
             if f == 0.0 and c == 0.0 and self.mirrored:   # an even face: the 2D pair
                 points[f] = BandPoint(0.0, 1.0, 1.0, 1.0, 1.0)
                 continue
-            self.report(f"crowning {c:.3g} µm at misalignment {f:+g} µm")
+            self.report(f"{self.search.modification} {c:.3g} µm at misalignment {f:+g} µm")
             with progress.reporting(None):   # one stage a solve, whatever the solve's are
                 points[f] = self.solve(self.values, c, f, self.search, self.executor)
             solves += 1
@@ -246,10 +275,10 @@ class _Band:
 def size_crowning(values: Mapping, search: CrowningSearch, executor: Executor = SERIAL,
                   report: Callable[[str], None] = lambda text: None,
                   solve: Callable[..., BandPoint] = band_point) -> CrowningSizing:
-    """The smallest crowning of the pair of ``values`` (``fegear solve`` inputs, the
-    crowning and misalignment aside) whose K_Hβ stays at most ``search.target`` over the band,
-    or the one that minimises K_Hβ over it where none does (module docstring); ``solve``
-    gives a point of the band (default :func:`band_point`)."""
+    """The smallest crowning (or end relief) of the pair of ``values`` (``fegear solve``
+    inputs, the modification and misalignment aside) whose K_Hβ stays at most
+    ``search.target`` over the band, or the one that minimises K_Hβ over it where none does
+    (module docstring); ``solve`` gives a point of the band (default :func:`band_point`)."""
     watch = Stopwatch()
     mirrored = band_checked(values, search)
     band = _Band(values, search, mirrored, executor, report, solve)
@@ -309,36 +338,46 @@ def _least(band: _Band, a: float, b: float, c: float) -> tuple[float, bool]:
 
 
 def sizing_table(s: CrowningSizing) -> str:
-    """What ``fegear crowning`` prints: the verdict, every crowning tried (K_Hβ aligned and
-    at the band's ends, the worst, and the worst section's root stress and peak pressure over
+    """What ``fegear crowning`` prints: the verdict, every amount tried (K_Hβ aligned and at
+    the band's ends, the worst, and the worst section's root stress and peak pressure over
     the 2D pair's, each the largest over the band), the solves and the line that solves the
-    crowning chosen."""
+    amount chosen."""
     q, F = s.search, s.search.band_um
+    name, symbol = MODIFICATIONS[q.modification]
     over = (f"over the misalignment band ±{F:g} µm (±{F:g} µm and the aligned pair, "
             f"{q.positions} position{'s' * (q.positions > 1)} across a pitch, {q.quality})")
-    if s.reached and s.crowning_um == 0.0:
-        head = f"no lead crowning needed: K_Hβ stays at most {q.target:g} {over}"
+    if s.reached and s.amount_um == 0.0:
+        head = f"no {name} needed: K_Hβ stays at most {q.target:g} {over}"
     elif s.reached:
-        head = (f"lead crowning C_β {s.crowning_um:.2f} µm: the smallest that keeps K_Hβ at "
-                f"most {q.target:g} {over}")
+        head = (f"{name} {symbol} {s.amount_um:.2f} µm{_over(q)}: the smallest that keeps "
+                f"K_Hβ at most "
+                f"{q.target:g} {over}")
     else:
-        head = (f"no lead crowning keeps K_Hβ at most {q.target:g} {over}: C_β "
-                f"{s.crowning_um:.2f} µm minimises it, to {s.chosen.K_Hbeta:.3f}")
+        head = (f"no {name}{_over(q)} keeps K_Hβ at most {q.target:g} {over}: {symbol} "
+                f"{s.amount_um:.2f} µm minimises it, to {s.chosen.K_Hbeta:.3f}")
     ends = [(f"K_Hβ at ±{F:g} µm", F)] if s.mirrored else [(f"K_Hβ at {f:+g} µm", f)
                                                            for f in (-F, F)]
-    columns = ["crowning C_β [µm]", "K_Hβ aligned", *(c for c, _ in ends), "worst K_Hβ",
+    columns = [f"{symbol} [µm]", "K_Hβ aligned", *(c for c, _ in ends), "worst K_Hβ",
                "root stress ratio", "peak pressure ratio"]
     lines = [head, "", "| " + " | ".join(columns) + " |", "|" + "---:|" * len(columns)]
-    for t in sorted(s.trials, key=lambda t: t.crowning_um):
+    for t in sorted(s.trials, key=lambda t: t.amount_um):
         at = {p.misalignment_um: p.K_Hbeta for p in t.points}
-        mark = " (chosen)" if t.crowning_um == s.crowning_um else ""
-        cells = [f"{t.crowning_um:.2f}{mark}", f"{at[0.0]:.3f}",
+        mark = " (chosen)" if t.amount_um == s.amount_um else ""
+        cells = [f"{t.amount_um:.2f}{mark}", f"{at[0.0]:.3f}",
                  *(f"{at[f]:.3f}" for _, f in ends), f"{t.K_Hbeta:.3f}", f"{t.root_ratio:.3f}",
                  f"{t.pressure_ratio:.3f}"]
         lines.append("| " + " | ".join(cells) + " |")
     mirror = f" (the −{F:g} µm end is the +{F:g} µm one mirrored)" if s.mirrored else ""
     lines += ["", "ratios: the worst section's stress over the 2D pair's at the same position, "
                   "the largest over the band",
-              f"{len(s.trials)} crownings tried, {s.solves} solves{mirror}, {s.wall_s:.1f} s",
+              f"{len(s.trials)} amounts tried, {s.solves} solves{mirror}, {s.wall_s:.1f} s",
               f"solve it: {s.command()}"]
     return "\n".join(lines)
+
+
+def _over(q: CrowningSearch) -> str:
+    """An end relief's length as the verdict states it ('' for a crowning)."""
+    if q.modification != "end-relief":
+        return ""
+    return (" from each end" if q.end_length_mm is None else
+            f" over {q.end_length_mm:g} mm from each end")
