@@ -67,9 +67,10 @@ def solve(args: list[str]) -> dict | str:
 
 def table_row(name: str, face: dict | str) -> str:
     if isinstance(face, str):   # "fegear: error: --x = v is not admissible (why); admissible: …"
-        why = face.split("(", 1)[-1].split(":")[0] if "(" in face else face
-        admissible = face.rpartition("admissible: ")[2].split(" with ")[0]
-        return f"| {name} | refused: {why}; admissible {admissible} | | | | |"
+        why = face.partition("is not admissible (")[2].split(":")[0] or face
+        admissible = face.rpartition("admissible: ")[2].split(" with ")[0].rstrip(",")
+        text = f"refused: {why}; admissible {admissible}".replace("|", "\\|")
+        return f"| {name} | {text} | | | | |"
     worst = max(face["positions"], key=lambda r: r["K_Hbeta"])
     tooth = max(worst["line_loads_N_per_mm"].values(), key=sum)
     root, flank = (face["worst"][k] for k in ("root_stress_gear1_MPa",
