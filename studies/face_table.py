@@ -1,9 +1,9 @@
 """The table of docs/solve.md, "Across the face": the baseline and the relieved baseline across
-the face at 0, 5, 10 and 20 µm of misalignment and with the helix slope deviations of ISO
+the face at 0, 5, 8, 10 and 20 µm of misalignment and with the helix slope deviations of ISO
 1328-1 classes 5 and 7, each row one `fegear solve … --json` (a refused input: its one line).
 
     .venv/bin/python studies/face_table.py                  # about 5 minutes on two cores
-    .venv/bin/python studies/face_table.py --crowning 4     # the same rows with lead crowning
+    .venv/bin/python studies/face_table.py --crowning 3     # the same rows with lead crowning
 
 Every row solves a mesh cycle (--positions, default 6) at --quality (default coarse) under
 200 N·m, without the error estimate, and reads the face's summary: K_Hβ and method C at the
@@ -31,7 +31,7 @@ FACE_WIDTH = 5.0   # mm, the baseline's
 def rows() -> list[tuple[str, list[str]]]:
     """Each row's name and its face inputs."""
     p = PairParameters()
-    out = [(f"misalignment {f:g} µm", ["--misalignment", f"{f:g}"]) for f in (0, 5, 10, 20)]
+    out = [(f"misalignment {f:g} µm", ["--misalignment", f"{f:g}"]) for f in (0, 5, 8, 10, 20)]
     for grade in (5, 7):
         slope, _ = helix_tolerances(grade, p.m * p.z1, FACE_WIDTH)
         teeth = ",".join(f"1:{t}={slope:g}" for t in range(p.z1))

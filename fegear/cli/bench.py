@@ -54,7 +54,7 @@ def add_parser(sub) -> None:
                    help="also time fegear solve --positions 24 with a 4-level --spectrum "
                         "against the cycle alone, 3 runs each (about half a minute)")
     p.add_argument("--face", action="store_true",
-                   help="also time fegear solve across the face (--misalignment 10) against "
+                   help="also time fegear solve across the face (--misalignment 8) against "
                         "the 2D pair, one position and 24, 3 runs each (about a minute)")
     p.add_argument("--no-peer", action="store_true",
                    help="do not run CalculiX beside the ladders even if ccx is installed")

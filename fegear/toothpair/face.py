@@ -89,16 +89,19 @@ def face_room(face: Face, params, drive, coast) -> Room:
     Gear 1 is one body along the face: where the face's inputs close the loaded flanks at one
     section and the coast flanks at another, the pair's backlash has to cover both. A point's
     offset (µm along its normal, + opens) is read as gear 1's turn that makes it up, in µm of
-    arc at r0: the offset times r0 over the normal's arm about gear 1's centre. The normal is
-    the line to the pitch point (every contact normal of a conjugate pair passes through it).
-    Crowning and end relief only open the gap and are left out; the coast flanks carry only
+    arc at r0: the offset times r0 over the normal's arm about gear 1's centre, the normal gear
+    1's flank's at the point (not the line to the pitch point: a closing point a few µm off
+    the line of action near the pitch point would turn that line anywhere). Crowning and end relief only open the gap and are left out; the coast flanks carry only
     the axes' misalignment and tilt (a deviation is given for the loaded flank). A gear-2
     tooth's helix deviations reach the points in its pitch (gear 2 turned by β)."""
+    from ..geometry import gear1_profile  # lazy: heavy: scipy (the profile the check built)
+
+    profile = gear1_profile(params)
     zeta = np.linspace(-0.5, 0.5, face.sections)
     least, beta, scale = np.inf, 0.0, np.inf
     for d, c in zip(drive, coast):
-        base_d, rate_d = _turns(face, params, d, +1, zeta)
-        base_c, rate_c = _turns(face, params, c, -1, zeta)
+        base_d, rate_d = _turns(face, params, d, +1, zeta, profile)
+        base_c, rate_c = _turns(face, params, c, -1, zeta, profile)
         if not len(base_d) or not len(base_c):
             continue
         room = base_d[:, None] + base_c[None, :] + rate_d[:, None] + rate_c[None, :]
@@ -112,11 +115,11 @@ def face_room(face: Face, params, drive, coast) -> Room:
     return Room(least, beta, scale)
 
 
-def _turns(face: Face, params, state, direction: int, zeta):
+def _turns(face: Face, params, state, direction: int, zeta, profile):
     """Every closing point's clearance in ``direction`` (µm of arc at r0) and the turn the
     face's inputs add to it at each of the sections ``zeta`` (the same unit), flattened over
-    the points and sections. Gear 1's centre is at (0, e), the pitch point at (0, r0)."""
-    pitch_point, centre = np.array([0.0, params.r0]), np.array([0.0, params.e])
+    the points and sections; the points' normals are gear 1's ``profile``'s there (gear 1 at
+    (0, e), turned by ratio β)."""
     key, point = ("plus_um", "plus_point") if direction > 0 else ("minus_um", "minus_point")
     rows = [(t.tooth, getattr(t, key), getattr(t, point)) for t in state.teeth
             if getattr(t, key) is not None and getattr(t, point) is not None]
@@ -125,12 +128,10 @@ def _turns(face: Face, params, state, direction: int, zeta):
     teeth = np.array([r[0] for r in rows])
     clearance = np.array([r[1] for r in rows])
     x = np.array([r[2] for r in rows])
+    centre, turn = np.array([0.0, params.e]), params.ratio * state.beta
     tangent = np.column_stack([-(x[:, 1] - centre[1]), x[:, 0] - centre[0]])  # d x / d turn
-    line = x - pitch_point
-    length = np.hypot(line[:, 0], line[:, 1])
-    # a point at the pitch point: its normal is the turn's own direction
-    u = np.where(length[:, None] > 1e-9, line / np.maximum(length, 1e-300)[:, None],
-                 tangent / np.hypot(tangent[:, 0], tangent[:, 1])[:, None])
+    own = rotate(x - centre, -turn)                                # gear 1's frame
+    u = rotate(profile.evaluate(np.arctan2(own[:, 1], own[:, 0])).normal, turn)
     along = np.einsum("ij,ij->i", u, tangent)
     n = u * (direction * np.sign(along) + (along == 0))[:, None]   # outward: with the turn
     arm = np.maximum(np.abs(along), 1e-9)
@@ -160,7 +161,7 @@ def room_of(face: Face, case) -> Room:
         betas = revolution_positions(case.beta, ROOM_ANGLES, params.z1, params.z2)
     else:
         betas = case.beta + pitch2 * np.arange(ROOM_ANGLES) / ROOM_ANGLES
-    states = ToothContact(params, gear1_profile(params)).states(betas, refine=False)
+    states = ToothContact(params, gear1_profile(params)).states(betas)
     drive = coast = states
     if case.deviations:
         drive = moved_clearances(case.deviations, params, states, +1)

@@ -61,7 +61,7 @@ SPECTRUM_RUNS = 3
 #: the pair across the face (issue 69): 10 µm of misalignment at the default sections, one
 #: position at most 2× the 2D one and a 24-position cycle at most 3× the 2D cycle, whole
 #: commands without the estimate
-FACE_ARGS = ("--misalignment", "10")
+FACE_ARGS = ("--misalignment", "8")
 FACE_CASES = {"one position": ("--no-estimate",),
               "24 positions": ("--positions", "24", "--no-estimate")}
 FACE_TARGETS = {"one position": 2.0, "24 positions": 3.0}
