@@ -2,11 +2,11 @@
 C3D15), for the 3D pair check (:mod:`fegear.verify.calculix_face`).
 
 * **The section.** The sector scene's geometries (:mod:`fegear.verify.sector.scene`: the same
-  teeth, windows, cuts, bore and rim) are meshed again with every refinement no finer than
-  ``floor`` (mm), and those away from the loaded teeth no finer than ``far``: the coarse
-  sector mesh has 2-8 µm elements on gear 1's tip rounds, which across 0.6 mm layers would be
-  wedges 100× longer than wide, and 55k nodes, which extruded would be 1.5M (SPOOLES, the
-  solver of Debian's ccx, factorises about 0.2M in minutes on two cores).
+  teeth, windows, cuts, bore and rim) are meshed again at :class:`FaceSizes` (windows 0.2 mm,
+  tip rounds 0.05 mm, far roots 1 mm, growing 1 mm/mm): the coarse sector mesh has 2-8 µm
+  elements on gear 1's tip rounds, which across 0.8 mm layers would be wedges 100× longer than
+  wide, and 55k nodes, which extruded would be 1.5M (SPOOLES, the solver of Debian's ccx,
+  factorises 0.25M in about 20 s on two cores).
 * **The extrusion.** ``layers`` equal layers across the face width b, z from −b/2 to b/2
   (ζ = z/b). Each P2 triangle (CalculiX order: corners 1-3 counter-clockwise, midsides 4-6 on
   1-2, 2-3, 3-1) gives a C3D15: its nodes on the layer's lower plane (1-3, 7-9), upper plane
@@ -35,7 +35,7 @@ from .ccx_files import PeerError
 
 MIN_QUALITY = 0.1    # gmsh's sliver check (the product's 0.15): where a coarse window meets
                      # a finer root the transition leaves a few thinner triangles
-SPACING = 0.25       # joined segments' points at least this many floor sizes apart
+SPACING = 0.25       # joined segments' points at least this many of their element sizes apart
 
 
 def coarsened(geometry: BodyGeometry, sizes: FaceSizes, near: tuple[float, float]
@@ -115,11 +115,11 @@ def _thinned(points: np.ndarray, spacing: float) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Extruded:
-    """A P2 triangle mesh extruded into ``layers`` C3D15 layers across ``width`` (mm).
-    ``nodes`` (n, 3) fixed-frame coordinates (mm); ``elements`` (e, 15) node indices
-    (0-based, CalculiX order); ``conn2d`` the section's (t, 6) element nodes; ``full`` section
-    nodes on every layer plane, ``corners`` the section's corner nodes (on the middle planes
-    too); ``zeta`` of each node."""
+    """The P2 triangle ``mesh`` (the section) extruded into ``layers`` C3D15 layers across
+    ``width`` (mm). ``nodes`` (n, 3) fixed-frame coordinates (mm): every section node on each
+    of the layers + 1 planes, then the section's ``corners`` on each layer's middle plane;
+    ``elements`` (e, 15) node indices (0-based, CalculiX order), layer by layer;
+    ``conn2d`` the section's (t, 6) element nodes."""
 
     mesh: object
     nodes: np.ndarray
@@ -135,6 +135,7 @@ class Extruded:
 
     @property
     def zeta(self) -> np.ndarray:
+        """Each node's face position z / width, from −½ to ½."""
         return self.nodes[:, 2] / self.width
 
     def plane_node(self, plane: int, node: np.ndarray) -> np.ndarray:

@@ -115,20 +115,39 @@ def test_deck_ties_the_bore_and_pairs_each_tooth_layer(tmp_path):
     assert len(zones[0]) > 0 and len(zones[1]) > 0
 
 
+@pytest.fixture(scope="module")
+def aligned(tmp_path_factory):
+    """The baseline at 200 N·m, aligned, by fegear (the 2D pair) and by CalculiX in 3D (about
+    8 min)."""
+    if installed("ccx") is None:
+        pytest.skip(f"CalculiX: {why_not('ccx')}")
+    return face_check(0.0, tmp_path_factory.mktemp("aligned"), threads=2, timeout=3600)
+
+
 @pytest.mark.slow
-@pytest.mark.usefixtures("ccx")
-def test_aligned_3d_pair_matches_the_2d_pair(tmp_path):
-    """Aligned, the extruded pair carries the 2D pair's tooth loads (each tooth's mean line
-    load within 2 % of the 2D load over the face width, for teeth above 10 % of the load) and
-    its gear-1 root stress within 5 % (3D against plane stress)."""
-    check = face_check(0.0, tmp_path, threads=2, timeout=3600)
-    c = check.ccx
+def test_aligned_3d_pair_carries_the_2d_tooth_loads(aligned):
+    """Aligned, the extruded pair carries the 2D pair's tooth loads: each tooth's mean line
+    load within 2 % of the 2D load over the face width, for teeth above 10 % of the load
+    (measured: 0.2 %), and the torque is the contact moment's."""
+    c = aligned.ccx
     total = sum(np.mean(row) for row in c.line_load)
+    checked = 0
     for t, row in zip(c.teeth, c.line_load):
-        ours = np.mean(check.fegear_line_load.get(t, [0.0]))
+        ours = np.mean(aligned.fegear_line_load.get(t, [0.0]))
         if ours > 0.1 * total:
             assert np.mean(row) == pytest.approx(ours, rel=0.02)
-    assert c.root_stress[0] == pytest.approx(check.fegear_root_stress[0], rel=TOL)
+            checked += 1
+    assert checked >= 3
+    assert c.torque == pytest.approx(200e3, rel=0.01)
+
+
+@pytest.mark.slow
+def test_aligned_3d_root_stress_against_the_2d_pair(aligned):
+    """Aligned, the 3D pair's worst gear-1 root stress within 5 % of the 2D pair's (plane
+    stress). Measured 2026-12-02: +6.6 % (306.7 against 287.7 MPa), so this fails: the same
+    sections as a thin plane-stress slab read 284.6, and inside the face the root is near plane
+    strain with 3 % more line load in the middle (docs/validation.md)."""
+    assert aligned.ccx.root_stress[0] == pytest.approx(aligned.fegear_root_stress[0], rel=TOL)
 
 
 @pytest.mark.slow
