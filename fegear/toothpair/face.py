@@ -152,10 +152,15 @@ ROOM_ANGLES = 12
 
 def room_of(face: Face, case) -> Room:
     """:func:`face_room` of ``case``'s pair (its deviations' clearances moved as the solve
-    moves them: over a whole turn of gear 1) with ``face``'s inputs."""
+    moves them: over a whole turn of gear 1) with ``face``'s inputs. An exact pair's
+    clearances are kept (:data:`_KEPT`): a search over what varies across the face (``fegear
+    crowning``'s trials) checks its room once."""
     from ..geometry import ToothContact, gear1_profile, moved_clearances  # lazy: heavy: scipy
 
     params = case.params
+    key = None if case.deviations else (params, float(case.beta))
+    if key in _KEPT:
+        return face_room(face, params, *_KEPT[key])
     pitch2 = 2.0 * np.pi / params.z2
     if case.deviations:
         betas = revolution_positions(case.beta, ROOM_ANGLES, params.z1, params.z2)
@@ -166,4 +171,14 @@ def room_of(face: Face, case) -> Room:
     if case.deviations:
         drive = moved_clearances(case.deviations, params, states, +1)
         coast = moved_clearances(case.deviations, params, states, -1)
+    if key is not None:
+        while len(_KEPT) >= KEEP_ROOMS:
+            _KEPT.pop(next(iter(_KEPT)))
+        _KEPT[key] = (drive, coast)
     return face_room(face, params, drive, coast)
+
+
+#: the exact pairs' clearance states kept for their room (:func:`room_of`), the oldest let go
+#: beyond this many
+KEEP_ROOMS = 4
+_KEPT: dict = {}
