@@ -20,6 +20,9 @@ from fegear.verify.sector import solve_pair
 
 #: issue 69: K_Hβ and the worst gear-1 root stress within 5 % of fegear's slice model
 TOL = 0.05
+#: µm over the face: the issue's 10 is beyond the baseline's room since 2026-12-02 (fegear
+#: refuses it: the pair would jam at β = 6°, 9.95 µm admissible)
+MISALIGNMENT = 9.9
 
 
 @pytest.fixture
@@ -153,9 +156,9 @@ def test_aligned_3d_root_stress_against_the_2d_pair(aligned):
 @pytest.mark.slow
 @pytest.mark.usefixtures("ccx")
 def test_misaligned_3d_pair_matches_the_slice_model(tmp_path):
-    """Baseline, 200 N·m, 10 µm over the face: CalculiX's K_Hβ and worst gear-1 root stress
-    within 5 % of the slice model's (issue 69)."""
-    check = face_check(10.0, tmp_path, threads=2, timeout=3600)
+    """Baseline, 200 N·m, 9.9 µm over the face: CalculiX's K_Hβ and worst gear-1 root stress
+    within 5 % of the slice model's (issue 69; measured at 10 µm: −1.1 % and +4.3 %)."""
+    check = face_check(MISALIGNMENT, tmp_path, threads=2, timeout=3600)
     c = check.ccx
     assert c.load_factor == pytest.approx(check.fegear_load_factor, rel=TOL)
     assert c.root_stress[0] == pytest.approx(check.fegear_root_stress[0], rel=TOL)
