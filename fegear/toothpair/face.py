@@ -91,9 +91,10 @@ def face_room(face: Face, params, drive, coast) -> Room:
     offset (µm along its normal, + opens) is read as gear 1's turn that makes it up, in µm of
     arc at r0: the offset times r0 over the normal's arm about gear 1's centre, the normal gear
     1's flank's at the point (not the line to the pitch point: a closing point a few µm off
-    the line of action near the pitch point would turn that line anywhere). Crowning and end relief only open the gap and are left out; the coast flanks carry only
-    the axes' misalignment and tilt (a deviation is given for the loaded flank). A gear-2
-    tooth's helix deviations reach the points in its pitch (gear 2 turned by β)."""
+    the line of action near the pitch point would turn that line anywhere). Crowning and end
+    relief only open the gap and are left out; the coast flanks carry only the axes'
+    misalignment and tilt (a deviation is given for the loaded flank). A gear-2 tooth's helix
+    deviations reach the points in its pitch (gear 2 turned by β)."""
     from ..geometry import gear1_profile  # lazy: heavy: scipy (the profile the check built)
 
     profile = gear1_profile(params)

@@ -19,8 +19,14 @@ from typing import TYPE_CHECKING
 from .. import progress
 from ..errors import ParameterError
 from ..fe import Allowables, import_libraries
-from ..geometry import (RoundedProfile, admissible_pair, default_round, deviations_of,
-                        gear1_profile, helix_of)
+from ..geometry import (
+    RoundedProfile,
+    admissible_pair,
+    default_round,
+    deviations_of,
+    gear1_profile,
+    helix_of,
+)
 from ..rating import material, read_spectrum
 from ..running import SERIAL, Executor
 from ..timing import Stopwatch
@@ -33,8 +39,8 @@ from .estimate import second_level_estimate, second_quality, tooth_estimates
 from .face import SECTIONS, Face, room_of
 from .inputs import FACE_INPUTS, JOB_INPUTS, PAIR_INPUTS, REQUIRES, TIP_ROUND, check_tip_round
 from .safety import DEFAULT_ALLOWABLES, allowables_of
-from .teeth import INTERFERENCE_UM
 from .summary import add_tooth_estimates, cycle_rows, cycle_summary, pair_summary
+from .teeth import INTERFERENCE_UM
 
 if TYPE_CHECKING:   # a Rating's parts: a user error answers before scipy loads
     from ..rating import GearMaterial, Spectrum

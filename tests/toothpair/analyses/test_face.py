@@ -6,7 +6,6 @@ states; face.csv holds a row a tooth and section."""
 import csv
 
 import numpy as np
-
 import pytest
 
 from fegear.errors import ParameterError
