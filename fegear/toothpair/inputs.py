@@ -57,21 +57,22 @@ MODEL_INPUTS = (
           "estimate)"),
 )
 
+def tooth_input(name: str, help: str) -> Input:
+    """An input of the ``GEAR:TOOTH=µm`` grammar (:mod:`fegear.geometry.deviation_inputs`
+    reads it), named ``name``: none by default, given more than once or comma-separated."""
+    return Input(name, str, None, help, limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000",
+                 rule="none", repeat=True, metavar="GEAR:TOOTH=µm")
+
+
 #: a real pair's manufacturing and assembly deviations (docs/geometry.md, "Deviations"): + moves
 #: a tooth's loaded flank towards its mate
 DEVIATION_INPUTS = (
-    Input("pitch-deviation", str, None, "teeth turned along their pitch circle (a tooth's "
-          "position deviation), GEAR:TOOTH=µm, comma-separated, e.g. 1:11=5",
-          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True,
-          metavar="GEAR:TOOTH=µm"),
-    Input("slope-deviation", str, None, "profile slope deviations: the loaded flank's normal "
-          "departure growing from its root to the value at its tip, GEAR:TOOTH=µm",
-          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True,
-          metavar="GEAR:TOOTH=µm"),
-    Input("form-deviation", str, None, "profile form deviations: a parabola along the loaded "
-          "flank, the value at its middle, GEAR:TOOTH=µm",
-          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True,
-          metavar="GEAR:TOOTH=µm"),
+    tooth_input("pitch-deviation", "teeth turned along their pitch circle (a tooth's position "
+              "deviation), GEAR:TOOTH=µm, comma-separated, e.g. 1:11=5"),
+    tooth_input("slope-deviation", "profile slope deviations: the loaded flank's normal "
+              "departure growing from its root to the value at its tip, GEAR:TOOTH=µm"),
+    tooth_input("form-deviation", "profile form deviations: a parabola along the loaded flank, "
+              "the value at its middle, GEAR:TOOTH=µm"),
     Input("centre-distance-deviation", float, 0.0, "the centres farther apart than "
           "m (z2 - z1)/2 by this", "µm", low=-1000.0, high=1000.0),
     Input("runout", str, None, "radial runout F_r of a gear and the angle of its high point "
@@ -121,16 +122,12 @@ FACE_INPUTS = (
     Input("end-length", float, None, "the end relief's length from each end", "mm",
           low=0.0, low_open=True, limits="0 < end-length <= face-width / 2",
           rule="a fifth of the face width"),
-    Input("helix-slope-deviation", str, None, "helix slope deviations f_Hβ: a tooth's "
-          "loaded flank towards its mate at the face's second end and as much away at its "
-          "first, GEAR:TOOTH=µm (a deviations file's fHb column too)",
-          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True,
-          metavar="GEAR:TOOTH=µm"),
-    Input("helix-form-deviation", str, None, "helix form deviations f_fβ: a tooth's loaded "
-          "flank towards its mate at mid-face, a parabola zero at the ends, GEAR:TOOTH=µm (a "
-          "deviations file's ffb column too)",
-          limits="GEAR 1 or 2, an existing tooth, |µm| <= 1000", rule="none", repeat=True,
-          metavar="GEAR:TOOTH=µm"),
+    tooth_input("helix-slope-deviation", "helix slope deviations f_Hβ: a tooth's loaded flank "
+              "towards its mate at the face's second end and as much away at its first, "
+              "GEAR:TOOTH=µm (a deviations file's fHb column too)"),
+    tooth_input("helix-form-deviation", "helix form deviations f_fβ: a tooth's loaded flank "
+              "towards its mate at mid-face, a parabola zero at the ends, GEAR:TOOTH=µm (a "
+              "deviations file's ffb column too)"),
     Input("face-sections", int, None, "sections across the face the line load is linear "
           "between, both ends among them", low=3, high=65, rule="9"),
 )

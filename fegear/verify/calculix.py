@@ -66,6 +66,7 @@ from .ccx_files import (
     floats,
     last_block,
     read_text,
+    save_deck,
 )
 from .disks import DiskCase, DiskResult, solve_disks
 from .penalty import ContactSettings
@@ -223,13 +224,7 @@ def write_deck(bodies: Sequence[Body], load: float, directory: str | os.PathLike
     contact, penalty = _contact_cards(bodies, pairs, numbering, penalty_factor)
     lines += contact
     lines += _step_cards(link, load, increments, len(pairs), stresses)
-    out = Path(directory)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-        path = out / f"{jobname}.inp"
-        path.write_text("\n".join(lines) + "\n")
-    except OSError as exc:
-        raise PeerError(f"cannot write the deck in {str(out)!r}: {exc.strerror}") from None
+    path = save_deck(directory, jobname, lines)
     types = {_element_type(b.material, plane_stress_element) for b in bodies}
     return CcxDeck(path=path, jobname=jobname, nodes=numbering.nodes,
                    elements=numbering.elements, element_type="/".join(sorted(types)),

@@ -28,7 +28,7 @@ import numpy as np
 
 from .calculix import CONTROLS, FIELD
 from .ccx_face_mesh import Extruded
-from .ccx_files import PeerError
+from .ccx_files import PeerError, save_deck
 
 
 @dataclass(frozen=True)
@@ -98,13 +98,7 @@ def write_face_deck(bodies: FaceBodies, torque: float, directory, jobname: str,
     contact, tooth, layer, penalty = _contact_cards(bodies, e1, penalty_factor)
     lines += contact
     lines += _step_cards(torque, [f"S{t}L{k}" for t, k in zip(tooth, layer)])
-    out = Path(directory)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-        path = out / f"{jobname}.inp"
-        path.write_text("\n".join(lines) + "\n")
-    except OSError as exc:
-        raise PeerError(f"cannot write the deck in {str(out)!r}: {exc.strerror}") from None
+    path = save_deck(directory, jobname, lines)
     return FaceDeck(path, ref - 1, e1 + len(g2.elements), ref, tuple(tooth), tuple(layer),
                     penalty, count)
 

@@ -84,6 +84,19 @@ def block_row(block: list[str], title: str) -> list[float]:
     return floats(rows(block, j)[0])
 
 
+def save_deck(directory, jobname: str, lines: list[str]) -> Path:
+    """The deck's ``lines`` written as ``directory``/``jobname``.inp (the folder made), or one
+    line naming the folder that could not take it."""
+    out = Path(directory)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        path = out / f"{jobname}.inp"
+        path.write_text("\n".join(lines) + "\n")
+    except OSError as exc:
+        raise PeerError(f"cannot write the deck in {str(out)!r}: {exc.strerror}") from None
+    return path
+
+
 def read_text(path: Path) -> str:
     try:
         return path.read_text(errors="replace")
