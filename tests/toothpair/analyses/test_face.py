@@ -95,6 +95,9 @@ def test_helix_slope_on_the_loaded_teeth_closes_the_second_end():
                        "face-sections": 5})
     assert job.face.helix1 == tuple((t, 6.0, 0.0) for t in (9, 10, 11, 12))
     face = solve_job(job).summary["face"]
+    assert face["inputs"]["helix_gear1"] == [[t, 6.0, 0.0] for t in (9, 10, 11, 12)]
+    (_, html), = FACE.page(face)
+    assert "helix deviations on 4 gear-1 teeth" in html and "an even face" not in html
     root = face["worst"]["root_stress_gear1_MPa"]
     assert root["zeta"] == 0.5 and root["ratio"] > 1.05
     assert face["positions"][0]["mismatch_um"] == pytest.approx(-6.0)

@@ -29,7 +29,9 @@ def face_summary(rows: list[dict], coupling, face, allowables, width: float) -> 
         worst[q.key] = {**row["worst"][q.key], "position_deg": row["position_deg"]}
     return {"inputs": {"sections": face.sections, "misalignment_um": face.misalignment,
                        "tilt_um": face.tilt, "crowning_um": face.crowning,
-                       "end_relief_um": face.end_relief, "end_length_mm": face.end_length},
+                       "end_relief_um": face.end_relief, "end_length_mm": face.end_length,
+                       "helix_gear1": [list(h) for h in face.helix1],
+                       "helix_gear2": [list(h) for h in face.helix2]},
             "width_mm": width, "zeta": [float(z) for z in coupling.zeta],
             "K_Hbeta": top["K_Hbeta"], "K_Hbeta_method_c": top["K_Hbeta_method_c"],
             "at_position_deg": top["position_deg"], "worst": worst,
@@ -59,6 +61,10 @@ def face_html(s: dict, width: float) -> str:
         ("misalignment", "misalignment_um", "µm"), ("tilt", "tilt_um", "µm"),
         ("crowning", "crowning_um", "µm"), ("end relief", "end_relief_um", "µm"))
         if i[key])
+    helix = [f"{len(i[key])} gear-{g} teeth" for g, key in ((1, "helix_gear1"),
+                                                           (2, "helix_gear2")) if i.get(key)]
+    if helix:
+        given = ", ".join([*filter(None, [given]), "helix deviations on " + " and ".join(helix)])
     return (f"<p>{escape(given or 'an even face')}, {i['sections']} sections. K_Hβ "
             f"{s['K_Hbeta']:.3f}; ISO 6336-1 method C for the same mismatch and the pair's "
             f"own approach: {s['K_Hbeta_method_c']:.3f}.</p>"
