@@ -61,8 +61,8 @@ def face_html(s: dict, width: float) -> str:
         ("misalignment", "misalignment_um", "µm"), ("tilt", "tilt_um", "µm"),
         ("crowning", "crowning_um", "µm"), ("end relief", "end_relief_um", "µm"))
         if i[key])
-    helix = [f"{len(i[key])} gear-{g} teeth" for g, key in ((1, "helix_gear1"),
-                                                           (2, "helix_gear2")) if i.get(key)]
+    helix = [f"{len(i[key])} gear-{g} {'tooth' if len(i[key]) == 1 else 'teeth'}"
+             for g, key in ((1, "helix_gear1"), (2, "helix_gear2")) if i.get(key)]
     if helix:
         given = ", ".join([*filter(None, [given]), "helix deviations on " + " and ".join(helix)])
     return (f"<p>{escape(given or 'an even face')}, {i['sections']} sections. K_Hβ "
