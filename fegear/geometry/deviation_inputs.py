@@ -268,6 +268,51 @@ def read_measured(path, z1: int, z2: int) -> dict[tuple[int, int], dict[str, flo
     return got
 
 
+#: a measured lead's columns: the tooth, its place across the face and the flank's deviation
+LEAD_COLUMNS = (Column(("gear",)), Column(("tooth",)),
+                Column(("z",), {"mm": 1.0, "µm": 1e-3, "um": 1e-3}, None),
+                Column(("deviation", "lead", "fb"), UNITS, None))
+LEAD_HEADER = "columns gear, tooth, z [mm] (from the face's first end) and deviation [µm]"
+
+
+def read_leads(path, z1: int, z2: int, width: float) -> Helix:
+    """The measured leads of the file ``path``: a row a point of a tooth's trace across the
+    face (columns :data:`LEAD_HEADER`; + moves the loaded flank towards its mate), each
+    tooth's trace two or more points, its places rising within the face of ``width`` mm.
+    Returned as a :class:`Helix` whose entries are (tooth, places (mm), deviations (µm))."""
+    table = read_table(read_text(path, "lead", "CSV file of measured leads"), LEAD_COLUMNS,
+                       "lead", path, LEAD_HEADER)
+    if set(table.columns) != {"gear", "tooth", "z", "deviation"}:
+        raise ParameterError("lead", str(path), f"a header with {LEAD_HEADER[8:]}, and a row a "
+                             "point of a tooth's trace")
+    z = {1: z1, 2: z2}
+    traces: dict[tuple[int, int], list[tuple[float, float, int]]] = {}
+    for row in table.rows:
+        gear, tooth = _whole(path, row, "gear"), _whole(path, row, "tooth")
+        if gear not in z or not 0 <= tooth < z[gear]:
+            raise ParameterError("lead", str(path), f"line {row.line}: gear 1 (teeth 0 ... "
+                                 f"{z1 - 1}) or 2 (teeth 0 ... {z2 - 1}), not gear {gear} "
+                                 f"tooth {tooth}")
+        place, um = row.values["z"], row.values["deviation"]
+        if not 0.0 <= place <= width:
+            raise ParameterError("lead", str(path), f"line {row.line}: 0 <= z <= {width:g} mm "
+                                 f"(the face width), not {place:g}")
+        if abs(um) > LIMIT_UM:
+            raise ParameterError("lead", str(path), f"line {row.line}: |deviation| <= "
+                                 f"{LIMIT_UM:g} µm, not {um:g}")
+        traces.setdefault((gear, tooth), []).append((place, um, row.line))
+    out: dict[int, list] = {1: [], 2: []}
+    for (gear, tooth), points in sorted(traces.items()):
+        points.sort()
+        places = [p for p, _, _ in points]
+        if len(points) < 2 or any(b <= a for a, b in zip(places, places[1:])):
+            lines = ", ".join(str(line) for _, _, line in points)
+            raise ParameterError("lead", str(path), f"two or more points a tooth at different "
+                                 f"places (gear {gear} tooth {tooth}: lines {lines})")
+        out[gear].append((tooth, tuple(places), tuple(u for _, u, _ in points)))
+    return Helix(tuple(out[1]), tuple(out[2]))
+
+
 def _whole(path, row, column: str) -> int:
     value = row.values[column]
     if value != int(value):

@@ -36,7 +36,9 @@ class Face:
     ``end_length`` (mm) from each end, linear. ``helix1``/``helix2``: a tooth's helix slope
     f_Hβ (+: its loaded flank towards its mate at the second end, as much away at the first)
     and helix form f_fβ (+: towards its mate at mid-face, a parabola zero at the ends), as
-    (gear-1 or gear-2 tooth, f_Hβ, f_fβ)."""
+    (gear-1 or gear-2 tooth, f_Hβ, f_fβ); ``leads1``/``leads2``: a tooth's measured lead as
+    (tooth, places from the face's first end (mm), the flank's deviations there (µm, +: towards
+    its mate))."""
 
     sections: int = SECTIONS
     misalignment: float = 0.0
@@ -46,6 +48,26 @@ class Face:
     end_length: float = 0.0
     helix1: tuple[tuple[int, float, float], ...] = ()
     helix2: tuple[tuple[int, float, float], ...] = ()
+    leads1: tuple = ()
+    leads2: tuple = ()
+
+    def per_tooth(self, zeta: np.ndarray, width: float) -> tuple[dict, dict]:
+        """What each tooth's own deviations across the face add to its loaded flank's gap
+        (µm, + opens) at the sections ``zeta`` of a face ``width`` mm wide, per gear: tooth →
+        values. A helix slope f_Hβ subtracts f_Hβ ζ, a helix form f_fβ subtracts
+        f_fβ (1 − 4ζ²), a measured lead its trace (linear between its points, its end
+        values beyond them)."""
+        out = []
+        for helix, leads in ((self.helix1, self.leads1), (self.helix2, self.leads2)):
+            teeth: dict[int, np.ndarray] = {}
+            for tooth, slope, form in helix:
+                teeth[tooth] = teeth.get(tooth, 0.0) - slope * zeta \
+                    - form * (1.0 - (2.0 * zeta) ** 2)
+            for tooth, places, um in leads:
+                teeth[tooth] = teeth.get(tooth, 0.0) - np.interp((zeta + 0.5) * width,
+                                                                 places, um)
+            out.append(teeth)
+        return out[0], out[1]
 
     def offsets(self, contact: RingContact, turn: float, zeta: np.ndarray, width: float,
                 z2: int) -> np.ndarray:
@@ -60,11 +82,10 @@ class Face:
         if self.end_relief:
             beyond = np.abs(zeta) * width - (0.5 * width - self.end_length)
             out += self.end_relief * np.clip(beyond / self.end_length, 0.0, None)
-        for teeth, helix in ((contact.teeth, self.helix1),
-                             (gear2_tooth(contact.feet, z2), self.helix2)):
-            for tooth, slope, form in helix:
-                on = teeth == tooth
-                out[on] -= slope * zeta + form * (1.0 - (2.0 * zeta) ** 2)
+        for teeth, own in zip((contact.teeth, gear2_tooth(contact.feet, z2)),
+                              self.per_tooth(zeta, width)):
+            for tooth, um in own.items():
+                out[teeth == tooth] += um
         return 1e-3 * out
 
 
@@ -81,10 +102,11 @@ class Room:
     scale: float
 
 
-def face_room(face: Face, params, drive, coast) -> Room:
+def face_room(face: Face, params, drive, coast, width: float) -> Room:
     """The room :class:`Room` a pair keeps with ``face``'s inputs, from its unloaded clearance
     states (each a :class:`~fegear.geometry.ContactState` at its own β, with each tooth's
-    closing point) on the loaded flanks (``drive``) and the coast flanks (``coast``).
+    closing point) on the loaded flanks (``drive``) and the coast flanks (``coast``), its
+    face ``width`` mm wide.
 
     Gear 1 is one body along the face: where the face's inputs close the loaded flanks at one
     section and the coast flanks at another, the pair's backlash has to cover both. A point's
@@ -99,10 +121,11 @@ def face_room(face: Face, params, drive, coast) -> Room:
 
     profile = gear1_profile(params)
     zeta = np.linspace(-0.5, 0.5, face.sections)
+    own = face.per_tooth(zeta, width)
     least, beta, scale = np.inf, 0.0, np.inf
     for d, c in zip(drive, coast):
-        base_d, rate_d = _turns(face, params, d, +1, zeta, profile)
-        base_c, rate_c = _turns(face, params, c, -1, zeta, profile)
+        base_d, rate_d = _turns(face, params, d, +1, (zeta, own), profile)
+        base_c, rate_c = _turns(face, params, c, -1, (zeta, own), profile)
         if not len(base_d) or not len(base_c):
             continue
         room = base_d[:, None] + base_c[None, :] + rate_d[:, None] + rate_c[None, :]
@@ -116,11 +139,13 @@ def face_room(face: Face, params, drive, coast) -> Room:
     return Room(least, beta, scale)
 
 
-def _turns(face: Face, params, state, direction: int, zeta, profile):
+def _turns(face: Face, params, state, direction: int, sections, profile):
     """Every closing point's clearance in ``direction`` (µm of arc at r0) and the turn the
-    face's inputs add to it at each of the sections ``zeta`` (the same unit), flattened over
-    the points and sections; the points' normals are gear 1's ``profile``'s there (gear 1 at
-    (0, e), turned by ratio β)."""
+    face's inputs add to it at each of the sections (``sections``: their ζ, and each tooth's
+    own offsets there, :meth:`Face.per_tooth`; the same unit), flattened over the points and
+    sections; the points' normals are gear 1's ``profile``'s there (gear 1 at (0, e), turned
+    by ratio β)."""
+    zeta, own = sections
     key, point = ("plus_um", "plus_point") if direction > 0 else ("minus_um", "minus_point")
     rows = [(t.tooth, getattr(t, key), getattr(t, point)) for t in state.teeth
             if getattr(t, key) is not None and getattr(t, point) is not None]
@@ -131,17 +156,17 @@ def _turns(face: Face, params, state, direction: int, zeta, profile):
     x = np.array([r[2] for r in rows])
     centre, turn = np.array([0.0, params.e]), params.ratio * state.beta
     tangent = np.column_stack([-(x[:, 1] - centre[1]), x[:, 0] - centre[0]])  # d x / d turn
-    own = rotate(x - centre, -turn)                                # gear 1's frame
-    u = rotate(profile.evaluate(np.arctan2(own[:, 1], own[:, 0])).normal, turn)
+    local = rotate(x - centre, -turn)                              # gear 1's frame
+    u = rotate(profile.evaluate(np.arctan2(local[:, 1], local[:, 0])).normal, turn)
     along = np.einsum("ij,ij->i", u, tangent)
     n = u * (direction * np.sign(along) + (along == 0))[:, None]   # outward: with the turn
     arm = np.maximum(np.abs(along), 1e-9)
     offset = np.outer(n[:, 0] * face.misalignment - n[:, 1] * face.tilt, zeta)
     if direction > 0:   # gear 2's tooth: the one whose pitch holds the point's polar angle
         teeth2 = gear2_tooth(np.arctan2(x[:, 1], x[:, 0]) - state.beta, params.z2)
-        for mine, helix in ((teeth, face.helix1), (teeth2, face.helix2)):
-            for tooth, slope, form in helix:
-                offset[mine == tooth] -= slope * zeta + form * (1.0 - (2.0 * zeta) ** 2)
+        for mine, deviated in zip((teeth, teeth2), own):
+            for tooth, um in deviated.items():
+                offset[mine == tooth] += um
     turn = offset * params.r0 / arm[:, None]
     return np.repeat(clearance, len(zeta)), turn.ravel()
 
@@ -161,7 +186,7 @@ def room_of(face: Face, case) -> Room:
     params = case.params
     key = None if case.deviations else (params, float(case.beta))
     if key in _KEPT:
-        return face_room(face, params, *_KEPT[key])
+        return face_room(face, params, *_KEPT[key], case.thickness)
     pitch2 = 2.0 * np.pi / params.z2
     if case.deviations:
         betas = revolution_positions(case.beta, ROOM_ANGLES, params.z1, params.z2)
@@ -176,7 +201,7 @@ def room_of(face: Face, case) -> Room:
         while len(_KEPT) >= KEEP_ROOMS:
             _KEPT.pop(next(iter(_KEPT)))
         _KEPT[key] = (drive, coast)
-    return face_room(face, params, drive, coast)
+    return face_room(face, params, drive, coast, case.thickness)
 
 
 #: the exact pairs' clearance states kept for their room (:func:`room_of`), the oldest let go

@@ -128,6 +128,10 @@ FACE_INPUTS = (
     tooth_input("helix-form-deviation", "helix form deviations f_fβ: a tooth's loaded flank "
               "towards its mate at mid-face, a parabola zero at the ends, GEAR:TOOTH=µm (a "
               "deviations file's ffb column too)"),
+    Input("lead", str, None, "measured leads: a CSV file, a row a point of a tooth's trace, "
+          "columns gear, tooth, z [mm] from the face's first end and deviation [µm] (+: its "
+          "loaded flank towards its mate), each trace linear between its points",
+          limits="a readable file (docs/deviations.md)", rule="none", metavar="FILE"),
     Input("face-sections", int, None, "sections across the face the line load is linear "
           "between, both ends among them", low=3, high=65, rule="9"),
 )

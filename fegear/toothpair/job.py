@@ -20,12 +20,14 @@ from .. import progress
 from ..errors import ParameterError
 from ..fe import Allowables, import_libraries
 from ..geometry import (
+    Helix,
     RoundedProfile,
     admissible_pair,
     default_round,
     deviations_of,
     gear1_profile,
     helix_of,
+    read_leads,
 )
 from ..rating import material, read_spectrum
 from ..running import SERIAL, Executor
@@ -165,9 +167,11 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase, draw: Draw | No
     """What varies across the face (any of :data:`~.inputs.FACE_INPUTS` given), refused by
     name: an end relief longer than half the face, or a face with a tolerance class (its
     pairs across the face are not built); None where none is given."""
-    helix = helix_of(v, case.params.z1, case.params.z2)
+    p = case.params
+    helix = helix_of(v, p.z1, p.z2)
     if all(v[row.name] is None for row in FACE_INPUTS) and not helix:
         return None
+    leads = read_leads(v["lead"], p.z1, p.z2, case.thickness) if v["lead"] else Helix()
     if draw is not None or rating is not None:   # the face's option, else the helix file
         name = next((row.name for row in FACE_INPUTS if v[row.name] is not None),
                     "deviations")
@@ -186,8 +190,9 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase, draw: Draw | No
                              f"({0.5 * case.thickness:g} mm)")
     face = Face(v["face-sections"] or SECTIONS, v["misalignment"] or 0.0, v["tilt"] or 0.0,
                 v["crowning"] or 0.0, v["end-relief"] or 0.0,
-                length if v["end-relief"] else 0.0, helix.gear1, helix.gear2)
-    if face.misalignment or face.tilt or face.helix1 or face.helix2:
+                length if v["end-relief"] else 0.0, helix.gear1, helix.gear2,
+                leads.gear1, leads.gear2)
+    if face.misalignment or face.tilt or face.helix1 or face.helix2 or leads:
         _refuse_jammed(face, v, case)
     return face
 
@@ -200,7 +205,7 @@ def _refuse_jammed(face: Face, v: dict, case: SolveCase) -> None:
     if room.um >= -INTERFERENCE_UM:
         return
     name = next(n for n in ("misalignment", "tilt", "helix-slope-deviation",
-                            "helix-form-deviation", "deviations") if v.get(n))
+                            "helix-form-deviation", "lead", "deviations") if v.get(n))
     given = ",".join(v[name]) if isinstance(v[name], (list, tuple)) else v[name]
     if isinstance(given, str) and given.count(",") > 3:   # a tooth each: the first few
         given = ",".join(given.split(",")[:3]) + f",… ({given.count(',') + 1} entries)"

@@ -189,3 +189,36 @@ def test_a_helix_column_out_of_range_names_its_line(tmp_path):
     with pytest.raises(ParameterError, match=r"line 3: 4000.*helix-slope-deviation <= 1000") as exc:
         read_deviations(f, 44, 45)
     assert exc.value.name == "deviations"
+
+
+def test_a_lead_file_gives_each_tooth_its_trace_in_order(tmp_path):
+    """A measured lead: rows a point, any order, units converted; each tooth's trace sorted
+    along the face."""
+    from fegear.geometry import read_leads
+
+    f = tmp_path / "lead.csv"
+    f.write_text("gear,tooth,z [mm],deviation [mm]\n1,10,5,0.004\n1,10,0,-0.003\n"
+                 "2,7,2.5,0\n1,10,2.5,0\n2,7,0,1e-3\n")
+    leads = read_leads(f, 44, 45, 5.0)
+    assert leads.gear1 == ((10, (0.0, 2.5, 5.0), (-3.0, 0.0, 4.0)),)
+    assert leads.gear2 == ((7, (0.0, 2.5), (1.0, 0.0)),)
+
+
+@pytest.mark.parametrize("text, says", [
+    ("gear,tooth,z [in],deviation [µm]\n1,10,0,1\n", r"the unit of column 'z \[in\]'"),
+    ("gear,tooth,z,deviation [µm]\n1,10,0,1\n", r"the unit of column 'z' in brackets"),
+    ("gear,tooth,z [mm],deviation [µm]\n1,50,0,1\n1,50,1,1\n", "not gear 1 tooth 50"),
+    ("gear,tooth,z [mm],deviation [µm]\n1,5,0,1\n", r"two or more points a tooth"),
+    ("gear,tooth,z [mm],deviation [µm]\n1,5,1,1\n1,5,1,2\n", r"lines 2, 3"),
+    ("gear,tooth,z [mm],deviation [µm]\n1,5,0,1\n1,5,7,1\n", r"line 3: 0 <= z <= 5 mm"),
+    ("gear,tooth,z [mm],deviation [µm]\n1,5,0,1\n1,5,2,1500\n", r"line 3: \|deviation\|"),
+    ("gear,tooth,z [mm]\n1,5,0\n", "a header with"),
+])
+def test_a_bad_lead_file_is_one_line_naming_what_is_wrong(tmp_path, text, says):
+    from fegear.geometry import read_leads
+
+    f = tmp_path / "lead.csv"
+    f.write_text(text)
+    with pytest.raises(ParameterError, match=says) as exc:
+        read_leads(f, 44, 45, 5.0)
+    assert exc.value.name == "lead" and "\n" not in str(exc.value)

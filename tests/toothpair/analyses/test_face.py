@@ -161,3 +161,28 @@ def test_gear_2_s_helix_deviations_count_in_the_room():
     with pytest.raises(ParameterError, match="the pair jams") as exc:
         prepare_job({**BASE, "helix-slope-deviation": both})
     assert exc.value.value == "1:0=10,1:1=10,1:2=10,… (89 entries)"
+
+
+def test_a_measured_lead_is_its_helix_slope_where_it_is_one(tmp_path):
+    """A lead trace from −f/2 at the first end to +f/2 at the second is a helix slope f: the
+    same offsets at every section, the same solve; a trace that closes the loaded flank by
+    more than the backlash is refused naming --lead."""
+    import dataclasses
+
+    from fegear.toothpair.face import Face
+
+    f = tmp_path / "lead.csv"
+    f.write_text("gear,tooth,z [mm],deviation [µm]\n1,10,0,-3\n1,10,5,3\n")
+    job = prepare_job({**BASE, "lead": str(f), "face-sections": 5})
+    assert job.face.leads1 == ((10, (0.0, 5.0), (-3.0, 3.0)),)
+    zeta = np.linspace(-0.5, 0.5, 5)
+    sloped = Face(5, helix1=((10, 6.0, 0.0),))
+    assert np.allclose(job.face.per_tooth(zeta, 5.0)[0][10], sloped.per_tooth(zeta, 5.0)[0][10])
+    a = solve_job(job).summary["face"]
+    b = solve_job(dataclasses.replace(job, face=sloped)).summary["face"]
+    assert a["K_Hbeta"] == pytest.approx(b["K_Hbeta"], rel=1e-12)
+    f.write_text("gear,tooth,z [mm],deviation [µm]\n" + "".join(
+        f"1,{t},0,0\n1,{t},5,40\n" for t in range(44)))
+    with pytest.raises(ParameterError, match="the pair jams") as exc:
+        prepare_job({**BASE, "lead": str(f)})
+    assert exc.value.name == "lead"
