@@ -35,7 +35,7 @@ from .inputs import JOB_INPUTS, REQUIRES
 
 #: the solve's inputs that name a file: measured deviations, a load spectrum, a material (a
 #: name of the table, or a .toml file)
-FILE_INPUTS = ("deviations", "spectrum", "material")
+FILE_INPUTS = ("deviations", "spectrum", "material", "lead")
 
 #: an older summary's ``inputs`` (summary name → option name) where the name differs
 SUMMARY_NAMES = {"torque_Nm": "torque", "position_deg": "position", "thickness_mm": "face-width",

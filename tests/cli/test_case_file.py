@@ -59,6 +59,17 @@ def test_a_case_finds_its_files_beside_it_and_saves_them_relative(tmp_path, monk
     assert 'spectrum = "duty.csv"' in text and 'deviations = "measured.csv"' in text
 
 
+def test_a_case_finds_its_lead_beside_it_and_saves_it_relative(tmp_path, monkeypatch):
+    folder = tmp_path / "design"
+    folder.mkdir()
+    (folder / "lead.csv").write_text("gear,tooth,z [mm],deviation [µm]\n1,10,0,-1\n1,10,5,1\n")
+    (folder / "case.toml").write_text('quality = "coarse"\nlead = "lead.csv"\n')
+    monkeypatch.chdir(tmp_path)
+    job = prepare_job(read_case(folder / "case.toml"))
+    assert job.face.leads1 == ((10, (0.0, 5.0), (-1.0, 1.0)),)
+    assert 'lead = "lead.csv"' in case_toml(job.record, where=folder)
+
+
 def test_solve_saves_its_case_and_its_summary_loads_back(tmp_path, capsys):
     out, saved = tmp_path / "out", tmp_path / "cases" / "light.toml"
     args = [*LIGHT_ARGS, "--pitch-deviation", "1:5=3", "--runout", "2=4@30"]
