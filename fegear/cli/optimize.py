@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 from ..checks import Input
 from ..errors import FegearError
 from ..optimize.space import CONSTRAINT_INPUTS
-from ..toothpair.inputs import QUALITY, SOLVE_INPUTS, TOLERANCE_INPUTS
+from ..toothpair.inputs import FACE_INPUTS, QUALITY, SOLVE_INPUTS, TOLERANCE_INPUTS
 from .args import add_inputs, checked, given_values, workers_input
 
 if TYPE_CHECKING:
@@ -26,6 +26,10 @@ TAKEN = [row for name, row in SOLVE_INPUTS.items()
 #: fixed: every design meets the same pairs)
 CLASS = [row for row in TOLERANCE_INPUTS
          if row.name in ("grade", "samples", "quantile", "centre-distance-tolerance")]
+#: the condition across the face every design is solved under (a misalignment, a tilt) and
+#: the face's modifications held fixed (a crowning, an end relief: or varied, --vary)
+ACROSS = [row for row in FACE_INPUTS if row.name not in ("helix-slope-deviation",
+                                                         "helix-form-deviation", "lead")]
 WORKERS = 2
 #: the search's own inputs (its constraints are :data:`~fegear.optimize.space.
 #: CONSTRAINT_INPUTS`)
@@ -75,6 +79,9 @@ def add_parser(sub) -> None:
                         "files (default out/optimize; a search there is resumed)")
     g.add_argument("--json", action="store_true", help="print the final table as JSON")
     add_inputs(p, CONSTRAINT_INPUTS, "constraints")
+    add_inputs(p, ACROSS, "across the face: each design solved under a misalignment, its "
+                          "stresses the worst section's (--vary crowning=0:5 sizes a crowning "
+                          "with the rest)")
     add_inputs(p, CLASS, "a tolerance class: each design's safety factors at --quantile of "
                          "its --samples pairs (the same pairs for every design)")
 
@@ -106,7 +113,7 @@ def _settings(a: argparse.Namespace) -> SearchSettings:
         raise FegearError("--workers sets the local pool; with --scheduler the cluster's "
                           "workers solve the trials (leave --workers out)")
     own = checked(a, SEARCH_INPUTS)
-    fixed = {**given_values(a, TAKEN), **given_values(a, CLASS)}
+    fixed = {**given_values(a, TAKEN), **given_values(a, CLASS), **given_values(a, ACROSS)}
     # without --vary, the default variables less those given a value
     variables = parse_variables(a.vary or [f"{k}={lo}:{hi}" for k, (lo, hi)
                                            in DEFAULT_RANGES.items() if k not in fixed])

@@ -1,5 +1,6 @@
-"""One design of a search: the worst of its headline stresses over a mesh cycle, its safety
-factors and what limits them, and how far it is from each constraint.
+"""One design of a search: the worst of its headline stresses over a mesh cycle (across the
+face where the search gives a misalignment or varies a crowning: each at its worst section),
+its safety factors and what limits them, and how far it is from each constraint.
 
 A design the solve refuses (outside the admissible region: the pair cannot be built) or
 cannot solve (its contact does not settle) is not an error here: it comes back with its
@@ -83,15 +84,21 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
                                         0.0 if hi is None else rec["backlash_um"] - hi)
     try:
         # the objective reads root stresses and contact pressures: no contact submodels
-        sols = solve_positions(job.case, job.betas, submodels="none")
+        sols, worst = (_across(job) if job.face is not None else
+                       (solve_positions(job.case, job.betas, submodels="none"), None))
     except FegearError as exc:
         return _infeasible(rec, "failed", str(exc), watch)
     allow = allowables_of(values)
     for key in (q.key for q in HELD):
         i = max(range(len(sols)), key=lambda k: sols[k].headline()[key])
-        rec[key] = sols[i].headline()[key]
+        if worst is not None:   # across the face: the worst section's, at its position
+            i = min(range(len(sols)), key=lambda k: abs(math.degrees(sols[k].case.beta)
+                                                        - worst[key]["position_deg"]))
+        rec[key] = sols[i].headline()[key] if worst is None else worst[key]["value"]
         rec[key.replace("_MPa", "_beta_deg")] = math.degrees(sols[i].case.beta)
         rec[key.replace("_MPa", "_tooth")] = carrying_tooth(sols[i], key)
+    if worst is not None:
+        rec["K_Hbeta"] = worst["K_Hbeta"]
     for name, f in LIMITS.items():
         stress = rec[f.stress.key]
         rec[name] = getattr(allow, f.stress.allowable) / stress if stress > 0 else math.inf
@@ -115,6 +122,17 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
     rec["violation_buildable"] = 0.0
     rec["time_s"] = watch.s
     return rec
+
+
+def _across(job) -> tuple[tuple, dict]:
+    """A design solved across the face (a search with a misalignment or a crowning: docs/
+    optimize.md): its 2D solutions at the positions, and each headline at its worst section
+    over them with that position (``summary["face"]["worst"]``) and K_Hβ."""
+    from ..toothpair import solve_job  # lazy: heavy: scikit-fem
+
+    solved = solve_job(job)
+    face = solved.summary["face"]
+    return solved.solutions, {**face["worst"], "K_Hbeta": face["K_Hbeta"]}
 
 
 def _graded(job, allow) -> dict:

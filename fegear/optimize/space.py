@@ -16,7 +16,8 @@ from .design import OBJECTIVES, centre_distance, outer_diameter
 #: the solve inputs a search may vary: the pair's shape and modifications and the gears' size
 #: (the tooth numbers are the ratio's, the torque and the material the requirement's)
 VARIABLES = ("m", "h1", "f1", "shift", "rotation", "tip-clearance", "relief", "relief-extent",
-             "relief-start", "tip-round", "face-width", "rim1", "rim2")
+             "relief-start", "tip-round", "face-width", "rim1", "rim2", "crowning",
+             "end-relief")
 #: the seed paper's ranges (§4): module, tooth height and tooth shape
 PAPER_RANGES = {"m": (1.0, 2.5), "h1": (0.2, 0.4), "f1": (0.1, 0.2)}
 #: a search's variables when none are given: the paper's ranges, and the tip relief (µm) and

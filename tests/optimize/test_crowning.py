@@ -149,3 +149,28 @@ def test_the_search_is_refused_without_its_band():
     with pytest.raises(ParameterError) as err:
         CrowningSearch(None)
     assert err.value.name == "misalignment-band"
+
+
+def test_a_design_searched_across_the_face_is_measured_at_its_worst_section(tmp_path, capsys):
+    """`fegear optimize --misalignment 8 --vary crowning=…`: a design's stresses are its
+    worst section's (the solve across the face, its K_Hβ beside them), above the 2D pair's,
+    and a crowning brings the root stress down; crowning is a variable of the space."""
+    from fegear.optimize.design import evaluate
+    from fegear.optimize.space import VARIABLES
+    from fegear.toothpair import prepare_job, solve_job
+
+    base = {"torque": 200.0, "quality": "coarse"}
+    flat = evaluate(base, 2, {})
+    tilted = evaluate({**base, "misalignment": 8.0}, 2, {})
+    crowned = evaluate({**base, "misalignment": 8.0, "crowning": 3.0}, 2, {})
+    face = solve_job(prepare_job({**base, "misalignment": 8.0, "positions": 2,
+                                  "no-estimate": True})).summary["face"]
+    key = "root_stress_gear1_MPa"
+    assert tilted[key] == pytest.approx(face["worst"][key]["value"], rel=1e-12)
+    assert tilted["K_Hbeta"] == face["K_Hbeta"] and "K_Hbeta" not in flat
+    assert crowned[key] < tilted[key] and tilted[key] > 1.1 * flat[key]
+    assert "crowning" in VARIABLES
+    out = tmp_path / "search"
+    assert main(["optimize", "--misalignment", "-30", "--trials", "1", "--out",
+                 str(out)]) == 2     # a face that jams: refused by name before any trial
+    assert "--misalignment = -30.0" in capsys.readouterr().err and not out.exists()
