@@ -236,11 +236,7 @@ def read_measured(path, z1: int, z2: int) -> dict[tuple[int, int], dict[str, flo
     got: dict[tuple[int, int], dict[str, float]] = {}
     lines: dict[tuple[int, int], int] = {}
     for row in table.rows:
-        gear, tooth = _whole(path, row, "gear"), _whole(path, row, "tooth")
-        if gear not in z or not 0 <= tooth < z[gear]:
-            raise ParameterError("deviations", str(path), f"line {row.line}: gear 1 (teeth 0 "
-                                 f"... {z1 - 1}) or 2 (teeth 0 ... {z2 - 1}), not gear {gear} "
-                                 f"tooth {tooth}")
+        gear, tooth = _row_tooth(path, row, "deviations", z1, z2)
         if (gear, tooth) in lines:   # measured twice: which row is meant is the user's call
             raise ParameterError("deviations", str(path), f"one row a tooth (lines "
                                  f"{lines[(gear, tooth)]} and {row.line} both give gear "
@@ -285,14 +281,9 @@ def read_leads(path, z1: int, z2: int, width: float) -> Helix:
     if set(table.columns) != {"gear", "tooth", "z", "deviation"}:
         raise ParameterError("lead", str(path), f"a header with {LEAD_HEADER[8:]}, and a row a "
                              "point of a tooth's trace")
-    z = {1: z1, 2: z2}
     traces: dict[tuple[int, int], list[tuple[float, float, int]]] = {}
     for row in table.rows:
-        gear, tooth = _whole(path, row, "gear"), _whole(path, row, "tooth")
-        if gear not in z or not 0 <= tooth < z[gear]:
-            raise ParameterError("lead", str(path), f"line {row.line}: gear 1 (teeth 0 ... "
-                                 f"{z1 - 1}) or 2 (teeth 0 ... {z2 - 1}), not gear {gear} "
-                                 f"tooth {tooth}")
+        gear, tooth = _row_tooth(path, row, "lead", z1, z2)
         place, um = row.values["z"], row.values["deviation"]
         if not 0.0 <= place <= width:
             raise ParameterError("lead", str(path), f"line {row.line}: 0 <= z <= {width:g} mm "
@@ -313,10 +304,21 @@ def read_leads(path, z1: int, z2: int, width: float) -> Helix:
     return Helix(tuple(out[1]), tuple(out[2]))
 
 
-def _whole(path, row, column: str) -> int:
+def _row_tooth(path, row, option: str, z1: int, z2: int) -> tuple[int, int]:
+    """A file row's gear and tooth, refused by ``option`` (the file's) where they are no
+    whole numbers or its gear of ``z1``/``z2`` teeth has no such tooth."""
+    gear, tooth = _whole(path, row, "gear", option), _whole(path, row, "tooth", option)
+    if gear not in (1, 2) or not 0 <= tooth < (z1 if gear == 1 else z2):
+        raise ParameterError(option, str(path), f"line {row.line}: gear 1 (teeth 0 ... "
+                             f"{z1 - 1}) or 2 (teeth 0 ... {z2 - 1}), not gear {gear} "
+                             f"tooth {tooth}")
+    return gear, tooth
+
+
+def _whole(path, row, column: str, option: str) -> int:
     value = row.values[column]
     if value != int(value):
-        raise ParameterError("deviations", str(path), f"line {row.line}: a whole number in "
+        raise ParameterError(option, str(path), f"line {row.line}: a whole number in "
                              f"column {column!r}, not {value:g}")
     return int(value)
 

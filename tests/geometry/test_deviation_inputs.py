@@ -213,6 +213,7 @@ def test_a_lead_file_gives_each_tooth_its_trace_in_order(tmp_path):
     ("gear,tooth,z [mm],deviation [µm]\n1,5,0,1\n1,5,7,1\n", r"line 3: 0 <= z <= 5 mm"),
     ("gear,tooth,z [mm],deviation [µm]\n1,5,0,1\n1,5,2,1500\n", r"line 3: \|deviation\|"),
     ("gear,tooth,z [mm]\n1,5,0\n", "a header with"),
+    ("gear,tooth,z [mm],deviation [µm]\n1,2.5,0,1\n", "a whole number in column 'tooth'"),
 ])
 def test_a_bad_lead_file_is_one_line_naming_what_is_wrong(tmp_path, text, says):
     from fegear.geometry import read_leads
