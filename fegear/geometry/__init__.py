@@ -47,6 +47,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
                    "closing_points"),
     "deviation_inputs": ("deviations_of", "read_deviations", "ToothEntry", "runout_text",
                          "check_teeth", "PER_TOOTH", "HELIX", "Helix", "helix_of",
+                         "tooth_deviations",
                          "read_leads"),
     "plot": ("pair_png", "map_png"),
     "drawing": ("Outline", "gear1_outline", "gear2_outline", "write_dxf", "pitch_turns"),

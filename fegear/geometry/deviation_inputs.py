@@ -156,19 +156,6 @@ def runouts(given) -> dict[int, Runout]:
     return out
 
 
-def deviations_of(values: Mapping[str, object], z1: int, z2: int) -> Deviations:
-    """The deviations the solve inputs name (by their option names: the file first, then the
-    per-tooth options over it, the centre distance and the runouts), each tooth refused by
-    name where ``z1`` or ``z2`` has no such tooth."""
-    teeth = {key: ToothDeviation(**{f: v for f, v in got.items() if f not in HELIX.values()})
-             for key, got in _given_teeth(values, PER_TOOTH, z1, z2).items()}
-    runout = runouts(values.get("runout"))
-    return Deviations({t: d for (g, t), d in teeth.items() if g == 1},
-                      {t: d for (g, t), d in teeth.items() if g == 2},
-                      float(values.get("centre-distance-deviation") or 0.0),
-                      runout.get(1, Runout()), runout.get(2, Runout()))
-
-
 @dataclass(frozen=True)
 class Helix:
     """The helix deviations of the teeth across the face (µm), per gear: (tooth, f_Hβ, f_fβ)
@@ -183,16 +170,37 @@ class Helix:
         return bool(self.gear1 or self.gear2)
 
 
+def tooth_deviations(values: Mapping[str, object], z1: int, z2: int
+                     ) -> tuple[Deviations, Helix]:
+    """The deviations the solve inputs name (by their option names: the file first, then the
+    per-tooth options over it, the centre distance and the runouts), in the plane and across
+    the face, the file read once for both; each tooth refused by name where ``z1`` or ``z2``
+    has no such tooth."""
+    teeth = _given_teeth(values, TOOTH_OPTIONS, z1, z2)
+    planar = {key: {f: v for f, v in got.items() if f in PER_TOOTH.values()}
+              for key, got in teeth.items()}
+    planar = {key: ToothDeviation(**got) for key, got in planar.items() if got}
+    runout = runouts(values.get("runout"))
+    deviations = Deviations({t: d for (g, t), d in planar.items() if g == 1},
+                            {t: d for (g, t), d in planar.items() if g == 2},
+                            float(values.get("centre-distance-deviation") or 0.0),
+                            runout.get(1, Runout()), runout.get(2, Runout()))
+    helix = {g: tuple((t, got.get("helix_slope", 0.0), got.get("helix_form", 0.0))
+                      for (gear, t), got in sorted(teeth.items())
+                      if gear == g and (got.get("helix_slope") or got.get("helix_form")))
+             for g in (1, 2)}
+    return deviations, Helix(helix[1], helix[2])
+
+
+def deviations_of(values: Mapping[str, object], z1: int, z2: int) -> Deviations:
+    """The deviations in the plane of :func:`tooth_deviations` (``fegear profile``'s)."""
+    return tooth_deviations(values, z1, z2)[0]
+
+
 def helix_of(values: Mapping[str, object], z1: int, z2: int) -> Helix:
-    """The helix deviations the solve inputs name: the deviations file's fHb and ffb columns,
-    then ``--helix-slope-deviation`` and ``--helix-form-deviation`` over them; each tooth
-    refused by name where its gear has no such tooth."""
-    teeth = _given_teeth(values, HELIX, z1, z2)
-    rows = {g: tuple((t, got.get("helix_slope", 0.0), got.get("helix_form", 0.0))
-                     for (gear, t), got in sorted(teeth.items())
-                     if gear == g and (got.get("helix_slope") or got.get("helix_form")))
-            for g in (1, 2)}
-    return Helix(rows[1], rows[2])
+    """The helix deviations of :func:`tooth_deviations`: the deviations file's fHb and ffb
+    columns, then ``--helix-slope-deviation`` and ``--helix-form-deviation`` over them."""
+    return tooth_deviations(values, z1, z2)[1]
 
 
 def _given_teeth(values: Mapping[str, object], options: Mapping[str, str], z1: int,

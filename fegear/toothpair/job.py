@@ -24,10 +24,9 @@ from ..geometry import (
     RoundedProfile,
     admissible_pair,
     default_round,
-    deviations_of,
     gear1_profile,
-    helix_of,
     read_leads,
+    tooth_deviations,
 )
 from ..rating import material, read_spectrum
 from ..running import SERIAL, Executor
@@ -133,11 +132,12 @@ def prepare_job(values: Mapping[str, object]) -> Job:
     if v["spectrum"] is not None and positions is None and not revolution:
         positions, cycle_default = PER_PITCH, RATING_CYCLE
     n = 1 if positions is None else positions
+    deviations, helix = tooth_deviations(v, params.z1, params.z2)
     case = SolveCase(params, torque=v["torque"], beta=math.radians(position),
                      thickness=v["face-width"], E=v["E"], nu=v["nu"], quality=v["quality"],
                      rim1=v["rim1"], rim2=v["rim2"], extra_pairs=v["extra-pairs"],
                      tip_round=v["tip-round"],
-                     deviations=deviations_of(v, params.z1, params.z2))
+                     deviations=deviations)
     if revolution:
         betas = revolution_positions(case.beta, positions or PER_PITCH, params.z1, params.z2)
     else:
@@ -148,7 +148,7 @@ def prepare_job(values: Mapping[str, object]) -> Job:
                JOB_INPUTS["quantile"].check(v["quantile"]),
                JOB_INPUTS["sensitivities"].check(v["sensitivities"]), rating,
                case_record(values, _derived(case, len(betas), revolution)),
-               cycle_default=cycle_default, face=_face(v, values, case, draw, rating))
+               cycle_default=cycle_default, face=_face(v, values, case, draw, rating, helix))
 
 
 def _derived(case: SolveCase, n: int, revolution: bool) -> dict[str, object]:
@@ -163,12 +163,11 @@ def _derived(case: SolveCase, n: int, revolution: bool) -> dict[str, object]:
 
 
 def _face(v: dict, given: Mapping[str, object], case: SolveCase, draw: Draw | None,
-          rating: Rating | None = None) -> Face | None:
+          rating: Rating | None, helix: Helix) -> Face | None:
     """What varies across the face (any of :data:`~.inputs.FACE_INPUTS` given), refused by
     name: an end relief longer than half the face, or a face with a tolerance class (its
     pairs across the face are not built); None where none is given."""
     p = case.params
-    helix = helix_of(v, p.z1, p.z2)
     if all(v[row.name] is None for row in FACE_INPUTS) and not helix:
         return None
     leads = read_leads(v["lead"], p.z1, p.z2, case.thickness) if v["lead"] else Helix()
