@@ -35,6 +35,7 @@ from ..errors import ParameterError
 from ..running import SERIAL, Executor
 from ..timing import Stopwatch
 from ..toothpair import prepare_job, solve_command, solve_job
+from ..toothpair.face import deepest_lead_um
 
 #: the K_Hβ the search keeps under where none is given: ISO 6336-1's method C gives 1.15 for
 #: a linear mismatch of 0.3 times the mesh's approach, a face well matched by its correction
@@ -47,9 +48,6 @@ QUALITY = "coarse"
 #: the bisection's and golden section's end (µm): finer than a crowning is ground to; within
 #: 0.5 µm of its least the baseline's worst K_Hβ moves by less than 0.005 (docs/optimize.md)
 TOLERANCE_UM = 0.5
-#: the most crowning or end relief the solve takes (µm; ``--crowning``'s range and
-#: ``--end-relief``'s)
-MOST_UM = 100.0
 #: what the search can size: the solve's option, and the modification's name and symbol
 MODIFICATIONS = {"crowning": ("lead crowning", "C_β"), "end-relief": ("end relief", "C_I")}
 #: the golden section's step: the share of the larger interval a new trial goes into
@@ -215,11 +213,12 @@ def band_point(values: Mapping, amount_um: float, misalignment_um: float,
                      worst["contact_pressure_MPa"]["ratio"] or 1.0)
 
 
-def band_checked(values: Mapping, search: CrowningSearch) -> bool:
+def band_checked(values: Mapping, search: CrowningSearch) -> tuple[bool, float]:
     """Whether the pair of ``values`` is its own mirror across mid-face (no helix
-    deviations), its inputs and the modification's checked as the solve checks them; a band
-    that jams it (the solve's own check of its room across the face) is refused naming
-    ``misalignment-band``."""
+    deviations), and the deepest modification its teeth take (µm: the solve's bound,
+    :func:`~fegear.toothpair.face.deepest_lead_um`), its inputs and the modification's
+    checked as the solve checks them; a band that jams it (the solve's own check of its room
+    across the face) is refused naming ``misalignment-band``."""
     mirrored = True
     for f in (search.band_um, -search.band_um):
         try:
@@ -234,7 +233,7 @@ def band_checked(values: Mapping, search: CrowningSearch) -> bool:
         mirrored = not (job.face.helix1 or job.face.helix2)
         if mirrored:
             break
-    return mirrored
+    return mirrored, deepest_lead_um(job.case.params.m)
 
 
 class _Band:
@@ -280,28 +279,28 @@ def size_crowning(values: Mapping, search: CrowningSearch, executor: Executor = 
     ``search.target`` over the band, or the one that minimises K_Hβ over it where none does
     (module docstring); ``solve`` gives a point of the band (default :func:`band_point`)."""
     watch = Stopwatch()
-    mirrored = band_checked(values, search)
+    mirrored, deepest = band_checked(values, search)
     band = _Band(values, search, mirrored, executor, report, solve)
-    chosen, reached = _search(band, search)
+    chosen, reached = _search(band, search, deepest)
     trials = tuple(band.trials.values())
     return CrowningSizing(search, trials, chosen, reached, mirrored,
                           sum(t.solves for t in trials), watch.s, dict(values))
 
 
-def _search(band: _Band, search: CrowningSearch) -> tuple[float, bool]:
+def _search(band: _Band, search: CrowningSearch, most: float) -> tuple[float, bool]:
     """(the crowning chosen, whether it passes): doubling from F/4 until a trial passes or
-    the worst K_Hβ rises, then a bisection or a golden section."""
+    the worst K_Hβ rises, at most ``most`` µm, then a bisection or a golden section."""
     if band.passes(0.0):
         return 0.0, True
-    before, low, c = 0.0, 0.0, min(0.25 * search.band_um, MOST_UM)
+    before, low, c = 0.0, 0.0, min(0.25 * search.band_um, most)
     while True:
         if band.passes(c):
             return _smallest(band, low, c), True
         if band(c).K_Hbeta >= band(low).K_Hbeta:
             break   # past the least: it lies in [before, c]
-        if c >= MOST_UM:
-            return c, False   # still falling at the most the solve takes
-        before, low, c = low, c, min(2.0 * c, MOST_UM)
+        if c >= most:
+            return c, False   # still falling at the most the teeth take
+        before, low, c = low, c, min(2.0 * c, most)
     return _least(band, before, low, c)
 
 

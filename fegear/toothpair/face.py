@@ -21,6 +21,16 @@ if TYPE_CHECKING:   # a contact's points, normals and feet: read, never built he
 #: sections across the face where none are given: K_Hβ and the worst root stress move by less
 #: than 1 % from 9 to 17 on the baseline (docs/model.md)
 SECTIONS = 9
+#: the deepest lead modification (crowning and end relief at an end together) per mm of module
+#: (µm): the bound the profile's tip relief takes (``--relief``), a grinding depth that leaves
+#: the tooth its flank
+LEAD_DEPTH_PER_MODULE = 50.0
+
+
+def deepest_lead_um(m: float) -> float:
+    """The deepest lead modification a tooth of module ``m`` (mm) takes (µm):
+    :data:`LEAD_DEPTH_PER_MODULE` m."""
+    return LEAD_DEPTH_PER_MODULE * m
 
 
 @dataclass(frozen=True)

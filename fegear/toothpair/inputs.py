@@ -116,9 +116,11 @@ FACE_INPUTS = (
     Input("tilt", float, None, "the same along the line of centres: + the centre distance "
           "grows towards the face's second end", "µm", low=-200.0, high=200.0, rule="0"),
     Input("crowning", float, None, "lead crowning C_β of gear 1's teeth: a parabola across "
-          "the face, C_β thinner at each end", "µm", low=0.0, high=100.0, rule="0"),
+          "the face, C_β thinner at each end", "µm", low=0.0,
+          limits="0 <= crowning, crowning + end-relief <= 50 m µm", rule="0"),
     Input("end-relief", float, None, "end relief C_I of gear 1's teeth at each end of the "
-          "face, linear over --end-length", "µm", low=0.0, high=100.0, rule="0"),
+          "face, linear over --end-length", "µm", low=0.0,
+          limits="0 <= end-relief, crowning + end-relief <= 50 m µm", rule="0"),
     Input("end-length", float, None, "the end relief's length from each end", "mm",
           low=0.0, low_open=True, limits="0 < end-length <= face-width / 2",
           rule="a fifth of the face width"),

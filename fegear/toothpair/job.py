@@ -37,7 +37,7 @@ from .analyses import Run, asked
 from .case import SolveCase, cycle_positions, revolution_positions
 from .case_file import case_record
 from .estimate import second_level_estimate, second_quality, tooth_estimates
-from .face import SECTIONS, Face, room_of
+from .face import SECTIONS, Face, deepest_lead_um, room_of
 from .inputs import FACE_INPUTS, JOB_INPUTS, PAIR_INPUTS, REQUIRES, TIP_ROUND, check_tip_round
 from .safety import DEFAULT_ALLOWABLES, allowables_of
 from .summary import add_tooth_estimates, cycle_rows, cycle_summary, pair_summary
@@ -165,8 +165,9 @@ def _derived(case: SolveCase, n: int, revolution: bool) -> dict[str, object]:
 def _face(v: dict, given: Mapping[str, object], case: SolveCase, draw: Draw | None,
           rating: Rating | None, helix: Helix) -> Face | None:
     """What varies across the face (any of :data:`~.inputs.FACE_INPUTS` given), refused by
-    name: an end relief longer than half the face, or a face with a tolerance class (its
-    pairs across the face are not built); None where none is given."""
+    name: an end relief longer than half the face, a crowning and end relief deeper together
+    than the tooth takes (:func:`~.face.deepest_lead_um`), or a face with a tolerance class
+    (its pairs across the face are not built); None where none is given."""
     p = case.params
     if all(v[row.name] is None for row in FACE_INPUTS) and not helix:
         return None
@@ -178,8 +179,8 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase, draw: Draw | No
                              "face are not built: solve the exact pair across the face)"
                              if draw is not None else "without --spectrum (a life across "
                              "the face is not rated yet: its levels would be the 2D pair's)")
-    if v["end-length"] is not None:   # its value first, then whether it is read
-        JOB_INPUTS["end-length"].check(v["end-length"])
+    for name in ("crowning", "end-relief", "end-length"):   # their values first, then
+        JOB_INPUTS[name].check(v[name])                      # whether they are read
     if v["end-length"] is not None and v["end-relief"] is None:
         raise ParameterError("end-length", given.get("end-length"), "with --end-relief only "
                              "(the length of an end relief)")
@@ -187,6 +188,12 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase, draw: Draw | No
     if length > 0.5 * case.thickness:
         raise ParameterError("end-length", length, f"0 < end-length <= half the face width "
                              f"({0.5 * case.thickness:g} mm)")
+    depth, deepest = (v["crowning"] or 0.0) + (v["end-relief"] or 0.0), deepest_lead_um(p.m)
+    if depth > deepest:
+        name = "crowning" if v["crowning"] else "end-relief"
+        raise ParameterError(name, v[name], f"crowning + end-relief <= 50 m = {deepest:g} µm "
+                             "(the deepest lead modification the tooth takes, as its tip "
+                             "relief)")
     face = Face(v["face-sections"] or SECTIONS, v["misalignment"] or 0.0, v["tilt"] or 0.0,
                 v["crowning"] or 0.0, v["end-relief"] or 0.0,
                 length if v["end-relief"] else 0.0, helix.gear1, helix.gear2,

@@ -38,6 +38,21 @@ def test_bad_face_inputs_are_refused_by_name(values, name, tmp_path):
     assert exc.value.name == name
 
 
+@pytest.mark.parametrize("values, name", [
+    ({"crowning": 101.0}, "crowning"),
+    ({"crowning": 60.0, "end-relief": 41.0}, "crowning"),
+    ({"end-relief": 51.0, "m": 1.0}, "end-relief"),
+])
+def test_a_lead_deeper_than_the_tooth_takes_is_refused(values, name):
+    """Crowning and end relief together reach at most 50 m µm at an end (the tip relief's
+    bound): refused by name with the module's bound; the bound itself is taken."""
+    with pytest.raises(ParameterError) as exc:
+        prepare_job({**BASE, **values})
+    assert exc.value.name == name
+    assert f"<= 50 m = {50 * values.get('m', 2.0):g} µm" in str(exc.value)
+    assert prepare_job({**BASE, "crowning": 60.0, "end-relief": 40.0}).face.crowning == 60.0
+
+
 def test_no_face_input_no_face():
     assert prepare_job(BASE).face is None
     assert prepare_job({**BASE, "crowning": 3.0}).face.crowning == 3.0
