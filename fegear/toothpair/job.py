@@ -172,13 +172,14 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase, draw: Draw | No
     if all(v[row.name] is None for row in FACE_INPUTS) and not helix:
         return None
     leads = read_leads(v["lead"], p.z1, p.z2, case.thickness) if v["lead"] else Helix()
-    if draw is not None or rating is not None:   # the face's option, else the helix file
-        name = next((row.name for row in FACE_INPUTS if v[row.name] is not None),
-                    "deviations")
+    # the face's option, else the helix file
+    name = next((row.name for row in FACE_INPUTS if v[row.name] is not None), "deviations")
+    if draw is not None:
         raise ParameterError(name, v[name], "without --grade (a class's pairs across the "
-                             "face are not built: solve the exact pair across the face)"
-                             if draw is not None else "without --spectrum (a life across "
-                             "the face is not rated yet: its levels would be the 2D pair's)")
+                             "face are not built: solve the exact pair across the face)")
+    if rating is not None:
+        raise ParameterError(name, v[name], "without --spectrum (a life across the face is "
+                             "not rated yet: its levels would be the 2D pair's)")
     for name in ("crowning", "end-relief", "end-length"):   # their values first, then
         JOB_INPUTS[name].check(v[name])                      # whether they are read
     if v["end-length"] is not None and v["end-relief"] is None:
