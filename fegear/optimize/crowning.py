@@ -34,8 +34,7 @@ from .. import progress
 from ..errors import ParameterError
 from ..running import SERIAL, Executor
 from ..timing import Stopwatch
-from ..toothpair import prepare_job, solve_command, solve_job
-from ..toothpair.face import deepest_lead_um
+from ..toothpair import deepest_lead_um, prepare_job, solve_command, solve_job
 
 #: the K_Hβ the search keeps under where none is given: ISO 6336-1's method C gives 1.15 for
 #: a linear mismatch of 0.3 times the mesh's approach, a face well matched by its correction

@@ -65,6 +65,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "pair": ("solve_pair", "solve_positions"),
     "teeth": ("choose_teeth", "candidate_data", "refuse_interference", "Candidate",
               "tension_fillets", "TOOTH_STIFFNESS"),
+    "face": ("deepest_lead_um",),
     "ring.master": ("Gear2Master",),   # the sector model's master curve too
     "ring.cache": ("model_cache",),
     "ring.model": ("ring_model",),

@@ -61,6 +61,12 @@ class Face:
     leads1: tuple = ()
     leads2: tuple = ()
 
+    @property
+    def uneven_teeth(self) -> bool:
+        """Whether a tooth has deviations across the face of its own (a helix deviation or a
+        measured lead): the teeth of a gear then differ across the face."""
+        return bool(self.helix1 or self.helix2 or self.leads1 or self.leads2)
+
     def per_tooth(self, zeta: np.ndarray, width: float) -> tuple[dict, dict]:
         """What each tooth's own deviations across the face add to its loaded flank's gap
         (µm, + opens) at the sections ``zeta`` of a face ``width`` mm wide, per gear: tooth →

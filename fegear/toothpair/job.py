@@ -148,7 +148,7 @@ def prepare_job(values: Mapping[str, object]) -> Job:
                JOB_INPUTS["quantile"].check(v["quantile"]),
                JOB_INPUTS["sensitivities"].check(v["sensitivities"]), rating,
                case_record(values, _derived(case, len(betas), revolution)),
-               cycle_default=cycle_default, face=_face(v, values, case, draw, rating, helix))
+               cycle_default=cycle_default, face=_face(v, values, case, draw, helix))
 
 
 def _derived(case: SolveCase, n: int, revolution: bool) -> dict[str, object]:
@@ -163,7 +163,7 @@ def _derived(case: SolveCase, n: int, revolution: bool) -> dict[str, object]:
 
 
 def _face(v: dict, given: Mapping[str, object], case: SolveCase, draw: Draw | None,
-          rating: Rating | None, helix: Helix) -> Face | None:
+          helix: Helix) -> Face | None:
     """What varies across the face (any of :data:`~.inputs.FACE_INPUTS` given), refused by
     name: an end relief longer than half the face, a crowning and end relief deeper together
     than the tooth takes (:func:`~.face.deepest_lead_um`), or a face with a tolerance class
@@ -177,9 +177,6 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase, draw: Draw | No
     if draw is not None:
         raise ParameterError(name, v[name], "without --grade (a class's pairs across the "
                              "face are not built: solve the exact pair across the face)")
-    if rating is not None:
-        raise ParameterError(name, v[name], "without --spectrum (a life across the face is "
-                             "not rated yet: its levels would be the 2D pair's)")
     for name in ("crowning", "end-relief", "end-length"):   # their values first, then
         JOB_INPUTS[name].check(v[name])                      # whether they are read
     if v["end-length"] is not None and v["end-relief"] is None:

@@ -11,6 +11,7 @@ from in_process import fegear
 
 from fegear.rating import BENDING, CONTACT, GearMaterial, rate
 from fegear.toothpair import prepare_job, solve_job
+from fegear.toothpair.analyses import RATING
 from fegear.toothpair.analyses.rating.report import rating_rows, rating_table
 from fegear.toothpair.positions import drive, drive_torques, families
 from fegear.toothpair.ring.solver import RingSolver, SolverModes
@@ -235,3 +236,46 @@ def test_over_a_revolution_the_deviated_tooth_limits(tmp_path):
         assert rated["modes"][mode]["tooth"] == 11, mode
     name, worst = min(rated["modes"].items(), key=lambda kv: kv[1]["safety"])
     assert f"{name} (tooth {worst['tooth']})" in rated["verdict"]
+
+
+FACE_SPECTRUM = "torque,cycles\n120,5e6\n200,2e4\n"
+
+
+def _face_rating(folder, **face):
+    folder.mkdir(exist_ok=True)
+    (folder / "duty.csv").write_text(FACE_SPECTRUM)
+    return solve_job(prepare_job({**BASE, "positions": 3, "spectrum": str(folder / "duty.csv"),
+                                  **face})).summary
+
+
+def test_an_even_face_rates_as_the_2d_pair(tmp_path):
+    # each level solved across an even face: every section is the 2D pair at that torque, so
+    # the levels' stresses are those of the pair solved alone at it, within the contact
+    # solve's tolerance (a solver that keeps its contacts settles each position on its own
+    # path: measured 8e-7)
+    rating = _face_rating(tmp_path, misalignment=0.0)["rating"]
+    assert rating["across_face"] and rating["every_tooth"]
+    for level in rating["levels"]:
+        alone = solve_job(prepare_job({**BASE, "positions": 3,
+                                       "torque": level["solved_torque_Nm"]}))
+        rows = alone.summary["cycle"]["rows"]
+        assert level["root1_MPa"] == pytest.approx(max(r["root_stress_gear1_MPa"]
+                                                       for r in rows), rel=1e-5)
+        assert level["flank1_MPa"] == pytest.approx(max(
+            t.flank_p_MPa for sol in alone.solutions for t in sol.teeth), rel=1e-5)
+
+
+def test_a_misaligned_life_is_rated_at_the_worst_section(tmp_path):
+    # at the job's own torque the level's root stress is the face's worst section's over the
+    # cycle, above the 2D pair's; the lighter level is raised too, and the life shorter
+    summary = _face_rating(tmp_path, misalignment=8.0)
+    rating, face = summary["rating"], summary["face"]
+    flat = _face_rating(tmp_path / "flat")
+    own = next(level for level in rating["levels"] if level["solved_torque_Nm"] == 200.0)
+    assert own["root1_MPa"] == pytest.approx(face["worst"]["root_stress_gear1_MPa"]["value"],
+                                             rel=1e-9)
+    for level, even in zip(rating["levels"], flat["rating"]["levels"]):
+        assert level["root1_MPa"] > 1.05 * even["root1_MPa"]
+        assert level["root2_MPa"] > even["root2_MPa"]
+    assert "across the face, each tooth's stresses at its worst section" in \
+        RATING.printed(rating, summary)

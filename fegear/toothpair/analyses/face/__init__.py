@@ -24,7 +24,7 @@ class Face(Analysis):
         return drive_face(job, executor)
 
     def solve(self, run: Run) -> dict:
-        from .solve import coupling_of  # lazy: heavy: scikit-fem
+        from ...face_drive import coupling_of  # lazy: heavy: scikit-fem
 
         face = run.job.face
         case = run.job.case

@@ -12,20 +12,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ....running import Executor
-from ...case import HEADLINE, phase_major
-from ...face import Face
-from ...positions import drive_along
-from ...ring.face import FaceCoupling, measured_coupling
-from ...ring.face_results import FaceSections, face_sections
-from ...ring.model import ring_model
-from ...ring.solver import RingSolver, SolverModes
-
-
-def coupling_of(case, face: Face) -> FaceCoupling:
-    """The sections of ``face`` across ``case``'s face width and their coupling, the 3D
-    tooth's measured kernel mirrored in the free ends (:func:`~...ring.face
-    .measured_coupling`; docs/model.md, "Across the face")."""
-    return measured_coupling(ring_model(case), face.sections, case.thickness)
+from ...case import HEADLINE
+from ...face_drive import drive_across
+from ...ring.face_results import FaceSections
 
 
 def method_c(mismatch_um: float, approach_um: float) -> float:
@@ -72,26 +61,13 @@ def pattern_of(sections: FaceSections) -> FacePattern:
 
 
 def drive_face(job, executor: Executor):
-    """The job's positions solved by the one driver on a solver that keeps each position's
-    contact, each solved across the face as soon as it is solved, in the process that kept
-    it (:func:`~fegear.toothpair.positions.drive_along`): (solver, the 2D solutions, a
-    :class:`FaceDriven`)."""
-    solver = RingSolver(None, SolverModes(keep_phases=True))
-    face, case = job.face, job.case
-    coupling = coupling_of(case, face)
-    order = phase_major(len(job.betas), case.params.z1) if job.revolution else \
-        range(len(job.betas))
-
-    def across(at, state, sol) -> dict:
-        sections = face_sections(solver.model, solver.phases, at, state, face, coupling)
-        if sections is None:
-            raise RuntimeError("no contact kept at a position solved across the face")
-        return position_entry(sol, sections), pattern_of(sections)
-
-    solved = drive_along(case, [job.betas[k] for k in order], solver, across, executor)
-    ordered = [got for _, got in sorted(zip(order, solved), key=lambda pair: pair[0])]
-    return solver, tuple(sol for sol, _ in ordered), FaceDriven(
-        [row for _, (row, _) in ordered], [pattern for _, (_, pattern) in ordered])
+    """The job's positions solved across the face (:func:`~...face_drive.drive_across`):
+    (solver, the 2D solutions, a :class:`FaceDriven`)."""
+    solver, sols, taken = drive_across(
+        job, lambda sol, sections: (position_entry(sol, sections), pattern_of(sections)),
+        executor)
+    return solver, sols, FaceDriven([row for row, _ in taken],
+                                    [pattern for _, pattern in taken])
 
 
 def position_entry(sol, sections: FaceSections) -> dict:

@@ -12,7 +12,7 @@ from ....running import Executor
 from ....timing import Stopwatch
 from ..base import Analysis, Run, Verdict, Writing
 from .report import life_html, rating_table, spectrum_html, write_rating_outputs
-from .solve import rated, solve_levels
+from .solve import across_face, level_stresses, rated, same_teeth, solve_levels
 
 
 class Rating(Analysis):
@@ -31,7 +31,7 @@ class Rating(Analysis):
         # the model kept, the roots and the pressures read alone
         roots = SolverModes(roots_only=True)
 
-        def level(case, betas, torques, executor: Executor):
+        def in_plane(case, betas, torques, executor: Executor):
             # a revolution's kept phases hold solutions at one torque: there a solver of its
             # own a level
             if not job.revolution:
@@ -40,14 +40,22 @@ class Rating(Analysis):
             return [positions_of(RingSolver(model, keeping), job.revolution)(
                 replace(case, torque=torque), betas, executor) for torque in torques]
 
-        levels = solve_levels(job.case, job.betas, job.rating, level, run.executor,
-                              run.solutions)
-        return {**rated(levels, job.rating, every_tooth=not job.case.deviations),
-                "solve_s": watch.s}
+        # across the face, each level solved so too: its tooth stresses at their worst
+        # sections (the job's own solutions are the 2D pair's)
+        across = job.face is not None
+        levels = solve_levels(job.case, job.betas, job.rating,
+                              across_face(job, model) if across else in_plane,
+                              run.executor, None if across else run.solutions)
+        z = (job.case.params.z1, job.case.params.z2)
+        return {**rated(level_stresses(job, levels), job.rating, z,
+                        every_tooth=same_teeth(job)),
+                "across_face": across, "solve_s": watch.s}
 
     def printed(self, entry: dict, summary: dict) -> str:
-        return (f"\nRated for a life: each level of the spectrum solved over the positions "
-                f"({entry['solve_s']:.1f} s):\n\n" + rating_table(entry))
+        across = (" across the face, each tooth's stresses at its worst section"
+                  if entry.get("across_face") else "")
+        return (f"\nRated for a life: each level of the spectrum solved over the positions"
+                f"{across} ({entry['solve_s']:.1f} s):\n\n" + rating_table(entry))
 
     def write(self, entry: dict, writing: Writing) -> dict[str, Path]:
         return write_rating_outputs(entry, writing.out)

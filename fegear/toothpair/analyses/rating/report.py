@@ -61,7 +61,7 @@ def write_rating_outputs(rating: dict, out: Path) -> dict[str, Path]:
 
 def life_html(r: dict) -> str:
     """Each mode's Miner's sum, life and safety factor at the required life, and the
-    material's lines."""
+    material's lines (and that the levels were solved across the face, where they were)."""
     rows = []
     for mode, m in r["modes"].items():
         rows.append([mode, "all" if m["tooth"] is None else str(m["tooth"]),
@@ -69,7 +69,9 @@ def life_html(r: dict) -> str:
     mat = r["material"]
     note = (f"<p>{escape(mat['name'])} ({escape(mat['treatment'])}): σ_Hlim "
             f"{mat['sigma_Hlim_MPa']:g} MPa, σ_FE {mat['sigma_FE_MPa']:g} MPa; "
-            f"{escape(mat['source'])}. KA {r['KA']:g}, KV {r['KV']:g}.</p>")
+            f"{escape(mat['source'])}. KA {r['KA']:g}, KV {r['KV']:g}."
+            + (" Each level solved across the face: each tooth's stresses at its worst "
+               "section." if r.get("across_face") else "") + "</p>")
     return table(["mode", "tooth", "Miner's sum", "life", "S at the required life"],
                  rows) + note
 

@@ -9,6 +9,8 @@ pair rated for its life (:func:`fegear.rating.rate`).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from .... import progress
@@ -39,6 +41,39 @@ def solve_levels(case: SolveCase, betas, rating: Rating, solve, executor: Execut
     return [cycle if s else next(solved) for s in same]
 
 
+def across_face(job, model) -> Callable:
+    """The job's way of solving its positions at several torques across its face
+    (:func:`solve_levels`' ``solve``), on ``model``: at each torque a drive across the face of
+    its own (:func:`~...face_drive.drive_across`; each level's contacts kept at its own
+    torque), each position's tooth stresses at their worst sections (:func:`tooth_stresses`
+    over its sections' pairs)."""
+    from ...face_drive import drive_across  # lazy: heavy: scikit-fem
+    every_tooth = same_teeth(job)
+
+    def level(case: SolveCase, betas, torques, executor: Executor) -> list[list[dict]]:
+        return [drive_across(replace(job, case=replace(case, torque=torque), betas=betas),
+                             lambda sol, sections: tooth_stresses(sections.sections,
+                                                                  every_tooth),
+                             executor, model)[2] for torque in torques]
+
+    return level
+
+
+def level_stresses(job, levels: list) -> list[dict[str, dict]]:
+    """Each level's tooth stresses: a 2D level's over its positions' solutions, a level across
+    the face over its positions' tables (:func:`across_face`)."""
+    if job.face is None:
+        return [tooth_stresses(sols, same_teeth(job)) for sols in levels]
+    return [merged(tables) for tables in levels]
+
+
+def same_teeth(job) -> bool:
+    """Whether every tooth of a gear passes every place a tooth is seen at over the job's
+    positions (:func:`tooth_stresses`): a pair without a tooth of its own deviations, in the
+    plane or across the face."""
+    return not job.case.deviations and not (job.face is not None and job.face.uneven_teeth)
+
+
 def tooth_stresses(sols: tuple[PairSolution, ...], every_tooth: bool) -> dict[str, dict]:
     """Each tooth's largest stresses over ``sols`` (MPa), by key
     (:data:`~fegear.quantities.LEVEL_STRESSES`): ``root1`` and ``flank1`` by gear-1 tooth,
@@ -57,12 +92,23 @@ def tooth_stresses(sols: tuple[PairSolution, ...], every_tooth: bool) -> dict[st
     return out
 
 
-def rated(levels: list[tuple[PairSolution, ...]], rating: Rating, every_tooth: bool) -> dict:
-    """The summary's ``rating``: the inputs, each level's torque, cycles and largest stresses,
-    and the four modes rated (:func:`fegear.rating.rate`)."""
+def merged(tables: list[dict[str, dict]]) -> dict[str, dict]:
+    """Each tooth's largest stresses over ``tables`` (:func:`tooth_stresses`' tables: a
+    position's across the face each, say), by key."""
+    out: dict[str, dict] = {key: {} for key in LEVEL_STRESSES}
+    for table in tables:
+        for key, teeth in table.items():
+            for tooth, value in teeth.items():
+                _keep(out[key], tooth, value)
+    return out
+
+
+def rated(stresses: list[dict[str, dict]], rating: Rating, z: tuple[int, int],
+          every_tooth: bool) -> dict:
+    """The summary's ``rating``: the inputs, each level's torque, cycles and largest stresses
+    (``stresses``: each level's tooth stresses, :func:`tooth_stresses`), and the four modes
+    rated on gears of ``z`` teeth (:func:`fegear.rating.rate`)."""
     from ....rating import rate  # lazy: heavy: scipy, which a refused input must not load
-    z = (levels[0][0].case.params.z1, levels[0][0].case.params.z2)
-    stresses = [tooth_stresses(sols, every_tooth) for sols in levels]
     cycles = [level.cycles for level in rating.spectrum.levels]
     out = rate(stresses, cycles, z, rating.material, rating.hours)
     rows = []

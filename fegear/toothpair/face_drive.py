@@ -1,0 +1,53 @@
+"""A job's positions solved across the face width (docs/model.md, "Across the face"): each
+position solved by the one driver on a solver that keeps its contact, then at once across the
+face on that contact, in the process that kept it (:func:`drive_across`). What is taken of a
+position across the face is the caller's: the face's own row and contact pattern, or a
+load level's tooth stresses for a life."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+from ..running import SERIAL, Executor
+from .case import PairSolution, SolveCase, phase_major
+from .face import Face
+from .positions import drive_along
+from .ring.face import FaceCoupling, measured_coupling
+from .ring.face_results import FaceSections, face_sections
+from .ring.model import ring_model
+from .ring.solver import RingSolver, SolverModes
+
+if TYPE_CHECKING:   # the job hands itself over; the job never imports this module's callers
+    from .job import Job
+
+
+def coupling_of(case: SolveCase, face: Face) -> FaceCoupling:
+    """The sections of ``face`` across ``case``'s face width and their coupling, the 3D
+    tooth's measured kernel mirrored in the free ends (:func:`~.ring.face
+    .measured_coupling`; docs/model.md, "Across the face")."""
+    return measured_coupling(ring_model(case), face.sections, case.thickness)
+
+
+def drive_across(job: Job, take: Callable[[PairSolution, FaceSections], object],
+                 executor: Executor = SERIAL, model=None
+                 ) -> tuple[RingSolver, tuple[PairSolution, ...], list]:
+    """``job``'s case at its rolling angles (a revolution's, phase by phase, where it asks for
+    one), each position solved across its face on the contact the solver kept there: (the
+    solver, the 2D solutions and what ``take(solution, sections)`` gave at each position,
+    both in the order of the job's angles). ``model``: the ring model to solve on (one built
+    for the case where None)."""
+    case, face, betas = job.case, job.face, job.betas
+    solver = RingSolver(model, SolverModes(keep_phases=True))
+    coupling = coupling_of(case, face)
+    order = phase_major(len(betas), case.params.z1) if job.revolution else range(len(betas))
+
+    def across(at: SolveCase, state, sol: PairSolution):
+        sections = face_sections(solver.model, solver.phases, at, state, face, coupling)
+        if sections is None:
+            raise RuntimeError("no contact kept at a position solved across the face")
+        return take(sol, sections)
+
+    solved = drive_along(case, [betas[k] for k in order], solver, across, executor)
+    ordered = [got for _, got in sorted(zip(order, solved), key=lambda pair: pair[0])]
+    return solver, tuple(sol for sol, _ in ordered), [got for _, got in ordered]
