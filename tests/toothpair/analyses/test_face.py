@@ -78,8 +78,11 @@ def test_a_misaligned_face_is_worst_where_it_closes(tmp_path):
     assert verdict.passed == (least >= 1.0) and f"{least:.2f}" in verdict.line
     assert face["safety"]["safety_bending_gear1"] == pytest.approx(
         solved.job.allowables.bending / root["value"])
-    (slot, html), = FACE.page(face)
-    assert slot == "sections" and "misalignment 6 µm" in html and "K_Hβ" in html
+    (slot, safety), (sections, html) = FACE.page(face)
+    assert sections == "sections" and "misalignment 6 µm" in html and "K_Hβ" in html
+    # the page's safety factors across the face: each at its stress's worst section
+    s_f1 = face["safety"]["safety_bending_gear1"]
+    assert slot == "safety" and f"<td>{s_f1:.2f}</td><td>{root['value']:.1f}</td>" in safety
     files = write_job(solved, tmp_path, pictures=False)
     with open(files["face_csv"]) as f:
         rows = list(csv.DictReader(f))
@@ -107,7 +110,7 @@ def test_helix_slope_on_the_loaded_teeth_closes_the_second_end():
     assert job.face.helix1 == tuple((t, 6.0, 0.0) for t in (9, 10, 11, 12))
     face = solve_job(job).summary["face"]
     assert face["inputs"]["helix_gear1"] == [[t, 6.0, 0.0] for t in (9, 10, 11, 12)]
-    (_, html), = FACE.page(face)
+    _, (_, html) = FACE.page(face)
     assert "helix deviations on 4 gear-1 teeth" in html and "an even face" not in html
     root = face["worst"]["root_stress_gear1_MPa"]
     assert root["zeta"] == 0.5 and root["ratio"] > 1.05

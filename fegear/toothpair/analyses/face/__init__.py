@@ -8,7 +8,14 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..base import Analysis, Run, Verdict, Writing
-from .report import face_html, face_summary, face_table, face_verdict, write_face_outputs
+from .report import (
+    face_html,
+    face_safety_html,
+    face_summary,
+    face_table,
+    face_verdict,
+    write_face_outputs,
+)
 
 
 class Face(Analysis):
@@ -47,7 +54,11 @@ class Face(Analysis):
         return Verdict(passed, f"across the face: {line}")
 
     def page(self, entry: dict) -> list[tuple[str, str]]:
-        return [("sections", "<h2>Across the face</h2>\n" + face_html(entry, entry["width_mm"]))]
+        width = entry["width_mm"]
+        return [("safety", f"<h3>Across the face, at {entry['inputs']['sections']} "
+                           "sections: each factor at its stress's worst section</h3>\n"
+                 + face_safety_html(entry, width)),
+                ("sections", "<h2>Across the face</h2>\n" + face_html(entry, width))]
 
 
 FACE = Face()

@@ -11,7 +11,7 @@ import numpy as np
 
 from ....files import write_atomic, write_csv
 from ....quantities import FACTORS, HEADLINES
-from ...present.html_parts import escape, table
+from ...present.html_parts import escape, safety_cell, table
 from ...safety import safety_factors
 from .plot import face_png
 
@@ -50,6 +50,20 @@ def face_verdict(s: dict, width: float) -> tuple[bool, str]:
     return passed, (f"{factor.label} {have[key]:.2f} at its worst section, "
                     f"{(w['zeta'] + 0.5) * width:.2g} mm from the first end, limits "
                     f"({'at least 1' if passed else 'below 1'}; K_Hβ {s['K_Hbeta']:.2f})")
+
+
+def face_safety_html(s: dict, width: float) -> str:
+    """The report page's safety factors across the face: each one at its stress's worst
+    section (the stress, where across the face and at which rolling angle), as the static
+    table gives the 2D pair's."""
+    rows = []
+    for key, value in s["safety"].items():
+        if value is None:
+            continue
+        w = s["worst"][FACTORS[key].stress.key]
+        rows.append([FACTORS[key].label, safety_cell(value), f"{w['value']:.1f}",
+                     f"{(w['zeta'] + 0.5) * width:.2f}", f"{w['position_deg']:.3g}"])
+    return table(["factor", "S", "stress MPa", "at z mm", "at β °"], rows)
 
 
 def face_html(s: dict, width: float) -> str:
