@@ -11,10 +11,28 @@ pairs, and the statistics of what the pairs carry (docs/tolerance.md).
 True
 """
 
-from .iso1328 import CLASSES, ClassTolerances, check_grade, class_tolerances, rounded
-from .sampling import SIGMAS, Draw, Grade, grade_of, sample_pair, tooth_positions
+from .iso1328 import (
+    CLASSES,
+    ClassTolerances,
+    HelixTolerances,
+    check_grade,
+    class_tolerances,
+    helix_class,
+    rounded,
+)
+from .sampling import (
+    SIGMAS,
+    Draw,
+    FaceSample,
+    Grade,
+    grade_of,
+    sample_face,
+    sample_pair,
+    tooth_positions,
+)
 from .stats import QUANTILES, Quantile, quantiles
 
-__all__ = ["CLASSES", "QUANTILES", "SIGMAS", "ClassTolerances", "Draw", "Grade", "Quantile",
-           "check_grade", "class_tolerances", "grade_of", "quantiles", "rounded",
-           "sample_pair", "tooth_positions"]
+__all__ = ["CLASSES", "QUANTILES", "SIGMAS", "ClassTolerances", "Draw", "FaceSample", "Grade",
+           "HelixTolerances", "Quantile", "check_grade", "class_tolerances", "grade_of",
+           "helix_class", "quantiles", "rounded", "sample_face", "sample_pair",
+           "tooth_positions"]

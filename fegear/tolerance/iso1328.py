@@ -16,6 +16,7 @@ and across the face, with the face width b (mm; :func:`helix_tolerances`):
 
 * helix slope         f_HβT = (0.05 √d + 0.35 √b + 4) · √2^(A−5)
 * helix form          f_fβT = (0.07 √d + 0.45 √b + 4) · √2^(A−5)
+* total helix         F_βT  = √(f_HβT² + f_fβT²)                         (as F_αT)
 
 Each is rounded as the standard rounds them: above 10 µm to the whole µm, from 5 to 10 µm to
 0.5 µm, below 5 µm to 0.1 µm (F_αT from the unrounded two). The classes run from 1 (finest)
@@ -114,10 +115,43 @@ def class_tolerances(grade: int, m: float, z: int) -> ClassTolerances:
                            rounded(math.hypot(f_H, f_f)), rounded(0.9 * F_p))
 
 
+@dataclass(frozen=True)
+class HelixTolerances:
+    """The helix tolerances (µm) of class ``grade`` for one gear of reference diameter ``d``
+    and face width ``b`` (mm): helix slope ``f_HbT``, helix form ``f_fbT`` and total helix
+    ``F_bT``, each rounded as the standard does (:func:`helix_class`)."""
+
+    grade: int
+    d: float
+    b: float
+    f_HbT: float
+    f_fbT: float
+    F_bT: float
+
+    def summary(self) -> dict:
+        """As JSON (µm)."""
+        return {"grade": self.grade, "d_mm": self.d, "b_mm": self.b, "f_HbT_um": self.f_HbT,
+                "f_fbT_um": self.f_fbT, "F_bT_um": self.F_bT}
+
+
+def helix_class(grade: int, d: float, b: float) -> HelixTolerances:
+    """Class ``grade``'s helix tolerances for a gear of reference diameter ``d`` and face
+    width ``b`` (mm; module docstring): the total F_βT from the unrounded two, as F_αT."""
+    step = math.sqrt(2.0) ** (check_grade(grade) - 5)
+    f_H, f_f = _helix(d, b, step)
+    return HelixTolerances(int(grade), d, b, rounded(f_H), rounded(f_f),
+                           rounded(math.hypot(f_H, f_f)))
+
+
+def _helix(d: float, b: float, step: float) -> tuple[float, float]:
+    """f_HβT and f_fβT unrounded (µm)."""
+    return ((0.05 * math.sqrt(d) + 0.35 * math.sqrt(b) + 4.0) * step,
+            (0.07 * math.sqrt(d) + 0.45 * math.sqrt(b) + 4.0) * step)
+
+
 def helix_tolerances(grade: int, d: float, b: float) -> tuple[float, float]:
     """Class ``grade``'s helix slope and helix form tolerances f_HβT and f_fβT (µm, rounded as
     the others) for a gear of reference diameter ``d`` and face width ``b`` (mm; module
     docstring)."""
-    step = math.sqrt(2.0) ** (check_grade(grade) - 5)
-    return (rounded((0.05 * math.sqrt(d) + 0.35 * math.sqrt(b) + 4.0) * step),
-            rounded((0.07 * math.sqrt(d) + 0.45 * math.sqrt(b) + 4.0) * step))
+    f_H, f_f = _helix(d, b, math.sqrt(2.0) ** (check_grade(grade) - 5))
+    return rounded(f_H), rounded(f_f)

@@ -23,9 +23,22 @@ only where every measured quantity lies within its class, as an inspected gear w
   profile deviation (the range of the two along the profile) within F_αT.
 * **Centre distance**, where a tolerance ±T is given: normal, σ = T / 3, within ±T.
 
+A pair solved across the face (:func:`sample_face`) draws besides, as the profile's:
+
+* **Helix**: each tooth's helix slope f_Hβ and helix form f_fβ (the amplitude of a parabola
+  zero at the face's ends), each half a gear-wide part (the machine's setting) and half the
+  tooth's own, σ = f_HβT / 3 and f_fβT / 3 in all, from the tolerances at the pair's face
+  width; each within its tolerance and the total helix deviation (the range of the two along
+  the face) within F_βT.
+* **Misalignment**, where a band ±B is given: normal about the misalignment given, σ = B / 3,
+  within ±B.
+
 A sample is drawn from its own generator, seeded by the study's seed and its own index
 (``numpy.random.default_rng([seed, k])``), so sample k is the same gear pair in a run of 100
 samples and in one of 10 000, and in every design a search compares (common random numbers).
+Its helix and its misalignment come from generators of their own (``[seed, k, 1]`` and
+``[seed, k, 2]``): across the face or not, with a band or without, sample k keeps its
+deviations in the plane.
 """
 
 from __future__ import annotations
@@ -36,8 +49,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import FegearError, ParameterError
-from ..geometry import Deviations, Runout, ToothDeviation
-from .iso1328 import ClassTolerances, check_grade, class_tolerances
+from ..geometry import Deviations, Helix, Runout, ToothDeviation
+from .iso1328 import ClassTolerances, HelixTolerances, check_grade, class_tolerances, helix_class
 
 #: a deviation's tolerance over its standard deviation
 SIGMAS = 3.0
@@ -46,24 +59,36 @@ SIGMAS = 3.0
 DRAWS = 1000
 #: roll fractions along the profile at which the total profile deviation is measured
 _ROLL = np.linspace(0.0, 1.0, 41)
+#: places across the face (fractions of the face width from its middle) at which the total
+#: helix deviation is measured
+_ZETA = np.linspace(-0.5, 0.5, 41)
+#: the generator streams of a sample's helix and misalignment, beside its own (module
+#: docstring)
+HELIX_STREAM, MISALIGNMENT_STREAM = 1, 2
 
 
 @dataclass(frozen=True)
 class Grade:
-    """What a pair of class ``grade`` is drawn within: each gear's tolerances and the
-    centre distance's tolerance ±``centre_distance_um`` (0: none drawn)."""
+    """What a pair of class ``grade`` is drawn within: each gear's tolerances, the centre
+    distance's tolerance ±``centre_distance_um`` (0: none drawn) and, for pairs solved across
+    the face, each gear's helix tolerances (``helix1``, ``helix2``; None: in the plane)."""
 
     grade: int
     gear1: ClassTolerances
     gear2: ClassTolerances
     centre_distance_um: float = 0.0
+    helix1: HelixTolerances | None = None
+    helix2: HelixTolerances | None = None
 
     def summary(self) -> dict:
         """As JSON (µm)."""
-        return {"grade": self.grade, "gear1": self.gear1.summary(),
-                "gear2": self.gear2.summary(),
-                "centre_distance_tolerance_um": self.centre_distance_um,
-                "sigmas": SIGMAS}
+        out = {"grade": self.grade, "gear1": self.gear1.summary(),
+               "gear2": self.gear2.summary(),
+               "centre_distance_tolerance_um": self.centre_distance_um,
+               "sigmas": SIGMAS}
+        if self.helix1 is not None:
+            out["helix1"], out["helix2"] = self.helix1.summary(), self.helix2.summary()
+        return out
 
     def reach_um(self) -> float:
         """The most the deviations of any pair drawn can move one tooth of gear 1 towards
@@ -77,15 +102,37 @@ class Grade:
 
 @dataclass(frozen=True)
 class Draw:
-    """Which pairs are solved: ``count`` samples of class ``grade`` drawn with ``seed``."""
+    """Which pairs are solved: ``count`` samples of class ``grade`` drawn with ``seed``;
+    across the face (the grade's helix tolerances given), each at ``misalignment_um`` (µm)
+    or drawn within ±``band_um`` about it."""
 
     grade: Grade
     count: int
     seed: int
+    misalignment_um: float = 0.0
+    band_um: float = 0.0
 
     def pair(self, k: int) -> Deviations:
         """Sample ``k``'s deviations (:func:`sample_pair`)."""
         return sample_pair(self.grade, self.seed, k)
+
+    @property
+    def across(self) -> bool:
+        """Whether the pairs are solved across the face (their helix drawn)."""
+        return self.grade.helix1 is not None
+
+    def face(self, k: int) -> FaceSample:
+        """Sample ``k``'s helix deviations and misalignment (:func:`sample_face`)."""
+        return sample_face(self, k)
+
+
+@dataclass(frozen=True)
+class FaceSample:
+    """A sample's draw across the face: each tooth's helix slope and form deviations
+    (``helix``, µm, every tooth of both gears) and the misalignment it is solved at (µm)."""
+
+    helix: Helix
+    misalignment: float
 
 
 def tooth_positions(deviations: Deviations, gear: int, z: int) -> np.ndarray:
@@ -103,17 +150,23 @@ def _along(fr: float, phase: float, z: int, sign: float) -> np.ndarray:
     return sign * 0.5 * fr * np.sin(phase - 2.0 * np.pi * np.arange(z) / z)
 
 
-def grade_of(grade, params, centre_distance_tolerance: float = 0.0) -> Grade:
+def grade_of(grade, params, centre_distance_tolerance: float = 0.0,
+             face_width: float | None = None) -> Grade:
     """Class ``grade``'s tolerances for both gears of the pair ``params`` (module m, z1 and
     z2 teeth) and the centre distance's tolerance (µm), refused by name outside their
-    ranges."""
+    ranges; with the ``face_width`` (mm), its helix tolerances too (pairs solved across the
+    face)."""
     tol = float(centre_distance_tolerance or 0.0)
     if not (math.isfinite(tol) and 0.0 <= tol <= 1000.0):
         raise ParameterError("centre-distance-tolerance", centre_distance_tolerance,
                              "0 <= centre-distance-tolerance <= 1000 µm (the ± tolerance)")
     grade = check_grade(grade)
-    return Grade(grade, class_tolerances(grade, params.m, params.z1),
-                 class_tolerances(grade, params.m, params.z2), tol)
+    gear1 = class_tolerances(grade, params.m, params.z1)
+    gear2 = class_tolerances(grade, params.m, params.z2)
+    if face_width is None:
+        return Grade(grade, gear1, gear2, tol)
+    return Grade(grade, gear1, gear2, tol, helix_class(grade, gear1.d, face_width),
+                 helix_class(grade, gear2.d, face_width))
 
 
 def sample_pair(grade: Grade, seed: int, k: int) -> Deviations:
@@ -125,6 +178,40 @@ def sample_pair(grade: Grade, seed: int, k: int) -> Deviations:
     if grade.centre_distance_um > 0:
         cd = _within(rng, grade.centre_distance_um)
     return Deviations(teeth1, teeth2, cd, runout1, runout2)
+
+
+def sample_face(draw: Draw, k: int) -> FaceSample:
+    """Sample ``k``'s helix deviations and misalignment of ``draw`` (a draw across the face:
+    module docstring), each from its own generator."""
+    grade = draw.grade
+    if grade.helix1 is None:
+        raise ValueError("a draw across the face needs the grade's helix tolerances")
+    rng = np.random.default_rng([int(draw.seed), int(k), HELIX_STREAM])
+    helix = Helix(_helix(rng, grade.helix1, grade.gear1.z),
+                  _helix(rng, grade.helix2, grade.gear2.z))
+    misalignment = draw.misalignment_um
+    if draw.band_um > 0:
+        misalignment += _within(np.random.default_rng(
+            [int(draw.seed), int(k), MISALIGNMENT_STREAM]), draw.band_um)
+    return FaceSample(helix, misalignment)
+
+
+def _helix(rng: np.random.Generator, tol: HelixTolerances, z: int
+           ) -> tuple[tuple[int, float, float], ...]:
+    """One gear's z teeth's (tooth, f_Hβ, f_fβ) that pass its class (module docstring)."""
+    half = 1.0 / math.sqrt(2.0)
+    for _ in range(DRAWS):
+        slope = rng.normal(0.0, tol.f_HbT / SIGMAS * half) + \
+            rng.normal(0.0, tol.f_HbT / SIGMAS * half, z)
+        form = rng.normal(0.0, tol.f_fbT / SIGMAS * half) + \
+            rng.normal(0.0, tol.f_fbT / SIGMAS * half, z)
+        # the flank towards its mate along the face (Face.per_tooth's trace)
+        trace = slope[:, None] * _ZETA + form[:, None] * (1.0 - (2.0 * _ZETA) ** 2)
+        if (np.abs(slope).max() <= tol.f_HbT and np.abs(form).max() <= tol.f_fbT
+                and np.ptp(trace, axis=1).max() <= tol.F_bT):
+            return tuple((i, float(slope[i]), float(form[i])) for i in range(z))
+    raise FegearError(f"no gear of class {tol.grade} drawn within its helix tolerances in "
+                      f"{DRAWS} draws")   # pragma: no cover
 
 
 def _within(rng: np.random.Generator, tolerance: float) -> float:

@@ -55,3 +55,14 @@ def test_helix_tolerances_follow_the_formulas_with_the_face_width():
     assert helix_tolerances(5, 88.0, 100.0) == (8.0, 9.0)    # 7.97 and 9.16 µm
     with pytest.raises(ParameterError):
         helix_tolerances(12, 88.0, 5.0)
+
+
+def test_the_total_helix_tolerance_is_the_two_together_as_the_profiles():
+    """F_βT = √(f_HβT² + f_fβT²) from the unrounded two, each rounded as the others: 7.5 µm at
+    class 5 on the baseline's gear 1 (d 88, b 5 mm; 7.72 unrounded), the √2 step a class."""
+    from fegear.tolerance import helix_class
+
+    h = helix_class(5, 88.0, 5.0)
+    assert (h.f_HbT, h.f_fbT, h.F_bT) == (5.5, 5.5, 7.5)
+    assert helix_class(7, 88.0, 5.0).F_bT == 15.0               # 15.45 µm
+    assert h.summary()["F_bT_um"] == 7.5 and h.summary()["b_mm"] == 5.0

@@ -8,7 +8,7 @@ import pytest
 
 from fegear.errors import ParameterError
 from fegear.geometry import PairParameters
-from fegear.tolerance import SIGMAS, grade_of, sample_pair, tooth_positions
+from fegear.tolerance import SIGMAS, Draw, grade_of, sample_pair, tooth_positions
 
 PAIR = PairParameters(shift=0.016, rotation=0.002)
 
@@ -78,3 +78,62 @@ def test_the_reach_bounds_every_pair_drawn(class6):
 def test_a_bad_centre_distance_tolerance_is_refused_by_name(tolerance):
     with pytest.raises(ParameterError, match="centre-distance-tolerance"):
         grade_of(6, PAIR, tolerance)
+
+
+@pytest.fixture(scope="module")
+def across6():
+    """Class 6 across a 5 mm face, drawn about a 4 µm misalignment within ±6 µm: 400 pairs."""
+    grade = grade_of(6, PAIR, face_width=5.0)
+    draw = Draw(grade, 400, 3, misalignment_um=4.0, band_um=6.0)
+    return grade, [draw.face(k) for k in range(draw.count)]
+
+
+def test_every_helix_drawn_passes_inspection_for_its_class(across6):
+    grade, faces = across6
+    zeta = np.linspace(-0.5, 0.5, 201)
+    for face in faces:
+        for helix, tol, z in ((face.helix.gear1, grade.helix1, PAIR.z1),
+                              (face.helix.gear2, grade.helix2, PAIR.z2)):
+            assert [t for t, _, _ in helix] == list(range(z))      # every tooth deviates
+            slope, form = np.array([h[1:] for h in helix]).T
+            assert np.abs(slope).max() <= tol.f_HbT and np.abs(form).max() <= tol.f_fbT
+            trace = slope[:, None] * zeta + form[:, None] * (1 - 4 * zeta ** 2)
+            assert np.ptp(trace, axis=1).max() <= tol.F_bT + 1e-9
+        assert abs(face.misalignment - 4.0) <= 6.0
+
+
+def test_the_helix_scatters_a_third_of_its_tolerance_half_of_it_the_gears(across6):
+    grade, faces = across6
+    tol = grade.helix1
+    slope = np.array([[h[1] for h in f.helix.gear1] for f in faces])   # pairs × teeth
+    form = np.array([[h[2] for h in f.helix.gear1] for f in faces])
+    # normal with σ = T/3 (the tails cut by inspection), about zero
+    assert slope.std() == pytest.approx(tol.f_HbT / SIGMAS, rel=0.12)
+    assert form.std() == pytest.approx(tol.f_fbT / SIGMAS, rel=0.12)
+    assert abs(slope.mean()) < 0.05 * tol.f_HbT
+    # half the variance a gear-wide part (the machine's setting): two teeth of one gear
+    # correlate by one half, and the gears' own parts are independent
+    assert np.corrcoef(slope[:, 0], slope[:, 7])[0, 1] == pytest.approx(0.5, abs=0.1)
+    assert np.corrcoef(form[:, 3], form[:, 20])[0, 1] == pytest.approx(0.5, abs=0.1)
+    other = np.array([f.helix.gear2[0][1] for f in faces])
+    assert abs(np.corrcoef(slope[:, 0], other)[0, 1]) < 0.15
+    # the band: normal about the misalignment given, σ = B/3, within ±B
+    mis = np.array([f.misalignment for f in faces])
+    assert mis.std() == pytest.approx(6.0 / SIGMAS, rel=0.12)
+    assert abs(mis.mean() - 4.0) < 3 * mis.std() / math.sqrt(len(mis))   # three errors
+
+
+def test_a_sample_keeps_its_pair_in_the_plane_across_the_face_and_its_helix_with_a_band():
+    plane = grade_of(5, PAIR)
+    across = grade_of(5, PAIR, face_width=5.0)
+    assert plane.helix1 is None and across.helix1.F_bT == 7.5
+    for k in (0, 9, 31):   # common random numbers: the helix from a stream of its own
+        assert Draw(across, 40, 2).pair(k) == Draw(plane, 40, 2).pair(k) == \
+            sample_pair(plane, 2, k)
+        fixed, banded = Draw(across, 40, 2, 3.0).face(k), Draw(across, 40, 2, 3.0, 5.0).face(k)
+        assert fixed.helix == banded.helix and fixed.misalignment == 3.0
+        assert banded.misalignment != 3.0
+    assert Draw(across, 40, 2).face(5) != Draw(across, 40, 3).face(5)
+    assert Draw(across, 40, 2).face(5) != Draw(across, 40, 2).face(6)
+    with pytest.raises(ValueError, match="helix tolerances"):
+        Draw(plane, 40, 2).face(0)
