@@ -26,7 +26,7 @@ CLASS = [replace(row, help={
              "rounds unloaded in --quantile of the --samples pairs the class admits",
     "quantile": "the share of the class's pairs (those that turn) the relief keeps off their "
                 "rounds"}.get(row.name, row.help))
-         for row in TOLERANCE_INPUTS if row.name != "sensitivities"]
+         for row in TOLERANCE_INPUTS if row.name not in ("sensitivities", "misalignment-band")]
 
 
 #: the search's own inputs

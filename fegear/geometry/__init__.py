@@ -43,7 +43,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "build": ("PairGeometry", "build_geometry"),
     "space": ("DesignMap", "design_map", "map_row", "map_span", "map_tables"),
     "deviations": ("Deviations", "ToothDeviation", "Runout", "Placed", "NO_DEVIATIONS",
-                   "moved_clearances", "least_clearances", "Closing",
+                   "moved_clearances", "least_clearances", "point_clearances", "Closing",
                    "closing_points"),
     "deviation_inputs": ("deviations_of", "read_deviations", "ToothEntry", "runout_text",
                          "check_teeth", "PER_TOOTH", "HELIX", "Helix", "helix_of",

@@ -419,6 +419,13 @@ def least_clearances(deviations: Deviations, params, closing: Closing
     return least, teeth
 
 
+def point_clearances(deviations: Deviations, params, closing: Closing) -> np.ndarray:
+    """Each of the ``closing`` points' clearance moved by ``deviations`` (µm): the numbers
+    :func:`least_clearances` takes each state's least of, for a caller that adds to them
+    point by point (the offsets across the face). The points' feet are kept as there."""
+    return _moved_um(deviations, params, closing)
+
+
 def _moved_um(deviations: Deviations, params, closing: Closing) -> np.ndarray:
     """The ``closing`` points' clearances moved by ``deviations`` (µm): one batch of gaps,
     their searches started at the points' feet, which they leave there

@@ -13,6 +13,7 @@ from __future__ import annotations
 from typing import Literal, get_args
 
 from ..checks import Input, InputTable, require_range
+from ..errors import ParameterError
 from ..fe import ALLOWABLE_INPUTS, MATERIAL_INPUTS
 from ..geometry import PAIR_INPUTS, RENAMED  # noqa: F401  (RENAMED: for study files)
 
@@ -99,6 +100,11 @@ TOLERANCE_INPUTS = (
           "factors hold for", low=0.5, high=1.0, high_open=True),
     Input("centre-distance-tolerance", float, 0.0, "the ± tolerance of the centre distance "
           "drawn with --grade (0: exact)", "µm", low=0.0, high=1000.0),
+    Input("misalignment-band", float, None, "with --grade across the face: each pair's "
+          "misalignment drawn within ±B about --misalignment (normal, σ = B/3), as the "
+          "class's deviations are", "µm", low=0.0, high=200.0,
+          limits="0 <= misalignment-band, |misalignment| + misalignment-band <= 200 µm",
+          rule="none (every pair at --misalignment)"),
     Input("sensitivities", bool, False, "each stress's rate with each deviation of the teeth "
           "in mesh (MPa/µm) at the position of the largest gear-1 root stress, and with "
           "--grade what one tolerance of each moves; writes sensitivities.csv and "
@@ -163,8 +169,8 @@ RATING_INPUTS = (
 
 #: the inputs that only a feature reads, and the input that turns it on: given without it,
 #: they are refused by name (a class's draw, a life rating)
-REQUIRES = {**dict.fromkeys(("samples", "seed", "quantile", "centre-distance-tolerance"),
-                            "grade"),
+REQUIRES = {**dict.fromkeys(("samples", "seed", "quantile", "centre-distance-tolerance",
+                             "misalignment-band"), "grade"),
             **dict.fromkeys(("speed", "life", "KA", "KV", "material"), "spectrum"),
             "end-length": "end-relief"}
 
@@ -187,6 +193,20 @@ def check_torque(torque: object, E: float, m: float, face_width: float, r1: floa
     return require_range("torque", torque, 0.0, torque_limit(E, m, face_width, r1),
                          lo_open=True, unit=f"N·m (0.05 E m b r1 at E={E:g} MPa, m={m:g}, "
                                             f"b={face_width:g}, r1={r1:g} mm)")
+
+
+def check_band(band: object, misalignment: float, across: bool) -> float:
+    """A misalignment band (µm, ``--misalignment-band``; None: none) checked against ``0 <=
+    band`` and ``|misalignment| + band <= 200 µm`` (every pair drawn within
+    ``--misalignment``'s range), and refused where the class is not ``across`` the face:
+    0 where none is given."""
+    if band is None:
+        return 0.0
+    if not across:
+        raise ParameterError("misalignment-band", band, "with --grade across the face only "
+                             "(with --misalignment or another face input)")
+    return require_range("misalignment-band", band, 0.0, 200.0 - abs(misalignment),
+                         unit="µm (200 µm less |misalignment|)")
 
 
 def check_tip_round(radius: object, m: float) -> float:

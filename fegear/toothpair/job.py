@@ -31,11 +31,12 @@ from ..geometry import (
 from ..rating import material, read_spectrum
 from ..running import SERIAL, Executor
 from ..timing import Stopwatch
-from ..tolerance import Draw, grade_of
+from ..tolerance import Draw
 from . import estimate
 from .analyses import Run, asked
 from .case import SolveCase, cycle_positions, revolution_positions
 from .case_file import case_record
+from .class_draw import class_draw
 from .estimate import second_level_estimate, second_quality, tooth_estimates
 from .face import SECTIONS, Face, deepest_lead_um, room_of
 from .inputs import FACE_INPUTS, JOB_INPUTS, PAIR_INPUTS, REQUIRES, TIP_ROUND, check_tip_round
@@ -142,7 +143,7 @@ def prepare_job(values: Mapping[str, object]) -> Job:
         betas = revolution_positions(case.beta, positions or PER_PITCH, params.z1, params.z2)
     else:
         betas = (case.beta,) if n == 1 else cycle_positions(case.beta, n, case.params.z2)
-    draw = _draw(v, given=values, case=case)
+    draw = class_draw(v, given=values, case=case)
     rating = _rating(v, given=values, case=case, revolution=revolution, draw=draw)
     return Job(case, tuple(betas), not v["no-estimate"], allowables_of(v), revolution, draw,
                JOB_INPUTS["quantile"].check(v["quantile"]),
@@ -174,9 +175,11 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase, draw: Draw | No
     leads = read_leads(v["lead"], p.z1, p.z2, case.thickness) if v["lead"] else Helix()
     # the face's option, else the helix file
     name = next((row.name for row in FACE_INPUTS if v[row.name] is not None), "deviations")
-    if draw is not None:
-        raise ParameterError(name, v[name], "without --grade (a class's pairs across the "
-                             "face are not built: solve the exact pair across the face)")
+    if draw is not None and (helix or v["lead"]):   # a class draws its teeth's helix
+        name = next((n for n in ("helix-slope-deviation", "helix-form-deviation", "lead")
+                     if v[n] is not None), "deviations")
+        raise ParameterError(name, v[name], "without --grade (the class draws each tooth's "
+                             "helix deviations)")
     for name in ("crowning", "end-relief", "end-length"):   # their values first, then
         JOB_INPUTS[name].check(v[name])                      # whether they are read
     if v["end-length"] is not None and v["end-relief"] is None:
@@ -223,25 +226,6 @@ def _refuse_jammed(face: Face, v: dict, case: SolveCase) -> None:
                          f"{math.degrees(room.beta):.3g}°: gear 1's loaded flanks close at one "
                          f"section of the face and its coast flanks at another, "
                          f"{-room.um:.3g} µm of arc at r0 beyond its backlash")
-
-
-def _draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | None:
-    """The tolerance class's pairs to solve (``--grade``), refused by name with deviations
-    given (the class draws them); None without a class."""
-    grade = v["grade"]
-    if grade is None:
-        for name in (name for name, switch in REQUIRES.items() if switch == "grade"):
-            if given.get(name) is not None:
-                raise ParameterError(name, given[name], "with --grade only (the pairs of a "
-                                     "tolerance class are drawn only where it is given)")
-        return None
-    grade = JOB_INPUTS["grade"].check(grade)
-    if case.deviations:
-        raise ParameterError("grade", grade, "without deviations given (the class draws each "
-                             "pair's deviations)")
-    return Draw(grade_of(grade, case.params, v["centre-distance-tolerance"]),
-                JOB_INPUTS["samples"].check(v["samples"]),
-                JOB_INPUTS["seed"].check(v["seed"]))
 
 
 def _rating(v: dict, given: Mapping[str, object], case: SolveCase, revolution: bool,

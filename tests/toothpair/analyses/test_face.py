@@ -23,7 +23,6 @@ BASE = {"quality": "coarse", "no-estimate": True}
     ({"misalignment": 250.0}, "misalignment"),
     ({"face-sections": 2}, "face-sections"),
     ({"crowning": -1.0}, "crowning"),
-    ({"grade": 5, "tilt": 3.0}, "tilt"),
     ({"grade": 5, "helix-slope-deviation": "1:3=2"}, "helix-slope-deviation"),
     ({"helix-form-deviation": "1:44=2"}, "helix-form-deviation"),
     ({"helix-slope-deviation": "3:4=2"}, "helix-slope-deviation"),

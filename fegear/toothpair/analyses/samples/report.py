@@ -5,8 +5,9 @@ safety factors that the ``--quantile`` share of the class's pairs meet, and the 
 
 A pair that jams (its deviations take up the backlash) carries no stress a solve can give, and
 it fails: its stresses count as beyond every other's, so a quantile is taken of all the pairs
-drawn, and where the jammed share reaches past it the quantile is "jams". Its files:
-samples.csv and samples.png (:func:`write_samples_outputs`).
+drawn, and where the jammed share reaches past it the quantile is "jams". Across the face,
+a pair's stresses are its worst section's, and its K_Hβ is read as they are (a jammed pair's
+beyond every other's). Its files: samples.csv and samples.png (:func:`write_samples_outputs`).
 """
 
 from __future__ import annotations
@@ -20,8 +21,10 @@ from ....files import write_csv
 from ....quantities import FACTORS
 from ....tolerance import QUANTILES, Draw, quantiles
 from ...case import HEADLINE
+from ...face import Face
 from ...safety import SAFETY, safety_factor
 from .plot import samples_png
+from .rows import K_HBETA
 
 #: a jammed pair's stresses, beyond every solved one's (module docstring)
 JAMMED = math.inf
@@ -32,13 +35,15 @@ class ClassReading:
     """How a class's samples are read: the class and seed they were drawn with (``draw``),
     the share of the pairs (``quantile``) whose stresses the safety factors are stated at, the
     ``allowables`` (MPa) and the positions each pair is solved at (``positions``, over a whole
-    ``revolution`` of gear 1 or a cycle)."""
+    ``revolution`` of gear 1 or a cycle), across the ``face`` where the job has one (its
+    pairs' stresses their worst sections', and their K_Hβ)."""
 
     draw: Draw
     quantile: float
     allowables: Allowables
     positions: int = 1
     revolution: bool = False
+    face: Face | None = None
 
 
 def samples_summary(rows, nominal_rows: list[dict], reading: ClassReading) -> dict:
@@ -56,6 +61,11 @@ def samples_summary(rows, nominal_rows: list[dict], reading: ClassReading) -> di
     grade, quantile = reading.draw.grade, reading.quantile
     stresses = _stresses(rows, nominal_rows, quantile, reading.draw.seed)
     safety = _safety(stresses, quantile, reading.allowables)
+    across = {}
+    if reading.face is not None:
+        across = {"across": _across(reading),
+                  "load_factor": _stresses(rows, nominal_rows, quantile, reading.draw.seed,
+                                           (K_HBETA,))[K_HBETA]}
     return {"grade": grade.summary(), "samples": n, "seed": reading.draw.seed,
             "quantile": quantile, "positions_per_pair": reading.positions,
             "over": "revolution" if reading.revolution else "cycle",
@@ -63,18 +73,30 @@ def samples_summary(rows, nominal_rows: list[dict], reading: ClassReading) -> di
             "jammed_share": share, "jammed_share_error": math.sqrt(share * (1 - share) / n),
             "failures": sorted({r["why"] for r in failed}),
             "stresses": stresses, "safety": safety,
-            "verdict": verdict(safety, share, quantile, grade.grade), "rows": rows}
+            "verdict": verdict(safety, share, quantile, grade.grade), **across, "rows": rows}
 
 
-def _stresses(rows: list[dict], nominal_rows: list[dict], quantile: float, seed: int) -> dict:
-    """Per headline stress: the nominal (the exact pair's largest over the positions), the
-    quantiles of every pair drawn (a jammed pair's beyond every other's) and of the pairs that
-    turn (``turning``), both with ``quantile`` among them and bootstrapped with ``seed``, and
-    the worst with its sample."""
+def _across(reading: ClassReading) -> dict:
+    """What the class is solved across (JSON): the face's sections and inputs, the
+    misalignment each pair is drawn about and its band (µm), and that the stresses are each
+    pair's worst section's (the helix tolerances are the grade's)."""
+    face, draw = reading.face, reading.draw
+    return {"sections": face.sections, "misalignment_um": draw.misalignment_um,
+            "misalignment_band_um": draw.band_um, "tilt_um": face.tilt,
+            "crowning_um": face.crowning, "end_relief_um": face.end_relief,
+            "stresses": "each pair's worst section's"}
+
+
+def _stresses(rows: list[dict], nominal_rows: list[dict], quantile: float, seed: int,
+              keys=tuple(HEADLINE)) -> dict:
+    """Per headline stress (or other ``keys`` of the rows: K_Hβ): the nominal (the exact
+    pair's largest over the positions), the quantiles of every pair drawn (a jammed pair's
+    beyond every other's) and of the pairs that turn (``turning``), both with ``quantile``
+    among them and bootstrapped with ``seed``, and the worst with its sample."""
     qs = tuple(sorted({*QUANTILES, quantile}))
     solved = [r for r in rows if r["status"] == "solved"]
     stresses = {}
-    for key in HEADLINE:
+    for key in keys:
         values = [r[key] if r["status"] == "solved" else JAMMED
                   for r in rows if r["status"] != "failed"]
         found = {q.q: q for q in quantiles(values, qs, seed=seed)}
@@ -176,6 +198,8 @@ def samples_table(s: dict) -> str:
                     "∞" if x["error"] is None else f"{x['error']:.1f}"))
         cells.append("-" if v["worst"] is None else f"{v['worst']:.1f} ({v['worst_sample']})")
         lines.append("| " + " | ".join(cells) + " |")
+    if "load_factor" in s:   # across the face: K_Hβ read as the stresses are
+        lines.append(_factor_row(s["load_factor"], _shown(s)))
     if s["jammed"] and s["solved"]:   # what the pairs that turn carry, the jammed aside
         lines += ["", "| of the pairs that turn [MPa] | "
                   + " | ".join(f"P{100 * x:g}" for x in _shown(s)) + " |",
@@ -204,8 +228,34 @@ def samples_table(s: dict) -> str:
               f"{g['gear1']['F_rT_um']:g}/{g['gear2']['F_rT_um']:g} µm (gear 1/gear 2)"
               + (f", centre distance ±{g['centre_distance_tolerance_um']:g} µm"
                  if g["centre_distance_tolerance_um"] else ""),
+              *([_across_line(s)] if "across" in s else []),
               f"verdict: {s['verdict']}"]
     return "\n".join(lines)
+
+
+def _factor_row(v: dict, shown: tuple[float, ...]) -> str:
+    """K_Hβ's row of the stress table: its nominal, quantiles with their errors and worst."""
+    cells = ["K_Hβ [-]", f"{v['nominal']:.3f}"]
+    for x in v["quantiles"]:
+        if x["q"] in shown:
+            cells.append("jams" if x["jams"] else f"{x['value']:.3f} ± " + (
+                "∞" if x["error"] is None else f"{x['error']:.3f}"))
+    cells.append("-" if v["worst"] is None else f"{v['worst']:.3f} ({v['worst_sample']})")
+    return "| " + " | ".join(cells) + " |"
+
+
+def _across_line(s: dict) -> str:
+    """The line that says the class is across the face: its sections, its helix tolerances
+    and the misalignment it is drawn about, with its band."""
+    a, g = s["across"], s["grade"]
+    h1, h2 = g["helix1"], g["helix2"]
+    band = (f" ± {a['misalignment_band_um']:g} (drawn, σ = a third)"
+            if a["misalignment_band_um"] else "")
+    return (f"across the face ({a['sections']} sections; each pair's stresses at its worst "
+            f"section, K_Hβ its largest): f_HβT {h1['f_HbT_um']:g}/{h2['f_HbT_um']:g}, "
+            f"f_fβT {h1['f_fbT_um']:g}/{h2['f_fbT_um']:g}, F_βT {h1['F_bT_um']:g}/"
+            f"{h2['F_bT_um']:g} µm at b = {h1['b_mm']:g} mm, drawn with the pairs; "
+            f"misalignment {a['misalignment_um']:g}{band} µm")
 
 
 def _shown(s: dict) -> tuple[float, ...]:
@@ -226,6 +276,8 @@ def samples_columns(s: dict) -> dict:
             tag = f"P{100 * q['q']:g}"
             out[f"samples.{key}.{tag}"] = q["value"]
             out[f"samples.{key}.{tag}_error"] = q["error"]
+    for q in s.get("load_factor", {}).get("quantiles", ()):
+        out[f"samples.K_Hbeta.P{100 * q['q']:g}"] = q["value"]
     for key, v in s["safety"].items():
         out[f"samples.{key}.at_quantile"] = v["at_quantile"]
     out["samples.verdict"] = s["verdict"]

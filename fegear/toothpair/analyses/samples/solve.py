@@ -14,6 +14,11 @@ deviated solve checks it) cannot be turned: it is counted as jammed, with where,
 stresses. A sample whose contact does not settle is counted as failed, with why: no sample
 leaves the tables unseen.
 
+Across the face (a job with a face: :mod:`.across`), each sample is solved besides on its
+position's kept contact at the face's sections, with its own helix deviations and
+misalignment, and the exact pair too: each one's stresses are its worst section's, with its
+K_Hβ; a sample whose face takes up the backlash (:class:`~.across.FaceRoom`) is jammed.
+
 The positions are the parallel work: two chains of the driver's (:func:`~.positions.chain`),
 each every other position with every sample (one position: half the samples each), on the
 executor the caller gives; what a chain does at a position is this module's
@@ -33,13 +38,16 @@ from ....errors import FegearError
 from ....fe import Allowables, blas_threads, keep_freed_memory
 from ....geometry import closing_points, gear1_profile, least_clearances, moved_clearances
 from ....running import SERIAL, Executor
-from ....tolerance import Draw, tooth_positions
-from ...case import HEADLINE, PairSolution, SolveCase, revolution_positions
+from ....tolerance import Draw
+from ...case import PairSolution, SolveCase, revolution_positions
+from ...face import Face
 from ...positions import TURN_CHECK, Clearances, chain, solve_position
+from ...ring.face_results import face_sections
 from ...ring.phases import Phases
 from ...ring.solver import RingSolver, SolverModes
-from ...safety import safety_factors
 from ...teeth import choose_teeth, closure
+from .across import Across, FaceRoom, across_of, worst_sections
+from .rows import EXACT, brief_of, gathered, sample_row
 
 
 @dataclass(frozen=True)
@@ -47,13 +55,16 @@ class SampleCase:
     """A tolerance class's pairs to solve: the exact pair's ``case`` at the rolling angles
     ``betas`` (rad) and ``draw``'s samples, their safety factors against ``allowables``;
     ``pitches`` > 1: each sample at ``betas`` and at each of that many gear-2 pitches on (a
-    revolution: z1), its worst over all of them."""
+    revolution: z1), its worst over all of them; ``face``: each solved across it too, with
+    its own helix deviations and misalignment (``draw`` across the face), its worst section's.
+    """
 
     case: SolveCase
     betas: Sequence[float]
     draw: Draw
     allowables: Allowables
     pitches: int = 1
+    face: Face | None = None
 
 
 @dataclass(frozen=True)
@@ -62,11 +73,13 @@ class Sampled:
     deviations in brief, ``status`` ("solved", "jammed" or "failed", with ``why``), and where
     solved its largest headline stresses over the positions, each with its position, and
     the safety factors they give; ``readings``: by sample, what the caller's ``read`` took of
-    its solution at each position (:func:`solve_samples`)."""
+    its solution at each position (:func:`solve_samples`); ``across``: across the face, the
+    exact pair's headlines at its worst sections and K_Hβ at the positions (in order)."""
 
     nominal: tuple[PairSolution, ...]
     rows: tuple[dict, ...]
     readings: dict = field(default_factory=dict)
+    across: tuple[dict, ...] = ()
 
     @property
     def turning(self) -> list[int]:
@@ -86,40 +99,61 @@ def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = 
     its grids set here to reach as far as the drawn deviations move a tooth (module
     docstring), through the driver's chains (:func:`~.positions.chain`) on ``executor``;
     ``read``: what to keep of each sample's solution at each position beside its headlines (a
-    relief search's tip-round loads, say)."""
+    relief search's tip-round loads, say). Across the face (``samples.face``), the grids
+    reach as far as the samples' faces move a flank besides."""
     keep_freed_memory()
     case, count = samples.case, samples.draw.count
     with blas_threads():
         profile = gear1_profile(case.params)
         pairs = [samples.draw.pair(k) for k in range(count)]   # drawn once, here
         reach = max(d.widest_um() for d in pairs)              # … and how far they move a tooth
+        across = None if samples.face is None else across_of(case, samples.face, samples.draw)
+        if across is not None:
+            reach += across.reach_um
         states = _States(case, profile, tuple(samples.betas), reach, samples.pitches)
         solver.reach(reach)
-        parts = max(2, executor.workers)
-        jams = executor.map(lambda ks: [_jammed(states, pairs[k]) for k in ks],
-                            _parts(range(count), parts))
-        jammed = [j for part in jams for j in part]
+        jammed = _jams(states, pairs, across, executor)
         solver.build(case, profile, lambda: states.loaded)
         free = [k for k in range(count) if jammed[k] is None]
-        work = [(span, _OnKept(states, pairs, solver, jobs, read))
+        parts = max(2, executor.workers)
+        work = [(span, OnKept(states, pairs, solver, jobs, read, across))
                 for span, jobs in _work(free, len(samples.betas), samples.pitches, parts)]
         nominal, chains = _run_chains(case, states, solver, work, executor)
-    found, readings = _gathered(chains)
+    found, readings = gathered(chains)
     z = (case.params.z1, case.params.z2)
-    rows = tuple(_row(k, pairs[k], jammed[k], found.get(k, []), samples.allowables, z)
-                 for k in range(count))
-    return Sampled(tuple(nominal[i] for i in range(len(samples.betas))), rows, readings)
+    rows = tuple(sample_row(k, brief_of(pairs[k], z, across and across.faces[k]), jammed[k],
+                            found.get(k, []), samples.allowables) for k in range(count))
+    exact = tuple(head for _, head in sorted(found.get(EXACT, []), key=lambda g: g[0]))
+    return Sampled(tuple(nominal[i] for i in range(len(samples.betas))), rows, readings,
+                   exact)
+
+
+def _jams(states: _States, pairs: list, across: Across | None, executor: Executor) -> list:
+    """Where each of ``pairs`` jams (None where it turns): in the plane (:func:`_jammed`), or
+    across the face with its own face (:meth:`~.across.FaceRoom.jammed`), in a share of the
+    pairs a worker."""
+    if across is None:
+        def jams(k: int) -> str | None:
+            return _jammed(states, pairs[k])
+    else:
+        room = FaceRoom(states.case, states.turn, states.reach_um, across.face.sections)
+
+        def jams(k: int) -> str | None:
+            return room.jammed(pairs[k], across.faces[k])
+    parts = _parts(range(len(pairs)), max(2, executor.workers))
+    return [j for part in executor.map(lambda ks: [jams(k) for k in ks], parts) for j in part]
 
 
 def class_samples(job, allowables: Allowables, read=None, contact_only: bool = False,
                   executor: Executor = SERIAL) -> Sampled:
     """A checked job's class (``job.draw``) solved at its positions (:func:`solve_samples`)
-    on a ring solver made for it: the stresses without submodels, or the contact alone
-    (``contact_only``: a relief search's trial)."""
+    on a ring solver made for it: the stresses without submodels (across the job's face where
+    it has one), or the contact alone (``contact_only``: a relief search's trial)."""
     solver = RingSolver(None, SolverModes(submodels="none", contact_only=contact_only,
                                          keep_phases=True))
-    return solve_samples(SampleCase(job.case, job.betas, job.draw, allowables), solver,
-                         executor, read)
+    face = None if contact_only else job.face
+    return solve_samples(SampleCase(job.case, job.betas, job.draw, allowables, face=face),
+                         solver, executor, read)
 
 
 def _parts(items, parts: int) -> list:
@@ -146,6 +180,7 @@ class _States:
         find = clearances.find
         self.case = case
         self.pitches = pitches
+        self.reach_um = reach_um
         self.loaded = clearances.get()
         # the positions too, as a deviated solve checks them: a pair that jams exactly
         # there may turn at the turn's angles beside them
@@ -209,7 +244,7 @@ def _run_chains(case: SolveCase, states: _States, solver: RingSolver, work,
                 executor: Executor) -> tuple[dict[int, PairSolution], list[list[tuple]]]:
     """The chains of ``work`` ((positions, what is done at each) pairs) on ``executor``: the
     exact pair's solutions by position and what each chain gave at its positions
-    (:meth:`_OnKept.__call__`). A chain's exact solutions refer to the model it solved them
+    (:meth:`OnKept.__call__`). A chain's exact solutions refer to the model it solved them
     on: they come back from a process that shares this one's; elsewhere (a cluster) a chain
     gives plain data alone and the exact pair is solved here meanwhile."""
     if executor.shares_memory:
@@ -222,7 +257,7 @@ def _run_chains(case: SolveCase, states: _States, solver: RingSolver, work,
     return nominal, [task.result() for task in tasks]
 
 
-def _plain(case: SolveCase, loaded, span, at: _OnKept) -> list[tuple]:
+def _plain(case: SolveCase, loaded, span, at: OnKept) -> list[tuple]:
     """A chain of the samples (:func:`~.positions.chain`) in another process: what it gave
     without the exact pair's solutions (plain data alone)."""
     return [(None, *got[1:]) for got in chain(case, loaded, span, at, label="samples")]
@@ -240,20 +275,23 @@ def _exact(case: SolveCase, states: _States, solver: RingSolver) -> dict[int, Pa
 
 
 @dataclass(frozen=True)
-class _OnKept:
+class OnKept:
     """What a chain of the samples does at a position (:class:`~.positions.AtPosition`):
     the exact pair is solved as any position, then its contact kept with grids on every tooth
     that the samples solved there pair (:func:`_paired`), each sample solved on it
     (:meth:`~.ring.solver.RingSolver.on_kept`), and the contact let go of; ``jobs``: by
     position, the samples solved there ((index into the drawn ``pairs``' deviations, gear-2
     pitches on) pairs). A solver received without its model (from another process) builds or
-    finds one here."""
+    finds one here. ``across``: the exact pair and each sample solved across the face too,
+    on the same kept contact (their worst sections' headlines and K_Hβ, the exact pair's under
+    :data:`~.rows.EXACT`)."""
 
     states: _States
     pairs: list
     solver: RingSolver
     jobs: dict[int, list[tuple[int, int]]]
     read: Callable[[PairSolution], object] | None = None
+    across: Across | None = None
 
     def __call__(self, i: int, at: SolveCase, state, near: tuple | None
                  ) -> tuple[PairSolution, dict[int, list], dict[int, list]]:
@@ -268,18 +306,31 @@ class _OnKept:
         solver.widen(at, state, exact, _paired(at, exact, state, moved))
         found: dict[int, list] = {}
         took: dict[int, list] = {}
+        if self.across is not None:
+            found[EXACT] = [(at.beta, self._face(at, state, self.across.face))]
         for k, n in self.jobs[i]:
             one = replace(at, beta=self.states.beta(i, n), deviations=self.pairs[k])
             try:
                 sol = self._sample(one, moved[k, n], placed, exact)
+                head = sol.headline() if self.across is None else \
+                    self._face(one, moved[k, n], self.across.faces[k])
             except FegearError as err:
                 found.setdefault(k, []).append((one.beta, str(err)))
                 continue
-            found.setdefault(k, []).append((one.beta, sol.headline()))
+            found.setdefault(k, []).append((one.beta, head))
             if self.read is not None:
                 took.setdefault(k, []).append(self.read(sol))
         solver.forget(at)
         return exact, found, took
+
+    def _face(self, one: SolveCase, state, face: Face) -> dict[str, float]:
+        """``one`` (clearance ``state``) across ``face`` on the contact kept at its position:
+        its worst sections' headlines and K_Hβ (:func:`~.across.worst_sections`)."""
+        sections = face_sections(self.solver.model, self.solver.phases, one, state, face,
+                                 self.across.coupling)
+        if sections is None:
+            raise FegearError("no contact kept where the sample is solved across the face")
+        return worst_sections(sections)
 
     def _moved(self, i: int, params) -> dict:
         """The clearance states at position i of the samples ``jobs[i]`` names, by (sample,
@@ -304,33 +355,6 @@ class _OnKept:
         return sol
 
 
-def _gathered(chains) -> tuple[dict[int, list], dict[int, list]]:
-    """By sample, its (β, headline or why) and what was read of it, over the chains'
-    positions (:meth:`_OnKept.__call__`) in order."""
-    found: dict[int, list] = {}
-    readings: dict[int, list] = {}
-    for done in chains:
-        for _, got, took in done:
-            for k, each in got.items():
-                found.setdefault(k, []).extend(each)
-            for k, each in took.items():
-                readings.setdefault(k, []).extend(each)
-    return found, readings
-
-
-def _row(k: int, deviations, jammed: str | None, got: list, allowables: Allowables,
-         z: tuple[int, int]) -> dict:
-    """Sample k's row: its deviations in brief (:func:`_brief`), its status and why, and
-    where it turns its worst over its positions (``got``: (β, headline or why) pairs)."""
-    brief = _brief(deviations, z)
-    if jammed is not None:
-        return {"sample": k, **brief, "status": "jammed", "why": jammed}
-    failed = [why for _, why in got if isinstance(why, str)]
-    if failed:
-        return {"sample": k, **brief, "status": "failed", "why": failed[0]}
-    return {"sample": k, **brief, "status": "solved", "why": "", **_worst(got, allowables)}
-
-
 #: a sample's teeth are those the driver's rule pairs at its first touch plus this many times
 #: the exact pair's elastic rotation (a deviated pair carries its load on fewer teeth, which
 #: turn gear 1 further)
@@ -346,32 +370,3 @@ def _paired(case: SolveCase, exact: PairSolution, state, moved: dict) -> set[int
     z1 = case.params.z1
     return {(t + n) % z1 for (_, n), m in moved.items() for t in choose_teeth(
         m, m.closest(+1).plus_um + ELASTIC_MARGIN * elastic, case.extra_pairs)}
-
-
-def _worst(got: list, allowables: Allowables) -> dict:
-    """A sample's largest headline stresses over its positions ((β, headline) pairs), each
-    with the position (degrees), and the safety factors they give."""
-    out = {}
-    for key in HEADLINE:
-        beta, head = max(got, key=lambda g: g[1][key])
-        out[key] = head[key]
-        out[f"{key.removesuffix('_MPa')}_at_deg"] = math.degrees(beta)
-    return {**out, **safety_factors(out, allowables)}
-
-
-def _brief(deviations, z: tuple[int, int]) -> dict:
-    """A sample's deviations in a few numbers (µm), as a measuring machine reads them: each
-    gear's cumulative pitch (the range of its teeth's positions, runout included) and largest
-    single pitch, its largest profile slope and form and its runout, and the centre
-    distance's; ``z``: the gears' numbers of teeth."""
-    out = {}
-    for g, zg in zip((1, 2), z):
-        teeth = deviations.teeth(g)
-        position = tooth_positions(deviations, g, zg)
-        out[f"gear{g}_cumulative_pitch_um"] = float(np.ptp(position))
-        out[f"gear{g}_single_pitch_um"] = float(np.abs(position - np.roll(position, 1)).max())
-        out[f"gear{g}_slope_um"] = max((abs(d.slope) for d in teeth.values()), default=0.0)
-        out[f"gear{g}_form_um"] = max((abs(d.form) for d in teeth.values()), default=0.0)
-        out[f"gear{g}_runout_um"] = getattr(deviations, f"runout{g}").fr
-    out["centre_distance_um"] = deviations.centre_distance
-    return out

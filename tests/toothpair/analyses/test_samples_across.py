@@ -1,0 +1,170 @@
+"""A tolerance class's pairs across the face (``fegear solve --grade … --misalignment …``): a
+sample reads as the same pair solved alone across the face from its deviations file, its
+helix and its misalignment; the batch room check is the face's own (room_of) at the same
+states; a sample whose face takes up the backlash is counted as jammed; the summary and the
+printed table read K_Hβ as the stresses; the class's inputs across the face are refused by
+name where they do not fit."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from fegear.errors import ParameterError
+from fegear.geometry import PairParameters, ToothContact, gear1_profile, runout_text
+from fegear.tolerance import Draw, grade_of
+from fegear.toothpair import SolveCase, prepare_job, solve_job
+from fegear.toothpair.analyses import SAMPLES
+from fegear.toothpair.analyses.samples.across import FaceRoom
+from fegear.toothpair.analyses.samples.report import ClassReading, samples_summary
+from fegear.toothpair.analyses.samples.solve import SampleCase, solve_samples
+from fegear.toothpair.case import HEADLINE, revolution_positions
+from fegear.toothpair.face import ROOM_ANGLES, Face, room_of
+from fegear.toothpair.ring.solver import RingSolver, SolverModes
+from fegear.toothpair.safety import DEFAULT_ALLOWABLES
+from fegear.toothpair.teeth import INTERFERENCE_UM
+
+#: backlash enough that class 5 turns across a 4 µm misalignment in most of its pairs
+BASE = {"shift": 0.03, "rotation": 0.002, "quality": "coarse", "no-estimate": True}
+PAIR = PairParameters(shift=0.03, rotation=0.002)
+CASE = SolveCase(PAIR, torque=200.0, quality="coarse")
+
+
+@pytest.fixture(scope="module")
+def graded():
+    """Class 5's first 4 pairs across the face at 4 µm ± 2 µm, at two positions."""
+    job = prepare_job({**BASE, "grade": 5, "samples": 4, "positions": 2, "misalignment": 4.0,
+                       "misalignment-band": 2.0, "face-sections": 5})
+    return job, solve_job(job)
+
+
+def _deviations_file(path, deviations, face) -> None:
+    """A sample's teeth as a deviations file (a row a tooth: pitch, profile and helix)."""
+    lines = ["gear,tooth,fp [µm],fHa [µm],ffa [µm],fHb [µm],ffb [µm]"]
+    for gear, helix in ((1, face.helix1), (2, face.helix2)):
+        teeth = deviations.teeth(gear)
+        for tooth, slope, form in helix:
+            d = teeth[tooth]
+            lines.append(f"{gear},{tooth},{d.pitch!r},{d.slope!r},{d.form!r},{slope!r},"
+                         f"{form!r}")
+    path.write_text("\n".join(lines) + "\n")
+
+
+def test_a_sample_reads_as_the_same_pair_solved_alone_across_the_face(graded, tmp_path):
+    job, solved = graded
+    s = solved.summary["samples"]
+    rows = [r for r in s["rows"] if r["status"] == "solved"]
+    assert len(rows) >= 2 and job.draw.across
+    for row in rows[:2]:
+        k = row["sample"]
+        deviations, drawn = job.draw.pair(k), job.draw.face(k)
+        assert row["misalignment_um"] == drawn.misalignment != 4.0
+        face = replace(job.face, helix1=drawn.helix.gear1, helix2=drawn.helix.gear2)
+        path = tmp_path / f"sample{k}.csv"
+        _deviations_file(path, deviations, face)
+        alone = solve_job(prepare_job({
+            **BASE, "positions": 2, "face-sections": 5, "deviations": str(path),
+            "runout": [runout_text(1, deviations.runout1), runout_text(2, deviations.runout2)],
+            "centre-distance-deviation": deviations.centre_distance,
+            "misalignment": drawn.misalignment})).summary["face"]
+        # the same kept contact's rule, other anchors (as in the plane: the roots to 2e-3, a
+        # peak pressure moves with where the points fall)
+        for key in HEADLINE:
+            rel = 2e-3 if key.startswith("root") else 1e-2
+            assert row[key] == pytest.approx(alone["worst"][key]["value"], rel=rel), (k, key)
+        assert row["K_Hbeta"] == pytest.approx(alone["K_Hbeta"], rel=1e-2), k
+        assert row["stresses_at"] == "worst section"
+
+
+def test_the_summary_and_the_table_read_k_hbeta_and_the_class_across_the_face(graded):
+    job, solved = graded
+    s = solved.summary["samples"]
+    rows = [r for r in s["rows"] if r["status"] == "solved"]
+    kh = s["load_factor"]
+    assert kh["worst"] == max(r["K_Hbeta"] for r in rows) > 1.0
+    # the exact pair's numbers are its worst sections', as the face's analysis reads them
+    face = solved.summary["face"]
+    assert kh["nominal"] == pytest.approx(face["K_Hbeta"], rel=1e-9)
+    key = "root_stress_gear1_MPa"
+    assert s["stresses"][key]["nominal"] == pytest.approx(face["worst"][key]["value"],
+                                                           rel=1e-9)
+    median = next(q for q in kh["turning"] if q["q"] == 0.5)
+    assert median["value"] == pytest.approx(np.median([r["K_Hbeta"] for r in rows]))
+    assert s["across"]["misalignment_band_um"] == 2.0 and s["grade"]["helix1"]["F_bT_um"] == 7.5
+    printed = SAMPLES.printed(s, solved.summary)
+    assert "K_Hβ [-]" in printed and "f_HβT 5.5/5.5" in printed and "4 ± 2" in printed
+    assert "each of them at its worst section" in printed
+    assert {"samples.K_Hbeta.P95", "samples.root_stress_gear1_MPa.P95"} <= set(
+        SAMPLES.columns(s))
+
+
+def test_the_batch_room_is_the_faces_own_at_the_same_states():
+    """:class:`FaceRoom` against :func:`room_of` (a deviated pair's room over a whole turn at
+    its own angles): the same least room to rounding, whether it jams or not."""
+    # 12 µm ± 10 µm: the first pair jams across the face (by 2.7 µm), the second turns
+    draw = Draw(grade_of(5, PAIR, face_width=CASE.thickness), 2, 0, 12.0, 10.0)
+    betas = revolution_positions(0.0, ROOM_ANGLES, PAIR.z1, PAIR.z2)
+    states = ToothContact(PAIR, gear1_profile(PAIR)).states(betas)
+    batch = FaceRoom(CASE, list(zip(betas, states)), np.inf, 9)
+    rooms = []
+    for k in range(draw.count):
+        drawn = draw.face(k)
+        face = Face(misalignment=drawn.misalignment, tilt=2.0, crowning=3.0,
+                    helix1=drawn.helix.gear1, helix2=drawn.helix.gear2)
+        mine = batch.room(draw.pair(k), face)
+        theirs = room_of(face, replace(CASE, deviations=draw.pair(k)))
+        assert mine.um == pytest.approx(theirs.um, abs=1e-9), k
+        assert betas[mine.state] == pytest.approx(theirs.beta), k
+        assert (batch.jammed(draw.pair(k), face) is None) == (theirs.um >= -INTERFERENCE_UM)
+        rooms.append(mine.um)
+    assert min(rooms) < -INTERFERENCE_UM < max(rooms)   # both kinds among them
+
+
+def test_a_sample_that_jams_across_the_face_is_counted_as_jammed():
+    # 18 µm ± 8 µm on a pair whose exact room is 25.7 µm of it: class 5's first four pairs
+    # turn in the plane, and two of them jam across the face
+    draw = Draw(grade_of(5, PAIR, face_width=CASE.thickness), 4, 0, 18.0, 8.0)
+    face = Face(sections=5, misalignment=18.0)
+    solver = RingSolver(None, SolverModes(keep_phases=True))
+    across = solve_samples(SampleCase(CASE, (0.0,), draw, DEFAULT_ALLOWABLES, face=face),
+                           solver)
+    jammed = [r for r in across.rows if r["status"] == "jammed"]
+    assert jammed and all("across the face" in r["why"] for r in jammed)
+    for row in jammed:
+        k = row["sample"]
+        drawn = draw.face(k)
+        own = replace(face, helix1=drawn.helix.gear1, helix2=drawn.helix.gear2,
+                      misalignment=drawn.misalignment)
+        assert room_of(own, replace(CASE, deviations=draw.pair(k))).um < -INTERFERENCE_UM
+    plane = [r["status"] for r in solve_samples(
+        SampleCase(CASE, (0.0,), replace(draw, grade=grade_of(5, PAIR)), DEFAULT_ALLOWABLES),
+        RingSolver(None, SolverModes(keep_phases=True))).rows]
+    assert all(plane[r["sample"]] == "solved" for r in jammed)   # each turns in the plane
+    assert len(jammed) == 2
+    s = samples_summary(across.rows, list(across.across), ClassReading(
+        draw=draw, quantile=0.95, allowables=DEFAULT_ALLOWABLES, face=face))
+    assert s["jammed"] == len(jammed) and s["load_factor"]["quantiles"][-1]["jams"]
+
+
+@pytest.mark.parametrize("values, name", [
+    ({"misalignment-band": 3.0, "misalignment": 2.0}, "misalignment-band"),   # no grade
+    ({"grade": 5, "misalignment-band": 3.0}, "misalignment-band"),            # no face
+    ({"grade": 5, "misalignment": 2.0, "misalignment-band": -1.0}, "misalignment-band"),
+    ({"grade": 5, "misalignment": 150.0, "misalignment-band": 60.0}, "misalignment-band"),
+    ({"grade": 5, "helix-form-deviation": "1:3=2"}, "helix-form-deviation"),
+    ({"grade": 5, "misalignment": 2.0, "deviations": "HELIX"}, "deviations"),
+])
+def test_bad_class_inputs_across_the_face_are_refused_by_name(values, name, tmp_path):
+    helix = tmp_path / "helix.csv"
+    helix.write_text("gear,tooth,fHb [µm]\n1,3,2\n")
+    values = {k: str(helix) if v == "HELIX" else v for k, v in values.items()}
+    with pytest.raises(ParameterError) as err:
+        prepare_job({**BASE, **values})
+    assert err.value.name == name
+
+
+def test_a_class_across_the_face_draws_its_helix_and_in_the_plane_does_not():
+    job = prepare_job({**BASE, "grade": 5, "tilt": 3.0})
+    assert job.face.tilt == 3.0 and job.draw.across and job.draw.misalignment_um == 0.0
+    assert job.draw.grade.helix1.b == job.case.thickness
+    assert not prepare_job({**BASE, "grade": 5}).draw.across
