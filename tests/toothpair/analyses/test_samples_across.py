@@ -153,6 +153,7 @@ def test_a_sample_that_jams_across_the_face_is_counted_as_jammed():
     ({"grade": 5, "misalignment": 150.0, "misalignment-band": 60.0}, "misalignment-band"),
     ({"grade": 5, "helix-form-deviation": "1:3=2"}, "helix-form-deviation"),
     ({"grade": 5, "misalignment": 2.0, "deviations": "HELIX"}, "deviations"),
+    ({"grade": 5, "misalignment": 2.0, "revolution": True}, "revolution"),
 ])
 def test_bad_class_inputs_across_the_face_are_refused_by_name(values, name, tmp_path):
     helix = tmp_path / "helix.csv"
