@@ -167,8 +167,8 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase, draw: Draw | No
           helix: Helix) -> Face | None:
     """What varies across the face (any of :data:`~.inputs.FACE_INPUTS` given), refused by
     name: an end relief longer than half the face, a crowning and end relief deeper together
-    than the tooth takes (:func:`~.face.deepest_lead_um`), or a face with a tolerance class
-    (its pairs across the face are not built); None where none is given."""
+    than the tooth takes (:func:`~.face.deepest_lead_um`), or a tooth's own helix
+    deviations with a tolerance class (the class draws them); None where none is given."""
     p = case.params
     if all(v[row.name] is None for row in FACE_INPUTS) and not helix:
         return None
