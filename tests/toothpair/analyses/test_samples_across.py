@@ -16,6 +16,7 @@ from fegear.tolerance import Draw, grade_of
 from fegear.toothpair import SolveCase, prepare_job, solve_job
 from fegear.toothpair.analyses import SAMPLES
 from fegear.toothpair.analyses.samples.across import FaceRoom
+from fegear.toothpair.analyses.samples.plot import samples_figure
 from fegear.toothpair.analyses.samples.report import ClassReading, samples_summary
 from fegear.toothpair.analyses.samples.solve import SampleCase, solve_samples
 from fegear.toothpair.case import HEADLINE, revolution_positions
@@ -96,6 +97,10 @@ def test_the_summary_and_the_table_read_k_hbeta_and_the_class_across_the_face(gr
     assert "each of them at its worst section" in printed
     assert {"samples.K_Hbeta.P95", "samples.root_stress_gear1_MPa.P95"} <= set(
         SAMPLES.columns(s))
+    # the picture says its safety factors are the worst sections', with the band
+    figure = samples_figure(s, job.allowables, "a title")
+    assert "across the face at its worst section, misalignment 4 ± 2 µm" in \
+        figure.get_suptitle()
 
 
 def test_the_batch_room_is_the_faces_own_at_the_same_states():

@@ -48,6 +48,12 @@ def samples_figure(samples: dict, allowables, title: str):
         ax.grid(alpha=0.3)
         place_legend(ax, fontsize=7)
     g = samples["grade"]["grade"]
+    across = samples.get("across")
+    if across:   # the stresses are each pair's worst section's: the title says so
+        band = across["misalignment_band_um"]
+        title += (f"\nacross the face at its worst section, misalignment "
+                  f"{across['misalignment_um']:g}" + (f" ± {band:g}" if band else "") + " µm, "
+                  "each tooth's helix drawn")
     fig.suptitle(f"{title}\n{samples['samples']} pairs of ISO 1328-1 class {g}: "
                  f"{samples['solved']} solved, {samples['jammed']} jammed "
                  f"({100 * samples['jammed_share']:.3g} %), {samples['failed']} failed; "
