@@ -6,14 +6,14 @@ Section s's gaps are the 2D rigid gaps plus the face's offsets there plus the ap
 A_hp p_s + A_fe Σ_t S_st p_t. The method is the 2D solve's (:func:`~.contact.active_set`: every
 violated point swapped at once; the rigid gap linearised in the turn and evaluated again until
 the rotation settles). The active points' system is never formed: N sections of n points
-would make a matrix N² times the 2D one, and its LU N³ times as costly. GMRES solves it from
-two products with the 2D parts a step, preconditioned by the face's own operator on the
-points active at any section, every one of them active at every section (:class:`_Modes`:
-exact in the spread's modes, one 2D-sized LU a section), with the torque row bordered
-exactly: it differs from the face's only where the sections' active points differ (the
-contact zones' edges). On the baseline at 10 µm it reaches a residual of 1e-13 in about
-thirty steps, where each section's own block alone took fifty and a quarter more time
-(docs/model.md).
+would make a matrix N² times the 2D one, and its LU N³ times as costly. GMRES
+(:mod:`.krylov`) solves it from two products with the 2D parts a step, preconditioned by the
+face's own operator on the points active at any section, every one of them active at every
+section (:class:`_Modes`: in the spread's modes, about one LU of the near field), with the
+torque row bordered exactly: it differs from the face's only where the sections' active
+points differ (the contact zones' edges). The first linearisation's sets are solved loosely
+(their signs and the turn's step are all it passes on), the later ones tightly, each from the
+one before's pressures (docs/model.md, "Across the face").
 """
 
 from __future__ import annotations
@@ -22,19 +22,24 @@ from dataclasses import dataclass
 
 import numpy as np
 import scipy.linalg
-from scipy.sparse.linalg import LinearOperator, gmres
 
 from .contact import ARM_STEP, MAX_ACTIVE_SET, MAX_TURNS, RingContactError, rigid_gap
 from .face import FaceCoupling
 from .influence import RingContact, near_field
+from .krylov import gmres
 from .model import RingModel
 
 #: the points whose rigid gap at a section comes within this many elastic approaches (the
 #: 2D solution's) of the least there take part in the iterations; the rest are checked at the
 #: solution, and where one closes every point takes part
 CANDIDATES = 2.0
-#: GMRES: the relative residual, the restart length and the restarts
-GMRES_TOL, GMRES_RESTART, GMRES_CYCLES = 1e-13, 80, 20
+#: GMRES's relative residual
+GMRES_TOL = 1e-13
+#: the first linearisation's GMRES tolerance: its active sets' signs need no more (1e-6 took
+#: a few more sets on the baseline)
+FIRST_TOL = 1e-7
+#: the rank at which the preconditioner takes the finite-element part (:class:`_Modes`)
+RANK = 20
 
 
 @dataclass(frozen=True)
@@ -89,6 +94,17 @@ def solve_face_contact(model: RingModel, contact: RingContact, start: FaceStart,
     raise RingContactError("a point closed outside the face's contact points")
 
 
+@dataclass(frozen=True)
+class _Linear:
+    """One linearisation of the rigid gap over the candidate points: the gaps g0 (mm; points ×
+    sections) and their rate a with the turn (mm/rad; points) at its rotation, and the
+    torque's rate with the turn through its arms (N·mm/rad)."""
+
+    g0: np.ndarray
+    a: np.ndarray
+    arm_rate: float
+
+
 class _Problem:
     """One face's contact: the 2D parts of A (the finite-element part that spreads, the
     near field that stays), the points' force per unit pressure at each section, the
@@ -97,8 +113,10 @@ class _Problem:
     def __init__(self, model: RingModel, contact: RingContact, offsets: np.ndarray,
                  coupling: FaceCoupling, torque_nmm: float) -> None:
         self.model, self.contact, self.offsets, self.torque = model, contact, offsets, torque_nmm
-        self.near = near_field(model, contact)
-        self.far = contact.A - self.near
+        near = near_field(model, contact)
+        # transposed: a set's products read the rows of its points, which are contiguous
+        self.near_t = np.ascontiguousarray(near.T)
+        self.far_t = np.subtract(contact.A.T, near.T, out=np.empty_like(near))
         self.spread = coupling.spread
         self.w = (contact.weight * model.case.thickness)[:, None] * coupling.share[None, :]
         self.alpha = model.case.params.ratio * contact.beta
@@ -111,28 +129,38 @@ class _Problem:
 
     def times(self, pressure: np.ndarray) -> np.ndarray:
         """The approach (points × sections) under ``pressure`` (points × sections)."""
-        return self.far @ (pressure @ self.spread.T) + self.near @ pressure
+        loaded = np.flatnonzero(pressure.any(axis=1))
+        on = pressure[loaded]
+        return ((self.spread @ on.T) @ self.far_t[loaded] + on.T @ self.near_t[loaded]).T
 
     def solve(self, start: FaceStart, within: np.ndarray):
         """The linearisations of the rigid gap over the points ``within`` (points ×
         sections): the pressures (points × sections), rotation, iterations and
-        linearisations."""
+        linearisations. The first linearisation's active sets are solved to
+        :data:`FIRST_TOL` (only their signs and the rotation's step count there, and the
+        next linearisation corrects both), every later one to :data:`GMRES_TOL`, each
+        started from the one before's pressures."""
         points = np.flatnonzero(within.any(axis=1))   # the candidates of any section
         sections = _Sections(self, points, within[points])
         active = start.active[points][:, None] & sections.within
         pressure = np.zeros(active.shape)
-        theta, total, turns = start.rotation, 0, 0
+        theta, total, turns, warm = start.rotation, 0, 0, None
         while True:
             turns += 1
             g2, a2 = self.rigid(theta)
-            g0, a = g2[points][:, None] + self.offsets[points], a2[points]
-            arm_rate = self._arm_rate(theta, points, pressure, a)
+            a = a2[points]
+            linear = _Linear(g2[points][:, None] + self.offsets[points], a,
+                             self._arm_rate(theta, points, pressure, a))
             if not active.any():
-                active = sections.within & (g0 <= g0[sections.within].min() + 1e-12)
-            pressure, step, active, iterations = sections.active_set(g0, a, active, arm_rate)
+                active = sections.within & (linear.g0 <= linear.g0[sections.within].min()
+                                            + 1e-12)
+            tol = FIRST_TOL if turns == 1 else GMRES_TOL
+            pressure, step, active, iterations = sections.active_set(linear, active, tol, warm)
+            warm = pressure
             total += iterations
             theta += step
-            if abs(step) <= max(1e-12 * abs(theta), 1e-13 / self.model.case.params.r0):
+            if abs(step) <= max(1e-12 * abs(theta), 1e-13 / self.model.case.params.r0) \
+                    and turns > 1:   # a loose solve's step settles nothing
                 break
             if turns == MAX_TURNS:
                 raise RingContactError(f"the rotation did not settle in {MAX_TURNS} "
@@ -166,22 +194,22 @@ class _Sections:
     """The active-set method on the candidate points of every section (module docstring)."""
 
     def __init__(self, problem: _Problem, points: np.ndarray, within: np.ndarray) -> None:
-        self.far = problem.far[np.ix_(points, points)]
-        self.near = problem.near[np.ix_(points, points)]
+        self.problem, self.points, self.within = problem, points, within
         self.spread, self.torque = problem.spread, problem.torque
-        self.within, self.w = within, problem.w[points]
+        self.w = problem.w[points]
         self.eigen = spread_modes(problem.spread)
         self.factors: dict = {}
 
-    def active_set(self, g0, a, active, arm_rate):
+    def active_set(self, linear: _Linear, active: np.ndarray, tol: float,
+                   warm: np.ndarray | None):
         """Pressures (points × sections) and rotation step with every active gap closed and
-        the torque balanced, from ``active``, every violated point swapped at once; the
-        active set and the iterations."""
+        the torque balanced, from ``active``, every violated point swapped at once, each
+        set's system solved to ``tol`` from ``warm`` (pressures, points × sections) if
+        given; the active set and the iterations. A set met again at a loose ``tol`` is
+        solved on to :data:`GMRES_TOL` (its solves' error may have made the cycle)."""
         seen = set()
         for k in range(1, MAX_ACTIVE_SET + 1):
-            pressure, step = self._on(g0, a, active, arm_rate)
-            gap = g0 + a[:, None] * step + self.far @ (pressure @ self.spread.T) \
-                + self.near @ pressure
+            pressure, step, gap = self._on(linear, active, tol, warm)
             new = np.where(active, pressure > 0, (gap < 0) & self.within)
             if not new.any():
                 new = self.within & (gap <= gap[self.within].min())
@@ -189,23 +217,31 @@ class _Sections:
                 return pressure, step, active, k
             key = new.tobytes()
             if key in seen:
-                break
+                if tol == GMRES_TOL:
+                    break
+                tol, seen = GMRES_TOL, set()
             seen.add(key)
             active = new
         raise RingContactError("the active set across the face did not settle")
 
-    def _on(self, g0, a, active, arm_rate) -> tuple[np.ndarray, float]:
+    def _on(self, linear: _Linear, active: np.ndarray, tol: float,
+            warm: np.ndarray | None) -> tuple[np.ndarray, float, np.ndarray]:
         """The bordered system A p + a δ = −g0 on the active points, (w a)·p + arm_rate δ =
-        −T, by GMRES on the points active at any section (module docstring)."""
+        −T, by GMRES on the points active at any section (module docstring): the pressures,
+        the step δ and every candidate's gap."""
         union = np.flatnonzero(active.any(axis=1))
         on = active[union]
-        far, near = self.far[np.ix_(union, union)], self.near[np.ix_(union, union)]
+        at = self.points[union]
+        far_rows, near_rows = self.problem.far_t[at], self.problem.near_t[at]
+        far = np.ascontiguousarray(far_rows[:, at].T)
+        near = np.ascontiguousarray(near_rows[:, at].T)
         sec_major = np.nonzero(on.T)
         local = (sec_major[1], sec_major[0])      # (point, section), section by section
         order = (union[local[0]], local[1])
         modes = self._modes(union, near, far)
-        a_on = a[order[0]]
+        a_on = linear.a[order[0]]
         wa = self.w[order] * a_on
+        arm_rate = linear.arm_rate
 
         def times(x):
             p = np.zeros(on.shape)
@@ -228,17 +264,17 @@ class _Sections:
             step = (x[-1] - wa @ y) / schur
             return np.append(y - pa * step, step)
 
-        size = len(a_on) + 1
-        rhs = np.append(-g0[order], -self.torque)
-        x, info = gmres(LinearOperator((size, size), matvec=times, dtype=float), rhs,
-                        x0=precondition(rhs),
-                        M=LinearOperator((size, size), matvec=precondition, dtype=float),
-                        rtol=GMRES_TOL, atol=0.0, restart=GMRES_RESTART, maxiter=GMRES_CYCLES)
-        if info != 0 or not np.isfinite(x).all():
+        rhs = np.append(-linear.g0[order], -self.torque)
+        x0 = precondition(rhs) if warm is None else np.append(warm[order], 0.0)
+        found = gmres(times, precondition, rhs, x0, tol)
+        if not found.converged or not np.isfinite(found.x).all():
             raise RingContactError("the contact across the face did not converge")
         pressure = np.zeros(active.shape)
-        pressure[order] = x[:-1]
-        return pressure, float(x[-1])
+        pressure[order] = found.x[:-1]
+        p = pressure[union]
+        approach = ((self.spread @ p.T) @ far_rows + p.T @ near_rows).T
+        gap = linear.g0 + linear.a[:, None] * found.x[-1] + approach[self.points]
+        return pressure, float(found.x[-1]), gap
 
     def _modes(self, union: np.ndarray, near: np.ndarray, far: np.ndarray) -> _Modes:
         """The face's operator on every point of ``union`` at every section, in the spread's
@@ -251,28 +287,43 @@ class _Sections:
 
 class _Modes:
     """The face's operator with every point of a set active at every section, near X + far X
-    Sᵀ (X: points × sections), solved exactly in the spread's modes: with S = V Λ V⁻¹, Z = X
-    V⁻ᵀ takes it to near z_k + λ_k far z_k, one 2D-sized system a mode. Where the sections'
-    active points are those of the set it is the face's operator itself; where they differ it
-    is what GMRES is preconditioned with. (Solving the differing sets exactly, by the
-    operator's inverse at the entries left out, cost two to three times the GMRES steps it
-    saved: on the baseline some 800 entries are left out of 2800.)"""
+    Sᵀ (X: points × sections), solved in the spread's modes: with S = V Λ V⁻¹, Z = X V⁻ᵀ
+    takes it to near z_k + λ_k far z_k, one 2D-sized system a mode. The finite-element part
+    is smooth, and taken at rank :data:`RANK`, far ≈ Q B (Q spanning far's products with as
+    many random vectors), so that every mode is solved about the near field's one LU N by
+    Woodbury's identity: (N + λ Q B)⁻¹ = N⁻¹ − N⁻¹ Q (I + λ B N⁻¹ Q)⁻¹ λ B N⁻¹. Where the
+    sections' active points are those of the set it is the face's operator to that rank;
+    either way it only preconditions GMRES, whose solution is the face's own: the rank sets
+    the steps, not the answer."""
 
     def __init__(self, near: np.ndarray, far: np.ndarray, eigen) -> None:
         self.lam, self.v, self.v_inv_t = eigen
         kind = self.lam.dtype
-        self.factors = [scipy.linalg.lu_factor((near + lam * far).astype(kind),
-                                               check_finite=False) for lam in self.lam]
+        rank = min(RANK, len(near))
+        sketch = np.random.default_rng(0).standard_normal((len(near), rank))
+        q = np.linalg.qr(far @ sketch)[0]
+        b = q.T @ far
+        self.lu = scipy.linalg.lu_factor(near, check_finite=False)
         # LAPACK's own solve: scipy's lu_solve checks its arguments each call, and GMRES
-        # calls it a section a step (most of its time on the baseline)
-        self.getrs = scipy.linalg.get_lapack_funcs("getrs", (self.factors[0][0],))
+        # calls it every step
+        self.getrs = scipy.linalg.get_lapack_funcs("getrs", (self.lu[0],))
+        nq = self._near_solve(q)
+        g = b @ nq
+        eye = np.eye(rank)
+        self.small = np.stack([lam * np.linalg.inv(eye + lam * g) for lam in self.lam])
+        self.b, self.nq = b.astype(kind), nq.astype(kind)
+
+    def _near_solve(self, r: np.ndarray) -> np.ndarray:
+        """N⁻¹ ``r`` (real or complex columns)."""
+        if np.iscomplexobj(r):
+            return self._near_solve(r.real) + 1j * self._near_solve(r.imag)
+        x, info = self.getrs(*self.lu, r)
+        if info or not np.isfinite(x).all():
+            raise RingContactError("the near field of the face's operator is singular")
+        return x
 
     def solve(self, r: np.ndarray) -> np.ndarray:
-        """X with near X + far X Sᵀ = ``r`` (points × sections)."""
-        rt = r @ self.v_inv_t
-        z = np.empty_like(rt)
-        for k, (lu, piv) in enumerate(self.factors):
-            z[:, k], info = self.getrs(lu, piv, rt[:, k])
-            if info:
-                raise RingContactError("a section's mode of the face's operator is singular")
+        """X with near X + far X Sᵀ = ``r`` (points × sections), far at rank :data:`RANK`."""
+        y = self._near_solve(r @ self.v_inv_t)
+        z = y - self.nq @ np.einsum("kij,jk->ik", self.small, self.b @ y)
         return np.real(z @ self.v.T)

@@ -1,7 +1,9 @@
 """The contact across the face (:mod:`fegear.toothpair.ring.face_contact`): an even face is
 the 2D pair's solution in every section; the
 iterative solve is the bordered system's exact solution on its active set, complementary and
-in balance; a misalignment loads the end it closes; a helix slope on one tooth moves that
+in balance, its gaps those of the rigid teeth, the offsets and the face's approach formed
+anew; neither the first linearisation's loose solves nor the preconditioner's rank change
+the solution; a misalignment loads the end it closes; a helix slope on one tooth moves that
 tooth's load alone towards the end it closes."""
 
 from dataclasses import replace
@@ -13,6 +15,7 @@ from fegear.fe import blas_threads
 from fegear.running import SERIAL
 from fegear.toothpair.face import Face
 from fegear.toothpair.positions import positions_of
+from fegear.toothpair.ring import face_contact
 from fegear.toothpair.ring.contact import rigid_gap, solve_ring_contact
 from fegear.toothpair.ring.face import exponential_kernel, face_coupling
 from fegear.toothpair.ring.face_contact import FaceStart, solve_face_contact
@@ -76,6 +79,38 @@ def test_the_solution_is_the_bordered_system_solved_directly_complementary_and_b
     g = solved.gap[pts, sec] - (dense @ p[pts, sec])        # the rigid part at the solution
     np.testing.assert_allclose(np.linalg.solve(dense, -g), p[pts, sec],
                                rtol=1e-8, atol=1e-8 * p.max())
+
+
+def test_the_gaps_are_formed_anew_and_complementary_to_the_pressures(kept):
+    """The KKT conditions on gaps formed from the solution's pressures and rotation alone
+    (rigid gaps, offsets, near field in its section, finite-element part spread): p ≥ 0, no
+    overlap, closed where it presses, the torque carried."""
+    model, contact, k, case = kept
+    solved, offsets = _solve(kept, Face(SECTIONS, misalignment=-8.0, crowning=4.0))
+    p = solved.pressure
+    alpha = case.params.ratio * contact.beta
+    rigid, a = rigid_gap(model, contact, alpha + solved.rotation, contact.feet.copy())
+    near = near_field(model, contact)
+    gap = rigid[:, None] + offsets + (contact.A - near) @ p @ COUPLING.spread.T + near @ p
+    scale = 1e-9 * np.abs(gap).max()
+    np.testing.assert_allclose(solved.gap, gap, rtol=0, atol=scale)
+    assert (p >= 0).all() and gap.min() >= -scale
+    assert np.abs(gap * p).max() <= scale * p.max()
+    assert (p > 0).sum(axis=0).min() > 0                       # every section carries
+    w = (contact.weight * case.thickness)[:, None] * COUPLING.share[None, :]
+    assert -np.sum(w * p * a[:, None]) == pytest.approx(case.torque_Nmm, rel=1e-9)
+
+
+def test_neither_the_loose_first_solves_nor_the_rank_change_the_solution(kept, monkeypatch):
+    face = Face(SECTIONS, misalignment=8.0)
+    solved, _ = _solve(kept, face)
+    monkeypatch.setattr(face_contact, "FIRST_TOL", face_contact.GMRES_TOL)
+    monkeypatch.setattr(face_contact, "RANK", 2)
+    tight, _ = _solve(kept, face)
+    np.testing.assert_array_equal(tight.pressure > 0, solved.pressure > 0)
+    np.testing.assert_allclose(tight.pressure, solved.pressure, rtol=0,
+                               atol=1e-8 * solved.pressure.max())
+    assert tight.rotation == pytest.approx(solved.rotation, rel=1e-11)
 
 
 def test_a_misalignment_loads_the_end_it_closes_and_keeps_the_torque(kept):
