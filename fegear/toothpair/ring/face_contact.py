@@ -9,9 +9,9 @@ the rotation settles). The active points' system is never formed: N sections of 
 would make a matrix N² times the 2D one, and its LU N³ times as costly. GMRES
 (:mod:`.krylov`) solves it from two products with the 2D parts a step, preconditioned by the
 face's own operator on the points active at any section, every one of them active at every
-section (:class:`_Modes`: in the spread's modes, about one LU of the near field), with the
-torque row bordered exactly: it differs from the face's only where the sections' active
-points differ (the contact zones' edges). The first linearisation's sets are solved loosely
+section (:class:`_Modes`: in the spread's modes, about the near field's LU on each grid),
+with the torque row bordered exactly: it differs from the face's only where the sections'
+active points differ (the contact zones' edges). The first linearisation's sets are solved loosely
 (their signs and the turn's step are all it passes on), the later ones tightly, each from the
 one before's pressures (docs/model.md, "Across the face").
 """
@@ -234,11 +234,14 @@ class _Sections:
         at = self.points[union]
         far_rows, near_rows = self.problem.far_t[at], self.problem.near_t[at]
         far = np.ascontiguousarray(far_rows[:, at].T)
-        near = np.ascontiguousarray(near_rows[:, at].T)
+        # the near field stays on its grid: one block a grid, the union's points grid by grid
+        cuts = np.searchsorted(at, self.problem.contact.offsets)
+        grids = [slice(lo, hi) for lo, hi in zip(cuts[:-1], cuts[1:]) if hi > lo]
+        near = [np.ascontiguousarray(near_rows[g, at[g]].T) for g in grids]
         sec_major = np.nonzero(on.T)
         local = (sec_major[1], sec_major[0])      # (point, section), section by section
         order = (union[local[0]], local[1])
-        modes = self._modes(union, near, far)
+        modes = self._modes(union, _Near(grids, near), far)
         a_on = linear.a[order[0]]
         wa = self.w[order] * a_on
         arm_rate = linear.arm_rate
@@ -246,7 +249,10 @@ class _Sections:
         def times(x):
             p = np.zeros(on.shape)
             p[local] = x[:-1]
-            u = (far @ (p @ self.spread.T) + near @ p)[local] + a_on * x[-1]
+            u = far @ (p @ self.spread.T)
+            for g, block in zip(grids, near):
+                u[g] += block @ p[g]
+            u = u[local] + a_on * x[-1]
             return np.append(u, wa @ x[:-1] + arm_rate * x[-1])
 
         def sections(x):   # the union's operator solved, read at the active entries
@@ -276,7 +282,7 @@ class _Sections:
         gap = linear.g0 + linear.a[:, None] * found.x[-1] + approach[self.points]
         return pressure, float(found.x[-1]), gap
 
-    def _modes(self, union: np.ndarray, near: np.ndarray, far: np.ndarray) -> _Modes:
+    def _modes(self, union: np.ndarray, near: _Near, far: np.ndarray) -> _Modes:
         """The face's operator on every point of ``union`` at every section, in the spread's
         modes (:class:`_Modes`), kept per union."""
         key = union.tobytes()
@@ -285,28 +291,39 @@ class _Sections:
         return self.factors[key]
 
 
+@dataclass(frozen=True)
+class _Near:
+    """The near field on a union's points: its blocks, one a grid (it is zero between grids),
+    and the union's slices they sit on."""
+
+    grids: list
+    blocks: list
+
+
 class _Modes:
     """The face's operator with every point of a set active at every section, near X + far X
     Sᵀ (X: points × sections), solved in the spread's modes: with S = V Λ V⁻¹, Z = X V⁻ᵀ
     takes it to near z_k + λ_k far z_k, one 2D-sized system a mode. The finite-element part
     is smooth, and taken at rank :data:`RANK`, far ≈ Q B (Q spanning far's products with as
-    many random vectors), so that every mode is solved about the near field's one LU N by
-    Woodbury's identity: (N + λ Q B)⁻¹ = N⁻¹ − N⁻¹ Q (I + λ B N⁻¹ Q)⁻¹ λ B N⁻¹. Where the
-    sections' active points are those of the set it is the face's operator to that rank;
-    either way it only preconditions GMRES, whose solution is the face's own: the rank sets
-    the steps, not the answer."""
+    many random vectors), so that every mode is solved about the near field N, one LU a grid
+    (it is zero between grids), by Woodbury's identity:
+    (N + λ Q B)⁻¹ = N⁻¹ − N⁻¹ Q (I + λ B N⁻¹ Q)⁻¹ λ B N⁻¹. Where the sections' active points
+    are those of the set it is the face's operator to that rank; either way it only
+    preconditions GMRES, whose solution is the face's own: the rank sets the steps, not the
+    answer."""
 
-    def __init__(self, near: np.ndarray, far: np.ndarray, eigen) -> None:
+    def __init__(self, near: _Near, far: np.ndarray, eigen) -> None:
         self.lam, self.v, self.v_inv_t = eigen
         kind = self.lam.dtype
-        rank = min(RANK, len(near))
-        sketch = np.random.default_rng(0).standard_normal((len(near), rank))
+        rank = min(RANK, len(far))
+        sketch = np.random.default_rng(0).standard_normal((len(far), rank))
         q = np.linalg.qr(far @ sketch)[0]
         b = q.T @ far
-        self.lu = scipy.linalg.lu_factor(near, check_finite=False)
+        self.grids = near.grids
+        self.lu = [scipy.linalg.lu_factor(block, check_finite=False) for block in near.blocks]
         # LAPACK's own solve: scipy's lu_solve checks its arguments each call, and GMRES
         # calls it every step
-        self.getrs = scipy.linalg.get_lapack_funcs("getrs", (self.lu[0],))
+        self.getrs = scipy.linalg.get_lapack_funcs("getrs", (self.lu[0][0],))
         nq = self._near_solve(q)
         g = b @ nq
         eye = np.eye(rank)
@@ -317,9 +334,11 @@ class _Modes:
         """N⁻¹ ``r`` (real or complex columns)."""
         if np.iscomplexobj(r):
             return self._near_solve(r.real) + 1j * self._near_solve(r.imag)
-        x, info = self.getrs(*self.lu, r)
-        if info or not np.isfinite(x).all():
-            raise RingContactError("the near field of the face's operator is singular")
+        x = np.empty_like(r)
+        for g, (lu, piv) in zip(self.grids, self.lu):
+            x[g], info = self.getrs(lu, piv, r[g])
+            if info or not np.isfinite(x[g]).all():
+                raise RingContactError("the near field of the face's operator is singular")
         return x
 
     def solve(self, r: np.ndarray) -> np.ndarray:
