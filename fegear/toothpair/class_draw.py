@@ -23,6 +23,7 @@ def class_draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | 
     if grade is None:
         for name in (name for name, switch in REQUIRES.items() if switch == "grade"):
             if given.get(name) is not None:
+                JOB_INPUTS[name].check(given[name])   # its value first, then whether read
                 raise ParameterError(name, given[name], "with --grade only (the pairs of a "
                                      "tolerance class are drawn only where it is given)")
         return None
