@@ -265,6 +265,9 @@ def test_a_stiffness_file_becomes_the_plates_spring(tmp_path):
         mesh_source("-1", ip)
 
 
+# slow (12 s: three reducer builds and their pictures); the summary's findings are checked
+# in the default run
+@pytest.mark.slow
 def test_the_command_prints_the_three_builds_and_writes_the_pictures(tmp_path, capsys):
     out = tmp_path / "reducer"
     assert main(["drive", "reducer", "--plates", "3", "--speeds", "100:2250:12",

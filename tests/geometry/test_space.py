@@ -26,8 +26,10 @@ def _stated(err: ParameterError) -> tuple[float, float]:
     return float(m.group(1)), float(m.group(2))
 
 
+# 5-6 s each: the default run takes one row each way, the others slow
 @pytest.mark.parametrize("x, y, y_value", [
-    ("h1", "f1", 0.15), ("h1", "f1", 0.6), ("h1", "f1", 0.45), ("f1", "h1", 0.3)])
+    ("h1", "f1", 0.15), pytest.param("h1", "f1", 0.6, marks=pytest.mark.slow),
+    pytest.param("h1", "f1", 0.45, marks=pytest.mark.slow), ("f1", "h1", 0.3)])
 def test_a_map_row_and_the_refusals_give_one_answer(x, y, y_value):
     """Along a row of the map every grid design inside the row's interval is admissible and
     every one outside refused; both ends are admissible and a printed step past an end that

@@ -97,6 +97,9 @@ def test_the_summary_reads_the_rows(sampled):
                              f"{p95['value']:.1f} ± {p95['error']:.1f}")
 
 
+# slow (12 s: a class over a revolution); the default run reads each sample of a cycle
+# against the same pair solved alone
+@pytest.mark.slow
 def test_a_revolution_sample_reads_as_the_same_pair_turned_alone(baseline_ring):
     # every sample over a whole turn of gear 1 (2 positions a pitch, 88 in all) on the kept
     # contacts, against the same deviated pair's revolution placed position by position
@@ -132,6 +135,8 @@ def test_a_revolution_sample_reads_as_the_same_pair_turned_alone(baseline_ring):
             assert row["root_stress_gear1_MPa"] >= one["root_stress_gear1_MPa"] - 1e-6
 
 
+# slow (11 s: a Dask cluster started); the local pool's rows are the default run's
+@pytest.mark.slow
 def test_a_dask_cluster_gives_the_local_rows():
     # the chains travel by pickle, their solver without its model: each worker builds its
     # own and solves the same samples at the same positions; the exact pair is solved here

@@ -103,6 +103,9 @@ def test_the_summary_and_the_table_read_k_hbeta_and_the_class_across_the_face(gr
         figure.get_suptitle()
 
 
+# slow (12 s: room_of over a turn for each pair); the default run checks each jammed
+# pair's room with room_of in the jam test below
+@pytest.mark.slow
 def test_the_batch_room_is_the_faces_own_at_the_same_states():
     """:class:`FaceRoom` against :func:`room_of` (a deviated pair's room over a whole turn at
     its own angles): the same least room to rounding, whether it jams or not."""

@@ -55,7 +55,7 @@ def _revolution(inputs, keep_phases):
 # position is checked against a solve there placed anew
 # (tests/toothpair/analyses/test_revolution.py)
 @pytest.mark.parametrize("deviated, inputs", [
-    (0, {}),
+    pytest.param(0, {}, marks=pytest.mark.slow),   # 11 s: the perfect pair's turn
     pytest.param(1, {"pitch-deviation": ["1:11=5"]}, marks=pytest.mark.slow),
     pytest.param(1, {"runout": ["1=6@30"], "centre-distance-deviation": -4},
                  marks=pytest.mark.slow)])
