@@ -113,6 +113,9 @@ def test_the_two_level_solver_gives_cholmods_answer(small):
     assert iterations < 100
 
 
+# the coarse tooth's checks slow (its 3D solve 15 s); the default run builds and solves
+# the small one (above)
+@pytest.mark.slow
 def test_the_influence_is_symmetric(coarse):
     # Maxwell-Betti: G = Fᵀ K⁻¹ F, exact but for the solver's 1e-10 residuals (6e-12)
     assert coarse.maxwell < 1e-9
@@ -120,12 +123,14 @@ def test_the_influence_is_symmetric(coarse):
     assert coarse.mirror < 0.01
 
 
+@pytest.mark.slow
 def test_the_uniform_load_is_the_patches_loads_summed(coarse):
     # each a separate load case: linear to the solver's tolerance
     assert np.allclose(coarse.uniform, coarse.G.mean(axis=1), rtol=1e-8, atol=0)
     assert np.allclose(coarse.along[:, -1], coarse.along[:, :-1].mean(axis=1), rtol=1e-8)
 
 
+@pytest.mark.slow
 def test_a_load_at_mid_face_moves_the_face_less_further_away(coarse):
     row, mid = coarse.mid_row, len(coarse.z) // 2
     assert np.all(np.diff(row[:mid + 1]) > 0) and np.all(np.diff(row[mid:]) < 0)
@@ -135,6 +140,7 @@ def test_a_load_at_mid_face_moves_the_face_less_further_away(coarse):
     assert (coarse.z[-1] - coarse.z[mid]) / coarse.tooth_height == pytest.approx(1.111, 1e-3)
 
 
+@pytest.mark.slow
 def test_the_ends_bend_more_under_the_uniform_load(coarse):
     u = coarse.uniform
     assert u[0] > 1.02 * u[len(u) // 2] and u[-1] > 1.02 * u[len(u) // 2]
@@ -142,6 +148,7 @@ def test_the_ends_bend_more_under_the_uniform_load(coarse):
     assert along[0] > u[0] and along[-1] > u[-1]       # the very ends more than their patch
 
 
+@pytest.mark.slow
 def test_the_face_lies_between_plane_strain_and_plane_stress(coarse):
     # plane strain's field is one of the 3D mesh's (the same triangles, constant along the
     # face), so the 3D compliance is at least its; plane stress's stresses balance the
@@ -151,6 +158,7 @@ def test_the_face_lies_between_plane_strain_and_plane_stress(coarse):
     assert coarse.plane_stress / coarse.plane_strain == pytest.approx(1.08, abs=0.02)
 
 
+@pytest.mark.slow
 def test_the_table_names_the_checks(coarse):
     text = table(coarse, coarse)
     assert "Maxwell" in text and "plane stress" in text and "diagonal 0.00 %" in text
@@ -159,6 +167,7 @@ def test_the_table_names_the_checks(coarse):
     assert len(text.splitlines()) == 3 + len(coarse.z) + 4
 
 
+@pytest.mark.slow
 def test_the_slice_model_reads_the_coarse_tooth_along_the_face(coarse, slices):
     # each row per its uniform load's answer (the slice model's rows sum to the 2D pair's;
     # the 3D ends are softer). The coarse 3D mesh's own patch is 8 % low, its neighbour
