@@ -102,11 +102,11 @@ def circle_gaps(circles: FootCircles, moved: Moved, theta: float,
     1 turned by ``theta`` (rad, beyond the kinematic angle) and the points ``moved``, and the
     gaps' rate with that turn (mm/rad)."""
     sel = slice(None) if idx is None else idx
-    lever = _turned(moved.x[sel], theta + moved.turn1[sel]) + moved.offset
+    lever = rotate(moved.x[sel], theta + moved.turn1[sel]) + moved.offset
     point = lever + moved.axis
     if moved.turn2 is not None:   # gear 2's tooth turned: the point turned back about its axis
-        point = _turned(point, -moved.turn2[sel])
-        lever = _turned(lever, -moved.turn2[sel])
+        point = rotate(point, -moved.turn2[sel])
+        lever = rotate(lever, -moved.turn2[sel])
     u = point - circles.foot[sel]
     normal, tangent, kappa = circles.normal[sel], circles.tangent[sel], circles.kappa[sel]
     d = np.einsum("ij,ij->i", u, normal)
@@ -121,9 +121,3 @@ def circle_gaps(circles: FootCircles, moved: Moved, theta: float,
         gap -= placed.deviations.flank_offset(2, k2[sel], placed.roll(2, slid))
     grad = (bend[:, None] * normal - (kappa * s)[:, None] * tangent) / q[:, None]
     return gap, grad[:, 1] * lever[:, 0] - grad[:, 0] * lever[:, 1]
-
-
-def _turned(x: np.ndarray, angle: np.ndarray | float) -> np.ndarray:
-    """Points ``x`` (n, 2) each turned by its own ``angle`` (rad)."""
-    c, s = np.cos(angle), np.sin(angle)
-    return np.column_stack([c * x[:, 0] - s * x[:, 1], s * x[:, 0] + c * x[:, 1]])
