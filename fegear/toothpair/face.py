@@ -170,21 +170,31 @@ def _turns(face: Face, params, state, direction: int, sections, profile):
     teeth = np.array([r[0] for r in rows])
     clearance = np.array([r[1] for r in rows])
     x = np.array([r[2] for r in rows])
-    centre, turn = np.array([0.0, params.e]), params.ratio * state.beta
-    tangent = np.column_stack([-(x[:, 1] - centre[1]), x[:, 0] - centre[0]])  # d x / d turn
-    local = rotate(x - centre, -turn)                              # gear 1's frame
-    u = rotate(profile.evaluate(np.arctan2(local[:, 1], local[:, 0])).normal, turn)
-    along = np.einsum("ij,ij->i", u, tangent)
-    n = u * (direction * np.sign(along) + (along == 0))[:, None]   # outward: with the turn
-    arm = np.maximum(np.abs(along), 1e-9)
+    local = rotate(x - np.array([0.0, params.e]), -params.ratio * state.beta)  # gear 1's
+    n, lever, teeth2 = flank_levers(params, profile, local, state.beta, direction)
     offset = np.outer(n[:, 0] * face.misalignment - n[:, 1] * face.tilt, zeta)
-    if direction > 0:   # gear 2's tooth: the one whose pitch holds the point's polar angle
-        teeth2 = gear2_tooth(np.arctan2(x[:, 1], x[:, 0]) - state.beta, params.z2)
+    if direction > 0:
         for mine, deviated in zip((teeth, teeth2), own):
             for tooth, um in deviated.items():
                 offset[mine == tooth] += um
-    turn = offset * params.r0 / arm[:, None]
-    return np.repeat(clearance, len(zeta)), turn.ravel()
+    return np.repeat(clearance, len(zeta)), (offset * lever[:, None]).ravel()
+
+
+def flank_levers(params, profile, local: np.ndarray, beta, direction: int
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """At closing points ``local`` (mm, gear 1's frame) at rolling angles ``beta`` (rad, one
+    or one a point): gear 1's ``profile``'s normal there in the fixed frame, pointing the way
+    the point moves as gear 1 turns in ``direction`` (+1 onto the loaded flanks, −1 the coast
+    flanks); the lever that reads an offset along it as gear 1's turn (µm of arc at r0 a µm:
+    r0 over the normal's arm about gear 1's centre); and gear 2's tooth whose pitch holds the
+    point's polar angle (:func:`face_room`)."""
+    normal = profile.evaluate(np.arctan2(local[:, 1], local[:, 0])).normal
+    along = normal[:, 0] * -local[:, 1] + normal[:, 1] * local[:, 0]   # n · d x / d turn
+    normal = normal * (direction * np.sign(along) + (along == 0))[:, None]
+    turn = params.ratio * np.asarray(beta)
+    fixed = rotate(local, turn) + np.array([0.0, params.e])
+    tooth2 = gear2_tooth(np.arctan2(fixed[:, 1], fixed[:, 0]) - beta, params.z2)
+    return rotate(normal, turn), params.r0 / np.maximum(np.abs(along), 1e-9), tooth2
 
 
 #: rolling angles a gear-2 pitch at which a face's room is checked: an exact pair's clearances

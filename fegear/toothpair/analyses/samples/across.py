@@ -25,10 +25,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ....geometry import closing_points, gear1_profile, gear2_tooth, point_clearances
+from ....geometry import closing_points, gear1_profile, point_clearances
 from ....tolerance import Draw
 from ...case import HEADLINE, SolveCase
-from ...face import Face
+from ...face import Face, flank_levers
 from ...face_drive import coupling_of
 from ...ring.face import FaceCoupling
 from ...ring.face_results import FaceSections
@@ -124,18 +124,11 @@ class FaceRoom:
                            for d in (+1, -1))
 
     def _side(self, closing, direction: int) -> _Side:
-        """The closing points' face rates on one side (face_room's, point by point)."""
+        """The closing points' face rates on one side (face_room's, point by point:
+        :func:`~...face.flank_levers`)."""
         p = self.case.params
-        local = closing.x
-        normal = gear1_profile(p).evaluate(np.arctan2(local[:, 1], local[:, 0])).normal
-        along = normal[:, 0] * -local[:, 1] + normal[:, 1] * local[:, 0]   # n · d x/d turn
-        normal = normal * (direction * np.sign(along) + (along == 0))[:, None]
-        turn = p.ratio * closing.beta                       # the fixed frame's
-        n = _turned(normal, turn)
-        fixed = _turned(local, turn) + np.array([0.0, p.e])
-        lever = p.r0 / np.maximum(np.abs(along), 1e-9)
-        # gear 2's tooth: the one whose pitch holds the point's polar angle
-        tooth2 = gear2_tooth(np.arctan2(fixed[:, 1], fixed[:, 0]) - closing.beta, p.z2)
+        n, lever, tooth2 = flank_levers(p, gear1_profile(p), closing.x, closing.beta,
+                                        direction)
         counts = [len(c) for c in closing.teeth]
         state = np.repeat(np.arange(len(counts)), counts)
         return _Side(closing, state, closing.tooth, tooth2, n[:, 0] * lever,
@@ -161,13 +154,11 @@ class FaceRoom:
         axes = side.misalignment * face.misalignment + side.tilt * face.tilt
         turn = axes[:, None] * zeta
         if loaded:   # a flank's helix deviations, the loaded flank's alone (face_room)
-            slope, form = np.zeros(len(um)), np.zeros(len(um))
-            for teeth, helix in ((side.tooth1, face.helix1), (side.tooth2, face.helix2)):
-                s, f = _per_tooth(helix, max(int(teeth.max(initial=0)) + 1, 1))
-                slope += s[teeth]
-                form += f[teeth]
-            turn -= side.lever[:, None] * (slope[:, None] * zeta
-                                           + form[:, None] * (1.0 - (2.0 * zeta) ** 2))
+            own = face.per_tooth(zeta, self.case.thickness)
+            for teeth, deviated in zip((side.tooth1, side.tooth2), own):
+                for tooth, offset in deviated.items():
+                    on = teeth == tooth
+                    turn[on] += side.lever[on, None] * offset
         value = um + turn.min(axis=1)
         least = np.full(len(self.states), np.inf)
         np.minimum.at(least, side.state, value)
@@ -184,20 +175,3 @@ class FaceRoom:
             return None
         where = closure(self.states[room.state][0], room.tooth, room.plus_um, room.back_um)
         return f"{where}, across the face" if where is not None else None
-
-
-def _turned(v: np.ndarray, turn: np.ndarray) -> np.ndarray:
-    """Vectors ``v`` (n, 2) each turned by its own angle ``turn`` (rad)."""
-    c, s = np.cos(turn), np.sin(turn)
-    return np.column_stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]])
-
-
-def _per_tooth(helix, z: int) -> tuple[np.ndarray, np.ndarray]:
-    """A gear's helix deviations ((tooth, f_Hβ, f_fβ) entries) as arrays by tooth, ``z`` long
-    at least (µm)."""
-    z = max([z, *(t + 1 for t, _, _ in helix)])
-    slope, form = np.zeros(z), np.zeros(z)
-    for tooth, s, f in helix:
-        slope[tooth] += s
-        form[tooth] += f
-    return slope, form
