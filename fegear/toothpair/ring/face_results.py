@@ -17,7 +17,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ...planar import rotate
-from ..case import ContactChecks, PairSolution, SolveCase
+from ..case import HEADLINE, ContactChecks, PairSolution, SolveCase
 from ..face import Face
 from .contact import RingContactSolution, rigid_gap
 from .face import FaceCoupling
@@ -70,7 +70,17 @@ class FaceSections:
     def worst(self, key: str) -> int:
         """The section where the headline ``key`` (a :meth:`PairSolution.headline` key) is
         largest."""
-        return int(np.argmax([self.headline(s)[key] for s in range(len(self.sections))]))
+        return self.worst_headlines()[key][0]
+
+    def worst_headlines(self) -> dict[str, tuple[int, float]]:
+        """Each headline's worst section and its value there, by key (:meth:`worst`), every
+        section's headlines read once."""
+        heads = [self.headline(s) for s in range(len(self.sections))]
+        out = {}
+        for key in HEADLINE:
+            s = int(np.argmax([head[key] for head in heads]))
+            out[key] = (s, heads[s][key])
+        return out
 
 
 def face_sections(model, phases: Phases, case: SolveCase, state, face: Face,

@@ -12,7 +12,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from ....running import Executor
-from ...case import HEADLINE
 from ...face_drive import drive_across
 from ...ring.face_results import FaceSections
 
@@ -75,9 +74,7 @@ def position_entry(sol, sections: FaceSections) -> dict:
     its ratio to the 2D pair's, and each tooth's line load along the face."""
     flat = sol.headline()
     worst = {}
-    for key in HEADLINE:
-        s = sections.worst(key)
-        value = sections.headline(s)[key]
+    for key, (s, value) in sections.worst_headlines().items():
         worst[key] = {"value": value, "section": s,
                       "zeta": float(sections.coupling.zeta[s]),
                       "ratio": value / flat[key] if flat[key] else None}

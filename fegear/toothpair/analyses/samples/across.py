@@ -27,7 +27,7 @@ import numpy as np
 
 from ....geometry import closing_points, gear1_profile, point_clearances
 from ....tolerance import Draw
-from ...case import HEADLINE, SolveCase
+from ...case import SolveCase
 from ...face import Face, flank_levers
 from ...face_drive import coupling_of
 from ...ring.face import FaceCoupling
@@ -75,7 +75,7 @@ def _reach(face: Face) -> float:
 def worst_sections(sections: FaceSections) -> dict[str, float]:
     """Each headline stress at its worst section (:meth:`~...ring.face_results.FaceSections.
     headline`), and the face's K_Hβ (``K_Hbeta``)."""
-    out = {key: sections.headline(sections.worst(key))[key] for key in HEADLINE}
+    out = {key: value for key, (_, value) in sections.worst_headlines().items()}
     out["K_Hbeta"] = sections.load_factor
     return out
 
