@@ -170,6 +170,13 @@ class Helix:
         return bool(self.gear1 or self.gear2)
 
 
+def helix_trace(slope, form, zeta):
+    """A tooth's loaded flank towards its mate (µm) at the places ``zeta`` across the face
+    (fractions of the face width from its middle) under a helix slope deviation ``slope`` and
+    a helix form deviation ``form`` (µm, :class:`Helix`): slope ζ + form (1 − 4ζ²)."""
+    return slope * zeta + form * (1.0 - (2.0 * zeta) ** 2)
+
+
 def tooth_deviations(values: Mapping[str, object], z1: int, z2: int
                      ) -> tuple[Deviations, Helix]:
     """The deviations the solve inputs name (by their option names: the file first, then the

@@ -49,7 +49,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import FegearError, ParameterError
-from ..geometry import Deviations, Helix, Runout, ToothDeviation
+from ..geometry import Deviations, Helix, Runout, ToothDeviation, helix_trace
 from .iso1328 import ClassTolerances, HelixTolerances, check_grade, class_tolerances, helix_class
 
 #: a deviation's tolerance over its standard deviation
@@ -205,8 +205,7 @@ def _helix(rng: np.random.Generator, tol: HelixTolerances, z: int
             rng.normal(0.0, tol.f_HbT / SIGMAS * half, z)
         form = rng.normal(0.0, tol.f_fbT / SIGMAS * half) + \
             rng.normal(0.0, tol.f_fbT / SIGMAS * half, z)
-        # the flank towards its mate along the face (Face.per_tooth's trace)
-        trace = slope[:, None] * _ZETA + form[:, None] * (1.0 - (2.0 * _ZETA) ** 2)
+        trace = helix_trace(slope[:, None], form[:, None], _ZETA)
         if (np.abs(slope).max() <= tol.f_HbT and np.abs(form).max() <= tol.f_fbT
                 and np.ptp(trace, axis=1).max() <= tol.F_bT):
             return tuple((i, float(slope[i]), float(form[i])) for i in range(z))

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..geometry import gear2_tooth
+from ..geometry import gear2_tooth, helix_trace
 from ..planar import rotate
 from .case import revolution_positions
 
@@ -77,8 +77,7 @@ class Face:
         for helix, leads in ((self.helix1, self.leads1), (self.helix2, self.leads2)):
             teeth: dict[int, np.ndarray] = {}
             for tooth, slope, form in helix:
-                teeth[tooth] = teeth.get(tooth, 0.0) - slope * zeta \
-                    - form * (1.0 - (2.0 * zeta) ** 2)
+                teeth[tooth] = teeth.get(tooth, 0.0) - helix_trace(slope, form, zeta)
             for tooth, places, um in leads:
                 teeth[tooth] = teeth.get(tooth, 0.0) - np.interp((zeta + 0.5) * width,
                                                                  places, um)
