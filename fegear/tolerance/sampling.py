@@ -199,18 +199,22 @@ def sample_face(draw: Draw, k: int) -> FaceSample:
 def _helix(rng: np.random.Generator, tol: HelixTolerances, z: int
            ) -> tuple[tuple[int, float, float], ...]:
     """One gear's z teeth's (tooth, f_Hβ, f_fβ) that pass its class (module docstring)."""
-    half = 1.0 / math.sqrt(2.0)
     for _ in range(DRAWS):
-        slope = rng.normal(0.0, tol.f_HbT / SIGMAS * half) + \
-            rng.normal(0.0, tol.f_HbT / SIGMAS * half, z)
-        form = rng.normal(0.0, tol.f_fbT / SIGMAS * half) + \
-            rng.normal(0.0, tol.f_fbT / SIGMAS * half, z)
+        slope, form = _shared_and_own(rng, tol.f_HbT, z), _shared_and_own(rng, tol.f_fbT, z)
         trace = helix_trace(slope[:, None], form[:, None], _ZETA)
         if (np.abs(slope).max() <= tol.f_HbT and np.abs(form).max() <= tol.f_fbT
                 and np.ptp(trace, axis=1).max() <= tol.F_bT):
             return tuple((i, float(slope[i]), float(form[i])) for i in range(z))
     raise FegearError(f"no gear of class {tol.grade} drawn within its helix tolerances in "
                       f"{DRAWS} draws")   # pragma: no cover
+
+
+def _shared_and_own(rng: np.random.Generator, tolerance: float, z: int) -> np.ndarray:
+    """A deviation of each of z teeth (µm): half its variance a part all the gear's teeth
+    share (the machine's setting), drawn first, half each tooth's own; σ = tolerance /
+    :data:`SIGMAS` in all."""
+    sigma = tolerance / SIGMAS * (1.0 / math.sqrt(2.0))
+    return rng.normal(0.0, sigma) + rng.normal(0.0, sigma, z)
 
 
 def _within(rng: np.random.Generator, tolerance: float) -> float:
@@ -238,11 +242,7 @@ def _gear(rng: np.random.Generator, tol: ClassTolerances, sign: float
         # deviation; the solve takes the offset from the runout, so a tooth's own pitch
         # deviation is its indexing error alone
         position = index + _along(fr, phase, z, sign)
-        half = 1.0 / math.sqrt(2.0)
-        slope = rng.normal(0.0, tol.f_HaT / SIGMAS * half) + \
-            rng.normal(0.0, tol.f_HaT / SIGMAS * half, z)
-        form = rng.normal(0.0, tol.f_faT / SIGMAS * half) + \
-            rng.normal(0.0, tol.f_faT / SIGMAS * half, z)
+        slope, form = _shared_and_own(rng, tol.f_HaT, z), _shared_and_own(rng, tol.f_faT, z)
         profile = slope[:, None] * _ROLL + 4.0 * form[:, None] * _ROLL * (1.0 - _ROLL)
         if (fr <= tol.F_rT
                 and np.abs(position - np.roll(position, 1)).max() <= tol.f_pT
