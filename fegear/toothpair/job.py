@@ -173,8 +173,6 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase, draw: Draw | No
     if all(v[row.name] is None for row in FACE_INPUTS) and not helix:
         return None
     leads = read_leads(v["lead"], p.z1, p.z2, case.thickness) if v["lead"] else Helix()
-    # the face's option, else the helix file
-    name = next((row.name for row in FACE_INPUTS if v[row.name] is not None), "deviations")
     if draw is not None and (helix or v["lead"]):   # a class draws its teeth's helix
         name = next((n for n in ("helix-slope-deviation", "helix-form-deviation", "lead")
                      if v[n] is not None), "deviations")
