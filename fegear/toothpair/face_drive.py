@@ -30,16 +30,16 @@ def coupling_of(case: SolveCase, face: Face) -> FaceCoupling:
 
 
 def drive_across(job: Job, take: Callable[[PairSolution, FaceSections], object],
-                 executor: Executor = SERIAL, model=None
+                 coupling: FaceCoupling, executor: Executor = SERIAL, model=None
                  ) -> tuple[RingSolver, tuple[PairSolution, ...], list]:
     """``job``'s case at its rolling angles (a revolution's, phase by phase, where it asks for
-    one), each position solved across its face on the contact the solver kept there: (the
-    solver, the 2D solutions and what ``take(solution, sections)`` gave at each position,
-    both in the order of the job's angles). ``model``: the ring model to solve on (one built
-    for the case where None)."""
+    one), each position solved across its face, its sections coupled by ``coupling``
+    (:func:`coupling_of`: formed once by the caller, whatever the torque), on the contact the
+    solver kept there: (the solver, the 2D solutions and what ``take(solution, sections)``
+    gave at each position, both in the order of the job's angles). ``model``: the ring model
+    to solve on (one built for the case where None)."""
     case, face, betas = job.case, job.face, job.betas
     solver = RingSolver(model, SolverModes(keep_phases=True))
-    coupling = coupling_of(case, face)
     order = phase_major(len(betas), case.params.z1) if job.revolution else range(len(betas))
 
     def across(at: SolveCase, state, sol: PairSolution):

@@ -31,12 +31,9 @@ class Face(Analysis):
         return drive_face(job, executor)
 
     def solve(self, run: Run) -> dict:
-        from ...face_drive import coupling_of  # lazy: heavy: scikit-fem
-
-        face = run.job.face
-        case = run.job.case
-        return face_summary(run.driven.rows, coupling_of(case, face), face,
-                            run.job.allowables, case.thickness)
+        job = run.job
+        return face_summary(run.driven.rows, run.driven.coupling, job.face, job.allowables,
+                            job.case.thickness)
 
     def printed(self, entry: dict, summary: dict) -> str:
         width = entry["width_mm"]

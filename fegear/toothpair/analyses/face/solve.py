@@ -12,7 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ....running import Executor
-from ...face_drive import drive_across
+from ...face_drive import coupling_of, drive_across
+from ...ring.face import FaceCoupling
 from ...ring.face_results import FaceSections
 
 
@@ -43,11 +44,12 @@ class FacePattern:
 
 @dataclass(frozen=True)
 class FaceDriven:
-    """What :func:`drive_face` keeps: a summary row a position (:func:`position_entry`) and
-    each position's :class:`FacePattern`."""
+    """What :func:`drive_face` keeps: a summary row a position (:func:`position_entry`),
+    each position's :class:`FacePattern` and the sections' coupling they were solved with."""
 
     rows: list
     patterns: list
+    coupling: FaceCoupling
 
 
 def pattern_of(sections: FaceSections) -> FacePattern:
@@ -62,11 +64,12 @@ def pattern_of(sections: FaceSections) -> FacePattern:
 def drive_face(job, executor: Executor):
     """The job's positions solved across the face (:func:`~...face_drive.drive_across`):
     (solver, the 2D solutions, a :class:`FaceDriven`)."""
+    coupling = coupling_of(job.case, job.face)
     solver, sols, taken = drive_across(
         job, lambda sol, sections: (position_entry(sol, sections), pattern_of(sections)),
-        executor)
+        coupling, executor)
     return solver, sols, FaceDriven([row for row, _ in taken],
-                                    [pattern for _, pattern in taken])
+                                    [pattern for _, pattern in taken], coupling)
 
 
 def position_entry(sol, sections: FaceSections) -> dict:

@@ -47,14 +47,15 @@ def across_face(job, model) -> Callable:
     its own (:func:`~...face_drive.drive_across`; each level's contacts kept at its own
     torque), each position's tooth stresses at their worst sections (:func:`tooth_stresses`
     over its sections' pairs)."""
-    from ...face_drive import drive_across  # lazy: heavy: scikit-fem
+    from ...face_drive import coupling_of, drive_across  # lazy: heavy: scikit-fem
     every_tooth = same_teeth(job)
+    coupling = coupling_of(job.case, job.face)   # the same at every torque
 
     def level(case: SolveCase, betas, torques, executor: Executor) -> list[list[dict]]:
         return [drive_across(replace(job, case=replace(case, torque=torque), betas=betas),
                              lambda sol, sections: tooth_stresses(sections.sections,
                                                                   every_tooth),
-                             executor, model)[2] for torque in torques]
+                             coupling, executor, model)[2] for torque in torques]
 
     return level
 
