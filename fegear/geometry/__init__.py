@@ -46,7 +46,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
                    "moved_clearances", "least_clearances", "point_clearances", "Closing",
                    "closing_points"),
     "deviation_inputs": ("deviations_of", "read_deviations", "ToothEntry", "runout_text",
-                         "check_teeth", "PER_TOOTH", "HELIX", "Helix", "helix_of", "helix_trace",
+                         "check_teeth", "PER_TOOTH", "HELIX", "Helix", "helix_trace",
                          "tooth_deviations",
                          "read_leads"),
     "plot": ("pair_png", "map_png"),

@@ -204,12 +204,6 @@ def deviations_of(values: Mapping[str, object], z1: int, z2: int) -> Deviations:
     return tooth_deviations(values, z1, z2)[0]
 
 
-def helix_of(values: Mapping[str, object], z1: int, z2: int) -> Helix:
-    """The helix deviations of :func:`tooth_deviations`: the deviations file's fHb and ffb
-    columns, then ``--helix-slope-deviation`` and ``--helix-form-deviation`` over them."""
-    return tooth_deviations(values, z1, z2)[1]
-
-
 def _given_teeth(values: Mapping[str, object], options: Mapping[str, str], z1: int,
                  z2: int) -> dict[tuple[int, int], dict[str, float]]:
     """{(gear, tooth): {field: µm}} of the deviations file's columns and then the per-tooth

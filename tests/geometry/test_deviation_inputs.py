@@ -14,6 +14,7 @@ from fegear.geometry.deviation_inputs import (
     read_deviations,
     runout_text,
     runouts,
+    tooth_deviations,
 )
 from fegear.geometry.deviations import Deviations, Runout, ToothDeviation
 
@@ -157,17 +158,15 @@ def test_helix_deviations_from_the_options_and_a_file(tmp_path):
     """fHb and ffb columns and --helix-slope/form-deviation give the teeth's helix deviations
     (the options over the file), which are no deviation in the plane: a file of them alone
     gives the 2D pair no deviation."""
-    from fegear.geometry import helix_of
-
     f = tmp_path / "helix.csv"
     f.write_text("gear,tooth,fHb [µm],ffb [mm]\n1,10,4,0.002\n2,3,-1.5,0\n")
     assert read_deviations(f, 44, 45) == {}
     assert not deviations_of({"deviations": str(f)}, 44, 45)
-    helix = helix_of({"deviations": str(f), "helix-slope-deviation": "1:10=5,1:2=1",
-                      "helix-form-deviation": "2:7=3"}, 44, 45)
+    helix = tooth_deviations({"deviations": str(f), "helix-slope-deviation": "1:10=5,1:2=1",
+                              "helix-form-deviation": "2:7=3"}, 44, 45)[1]
     assert helix.gear1 == ((2, 1.0, 0.0), (10, 5.0, 2.0))
     assert helix.gear2 == ((3, -1.5, 0.0), (7, 0.0, 3.0))
-    assert not helix_of({}, 44, 45)
+    assert not tooth_deviations({}, 44, 45)[1]
 
 
 @pytest.mark.parametrize("values, name, says", [
@@ -176,10 +175,8 @@ def test_helix_deviations_from_the_options_and_a_file(tmp_path):
     ({"helix-form-deviation": "1:4=2000"}, "helix-form-deviation", "|µm| <= 1000"),
 ])
 def test_a_bad_helix_entry_is_refused_by_its_option(values, name, says):
-    from fegear.geometry import helix_of
-
     with pytest.raises(ParameterError, match=says) as exc:
-        helix_of(values, 44, 45)
+        tooth_deviations(values, 44, 45)
     assert exc.value.name == name
 
 
