@@ -90,11 +90,13 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
         return _infeasible(rec, "failed", str(exc), watch)
     allow = allowables_of(values)
     for key in (q.key for q in HELD):
-        i = max(range(len(sols)), key=lambda k: sols[k].headline()[key])
-        if worst is not None:   # across the face: the worst section's, at its position
+        if worst is None:   # the 2D pair's largest over the positions
+            i = max(range(len(sols)), key=lambda k: sols[k].headline()[key])
+            rec[key] = sols[i].headline()[key]
+        else:   # across the face: the worst section's, at its position
             i = min(range(len(sols)), key=lambda k: abs(math.degrees(sols[k].case.beta)
                                                         - worst[key]["position_deg"]))
-        rec[key] = sols[i].headline()[key] if worst is None else worst[key]["value"]
+            rec[key] = worst[key]["value"]
         rec[key.replace("_MPa", "_beta_deg")] = math.degrees(sols[i].case.beta)
         rec[key.replace("_MPa", "_tooth")] = carrying_tooth(sols[i], key)
     if worst is not None:
