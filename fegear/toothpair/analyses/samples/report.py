@@ -190,16 +190,9 @@ def samples_table(s: dict) -> str:
     lines = ["| " + " | ".join(head) + " |",
              "|" + "|".join(["---"] + ["---:"] * (len(head) - 1)) + "|"]
     for key, label in HEADLINE.items():
-        v = s["stresses"][key]
-        cells = [label, f"{v['nominal']:.1f}"]
-        for x in v["quantiles"]:
-            if x["q"] in _shown(s):
-                cells.append("jams" if x["jams"] else f"{x['value']:.1f} ± " + (
-                    "∞" if x["error"] is None else f"{x['error']:.1f}"))
-        cells.append("-" if v["worst"] is None else f"{v['worst']:.1f} ({v['worst_sample']})")
-        lines.append("| " + " | ".join(cells) + " |")
+        lines.append(_quantile_row(label, s["stresses"][key], _shown(s), 1))
     if "load_factor" in s:   # across the face: K_Hβ read as the stresses are
-        lines.append(_factor_row(s["load_factor"], _shown(s)))
+        lines.append(_quantile_row("K_Hβ [-]", s["load_factor"], _shown(s), 3))
     if s["jammed"] and s["solved"]:   # what the pairs that turn carry, the jammed aside
         lines += ["", "| of the pairs that turn [MPa] | "
                   + " | ".join(f"P{100 * x:g}" for x in _shown(s)) + " |",
@@ -233,14 +226,16 @@ def samples_table(s: dict) -> str:
     return "\n".join(lines)
 
 
-def _factor_row(v: dict, shown: tuple[float, ...]) -> str:
-    """K_Hβ's row of the stress table: its nominal, quantiles with their errors and worst."""
-    cells = ["K_Hβ [-]", f"{v['nominal']:.3f}"]
+def _quantile_row(label: str, v: dict, shown: tuple[float, ...], digits: int) -> str:
+    """A row of the stress table (a stress's, or K_Hβ's): its nominal, the ``shown``
+    quantiles with their errors and the worst with its sample, to ``digits`` decimals."""
+    cells = [label, f"{v['nominal']:.{digits}f}"]
     for x in v["quantiles"]:
         if x["q"] in shown:
-            cells.append("jams" if x["jams"] else f"{x['value']:.3f} ± " + (
-                "∞" if x["error"] is None else f"{x['error']:.3f}"))
-    cells.append("-" if v["worst"] is None else f"{v['worst']:.3f} ({v['worst_sample']})")
+            cells.append("jams" if x["jams"] else f"{x['value']:.{digits}f} ± " + (
+                "∞" if x["error"] is None else f"{x['error']:.{digits}f}"))
+    cells.append("-" if v["worst"] is None
+                 else f"{v['worst']:.{digits}f} ({v['worst_sample']})")
     return "| " + " | ".join(cells) + " |"
 
 
