@@ -138,20 +138,15 @@ def helix_class(grade: int, d: float, b: float) -> HelixTolerances:
     """Class ``grade``'s helix tolerances for a gear of reference diameter ``d`` and face
     width ``b`` (mm; module docstring): the total F_βT from the unrounded two, as F_αT."""
     step = math.sqrt(2.0) ** (check_grade(grade) - 5)
-    f_H, f_f = _helix(d, b, step)
+    f_H = (0.05 * math.sqrt(d) + 0.35 * math.sqrt(b) + 4.0) * step
+    f_f = (0.07 * math.sqrt(d) + 0.45 * math.sqrt(b) + 4.0) * step
     return HelixTolerances(int(grade), d, b, rounded(f_H), rounded(f_f),
                            rounded(math.hypot(f_H, f_f)))
-
-
-def _helix(d: float, b: float, step: float) -> tuple[float, float]:
-    """f_HβT and f_fβT unrounded (µm)."""
-    return ((0.05 * math.sqrt(d) + 0.35 * math.sqrt(b) + 4.0) * step,
-            (0.07 * math.sqrt(d) + 0.45 * math.sqrt(b) + 4.0) * step)
 
 
 def helix_tolerances(grade: int, d: float, b: float) -> tuple[float, float]:
     """Class ``grade``'s helix slope and helix form tolerances f_HβT and f_fβT (µm, rounded as
     the others) for a gear of reference diameter ``d`` and face width ``b`` (mm; module
-    docstring)."""
-    f_H, f_f = _helix(d, b, math.sqrt(2.0) ** (check_grade(grade) - 5))
-    return rounded(f_H), rounded(f_f)
+    docstring): :func:`helix_class`'s."""
+    t = helix_class(grade, d, b)
+    return t.f_HbT, t.f_fbT
