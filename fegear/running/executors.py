@@ -63,7 +63,7 @@ class Executor(Protocol):
 
     def ready(self) -> Primed | None:
         """A process made ready when the executor was made (:func:`spare_core`'s
-        ``prepare``), taken for its one task: None where there is none (left)."""
+        ``prepare``), taken for one of its tasks: None where there is none (left)."""
 
 
 class _Later:
@@ -144,8 +144,9 @@ class Forks:
     ``workers - 1`` at once in parallel with it; a task submitted while they are all busy runs
     here when its result is read. A forked task sees everything this process had built when it
     was submitted, and what it builds is lost with it: only its return value comes back.
-    With ``prepare``, ``ready`` copies are forked at once and run it (:meth:`ready` hands them
-    out, :meth:`close` ends them, used or not)."""
+    With ``prepare``, a copy is forked at once and runs it, ready for ``ready`` tasks
+    (:class:`~.primed.Primed`: each but the last in a copy of it, so ``prepare`` runs once);
+    :meth:`ready` hands it out once for each, :meth:`close` ends it, used or not."""
 
     shares_memory = True
 
@@ -153,8 +154,8 @@ class Forks:
                  ready: int = 0) -> None:
         self.workers = workers
         self._running: list[_InFork] = []
-        self._primed = [Primed(prepare) for _ in range(ready if prepare and available() else 0)]
-        self._ready = list(self._primed)
+        self._primed = [Primed(prepare, ready)] if ready and prepare and available() else []
+        self._ready = self._primed * ready
 
     def submit(self, fn: Callable, /, *args) -> Task:
         if not available() or len(self._running) >= self.workers - 1:
@@ -200,8 +201,9 @@ class Forks:
 def spare_core(prepare: Callable[[], object] | None = None, ready: int = 0) -> Executor:
     """The executor of a one-off command: a forked copy of the process on a second core where
     the machine has one and the process can fork, else :data:`SERIAL`. With ``prepare``,
-    ``ready`` copies are forked at once and run it (:class:`~.primed.Primed`: an import done
-    on the idle core while the command starts up, for work it hands them after its solve)."""
+    a copy is forked at once and runs it, ready for ``ready`` tasks (:class:`~.primed.Primed`:
+    an import done on the idle core while the command starts up, for work it hands them after
+    its solve)."""
     if (os.cpu_count() or 1) >= 2 and available():
         return Forks(2, prepare, ready)
     return SERIAL

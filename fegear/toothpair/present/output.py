@@ -33,10 +33,10 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
     fixed frame; ``fields``), von_mises.png, flank_pressure.png and root_stress.png
     (``pictures``) and summary.json in ``out``.
 
-    Where ``executor`` holds processes made ready to draw (a one-off command's:
+    Where ``executor`` holds a process made ready to draw (a one-off command's:
     :func:`~fegear.running.spare_core` with :func:`~.plot.prepare_pictures`, which imported
-    matplotlib while the command started up), the charts go to one at once, and von Mises to
-    the other as soon as the loaded sectors' fields are formed (:data:`PICTURED_AROUND`: a
+    matplotlib while the command started up), the charts go to it at once (drawn in a copy of
+    it), and von Mises as soon as the loaded sectors' fields are formed (:data:`PICTURED_AROUND`: a
     tenth of the whole gears'), while this process forms the whole fields and writes the
     VTUs; else every picture is drawn here. The whole fields then confirm that the picture
     had every cell it shows (:func:`~.pictured.for_pictures` of both is the same); where it

@@ -64,7 +64,7 @@ def von_mises_figure(sol: PairSolution, summary: dict, bodies, peaks=(), spots=N
     im = _draw(ax, bodies, box, (0.0, clip))
     ax.set_title(f"von Mises, T {case.torque:g} N·m, β {np.degrees(case.beta):.3g}°: the loaded "
                  f"teeth\ncolours clipped at {clip:.0f} MPa (twice the largest root stress); "
-                 f"the maximum, {peak:.0f} MPa, is at the contact (right)", fontsize=10)
+                 f"the maximum, {peak:.0f} MPa, is at the contact (right)", fontsize=10, y=TITLE_Y)
     mid = np.array([(box[0] + box[1]) / 2, (box[2] + box[3]) / 2])
     out = (mid - [0.0, p.e]) / np.linalg.norm(mid - [0.0, p.e])   # gear 1 towards gear 2
     for sp in spots:
@@ -79,7 +79,7 @@ def von_mises_figure(sol: PairSolution, summary: dict, bodies, peaks=(), spots=N
     az.plot(*peak_at, "x", ms=12, mew=2.5, color="white")
     what = "submodels resolve the peak" if fine else "the mesh resolves the contact"
     az.set_title(f"the contact peak ({zone.label}), ±{_round(zoom * 1e3)} µm: {what}\n"
-                 f"full range, max {peak:.0f} MPa", fontsize=10)
+                 f"full range, max {peak:.0f} MPa", fontsize=10, y=TITLE_Y)
     _scale_bar(az, zbox, "µm")
     fig.colorbar(im, ax=az, orientation="horizontal", fraction=0.05, pad=0.03,
                  label="von Mises [MPa]")
@@ -96,6 +96,9 @@ def von_mises_figure(sol: PairSolution, summary: dict, bodies, peaks=(), spots=N
     return fig
 
 
+#: where the axes' titles stand, given: matplotlib otherwise measures every axis's ticks at
+#: each drawing to lift a title over labels at the top, which these pictures never have
+TITLE_Y = 1.0
 #: the box of a label on a field, and of a gear's name (white on a dark veil: it reads on
 #: the dark, calm material it is written over and on the background where it must cross it)
 LABEL_BOX = {"boxstyle": "round,pad=0.2", "fc": "white", "alpha": 0.85}
@@ -235,7 +238,10 @@ def flank_pressure_figure(sol: PairSolution, summary: dict):
     i = summary["inputs"]
     fig.suptitle(f"contact pressure along the loaded flanks: T {i['torque_Nm']:g} N·m, β "
                  f"{i['position_deg']:.3g}°, quality {i['quality']}", fontsize=10)
-    margins(fig, left=0.75, right=0.2, bottom=0.6, top=1.3, wspace=0.75, hspace=0.9)
+    # one label for each direction, not one on every panel: the panels share both quantities
+    fig.supxlabel("distance along gear 1's profile from its tip corner [µm]", fontsize=10)
+    fig.supylabel("contact pressure [MPa]", fontsize=10)
+    margins(fig, left=0.95, right=0.2, bottom=0.65, top=1.3, wspace=0.55, hspace=0.75)
     shown = {}
     for a in axes:
         for h, label in zip(*a.get_legend_handles_labels()):
@@ -280,9 +286,8 @@ def _flank_panel(a, f, t) -> Callout | None:
     if t.edge_contact:
         values.insert(0, f"flank {t.flank_p_MPa:.0f}")
     a.set_title(f"tooth {t.tooth}: {t.load_N:.0f} N, peak {t.p_max_MPa:.0f} MPa {where}"
-                + (f"\n{', '.join(values)} MPa" if values else ""), fontsize=9)
-    a.set_xlabel("distance along gear 1's profile from its tip corner [µm]")
-    a.set_ylabel("contact pressure [MPa]")
+                + (f"\n{', '.join(values)} MPa" if values else ""), fontsize=9, y=TITLE_Y)
+    a.locator_params(axis="y", nbins=6)
     a.grid(alpha=0.3)
     return spike
 
@@ -317,7 +322,7 @@ def root_stress_figure(sol: PairSolution, summary: dict):
     ax.set_ylabel("root stress σ1 [MPa]")
     i = summary["inputs"]
     ax.set_title(f"root stress per loaded tooth, each in the fillet it bends in tension\nT "
-                 f"{i['torque_Nm']:g} N·m, β {i['position_deg']:.3g}°", fontsize=10)
+                 f"{i['torque_Nm']:g} N·m, β {i['position_deg']:.3g}°", fontsize=10, y=TITLE_Y)
     ax.grid(axis="y", alpha=0.3)
     margins(fig, left=0.8, right=0.2, bottom=0.75, top=0.6)
     place_legend(ax, fontsize=8)
