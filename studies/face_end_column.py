@@ -1,9 +1,10 @@
 """The end column of the slice model against the 3D tooth: what an end-aware coupling gains
 (docs/model.md, "Across the face: the tooth in 3D", "The end column: what was tried").
 
-The product's coupling (the measured kernel mirrored in the free ends, the "slope" rows) reads
-the baseline's 3D tooth within 0.43 % (peak) and 2.1 % (far) under a load at mid-face, 3.8 %
-and 17.8 % under a load at one end. Each variant here keeps the uniform-face property (every
+The measured kernel mirrored in the free ends, with the "slope" rows and no twist, reads the
+baseline's 3D tooth within 0.43 % (peak) and 2.1 % (far) under a load at mid-face, 3.8 % and
+17.8 % under a load at one end; the twist (P1 below, which the product now carries) takes the
+end column to 1.0 % and 6.8 %. Each variant here keeps the uniform-face property (every
 row of the spread sums to one, so the slice model's rows of G under an even load give the 2D
 pair's) and is read as :func:`fegear.verify.face_slices.compare` reads the product's:
 
@@ -22,6 +23,15 @@ pair's) and is read as :func:`fegear.verify.face_slices.compare` reads the produ
     .venv/bin/python studies/face_end_column.py coarse      # the coarse tooth, ~15 s
     .venv/bin/python studies/face_end_column.py coarse --width 10 --patches 18
     .venv/bin/python studies/face_end_column.py --pair m=1.5     # another design
+    .venv/bin/python studies/face_end_column.py --widths         # the twist's table, ~12 min
+    .venv/bin/python studies/face_end_column.py --pair-check     # the pair with it, a minute
+
+The product carries the twist, P1 fitted to the end column, tabulated by the face width in
+tooth heights (fegear.toothpair.ring.face.TWIST_TABLE): ``--widths`` fits it on the baseline's
+tooth at b/h 1.5, 2, 2.5, 3.3 and 5 and prints the table, with the end column's peak and far
+part without the twist and with it. ``--pair-check`` solves the baseline misaligned as the 3D
+pair check does (docs/validation.md: 200 N·m, 9.9 µm, `coarse`) without the twist and with
+it, the product's coupling made with the table's twist for the second solve.
 """
 
 from __future__ import annotations
@@ -138,7 +148,7 @@ def table(solid: FaceInfluence, band: BandCompliance) -> str:
              f"3D {mid_slope(solid.G, solid.z, width):.3f}, slice model "
              f"{mid_slope(slices.influence(slices.spread()), solid.z, width):.3f}",
              f"{'variant':<34} {'mid: peak far %':<16} {'end: peak far %':<17} rows=1",
-             row("product (mirror μ 1)", slices, solid, slices.spread())]
+             row("no twist (mirror μ 1)", slices, solid, slices.spread())]
     for mu in (0.0, 0.5, 0.75, 1.25, 1.5):
         lines.append(row(f"mirror μ {mu:g}", slices, solid, slices.spread(mu)))
     spread, c = twist_from_slope(slices, solid)
@@ -155,6 +165,62 @@ def table(solid: FaceInfluence, band: BandCompliance) -> str:
     return "\n".join(lines)
 
 
+#: the twist table's widths in tooth heights and the patches across each (about 0.56 mm each)
+WIDTHS = ((1.5, 5), (2.0, 7), (2.5, 9), (3.3, 11), (5.0, 18))
+
+
+def twist_table(params: PairParameters, size: str) -> str:
+    """P1's coefficient fitted to the end column at each of :data:`WIDTHS`, with the end
+    column read without the twist and with it, and the table as the source's TWIST_TABLE."""
+    band = band_compliance(params, quality="standard")
+    h = band.tooth_height
+    lines, table = [f"{'b/h':>4} {'face mm':>7} {'c':>7}   end without: peak far %   with"], []
+    for b_h, patches in WIDTHS:
+        width = round(b_h * h, 3)
+        solid = face_influence(params, thickness=width, patches=patches, size=size)
+        slices = Slices(band, width, patches)
+        spread, c = fitted(slices, solid, ["P1"], [0])
+        plain = compare(solid, slices.influence(slices.spread()), 0)
+        twisted = compare(solid, slices.influence(spread), 0)
+        lines.append(f"{b_h:4g} {width:7.3f} {c[0]:7.4f}   {100 * plain.peak:5.2f} "
+                     f"{100 * plain.far:5.1f}            {100 * twisted.peak:5.2f} "
+                     f"{100 * twisted.far:5.1f}")
+        table.append(f"({b_h:g}, {c[0]:.4f})")
+    return "\n".join(lines + ["TWIST_TABLE = (" + ", ".join(table) + ")"])
+
+
+def pair_check() -> str:
+    """K_Hβ, the worst root stresses and tooth 10's layer means (CalculiX's six layers) of
+    the baseline at 200 N·m and 9.9 µm, `coarse`, without the tooth's twist (the product)
+    and with it (:data:`~fegear.verify.face_slices.TWIST_TABLE`)."""
+    from unittest import mock
+
+    from fegear.toothpair.job import prepare_job, solve_job
+    from fegear.toothpair.ring import face
+    from fegear.verify.calculix_face import LAYERS, layer_means
+    from fegear.verify.face_slices import twist_of
+
+    product = face.product_coupling
+
+    def twisted(sections, width, tooth_height, near_share, twist=0.0):
+        return product(sections, width, tooth_height, near_share,
+                       twist_of(width, tooth_height))
+
+    lines = []
+    for name, coupling in (("without the twist (the product)", product), ("with it", twisted)):
+        with mock.patch.object(face, "product_coupling", coupling):
+            s = solve_job(prepare_job({"torque": 200.0, "quality": "coarse",
+                                       "no-estimate": True, "misalignment": 9.9})).summary
+        f = s["face"]
+        worst, at = f["worst"], f["positions"][0]
+        layers = layer_means(at["line_loads_N_per_mm"], f["zeta"], LAYERS)[10]
+        lines.append(f"{name}: K_Hβ {f['K_Hbeta']:.4f}, root σ1 "
+                     f"{worst['root_stress_gear1_MPa']['value']:.1f} / "
+                     f"{worst['root_stress_gear2_MPa']['value']:.1f} MPa, tooth 10's layers "
+                     + " ".join(f"{q:.1f}" for q in layers) + " N/mm")
+    return "\n".join(lines)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("size", nargs="?", default="standard", help="the 3D tooth's size")
@@ -162,10 +228,20 @@ def main() -> None:
     parser.add_argument("--patches", type=int, default=9, help="patches across the face")
     parser.add_argument("--pair", action="append", default=[], metavar="NAME=VALUE",
                         help="a PairParameters field (e.g. m=1.5), repeatable")
+    parser.add_argument("--widths", action="store_true",
+                        help="fit the twist at each tabulated face width (TWIST_TABLE)")
+    parser.add_argument("--pair-check", action="store_true",
+                        help="the misaligned baseline without the twist and with it")
     args = parser.parse_args()
     given = dict(a.split("=", 1) for a in args.pair)
     params = PairParameters(**{k: int(v) if k in ("z1", "z2") else float(v)
                                for k, v in given.items()})
+    if args.widths:
+        print(twist_table(params, args.size))
+        return
+    if args.pair_check:
+        print(pair_check())
+        return
     band = band_compliance(params, quality="standard")
     solid = face_influence(params, thickness=args.width, patches=args.patches, size=args.size)
     print(table(solid, band))

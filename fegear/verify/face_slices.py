@@ -27,6 +27,7 @@ from scipy.optimize import nnls
 from ..geometry import PairParameters
 from ..toothpair import (
     KERNEL_STEP,
+    FaceCoupling,
     SolveCase,
     correction_factors,
     exponential_kernel,
@@ -34,6 +35,7 @@ from ..toothpair import (
     flank_compliance,
     kernel_weights,
     measured_kernel,
+    product_coupling,
     ring_model,
 )
 from .tooth3d import FaceInfluence, face_influence, load_band
@@ -103,11 +105,18 @@ def _patches(width: float, patches: int) -> tuple[np.ndarray, float]:
 
 def slice_influence(band: BandCompliance, width: float, patches: int,
                     kernel: Callable[[np.ndarray], np.ndarray], mirror: bool = True,
-                    correction: str = "slope") -> np.ndarray:
+                    correction: str = "slope", twist: float = 0.0) -> np.ndarray:
     """The slice model's G (µm per N; patches × patches) on ``patches`` equal patches tiling
-    a face ``width`` (mm) wide, its coupling from ``kernel`` as
+    a face ``width`` (mm) wide, its coupling from ``kernel`` (and ``twist``) as
     :func:`~fegear.toothpair.ring.face.face_coupling` forms it (module docstring)."""
-    coupling = face_coupling(patches * PER_PATCH + 1, width, kernel, mirror, correction)
+    return _influence(band, width, patches, face_coupling(
+        patches * PER_PATCH + 1, width, kernel, mirror, correction, twist))
+
+
+def _influence(band: BandCompliance, width: float, patches: int,
+               coupling: FaceCoupling) -> np.ndarray:
+    """The slice model's G on ``patches`` patches under ``coupling`` (PER_PATCH sections a
+    patch)."""
     within, w = _patches(width, patches)
     load = within / w / (coupling.share * width)[:, None]   # line load per N on patch j
     return band.fe * (within.T / w) @ coupling.spread @ load + np.eye(patches) * band.near / w
@@ -200,8 +209,32 @@ def table_text(table: np.ndarray) -> str:
     return "KERNEL_TABLE = (" + ",\n                ".join(rows) + ")"
 
 
+def product_influence(band: BandCompliance, width: float, patches: int,
+                      twist: float = 0.0) -> np.ndarray:
+    """The slice model's G as the product couples the face (the measured kernel mirrored,
+    the rows' slope corrected: :func:`~fegear.toothpair.ring.face.product_coupling`), with
+    the tooth's ``twist`` added (:func:`twist_of`; the product's is 0)."""
+    return _influence(band, width, patches, product_coupling(
+        patches * PER_PATCH + 1, width, band.tooth_height, band.near_share, twist))
+
+
+#: the tooth's twist (the coupling's ``twist``: c P1 P1ᵀ diag(share)) by the face width in
+#: tooth heights b/h: c fitted to gear 1's 3D tooth's end column (a load at one end) at
+#: `standard`, on the baseline's tooth; the product leaves it out (docs/model.md, "The
+#: tooth's twist"). Reproduce (12 minutes): ``python studies/face_end_column.py --widths``
+TWIST_TABLE = ((1.5, 0.3824), (2.0, 0.3523), (2.5, 0.3022), (3.3, 0.2009), (5.0, 0.0209))
+
+
+def twist_of(width: float, tooth_height: float) -> float:
+    """The twist coefficient of :data:`TWIST_TABLE` for a face ``width`` wide on a tooth
+    ``tooth_height`` high (mm): linear in b/h between the table's widths, held beyond them."""
+    b, c = np.array(TWIST_TABLE).T
+    return float(np.interp(width / tooth_height, b, c))
+
+
 def check_text(solid: FaceInfluence, band: BandCompliance, kernels: dict) -> str:
-    """The mid-face and end columns of each of ``kernels`` (name → (kernel, mirror, correction))
+    """The mid-face and end columns of each of ``kernels`` (name → (kernel, mirror,
+    correction, twist))
     against ``solid``'s, row by row per the uniform load's response, with the differences."""
     width, patches = solid.z[0] + solid.z[-1], len(solid.z)
     lines = [f"{solid.size} 3D, face {width:g} mm, {patches} patches, tooth height "
@@ -211,9 +244,9 @@ def check_text(solid: FaceInfluence, band: BandCompliance, kernels: dict) -> str
         lines.append(f"load on patch {column} (z {solid.z[column]:.3f} mm): G_i,j / uniform_i")
         lines.append("  3D            " + " ".join(
             f"{v:6.3f}" for v in (solid.G / solid.uniform[:, None])[:, column]))
-        for name, (kernel, mirror, correction) in kernels.items():
+        for name, (kernel, mirror, correction, twist) in kernels.items():
             c = compare(solid, slice_influence(band, width, patches, kernel, mirror,
-                                               correction), column)
+                                               correction, twist), column)
             lines.append(f"  {name:<13} " + " ".join(f"{v:6.3f}" for v in c.slice)
                          + f"   peak {100 * c.peak:5.2f} %, far {100 * c.far:5.1f} %")
     return "\n".join(lines)
@@ -223,7 +256,8 @@ def main(argv: list[str]) -> str:
     """``python -m fegear.verify.face_slices fit|check [size] [quality=…] [name=value …]``:
     ``fit`` solves the 3D tooth on a face 5 tooth heights wide (18 patches) and prints the
     kernel's table; ``check`` solves it on the pair's 5 mm face (9 patches) and prints the
-    slice model's columns against it, the measured kernel's and the exponential one's."""
+    slice model's columns against it: the product's, the product's with the tooth's twist and
+    the exponential kernel's."""
     command, rest = argv[0], argv[1:]
     given = dict(a.split("=", 1) for a in rest if "=" in a)
     quality = given.pop("quality", "coarse")
@@ -235,8 +269,10 @@ def main(argv: list[str]) -> str:
         solid = face_influence(params, thickness=5 * band.tooth_height, patches=18, size=size)
         return table_text(fit_table(solid, band))
     solid = face_influence(params, size=size)
-    kernels = {"measured": (measured_kernel(band.tooth_height, band.near_share), True, "slope"),
-               "exponential": (exponential_kernel(4 * params.e1), False, "linear")}
+    kernel = measured_kernel(band.tooth_height, band.near_share)
+    kernels = {"product": (kernel, True, "slope", 0.0),
+               "with twist": (kernel, True, "slope", twist_of(5.0, band.tooth_height)),
+               "exponential": (exponential_kernel(4 * params.e1), False, "linear", 0.0)}
     return check_text(solid, band, kernels)
 
 

@@ -86,14 +86,25 @@ CORRECTIONS = ("linear", "slope", "scale")
 
 
 def face_coupling(sections: int, width: float, kernel: Callable[[np.ndarray], np.ndarray],
-                  mirror: bool = False, correction: str = "linear") -> FaceCoupling:
+                  mirror: bool = False, correction: str = "linear",
+                  twist: float = 0.0) -> FaceCoupling:
     """``sections`` sections over a face ``width`` (mm) wide, the spread formed from the
     ``kernel`` over the face (:func:`kernel_weights`), then corrected row by row
     (:func:`correction_factors`): each row sums to one, so a load even across the face gives
-    the 2D pair's approach everywhere."""
+    the 2D pair's approach everywhere. With ``twist`` c, the tooth's twist added:
+    c P1 P1ᵀ diag(share), P1 the linear shape across the face (2ζ) less its mean, so a load
+    at one end tilts the whole face: the loaded end gives more and the far end less than by
+    the kernel alone, as the 3D tooth's do. Its rows sum to zero (P1's mean is zero), so the
+    even load is untouched, and it is odd about mid-face, so a load at mid-face spreads as
+    before. The product leaves it out: with it gear 1's 3D tooth reads better and the 3D pair
+    worse (docs/model.md, "The tooth's twist")."""
     z, share, w = kernel_weights(sections, width, kernel, mirror)
-    return FaceCoupling(z / width - 0.5, share, w * correction_factors(z, share, w,
-                                                                       correction))
+    spread = w * correction_factors(z, share, w, correction)
+    zeta = z / width - 0.5
+    if twist:
+        p1 = 2.0 * zeta - share @ (2.0 * zeta)
+        spread = spread + twist * np.outer(p1, p1 * share)
+    return FaceCoupling(zeta, share, spread)
 
 
 def correction_factors(z: np.ndarray, share: np.ndarray, w: np.ndarray,
@@ -244,5 +255,15 @@ def measured_coupling(model: RingModel, sections: int, width: float) -> FaceCoup
     ends, each row scaled to sum to one."""
     band = flank_band(model.shape, BAND_HEIGHT, BAND_LENGTH * model.case.params.m)
     near, fe = flank_compliance(model, band)
-    kernel = measured_kernel(band.tooth_height, near / (near + fe))
-    return face_coupling(sections, width, kernel, mirror=True, correction="slope")
+    return product_coupling(sections, width, band.tooth_height, near / (near + fe))
+
+
+def product_coupling(sections: int, width: float, tooth_height: float,
+                     near_share: float, twist: float = 0.0) -> FaceCoupling:
+    """The product's coupling of ``sections`` sections over a face ``width`` wide, gear 1's
+    tooth ``tooth_height`` high (mm), the near field ``near_share`` of the 2D approach: the
+    measured kernel mirrored in the free ends, its rows corrected ("slope")
+    (:func:`measured_coupling` reads the pair's tooth height and near share; the 3D checks
+    read it as the product forms it, and with the tooth's ``twist``, which it leaves out)."""
+    return face_coupling(sections, width, measured_kernel(tooth_height, near_share),
+                         mirror=True, correction="slope", twist=twist)

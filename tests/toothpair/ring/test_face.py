@@ -7,6 +7,7 @@ import pytest
 
 from fegear.toothpair.face import Face
 from fegear.toothpair.ring.face import exponential_kernel, face_coupling, measured_kernel
+from fegear.verify.face_slices import TWIST_TABLE, twist_of
 
 
 class _Contact:
@@ -68,6 +69,35 @@ def test_a_mirrored_spread_keeps_an_even_load_and_lets_a_linear_one_level_off_at
     # a linear load's far-field answer: its slope is smaller than the load's, the more so at
     # the ends (the 3D tooth's: 0.80 of the even load's at mid-face, 0.76 at the end patch)
     assert 0.5 < slope[0] < slope[1] < slope[3] < 1.0
+
+
+def test_the_twist_keeps_an_even_load_and_a_mid_face_one_and_tilts_an_end_one():
+    """The tooth's twist (c P1 P1ᵀ diag(share)) leaves every row's sum and the mid-face
+    column as they were, reads the same from either end, and under a load at one end takes
+    from the far end what it adds at the loaded one, linearly across the face."""
+    kernel = measured_kernel(2.0, 0.2)
+    for sections in (2, 9, 17):
+        plain = face_coupling(sections, 5.0, kernel, mirror=True, correction="slope")
+        twisted = face_coupling(sections, 5.0, kernel, mirror=True, correction="slope",
+                                twist=0.3)
+        np.testing.assert_allclose(twisted.spread.sum(axis=1), 1.0, rtol=0, atol=1e-13)
+        np.testing.assert_allclose(twisted.spread[::-1, ::-1], twisted.spread, atol=1e-13)
+        added = twisted.spread - plain.spread
+        if sections % 2:
+            np.testing.assert_allclose(added[:, sections // 2], 0.0, atol=1e-15)
+        # a load at the first end: +0.3 · share at that end, −0.3 · share at the far one
+        np.testing.assert_allclose(added[:, 0], -0.3 * 2 * twisted.zeta * twisted.share[0],
+                                   atol=1e-15)
+
+
+def test_the_measured_twist_is_read_from_its_table_by_the_face_in_tooth_heights():
+    (b0, c0), (b1, c1) = TWIST_TABLE[:2]
+    assert twist_of(2.0 * b0, 2.0) == pytest.approx(c0, abs=1e-12)
+    assert twist_of(1.0 * (b0 + b1), 2.0) == pytest.approx(0.5 * (c0 + c1), abs=1e-12)
+    assert twist_of(0.1, 2.0) == pytest.approx(c0, abs=1e-12)      # held at the table's ends
+    assert twist_of(1e3, 2.0) == pytest.approx(TWIST_TABLE[-1][1], abs=1e-12)
+    # shorter faces twist more: the end's tilt matters less as the face grows
+    assert all(a[1] >= b[1] for a, b in zip(TWIST_TABLE, TWIST_TABLE[1:]))
 
 
 def test_the_measured_kernel_is_the_3d_tooths_less_the_near_field():
