@@ -12,7 +12,7 @@ handed a :class:`~.analyses.Run`).
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -46,6 +46,7 @@ from .teeth import INTERFERENCE_UM
 
 if TYPE_CHECKING:   # a Rating's parts: a user error answers before scipy loads
     from ..rating import GearMaterial, Spectrum
+    from .case import PairSolution
 
 PAIR_NAMES = {row.name for row in PAIR_INPUTS}
 #: the positions per pitch of a revolution where none are given
@@ -286,7 +287,8 @@ class Solved:
     driven: object = None
 
 
-def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
+def solve_job(job: Job, executor: Executor = SERIAL,
+              meanwhile: Callable[[PairSolution, dict], object] | None = None) -> Solved:
     """Solve ``job`` at its positions, with its error estimate, then each analysis it asks
     for (:mod:`.analyses`); no file written. The job hands ``executor`` the work that can run
     in parallel: the estimate's second solve of one position (submitted before the first
@@ -294,7 +296,10 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     meanwhile, the libraries imported once for both), and a cycle's chains of positions
     (:func:`~.positions.drive`), and a cycle's estimate, at its worst position (the largest
     gear-1 root stress, which the submodels do not change), while this process solves the
-    submodels where the cycle peaks."""
+    submodels where the cycle peaks. ``meanwhile(solution, summary)`` is called once the
+    pictured position is solved, before its submodels are: the position and its summary
+    without the estimate, for what the caller can start from them while this process solves
+    the submodels (a one-off command's charts, on its second core)."""
     watch = Stopwatch()
     second = None
     if job.estimate and len(job.betas) == 1:
@@ -306,6 +311,8 @@ def solve_job(job: Job, executor: Executor = SERIAL) -> Solved:
     solver, sols, driven = _drive(job, analyses, executor)
     if job.estimate and len(job.betas) > 1:   # while the peaks' submodels are solved here
         second = executor.submit(estimate.second_headline, _pictured(sols).case)
+    if meanwhile is not None:
+        meanwhile(_pictured(sols), pair_summary(_pictured(sols), allowables=job.allowables))
     sols = solver.at_peaks(sols)
     cycle_s = watch.s
     sol = _pictured(sols)

@@ -18,7 +18,7 @@ from ... import progress
 from ...fe import write_vtu
 from ...figures import write_png
 from ...files import prepare_dir, write_json
-from ...running import SERIAL, Executor
+from ...running import SERIAL, Executor, Task
 from ..analyses import Writing, shown
 from ..case import PairSolution
 from ..job import Job, Solved, solve_job
@@ -28,7 +28,8 @@ from .plot import chart_pngs, von_mises_bytes
 
 
 def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool = True,
-                       pictures: bool = True, executor: Executor = SERIAL) -> dict[str, Path]:
+                       pictures: bool = True, executor: Executor = SERIAL,
+                       charts: Task | None = None) -> dict[str, Path]:
     """gear1.vtu, gear2.vtu and the ring model's contact submodels (gear1_contact.vtu, …;
     fixed frame; ``fields``), von_mises.png, flank_pressure.png and root_stress.png
     (``pictures``) and summary.json in ``out``.
@@ -41,16 +42,18 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
     VTUs; else every picture is drawn here. The whole fields then confirm that the picture
     had every cell it shows (:func:`~.pictured.for_pictures` of both is the same); where it
     had not, von Mises is drawn again here from the whole fields. The pictures come back as
-    bytes, the same either way, and every file is written here, atomically."""
+    bytes, the same either way, and every file is written here, atomically. ``charts``: the
+    charts' task where they were handed out already (:func:`run_job`: while the submodels
+    were solved)."""
     files = {}
-    painters = [executor.ready(), executor.ready()] if pictures else []
     # the solution as the pictures read it, formed once for both of them
     drawn_sol = light(sol) if pictures else sol
-    charts = _drawn(painters[0], chart_pngs, drawn_sol, summary) if pictures else None
+    if pictures and charts is None:
+        charts = _drawn(executor.ready(), chart_pngs, drawn_sol, summary)
     peaks = sol.detail.peak_fields() if fields or pictures else ()
     if pictures:
         near = for_pictures(drawn_sol, sol.detail.body_fields(around=PICTURED_AROUND), peaks)
-        von_mises = _drawn(painters[1], von_mises_bytes, *_drawing(near, summary))
+        von_mises = _drawn(executor.ready(), von_mises_bytes, *_drawing(near, summary))
     bodies = sol.detail.body_fields() if fields or pictures else ()
     if fields:
         for b in (*bodies, *peaks):
@@ -101,20 +104,29 @@ def run_job(job: Job, out: Path | None, fields: bool = True, pictures: bool = Tr
     (:mod:`.html_report`). ``out`` is made only after the solve, so a solve that fails
     leaves nothing behind."""
     progress.plan(2 + len(job.betas) + job.estimate + (out is not None))
-    solved = solve_job(job, executor)
-    files = {} if out is None else write_job(solved, out, fields, pictures, executor)
+    charts: list[Task] = []
+
+    def meanwhile(sol: PairSolution, summary: dict) -> None:
+        # the charts read no field and no submodel: handed out while the submodels are solved
+        if out is not None and pictures:
+            charts.append(_drawn(executor.ready(), chart_pngs, light(sol), summary))
+
+    solved = solve_job(job, executor, meanwhile)
+    files = {} if out is None else write_job(solved, out, fields, pictures, executor,
+                                             charts[0] if charts else None)
     if report is not None and out is not None:
         files["report"] = write_report(solved.summary, files, out, report)
     return JobResult(solved.summary, files, solved.rows, solved.solve_s)
 
 
 def write_job(solved: Solved, out: Path, fields: bool = True, pictures: bool = True,
-              executor: Executor = SERIAL) -> dict[str, Path]:
+              executor: Executor = SERIAL, charts: Task | None = None) -> dict[str, Path]:
     """Write a solved job's files into ``out`` (made here): each analysis's that the summary
     holds (:mod:`.analyses`: a cycle's table, PVD series and plot, a revolution's, …), then
     summary.json, the VTUs (``fields``) and the pictures (``pictures``) of the pictured
     position, those that need no fields drawn on ``executor`` meanwhile
-    (:func:`write_pair_outputs`). Returns name → path."""
+    (:func:`write_pair_outputs`; ``charts``: their task where they were handed out already).
+    Returns name → path."""
     progress.stage(f"writing files to {out}")
     out = prepare_dir(out)
     summary = solved.summary
@@ -124,7 +136,7 @@ def write_job(solved: Solved, out: Path, fields: bool = True, pictures: bool = T
         files.update(analysis.write(summary[analysis.key], writing))
     files.update(write_pair_outputs(solved.solution, out, {**summary, "files": {
         k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures,
-        executor=executor))
+        executor=executor, charts=charts))
     return files
 
 

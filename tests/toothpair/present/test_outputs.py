@@ -494,3 +494,27 @@ def test_a_run_stopped_while_the_charts_are_drawn_leaves_no_file_half_written(so
     for name in names:
         data = (tmp_path / name).read_bytes()
         assert data.endswith(b"</VTKFile>\n" if name.endswith(".vtu") else b"IEND\xaeB`\x82")
+
+
+def test_the_charts_handed_out_while_the_submodels_are_solved_are_the_charts_after(tmp_path):
+    """solve_job hands its ``meanwhile`` the pictured position before its contact submodels
+    are solved (the von Mises peak still the surface estimate), with the same teeth; the
+    charts drawn from it then are the files drawn from the finished solve, byte for byte."""
+    from fegear.toothpair import write_job
+    from fegear.toothpair.job import solve_job
+    from fegear.toothpair.present.pictured import light
+    from fegear.toothpair.present.plot import chart_pngs
+
+    seen = []
+    job = prepare_job({"quality": "coarse", "no-estimate": True})
+    solved = solve_job(job, meanwhile=lambda sol, summary: seen.append((sol, summary)))
+    (early, summary), = seen
+    assert early.von_mises_estimated and not solved.solution.von_mises_estimated
+    assert early.teeth == solved.solution.teeth
+    assert summary["inputs"] == solved.summary["inputs"]
+    charts = Painters().ready().submit(chart_pngs, light(early), summary)
+    write_job(solved, tmp_path / "early", charts=charts)
+    write_job(solved, tmp_path / "after")
+    early_files, after = _contents(tmp_path / "early"), _contents(tmp_path / "after")
+    for name in ("flank_pressure.png", "root_stress.png"):
+        assert early_files[name] == after[name]
