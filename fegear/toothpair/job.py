@@ -38,7 +38,8 @@ from .case import SolveCase, cycle_positions, revolution_positions
 from .case_file import case_record
 from .class_draw import class_draw
 from .estimate import second_level_estimate, second_quality, tooth_estimates
-from .face import SECTIONS, Face, deepest_lead_um, room_of
+from .face import SECTIONS, Face, deepest_lead_um
+from .face_room import room_of
 from .inputs import FACE_INPUTS, JOB_INPUTS, PAIR_INPUTS, REQUIRES, TIP_ROUND, check_tip_round
 from .safety import DEFAULT_ALLOWABLES, allowables_of
 from .summary import add_tooth_estimates, cycle_rows, cycle_summary, pair_summary
@@ -205,7 +206,7 @@ def _face(v: dict, given: Mapping[str, object], case: SolveCase, draw: Draw | No
 
 def _refuse_jammed(face: Face, v: dict, case: SolveCase) -> None:
     """A face whose inputs close gear 1's loaded flanks at one section and its coast flanks at
-    another by more than the pair's backlash jams the pair (:func:`~.face.room_of`): refused
+    another by more than the pair's backlash jams the pair (:func:`~.face_room.room_of`): refused
     naming the first of its closing inputs given, with the largest value the others leave."""
     room = room_of(face, case)
     if room.um >= -INTERFERENCE_UM:

@@ -136,7 +136,7 @@ def test_the_room_is_the_backlash_and_closes_with_the_misalignment():
     µm, and at its scale's limit the room is nil."""
     import dataclasses
 
-    from fegear.toothpair.face import room_of
+    from fegear.toothpair.face_room import room_of
 
     job = prepare_job({**BASE, "misalignment": 5.0})
     flat = room_of(dataclasses.replace(job.face, misalignment=0.0), job.case)

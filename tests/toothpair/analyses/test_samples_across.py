@@ -1,9 +1,9 @@
 """A tolerance class's pairs across the face (``fegear solve --grade … --misalignment …``): a
 sample reads as the same pair solved alone across the face from its deviations file, its
-helix and its misalignment; the batch room check is the face's own (room_of) at the same
-states; a sample whose face takes up the backlash is counted as jammed; the summary and the
-printed table read K_Hβ as the stresses; the class's inputs across the face are refused by
-name where they do not fit."""
+helix and its misalignment; the room a pair keeps across the face is its backlash where
+nothing varies across it; a sample whose face takes up the backlash is counted as jammed;
+the summary and the printed table read K_Hβ as the stresses; the class's inputs across the
+face are refused by name where they do not fit."""
 
 from dataclasses import replace
 
@@ -15,12 +15,12 @@ from fegear.geometry import PairParameters, ToothContact, gear1_profile, runout_
 from fegear.tolerance import Draw, grade_of
 from fegear.toothpair import SolveCase, prepare_job, solve_job
 from fegear.toothpair.analyses import SAMPLES
-from fegear.toothpair.analyses.samples.across import FaceRoom
 from fegear.toothpair.analyses.samples.plot import samples_figure
 from fegear.toothpair.analyses.samples.report import ClassReading, samples_summary
 from fegear.toothpair.analyses.samples.solve import SampleCase, solve_samples
 from fegear.toothpair.case import HEADLINE, revolution_positions
-from fegear.toothpair.face import ROOM_ANGLES, Face, room_of
+from fegear.toothpair.face import Face
+from fegear.toothpair.face_room import ROOM_ANGLES, FaceRoom, room_of
 from fegear.toothpair.ring.solver import RingSolver, SolverModes
 from fegear.toothpair.safety import DEFAULT_ALLOWABLES
 from fegear.toothpair.teeth import INTERFERENCE_UM
@@ -103,28 +103,43 @@ def test_the_summary_and_the_table_read_k_hbeta_and_the_class_across_the_face(gr
         figure.get_suptitle()
 
 
-# slow (12 s: room_of over a turn for each pair); the default run checks each jammed
-# pair's room with room_of in the jam test below
+# slow (10 s: each pair's moved clearances over a whole turn)
 @pytest.mark.slow
-def test_the_batch_room_is_the_faces_own_at_the_same_states():
-    """:class:`FaceRoom` against :func:`room_of` (a deviated pair's room over a whole turn at
-    its own angles): the same least room to rounding, whether it jams or not."""
-    # 12 µm ± 10 µm: the first pair jams across the face (by 2.7 µm), the second turns
+def test_a_deviated_pairs_room_is_its_backlash_over_the_turn_and_closes_with_its_face():
+    """room_of of a deviated pair with nothing across the face is its backlash in the plane:
+    at each rolling angle of a whole turn the least loaded clearance plus the least coast one,
+    as the deviated solve moves them (moved_clearances, the tooth by tooth search), least over
+    the turn; its face takes up that room (scaled to its limit: none left), and the class's
+    check reads the same room."""
+    from fegear.geometry import moved_clearances
+
     draw = Draw(grade_of(5, PAIR, face_width=CASE.thickness), 2, 0, 12.0, 10.0)
     betas = revolution_positions(0.0, ROOM_ANGLES, PAIR.z1, PAIR.z2)
     states = ToothContact(PAIR, gear1_profile(PAIR)).states(betas)
     batch = FaceRoom(CASE, list(zip(betas, states)), np.inf, 9)
     rooms = []
     for k in range(draw.count):
+        case = replace(CASE, deviations=draw.pair(k))
+        drive, coast = (moved_clearances(case.deviations, PAIR, states, d) for d in (+1, -1))
+        backlash = min(min(t.plus_um for t in d.teeth if t.plus_um is not None)
+                       + min(t.minus_um for t in c.teeth if t.minus_um is not None)
+                       for d, c in zip(drive, coast))
+        assert room_of(Face(), case).um == pytest.approx(backlash, abs=1e-9), k
         drawn = draw.face(k)
         face = Face(misalignment=drawn.misalignment, tilt=2.0, crowning=3.0,
                     helix1=drawn.helix.gear1, helix2=drawn.helix.gear2)
-        mine = batch.room(draw.pair(k), face)
-        theirs = room_of(face, replace(CASE, deviations=draw.pair(k)))
-        assert mine.um == pytest.approx(theirs.um, abs=1e-9), k
-        assert betas[mine.state] == pytest.approx(theirs.beta), k
-        assert (batch.jammed(draw.pair(k), face) is None) == (theirs.um >= -INTERFERENCE_UM)
-        rooms.append(mine.um)
+        room = room_of(face, case)
+        assert room.um < backlash
+        limit = replace(face, misalignment=face.misalignment * room.scale,
+                        tilt=face.tilt * room.scale,
+                        helix1=tuple((t, s * room.scale, f * room.scale)
+                                     for t, s, f in face.helix1),
+                        helix2=tuple((t, s * room.scale, f * room.scale)
+                                     for t, s, f in face.helix2))
+        assert room_of(limit, case).um == pytest.approx(0.0, abs=1e-9), k
+        assert batch.room(case.deviations, face).um == pytest.approx(room.um, abs=1e-9)
+        assert (batch.jammed(case.deviations, face) is None) == (room.um >= -INTERFERENCE_UM)
+        rooms.append(room.um)
     assert min(rooms) < -INTERFERENCE_UM < max(rooms)   # both kinds among them
 
 

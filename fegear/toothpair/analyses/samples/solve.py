@@ -17,7 +17,7 @@ leaves the tables unseen.
 Across the face (a job with a face: :mod:`.across`), each sample is solved besides on its
 position's kept contact at the face's sections, with its own helix deviations and
 misalignment, and the exact pair too: each one's stresses are its worst section's, with its
-K_Hβ; a sample whose face takes up the backlash (:class:`~.across.FaceRoom`) is jammed.
+K_Hβ; a sample whose face takes up the backlash (:class:`~...face_room.FaceRoom`) is jammed.
 
 The positions are the parallel work: two chains of the driver's (:func:`~.positions.chain`),
 each every other position with every sample (one position: half the samples each), on the
@@ -41,12 +41,13 @@ from ....running import SERIAL, Executor
 from ....tolerance import Draw
 from ...case import PairSolution, SolveCase, revolution_positions
 from ...face import Face
+from ...face_room import FaceRoom
 from ...positions import TURN_CHECK, Clearances, chain, solve_position
 from ...ring.face_results import face_sections
 from ...ring.phases import Phases
 from ...ring.solver import RingSolver, SolverModes
 from ...teeth import choose_teeth, closure
-from .across import Across, FaceRoom, across_of, worst_sections
+from .across import Across, across_of, worst_sections
 from .rows import EXACT, brief_of, gathered, sample_row
 
 
@@ -130,7 +131,7 @@ def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = 
 
 def _jams(states: _States, pairs: list, across: Across | None, executor: Executor) -> list:
     """Where each of ``pairs`` jams (None where it turns): in the plane (:func:`_jammed`), or
-    across the face with its own face (:meth:`~.across.FaceRoom.jammed`), in a share of the
+    across the face with its own face (:meth:`~...face_room.FaceRoom.jammed`), in a share of the
     pairs a worker."""
     if across is None:
         def jams(k: int) -> str | None:
