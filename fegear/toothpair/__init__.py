@@ -97,7 +97,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "analyses.sensitivities.report": ("sensitivity_columns", "sensitivity_table"),
     # the presentation: tables, the report page, pictures, files
     "present.tables": ("pair_table", "factor_cell", "stiffness_cell"),
-    "present.output": ("JobResult", "run_job", "write_job", "write_pair_outputs"),
+    "present.output": ("Drawing", "JobResult", "run_job", "write_job", "write_pair_outputs"),
     "present.plot": ("prepare_pictures",),
     "present.html_report": ("write_report", "report_html", "verdicts", "index_html"),
 })

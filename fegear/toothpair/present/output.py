@@ -27,14 +27,23 @@ from .pictured import PICTURED_AROUND, ToDraw, for_pictures, light, same_drawing
 from .plot import chart_pngs, von_mises_bytes
 
 
+@dataclass(frozen=True)
+class Drawing:
+    """Where a pair's pictures are drawn: on ``executor``'s processes made ready to draw
+    (else here), the charts' task ``charts`` where they were handed out already
+    (:func:`run_job`: while the submodels were solved)."""
+
+    executor: Executor = SERIAL
+    charts: Task | None = None
+
+
 def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool = True,
-                       pictures: bool = True, executor: Executor = SERIAL,
-                       charts: Task | None = None) -> dict[str, Path]:
+                       pictures: bool = True, drawing: Drawing = Drawing()) -> dict[str, Path]:
     """gear1.vtu, gear2.vtu and the ring model's contact submodels (gear1_contact.vtu, …;
     fixed frame; ``fields``), von_mises.png, flank_pressure.png and root_stress.png
     (``pictures``) and summary.json in ``out``.
 
-    Where ``executor`` holds a process made ready to draw (a one-off command's:
+    Where ``drawing``'s executor holds a process made ready to draw (a one-off command's:
     :func:`~fegear.running.spare_core` with :func:`~.plot.prepare_pictures`, which imported
     matplotlib while the command started up), the charts go to it at once (drawn in a copy of
     it), and von Mises as soon as the loaded sectors' fields are formed (:data:`PICTURED_AROUND`: a
@@ -42,10 +51,9 @@ def write_pair_outputs(sol: PairSolution, out: Path, summary: dict, fields: bool
     VTUs; else every picture is drawn here. The whole fields then confirm that the picture
     had every cell it shows (:func:`~.pictured.for_pictures` of both is the same); where it
     had not, von Mises is drawn again here from the whole fields. The pictures come back as
-    bytes, the same either way, and every file is written here, atomically. ``charts``: the
-    charts' task where they were handed out already (:func:`run_job`: while the submodels
-    were solved)."""
+    bytes, the same either way, and every file is written here, atomically."""
     files = {}
+    executor, charts = drawing.executor, drawing.charts
     # the solution as the pictures read it, formed once for both of them
     drawn_sol = light(sol) if pictures else sol
     if pictures and charts is None:
@@ -135,8 +143,7 @@ def write_job(solved: Solved, out: Path, fields: bool = True, pictures: bool = T
     for analysis in shown(summary):
         files.update(analysis.write(summary[analysis.key], writing))
     files.update(write_pair_outputs(solved.solution, out, {**summary, "files": {
-        k: str(v) for k, v in files.items()}}, fields=fields, pictures=pictures,
-        executor=executor, charts=charts))
+        k: str(v) for k, v in files.items()}}, fields, pictures, Drawing(executor, charts)))
     return files
 
 

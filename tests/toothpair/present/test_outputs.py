@@ -370,12 +370,12 @@ def test_the_pictures_are_handed_to_the_processes_made_ready_to_draw(solved, sum
     fields it shows) to the other, each by pickle; the files are the same, byte for byte, as
     those drawn here from the whole fields. An executor without such processes (SERIAL, a
     Dask cluster) has every picture drawn here."""
-    from fegear.toothpair import write_pair_outputs
+    from fegear.toothpair import Drawing, write_pair_outputs
 
     files, contents = written_here
     assert {"png", "flank_png", "root_png", "summary"} <= set(files)
     executor = Painters()
-    got = write_pair_outputs(solved, tmp_path, summary, executor=executor)
+    got = write_pair_outputs(solved, tmp_path, summary, drawing=Drawing(executor))
     assert executor.handed == ["chart_pngs", "von_mises_bytes"]
     assert [(k, v.name) for k, v in got.items()] == [(k, v.name) for k, v in files.items()]
     assert _contents(tmp_path) == contents
@@ -415,7 +415,7 @@ def test_where_the_loaded_sectors_miss_a_shown_cell_von_mises_is_drawn_again(
     here from the whole fields: the same picture."""
     import dataclasses
 
-    from fegear.toothpair import write_pair_outputs
+    from fegear.toothpair import Drawing, write_pair_outputs
 
     class Holed:
         """The solved detail, its loaded sectors' fields with half their cells cut."""
@@ -435,7 +435,7 @@ def test_where_the_loaded_sectors_miss_a_shown_cell_von_mises_is_drawn_again(
 
     executor = Painters()
     holed = dataclasses.replace(solved, detail=Holed(solved.detail))
-    write_pair_outputs(holed, tmp_path, summary, executor=executor)
+    write_pair_outputs(holed, tmp_path, summary, drawing=Drawing(executor))
     assert executor.handed == ["chart_pngs", "von_mises_bytes"]
     assert _contents(tmp_path) == written_here[1]
 
@@ -468,12 +468,12 @@ def test_drawn_in_a_forked_copy_the_files_are_the_same_byte_for_byte(solved, sum
     that the spare core's executor made ready come back as the very PNG files drawn here
     alone, and the VTUs and summary.json are the same too."""
     from fegear.running import Forks
-    from fegear.toothpair import write_pair_outputs
+    from fegear.toothpair import Drawing, write_pair_outputs
     from fegear.toothpair.present.plot import prepare_pictures
 
     _, contents = written_here
     with Forks(2, prepare_pictures, ready=2) as forks:
-        write_pair_outputs(solved, tmp_path, summary, executor=forks)
+        write_pair_outputs(solved, tmp_path, summary, drawing=Drawing(forks))
         assert forks.ready() is None   # both were used
     assert _contents(tmp_path) == contents
     for name in ("von_mises.png", "flank_pressure.png", "root_stress.png"):
@@ -485,10 +485,10 @@ def test_a_run_stopped_while_the_charts_are_drawn_leaves_no_file_half_written(so
     """What is there when a run stops while its copies draw is whole: every VTU complete,
     no temporary file, and neither a picture nor summary.json (written last, it lists the
     files) half-written or there at all."""
-    from fegear.toothpair import write_pair_outputs
+    from fegear.toothpair import Drawing, write_pair_outputs
 
     with pytest.raises(KeyboardInterrupt):
-        write_pair_outputs(solved, tmp_path, summary, executor=Painters(stopped=True))
+        write_pair_outputs(solved, tmp_path, summary, drawing=Drawing(Painters(stopped=True)))
     names = sorted(p.name for p in tmp_path.iterdir())
     assert names == sorted(["gear1.vtu", "gear2.vtu", "gear1_contact.vtu", "gear2_contact.vtu"])
     for name in names:
