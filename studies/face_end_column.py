@@ -25,6 +25,7 @@ pair's) and is read as :func:`fegear.verify.face_slices.compare` reads the produ
     .venv/bin/python studies/face_end_column.py --pair m=1.5     # another design
     .venv/bin/python studies/face_end_column.py --widths         # the twist's table, ~12 min
     .venv/bin/python studies/face_end_column.py --pair-check     # the pair with it, a minute
+    .venv/bin/python studies/face_end_column.py --widths --gear 2   # gear 2's tooth, ~15 min
 
 The product carries the twist, P1 fitted to the end column, tabulated by the face width in
 tooth heights (fegear.toothpair.ring.face.TWIST_TABLE): ``--widths`` fits it on the baseline's
@@ -32,6 +33,16 @@ tooth at b/h 1.5, 2, 2.5, 3.3 and 5 and prints the table, with the end column's 
 part without the twist and with it. ``--pair-check`` solves the baseline misaligned as the 3D
 pair check does (docs/validation.md: 200 N·m, 9.9 µm, `coarse`) without the twist and with
 it, the product's coupling made with the table's twist for the second solve.
+
+``--widths --gear 2`` measures gear 2's tooth (the internal gear, held at its outer rim) at the
+same widths in its own tooth heights (4 e1, 2.4 mm on the baseline), the same patches. Its
+twist cannot be fitted as gear 1's is: the slice model's 2D parts (:func:`band_compliance`:
+the near field's share, on which the fit rests) are gear 1's ring model's, and gear 2's are
+not measured. The table gives the raw 3D quantities instead (``--raw`` gives them for gear
+1): the end column's own patch and far end and the mid-face column's own patch (G_ij /
+uniform_i), the mid-face slope under a load linear across the face, the mean of the face
+under the even load per plane stress, and the c that the fit would give if gear 2's near
+share were gear 1's (the fit's dependence on it shown by half and one and a half times it).
 """
 
 from __future__ import annotations
@@ -189,6 +200,40 @@ def twist_table(params: PairParameters, size: str) -> str:
     return "\n".join(lines + ["TWIST_TABLE = (" + ", ".join(table) + ")"])
 
 
+def raw_table(params: PairParameters, size: str, gear: int) -> str:
+    """``gear``'s tooth at each of :data:`WIDTHS` in its own tooth heights: the raw 3D
+    quantities and c with gear 1's near share (module docstring), then the end and mid-face
+    columns in full."""
+    one = band_compliance(params, quality="standard")
+    head = (f"gear {gear}'s tooth, {size}; G_ij / uniform_i: end column (patch 0) own, far; "
+            f"mid-face column own; c with gear 1's near share {one.near_share:.3f} (× 0.5, 1.5)")
+    lines = [head, f"{'b/h':>4} {'face mm':>7} {'n':>3} {'end own':>8} {'far':>8} "
+                   f"{'mid own':>8} {'slope':>6} {'3D/pl.σ':>8} {'c':>7} {'c×0.5':>7} {'c×1.5':>7}"]
+    columns = []
+    for b_h, patches in WIDTHS:
+        h = one.tooth_height if gear == 1 else 4 * params.e1     # gear 2's: r0 ± 2 e1
+        width = round(b_h * h, 3)
+        solid = face_influence(params, thickness=width, patches=patches, size=size,
+                               gear=gear)
+        columns.append((b_h, solid.G / solid.uniform[:, None]))
+        cs = []
+        for k in (1.0, 0.5, 1.5):
+            share = k * one.near_share
+            band = BandCompliance(share * one.total, (1 - share) * one.total,
+                                  solid.tooth_height)
+            cs.append(fitted(Slices(band, width, patches), solid, ["P1"], [0])[1][0])
+        col, mid = columns[-1][1], patches // 2
+        lines.append(f"{b_h:4g} {width:7.3f} {patches:3d} {col[0, 0]:8.4f} {col[-1, 0]:8.4f} "
+                     f"{col[mid, mid]:8.4f} {mid_slope(solid.G, solid.z, width):6.3f} "
+                     f"{solid.uniform.mean() / solid.plane_stress:8.4f} "
+                     + " ".join(f"{c:7.4f}" for c in cs))
+    for b_h, col in columns:
+        lines += [f"b/h {b_h:g} end column: " + " ".join(f"{v:.3f}" for v in col[:, 0]),
+                  f"b/h {b_h:g} mid column: " + " ".join(
+                      f"{v:.3f}" for v in col[:, len(col) // 2])]
+    return "\n".join(lines)
+
+
 def pair_check() -> str:
     """K_Hβ, the worst root stresses and tooth 10's layer means (CalculiX's six layers) of
     the baseline at 200 N·m and 9.9 µm, `coarse`, without the tooth's twist (the product)
@@ -230,6 +275,10 @@ def main() -> None:
                         help="a PairParameters field (e.g. m=1.5), repeatable")
     parser.add_argument("--widths", action="store_true",
                         help="fit the twist at each tabulated face width (TWIST_TABLE)")
+    parser.add_argument("--gear", type=int, default=1, choices=(1, 2),
+                        help="the gear whose tooth is measured (2: raw quantities)")
+    parser.add_argument("--raw", action="store_true",
+                        help="with --widths: the raw 3D quantities (gear 2's always)")
     parser.add_argument("--pair-check", action="store_true",
                         help="the misaligned baseline without the twist and with it")
     args = parser.parse_args()
@@ -237,11 +286,14 @@ def main() -> None:
     params = PairParameters(**{k: int(v) if k in ("z1", "z2") else float(v)
                                for k, v in given.items()})
     if args.widths:
-        print(twist_table(params, args.size))
+        print(raw_table(params, args.size, args.gear) if args.raw or args.gear == 2
+              else twist_table(params, args.size))
         return
     if args.pair_check:
         print(pair_check())
         return
+    if args.gear == 2:
+        parser.error("--gear 2 is measured with --widths (its 2D parts are not gear 1's)")
     band = band_compliance(params, quality="standard")
     solid = face_influence(params, thickness=args.width, patches=args.patches, size=args.size)
     print(table(solid, band))

@@ -1,6 +1,6 @@
-"""Gear 1's tooth in 3D: how a load at one point of the face moves the flank along the face
+"""A gear's tooth in 3D: how a load at one point of the face moves the flank along the face
 (docs/model.md, "Across the face: the tooth in 3D"), the reference a slice model of the face
-width is checked against.
+width is checked against. Gear 1's tooth by default; gear 2's (``gear=2``) alike, below.
 
 The body is :data:`PITCHES` pitches of gear 1 about the loaded tooth 0, cut radially through
 the middles of tooth spaces, down to the bore the solve takes (3 m below the root), with the
@@ -11,6 +11,14 @@ faces two prisms share are cut alike). The elements are quadratic (scikit-fem's
 ``ElementTetP2``, straight edges); :func:`tet_stiffness` forms their stiffness from
 scikit-fem's shape gradients for all elements at once. The bore is held; the radial cuts and
 the two ends of the face are free.
+
+Gear 2's body (the internal gear, its teeth standing inward on an outer rim) is :data:`PITCHES`
+pitches of its exact profile about its tooth 0 (the tooth tip's middle at polar angle 0: its
+teeth are all alike), cut radially through the middles of its tooth spaces, out to the rim
+the solve takes (``SolveCase.rims[1]`` beyond its root). The rim's outer arc is held. Its
+loaded flank is the one before the tooth (smaller polar angle; the one gear 1's loaded flank
+presses, :func:`~fegear.toothpair.teeth.tension_fillets`), its height by radius from the root
+(the tooth space's middle, r0 + 2 e1) to the tip's middle (r0 − 2 e1).
 
 The load: ``patches`` patches tile the face along one line of tooth 0's loaded flank, each
 b/patches wide and :data:`PATCH` m along the profile, each under a normal pressure of unit
@@ -30,12 +38,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
+from scipy.integrate import quad
+from scipy.optimize import brentq
 from skfem import Basis, ElementTetP2, ElementTriP2, ElementVector, MeshTet1, MeshTri1, asm
 from skfem.models.elasticity import linear_elasticity
 
 from ..errors import FegearError, ParameterError
 from ..fe import STEEL_E, STEEL_NU, BodyGeometry, Factor, Refinement, Segment, mesh_bodies
-from ..geometry import PairParameters, RoundedProfile, gear1_profile
+from ..geometry import Cycloid, PairParameters, RoundedProfile, gear1_profile, gear2_curve
 from ..timing import Stopwatch
 from ..toothpair import (
     FlankBand,
@@ -43,6 +53,8 @@ from ..toothpair import (
     PolarCurve,
     SolveCase,
     flank_band,
+    gear2_outline,
+    gear2_polar,
     profile_segments,
     tip_round_of,
 )
@@ -55,6 +67,9 @@ PITCHES = 9
 #: the solver stops once every load case's residual is below this part of its load
 TOLERANCE = 1e-10
 ITERATIONS = 400
+#: an outer rim's nodes held within this part of its radius: a rim edge's middle node sits on
+#: its chord, 10 µm inside the arc at `coarse`'s 2 mm elements, the next node 0.5 mm or more
+RIM_TOLERANCE = 1e-3
 
 
 class SolveError(FegearError):
@@ -82,7 +97,7 @@ SIZES = {"coarse": Resolution(2, 1, 0.15, 0.3, 1.0),
 
 @dataclass(frozen=True)
 class FaceInfluence:
-    """Gear 1's tooth under loads along the face at one profile point.
+    """A gear's tooth under loads along the face at one profile point.
 
     Attributes:
         z: (n,) patch centres, mm from one end of the face.
@@ -96,8 +111,8 @@ class FaceInfluence:
         plane_stress, plane_strain: µm per N: the section in 2D (the same triangles, P2)
             under the uniform load, 1/b N/mm over the band.
         radius, height: the load point's radius (mm) and its place on the working flank,
-            by radius (0 the root, the middle of the tooth space; 1 where the tip round
-            starts); tooth_height: tip minus root radius, mm.
+            by radius (0 the root, the middle of the tooth space; 1 where gear 1's tip round
+            starts, gear 2's tip's middle); tooth_height: between tip and root radius, mm.
         patch_width, patch_length: mm. dofs, dofs_2d: free unknowns; iterations: of the
             solver; times: s per stage.
     """
@@ -120,6 +135,7 @@ class FaceInfluence:
     elements: int
     iterations: int
     times: dict = field(default_factory=dict)
+    gear: int = 1
 
     @property
     def maxwell(self) -> float:
@@ -153,8 +169,9 @@ class FaceInfluence:
 @dataclass(frozen=True)
 class Section:
     """The meshed section: corner points (n, 2) and triangles (m, 3), the load band's edges
-    (k, 2) with their lengths and outward normals (k, 2), the bore radius, the load point's
-    radius and the tooth height (mm)."""
+    (k, 2) with their lengths and outward normals (k, 2), the held arc's radius (``bore``:
+    gear 1's bore, or with ``outer`` gear 2's outer rim), the load point's radius and the
+    tooth height (mm)."""
 
     points: np.ndarray
     triangles: np.ndarray
@@ -164,12 +181,20 @@ class Section:
     bore: float
     radius: float
     tooth_height: float
+    outer: bool = False
+
+    def held(self, radius: np.ndarray) -> np.ndarray:
+        """Whether nodes at ``radius`` (mm) lie on the held arc: within the bore, or on the
+        outer rim (:data:`RIM_TOLERANCE`)."""
+        if self.outer:
+            return radius >= self.bore * (1 - RIM_TOLERANCE)
+        return radius <= self.bore * (1 + 1e-9)
 
 
 def face_influence(params: PairParameters, thickness: float = 5.0, E: float = STEEL_E,
                    nu: float = STEEL_NU, patches: int = 9, height: float | None = None,
-                   size: str = "standard") -> FaceInfluence:
-    """The influence of loads along the face on gear 1's tooth of ``params`` (module
+                   size: str = "standard", gear: int = 1) -> FaceInfluence:
+    """The influence of loads along the face on ``gear``'s tooth of ``params`` (module
     docstring): face width ``thickness`` (mm), ``E`` (MPa), ``nu``, ``patches`` across the
     face, at ``height`` of the working flank (default 0.5), at mesh level ``size``."""
     height = 0.5 if height is None else height
@@ -181,8 +206,10 @@ def face_influence(params: PairParameters, thickness: float = 5.0, E: float = ST
         raise ParameterError("thickness", thickness, "> 0 mm")
     if not (isinstance(patches, int) and patches >= 2):
         raise ParameterError("patches", patches, "a whole number >= 2")
+    if gear not in (1, 2):
+        raise ParameterError("gear", gear, "1 or 2")
     level, watch, times = SIZES[size], Stopwatch(), {}
-    section = section_of(params, height, level)
+    section = section_of(params, height, level, gear=gear)
     times["mesh"] = watch.s
     body = Extrusion(section, thickness, patches * level.layers)
     K = tet_stiffness(body, E, nu)
@@ -200,39 +227,34 @@ def face_influence(params: PairParameters, thickness: float = 5.0, E: float = ST
         plane_stress=stress, plane_strain=strain, radius=section.radius, height=height,
         tooth_height=section.tooth_height, patch_width=thickness / patches,
         patch_length=float(section.lengths.sum()), size=size, dofs=K.shape[0],
-        dofs_2d=dofs_2d, elements=body.mesh.t.shape[1], iterations=iterations, times=times)
+        dofs_2d=dofs_2d, elements=body.mesh.t.shape[1], iterations=iterations, times=times,
+        gear=gear)
+
+
+@dataclass(frozen=True)
+class Outline:
+    """A gear's body about its loaded tooth 0, to be meshed: its boundary's ``segments`` (the
+    load band's named "patch"), the element ``sizes`` (mm) by segment or zone name, the held
+    arc's radius ``held`` (mm) and whether it is the ``outer`` one, and the load ``band``
+    (:class:`~fegear.toothpair.ring.face.FlankBand`, the gear's frame) with its ``outward``
+    normal (2,) at the band's centre."""
+
+    segments: tuple
+    sizes: dict
+    held: float
+    outer: bool
+    band: FlankBand
+    outward: np.ndarray
 
 
 def section_of(params: PairParameters, height: float, level: Resolution,
-               pitches: int = PITCHES) -> Section:
-    """Gear 1's ``pitches`` (odd) pitches about tooth 0, its loaded flank cut at the load
+               pitches: int = PITCHES, gear: int = 1) -> Section:
+    """``gear``'s ``pitches`` (odd) pitches about its tooth 0, its loaded flank cut at the load
     band's ends, meshed (module docstring)."""
-    case, shape, flank = load_band(params, height)
-    lo, hi, radius, centre = flank.lo, flank.hi, flank.radius, flank.centre
-    pitch, m, top, space = shape.pitch, params.m, flank.top, flank.space
-    root, tip = (float(shape.radius(np.array([x]))[0]) for x in (space, shape.tooth_center))
-    a, b = (shape.phi_space + k * pitch for k in (-(pitches // 2), pitches // 2 + 1))
-    # tooth 0 and its neighbours refined (the tip rounds, 0.1 mm at m 2, take the flank's
-    # size), the teeth beyond them the body's
-    marks = [(top, space, "loaded"), (space - 2 * pitch, space + pitch, "near")]
-    sizes = {"patch": PATCH * m / level.along, "loaded": level.loaded * m,
-             "near": level.flank * m}
-
-    def project(x):
-        return shape.point(np.arctan2(x[:, 1], x[:, 0]))
-
-    segs, _ = profile_segments("g1", PolarCurve(shape.point, project), a, b, Layout(
-        windows=(("patch", 0.5 * (lo + hi), 0.5 * (hi - lo)),), marks=tuple(marks),
-        sizes=sizes))
-    bore = root - case.rims[0]
-    t = np.linspace(b, a, 20 * pitches)
-    arc = bore * np.column_stack([np.cos(t), np.sin(t)])
-    ends = shape.point(np.array([a, b]))
-    geometry = BodyGeometry("tooth3d", (
-        *segs, Segment("cut_b", np.array([ends[1], arc[0]])),
-        Segment("bore", arc, lambda x: bore * x / np.linalg.norm(x, axis=1)[:, None]),
-        Segment("cut_a", np.array([arc[-1], ends[0]]))), size=level.body * m,
-        refinements=tuple(Refinement((name,), s, level.growth) for name, s in sizes.items()))
+    outline = (gear1_body if gear == 1 else gear2_body)(params, height, level, pitches)
+    geometry = BodyGeometry("tooth3d", outline.segments, size=level.body * params.m,
+                            refinements=tuple(Refinement((name,), s, level.growth)
+                                              for name, s in outline.sizes.items()))
     (meshed,) = mesh_bodies([geometry])
     mesh = meshed.mesh
     corners = np.unique(mesh.t)
@@ -243,9 +265,66 @@ def section_of(params: PairParameters, height: float, level: Resolution,
     edge = points[band[:, 1]] - points[band[:, 0]]
     lengths = np.hypot(edge[:, 0], edge[:, 1])
     normals = np.column_stack([edge[:, 1], -edge[:, 0]]) / lengths[:, None]
-    outward = shape.frame(np.array([centre]))[1][0]
-    normals *= np.sign(normals @ outward)[:, None]
-    return Section(points, number[mesh.t].T, band, lengths, normals, bore, radius, tip - root)
+    normals *= np.sign(normals @ outline.outward)[:, None]
+    flank = outline.band
+    return Section(points, number[mesh.t].T, band, lengths, normals, outline.held,
+                   flank.radius, flank.tooth_height, outline.outer)
+
+
+def _layout(flank: FlankBand, loaded: tuple[float, float], near: tuple[float, float],
+            level: Resolution, m: float) -> Layout:
+    """The profile's cuts: the load band a window named "patch", the ``loaded`` flank and the
+    ``near`` teeth (polar angles, rad) refined (the tip rounds, 0.1 mm at m 2, take the
+    flank's size), the teeth beyond them the body's."""
+    sizes = {"patch": PATCH * m / level.along, "loaded": level.loaded * m,
+             "near": level.flank * m}
+    return Layout(windows=(("patch", 0.5 * (flank.lo + flank.hi), 0.5 * (flank.hi - flank.lo)),),
+                  marks=((*loaded, "loaded"), (*near, "near")), sizes=sizes)
+
+
+def gear1_body(params: PairParameters, height: float, level: Resolution,
+               pitches: int) -> Outline:
+    """Gear 1's ``pitches`` pitches about tooth 0, down to the solve's bore (module
+    docstring)."""
+    case, shape, flank = load_band(params, height)
+    pitch, space = shape.pitch, flank.space
+    root = float(shape.radius(np.array([space]))[0])
+    a, b = (shape.phi_space + k * pitch for k in (-(pitches // 2), pitches // 2 + 1))
+    layout = _layout(flank, (flank.top, space), (space - 2 * pitch, space + pitch), level,
+                     params.m)
+
+    def project(x):
+        return shape.point(np.arctan2(x[:, 1], x[:, 0]))
+
+    segs, _ = profile_segments("g1", PolarCurve(shape.point, project), a, b, layout)
+    bore = root - case.rims[0]
+    t = np.linspace(b, a, 20 * pitches)
+    arc = bore * np.column_stack([np.cos(t), np.sin(t)])
+    ends = shape.point(np.array([a, b]))
+    segments = (*segs, Segment("cut_b", np.array([ends[1], arc[0]])),
+                Segment("bore", arc, lambda x: bore * x / np.linalg.norm(x, axis=1)[:, None]),
+                Segment("cut_a", np.array([arc[-1], ends[0]])))
+    outward = shape.frame(np.array([flank.centre]))[1][0]
+    return Outline(segments, dict(layout.sizes), bore, False, flank, outward)
+
+
+def gear2_body(params: PairParameters, height: float, level: Resolution,
+               pitches: int) -> Outline:
+    """Gear 2's ``pitches`` pitches about its tooth 0, out to the solve's rim (module
+    docstring)."""
+    case = SolveCase(params=params, tip_round=tip_round_of(params, None))
+    curve, flank = gear2_band(params, height)
+    pitch = 2 * np.pi / params.z2
+    a, b = (pitch * (k + 0.5) for k in (-(pitches // 2) - 1, pitches // 2))
+    layout = _layout(flank, (flank.space, flank.top), (-1.5 * pitch, 1.5 * pitch), level,
+                     params.m)
+    polar = gear2_polar(curve)
+    segs, _ = profile_segments("g2", polar, a, b, layout)
+    outer = params.r0 + 2 * params.e1 + case.rims[1]
+    segments = gear2_outline(polar.point, segs, a, b, outer, 20 * pitches)
+    xi = curve.xi_at_angle(np.array([flank.centre]), tabled=False)
+    outward = curve.frame(xi)[2][0]                    # the gap side: out of the tooth
+    return Outline(segments, dict(layout.sizes), outer, True, flank, outward)
 
 
 def load_band(params: PairParameters, height: float) -> tuple[SolveCase, RoundedProfile,
@@ -257,6 +336,31 @@ def load_band(params: PairParameters, height: float) -> tuple[SolveCase, Rounded
     case = SolveCase(params=params, tip_round=tip_round_of(params, None))
     shape = RoundedProfile(gear1_profile(params), case.edge_radius)
     return case, shape, flank_band(shape, height, PATCH * params.m)
+
+
+def gear2_band(params: PairParameters, height: float) -> tuple[Cycloid, FlankBand]:
+    """Gear 2's curve and the load band at ``height`` of its tooth 0's loaded flank by radius
+    (0 the root, r0 + 2 e1; 1 the tip's middle, r0 − 2 e1), :data:`PATCH` m along the
+    profile: polar angles (rad) in its frame; its ``top`` is the tip's middle (0), its
+    ``space`` the tooth space's middle before it (−π/z2)."""
+    curve = gear2_curve(params)
+    start = -np.pi / params.z2                       # ξ and the polar angle agree there
+
+    def radius(xi):
+        return float(np.hypot(*curve.point(np.array([xi]))[0]))
+
+    def arc(xi0, xi1):
+        return quad(lambda x: float(np.hypot(*curve.derivatives(np.array([x]), 1)[1][0])),
+                    xi0, xi1, epsabs=1e-13)[0]
+
+    root, tip = radius(start), radius(0.0)
+    r = root + height * (tip - root)
+    centre = brentq(lambda x: radius(x) - r, start, 0.0, xtol=1e-15)
+    half = 0.5 * PATCH * params.m
+    ends = [brentq(lambda x, s=s: arc(centre, x) - s, *sorted((centre, centre + 8 * s / r)),
+                   xtol=1e-15) for s in (-half, half)]     # |dP/dξ| > r / 8 on the flank
+    lo, mid, hi = curve.polar_angle(np.array([ends[0], centre, ends[1]]))
+    return curve, FlankBand(float(lo), float(hi), float(mid), r, 0.0, start, root - tip)
 
 
 class Extrusion:
@@ -299,7 +403,7 @@ class Extrusion:
         self.dof_at = np.full((n + len(edges), 2 * layers + 1), -1)
         self.dof_at[self.node_of, self.level_of] = np.arange(self.basis.N)
         radius = np.hypot(*self.basis.doflocs[:2])
-        held = radius <= section.bore * (1 + 1e-9)
+        held = section.held(radius)
         self.free = np.cumsum(~held) - 1
         self.free[held] = -1
         self.keys = keys
@@ -458,7 +562,7 @@ class TwoLevel:
 
 def plane_answers(section: Section, E: float, nu: float,
                   thickness: float) -> tuple[float, float, int]:
-    """The section in 2D, plane stress and plane strain, its bore held, under 1/b N/mm
+    """The section in 2D, plane stress and plane strain, its held arc held, under 1/b N/mm
     spread evenly over the load band: the band's mean displacement into the tooth (µm per N
     over the face) each, and the free dofs."""
     mesh = MeshTri1(section.points.T.copy(), section.triangles.T.copy())
@@ -474,7 +578,7 @@ def plane_answers(section: Section, E: float, nu: float,
         for c in range(2):
             np.add.at(weights, dofs[c], -w * section.lengths * section.normals[:, c])
     weights /= section.lengths.sum()
-    held = np.flatnonzero(np.hypot(*basis.doflocs) <= section.bore * (1 + 1e-9))
+    held = np.flatnonzero(section.held(np.hypot(*basis.doflocs)))
     free = np.setdiff1d(np.arange(basis.N), held)
     mu = E / (2 * (1 + nu))
     out = []
@@ -495,7 +599,7 @@ def table(result: FaceInfluence, reference: FaceInfluence | None = None) -> str:
     and, given the same case at another ``reference`` size, the differences (%)."""
     r, h, mid = result, result.tooth_height, len(result.z) // 2
     u = r.along[:, -1]
-    lines = [f"gear 1's tooth in 3D, {r.size}: {r.dofs} dofs, {r.elements} P2 tetrahedra, "
+    lines = [f"gear {r.gear}'s tooth in 3D, {r.size}: {r.dofs} dofs, {r.elements} P2 tetrahedra, "
              f"{r.iterations} CG iterations, " + ", ".join(
                  f"{k} {v:.1f} s" for k, v in r.times.items()),
              f"load at r = {r.radius:.3f} mm ({r.height:g} of the working flank), patches "
@@ -529,10 +633,10 @@ def table(result: FaceInfluence, reference: FaceInfluence | None = None) -> str:
 def main(argv: list[str]) -> str:
     """``python -m fegear.verify.tooth3d [size ...] [name=value ...]``: the tables of the
     sizes named (default standard), each after the first against it; the names are
-    PairParameters' fields and thickness, height, patches."""
+    PairParameters' fields and thickness, height, patches, gear."""
     given = dict(a.split("=", 1) for a in argv if "=" in a)
-    knobs = {k: (int if k == "patches" else float)(given.pop(k))
-             for k in ("thickness", "height", "patches") if k in given}
+    knobs = {k: (int if k in ("patches", "gear") else float)(given.pop(k))
+             for k in ("thickness", "height", "patches", "gear") if k in given}
     params = PairParameters(**{k: int(v) if k in ("z1", "z2") else float(v)
                                for k, v in given.items()})
     results = []

@@ -2,7 +2,8 @@
 against CHOLMOD, the loads' unit force, and what the coarse model says along the face:
 Maxwell's symmetry, linearity, a decaying row, softer ends, and the plane answers around it;
 and the slice model of the face (fegear.verify.face_slices, the product's coupling) read on
-the same patches against it."""
+the same patches against it. Gear 2's tooth (the internal gear, held at its outer rim): its
+body and load band, and the coarse model's symmetry, decay and plane answers."""
 
 import numpy as np
 import pytest
@@ -26,6 +27,7 @@ from fegear.verify.tooth3d import (
     Extrusion,
     TwoLevel,
     face_influence,
+    gear2_band,
     section_of,
     table,
     tet_stiffness,
@@ -54,6 +56,12 @@ def slices(baseline):
     measured = product_influence(band, 5.0, 9)
     old = slice_influence(band, 5.0, 9, exponential_kernel(4 * baseline.e1), False, "linear")
     return band, measured, old
+
+
+@pytest.fixture(scope="module")
+def coarse2(baseline):
+    """The baseline's gear 2 tooth at the coarse size, nine patches (71k dofs, 10-20 s)."""
+    return face_influence(baseline, size="coarse", gear=2)
 
 
 @pytest.fixture(scope="module")
@@ -220,7 +228,69 @@ def test_the_coarse_influence_is_the_standards_within_15_percent(coarse, standar
 
 
 @pytest.mark.parametrize("given", [{"height": 1.0}, {"size": "rough"}, {"patches": 1},
-                                   {"thickness": 0.0}])
+                                   {"thickness": 0.0}, {"gear": 3}])
 def test_an_input_out_of_range_is_refused_by_name(baseline, given):
     with pytest.raises(ParameterError, match=next(iter(given))):
         face_influence(baseline, **given)
+
+
+def test_gear_2s_band_is_on_the_flank_gear_1_presses_at_mid_height(baseline):
+    # the flank before the tooth (smaller polar angle), at r0 = 45 mm between the root
+    # (r0 + 2 e1) and the tip (r0 − 2 e1); 0.1 m along the profile
+    curve, band = gear2_band(baseline, 0.5)
+    pitch = 2 * np.pi / baseline.z2
+    assert band.space == pytest.approx(-0.5 * pitch) and band.top == 0.0
+    assert band.space < band.lo < band.centre < band.hi < band.top
+    assert band.radius == pytest.approx(baseline.r0, abs=1e-12)
+    assert band.tooth_height == pytest.approx(4 * baseline.e1, abs=1e-12)
+    ends = curve.point(curve.xi_at_angle(np.array([band.lo, band.hi]), tabled=False))
+    assert np.hypot(*(ends[1] - ends[0])) == pytest.approx(PATCH * baseline.m, rel=1e-5)
+
+
+def test_gear_2s_body_is_held_at_its_outer_rim_and_loaded_into_its_tooth(baseline):
+    section = section_of(baseline, 0.5, SIZES["coarse"], gear=2)
+    r = np.hypot(*section.points.T)
+    assert section.bore == pytest.approx(baseline.r0 + 2 * baseline.e1 + 3 * baseline.m)
+    assert r.max() == pytest.approx(section.bore, rel=1e-12)
+    assert r.min() == pytest.approx(baseline.r0 - 2 * baseline.e1, rel=1e-9)  # tooth tips
+    held = section.held(r)
+    assert held.any() and np.allclose(r[held], section.bore, rtol=1e-9)
+    # the band's outward normals face the smaller polar angle: the pressure pushes the
+    # tooth forward, as gear 1's loaded flank does
+    centre = section.points[section.band].mean(axis=(0, 1))
+    forward = np.array([-centre[1], centre[0]]) / np.hypot(*centre)
+    assert np.all(section.normals @ forward < -0.4)
+    assert section.lengths.sum() == pytest.approx(PATCH * baseline.m, rel=1e-3)
+
+
+@pytest.mark.slow
+def test_gear_2s_influence_is_symmetric(coarse2):
+    assert coarse2.gear == 2
+    assert coarse2.maxwell < 1e-9
+    assert coarse2.mirror < 0.01                  # 0.5 % at coarse, as gear 1's
+    assert np.allclose(coarse2.uniform, coarse2.G.mean(axis=1), rtol=1e-8, atol=0)
+
+
+@pytest.mark.slow
+def test_gear_2s_influence_is_positive_and_decays_away_from_the_load(coarse2):
+    G, mid = coarse2.G, len(coarse2.z) // 2
+    n = len(G)
+    apart = np.abs(np.subtract.outer(np.arange(n), np.arange(n)))
+    assert np.all(G[apart < n - 1] > 0)
+    row = coarse2.mid_row
+    assert np.all(np.diff(row[:mid + 1]) > 0) and np.all(np.diff(row[mid:]) < 0)
+    assert row[mid + 1] < 0.5 * row[mid] and row[-1] < 0.2 * row[mid]
+    # a load at one end falls all the way to the far end, which it lifts a little out of
+    # the tooth (the tooth twists; coarse: −0.17 % of the loaded patch's, gear 1's +0.16 %)
+    end = G[:, 0]
+    assert np.all(np.diff(end) < 0) and abs(end[-1]) < 0.01 * end[0]
+    assert np.argmax(G, axis=0).tolist() == list(range(n))
+
+
+@pytest.mark.slow
+def test_gear_2s_face_lies_between_plane_strain_and_plane_stress(coarse2):
+    compliance = coarse2.uniform.mean()
+    assert coarse2.plane_strain < compliance < coarse2.plane_stress
+    assert coarse2.plane_stress / coarse2.plane_strain == pytest.approx(1.08, abs=0.02)
+    u = coarse2.uniform                           # the free ends softer, as gear 1's
+    assert u[0] > 1.02 * u[len(u) // 2] and u[-1] > 1.02 * u[len(u) // 2]
