@@ -234,8 +234,8 @@ def twist_of(width: float, tooth_height: float) -> float:
 
 def check_text(solid: FaceInfluence, band: BandCompliance, kernels: dict) -> str:
     """The mid-face and end columns of each of ``kernels`` (name → (kernel, mirror,
-    correction, twist))
-    against ``solid``'s, row by row per the uniform load's response, with the differences."""
+    correction, twist)) against ``solid``'s, row by row per the uniform load's response, with
+    the differences."""
     width, patches = solid.z[0] + solid.z[-1], len(solid.z)
     lines = [f"{solid.size} 3D, face {width:g} mm, {patches} patches, tooth height "
              f"{band.tooth_height:.3f} mm; 2D near field {band.near:.5f}, finite-element "
