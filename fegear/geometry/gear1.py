@@ -20,7 +20,7 @@ found again.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property, lru_cache
 
 import numpy as np
@@ -73,19 +73,28 @@ class Gear1Profile:
     """
 
     def __init__(self, params: PairParameters) -> None:
+        self.params = params
+        self._tables: dict = {}
+        if params.relief > 0:
+            # the conjugate profile does not depend on the relief: the unrelieved pair's,
+            # kept (:func:`gear1_profile`), serves every relief tried on it (a refusal's
+            # search for the deepest, the relief sizing's trials)
+            plain = gear1_profile(replace(params, relief=0.0, relief_extent=None,
+                                          relief_start=None, relief_shape="parabolic"))
+            self.branches, self.pitch, self.phi_space = (plain.branches, plain.pitch,
+                                                         plain.phi_space)
+            self.runs, self.pieces = plain.runs, plain.pieces
+            self._relieve()
+            return
         if not all(gear2_curve(params, tool).star_shaped() for tool in (False, True)):
             raise GeometryError("the gear-2 curve folds back (it is not star-shaped about "
                                 "its centre): check the pair with refusal.check_design")
-        self.params = params
-        self._tables: dict = {}
         self.branches = generating_branches(params)
         self.pitch = 2 * np.pi / params.z1
         near = self.branches[0].evaluate(np.array([0.0]))
         self.phi_space = float(np.arctan2(near.q[0, 1], near.q[0, 0]))
         self.runs = tuple(r for i, b in enumerate(self.branches) for r in split_runs(b, i))
         self.pieces = self._lower_envelope()
-        if params.relief > 0:
-            self._relieve()
 
     def _relieve(self) -> None:
         """Cut the working flanks back by the tip relief (:mod:`.relief`): the zones are placed
