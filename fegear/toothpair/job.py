@@ -313,7 +313,8 @@ def solve_job(job: Job, executor: Executor = SERIAL,
     if job.estimate and len(job.betas) > 1:   # while the peaks' submodels are solved here
         second = executor.submit(estimate.second_headline, _pictured(sols).case)
     if meanwhile is not None:
-        meanwhile(_pictured(sols), pair_summary(_pictured(sols), allowables=job.allowables))
+        early = _pictured(sols)
+        meanwhile(early, pair_summary(early, allowables=job.allowables))
     sols = solver.at_peaks(sols)
     cycle_s = watch.s
     sol = _pictured(sols)

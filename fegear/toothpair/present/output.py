@@ -116,10 +116,9 @@ def run_job(job: Job, out: Path | None, fields: bool = True, pictures: bool = Tr
 
     def meanwhile(sol: PairSolution, summary: dict) -> None:
         # the charts read no field and no submodel: handed out while the submodels are solved
-        if out is not None and pictures:
-            charts.append(_drawn(executor.ready(), chart_pngs, light(sol), summary))
+        charts.append(_drawn(executor.ready(), chart_pngs, light(sol), summary))
 
-    solved = solve_job(job, executor, meanwhile)
+    solved = solve_job(job, executor, meanwhile if out is not None and pictures else None)
     files = {} if out is None else write_job(solved, out, fields, pictures, executor,
                                              charts[0] if charts else None)
     if report is not None and out is not None:

@@ -67,14 +67,9 @@ class FaceSections:
                 "contact_pressure_MPa": 0.0, "flank_contact_pressure_MPa": 0.0,
                 "von_mises_max_MPa": section.von_mises_max}
 
-    def worst(self, key: str) -> int:
-        """The section where the headline ``key`` (a :meth:`PairSolution.headline` key) is
-        largest."""
-        return self.worst_headlines()[key][0]
-
     def worst_headlines(self) -> dict[str, tuple[int, float]]:
-        """Each headline's worst section and its value there, by key (:meth:`worst`), every
-        section's headlines read once."""
+        """Each headline's worst section (where it is largest) and its value there, by
+        :meth:`PairSolution.headline` key, every section's headlines read once."""
         heads = [self.headline(s) for s in range(len(self.sections))]
         out = {}
         for key in HEADLINE:

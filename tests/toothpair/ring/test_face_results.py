@@ -51,7 +51,7 @@ def test_a_misaligned_face_is_worst_at_the_end_it_closes(kept):
     alone = solver.on_kept(case, state, brief=True).headline()
     tilted = _sections(kept, Face(5, misalignment=8.0))
     key = "root_stress_gear1_MPa"
-    worst = tilted.worst(key)
+    worst = tilted.worst_headlines()[key][0]
     assert worst == 4
     assert tilted.sections[worst].headline()[key] > 1.05 * alone[key]
     assert tilted.sections[0].headline()[key] < alone[key]
