@@ -6,7 +6,8 @@ load level's tooth stresses for a life."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from ..running import SERIAL, Executor
@@ -14,7 +15,7 @@ from .case import PairSolution, SolveCase, phase_major
 from .face import Face
 from .positions import drive_along
 from .ring.face import FaceCoupling, measured_coupling
-from .ring.face_results import FaceSections, face_sections
+from .ring.face_results import face_sections
 from .ring.model import ring_model
 from .ring.solver import RingSolver, SolverModes
 
@@ -29,24 +30,32 @@ def coupling_of(case: SolveCase, face: Face) -> FaceCoupling:
     return measured_coupling(ring_model(case), face.sections, case.thickness)
 
 
-def drive_across(job: Job, take: Callable[[PairSolution, FaceSections], object],
-                 coupling: FaceCoupling, executor: Executor = SERIAL, model=None
+def drive_across(job: Job, take: Callable, coupling: FaceCoupling,
+                 executor: Executor = SERIAL, model=None,
+                 lighter: Sequence[float] | None = None
                  ) -> tuple[RingSolver, tuple[PairSolution, ...], list]:
     """``job``'s case at its rolling angles (a revolution's, phase by phase, where it asks for
     one), each position solved across its face, its sections coupled by ``coupling``
     (:func:`coupling_of`: formed once by the caller, whatever the torque), on the contact the
     solver kept there: (the solver, the 2D solutions and what ``take(solution, sections)``
     gave at each position, both in the order of the job's angles). ``model``: the ring model
-    to solve on (one built for the case where None)."""
+    to solve on (one built for the case where None). ``lighter``: torques (N·m) below the
+    job's, each solved across the face too on the contact kept at the job's torque (a lighter
+    load's contact lies within a heavier one's at the same place, on grids at most twice as
+    coarse as its own down to a quarter of it: :func:`~.positions.families`); with them (an
+    empty sequence too) ``take`` gets the sections of every torque, the job's first, as a
+    tuple."""
     case, face, betas = job.case, job.face, job.betas
     solver = RingSolver(model, SolverModes(keep_phases=True))
     order = phase_major(len(betas), case.params.z1) if job.revolution else range(len(betas))
 
     def across(at: SolveCase, state, sol: PairSolution):
-        sections = face_sections(solver.model, solver.phases, at, state, face, coupling)
-        if sections is None:
+        sections = tuple(face_sections(solver.model, solver.phases, replace(at, torque=torque),
+                                       state, face, coupling)
+                         for torque in (at.torque, *(lighter or ())))
+        if any(s is None for s in sections):
             raise RuntimeError("no contact kept at a position solved across the face")
-        return take(sol, sections)
+        return take(sol, sections if lighter is not None else sections[0])
 
     solved = drive_along(case, [betas[k] for k in order], solver, across, executor)
     ordered = [got for _, got in sorted(zip(order, solved), key=lambda pair: pair[0])]

@@ -43,19 +43,26 @@ def solve_levels(case: SolveCase, betas, rating: Rating, solve, executor: Execut
 
 def across_face(job, model) -> Callable:
     """The job's way of solving its positions at several torques across its face
-    (:func:`solve_levels`' ``solve``), on ``model``: at each torque a drive across the face of
-    its own (:func:`~...face_drive.drive_across`; each level's contacts kept at its own
-    torque), each position's tooth stresses at their worst sections (:func:`tooth_stresses`
-    over its sections' pairs)."""
+    (:func:`solve_levels`' ``solve``), on ``model``: the torques by families, as in the plane
+    (:func:`~...positions.families`), a drive across the face a family
+    (:func:`~...face_drive.drive_across`): its heaviest placed and kept at each position, the
+    lighter ones solved across the face on that contact; each position's tooth stresses at
+    their worst sections (:func:`tooth_stresses` over its sections' pairs)."""
     from ...face_drive import coupling_of, drive_across  # lazy: heavy: scikit-fem
+    from ...positions import families  # lazy: heavy: scipy
     every_tooth = same_teeth(job)
     coupling = coupling_of(job.case, job.face)   # the same at every torque
 
     def level(case: SolveCase, betas, torques, executor: Executor) -> list[list[dict]]:
-        return [drive_across(replace(job, case=replace(case, torque=torque), betas=betas),
-                             lambda sol, sections: tooth_stresses(sections.sections,
-                                                                  every_tooth),
-                             coupling, executor, model)[2] for torque in torques]
+        out: list = [None] * len(torques)
+        for family in families(torques):
+            head = replace(job, case=replace(case, torque=torques[family[0]]), betas=betas)
+            taken = drive_across(head, lambda sol, by_torque: [
+                tooth_stresses(sections.sections, every_tooth) for sections in by_torque],
+                coupling, executor, model, lighter=[torques[k] for k in family[1:]])[2]
+            for j, k in enumerate(family):
+                out[k] = [tables[j] for tables in taken]
+        return out
 
     return level
 
