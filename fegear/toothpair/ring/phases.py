@@ -38,16 +38,14 @@ from ...errors import ContactError
 from ...geometry import Placed, gear2_tooth, pitch_phase
 from ..case import PairSolution, SolveCase
 from ..positions import Trial
-from ..teeth import candidate_data, choose_teeth
+from ..teeth import choose_teeth
 from .circles import FootCircles, foot_circles
-from .contact import Iterations, RingContactSolution, rigid_gap, solve_with, touch_rotation
+from .contact import Iterations, RingContactSolution, rigid_gap, solve_with
 from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel
 from .placement import PLACEMENT, REACH, REACH_FLOOR, GridPlacement, place_grids
 from .readout import SurfaceStrains
-from .results import RingDetail, tooth_result
-from .stresses import RingStresses, RootZone
-from .turning import turned
+from .turning import renumbered, turned
 
 #: rigid gaps (mm) that differ by less than this anywhere are the same contact problem: 0.1 nm,
 #: a ten-thousandth of the smallest deviation given in whole µm, far above the turned
@@ -103,13 +101,20 @@ class Phases:
     """The contacts kept by phase (:class:`Kept`), for one model; ``reach_um``: the most that
     any deviations solved on them can move a tooth (µm; the pairs drawn of a tolerance class),
     which every kept grid reaches beyond the exact pair's whatever the deviations of the
-    position it is kept at."""
+    position it is kept at.
+
+    The contacts are kept at one torque, the first one kept at (``torque``); lighter torques
+    are solved on them too (a load spectrum's levels over a revolution: a lighter load's
+    contact lies within a heavier one's), each with the solutions it repeats from pitch to
+    pitch its own (by phase and torque), and none of them keeps a contact (:meth:`keep`
+    refuses it: the heavier torque's solutions stay those of the pair alone)."""
 
     def __init__(self, reach_um: float = 0.0) -> None:
         self.reach_um = reach_um
+        self.torque: float | None = None
         self._kept: dict[int, Kept] = {}
-        self._solved: dict[int, SolvedPitch] = {}
-        self._seen: dict[int, dict[tuple, SolvedPitch]] = {}   # phase → what it saw → solution
+        self._solved: dict[tuple[int, float], SolvedPitch] = {}   # (phase, torque) → …
+        self._seen: dict[tuple[int, float], dict[tuple, SolvedPitch]] = {}   # … what it saw
         self._circles: dict[int, FootCircles] = {}   # phase → its kept contact's feet …
         self._strains: dict[int, SurfaceStrains] = {}   # … and surface strains
 
@@ -130,8 +135,15 @@ class Phases:
         """Let go of what is kept for the phase of ``beta`` (a position whose deviation sets
         are all solved: its contact is a large matrix)."""
         phase = pitch_phase(beta, z2)[0]
-        for kept in (self._kept, self._solved, self._seen, self._circles, self._strains):
+        for kept in (self._kept, self._circles, self._strains):
             kept.pop(phase, None)
+        self._drop_solved(phase)
+
+    def _drop_solved(self, phase: int) -> None:
+        """Let go of the solutions of ``phase`` at every torque."""
+        for solved in (self._solved, self._seen):
+            for key in [k for k in solved if k[0] == phase]:
+                del solved[key]
 
     def repeat(self, model: RingModel, case: SolveCase, state) -> PairSolution | None:
         """The solution at ``case.beta`` (clearance ``state``) as one solved before in its
@@ -147,25 +159,26 @@ class Phases:
         solution. Those teeth's results are formed again, and the first touch."""
         p = case.params
         phase, pitch = pitch_phase(case.beta, p.z2)
-        last, kept = self._solved.get(phase), self._kept.get(phase)
+        key = (phase, case.torque)
+        last, kept = self._solved.get(key), self._kept.get(phase)
         if last is None or kept is None:
             return None
         placed = Placed(case.deviations, p, case.beta) if case.deviations else None
         seen = kept.seen(case.deviations, pitch - kept.pitch, (p.z1, p.z2))
-        solved = self._seen.get(phase, {})
+        solved = self._seen.get(key, {})
         same = solved.get(seen)
         if same is not None:
             sol = same.solution
             contact = turned(model, sol.detail.contact, pitch - same.pitch, case.beta, placed)
             if not _teeth_hold(case, state, kept, pitch - kept.pitch, contact, sol.rotation):
                 return None
-            return _renumbered(sol, pitch - same.pitch, case, state, contact)
+            return renumbered(sol, pitch - same.pitch, case, state, contact)
         exact = None if seen is None else solved.get(tuple((None,) * len(t) for t in seen))
         for base in (exact, last) if exact is not last else (last,):
             out = None if base is None else _moved_only(model, case, state, kept, base, placed)
             if out is not None:
                 if seen is not None:
-                    self._seen.setdefault(phase, {})[seen] = out
+                    self._seen.setdefault(key, {})[seen] = out
                 return out.solution
         return None
 
@@ -180,7 +193,7 @@ class Phases:
             return near
         at = near.case.beta + pitches * 2 * math.pi / near.case.params.z2
         contact = turned(model, near.detail.contact, pitches, at, None)
-        return _renumbered(near, pitches, replace(near.case, beta=at), None, contact)
+        return renumbered(near, pitches, replace(near.case, beta=at), None, contact)
 
     def solved(self, sol: PairSolution, gaps: np.ndarray) -> None:
         """Keep ``sol``, solved, for the pitches of its phase with its rigid ``gaps`` (mm) at its
@@ -189,15 +202,16 @@ class Phases:
         repeated."""
         detail, case = sol.detail, sol.case
         phase, pitch = pitch_phase(case.beta, case.params.z2)
+        key = (phase, case.torque)
         contact = detail.contact
         kept = self._kept.get(phase)
         if kept is None or contact.formed is not kept.contact.formed:
-            self._solved.pop(phase, None)
+            self._solved.pop(key, None)
             return
-        self._solved[phase] = SolvedPitch(pitch, gaps, sol)
+        self._solved[key] = SolvedPitch(pitch, gaps, sol)
         seen = kept.seen(case.deviations, pitch - kept.pitch, (case.params.z1, case.params.z2))
         if seen is not None:
-            self._seen.setdefault(phase, {})[seen] = self._solved[phase]
+            self._seen.setdefault(key, {})[seen] = self._solved[key]
 
     def strains(self, model: RingModel, beta: float) -> SurfaceStrains:
         """The surface strains (:class:`~.readout.SurfaceStrains`) of the contact kept for
@@ -250,7 +264,10 @@ class Phases:
         could need (so that a pitch whose deviations sit on other teeth finds its grids),
         every column formed; ``widen``: grids on the teeth of the contact kept there before
         too (a deviation set that needed others: :meth:`~.solver.RingSolver.widen`). None
-        (nothing kept) where it does not hold the position's own contact."""
+        (nothing kept) where it does not hold the position's own contact, or the case's torque
+        is not the one the contacts are kept at (:class:`Phases`)."""
+        if self.torque is not None and case.torque != self.torque:
+            return None
         p = case.params
         phase, pitch = pitch_phase(case.beta, case.params.z2)
         first_um = state.closest(+1).plus_um
@@ -280,7 +297,8 @@ class Phases:
             return None
         self._kept[phase] = replace(kept, rotation=sol.rotation, active=sol.pressure > 0,
                                     elastic_um=p.arc_um(sol.rotation) - first_um)
-        self._seen.pop(phase, None)   # what was solved on the contact it replaces
+        self.torque = case.torque
+        self._drop_solved(phase)   # what was solved on the contact it replaces
         self._circles.pop(phase, None)
         self._strains.pop(phase, None)
         return contact, sol
@@ -308,7 +326,7 @@ def _moved_only(model: RingModel, case: SolveCase, state, kept: Kept, base: Solv
     rigid = rigid_gap(model, contact, turn, contact.feet.copy())
     moved = np.abs(rigid[0] - base.gaps) > SAME_GAP
     if not moved.any():
-        return SolvedPitch(pitch, rigid[0], _renumbered(sol, pitches, case, state, contact))
+        return SolvedPitch(pitch, rigid[0], renumbered(sol, pitches, case, state, contact))
     pressure = sol.detail.solution.pressure
     loaded = np.array([pressure[contact.block(k)].max() > 0
                        for k in range(len(contact.grids))])[contact.grid_index]
@@ -316,7 +334,7 @@ def _moved_only(model: RingModel, case: SolveCase, state, kept: Kept, base: Solv
     if (moved & loaded).any() or (opened[moved] <= 0).any():
         return None
     again = sorted({int(k) for k in contact.grid_index[moved]})
-    return SolvedPitch(pitch, rigid[0], _renumbered(sol, pitches, case, state, contact,
+    return SolvedPitch(pitch, rigid[0], renumbered(sol, pitches, case, state, contact,
                                                     (rigid, again)))
 
 
@@ -334,51 +352,6 @@ def _holds(case: SolveCase, state, kept: Kept, pitches: int, contact: RingContac
         if pressure[[0, -1]].max() > 0 or (g.probe and pressure.max() > 0):
             return False
     return True
-
-
-def _renumbered(sol: PairSolution, pitches: int, case: SolveCase, state,
-                contact: RingContact, again: tuple | None = None) -> PairSolution:
-    """``sol`` at ``case`` ``pitches`` gear-2 pitches later, on its ``contact`` turned there:
-    the teeth and sectors renumbered, each tooth's clearance from ``state`` (None: kept).
-    ``again``: the rigid gaps and their rates at the solved rotation, and the grids whose
-    unloaded teeth's results are formed again there with the first touch (their rigid gaps
-    moved)."""
-    p = case.params
-    clearance = None if state is None else {c.tooth: c.plus_um for c in state.teeth}
-    teeth = tuple(replace(t, tooth=(t.tooth - pitches) % p.z1,
-                          tooth2=None if t.tooth2 is None else (t.tooth2 - pitches) % p.z2,
-                          clearance_um=t.clearance_um if clearance is None
-                          else clearance.get((t.tooth - pitches) % p.z1))
-                  for t in sol.teeth)
-    d = sol.detail
-    stresses = None if d.stresses is None else _turned_stresses(d.model, d.stresses, pitches)
-    detail = RingDetail(d.model, case, contact, d.solution, stresses)
-    out = replace(sol, case=case, teeth=teeth, timings_s={}, detail=detail)
-    if again is None:
-        return out
-    rigid, grids = again
-    redone = list(teeth)
-    shown = tuple(contact.grids[k].tooth for k in grids)
-    cands = {c.tooth: c for c in candidate_data(p, d.model.shape, state, shown, case.beta)}
-    for k in grids:
-        tooth = contact.grids[k].tooth
-        i = next(j for j, t in enumerate(teeth) if t.tooth == tooth)
-        redone[i] = tooth_result(detail, k, rigid, cands.get(tooth), clearance.get(tooth))
-    touch = touch_rotation(d.model, contact, sol.first_touch)
-    return replace(out, teeth=tuple(redone), first_touch=touch)
-
-
-def _turned_stresses(model: RingModel, stresses: RingStresses, pitches: int) -> RingStresses:
-    """``stresses`` renumbered ``pitches`` sectors back on each gear (the fields' arrays are
-    shared)."""
-    fields, roots, subs = [], [], []
-    for g, side in enumerate(model.gears):
-        fields.append({(k - pitches) % side.count: u for k, u in stresses.fields[g].items()})
-        root = stresses.roots[g]
-        roots.append(RootZone(root.angle - pitches * side.pitch, root.s1))
-    subs = tuple((g, turn - pitches * model.gears[g].pitch, sm)
-                 for g, turn, sm in stresses.submodels)
-    return replace(stresses, fields=tuple(fields), roots=tuple(roots), submodels=subs)
 
 
 def _teeth_hold(case: SolveCase, state, kept: Kept, pitches: int, contact: RingContact,

@@ -300,3 +300,13 @@ class RingDetail:
         x = rotate(self.contact.x[i:i + 1], angle)[0] + offset
         return ContactZone((float(x[0]), float(x[1])), local_half_width(self.contact, pressure, i),
                            f"tooth {self.contact.grids[k].tooth}")
+
+
+def equilibrium_residuals(model: RingModel, contact: RingContact, sol, stresses
+                          ) -> list[float]:
+    """Each gear's equilibrium residual on its computed sectors (relative to its loads)."""
+    out = []
+    for side, loads, fields in zip(model.gears, contact.loads, stresses.fields):
+        f = {t: b.vector(sol.pressure, side.body.ndofs) for t, b in loads.items()}
+        out.append(side.body.residual(f, fields))
+    return out

@@ -46,7 +46,7 @@ from .placement import (
     place_grids,
 )
 from .readout import brief_stresses
-from .results import RingDetail, solved_rigid_gap, tooth_results
+from .results import RingDetail, equilibrium_residuals, solved_rigid_gap, tooth_results
 from .stresses import ring_stresses
 from .tangent import tangent_stiffness
 
@@ -95,8 +95,8 @@ class SolverModes:
     revolution) or one position solved for many deviation sets (a class's samples:
     :meth:`RingSolver.on_kept`): a contact solve each instead of a placement. The kept grids
     reach as far beyond the exact pair's as the deviations there, or the sets to be solved on
-    them (:meth:`RingSolver.reach`), need; the kept solutions are at one torque, so no lighter
-    torque is solved on a position's contact (:meth:`RingSolver.again`)."""
+    them (:meth:`RingSolver.reach`), need; a lighter torque is solved on the contacts kept at
+    the heaviest, with its own solutions repeated over the pitches (:meth:`RingSolver.again`)."""
 
     submodels: str = "peaks"
     contact_only: bool = False
@@ -154,14 +154,9 @@ class RingSolver:
         first_um = state.closest(+1).plus_um
         if self.phases is not None and near is not None:
             near = self.phases.beside(self.model, near, case.beta)
-        if self.phases is not None and trial.own is None:
-            with timed("contact"):
-                same = self.phases.repeat(self.model, case, state)
-                kept = None if same is not None else self.phases.solve(self.model, case, state)
-            if same is not None:
-                return Attempt(same, None)
-            if kept is not None:
-                return Attempt(RingAttempt(*kept, kept[0].grids, first_um), None)
+        if self.phases is not None and trial.own is None and (
+                on := self._on_phase(case, state)) is not None:
+            return on
         # without a solution before, the expected rotation is an estimate (20-50 % off): a
         # first solve on probe grids only finds the rotation to place the fine grids at
         predict = near is None and trial.own is None
@@ -182,7 +177,7 @@ class RingSolver:
             with timed("assemble"):
                 kept = self.phases.keep(self.model, case, state, trial, solved.solution)
             if kept is not None:   # the position solved on its phase's contact
-                return Attempt(RingAttempt(*kept, kept[0].grids, first_um), None)
+                return _kept(kept, state)
         return judged
 
     def on_kept(self, case: SolveCase, state, brief: bool = False) -> PairSolution | None:
@@ -195,21 +190,20 @@ class RingSolver:
         row does not read. None where no contact is kept there or its grids do not hold this
         one's."""
         kept = self.phases.solve(self.model, case, state)
-        if kept is None:
-            return None
-        settled = Attempt(RingAttempt(*kept, kept[0].grids, state.closest(+1).plus_um), None)
-        return self._finished(case, state, settled, brief)[0]
+        return None if kept is None else self._finished(case, state, _kept(kept, state),
+                                                        brief)[0]
 
     def again(self, case: SolveCase, state, attempt: Attempt) -> PairSolution | None:
         """``case``, the position ``attempt`` settled at (clearance ``state``) under a lighter
         torque, solved on that attempt's contact, stresses and all
         (:func:`~fegear.toothpair.positions.drive_torques`): its grids and influence matrix
-        serve, the rigid gaps are those of this torque's rotation. None where that contact
+        serve, the rigid gaps are those of this torque's rotation; with kept phases, on the
+        contact kept for the position's phase (:meth:`_on_phase`). None where that contact
         does not hold it (the driver's rule pairs a tooth the attempt did not, a grid carries
-        pressure at an end, a probe any) or its points cannot carry the torque. Not with kept
-        phases (:class:`~.phases.Phases`: their solutions are at one torque)."""
+        pressure at an end, a probe any) or its points cannot carry the torque."""
         if self.phases is not None:
-            raise ValueError("a ring solver that keeps phases solves one torque")
+            on = self._on_phase(case, state)
+            return None if on is None else self.finish(case, state, on)
         solved = attempt.solved
         try:
             with timed("contact"):
@@ -225,6 +219,16 @@ class RingSolver:
         if paired - set(solved.teeth) or ends or touched:
             return None
         return self._finished(case, state, Attempt(again, None))[0]
+
+    def _on_phase(self, case: SolveCase, state) -> Attempt | None:
+        """``case`` settled on what the phases keep: a solution at a pitch before, renumbered,
+        or a solve on the contact kept for its phase; None where neither holds it."""
+        with timed("contact"):
+            same = self.phases.repeat(self.model, case, state)
+            if same is not None:
+                return Attempt(same, None)
+            kept = self.phases.solve(self.model, case, state)
+        return None if kept is None else _kept(kept, state)
 
     def reach(self, reach_um: float) -> None:
         """Keep the contacts from now on with grids reaching ``reach_um`` beyond the exact
@@ -331,7 +335,7 @@ class RingSolver:
             teeth = tooth_results(detail, state, cands, rigid,
                                   references=not (brief or roots_only))
         residuals = () if stresses is None or brief or roots_only else tuple(
-            _residuals(model, contact, sol, stresses))
+            equilibrium_residuals(model, contact, sol, stresses))
         return PairSolution(
             case=case, teeth=teeth,
             root_stress=((math.nan, math.nan) if stresses is None else
@@ -352,6 +356,11 @@ class RingSolver:
         if self.model is not None:
             keep_cached(self.model)
         return out
+
+
+def _kept(kept: tuple, state) -> Attempt:
+    """The attempt settled on a kept contact: ``kept``, its contact and solution."""
+    return Attempt(RingAttempt(*kept, kept[0].grids, state.closest(+1).plus_um), None)
 
 
 def _judged(case: SolveCase, state, trial: Trial, placement: GridPlacement, solved: RingAttempt,
@@ -388,13 +397,4 @@ def _outside(case: SolveCase, state, solved: RingAttempt) -> tuple[set, list, se
     touched = {g.tooth for k, g in enumerate(grids)
                if g.probe and sol.pressure[contact.block(k)].max() > 0}
     return paired, ends, touched
-
-
-def _residuals(model: RingModel, contact: RingContact, sol, stresses) -> list[float]:
-    """Each gear's equilibrium residual on its computed sectors (relative to its loads)."""
-    out = []
-    for side, loads, fields in zip(model.gears, contact.loads, stresses.fields):
-        f = {t: b.vector(sol.pressure, side.body.ndofs) for t, b in loads.items()}
-        out.append(side.body.residual(f, fields))
-    return out
 

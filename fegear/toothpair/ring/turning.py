@@ -1,7 +1,7 @@
-"""A contact turned by whole pitches (:mod:`.phases`): both gears are rings of identical
-sectors, so the pair at β + k·p2 is the pair at β with every tooth and sector renumbered and
-the gear-frame points turned; the template-frame numbers (A, the loads, the matching points'
-places in their sectors) stay."""
+"""A contact, and a solution on it, turned by whole pitches (:mod:`.phases`): both gears are
+rings of identical sectors, so the pair at β + k·p2 is the pair at β with every tooth and
+sector renumbered and the gear-frame points turned; the template-frame numbers (A, the loads,
+the matching points' places in their sectors, the fields) stay."""
 
 from __future__ import annotations
 
@@ -11,10 +11,15 @@ import numpy as np
 
 from ...geometry import Placed
 from ...planar import rotate
+from ..case import PairSolution, SolveCase
+from ..teeth import candidate_data
+from .contact import touch_rotation
 from .grid import ToothGrid
 from .influence import Matching, RingContact
 from .model import RingModel
+from .results import RingDetail, tooth_result
 from .side import Located
+from .stresses import RingStresses, RootZone
 
 
 def turned(model: RingModel, contact: RingContact, pitches: int, beta: float,
@@ -51,3 +56,48 @@ def _turned_matching(m: Matching, pitches: int, count: int, turn: float) -> Matc
     """Matching points of sectors ``pitches`` before their own: the same template points."""
     at = Located(np.mod(m.at.sector - pitches, count), m.at.local, m.at.turn - turn)
     return replace(m, at=at)
+
+
+def renumbered(sol: PairSolution, pitches: int, case: SolveCase, state,
+                contact: RingContact, again: tuple | None = None) -> PairSolution:
+    """``sol`` at ``case`` ``pitches`` gear-2 pitches later, on its ``contact`` turned there:
+    the teeth and sectors renumbered, each tooth's clearance from ``state`` (None: kept).
+    ``again``: the rigid gaps and their rates at the solved rotation, and the grids whose
+    unloaded teeth's results are formed again there with the first touch (their rigid gaps
+    moved)."""
+    p = case.params
+    clearance = None if state is None else {c.tooth: c.plus_um for c in state.teeth}
+    teeth = tuple(replace(t, tooth=(t.tooth - pitches) % p.z1,
+                          tooth2=None if t.tooth2 is None else (t.tooth2 - pitches) % p.z2,
+                          clearance_um=t.clearance_um if clearance is None
+                          else clearance.get((t.tooth - pitches) % p.z1))
+                  for t in sol.teeth)
+    d = sol.detail
+    stresses = None if d.stresses is None else turned_stresses(d.model, d.stresses, pitches)
+    detail = RingDetail(d.model, case, contact, d.solution, stresses)
+    out = replace(sol, case=case, teeth=teeth, timings_s={}, detail=detail)
+    if again is None:
+        return out
+    rigid, grids = again
+    redone = list(teeth)
+    shown = tuple(contact.grids[k].tooth for k in grids)
+    cands = {c.tooth: c for c in candidate_data(p, d.model.shape, state, shown, case.beta)}
+    for k in grids:
+        tooth = contact.grids[k].tooth
+        i = next(j for j, t in enumerate(teeth) if t.tooth == tooth)
+        redone[i] = tooth_result(detail, k, rigid, cands.get(tooth), clearance.get(tooth))
+    touch = touch_rotation(d.model, contact, sol.first_touch)
+    return replace(out, teeth=tuple(redone), first_touch=touch)
+
+
+def turned_stresses(model: RingModel, stresses: RingStresses, pitches: int) -> RingStresses:
+    """``stresses`` renumbered ``pitches`` sectors back on each gear (the fields' arrays are
+    shared)."""
+    fields, roots, subs = [], [], []
+    for g, side in enumerate(model.gears):
+        fields.append({(k - pitches) % side.count: u for k, u in stresses.fields[g].items()})
+        root = stresses.roots[g]
+        roots.append(RootZone(root.angle - pitches * side.pitch, root.s1))
+    subs = tuple((g, turn - pitches * model.gears[g].pitch, sm)
+                 for g, turn, sm in stresses.submodels)
+    return replace(stresses, fields=tuple(fields), roots=tuple(roots), submodels=subs)

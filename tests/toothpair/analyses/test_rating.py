@@ -238,6 +238,51 @@ def test_over_a_revolution_the_deviated_tooth_limits(tmp_path):
     assert f"{name} (tooth {worst['tooth']})" in rated["verdict"]
 
 
+def test_over_a_revolution_the_lighter_levels_are_solved_on_the_heaviest_ones_phases(
+        tmp_path, monkeypatch):
+    # over a revolution the heaviest level keeps each phase's contact; the lighter one is
+    # solved on those contacts (none kept at its torque), its own pitches repeated, and
+    # agrees with the level rated over the revolution alone within the grids' sampling
+    # (neither level at the job's own 200 N·m, which the rating reads from the job's solve)
+    from fegear.toothpair.ring import solver
+    from fegear.toothpair.ring.phases import Phases
+
+    keeps, placed = [], []
+    keep, place = Phases.keep, solver.place_grids
+
+    def counted(self, model, case, *args, **kwargs):
+        kept = keep(self, model, case, *args, **kwargs)
+        keeps.append((case.torque, kept is not None))
+        return kept
+
+    def placing(model, case, *args, **kwargs):
+        placed.append(case.torque)
+        return place(model, case, *args, **kwargs)
+
+    monkeypatch.setattr(Phases, "keep", counted)
+    monkeypatch.setattr(solver, "place_grids", placing)
+
+    def levels(spectrum: str) -> list[dict]:
+        folder = tmp_path / str(len(keeps))
+        folder.mkdir()
+        (folder / "duty.csv").write_text(spectrum)
+        return solve_job(prepare_job({**BASE, "revolution": True, "positions": 2,
+                                      "pitch-deviation": "1:11=5",
+                                      "spectrum": str(folder / "duty.csv")})
+                         ).summary["rating"]["levels"]
+
+    both = levels("torque,cycles\n150,5e6\n250,2e4\n")
+    assert {torque for torque, kept in keeps if kept} == {200.0, 250.0}   # the job's, the head's
+    assert 150.0 not in placed and 250.0 in placed
+    alone = levels("torque,cycles\n150,5e6\n")[0]
+    assert 150.0 in placed and (150.0, True) in keeps
+    light = next(level for level in both if level["solved_torque_Nm"] == 150.0)
+    for key in ("root1_MPa", "root2_MPa"):
+        assert light[key] == pytest.approx(alone[key], rel=2e-3), key
+    for key in ("flank1_MPa", "flank2_MPa"):
+        assert light[key] == pytest.approx(alone[key], rel=1e-2), key
+
+
 FACE_SPECTRUM = "torque,cycles\n120,5e6\n200,2e4\n"
 
 

@@ -10,6 +10,7 @@ from pathlib import Path
 
 from ....running import Executor
 from ....timing import Stopwatch
+from ...case import phase_major
 from ..base import Analysis, Run, Verdict, Writing
 from .report import life_html, rating_table, spectrum_html, write_rating_outputs
 from .solve import across_face, level_stresses, rated, same_teeth, solve_levels
@@ -22,7 +23,7 @@ class Rating(Analysis):
         return job.rating is not None
 
     def solve(self, run: Run) -> dict:
-        from ...positions import drive_torques, positions_of  # lazy: heavy: scipy
+        from ...positions import drive_torques  # lazy: heavy: scipy
         from ...ring.solver import RingSolver, SolverModes  # lazy: heavy: scikit-fem
 
         job, model = run.job, run.solver.model
@@ -32,13 +33,16 @@ class Rating(Analysis):
         roots = SolverModes(roots_only=True)
 
         def in_plane(case, betas, torques, executor: Executor):
-            # a revolution's kept phases hold solutions at one torque: there a solver of its
-            # own a level
+            # over a revolution, phase by phase: the lighter levels on the contacts the
+            # heaviest one keeps for the phases (each repeating its own pitches)
             if not job.revolution:
                 return drive_torques(case, betas, torques, RingSolver(model, roots), executor)
-            keeping = replace(roots, keep_phases=True)
-            return [positions_of(RingSolver(model, keeping), job.revolution)(
-                replace(case, torque=torque), betas, executor) for torque in torques]
+            order = phase_major(len(betas), case.params.z1)
+            solver = RingSolver(model, replace(roots, keep_phases=True))
+            by_torque = drive_torques(case, [betas[k] for k in order], torques, solver,
+                                      executor)
+            return [tuple(sol for _, sol in sorted(zip(order, sols), key=lambda pair: pair[0]))
+                    for sols in by_torque]
 
         # across the face, each level solved so too: its tooth stresses at their worst
         # sections (the job's own solutions are the 2D pair's)
