@@ -16,8 +16,8 @@ def class_draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | 
     """The tolerance class's pairs to solve (``--grade``), refused by name with deviations
     given (the class draws them); across the face (any of :data:`~.inputs.FACE_INPUTS`
     given) each pair's helix drawn too, at the face width, and its misalignment about the
-    one given within ``--misalignment-band`` (:func:`~.inputs.check_band`), over a cycle's
-    positions only (a revolution across the face is refused); None without a class. ``v``:
+    one given within ``--misalignment-band`` (:func:`~.inputs.check_band`); None without a
+    class. ``v``:
     every input by name at its value or default; ``given``: those given."""
     grade = v["grade"]
     if grade is None:
@@ -32,10 +32,6 @@ def class_draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | 
         raise ParameterError("grade", grade, "without deviations given (the class draws each "
                              "pair's deviations)")
     across = any(v[row.name] is not None for row in FACE_INPUTS)
-    if across and v["revolution"]:
-        raise ParameterError("revolution", True, "without --grade across the face (a class's "
-                             "pairs over a whole turn across the face are not built: a cycle's "
-                             "positions are, with --positions)")
     misalignment = v["misalignment"] or 0.0
     band = check_band(v["misalignment-band"], misalignment, across)
     return Draw(grade_of(grade, case.params, v["centre-distance-tolerance"],

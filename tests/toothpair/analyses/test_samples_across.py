@@ -77,6 +77,34 @@ def test_a_sample_reads_as_the_same_pair_solved_alone_across_the_face(graded, tm
         assert row["stresses_at"] == "worst section"
 
 
+@pytest.mark.slow
+def test_over_a_revolution_a_sample_reads_as_the_same_pair_turned_alone_across_the_face(
+        tmp_path):
+    # each pair of the class at every pitch of a turn across its own face, on the contacts
+    # kept for the phases: its worst section over the turn is the same pair's revolution
+    # across the face, solved alone from its deviations file and misalignment
+    job = prepare_job({**BASE, "grade": 5, "samples": 2, "positions": 2, "revolution": True,
+                       "misalignment": 4.0, "misalignment-band": 2.0, "face-sections": 5})
+    rows = [r for r in solve_job(job).summary["samples"]["rows"] if r["status"] == "solved"]
+    assert rows
+    for row in rows:
+        k = row["sample"]
+        deviations, drawn = job.draw.pair(k), job.draw.face(k)
+        face = replace(job.face, helix1=drawn.helix.gear1, helix2=drawn.helix.gear2)
+        path = tmp_path / f"sample{k}.csv"
+        _deviations_file(path, deviations, face)
+        alone = solve_job(prepare_job({
+            **BASE, "positions": 2, "revolution": True, "face-sections": 5,
+            "deviations": str(path),
+            "runout": [runout_text(1, deviations.runout1), runout_text(2, deviations.runout2)],
+            "centre-distance-deviation": deviations.centre_distance,
+            "misalignment": drawn.misalignment})).summary["face"]
+        for key in HEADLINE:
+            rel = 2e-3 if key.startswith("root") else 1e-2
+            assert row[key] == pytest.approx(alone["worst"][key]["value"], rel=rel), (k, key)
+        assert row["K_Hbeta"] == pytest.approx(alone["K_Hbeta"], rel=1e-2), k
+
+
 def test_the_summary_and_the_table_read_k_hbeta_and_the_class_across_the_face(graded):
     job, solved = graded
     s = solved.summary["samples"]
@@ -176,7 +204,6 @@ def test_a_sample_that_jams_across_the_face_is_counted_as_jammed():
     ({"grade": 5, "misalignment": 150.0, "misalignment-band": 60.0}, "misalignment-band"),
     ({"grade": 5, "helix-form-deviation": "1:3=2"}, "helix-form-deviation"),
     ({"grade": 5, "misalignment": 2.0, "deviations": "HELIX"}, "deviations"),
-    ({"grade": 5, "misalignment": 2.0, "revolution": True}, "revolution"),
 ])
 def test_bad_class_inputs_across_the_face_are_refused_by_name(values, name, tmp_path):
     helix = tmp_path / "helix.csv"
