@@ -16,9 +16,9 @@ def class_draw(v: dict, given: Mapping[str, object], case: SolveCase) -> Draw | 
     """The tolerance class's pairs to solve (``--grade``), refused by name with deviations
     given (the class draws them); across the face (any of :data:`~.inputs.FACE_INPUTS`
     given) each pair's helix drawn too, at the face width, and its misalignment about the
-    one given within ``--misalignment-band`` (:func:`~.inputs.check_band`); None without a
-    class. ``v``:
-    every input by name at its value or default; ``given``: those given."""
+    one given within ``--misalignment-band`` (:func:`~.inputs.check_band`), over a cycle's
+    positions or a whole turn; None without a class. ``v``: every input by name at its value
+    or default; ``given``: those given."""
     grade = v["grade"]
     if grade is None:
         for name in (name for name, switch in REQUIRES.items() if switch == "grade"):

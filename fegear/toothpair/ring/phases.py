@@ -335,7 +335,7 @@ def _moved_only(model: RingModel, case: SolveCase, state, kept: Kept, base: Solv
         return None
     again = sorted({int(k) for k in contact.grid_index[moved]})
     return SolvedPitch(pitch, rigid[0], renumbered(sol, pitches, case, state, contact,
-                                                    (rigid, again)))
+                                                   (rigid, again)))
 
 
 def _holds(case: SolveCase, state, kept: Kept, pitches: int, contact: RingContact,

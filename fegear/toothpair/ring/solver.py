@@ -397,4 +397,3 @@ def _outside(case: SolveCase, state, solved: RingAttempt) -> tuple[set, list, se
     touched = {g.tooth for k, g in enumerate(grids)
                if g.probe and sol.pressure[contact.block(k)].max() > 0}
     return paired, ends, touched
-

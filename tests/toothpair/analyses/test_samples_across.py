@@ -51,29 +51,35 @@ def _deviations_file(path, deviations, face) -> None:
     path.write_text("\n".join(lines) + "\n")
 
 
+def _reads_as_alone(job, row, folder, **inputs) -> None:
+    """Sample ``row`` of ``job``'s class reads as the same pair solved alone across the face
+    (its deviations file, runouts, centre distance and misalignment; ``inputs`` beside them):
+    the same kept contact's rule, other anchors (as in the plane: the roots to 2e-3, a peak
+    pressure moves with where the points fall)."""
+    k = row["sample"]
+    deviations, drawn = job.draw.pair(k), job.draw.face(k)
+    face = replace(job.face, helix1=drawn.helix.gear1, helix2=drawn.helix.gear2)
+    path = folder / f"sample{k}.csv"
+    _deviations_file(path, deviations, face)
+    alone = solve_job(prepare_job({
+        **BASE, **inputs, "face-sections": 5, "deviations": str(path),
+        "runout": [runout_text(1, deviations.runout1), runout_text(2, deviations.runout2)],
+        "centre-distance-deviation": deviations.centre_distance,
+        "misalignment": drawn.misalignment})).summary["face"]
+    for key in HEADLINE:
+        rel = 2e-3 if key.startswith("root") else 1e-2
+        assert row[key] == pytest.approx(alone["worst"][key]["value"], rel=rel), (k, key)
+    assert row["K_Hbeta"] == pytest.approx(alone["K_Hbeta"], rel=1e-2), k
+
+
 def test_a_sample_reads_as_the_same_pair_solved_alone_across_the_face(graded, tmp_path):
     job, solved = graded
     s = solved.summary["samples"]
     rows = [r for r in s["rows"] if r["status"] == "solved"]
     assert len(rows) >= 2 and job.draw.across
     for row in rows[:2]:
-        k = row["sample"]
-        deviations, drawn = job.draw.pair(k), job.draw.face(k)
-        assert row["misalignment_um"] == drawn.misalignment != 4.0
-        face = replace(job.face, helix1=drawn.helix.gear1, helix2=drawn.helix.gear2)
-        path = tmp_path / f"sample{k}.csv"
-        _deviations_file(path, deviations, face)
-        alone = solve_job(prepare_job({
-            **BASE, "positions": 2, "face-sections": 5, "deviations": str(path),
-            "runout": [runout_text(1, deviations.runout1), runout_text(2, deviations.runout2)],
-            "centre-distance-deviation": deviations.centre_distance,
-            "misalignment": drawn.misalignment})).summary["face"]
-        # the same kept contact's rule, other anchors (as in the plane: the roots to 2e-3, a
-        # peak pressure moves with where the points fall)
-        for key in HEADLINE:
-            rel = 2e-3 if key.startswith("root") else 1e-2
-            assert row[key] == pytest.approx(alone["worst"][key]["value"], rel=rel), (k, key)
-        assert row["K_Hbeta"] == pytest.approx(alone["K_Hbeta"], rel=1e-2), k
+        assert row["misalignment_um"] == job.draw.face(row["sample"]).misalignment != 4.0
+        _reads_as_alone(job, row, tmp_path, positions=2)
         assert row["stresses_at"] == "worst section"
 
 
@@ -82,27 +88,13 @@ def test_over_a_revolution_a_sample_reads_as_the_same_pair_turned_alone_across_t
         tmp_path):
     # each pair of the class at every pitch of a turn across its own face, on the contacts
     # kept for the phases: its worst section over the turn is the same pair's revolution
-    # across the face, solved alone from its deviations file and misalignment
+    # across the face, solved alone
     job = prepare_job({**BASE, "grade": 5, "samples": 2, "positions": 2, "revolution": True,
                        "misalignment": 4.0, "misalignment-band": 2.0, "face-sections": 5})
     rows = [r for r in solve_job(job).summary["samples"]["rows"] if r["status"] == "solved"]
     assert rows
     for row in rows:
-        k = row["sample"]
-        deviations, drawn = job.draw.pair(k), job.draw.face(k)
-        face = replace(job.face, helix1=drawn.helix.gear1, helix2=drawn.helix.gear2)
-        path = tmp_path / f"sample{k}.csv"
-        _deviations_file(path, deviations, face)
-        alone = solve_job(prepare_job({
-            **BASE, "positions": 2, "revolution": True, "face-sections": 5,
-            "deviations": str(path),
-            "runout": [runout_text(1, deviations.runout1), runout_text(2, deviations.runout2)],
-            "centre-distance-deviation": deviations.centre_distance,
-            "misalignment": drawn.misalignment})).summary["face"]
-        for key in HEADLINE:
-            rel = 2e-3 if key.startswith("root") else 1e-2
-            assert row[key] == pytest.approx(alone["worst"][key]["value"], rel=rel), (k, key)
-        assert row["K_Hbeta"] == pytest.approx(alone["K_Hbeta"], rel=1e-2), k
+        _reads_as_alone(job, row, tmp_path, positions=2, revolution=True)
 
 
 def test_the_summary_and_the_table_read_k_hbeta_and_the_class_across_the_face(graded):
