@@ -279,3 +279,12 @@ def phase_major(count: int, z1: int) -> list[int]:
     whichever teeth the deviations are on."""
     per_pitch = count // z1
     return sorted(range(count), key=lambda k: (k % per_pitch, k // per_pitch))
+
+
+def in_given_order(order, solved) -> tuple:
+    """``solved``, one result a position taken in ``order`` (:func:`phase_major`), back in
+    the positions' own order."""
+    back = [None] * len(order)
+    for k, got in zip(order, solved):
+        back[k] = got
+    return tuple(back)

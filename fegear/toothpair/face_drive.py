@@ -11,7 +11,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from ..running import SERIAL, Executor
-from .case import PairSolution, SolveCase, phase_major
+from .case import PairSolution, SolveCase, in_given_order, phase_major
 from .face import Face
 from .positions import drive_along
 from .ring.face import FaceCoupling, measured_coupling
@@ -32,19 +32,19 @@ def coupling_of(case: SolveCase, face: Face) -> FaceCoupling:
 
 def drive_across(job: Job, take: Callable, coupling: FaceCoupling,
                  executor: Executor = SERIAL, model=None,
-                 lighter: Sequence[float] | None = None
+                 lighter: Sequence[float] = ()
                  ) -> tuple[RingSolver, tuple[PairSolution, ...], list]:
     """``job``'s case at its rolling angles (a revolution's, phase by phase, where it asks for
     one), each position solved across its face, its sections coupled by ``coupling``
     (:func:`coupling_of`: formed once by the caller, whatever the torque), on the contact the
     solver kept there: (the solver, the 2D solutions and what ``take(solution, sections)``
     gave at each position, both in the order of the job's angles). ``model``: the ring model
-    to solve on (one built for the case where None). ``lighter``: torques (N·m) below the
-    job's, each solved across the face too on the contact kept at the job's torque (a lighter
-    load's contact lies within a heavier one's at the same place, on grids at most twice as
-    coarse as its own down to a quarter of it: :func:`~.positions.families`); with them (an
-    empty sequence too) ``take`` gets the sections of every torque, the job's first, as a
-    tuple."""
+    to solve on (one built for the case where None). ``take`` gets the sections of every
+    torque solved there, the job's first: the job's alone, or with ``lighter``'s, torques
+    (N·m) below the job's, each solved across the face too on the contact kept at the job's
+    torque (a lighter load's contact lies within a heavier one's at the same place, on grids
+    at most twice as coarse as its own down to a quarter of it:
+    :func:`~.positions.families`)."""
     case, face, betas = job.case, job.face, job.betas
     solver = RingSolver(model, SolverModes(keep_phases=True))
     order = phase_major(len(betas), case.params.z1) if job.revolution else range(len(betas))
@@ -52,11 +52,11 @@ def drive_across(job: Job, take: Callable, coupling: FaceCoupling,
     def across(at: SolveCase, state, sol: PairSolution):
         sections = tuple(face_sections(solver.model, solver.phases, replace(at, torque=torque),
                                        state, face, coupling)
-                         for torque in (at.torque, *(lighter or ())))
+                         for torque in (at.torque, *lighter))
         if any(s is None for s in sections):
             raise RuntimeError("no contact kept at a position solved across the face")
-        return take(sol, sections if lighter is not None else sections[0])
+        return take(sol, sections)
 
     solved = drive_along(case, [betas[k] for k in order], solver, across, executor)
-    ordered = [got for _, got in sorted(zip(order, solved), key=lambda pair: pair[0])]
+    ordered = in_given_order(order, solved)
     return solver, tuple(sol for sol, _ in ordered), [got for _, got in ordered]

@@ -46,7 +46,7 @@ from ..fe import blas_threads, keep_freed_memory
 from ..geometry import Gear1Profile, ToothContact, gear1_profile, moved_clearances, pitch_phase
 from ..running import SERIAL, Executor
 from ..timing import clocked, timed
-from .case import PairSolution, SolveCase, phase_major, revolution_positions
+from .case import PairSolution, SolveCase, in_given_order, phase_major, revolution_positions
 from .teeth import TOOTH_STIFFNESS, choose_teeth, refuse_closed, refuse_interference
 
 log = logging.getLogger(__name__)
@@ -219,7 +219,7 @@ def positions_of(solver: PositionModel, revolution: bool = False):
     def solve(case: SolveCase, betas, executor: Executor):
         order = phase_major(len(betas), case.params.z1) if revolution else range(len(betas))
         sols = drive(case, [betas[k] for k in order], solver, executor=executor)
-        return tuple(sol for _, sol in sorted(zip(order, sols), key=lambda pair: pair[0]))
+        return in_given_order(order, sols)
 
     return solve
 

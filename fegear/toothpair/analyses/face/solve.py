@@ -66,7 +66,7 @@ def drive_face(job, executor: Executor):
     (solver, the 2D solutions, a :class:`FaceDriven`)."""
     coupling = coupling_of(job.case, job.face)
     solver, sols, taken = drive_across(
-        job, lambda sol, sections: (position_entry(sol, sections), pattern_of(sections)),
+        job, lambda sol, sections: (position_entry(sol, sections[0]), pattern_of(sections[0])),
         coupling, executor)
     return solver, sols, FaceDriven([row for row, _ in taken],
                                     [pattern for _, pattern in taken], coupling)

@@ -10,7 +10,7 @@ from pathlib import Path
 
 from ....running import Executor
 from ....timing import Stopwatch
-from ...case import phase_major
+from ...case import in_given_order, phase_major
 from ..base import Analysis, Run, Verdict, Writing
 from .report import life_html, rating_table, spectrum_html, write_rating_outputs
 from .solve import across_face, level_stresses, rated, same_teeth, solve_levels
@@ -41,8 +41,7 @@ class Rating(Analysis):
             solver = RingSolver(model, replace(roots, keep_phases=True))
             by_torque = drive_torques(case, [betas[k] for k in order], torques, solver,
                                       executor)
-            return [tuple(sol for _, sol in sorted(zip(order, sols), key=lambda pair: pair[0]))
-                    for sols in by_torque]
+            return [in_given_order(order, sols) for sols in by_torque]
 
         # across the face, each level solved so too: its tooth stresses at their worst
         # sections (the job's own solutions are the 2D pair's)
