@@ -3,10 +3,11 @@
 
 The measured kernel mirrored in the free ends, with the "slope" rows and no twist, reads the
 baseline's 3D tooth within 0.43 % (peak) and 2.1 % (far) under a load at mid-face, 3.8 % and
-17.8 % under a load at one end; the twist (P1 below, which the product now carries) takes the
-end column to 1.0 % and 6.8 %. Each variant here keeps the uniform-face property (every
-row of the spread sums to one, so the slice model's rows of G under an even load give the 2D
-pair's) and is read as :func:`fegear.verify.face_slices.compare` reads the product's:
+17.8 % under a load at one end; the twist (P1 below, which the product leaves out:
+docs/model.md, "The tooth's twist") takes the end column to 1.0 % and 6.8 %. Each variant
+here keeps the uniform-face property (every row of the spread sums to one, so the slice
+model's rows of G under an even load give the 2D pair's) and is read as
+:func:`fegear.verify.face_slices.compare` reads the product's:
 
 * the mirror images weighted by μ (0 none, 1 the product's), the rows corrected as before;
 * S' = S + E with E = V C Vᵀ diag(share): V's columns shapes along the face of zero mean
@@ -27,12 +28,13 @@ pair's) and is read as :func:`fegear.verify.face_slices.compare` reads the produ
     .venv/bin/python studies/face_end_column.py --pair-check     # the pair with it, a minute
     .venv/bin/python studies/face_end_column.py --widths --gear 2   # gear 2's tooth, ~15 min
 
-The product carries the twist, P1 fitted to the end column, tabulated by the face width in
-tooth heights (fegear.toothpair.ring.face.TWIST_TABLE): ``--widths`` fits it on the baseline's
-tooth at b/h 1.5, 2, 2.5, 3.3 and 5 and prints the table, with the end column's peak and far
-part without the twist and with it. ``--pair-check`` solves the baseline misaligned as the 3D
-pair check does (docs/validation.md: 200 N·m, 9.9 µm, `coarse`) without the twist and with
-it, the product's coupling made with the table's twist for the second solve.
+The twist, P1 fitted to the end column, is tabulated by the face width in tooth heights
+(fegear.verify.face_slices.TWIST_TABLE, which the 3D checks read; the product's coupling has
+none): ``--widths`` fits it on the baseline's tooth at b/h 1.5, 2, 2.5, 3.3 and 5 and prints
+the table, with the end column's peak and far part without the twist and with it.
+``--pair-check`` solves the baseline misaligned as the 3D pair check does
+(docs/validation.md: 200 N·m, 9.9 µm, `coarse`) without the twist and with it, the coupling
+made with the table's twist for the second solve.
 
 ``--widths --gear 2`` measures gear 2's tooth (the internal gear, held at its outer rim) at the
 same widths in its own tooth heights (4 e1, 2.4 mm on the baseline), the same patches. Its
