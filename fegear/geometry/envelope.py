@@ -94,44 +94,47 @@ class Branch:
         return self.a * self.z2 / (self.z2 - self.z1)
 
     def evaluate(self, xi: np.ndarray) -> BranchPoints:
-        """Exact envelope points, tangents, normals and curvatures at tool parameters ``xi``."""
+        """Exact envelope points, tangents, normals and curvatures at tool parameters ``xi``.
+        Written on the x and y components apart: a profile's inversions call it hundreds of
+        times on a point or a few, where stacking and slicing (n, 2) arrays cost more than the
+        arithmetic."""
         xi = np.atleast_1d(np.asarray(xi, dtype=float))
-        p, d1, d2 = self.tool.derivatives(xi, 2)
-        sp2 = np.hypot(d1[:, 0], d1[:, 1])
-        t2 = d1 / sp2[:, None]
-        n2 = np.stack([-t2[:, 1], t2[:, 0]], axis=-1)
-        kap2 = (d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / sp2**3
+        (px, py), (d1x, d1y), (d2x, d2y) = self.tool.components(xi, 2)
+        sp2 = np.hypot(d1x, d1y)
+        tx, ty = d1x / sp2, d1y / sp2                  # the tool's tangent; its normal (-ty, tx)
+        kap2 = (d1x * d2y - d1y * d2x) / sp2**3
         rn = self.r_instant
-        pn = np.einsum("ij,ij->i", p, n2)
-        pp = np.einsum("ij,ij->i", p, p)
-        pt = np.einsum("ij,ij->i", p, t2)
+        pn = px * -ty + py * tx
+        pp = px * px + py * py
+        pt = px * tx + py * ty
         disc = pn * pn - pp + rn * rn
         root = np.sqrt(np.maximum(disc, 0.0))
         s = -pn + self.side * root
-        c = p + s[:, None] * n2
+        cx, cy = px - s * ty, py + s * tx
         # the near side meets gear 1 around β = π/2, the far side around β = -π/2
         ref = -0.5 * np.pi * self.side
-        beta = ref + np.angle(np.exp(1j * (np.pi / 2 - np.arctan2(c[:, 1], c[:, 0]) - ref)))
+        u = np.pi / 2 - np.arctan2(cy, cx) - ref
+        beta = ref + np.arctan2(np.sin(u), np.cos(u))
         # derivative of β(ξ): s' from the quadratic, C' = |P'|(1 - s κ) t + s' n
         with np.errstate(divide="ignore", invalid="ignore"):
             ds = -(s * (-kap2 * sp2 * pt) + sp2 * pt) / (s + pn)
-        dc = (sp2 * (1.0 - s * kap2))[:, None] * t2 + ds[:, None] * n2
-        dbeta = -(c[:, 0] * dc[:, 1] - c[:, 1] * dc[:, 0]) / rn**2
+        f = sp2 * (1.0 - s * kap2)
+        dbeta = -(cx * (f * ty + ds * tx) - cy * (f * tx - ds * ty)) / rn**2
         k = self.k
         alpha = k * beta
         cb, sb = np.cos(beta), np.sin(beta)
         ca, sa = np.cos(alpha), np.sin(alpha)
-        x_fixed = np.stack([cb * p[:, 0] - sb * p[:, 1], sb * p[:, 0] + cb * p[:, 1]], axis=-1)
-        rel = x_fixed - np.array([0.0, self.a])
-        q = np.stack([ca * rel[:, 0] + sa * rel[:, 1], -sa * rel[:, 0] + ca * rel[:, 1]], axis=-1)
+        fx, fy = cb * px - sb * py, sb * px + cb * py  # R(β) P, the fixed frame
+        ry = fy - self.a                               # less A = (0, a)
+        q = np.column_stack([ca * fx + sa * ry, -sa * fx + ca * ry])
         g = beta - alpha
         cg, sg = np.cos(g), np.sin(g)
-        t1 = np.stack([cg * t2[:, 0] - sg * t2[:, 1], sg * t2[:, 0] + cg * t2[:, 1]], axis=-1)
-        n1 = -np.stack([cg * n2[:, 0] - sg * n2[:, 1], sg * n2[:, 0] + cg * n2[:, 1]], axis=-1)
+        t1 = np.column_stack([cg * tx - sg * ty, sg * tx + cg * ty])
+        n1 = np.column_stack([cg * ty + sg * tx, sg * ty - cg * tx])
         # signed speed σ = |P'| + β' (W × T2), W = (1-k) R(β)P + k A, T2 = R(β) t2
-        w = (1.0 - k) * x_fixed + k * np.array([0.0, self.a])
-        big_t = np.stack([cb * t2[:, 0] - sb * t2[:, 1], sb * t2[:, 0] + cb * t2[:, 1]], axis=-1)
-        sigma = sp2 + dbeta * (w[:, 0] * big_t[:, 1] - w[:, 1] * big_t[:, 0])
+        wx, wy = (1.0 - k) * fx, (1.0 - k) * fy + k * self.a
+        big_tx, big_ty = cb * tx - sb * ty, sb * tx + cb * ty
+        sigma = sp2 + dbeta * (wx * big_ty - wy * big_tx)
         with np.errstate(divide="ignore", invalid="ignore"):
             kappa = (kap2 * sp2 + (1.0 - k) * dbeta) / sigma
         return BranchPoints(xi=xi, beta=beta, q=q, tangent=t1, normal=n1, kappa=kappa,

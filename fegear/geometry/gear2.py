@@ -69,25 +69,32 @@ class Cycloid:
         With ``d/dξ (a ê_r + b t̂) = (a' - b) ê_r + (b' + a) t̂`` applied to the closed-form
         derivatives of u and w, every derivative is exact.
         """
+        return [np.column_stack(xy) for xy in self.components(xi, order)]
+
+    def components(self, xi: np.ndarray, order: int = 2) -> list[tuple[np.ndarray, np.ndarray]]:
+        """:meth:`derivatives` as (x, y) pairs of (n,) arrays, the same numbers: what the
+        envelope (:meth:`~.envelope.Branch.evaluate`, called hundreds of times a profile on a
+        few points) reads without stacking and slicing columns."""
         if not 0 <= order <= 3:
             raise ValueError("order must be 0..3")
         xi = np.atleast_1d(np.asarray(xi, dtype=float))
         c, s = np.cos(xi), np.sin(xi)
-        er = np.stack([c, s], axis=-1)
-        et = np.stack([-s, c], axis=-1)
-        return [a[:, None] * er + b[:, None] * et for a, b in self._rotating(xi, order)]
+        return [(a * c - b * s, a * s + b * c) for a, b in self._rotating(xi, order)]
 
     def _rotating(self, xi: np.ndarray, order: int) -> list[tuple[np.ndarray, np.ndarray]]:
         """The ê_r and t̂ components of ``[P, P', ..., P^(order)]`` at ``xi`` (order ≤ 3)."""
-        uw = self._uw(xi, order) + [(0.0, 0.0)] * (3 - order)
-        (u, w), (u1, w1), (u2, w2), (u3, w3) = uw
-        coeffs = [
-            (u, w),
-            (u1 - w, w1 + u),
-            (u2 - 2 * w1 - u, w2 + 2 * u1 - w),
-            (u3 - 3 * w2 - 3 * u1 + w, w3 + 3 * u2 - 3 * w1 - u),
-        ]
-        return coeffs[: order + 1]
+        uw = self._uw(xi, order)
+        out = [uw[0]]
+        if order >= 1:
+            (u, w), (u1, w1) = uw[:2]
+            out.append((u1 - w, w1 + u))
+        if order >= 2:
+            u2, w2 = uw[2]
+            out.append((u2 - 2 * w1 - u, w2 + 2 * u1 - w))
+        if order >= 3:
+            u3, w3 = uw[3]
+            out.append((u3 - 3 * w2 - 3 * u1 + w, w3 + 3 * u2 - 3 * w1 - u))
+        return out
 
     # --- point, tangent, normal, curvature ----------------------------------------------
     def point(self, xi: np.ndarray) -> np.ndarray:
