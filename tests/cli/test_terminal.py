@@ -126,7 +126,8 @@ def test_stderr_stays_clean_off_a_terminal(tmp_path):
     assert (tmp_path / "o" / "von_mises.png").stat().st_size > 0
 
 
-@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
+@pytest.mark.parametrize("signum", [signal.SIGTERM, pytest.param(signal.SIGINT,
+                                                                  marks=pytest.mark.slow)])
 def test_a_stopped_solve_leaves_no_out_behind(tmp_path, signum):
     """On a terminal the stages show; a stop during the solve is one line, and the --out
     directory (made only after the solve) does not appear."""
