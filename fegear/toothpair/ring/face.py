@@ -60,11 +60,16 @@ class FaceCoupling:
     place (fraction of the face width from its middle, −½ … ½), ``share``: its share of
     the face (the trapezoid rule's weights of a load linear between sections; they sum to
     one), ``spread`` (N × N): the finite-element approach at section s is Σ_t spread[s, t]
-    times that of section t's line load spread evenly over the face; each row sums to one."""
+    times that of section t's line load spread evenly over the face; each row sums to one.
+    ``across`` (N × N, rows summing to one, or None: ``spread``): the spread of the part
+    of that approach that one tooth's load gives the other teeth, through the rims, where it
+    is not the loaded tooth's own (gear 1's neighbours in 3D answer a load at one place
+    almost evenly along the face: studies/face_neighbours.py)."""
 
     zeta: np.ndarray
     share: np.ndarray
     spread: np.ndarray
+    across: np.ndarray | None = None
 
     @property
     def sections(self) -> int:

@@ -3,16 +3,18 @@
 carrying the torque.
 
 Section s's gaps are the 2D rigid gaps plus the face's offsets there plus the approach
-A_hp p_s + A_fe Σ_t S_st p_t. The method is the 2D solve's (:func:`~.contact.active_set`: every
-violated point swapped at once; the rigid gap linearised in the turn and evaluated again until
-the rotation settles). The active points' system is never formed: N sections of n points
-would make a matrix N² times the 2D one, and its LU N³ times as costly. GMRES
-(:mod:`.krylov`) solves it from two products with the 2D parts a step, preconditioned by the
-face's own operator on the points active at any section, every one of them active at every
-section (:class:`_Modes`: in the spread's modes, about the near field's LU on each grid),
-with the torque row bordered exactly: it differs from the face's only where the sections'
-active points differ (the contact zones' edges). The first linearisation's sets are solved loosely
-(their signs and the turn's step are all it passes on), the later ones tightly, each from the
+A_hp p_s + A_fe Σ_t S_st p_t (with the coupling's ``across`` spread X, A_fe's blocks between
+different grids take X in place of S: one tooth's load reaches the others through the rims).
+The method is the 2D solve's (:func:`~.contact.active_set`: every violated point swapped at
+once; the rigid gap linearised in the turn and evaluated again until the rotation settles).
+The active points' system is never formed: N sections of n points would make a matrix N²
+times the 2D one, and its LU N³ times as costly. GMRES (:mod:`.krylov`) solves it from two
+products with the 2D parts a step, preconditioned by the face's own operator on the points
+active at any section, every one of them active at every section (:class:`_Modes`: in the
+spread's modes, about the near field's LU on each grid; S alone, where X is given), with the
+torque row bordered exactly: it differs from the face's only where the sections' active points
+differ (the contact zones' edges). The first linearisation's sets are solved loosely (their
+signs and the turn's step are all it passes on), the later ones tightly, each from the
 one before's pressures (docs/model.md, "Across the face").
 """
 
@@ -117,7 +119,8 @@ class _Problem:
         # transposed: a set's products read the rows of its points, which are contiguous
         self.near_t = np.ascontiguousarray(near.T)
         self.far_t = np.subtract(contact.A.T, near.T, out=np.empty_like(near))
-        self.spread = coupling.spread
+        self.spread, self.across = coupling.spread, coupling.across
+        self.blocks = [contact.block(k) for k in range(len(contact.grids))]
         self.w = (contact.weight * model.case.thickness)[:, None] * coupling.share[None, :]
         self.alpha = model.case.params.ratio * contact.beta
         self.feet = contact.feet.copy()
@@ -130,8 +133,24 @@ class _Problem:
     def times(self, pressure: np.ndarray) -> np.ndarray:
         """The approach (points × sections) under ``pressure`` (points × sections)."""
         loaded = np.flatnonzero(pressure.any(axis=1))
-        on = pressure[loaded]
-        return ((self.spread @ on.T) @ self.far_t[loaded] + on.T @ self.near_t[loaded]).T
+        return self.approach(pressure[loaded], loaded, self.far_t[loaded],
+                             self.near_t[loaded])
+
+    def approach(self, p: np.ndarray, at: np.ndarray, far_rows: np.ndarray,
+                 near_rows: np.ndarray) -> np.ndarray:
+        """The approach (points × sections) at every point under the pressures ``p`` (len(at)
+        × sections) at the points ``at`` (increasing), whose rows of the transposed parts
+        are ``far_rows`` and ``near_rows``: the finite-element part spread by the coupling's
+        ``spread`` on the loaded tooth's own grid and by its ``across`` on the others'."""
+        u = ((self.spread if self.across is None else self.across) @ p.T) @ far_rows \
+            + p.T @ near_rows                                      # sections × points
+        if self.across is not None:
+            own = self.spread - self.across
+            for blk in self.blocks:
+                lo, hi = np.searchsorted(at, [blk.start, blk.stop])
+                if hi > lo:
+                    u[:, blk] += (own @ p[lo:hi].T) @ far_rows[lo:hi, blk]
+        return u.T
 
     def solve(self, start: FaceStart, within: np.ndarray):
         """The linearisations of the rigid gap over the points ``within`` (points ×
@@ -245,13 +264,17 @@ class _Sections:
         a_on = linear.a[order[0]]
         wa = self.w[order] * a_on
         arm_rate = linear.arm_rate
+        spread, own = self._parts(far, grids)
+        extra = self.spread - spread      # a grid's own part: spread as the tooth's own
 
         def times(x):
             p = np.zeros(on.shape)
             p[local] = x[:-1]
-            u = far @ (p @ self.spread.T)
+            u = far @ (p @ spread.T)
             for g, block in zip(grids, near):
                 u[g] += block @ p[g]
+            for g, block in own:
+                u[g] += block @ (p[g] @ extra.T)
             u = u[local] + a_on * x[-1]
             return np.append(u, wa @ x[:-1] + arm_rate * x[-1])
 
@@ -277,10 +300,19 @@ class _Sections:
             raise RingContactError("the contact across the face did not converge")
         pressure = np.zeros(active.shape)
         pressure[order] = found.x[:-1]
-        p = pressure[union]
-        approach = ((self.spread @ p.T) @ far_rows + p.T @ near_rows).T
+        approach = self.problem.approach(pressure[union], at, far_rows, near_rows)
         gap = linear.g0 + linear.a[:, None] * found.x[-1] + approach[self.points]
         return pressure, float(found.x[-1]), gap
+
+    def _parts(self, far: np.ndarray, grids: list) -> tuple[np.ndarray, list]:
+        """How a union's operator spreads its finite-element part ``far``: the spread of the
+        whole of it (the coupling's ``across``) and each grid's own block of it (on the
+        union's ``grids``), which takes the coupling's ``spread`` less that; without an
+        ``across`` spread, the coupling's spread and no blocks."""
+        across = self.problem.across
+        if across is None:
+            return self.spread, []
+        return across, [(g, np.ascontiguousarray(far[g, g])) for g in grids]
 
     def _modes(self, union: np.ndarray, near: _Near, far: np.ndarray) -> _Modes:
         """The face's operator on every point of ``union`` at every section, in the spread's

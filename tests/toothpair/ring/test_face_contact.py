@@ -4,7 +4,9 @@ iterative solve is the bordered system's exact solution on its active set, compl
 in balance, its gaps those of the rigid teeth, the offsets and the face's approach formed
 anew; neither the first linearisation's loose solves nor the preconditioner's rank change
 the solution; a misalignment loads the end it closes; a helix slope on one tooth moves that
-tooth's load alone towards the end it closes."""
+tooth's load alone towards the end it closes; a spread of its own between different teeth
+(``across``) acts there alone: the same spread as the tooth's gives the same solution, an even
+face stays the 2D pair's, and a misaligned one is the dense system with it solved."""
 
 from dataclasses import replace
 
@@ -37,14 +39,14 @@ def kept(baseline_ring):
     return baseline_ring, contact, kept, case
 
 
-def _solve(kept, face: Face):
+def _solve(kept, face: Face, coupling=COUPLING):
     model, contact, k, case = kept
     turn = case.params.ratio * contact.beta + k.rotation
-    offsets = face.offsets(contact, turn, COUPLING.zeta, case.thickness, case.params.z2)
+    offsets = face.offsets(contact, turn, coupling.zeta, case.thickness, case.params.z2)
     with blas_threads():
         return solve_face_contact(model, contact, FaceStart(k.rotation, k.active,
                                                             1e-3 * k.elastic_um),
-                                  case.torque_Nmm, offsets, COUPLING), offsets
+                                  case.torque_Nmm, offsets, coupling), offsets
 
 
 def test_an_even_face_is_the_2d_pair_in_every_section(kept):
@@ -138,3 +140,41 @@ def test_a_helix_slope_moves_its_own_tooths_load_to_the_end_it_closes(kept):
     others = [i for i in range(len(contact.grids)) if i != k_most and loads[i, 0] > 0]
     for i in others:     # the others take what it sheds at its first end, there
         assert line[i, 0] >= loads[i, 0]
+
+
+def _across(coupling, tilt: float):
+    """``coupling`` with an ``across`` spread: the load spread evenly over the face, and
+    ``tilt`` times the linear shape (gear 1's neighbours in 3D: studies/face_neighbours.py)."""
+    p1 = 2 * coupling.zeta - coupling.share @ (2 * coupling.zeta)
+    even = np.outer(np.ones(len(coupling.share)), coupling.share)
+    return replace(coupling, across=even + tilt * np.outer(p1, p1 * coupling.share))
+
+
+def test_a_spread_between_teeth_acts_between_them_alone(kept):
+    model, contact, k, case = kept
+    misaligned = Face(SECTIONS, misalignment=8.0)
+    plain, _ = _solve(kept, misaligned)
+    same, _ = _solve(kept, misaligned, replace(COUPLING, across=COUPLING.spread))
+    np.testing.assert_allclose(same.pressure, plain.pressure, rtol=0,
+                               atol=1e-9 * plain.pressure.max())
+    coupling = _across(COUPLING, 0.3)
+    even, _ = _solve(kept, Face(SECTIONS), coupling)           # its rows sum to one too
+    alone = solve_ring_contact(model, contact, case.torque_Nmm, k.rotation, start=k.active)
+    for s in range(SECTIONS):
+        np.testing.assert_allclose(even.pressure[:, s], alone.pressure, rtol=0,
+                                   atol=1e-9 * alone.pressure.max())
+    solved, offsets = _solve(kept, misaligned, coupling)
+    p = solved.pressure
+    assert not np.allclose(p, plain.pressure, rtol=0, atol=1e-3 * p.max())
+    near = near_field(model, contact)
+    far = contact.A - near
+    grid = contact.grid_index
+    own = grid[:, None] == grid[None, :]
+    alpha = case.params.ratio * contact.beta
+    rigid, _ = rigid_gap(model, contact, alpha + solved.rotation, contact.feet.copy())
+    approach = np.stack([(far * own) @ p @ coupling.spread[s] + (far * ~own) @ p
+                         @ coupling.across[s] for s in range(SECTIONS)], axis=1)
+    gap = rigid[:, None] + offsets + approach + near @ p
+    scale = 1e-9 * np.abs(gap).max()
+    np.testing.assert_allclose(solved.gap, gap, rtol=0, atol=scale)
+    assert (p >= 0).all() and gap.min() >= -scale and np.abs(gap * p).max() <= scale * p.max()

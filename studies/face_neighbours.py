@@ -1,0 +1,209 @@
+"""How a load on gear 1's tooth spreads along the face on its neighbours, in 3D: the part of
+the pair's coupling that one tooth's kernel does not measure (docs/model.md, "The tooth's
+twist, measured over the face width, and why the product leaves it out").
+
+The slice model spreads the whole finite-element part of the approach along the face by one
+kernel, gear 1's tooth's answer to its own load. Of the pair's finite-element approach at the
+loaded points, 16 % is the other loaded teeth's answer, through the rims. This study reads that
+part in 3D on the body the tooth checks use (:mod:`fegear.verify.tooth3d`: nine pitches of
+gear 1 about the loaded tooth 0, down to the solve's bore): under each patch load on tooth 0's
+band, the displacement into teeth ±1 and ±2 at the same place of their loaded flanks, along
+the face; each row divided by the same tooth's answer to the load spread evenly over the face,
+as the tooth checks divide tooth 0's. The slice model's neighbour column is its finite-element
+part alone (the near field stays on the loaded tooth), spread by the product's kernel.
+
+    .venv/bin/python studies/face_neighbours.py              # standard 3D, about a minute
+    .venv/bin/python studies/face_neighbours.py coarse       # about 15 s
+    .venv/bin/python studies/face_neighbours.py --width 10 --patches 18
+    .venv/bin/python studies/face_neighbours.py --pair-check   # the pair with them, 15 s
+
+``--pair-check`` solves the misaligned baseline as the 3D pair check does (docs/validation.md:
+200 N·m, 9.9 µm, `coarse`) with the coupling's spread between teeth (``across``,
+:class:`~fegear.toothpair.ring.face.FaceCoupling`) set as the neighbours' answers suggest,
+the tooth's own spread with the twist (:data:`~fegear.verify.face_slices.TWIST_TABLE`) or
+without; beside CalculiX's numbers for the 3D pair.
+
+Each neighbour is read at the section's boundary nodes within :data:`READ_RADIUS` of its band
+centre (tooth 0's turned by whole pitches), or within 1.5 times the nearest one's distance where
+that is farther (teeth ±2 lie where the body's elements are 1.5 mm at `standard`), the
+displacement along the flank's inward normal averaged over them.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+import numpy as np
+
+from fegear.fe import STEEL_E, STEEL_NU
+from fegear.geometry import PairParameters
+from fegear.toothpair import measured_kernel
+from fegear.verify.face_slices import band_compliance
+from fegear.verify.tooth3d import (
+    SIZES,
+    Extrusion,
+    TwoLevel,
+    load_band,
+    section_of,
+    tet_stiffness,
+)
+
+#: the boundary nodes read about a neighbour's band centre (mm)
+READ_RADIUS = 0.35
+NEIGHBOURS = (-2, -1, 1, 2)
+
+
+def neighbour_columns(params: PairParameters, width: float, patches: int, size: str):
+    """The 3D body's answers along the face (patch centres), per patch load and the even
+    load: tooth 0's (its band's means) and each neighbour's (:data:`NEIGHBOURS`), µm per N,
+    {tooth: (patches, patches + 1)}; and the patch centres (mm)."""
+    level = SIZES[size]
+    _, shape, band = load_band(params, 0.5)
+    section = section_of(params, 0.5, level)
+    body = Extrusion(section, width, patches * level.layers)
+    K = tet_stiffness(body, STEEL_E, STEEL_NU)
+    F, means = body.band_loads(patches)
+    F = np.column_stack([F, F.mean(axis=1)])
+    U, _ = TwoLevel(body, K).solve(F)
+    per = (len(body.level_z) - 1) // (2 * patches)
+    centres = (2 * np.arange(patches) + 1) * per
+    out = {0: (1e3 * F.T @ U)[:patches]}         # tooth 0: each patch's mean, as G is read
+    points = section.points
+    centre = shape.point(np.array([band.centre]))[0]
+    outward = shape.frame(np.array([band.centre]))[1][0]
+    boundary = _boundary_nodes(section.triangles)
+    for k in NEIGHBOURS:
+        turn = k * shape.pitch
+        rot = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
+        at, normal = rot @ centre, rot @ outward
+        distance = np.hypot(*(points[boundary] - at).T)
+        near = boundary[distance <= max(READ_RADIUS, 1.5 * distance.min())]
+        rows = np.zeros((len(body.level_z), patches + 1))
+        for node in near:
+            dof = 3 * body.free[body.dof_at[node, :]]
+            rows -= normal[0] * U[dof] + normal[1] * U[dof + 1]
+        out[k] = 1e3 * rows[centres] / len(near)
+    return out, (np.arange(patches) + 0.5) * width / patches
+
+
+def _boundary_nodes(triangles: np.ndarray) -> np.ndarray:
+    """The section's boundary corners: those of the edges that one triangle alone has."""
+    edges = np.sort(triangles[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+    unique, counts = np.unique(edges, axis=0, return_counts=True)
+    return np.unique(unique[counts == 1])
+
+
+def slice_columns(params: PairParameters, width: float, patches: int) -> np.ndarray:
+    """The slice model's finite-element part on the patches (rows divided by their mean: a
+    neighbour's column as the product spreads it), from the product's kernel, mirrored, rows
+    corrected ("slope")."""
+    from fegear.toothpair import correction_factors, kernel_weights
+
+    band = band_compliance(params)
+    n = patches * 4 + 1
+    z, share, w = kernel_weights(n, width, measured_kernel(band.tooth_height,
+                                                           band.near_share), True)
+    spread = w * correction_factors(z, share, w, "slope")
+    h = width / patches / 4
+    within = np.zeros((n, patches))
+    for j in range(patches):
+        within[j * 4:(j + 1) * 4 + 1, j] = h
+        within[[j * 4, (j + 1) * 4], j] = 0.5 * h
+    wp = width / patches
+    G = (within.T / wp) @ spread @ (within / wp / (share * width)[:, None])
+    return G / G.mean(axis=1)[:, None]
+
+
+def table(params: PairParameters, width: float, patches: int, size: str) -> str:
+    """The mid-face and end columns of each tooth's answer (rows divided by the even load's)
+    and the slice model's finite-element part."""
+    answers, z = neighbour_columns(params, width, patches, size)
+    model = slice_columns(params, width, patches)
+    lines = [f"gear 1, {size} 3D, face {width:g} mm, {patches} patches (z = "
+             + " ".join(f"{v:.2f}" for v in z) + " mm)"]
+    for column, name in ((patches // 2, "mid-face"), (0, "one end")):
+        lines.append(f"load at {name} (patch {column}): G_ij / uniform_i")
+        lines.append(f"  {'slice model, FE part':<24} " + " ".join(
+            f"{v:6.3f}" for v in model[:, column]))
+        for k in sorted(answers, key=abs):
+            G = answers[k]
+            shape = G[:, column] / G[:, -1]
+            lines.append(f"  {'tooth ' + format(k, '+d') if k else 'tooth 0 (loaded)':<24} "
+                         + " ".join(f"{v:6.3f}" for v in shape))
+    lines.append("the even load's answer (µm per kN), tooth 0 and its neighbours, at the "
+                 "middle patch and an end one:")
+    mid = answers[0][patches // 2, -1]
+    for k in sorted(answers, key=abs):
+        u = 1e3 * answers[k][:, -1]
+        lines.append(f"  tooth {k:+d}: {u[patches // 2]:.3f} mid, {u[0]:.3f} end "
+                     f"({u[0] / u[patches // 2]:.3f}; {u[patches // 2] / (1e3 * mid):.3f}"
+                     " of tooth 0's)")
+    return "\n".join(lines)
+
+
+#: CalculiX on the extruded pair (docs/validation.md, "Across the face: a 3D FE of the pair"):
+#: K_Hβ and the worst root σ1 of gear 1 and gear 2 (MPa)
+CALCULIX = (1.500, 381.6, 352.1)
+
+
+def pair_check() -> str:
+    """K_Hβ and the worst root stresses of the baseline at 200 N·m and 9.9 µm (`coarse`)
+    with each coupling variant (module docstring), and their differences from CalculiX's."""
+    from dataclasses import replace
+    from unittest import mock
+
+    from fegear.toothpair.job import prepare_job, solve_job
+    from fegear.toothpair.ring import face
+    from fegear.verify.face_slices import twist_of
+
+    product = face.product_coupling
+
+    def variant(twist: bool, across):
+        def make(sections, width, tooth_height, near_share, _=0.0):
+            c = product(sections, width, tooth_height, near_share,
+                        twist_of(width, tooth_height) if twist else 0.0)
+            if across is None:
+                return c
+            p1 = 2 * c.zeta - c.share @ (2 * c.zeta)
+            even = np.outer(np.ones(len(c.share)), c.share)
+            return replace(c, across=even + across * np.outer(p1, p1 * c.share))
+        return make
+
+    k0, r1, r2 = CALCULIX
+    lines = [f"CalculiX 3D pair: K_Hβ {k0:.3f}, root σ1 {r1:.1f} / {r2:.1f} MPa",
+             f"{'coupling':<46} {'K_Hβ':>7} {'root σ1 gear 1 / 2':>20}   CalculiX above"]
+    for name, twist, across in (
+            ("the product (one kernel for all)", False, None),
+            ("the tooth's twist, one kernel for all", True, None),
+            ("no twist; between teeth even", False, 0.0),
+            ("the tooth's twist; between teeth even", True, 0.0),
+            ("the tooth's twist; between teeth even + 0.11 P1", True, 0.11),
+            ("the tooth's twist; between teeth even + 0.29 P1", True, 0.29)):
+        with mock.patch.object(face, "product_coupling", variant(twist, across)):
+            f = solve_job(prepare_job({"torque": 200.0, "quality": "coarse",
+                                       "no-estimate": True, "misalignment": 9.9})).summary["face"]
+        k = f["K_Hbeta"]
+        g1, g2 = (f["worst"][f"root_stress_gear{g}_MPa"]["value"] for g in (1, 2))
+        lines.append(f"{name:<46} {k:7.3f} {g1:9.1f} / {g2:7.1f}   "
+                     f"{100 * (k0 / k - 1):+.1f} %, {100 * (r1 / g1 - 1):+.1f} / "
+                     f"{100 * (r2 / g2 - 1):+.1f} %")
+    return "\n".join(lines)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("size", nargs="?", default="standard", choices=sorted(SIZES))
+    parser.add_argument("--width", type=float, default=5.0, help="face width (mm)")
+    parser.add_argument("--patches", type=int, default=9)
+    parser.add_argument("--pair-check", action="store_true",
+                        help="the misaligned pair with each coupling, against CalculiX")
+    a = parser.parse_args()
+    if a.pair_check:
+        print(pair_check())
+        return
+    params = PairParameters(shift=0.016, rotation=0.002)
+    print(table(params, a.width, a.patches, a.size))
+
+
+if __name__ == "__main__":
+    main()
