@@ -8,13 +8,11 @@ STAMP := $(VENV)/.installed-stamp
 
 .PHONY: demo test test-all lint bench study clean system-programs
 
-# PYTHONWARNINGS=ignore: setuptools' boxed notice on every editable install is no news to a user.
-# --no-compile: pip byte-compiles every module of every package it installs (half of the
-# install's 35 s); Python compiles the few a run imports, once, when it first imports them
+# PYTHONWARNINGS=ignore: setuptools' boxed notice on every editable install is no news to a user
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	PYTHONWARNINGS=ignore $(BIN)/python -m pip install --quiet --no-compile -e '.[dev]'
+	PYTHONWARNINGS=ignore $(BIN)/python -m pip install --quiet -e '.[dev]'
 	touch $(STAMP)
 
 demo: $(STAMP)
