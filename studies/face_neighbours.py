@@ -7,7 +7,7 @@ kernel, gear 1's tooth's answer to its own load. Of the pair's finite-element ap
 loaded points, 16 % is the other loaded teeth's answer, through the rims. This study reads that
 part in 3D on the body the tooth checks use (:mod:`fegear.verify.tooth3d`: nine pitches of
 gear 1 about the loaded tooth 0, down to the solve's bore): under each patch load on tooth 0's
-band, the displacement into teeth ±1 and ±2 at the same place of their loaded flanks, along
+band, the displacement into teeth ±1, ±2 and ±3 at the same place of their loaded flanks, along
 the face; each row divided by the same tooth's answer to the load spread evenly over the face,
 as the tooth checks divide tooth 0's. The slice model's neighbour column is its finite-element
 part alone (the near field stays on the loaded tooth), spread by the product's kernel.
@@ -50,7 +50,7 @@ from fegear.verify.tooth3d import (
 
 #: the boundary nodes read about a neighbour's band centre (mm)
 READ_RADIUS = 0.35
-NEIGHBOURS = (-2, -1, 1, 2)
+NEIGHBOURS = (-3, -2, -1, 1, 2, 3)
 
 
 def neighbour_columns(params: PairParameters, width: float, patches: int, size: str):
@@ -114,6 +114,19 @@ def slice_columns(params: PairParameters, width: float, patches: int) -> np.ndar
     return G / G.mean(axis=1)[:, None]
 
 
+def tilts(answers: dict, z: np.ndarray, width: float) -> dict[int, float]:
+    """Each distance's tilt c: the neighbours' end columns (rows divided by the even load's)
+    fitted in the least squares as 1 + c P1(z) P1(z0) over both sides (P1 = 2 z / b − 1, z0
+    the loaded end patch)."""
+    p1 = 2 * z / width - 1
+    out = {}
+    for d in sorted({abs(k) for k in answers if k}):
+        r = np.concatenate([answers[k][:, 0] / answers[k][:, -1] - 1 for k in (-d, d)])
+        x = np.concatenate([p1 * p1[0]] * 2)
+        out[d] = float(x @ r / (x @ x))
+    return out
+
+
 def table(params: PairParameters, width: float, patches: int, size: str) -> str:
     """The mid-face and end columns of each tooth's answer (rows divided by the even load's)
     and the slice model's finite-element part."""
@@ -130,6 +143,9 @@ def table(params: PairParameters, width: float, patches: int, size: str) -> str:
             shape = G[:, column] / G[:, -1]
             lines.append(f"  {'tooth ' + format(k, '+d') if k else 'tooth 0 (loaded)':<24} "
                          + " ".join(f"{v:6.3f}" for v in shape))
+    lines.append("the tilt c of each distance (the end column, both sides, fitted as "
+                 "1 + c P1(z) P1(z0), P1 = 2 z / b - 1): " + ", ".join(
+                     f"{d} apart {c:+.3f}" for d, c in tilts(answers, z, width).items()))
     lines.append("the even load's answer (µm per kN), tooth 0 and its neighbours, at the "
                  "middle patch and an end one:")
     mid = answers[0][patches // 2, -1]
@@ -166,7 +182,8 @@ def pair_check() -> str:
                 return c
             p1 = 2 * c.zeta - c.share @ (2 * c.zeta)
             even = np.outer(np.ones(len(c.share)), c.share)
-            return replace(c, across=even + across * np.outer(p1, p1 * c.share))
+            tilted = [even + a * np.outer(p1, p1 * c.share) for a in np.atleast_1d(across)]
+            return replace(c, across=tilted[0] if len(tilted) == 1 else np.stack(tilted))
         return make
 
     k0, r1, r2 = CALCULIX
@@ -178,7 +195,9 @@ def pair_check() -> str:
             ("no twist; between teeth even", False, 0.0),
             ("the tooth's twist; between teeth even", True, 0.0),
             ("the tooth's twist; between teeth even + 0.11 P1", True, 0.11),
-            ("the tooth's twist; between teeth even + 0.29 P1", True, 0.29)):
+            ("the tooth's twist; between teeth even + 0.31 P1", True, 0.31),
+            ("the tooth's twist; by distance: +0.31, -0.31, -0.32 P1", True,
+             (0.31, -0.31, -0.32))):
         with mock.patch.object(face, "product_coupling", variant(twist, across)):
             f = solve_job(prepare_job({"torque": 200.0, "quality": "coarse",
                                        "no-estimate": True, "misalignment": 9.9})).summary["face"]

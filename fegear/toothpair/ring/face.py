@@ -64,12 +64,22 @@ class FaceCoupling:
     ``across`` (N × N, rows summing to one, or None: ``spread``): the spread of the part
     of that approach that one tooth's load gives the other teeth, through the rims, where it
     is not the loaded tooth's own (gear 1's neighbours in 3D answer a load at one place
-    almost evenly along the face: studies/face_neighbours.py)."""
+    almost evenly along the face: studies/face_neighbours.py); or (D × N × N) one for the
+    teeth d = 1 … D apart, the last for those farther (:meth:`between`)."""
 
     zeta: np.ndarray
     share: np.ndarray
     spread: np.ndarray
     across: np.ndarray | None = None
+
+    def between(self, apart: int) -> np.ndarray:
+        """The spread of the approach that a load on one tooth gives a tooth ``apart`` teeth
+        from it (0: its own)."""
+        if apart == 0 or self.across is None:
+            return self.spread
+        if self.across.ndim == 2:
+            return self.across
+        return self.across[min(apart, len(self.across)) - 1]
 
     @property
     def sections(self) -> int:

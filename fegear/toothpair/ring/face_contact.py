@@ -3,8 +3,9 @@
 carrying the torque.
 
 Section s's gaps are the 2D rigid gaps plus the face's offsets there plus the approach
-A_hp p_s + A_fe Σ_t S_st p_t (with the coupling's ``across`` spread X, A_fe's blocks between
-different grids take X in place of S: one tooth's load reaches the others through the rims).
+A_hp p_s + A_fe Σ_t S_st p_t (with the coupling's ``across`` spreads, A_fe's blocks between
+different grids take the spread between their teeth in place of S: one tooth's load reaches
+the others through the rims).
 The method is the 2D solve's (:func:`~.contact.active_set`: every violated point swapped at
 once; the rigid gap linearised in the turn and evaluated again until the rotation settles).
 The active points' system is never formed: N sections of n points would make a matrix N²
@@ -119,8 +120,10 @@ class _Problem:
         # transposed: a set's products read the rows of its points, which are contiguous
         self.near_t = np.ascontiguousarray(near.T)
         self.far_t = np.subtract(contact.A.T, near.T, out=np.empty_like(near))
-        self.spread, self.across = coupling.spread, coupling.across
+        self.spread = coupling.spread
         self.blocks = [contact.block(k) for k in range(len(contact.grids))]
+        self.base, self.pairs = _spreads(coupling, [g.tooth for g in contact.grids],
+                                         model.case.params.z1)
         self.w = (contact.weight * model.case.thickness)[:, None] * coupling.share[None, :]
         self.alpha = model.case.params.ratio * contact.beta
         self.feet = contact.feet.copy()
@@ -140,16 +143,13 @@ class _Problem:
                  near_rows: np.ndarray) -> np.ndarray:
         """The approach (points × sections) at every point under the pressures ``p`` (len(at)
         × sections) at the points ``at`` (increasing), whose rows of the transposed parts
-        are ``far_rows`` and ``near_rows``: the finite-element part spread by the coupling's
-        ``spread`` on the loaded tooth's own grid and by its ``across`` on the others'."""
-        u = ((self.spread if self.across is None else self.across) @ p.T) @ far_rows \
-            + p.T @ near_rows                                      # sections × points
-        if self.across is not None:
-            own = self.spread - self.across
-            for blk in self.blocks:
-                lo, hi = np.searchsorted(at, [blk.start, blk.stop])
-                if hi > lo:
-                    u[:, blk] += (own @ p[lo:hi].T) @ far_rows[lo:hi, blk]
+        are ``far_rows`` and ``near_rows``: the finite-element part between each pair of
+        grids spread as the coupling spreads it between their teeth (:func:`_spreads`)."""
+        u = (self.base @ p.T) @ far_rows + p.T @ near_rows         # sections × points
+        for i, j, extra in self.pairs:
+            lo, hi = np.searchsorted(at, [self.blocks[j].start, self.blocks[j].stop])
+            if hi > lo:
+                u[:, self.blocks[i]] += (extra @ p[lo:hi].T) @ far_rows[lo:hi, self.blocks[i]]
         return u.T
 
     def solve(self, start: FaceStart, within: np.ndarray):
@@ -198,6 +198,20 @@ class _Problem:
         ahead = self.rigid(theta + ARM_STEP, points[loaded])[1]
         return float(np.sum(self.w[points[loaded]] * pressure[loaded]
                             * ((ahead - a[loaded]) / ARM_STEP)[:, None]))
+
+
+def _spreads(coupling: FaceCoupling, teeth: list[int], z1: int) -> tuple[np.ndarray, list]:
+    """The spread most of A_fe's blocks take (the one between adjacent teeth; without an
+    ``across``, the coupling's spread) and the grid pairs (i, j, what their block adds to it)
+    whose teeth, ``teeth`` of gear 1's z1, are another distance apart."""
+    base = coupling.between(1)
+    pairs = []
+    for i, ti in enumerate(teeth):
+        for j, tj in enumerate(teeth):
+            extra = coupling.between(min((ti - tj) % z1, (tj - ti) % z1)) - base
+            if extra.any():
+                pairs.append((i, j, extra))
+    return base, pairs
 
 
 def spread_modes(spread: np.ndarray):
@@ -264,8 +278,7 @@ class _Sections:
         a_on = linear.a[order[0]]
         wa = self.w[order] * a_on
         arm_rate = linear.arm_rate
-        spread, own = self._parts(far, grids)
-        extra = self.spread - spread      # a grid's own part: spread as the tooth's own
+        spread, pairs = self.problem.base, self._pairs(far, at)
 
         def times(x):
             p = np.zeros(on.shape)
@@ -273,8 +286,8 @@ class _Sections:
             u = far @ (p @ spread.T)
             for g, block in zip(grids, near):
                 u[g] += block @ p[g]
-            for g, block in own:
-                u[g] += block @ (p[g] @ extra.T)
+            for gi, gj, block, extra in pairs:
+                u[gi] += block @ (p[gj] @ extra.T)
             u = u[local] + a_on * x[-1]
             return np.append(u, wa @ x[:-1] + arm_rate * x[-1])
 
@@ -304,15 +317,15 @@ class _Sections:
         gap = linear.g0 + linear.a[:, None] * found.x[-1] + approach[self.points]
         return pressure, float(found.x[-1]), gap
 
-    def _parts(self, far: np.ndarray, grids: list) -> tuple[np.ndarray, list]:
-        """How a union's operator spreads its finite-element part ``far``: the spread of the
-        whole of it (the coupling's ``across``) and each grid's own block of it (on the
-        union's ``grids``), which takes the coupling's ``spread`` less that; without an
-        ``across`` spread, the coupling's spread and no blocks."""
-        across = self.problem.across
-        if across is None:
-            return self.spread, []
-        return across, [(g, np.ascontiguousarray(far[g, g])) for g in grids]
+    def _pairs(self, far: np.ndarray, at: np.ndarray) -> list:
+        """The union's blocks of its finite-element part ``far`` whose spread is not the
+        problem's base one (:func:`_spreads`): the rows' and columns' slices among the union's
+        points ``at``, the block and the spread to add."""
+        cuts = np.searchsorted(at, self.problem.contact.offsets)
+        spans = {k: slice(lo, hi) for k, (lo, hi) in enumerate(zip(cuts[:-1], cuts[1:]))
+                 if hi > lo}
+        return [(spans[i], spans[j], np.ascontiguousarray(far[spans[i], spans[j]]), extra)
+                for i, j, extra in self.problem.pairs if i in spans and j in spans]
 
     def _modes(self, union: np.ndarray, near: _Near, far: np.ndarray) -> _Modes:
         """The face's operator on every point of ``union`` at every section, in the spread's

@@ -142,12 +142,14 @@ def test_a_helix_slope_moves_its_own_tooths_load_to_the_end_it_closes(kept):
         assert line[i, 0] >= loads[i, 0]
 
 
-def _across(coupling, tilt: float):
-    """``coupling`` with an ``across`` spread: the load spread evenly over the face, and
-    ``tilt`` times the linear shape (gear 1's neighbours in 3D: studies/face_neighbours.py)."""
+def _across(coupling, *tilts: float):
+    """``coupling`` with ``across`` spreads for teeth 1, 2, … apart: the load spread evenly
+    over the face, and each of ``tilts`` times the linear shape (gear 1's neighbours in 3D:
+    studies/face_neighbours.py)."""
     p1 = 2 * coupling.zeta - coupling.share @ (2 * coupling.zeta)
     even = np.outer(np.ones(len(coupling.share)), coupling.share)
-    return replace(coupling, across=even + tilt * np.outer(p1, p1 * coupling.share))
+    spreads = [even + t * np.outer(p1, p1 * coupling.share) for t in tilts]
+    return replace(coupling, across=spreads[0] if len(spreads) == 1 else np.stack(spreads))
 
 
 def test_a_spread_between_teeth_acts_between_them_alone(kept):
@@ -157,24 +159,26 @@ def test_a_spread_between_teeth_acts_between_them_alone(kept):
     same, _ = _solve(kept, misaligned, replace(COUPLING, across=COUPLING.spread))
     np.testing.assert_allclose(same.pressure, plain.pressure, rtol=0,
                                atol=1e-9 * plain.pressure.max())
-    coupling = _across(COUPLING, 0.3)
-    even, _ = _solve(kept, Face(SECTIONS), coupling)           # its rows sum to one too
     alone = solve_ring_contact(model, contact, case.torque_Nmm, k.rotation, start=k.active)
-    for s in range(SECTIONS):
-        np.testing.assert_allclose(even.pressure[:, s], alone.pressure, rtol=0,
-                                   atol=1e-9 * alone.pressure.max())
-    solved, offsets = _solve(kept, misaligned, coupling)
-    p = solved.pressure
-    assert not np.allclose(p, plain.pressure, rtol=0, atol=1e-3 * p.max())
     near = near_field(model, contact)
     far = contact.A - near
-    grid = contact.grid_index
-    own = grid[:, None] == grid[None, :]
+    tooth = np.array([g.tooth for g in contact.grids])[contact.grid_index]
+    apart = np.abs(tooth[:, None] - tooth[None, :])
+    apart = np.minimum(apart, case.params.z1 - apart)
     alpha = case.params.ratio * contact.beta
-    rigid, _ = rigid_gap(model, contact, alpha + solved.rotation, contact.feet.copy())
-    approach = np.stack([(far * own) @ p @ coupling.spread[s] + (far * ~own) @ p
-                         @ coupling.across[s] for s in range(SECTIONS)], axis=1)
-    gap = rigid[:, None] + offsets + approach + near @ p
-    scale = 1e-9 * np.abs(gap).max()
-    np.testing.assert_allclose(solved.gap, gap, rtol=0, atol=scale)
-    assert (p >= 0).all() and gap.min() >= -scale and np.abs(gap * p).max() <= scale * p.max()
+    for coupling in (_across(COUPLING, 0.3), _across(COUPLING, 0.3, -0.3)):
+        even, _ = _solve(kept, Face(SECTIONS), coupling)        # their rows sum to one too
+        for s in range(SECTIONS):
+            np.testing.assert_allclose(even.pressure[:, s], alone.pressure, rtol=0,
+                                       atol=1e-9 * alone.pressure.max())
+        solved, offsets = _solve(kept, misaligned, coupling)
+        p = solved.pressure
+        assert not np.allclose(p, plain.pressure, rtol=0, atol=1e-3 * p.max())
+        rigid, _ = rigid_gap(model, contact, alpha + solved.rotation, contact.feet.copy())
+        approach = sum((far * (apart == d)) @ p @ coupling.between(d).T
+                       for d in np.unique(apart))
+        gap = rigid[:, None] + offsets + approach + near @ p
+        scale = 1e-9 * np.abs(gap).max()
+        np.testing.assert_allclose(solved.gap, gap, rtol=0, atol=scale)
+        assert (p >= 0).all() and gap.min() >= -scale
+        assert np.abs(gap * p).max() <= scale * p.max()
