@@ -15,6 +15,7 @@ part alone (the near field stays on the loaded tooth), spread by the product's k
     .venv/bin/python studies/face_neighbours.py              # standard 3D, about a minute
     .venv/bin/python studies/face_neighbours.py coarse       # about 15 s
     .venv/bin/python studies/face_neighbours.py --width 10 --patches 18
+    .venv/bin/python studies/face_neighbours.py --gear 2     # gear 2's teeth, about a minute
     .venv/bin/python studies/face_neighbours.py --pair-check   # the pair with them, 15 s
 
 ``--pair-check`` solves the misaligned baseline as the 3D pair check does (docs/validation.md:
@@ -43,6 +44,7 @@ from fegear.verify.tooth3d import (
     SIZES,
     Extrusion,
     TwoLevel,
+    gear2_band,
     load_band,
     section_of,
     tet_stiffness,
@@ -53,13 +55,14 @@ READ_RADIUS = 0.35
 NEIGHBOURS = (-3, -2, -1, 1, 2, 3)
 
 
-def neighbour_columns(params: PairParameters, width: float, patches: int, size: str):
-    """The 3D body's answers along the face (patch centres), per patch load and the even
-    load: tooth 0's (its band's means) and each neighbour's (:data:`NEIGHBOURS`), µm per N,
-    {tooth: (patches, patches + 1)}; and the patch centres (mm)."""
+def neighbour_columns(params: PairParameters, width: float, patches: int, size: str,
+                      gear: int = 1):
+    """``gear``'s 3D body's answers along the face (patch centres), per patch load and the
+    even load: tooth 0's (its band's means) and each neighbour's (:data:`NEIGHBOURS`), µm per
+    N, {tooth: (patches, patches + 1)}; and the patch centres (mm)."""
     level = SIZES[size]
-    _, shape, band = load_band(params, 0.5)
-    section = section_of(params, 0.5, level)
+    centre, outward, pitch = _band_centre(params, gear)
+    section = section_of(params, 0.5, level, gear=gear)
     body = Extrusion(section, width, patches * level.layers)
     K = tet_stiffness(body, STEEL_E, STEEL_NU)
     F, means = body.band_loads(patches)
@@ -69,11 +72,9 @@ def neighbour_columns(params: PairParameters, width: float, patches: int, size: 
     centres = (2 * np.arange(patches) + 1) * per
     out = {0: (1e3 * F.T @ U)[:patches]}         # tooth 0: each patch's mean, as G is read
     points = section.points
-    centre = shape.point(np.array([band.centre]))[0]
-    outward = shape.frame(np.array([band.centre]))[1][0]
     boundary = _boundary_nodes(section.triangles)
     for k in NEIGHBOURS:
-        turn = k * shape.pitch
+        turn = k * pitch
         rot = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]])
         at, normal = rot @ centre, rot @ outward
         distance = np.hypot(*(points[boundary] - at).T)
@@ -84,6 +85,18 @@ def neighbour_columns(params: PairParameters, width: float, patches: int, size: 
             rows -= normal[0] * U[dof] + normal[1] * U[dof + 1]
         out[k] = 1e3 * rows[centres] / len(near)
     return out, (np.arange(patches) + 0.5) * width / patches
+
+
+def _band_centre(params: PairParameters, gear: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """The load band's centre on ``gear``'s tooth 0 (mm, the gear's frame), the flank's
+    outward normal there (out of the tooth) and the gear's pitch (rad)."""
+    if gear == 1:
+        _, shape, band = load_band(params, 0.5)
+        phi = np.array([band.centre])
+        return shape.point(phi)[0], shape.frame(phi)[1][0], shape.pitch
+    curve, band = gear2_band(params, 0.5)
+    xi = curve.xi_at_angle(np.array([band.centre]), tabled=False)
+    return curve.point(xi)[0], curve.frame(xi)[2][0], 2 * np.pi / params.z2
 
 
 def _boundary_nodes(triangles: np.ndarray) -> np.ndarray:
@@ -127,12 +140,12 @@ def tilts(answers: dict, z: np.ndarray, width: float) -> dict[int, float]:
     return out
 
 
-def table(params: PairParameters, width: float, patches: int, size: str) -> str:
+def table(params: PairParameters, width: float, patches: int, size: str, gear: int = 1) -> str:
     """The mid-face and end columns of each tooth's answer (rows divided by the even load's)
-    and the slice model's finite-element part."""
-    answers, z = neighbour_columns(params, width, patches, size)
+    and the slice model's finite-element part (gear 1's kernel, whichever ``gear``)."""
+    answers, z = neighbour_columns(params, width, patches, size, gear)
     model = slice_columns(params, width, patches)
-    lines = [f"gear 1, {size} 3D, face {width:g} mm, {patches} patches (z = "
+    lines = [f"gear {gear}, {size} 3D, face {width:g} mm, {patches} patches (z = "
              + " ".join(f"{v:.2f}" for v in z) + " mm)"]
     for column, name in ((patches // 2, "mid-face"), (0, "one end")):
         lines.append(f"load at {name} (patch {column}): G_ij / uniform_i")
@@ -214,6 +227,8 @@ def main() -> None:
     parser.add_argument("size", nargs="?", default="standard", choices=sorted(SIZES))
     parser.add_argument("--width", type=float, default=5.0, help="face width (mm)")
     parser.add_argument("--patches", type=int, default=9)
+    parser.add_argument("--gear", type=int, default=1, choices=(1, 2),
+                        help="gear 2's teeth (held at its rim) instead of gear 1's")
     parser.add_argument("--pair-check", action="store_true",
                         help="the misaligned pair with each coupling, against CalculiX")
     a = parser.parse_args()
@@ -221,7 +236,7 @@ def main() -> None:
         print(pair_check())
         return
     params = PairParameters(shift=0.016, rotation=0.002)
-    print(table(params, a.width, a.patches, a.size))
+    print(table(params, a.width, a.patches, a.size, a.gear))
 
 
 if __name__ == "__main__":
