@@ -12,11 +12,12 @@ The active points' system is never formed: N sections of n points would make a m
 times the 2D one, and its LU N³ times as costly. GMRES (:mod:`.krylov`) solves it from two
 products with the 2D parts a step, preconditioned by the face's own operator on the points
 active at any section, every one of them active at every section (:class:`_Modes`: in the
-spread's modes, about the near field's LU on each grid; S alone, where X is given), with the
-torque row bordered exactly: it differs from the face's only where the sections' active points
-differ (the contact zones' edges). The first linearisation's sets are solved loosely (their
-signs and the turn's step are all it passes on), the later ones tightly, each from the
-one before's pressures (docs/model.md, "Across the face").
+spread's modes, about the near field's LU on each grid; S alone where other teeth take
+spreads of their own), with the torque row bordered exactly: it differs from the face's only
+where the sections' active points differ (the contact zones' edges). The first
+linearisation's sets are solved loosely (their signs and the turn's step are all it passes
+on), the later ones tightly, each from the one before's pressures (docs/model.md, "Across
+the face").
 """
 
 from __future__ import annotations
