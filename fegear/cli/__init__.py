@@ -90,7 +90,8 @@ def _subcommands(parser: Parser):
 
 def main(argv: list[str] | None = None) -> int:
     """Run ``fegear`` with ``argv`` (default: the process's arguments); the exit code."""
-    a = build_parser().parse_args(argv)
+    parser = build_parser()
+    a = parser.parse_args(argv)
     a.argv = list(sys.argv[1:] if argv is None else argv)   # as typed: a report repeats it
     logging.basicConfig(level=logging.INFO if a.verbose else logging.WARNING,
                         format="%(levelname)s %(name)s: %(message)s")
@@ -101,7 +102,7 @@ def main(argv: list[str] | None = None) -> int:
     except ParameterError as exc:
         bar.close()
         typed = f"--{exc.name}"
-        known = typed in _options(build_parser(), a)
+        known = typed in _options(parser, a)
         print(f"fegear: error: {exc.describe(typed) if known else exc}", file=sys.stderr)
         return EXIT_USAGE
     except FegearError as exc:
