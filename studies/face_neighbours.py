@@ -1,4 +1,4 @@
-"""How a load on gear 1's tooth spreads along the face on its neighbours, in 3D: the part of
+"""How a load on a gear's tooth spreads along the face on its neighbours, in 3D: the part of
 the pair's coupling that one tooth's kernel does not measure (docs/model.md, "The tooth's
 twist, measured over the face width, and why the product leaves it out").
 
@@ -9,8 +9,9 @@ part in 3D on the body the tooth checks use (:mod:`fegear.verify.tooth3d`: nine 
 gear 1 about the loaded tooth 0, down to the solve's bore): under each patch load on tooth 0's
 band, the displacement into teeth ±1, ±2 and ±3 at the same place of their loaded flanks, along
 the face; each row divided by the same tooth's answer to the load spread evenly over the face,
-as the tooth checks divide tooth 0's. The slice model's neighbour column is its finite-element
-part alone (the near field stays on the loaded tooth), spread by the product's kernel.
+as the tooth checks divide tooth 0's (``--gear 2``: gear 2's nine pitches, held at its rim).
+The slice model's neighbour column is its finite-element part alone (the near field stays on
+the loaded tooth), spread by the product's kernel.
 
     .venv/bin/python studies/face_neighbours.py              # standard 3D, about a minute
     .venv/bin/python studies/face_neighbours.py coarse       # about 15 s
@@ -26,7 +27,7 @@ without; beside CalculiX's numbers for the 3D pair.
 
 Each neighbour is read at the section's boundary nodes within :data:`READ_RADIUS` of its band
 centre (tooth 0's turned by whole pitches), or within 1.5 times the nearest one's distance where
-that is farther (teeth ±2 lie where the body's elements are 1.5 mm at `standard`), the
+that is farther (teeth ±2 and ±3 lie where the body's elements are 1.5 mm at `standard`), the
 displacement along the flank's inward normal averaged over them.
 """
 
