@@ -39,8 +39,7 @@ import numpy as np
 
 from fegear.fe import STEEL_E, STEEL_NU
 from fegear.geometry import PairParameters
-from fegear.toothpair import measured_kernel
-from fegear.verify.face_slices import band_compliance
+from fegear.verify.face_slices import band_compliance, product_influence
 from fegear.verify.tooth3d import (
     SIZES,
     Extrusion,
@@ -108,23 +107,12 @@ def _boundary_nodes(triangles: np.ndarray) -> np.ndarray:
 
 
 def slice_columns(params: PairParameters, width: float, patches: int) -> np.ndarray:
-    """The slice model's finite-element part on the patches (rows divided by their mean: a
-    neighbour's column as the product spreads it), from the product's kernel, mirrored, rows
-    corrected ("slope")."""
-    from fegear.toothpair import correction_factors, kernel_weights
-
+    """The slice model's finite-element part on the patches, as the product couples the face
+    (:func:`~fegear.verify.face_slices.product_influence` less its near field, which stays on
+    the loaded patch), each row divided by its mean: a neighbour's column as the product
+    spreads it."""
     band = band_compliance(params)
-    n = patches * 4 + 1
-    z, share, w = kernel_weights(n, width, measured_kernel(band.tooth_height,
-                                                           band.near_share), True)
-    spread = w * correction_factors(z, share, w, "slope")
-    h = width / patches / 4
-    within = np.zeros((n, patches))
-    for j in range(patches):
-        within[j * 4:(j + 1) * 4 + 1, j] = h
-        within[[j * 4, (j + 1) * 4], j] = 0.5 * h
-    wp = width / patches
-    G = (within.T / wp) @ spread @ (within / wp / (share * width)[:, None])
+    G = product_influence(band, width, patches) - np.eye(patches) * band.near * patches / width
     return G / G.mean(axis=1)[:, None]
 
 
@@ -179,7 +167,6 @@ CALCULIX = (1.500, 381.6, 352.1)
 def pair_check() -> str:
     """K_Hβ and the worst root stresses of the baseline at 200 N·m and 9.9 µm (`coarse`)
     with each coupling variant (module docstring), and their differences from CalculiX's."""
-    from dataclasses import replace
     from unittest import mock
 
     from fegear.toothpair.job import prepare_job, solve_job
@@ -192,12 +179,7 @@ def pair_check() -> str:
         def make(sections, width, tooth_height, near_share, _=0.0):
             c = product(sections, width, tooth_height, near_share,
                         twist_of(width, tooth_height) if twist else 0.0)
-            if across is None:
-                return c
-            p1 = 2 * c.zeta - c.share @ (2 * c.zeta)
-            even = np.outer(np.ones(len(c.share)), c.share)
-            tilted = [even + a * np.outer(p1, p1 * c.share) for a in np.atleast_1d(across)]
-            return replace(c, across=tilted[0] if len(tilted) == 1 else np.stack(tilted))
+            return c if across is None else face.tilted_across(c, *np.atleast_1d(across))
         return make
 
     k0, r1, r2 = CALCULIX

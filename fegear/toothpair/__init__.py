@@ -72,7 +72,8 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     # the face's coupling and the 2D parts it reads: what the 3D tooth checks
     "ring.face": ("FlankBand", "FaceCoupling", "flank_band", "flank_compliance", "face_coupling",
                   "exponential_kernel", "measured_kernel", "kernel_weights",
-                  "correction_factors", "KERNEL_STEP", "product_coupling"),
+                  "correction_factors", "KERNEL_STEP", "product_coupling",
+                  "tilted_across"),
     "edge": ("flank_and_edge", "FlankEdge", "EDGE_ZONE"),
     "segments": ("ROOT_BAND", "Layout", "PairProfiles", "PolarCurve", "gear2_outline",
                  "gear2_polar", "path_windows", "profile_segments", "root_half_angle",

@@ -23,7 +23,7 @@ helix deviations, crowning, end relief).
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -117,9 +117,28 @@ def face_coupling(sections: int, width: float, kernel: Callable[[np.ndarray], np
     spread = w * correction_factors(z, share, w, correction)
     zeta = z / width - 0.5
     if twist:
-        p1 = 2.0 * zeta - share @ (2.0 * zeta)
-        spread = spread + twist * np.outer(p1, p1 * share)
+        spread = spread + twist * linear_tilt(zeta, share)
     return FaceCoupling(zeta, share, spread)
+
+
+def linear_tilt(zeta: np.ndarray, share: np.ndarray) -> np.ndarray:
+    """P1 P1ᵀ diag(share) (N × N): P1 the linear shape across the face (2ζ) less its mean, so
+    its rows sum to zero and a load even across the face is untouched; a load at one end tilts
+    the whole face by it (the tooth's twist, :func:`face_coupling`; the other teeth's tilts,
+    :func:`tilted_across`)."""
+    p1 = 2.0 * zeta - share @ (2.0 * zeta)
+    return np.outer(p1, p1 * share)
+
+
+def tilted_across(coupling: FaceCoupling, *tilts: float) -> FaceCoupling:
+    """``coupling`` with the spreads between teeth ``across`` (:class:`FaceCoupling`) that
+    gear 1's neighbours in 3D have (studies/face_neighbours.py): the load even over the face
+    plus each of ``tilts`` times :func:`linear_tilt`, for the teeth 1, 2, … apart (one tilt:
+    one spread for all)."""
+    even = np.outer(np.ones(len(coupling.share)), coupling.share)
+    tilt = linear_tilt(coupling.zeta, coupling.share)
+    spreads = [even + t * tilt for t in tilts]
+    return replace(coupling, across=spreads[0] if len(spreads) == 1 else np.stack(spreads))
 
 
 def correction_factors(z: np.ndarray, share: np.ndarray, w: np.ndarray,

@@ -19,7 +19,7 @@ from fegear.toothpair.face import Face
 from fegear.toothpair.positions import positions_of
 from fegear.toothpair.ring import face_contact
 from fegear.toothpair.ring.contact import rigid_gap, solve_ring_contact
-from fegear.toothpair.ring.face import exponential_kernel, face_coupling
+from fegear.toothpair.ring.face import exponential_kernel, face_coupling, tilted_across
 from fegear.toothpair.ring.face_contact import FaceStart, solve_face_contact
 from fegear.toothpair.ring.influence import near_field
 from fegear.toothpair.ring.solver import RingSolver, SolverModes
@@ -142,16 +142,6 @@ def test_a_helix_slope_moves_its_own_tooths_load_to_the_end_it_closes(kept):
         assert line[i, 0] >= loads[i, 0]
 
 
-def _across(coupling, *tilts: float):
-    """``coupling`` with ``across`` spreads for teeth 1, 2, … apart: the load spread evenly
-    over the face, and each of ``tilts`` times the linear shape (gear 1's neighbours in 3D:
-    studies/face_neighbours.py)."""
-    p1 = 2 * coupling.zeta - coupling.share @ (2 * coupling.zeta)
-    even = np.outer(np.ones(len(coupling.share)), coupling.share)
-    spreads = [even + t * np.outer(p1, p1 * coupling.share) for t in tilts]
-    return replace(coupling, across=spreads[0] if len(spreads) == 1 else np.stack(spreads))
-
-
 def test_a_spread_between_teeth_acts_between_them_alone(kept):
     model, contact, k, case = kept
     misaligned = Face(SECTIONS, misalignment=8.0)
@@ -166,7 +156,7 @@ def test_a_spread_between_teeth_acts_between_them_alone(kept):
     apart = np.abs(tooth[:, None] - tooth[None, :])
     apart = np.minimum(apart, case.params.z1 - apart)
     alpha = case.params.ratio * contact.beta
-    for coupling in (_across(COUPLING, 0.3), _across(COUPLING, 0.3, -0.3)):
+    for coupling in (tilted_across(COUPLING, 0.3), tilted_across(COUPLING, 0.3, -0.3)):
         even, _ = _solve(kept, Face(SECTIONS), coupling)        # their rows sum to one too
         for s in range(SECTIONS):
             np.testing.assert_allclose(even.pressure[:, s], alone.pressure, rtol=0,
