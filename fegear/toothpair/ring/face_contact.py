@@ -206,6 +206,8 @@ def _spreads(coupling: FaceCoupling, teeth: list[int], z1: int) -> tuple[np.ndar
     ``across``, the coupling's spread) and the grid pairs (i, j, what their block adds to it)
     whose teeth, ``teeth`` of gear 1's z1, are another distance apart."""
     base = coupling.between(1)
+    if coupling.across is None:       # one spread for every block
+        return base, []
     pairs = []
     for i, ti in enumerate(teeth):
         for j, tj in enumerate(teeth):
