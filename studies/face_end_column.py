@@ -3,7 +3,7 @@
 
 The measured kernel mirrored in the free ends, with the "slope" rows and no twist, reads the
 baseline's 3D tooth within 0.43 % (peak) and 2.1 % (far) under a load at mid-face, 3.8 % and
-17.8 % under a load at one end; the twist (P1 below, which the product leaves out:
+17.8 % under a load at one end; the twist (P1 below, the product's since 2026-12-03:
 docs/model.md, "The tooth's twist") takes the end column to 1.0 % and 6.8 %. Each variant
 here keeps the uniform-face property (every row of the spread sums to one, so the slice
 model's rows of G under an even load give the 2D pair's) and is read as
@@ -25,16 +25,13 @@ model's rows of G under an even load give the 2D pair's) and is read as
     .venv/bin/python studies/face_end_column.py coarse --width 10 --patches 18
     .venv/bin/python studies/face_end_column.py --pair m=1.5     # another design
     .venv/bin/python studies/face_end_column.py --widths         # the twist's table, ~12 min
-    .venv/bin/python studies/face_end_column.py --pair-check     # the pair with it, a minute
     .venv/bin/python studies/face_end_column.py --widths --gear 2   # gear 2's tooth, ~15 min
 
 The twist, P1 fitted to the end column, is tabulated by the face width in tooth heights
-(fegear.verify.face_slices.TWIST_TABLE, which the 3D checks read; the product's coupling has
-none): ``--widths`` fits it on the baseline's tooth at b/h 1.5, 2, 2.5, 3.3 and 5 and prints
-the table, with the end column's peak and far part without the twist and with it.
-``--pair-check`` solves the baseline misaligned as the 3D pair check does
-(docs/validation.md: 200 N·m, 9.9 µm, `coarse`) without the twist and with it, the coupling
-made with the table's twist for the second solve.
+(fegear.toothpair.ring.face.TWIST_TABLE, the product's): ``--widths`` fits it on the
+baseline's tooth at b/h 1.5, 2, 2.5, 3.3 and 5 and prints the table, with the end column's
+peak and far part without the twist and with it. The misaligned pair with and without it:
+``studies/face_neighbours.py --pair-check``.
 
 ``--widths --gear 2`` measures gear 2's tooth (the internal gear, held at its outer rim) at the
 same widths in its own tooth heights (4 e1, 2.4 mm on the baseline), the same patches. Its
@@ -184,7 +181,8 @@ WIDTHS = ((1.5, 5), (2.0, 7), (2.5, 9), (3.3, 11), (5.0, 18))
 
 def twist_table(params: PairParameters, size: str) -> str:
     """P1's coefficient fitted to the end column at each of :data:`WIDTHS`, with the end
-    column read without the twist and with it, and the table as the source's TWIST_TABLE."""
+    column read without the twist and with it, and the table as the source's TWIST_TABLE
+    (fegear.toothpair.ring.face)."""
     band = band_compliance(params, quality="standard")
     h = band.tooth_height
     lines, table = [f"{'b/h':>4} {'face mm':>7} {'c':>7}   end without: peak far %   with"], []
@@ -236,38 +234,6 @@ def raw_table(params: PairParameters, size: str, gear: int) -> str:
     return "\n".join(lines)
 
 
-def pair_check() -> str:
-    """K_Hβ, the worst root stresses and tooth 10's layer means (CalculiX's six layers) of
-    the baseline at 200 N·m and 9.9 µm, `coarse`, without the tooth's twist (the product)
-    and with it (:data:`~fegear.verify.face_slices.TWIST_TABLE`)."""
-    from unittest import mock
-
-    from fegear.toothpair.job import prepare_job, solve_job
-    from fegear.toothpair.ring import face
-    from fegear.verify.calculix_face import LAYERS, layer_means
-    from fegear.verify.face_slices import twist_of
-
-    product = face.product_coupling
-
-    def twisted(sections, width, tooth_height, near_share, twist=0.0):
-        return product(sections, width, tooth_height, near_share,
-                       twist_of(width, tooth_height))
-
-    lines = []
-    for name, coupling in (("without the twist (the product)", product), ("with it", twisted)):
-        with mock.patch.object(face, "product_coupling", coupling):
-            s = solve_job(prepare_job({"torque": 200.0, "quality": "coarse",
-                                       "no-estimate": True, "misalignment": 9.9})).summary
-        f = s["face"]
-        worst, at = f["worst"], f["positions"][0]
-        layers = layer_means(at["line_loads_N_per_mm"], f["zeta"], LAYERS)[10]
-        lines.append(f"{name}: K_Hβ {f['K_Hbeta']:.4f}, root σ1 "
-                     f"{worst['root_stress_gear1_MPa']['value']:.1f} / "
-                     f"{worst['root_stress_gear2_MPa']['value']:.1f} MPa, tooth 10's layers "
-                     + " ".join(f"{q:.1f}" for q in layers) + " N/mm")
-    return "\n".join(lines)
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("size", nargs="?", default="standard", help="the 3D tooth's size")
@@ -281,8 +247,6 @@ def main() -> None:
                         help="the gear whose tooth is measured (2: raw quantities)")
     parser.add_argument("--raw", action="store_true",
                         help="with --widths: the raw 3D quantities (gear 2's always)")
-    parser.add_argument("--pair-check", action="store_true",
-                        help="the misaligned baseline without the twist and with it")
     args = parser.parse_args()
     given = dict(a.split("=", 1) for a in args.pair)
     params = PairParameters(**{k: int(v) if k in ("z1", "z2") else float(v)
@@ -290,9 +254,6 @@ def main() -> None:
     if args.widths:
         print(raw_table(params, args.size, args.gear) if args.raw or args.gear == 2
               else twist_table(params, args.size))
-        return
-    if args.pair_check:
-        print(pair_check())
         return
     if args.gear == 2:
         parser.error("--gear 2 is measured with --widths (its 2D parts are not gear 1's)")

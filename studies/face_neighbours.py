@@ -1,29 +1,34 @@
 """How a load on a gear's tooth spreads along the face on its neighbours, in 3D: the part of
-the pair's coupling that one tooth's kernel does not measure (docs/model.md, "The tooth's
-twist, measured over the face width, and why the product leaves it out").
+the pair's coupling that one tooth's kernel does not measure (docs/model.md, "The other
+teeth's part, in 3D").
 
-The slice model spreads the whole finite-element part of the approach along the face by one
-kernel, gear 1's tooth's answer to its own load. Of the pair's finite-element approach at the
-loaded points, 16 % is the other loaded teeth's answer, through the rims. This study reads that
-part in 3D on the body the tooth checks use (:mod:`fegear.verify.tooth3d`: nine pitches of
-gear 1 about the loaded tooth 0, down to the solve's bore): under each patch load on tooth 0's
-band, the displacement into teeth ±1, ±2 and ±3 at the same place of their loaded flanks, along
-the face; each row divided by the same tooth's answer to the load spread evenly over the face,
-as the tooth checks divide tooth 0's (``--gear 2``: gear 2's nine pitches, held at its rim).
-The slice model's neighbour column is its finite-element part alone (the near field stays on
-the loaded tooth), spread by the product's kernel.
+Until 2026-12-03 the slice model spread the whole finite-element part of the approach along
+the face by one kernel, gear 1's tooth's answer to its own load. Of the pair's finite-element
+approach at the loaded points, 16 % is the other loaded teeth's answer, through the rims.
+This study reads that part in 3D on the body the tooth checks use
+(:mod:`fegear.verify.tooth3d`: nine pitches of gear 1 about the loaded tooth 0, down to the
+solve's bore): under each patch load on tooth 0's band, the displacement into teeth ±1, ±2 and
+±3 at the same place of their loaded flanks, along the face; each row divided by the same
+tooth's answer to the load spread evenly over the face, as the tooth checks divide tooth 0's
+(``--gear 2``: gear 2's nine pitches, held at its rim).
+The table's slice-model row is the tooth's own finite-element part (the near field stays on
+the loaded tooth), spread by the kernel: how a neighbour read before the spreads between
+teeth.
 
     .venv/bin/python studies/face_neighbours.py              # standard 3D, about a minute
     .venv/bin/python studies/face_neighbours.py coarse       # about 15 s
     .venv/bin/python studies/face_neighbours.py --width 10 --patches 18
     .venv/bin/python studies/face_neighbours.py --gear 2     # gear 2's teeth, about a minute
     .venv/bin/python studies/face_neighbours.py --pair-check   # the pair with them, 15 s
+    .venv/bin/python studies/face_neighbours.py --widths       # the tilts' table, ~5 min
 
 ``--pair-check`` solves the misaligned baseline as the 3D pair check does (docs/validation.md:
 200 N·m, 9.9 µm, `coarse`) with the coupling's spread between teeth (``across``,
-:class:`~fegear.toothpair.ring.face.FaceCoupling`) set as the neighbours' answers suggest,
-the tooth's own spread with the twist (:data:`~fegear.verify.face_slices.TWIST_TABLE`) or
-without; beside CalculiX's numbers for the 3D pair.
+:class:`~fegear.toothpair.ring.face.FaceCoupling`) set in several ways, the tooth's own spread
+with the twist (:data:`~fegear.toothpair.ring.face.TWIST_TABLE`) or without, the last the
+product's (the tilts of :data:`~fegear.toothpair.ring.face.NEIGHBOUR_TILTS`); beside
+CalculiX's numbers for the 3D pair. ``--widths`` fits the tilts at the twist table's face
+widths and prints them as the source's NEIGHBOUR_TILTS.
 
 Each neighbour is read at the section's boundary nodes within :data:`READ_RADIUS` of its band
 centre (tooth 0's turned by whole pitches), or within 1.5 times the nearest one's distance where
@@ -159,49 +164,73 @@ def table(params: PairParameters, width: float, patches: int, size: str, gear: i
     return "\n".join(lines)
 
 
-#: CalculiX on the extruded pair (docs/validation.md, "Across the face: a 3D FE of the pair"):
-#: K_Hβ and the worst root σ1 of gear 1 and gear 2 (MPa)
+def tilt_table(params: PairParameters, size: str) -> str:
+    """Each distance's tilt (:func:`tilts`) at the twist table's face widths in tooth heights
+    (face_end_column.WIDTHS), with the largest departure of the neighbours' end columns from
+    the fitted line, and the table as the source's NEIGHBOUR_TILTS."""
+    from face_end_column import WIDTHS
+
+    h = band_compliance(params).tooth_height
+    lines = [f"{'b/h':>4} {'face mm':>7}   tilt 1, 2, 3 apart   largest departure from the line"]
+    rows = []
+    for b_h, patches in WIDTHS:
+        width = round(b_h * h, 3)
+        answers, z = neighbour_columns(params, width, patches, size)
+        c = tilts(answers, z, width)
+        p1 = 2 * z / width - 1
+        off = max(float(np.abs(answers[k][:, 0] / answers[k][:, -1] - 1
+                               - c[abs(k)] * p1 * p1[0]).max()) for k in NEIGHBOURS)
+        lines.append(f"{b_h:4.1f} {width:7.3f}   " + " ".join(f"{c[d]:+.3f}" for d in (1, 2, 3))
+                     + f"   {off:.3f}")
+        rows.append(f"({b_h}, ({', '.join(f'{c[d]:.2f}' for d in (1, 2, 3))}))")
+    return "\n".join(lines + ["NEIGHBOUR_TILTS = (" + ", ".join(rows) + ")"])
+
+
+#: CalculiX on the extruded pair at 9.9 µm (docs/validation.md, "Across the face: a 3D FE of
+#: the pair"): K_Hβ (its end values extrapolated from its two end layers) and the worst root
+#: σ1 of gear 1 and gear 2 (MPa)
 CALCULIX = (1.500, 381.6, 352.1)
 
 
 def pair_check() -> str:
     """K_Hβ and the worst root stresses of the baseline at 200 N·m and 9.9 µm (`coarse`)
-    with each coupling variant (module docstring), and their differences from CalculiX's."""
+    with each coupling variant (module docstring), fegear's K_Hβ also read as CalculiX's is
+    (its line loads averaged over the six layers, the ends extrapolated from the two end
+    layers), and the differences from CalculiX's."""
     from unittest import mock
 
     from fegear.toothpair.job import prepare_job, solve_job
     from fegear.toothpair.ring import face
-    from fegear.verify.face_slices import twist_of
-
-    product = face.product_coupling
+    from fegear.verify.calculix_face import LAYERS, end_loads, layer_means, load_factor
 
     def variant(twist: bool, across):
-        def make(sections, width, tooth_height, near_share, _=0.0):
-            c = product(sections, width, tooth_height, near_share,
-                        twist_of(width, tooth_height) if twist else 0.0)
+        def make(sections, width, tooth_height, near_share):
+            c = face.tooth_coupling(sections, width, tooth_height, near_share,
+                                    face.twist_of(width, tooth_height) if twist else 0.0)
             return c if across is None else face.tilted_across(c, *np.atleast_1d(across))
         return make
 
     k0, r1, r2 = CALCULIX
     lines = [f"CalculiX 3D pair: K_Hβ {k0:.3f}, root σ1 {r1:.1f} / {r2:.1f} MPa",
-             f"{'coupling':<46} {'K_Hβ':>7} {'root σ1 gear 1 / 2':>20}   CalculiX above"]
-    for name, twist, across in (
-            ("the product (one kernel for all)", False, None),
-            ("the tooth's twist, one kernel for all", True, None),
-            ("no twist; between teeth even", False, 0.0),
-            ("the tooth's twist; between teeth even", True, 0.0),
-            ("the tooth's twist; between teeth even + 0.11 P1", True, 0.11),
-            ("the tooth's twist; between teeth even + 0.31 P1", True, 0.31),
-            ("the tooth's twist; by distance: +0.31, -0.31, -0.32 P1", True,
-             (0.31, -0.31, -0.32))):
-        with mock.patch.object(face, "product_coupling", variant(twist, across)):
+             f"{'coupling':<52} {'K_Hβ':>6} {'layers':>6} "
+             f"{'root σ1 gear 1 / 2':>18}   CalculiX above: K_Hβ, layers, roots"]
+    for name, make in (
+            ("one kernel for all, no twist (before 2026-12-03)", variant(False, None)),
+            ("the tooth's twist, one kernel for all", variant(True, None)),
+            ("no twist; between teeth even", variant(False, 0.0)),
+            ("the tooth's twist; between teeth even", variant(True, 0.0)),
+            ("the tooth's twist; between teeth even + 0.31 P1", variant(True, 0.31)),
+            ("the product: twist; by distance (NEIGHBOUR_TILTS)", face.product_coupling)):
+        with mock.patch.object(face, "product_coupling", make):
             f = solve_job(prepare_job({"torque": 200.0, "quality": "coarse",
                                        "no-estimate": True, "misalignment": 9.9})).summary["face"]
-        k = f["K_Hbeta"]
+        means = layer_means(f["positions"][0]["line_loads_N_per_mm"], f["zeta"], LAYERS)
+        loads = np.array(list(means.values()))
+        k, layered = f["K_Hbeta"], load_factor(loads, end_loads(loads))
         g1, g2 = (f["worst"][f"root_stress_gear{g}_MPa"]["value"] for g in (1, 2))
-        lines.append(f"{name:<46} {k:7.3f} {g1:9.1f} / {g2:7.1f}   "
-                     f"{100 * (k0 / k - 1):+.1f} %, {100 * (r1 / g1 - 1):+.1f} / "
-                     f"{100 * (r2 / g2 - 1):+.1f} %")
+        lines.append(f"{name:<52} {k:6.3f} {layered:6.3f} {g1:8.1f} / {g2:6.1f}   "
+                     f"{100 * (k0 / k - 1):+.1f} %, {100 * (k0 / layered - 1):+.1f} %, "
+                     f"{100 * (r1 / g1 - 1):+.1f} / {100 * (r2 / g2 - 1):+.1f} %")
     return "\n".join(lines)
 
 
@@ -212,6 +241,8 @@ def main() -> None:
     parser.add_argument("--patches", type=int, default=9)
     parser.add_argument("--gear", type=int, default=1, choices=(1, 2),
                         help="gear 2's teeth (held at its rim) instead of gear 1's")
+    parser.add_argument("--widths", action="store_true",
+                        help="the tilts at the twist table's face widths (gear 1)")
     parser.add_argument("--pair-check", action="store_true",
                         help="the misaligned pair with each coupling, against CalculiX")
     a = parser.parse_args()
@@ -219,6 +250,9 @@ def main() -> None:
         print(pair_check())
         return
     params = PairParameters(shift=0.016, rotation=0.002)
+    if a.widths:
+        print(tilt_table(params, a.size))
+        return
     print(table(params, a.width, a.patches, a.size, a.gear))
 
 

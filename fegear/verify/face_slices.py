@@ -35,8 +35,9 @@ from ..toothpair import (
     flank_compliance,
     kernel_weights,
     measured_kernel,
-    product_coupling,
     ring_model,
+    tooth_coupling,
+    twist_of,
 )
 from .tooth3d import FaceInfluence, face_influence, load_band
 
@@ -210,26 +211,15 @@ def table_text(table: np.ndarray) -> str:
 
 
 def product_influence(band: BandCompliance, width: float, patches: int,
-                      twist: float = 0.0) -> np.ndarray:
-    """The slice model's G as the product couples the face (the measured kernel mirrored,
-    the rows' slope corrected: :func:`~fegear.toothpair.ring.face.product_coupling`), with
-    the tooth's ``twist`` added (:func:`twist_of`; the product's is 0)."""
-    return _influence(band, width, patches, product_coupling(
+                      twist: float | None = None) -> np.ndarray:
+    """The slice model's G as the product couples a tooth's face (the measured kernel
+    mirrored, the rows' slope corrected, the tooth's twist:
+    :func:`~fegear.toothpair.ring.face.tooth_coupling`); ``twist`` in place of the
+    product's (:func:`~fegear.toothpair.ring.face.twist_of`), 0 for none."""
+    if twist is None:
+        twist = twist_of(width, band.tooth_height)
+    return _influence(band, width, patches, tooth_coupling(
         patches * PER_PATCH + 1, width, band.tooth_height, band.near_share, twist))
-
-
-#: the tooth's twist (the coupling's ``twist``: c P1 P1ᵀ diag(share)) by the face width in
-#: tooth heights b/h: c fitted to gear 1's 3D tooth's end column (a load at one end) at
-#: `standard`, on the baseline's tooth; the product leaves it out (docs/model.md, "The
-#: tooth's twist"). Reproduce (12 minutes): ``python studies/face_end_column.py --widths``
-TWIST_TABLE = ((1.5, 0.3824), (2.0, 0.3523), (2.5, 0.3022), (3.3, 0.2009), (5.0, 0.0209))
-
-
-def twist_of(width: float, tooth_height: float) -> float:
-    """The twist coefficient of :data:`TWIST_TABLE` for a face ``width`` wide on a tooth
-    ``tooth_height`` high (mm): linear in b/h between the table's widths, held beyond them."""
-    b, c = np.array(TWIST_TABLE).T
-    return float(np.interp(width / tooth_height, b, c))
 
 
 def check_text(solid: FaceInfluence, band: BandCompliance, kernels: dict) -> str:
@@ -256,8 +246,8 @@ def main(argv: list[str]) -> str:
     """``python -m fegear.verify.face_slices fit|check [size] [quality=…] [name=value …]``:
     ``fit`` solves the 3D tooth on a face 5 tooth heights wide (18 patches) and prints the
     kernel's table; ``check`` solves it on the pair's 5 mm face (9 patches) and prints the
-    slice model's columns against it: the product's, the product's with the tooth's twist and
-    the exponential kernel's."""
+    slice model's columns against it: the product's (with the tooth's twist), the same without
+    the twist and the exponential kernel's."""
     command, rest = argv[0], argv[1:]
     given = dict(a.split("=", 1) for a in rest if "=" in a)
     quality = given.pop("quality", "coarse")
@@ -270,8 +260,8 @@ def main(argv: list[str]) -> str:
         return table_text(fit_table(solid, band))
     solid = face_influence(params, size=size)
     kernel = measured_kernel(band.tooth_height, band.near_share)
-    kernels = {"product": (kernel, True, "slope", 0.0),
-               "with twist": (kernel, True, "slope", twist_of(5.0, band.tooth_height)),
+    kernels = {"product": (kernel, True, "slope", twist_of(5.0, band.tooth_height)),
+               "no twist": (kernel, True, "slope", 0.0),
                "exponential": (exponential_kernel(4 * params.e1), False, "linear", 0.0)}
     return check_text(solid, band, kernels)
 

@@ -15,9 +15,12 @@ by the spread S (rows summing to one: a load even across the face is the 2D pair
 rounding; a load linear across the face stays linear). The product's S
 (:func:`measured_coupling`) is formed from gear 1's tooth in 3D: its answer along the face
 to a load at one place, tabulated in tooth heights (:data:`KERNEL_TABLE`), less the near
-field's share, mirrored in the free ends. Each section's rigid gap is the 2D one plus what
-the face's inputs add there (:meth:`~fegear.toothpair.face.Face.offsets`: misalignment,
-helix deviations, crowning, end relief).
+field's share, mirrored in the free ends, with the tooth's twist (:data:`TWIST_TABLE`). The
+part of the approach that a load on one tooth gives the other teeth, through the rims,
+spreads nearly evenly along the face instead, tilted as gear 1's neighbours in 3D tilt
+(:data:`NEIGHBOUR_TILTS`; :meth:`FaceCoupling.between`). Each section's rigid gap is the 2D
+one plus what the face's inputs add there (:meth:`~fegear.toothpair.face.Face.offsets`:
+misalignment, helix deviations, crowning, end relief).
 """
 
 from __future__ import annotations
@@ -111,8 +114,7 @@ def face_coupling(sections: int, width: float, kernel: Callable[[np.ndarray], np
     at one end tilts the whole face: the loaded end gives more and the far end less than by
     the kernel alone, as the 3D tooth's do. Its rows sum to zero (P1's mean is zero), so the
     even load is untouched, and it is odd about mid-face, so a load at mid-face spreads as
-    before. The product leaves it out: with it gear 1's 3D tooth reads better and the 3D pair
-    worse (docs/model.md, "The tooth's twist")."""
+    before (the product's: :data:`TWIST_TABLE`; docs/model.md, "The tooth's twist")."""
     z, share, w = kernel_weights(sections, width, kernel, mirror)
     spread = w * correction_factors(z, share, w, correction)
     zeta = z / width - 0.5
@@ -131,10 +133,10 @@ def linear_tilt(zeta: np.ndarray, share: np.ndarray) -> np.ndarray:
 
 
 def tilted_across(coupling: FaceCoupling, *tilts: float) -> FaceCoupling:
-    """``coupling`` with the spreads between teeth ``across`` (:class:`FaceCoupling`) that
-    gear 1's neighbours in 3D have (studies/face_neighbours.py): the load even over the face
-    plus each of ``tilts`` times :func:`linear_tilt`, for the teeth 1, 2, … apart (one tilt:
-    one spread for all)."""
+    """``coupling`` with the spreads between teeth ``across`` (:class:`FaceCoupling`) as
+    gear 1's neighbours in 3D have them (:data:`NEIGHBOUR_TILTS`): the load even over the
+    face plus each of ``tilts`` times :func:`linear_tilt`, for the teeth 1, 2, … apart (one
+    tilt: one spread for all)."""
     even = np.outer(np.ones(len(coupling.share)), coupling.share)
     tilt = linear_tilt(coupling.zeta, coupling.share)
     spreads = [even + t * tilt for t in tilts]
@@ -283,21 +285,63 @@ def flank_compliance(model: RingModel, band: FlankBand) -> tuple[float, float]:
 
 
 def measured_coupling(model: RingModel, sections: int, width: float) -> FaceCoupling:
-    """The face's coupling for ``model``'s pair (docs/model.md, "Across the face"): the
-    measured kernel (:func:`measured_kernel`) at gear 1's tooth height, the near field's share
-    read at mid-height of its working flank (:func:`flank_compliance`), mirrored in the free
-    ends, each row scaled to sum to one."""
+    """The face's coupling for ``model``'s pair (docs/model.md, "Across the face"):
+    :func:`product_coupling` at gear 1's tooth height, with the near field's share read at
+    mid-height of its working flank (:func:`flank_compliance`)."""
     band = flank_band(model.shape, BAND_HEIGHT, BAND_LENGTH * model.case.params.m)
     near, fe = flank_compliance(model, band)
     return product_coupling(sections, width, band.tooth_height, near / (near + fe))
 
 
 def product_coupling(sections: int, width: float, tooth_height: float,
-                     near_share: float, twist: float = 0.0) -> FaceCoupling:
+                     near_share: float) -> FaceCoupling:
     """The product's coupling of ``sections`` sections over a face ``width`` wide, gear 1's
-    tooth ``tooth_height`` high (mm), the near field ``near_share`` of the 2D approach: the
-    measured kernel mirrored in the free ends, its rows corrected ("slope")
-    (:func:`measured_coupling` reads the pair's tooth height and near share; the 3D checks
-    read it as the product forms it, and with the tooth's ``twist``, which it leaves out)."""
+    tooth ``tooth_height`` high (mm), the near field ``near_share`` of the 2D approach
+    (:func:`measured_coupling` reads both off the pair): the tooth's own spread
+    (:func:`tooth_coupling`, its twist read from :data:`TWIST_TABLE`), and the other teeth's
+    spreads even over the face, tilted as gear 1's neighbours in 3D tilt
+    (:data:`NEIGHBOUR_TILTS`, by :func:`neighbour_tilts`)."""
+    own = tooth_coupling(sections, width, tooth_height, near_share,
+                         twist_of(width, tooth_height))
+    return tilted_across(own, *neighbour_tilts(width, tooth_height))
+
+
+def tooth_coupling(sections: int, width: float, tooth_height: float, near_share: float,
+                   twist: float) -> FaceCoupling:
+    """A tooth's own spread as the product forms it, with the tooth's ``twist``
+    (:func:`face_coupling`'s): the measured kernel mirrored in the free ends, its rows
+    corrected ("slope"); no spread of its own between teeth (what the 3D tooth checks read:
+    fegear.verify.face_slices)."""
     return face_coupling(sections, width, measured_kernel(tooth_height, near_share),
                          mirror=True, correction="slope", twist=twist)
+
+
+#: the tooth's twist (:func:`face_coupling`'s ``twist``: c P1 P1ᵀ diag(share)) by the face
+#: width in tooth heights b/h: c fitted to the end column (a load at one end) of gear 1's 3D
+#: tooth at `standard`, on the baseline's tooth (docs/model.md, "The tooth's twist").
+#: Reproduce (12 minutes): ``python studies/face_end_column.py --widths``
+TWIST_TABLE = ((1.5, 0.3824), (2.0, 0.3523), (2.5, 0.3022), (3.3, 0.2009), (5.0, 0.0209))
+#: the other teeth's tilts (:func:`tilted_across`) by the face width in tooth heights b/h:
+#: the tilt c of gear 1's teeth 1, 2 and 3 apart from the loaded one (the last for all
+#: farther), fitted to their answers in 3D to a load at one end of the loaded tooth, at
+#: `standard`, on the baseline (docs/model.md, "The other teeth's part, in 3D"). Reproduce
+#: (6 minutes): ``python studies/face_neighbours.py --widths``
+NEIGHBOUR_TILTS = ((1.5, (0.11, -0.36, -0.24)), (2.0, (0.20, -0.34, -0.28)),
+                   (2.5, (0.31, -0.31, -0.32)), (3.3, (0.52, -0.20, -0.34)),
+                   (5.0, (0.97, 0.16, -0.18)))
+
+
+def twist_of(width: float, tooth_height: float) -> float:
+    """The twist coefficient of :data:`TWIST_TABLE` for a face ``width`` wide on a tooth
+    ``tooth_height`` high (mm): linear in b/h between the table's widths, held beyond them."""
+    b, c = np.array(TWIST_TABLE).T
+    return float(np.interp(width / tooth_height, b, c))
+
+
+def neighbour_tilts(width: float, tooth_height: float) -> tuple[float, ...]:
+    """The other teeth's tilts of :data:`NEIGHBOUR_TILTS` for a face ``width`` wide on a tooth
+    ``tooth_height`` high (mm), each linear in b/h between the table's widths, held beyond
+    them."""
+    b = np.array([w for w, _ in NEIGHBOUR_TILTS])
+    c = np.array([t for _, t in NEIGHBOUR_TILTS])
+    return tuple(float(np.interp(width / tooth_height, b, c[:, d])) for d in range(c.shape[1]))

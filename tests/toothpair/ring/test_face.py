@@ -6,8 +6,16 @@ import numpy as np
 import pytest
 
 from fegear.toothpair.face import Face
-from fegear.toothpair.ring.face import exponential_kernel, face_coupling, measured_kernel
-from fegear.verify.face_slices import TWIST_TABLE, twist_of
+from fegear.toothpair.ring.face import (
+    NEIGHBOUR_TILTS,
+    TWIST_TABLE,
+    exponential_kernel,
+    face_coupling,
+    measured_kernel,
+    neighbour_tilts,
+    product_coupling,
+    twist_of,
+)
 
 
 class _Contact:
@@ -98,6 +106,38 @@ def test_the_measured_twist_is_read_from_its_table_by_the_face_in_tooth_heights(
     assert twist_of(1e3, 2.0) == pytest.approx(TWIST_TABLE[-1][1], abs=1e-12)
     # shorter faces twist more: the end's tilt matters less as the face grows
     assert all(a[1] >= b[1] for a, b in zip(TWIST_TABLE, TWIST_TABLE[1:]))
+
+
+def test_the_products_coupling_carries_the_twist_and_the_neighbours_tilts_of_its_width():
+    width, h = 5.0, 2.0
+    c = product_coupling(9, width, h, 0.2)
+    plain = face_coupling(9, width, measured_kernel(h, 0.2), mirror=True, correction="slope")
+    p1 = 2.0 * c.zeta - c.share @ (2.0 * c.zeta)
+    np.testing.assert_allclose(c.spread - plain.spread,
+                               twist_of(width, h) * np.outer(p1, p1 * c.share), atol=1e-14)
+    tilts = neighbour_tilts(width, h)
+    assert len(tilts) == len(NEIGHBOUR_TILTS[0][1]) == len(c.across)
+    for apart in range(1, len(tilts) + 2):       # the last spread for the teeth farther
+        spread = c.between(apart)
+        np.testing.assert_allclose(spread.sum(axis=1), 1.0, atol=1e-14)   # even stays even
+        # a load at the first end moves a neighbour linearly, by its distance's tilt
+        tilt = tilts[min(apart, len(tilts)) - 1]
+        np.testing.assert_allclose(spread[:, 0] / c.share[0], 1.0 + tilt * p1 * p1[0],
+                                   atol=1e-12)
+    np.testing.assert_array_equal(c.between(0), c.spread)
+
+
+def test_the_neighbours_tilts_are_read_from_their_table_by_the_face_in_tooth_heights():
+    widths = [b for b, _ in NEIGHBOUR_TILTS]
+    assert widths == sorted(widths)
+    first, last = NEIGHBOUR_TILTS[0], NEIGHBOUR_TILTS[-1]
+    assert neighbour_tilts(2.0 * first[0], 2.0) == pytest.approx(first[1], abs=1e-12)
+    assert neighbour_tilts(0.1, 2.0) == pytest.approx(first[1], abs=1e-12)   # held
+    assert neighbour_tilts(1e3, 2.0) == pytest.approx(last[1], abs=1e-12)
+    if len(NEIGHBOUR_TILTS) > 1:
+        (b0, t0), (b1, t1) = NEIGHBOUR_TILTS[:2]
+        np.testing.assert_allclose(neighbour_tilts(b0 + b1, 2.0),
+                                   0.5 * (np.array(t0) + np.array(t1)), atol=1e-12)
 
 
 def test_the_measured_kernel_is_the_3d_tooths_less_the_near_field():
