@@ -112,9 +112,13 @@ def _periodic_mean(x: np.ndarray, v: np.ndarray) -> float:
 def mesh_stiffness_of_cycle(rows: list[dict], z1: int, z2: int, module: float, thickness: float,
                torque: float) -> MeshStiffness:
     """The mesh stiffness of a ``fegear solve --positions`` cycle (rows of
-    :func:`fegear.toothpair.summary.cycle_rows`): phase = (β − β0)·z2/360°."""
-    beta = np.array([r["position_deg"] for r in rows])
-    phase = np.mod((beta - beta[0]) * z2 / 360.0, 1.0)
+    :func:`fegear.toothpair.summary.cycle_rows`): phase = (β − β0)·z2/360°. A revolution's
+    rows (``--revolution``: the same phases on every pitch) give their first pitch's."""
+    beta = np.degrees(np.unwrap(np.radians([r["position_deg"] for r in rows])))  # past ±180°
+    pitches = (beta - beta[0]) * z2 / 360.0
+    first = np.flatnonzero(pitches < 1.0 - 1e-9)
+    rows = [rows[i] for i in first]
+    phase = pitches[first]
     order = np.argsort(phase)
     k = np.array([r["mesh_stiffness_Nm_per_rad"] for r in rows])
     e = 1e-6 * np.array([r["first_touch_urad"] for r in rows])

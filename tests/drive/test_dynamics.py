@@ -184,3 +184,18 @@ def test_tangent_and_secant_springs_differ_only_in_the_vibration():
     assert pt.natural_frequency / p.natural_frequency == pytest.approx(np.sqrt(1.5), rel=1e-12)
     slow = steady_response(pt, stiff, 20.0, 1.0, spring="tangent")
     assert slow.dynamic_factor == pytest.approx(1.0, abs=1e-3)
+
+
+def test_a_revolutions_mesh_stiffness_is_its_first_pitchs():
+    # a revolution's rows repeat the same phases on every pitch (to rounding, or exactly):
+    # the mesh period is its first pitch; a cycle across the wrap at ±180° keeps its order
+    pitch, k = 360.0 / 45, [1.0e6, 1.2e6]
+    rows = [{"position_deg": 3.0 + j * pitch / 2, "mesh_stiffness_Nm_per_rad": k[j % 2] + j,
+             "first_touch_urad": 0.0, "tangent_stiffness_Nm_per_rad": None} for j in range(88)]
+    m = mesh_stiffness_of_cycle(rows, 44, 45, 2.0, 5.0, 200.0)
+    assert m.phase == pytest.approx([0.0, 0.5]) and m.stiffness.tolist() == [1.0e6, 1.2e6 + 1]
+    wrapped = [{**r, "position_deg": (178.0 + j * pitch / 4 + 180.0) % 360.0 - 180.0}
+               for j, r in enumerate(rows[:4])]
+    m = mesh_stiffness_of_cycle(wrapped, 44, 45, 2.0, 5.0, 200.0)
+    assert m.phase == pytest.approx([0.0, 0.25, 0.5, 0.75])
+    assert m.stiffness.tolist() == [r["mesh_stiffness_Nm_per_rad"] for r in rows[:4]]
