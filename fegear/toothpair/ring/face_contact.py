@@ -5,7 +5,7 @@ carrying the torque.
 Section s's gaps are the 2D rigid gaps plus the face's offsets there plus the approach
 A_hp p_s + A_fe Σ_t S_st p_t (with the coupling's ``across`` spreads, A_fe's blocks between
 different grids take the spread between their teeth in place of S: one tooth's load reaches
-the others through the rims).
+the others through the rims; :mod:`.face_spread`).
 The method is the 2D solve's (:func:`~.contact.active_set`: every violated point swapped at
 once; the rigid gap linearised in the turn and evaluated again until the rotation settles).
 The active points' system is never formed: N sections of n points would make a matrix N²
@@ -29,6 +29,7 @@ import scipy.linalg
 
 from .contact import ARM_STEP, MAX_ACTIVE_SET, MAX_TURNS, RingContactError, rigid_gap
 from .face import FaceCoupling
+from .face_spread import FaceSpread
 from .influence import RingContact, near_field
 from .krylov import gmres
 from .model import RingModel
@@ -123,8 +124,7 @@ class _Problem:
         self.far_t = np.subtract(contact.A.T, near.T, out=np.empty_like(near))
         self.spread = coupling.spread
         self.blocks = [contact.block(k) for k in range(len(contact.grids))]
-        self.base, self.pairs = _spreads(coupling, [g.tooth for g in contact.grids],
-                                         model.case.params.z1)
+        self.fe = FaceSpread(coupling, [g.tooth for g in contact.grids], model.case.params.z1)
         self.w = (contact.weight * model.case.thickness)[:, None] * coupling.share[None, :]
         self.alpha = model.case.params.ratio * contact.beta
         self.feet = contact.feet.copy()
@@ -145,13 +145,11 @@ class _Problem:
         """The approach (points × sections) at every point under the pressures ``p`` (len(at)
         × sections) at the points ``at`` (increasing), whose rows of the transposed parts
         are ``far_rows`` and ``near_rows``: the finite-element part between each pair of
-        grids spread as the coupling spreads it between their teeth (:func:`_spreads`)."""
-        u = (self.base @ p.T) @ far_rows + p.T @ near_rows         # sections × points
-        for i, j, extra in self.pairs:
-            lo, hi = np.searchsorted(at, [self.blocks[j].start, self.blocks[j].stop])
-            if hi > lo:
-                u[:, self.blocks[i]] += (extra @ p[lo:hi].T) @ far_rows[lo:hi, self.blocks[i]]
-        return u.T
+        grids spread as the coupling spreads it between their teeth (:class:`FaceSpread`)."""
+        cuts = np.searchsorted(at, self.contact.offsets)
+        sources = [slice(lo, hi) for lo, hi in zip(cuts[:-1], cuts[1:])]
+        u = self.fe.approach(p, sources, far_rows, self.blocks)   # sections × points
+        return (u + p.T @ near_rows).T
 
     def solve(self, start: FaceStart, within: np.ndarray):
         """The linearisations of the rigid gap over the points ``within`` (points ×
@@ -199,22 +197,6 @@ class _Problem:
         ahead = self.rigid(theta + ARM_STEP, points[loaded])[1]
         return float(np.sum(self.w[points[loaded]] * pressure[loaded]
                             * ((ahead - a[loaded]) / ARM_STEP)[:, None]))
-
-
-def _spreads(coupling: FaceCoupling, teeth: list[int], z1: int) -> tuple[np.ndarray, list]:
-    """The spread most of A_fe's blocks take (the one between adjacent teeth; without an
-    ``across``, the coupling's spread) and the grid pairs (i, j, what their block adds to it)
-    whose teeth, ``teeth`` of gear 1's z1, are another distance apart."""
-    base = coupling.between(1)
-    if coupling.across is None:       # one spread for every block
-        return base, []
-    pairs = []
-    for i, ti in enumerate(teeth):
-        for j, tj in enumerate(teeth):
-            extra = coupling.between(min((ti - tj) % z1, (tj - ti) % z1)) - base
-            if extra.any():
-                pairs.append((i, j, extra))
-    return base, pairs
 
 
 def spread_modes(spread: np.ndarray):
@@ -272,7 +254,8 @@ class _Sections:
         far = np.ascontiguousarray(far_rows[:, at].T)
         # the near field stays on its grid: one block a grid, the union's points grid by grid
         cuts = np.searchsorted(at, self.problem.contact.offsets)
-        grids = [slice(lo, hi) for lo, hi in zip(cuts[:-1], cuts[1:]) if hi > lo]
+        spans = [slice(lo, hi) if hi > lo else None for lo, hi in zip(cuts[:-1], cuts[1:])]
+        grids = [g for g in spans if g is not None]
         near = [np.ascontiguousarray(near_rows[g, at[g]].T) for g in grids]
         sec_major = np.nonzero(on.T)
         local = (sec_major[1], sec_major[0])      # (point, section), section by section
@@ -281,16 +264,14 @@ class _Sections:
         a_on = linear.a[order[0]]
         wa = self.w[order] * a_on
         arm_rate = linear.arm_rate
-        spread, pairs = self.problem.base, self._pairs(far, at)
+        fe = self.problem.fe.on_points(far, spans)
 
         def times(x):
             p = np.zeros(on.shape)
             p[local] = x[:-1]
-            u = far @ (p @ spread.T)
+            u = fe(p)
             for g, block in zip(grids, near):
                 u[g] += block @ p[g]
-            for gi, gj, block, extra in pairs:
-                u[gi] += block @ (p[gj] @ extra.T)
             u = u[local] + a_on * x[-1]
             return np.append(u, wa @ x[:-1] + arm_rate * x[-1])
 
@@ -319,16 +300,6 @@ class _Sections:
         approach = self.problem.approach(pressure[union], at, far_rows, near_rows)
         gap = linear.g0 + linear.a[:, None] * found.x[-1] + approach[self.points]
         return pressure, float(found.x[-1]), gap
-
-    def _pairs(self, far: np.ndarray, at: np.ndarray) -> list:
-        """The union's blocks of its finite-element part ``far`` whose spread is not the
-        problem's base one (:func:`_spreads`): the rows' and columns' slices among the union's
-        points ``at``, the block and the spread to add."""
-        cuts = np.searchsorted(at, self.problem.contact.offsets)
-        spans = {k: slice(lo, hi) for k, (lo, hi) in enumerate(zip(cuts[:-1], cuts[1:]))
-                 if hi > lo}
-        return [(spans[i], spans[j], np.ascontiguousarray(far[spans[i], spans[j]]), extra)
-                for i, j, extra in self.problem.pairs if i in spans and j in spans]
 
     def _modes(self, union: np.ndarray, near: _Near, far: np.ndarray) -> _Modes:
         """The face's operator on every point of ``union`` at every section, in the spread's
