@@ -248,3 +248,18 @@ def test_an_unknown_option_is_told_the_nearest_of_its_own_command(argv, hint, ca
         assert "did you mean" not in lines[0], lines[0]
     else:
         assert lines[0].endswith(f"(did you mean {hint}?)"), lines[0]
+
+
+def test_a_command_builds_its_own_options_alone_and_help_builds_every_one(monkeypatch, capsys):
+    import fegear.cli
+    from fegear.cli import main
+
+    def built(sub):
+        raise AssertionError("another command's options were built")
+
+    monkeypatch.setattr(fegear.cli.profile, "add_parser", built)
+    assert main(["-q", "drive", "ratio", "--train", "internal", "--teeth", "44,45"]) == 0
+    assert main(["solve", "--h1", "0.9", "--out", "never-made"]) == 2
+    assert "--h1 = 0.9 is not admissible" in capsys.readouterr().err
+    with pytest.raises(AssertionError, match="another command"):
+        main(["--help"])
