@@ -3,7 +3,7 @@
 
 The measured kernel mirrored in the free ends, with the "slope" rows and no twist, reads the
 baseline's 3D tooth within 0.43 % (peak) and 2.1 % (far) under a load at mid-face, 3.8 % and
-17.8 % under a load at one end; the twist (P1 below, the product's since 2026-12-03:
+17.8 % under a load at one end; the twist (P1 below, the product's:
 docs/model.md, "The tooth's twist") takes the end column to 1.0 % and 6.8 %. Each variant
 here keeps the uniform-face property (every row of the spread sums to one, so the slice
 model's rows of G under an even load give the 2D pair's) and is read as

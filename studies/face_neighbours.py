@@ -2,8 +2,8 @@
 the pair's coupling that one tooth's kernel does not measure (docs/model.md, "The other
 teeth's part, in 3D").
 
-Until 2026-12-03 the slice model spread the whole finite-element part of the approach along
-the face by one kernel, gear 1's tooth's answer to its own load. Of the pair's finite-element
+One kernel for all teeth, gear 1's tooth's answer to its own load, would spread the whole
+finite-element part of the approach along the face alike. Of the pair's finite-element
 approach at the loaded points, 16 % is the other loaded teeth's answer, through the rims.
 This study reads that part in 3D on the body the tooth checks use
 (:mod:`fegear.verify.tooth3d`: nine pitches of gear 1 about the loaded tooth 0, down to the
@@ -12,15 +12,14 @@ solve's bore): under each patch load on tooth 0's band, the displacement into te
 tooth's answer to the load spread evenly over the face, as the tooth checks divide tooth 0's
 (``--gear 2``: gear 2's nine pitches, held at its rim).
 The table's slice-model row is the tooth's own finite-element part (the near field stays on
-the loaded tooth), spread by the kernel: how a neighbour read before the spreads between
-teeth.
+the loaded tooth), spread by the kernel: how one kernel for all would read a neighbour.
 
     .venv/bin/python studies/face_neighbours.py              # standard 3D, about a minute
     .venv/bin/python studies/face_neighbours.py coarse       # about 15 s
     .venv/bin/python studies/face_neighbours.py --width 10 --patches 18
     .venv/bin/python studies/face_neighbours.py --gear 2     # gear 2's teeth, about a minute
     .venv/bin/python studies/face_neighbours.py --pair-check   # the pair with them, 15 s
-    .venv/bin/python studies/face_neighbours.py --widths       # the tilts' table, ~5 min
+    .venv/bin/python studies/face_neighbours.py --widths       # the tilts' table, ~6 min
 
 ``--pair-check`` solves the misaligned baseline as the 3D pair check does (docs/validation.md:
 200 N·m, 9.9 µm, `coarse`) with the coupling's spread between teeth (``across``,
