@@ -85,10 +85,11 @@ class FaceSpread:
             t = targets[j]
             u[:, t] += (self.own @ p[s].T) @ far_rows[s, t]
         for i, t in enumerate(targets):
-            mixed = sum(self.small[i, j] @ reach[j][:, t] for j in range(len(sources))
-                        if reach[j] is not None and j != i)
-            if not np.isscalar(mixed):
-                u[:, t] += self.left @ mixed
+            mixed = np.zeros((self.left.shape[1], t.stop - t.start))
+            for j, r in enumerate(reach):
+                if r is not None and j != i:
+                    mixed += self.small[i, j] @ r[:, t]
+            u[:, t] += self.left @ mixed
         return u
 
 
