@@ -333,15 +333,19 @@ NEIGHBOUR_TILTS = ((1.5, (0.11, -0.36, -0.24)), (2.0, (0.20, -0.34, -0.28)),
 
 def twist_of(width: float, tooth_height: float) -> float:
     """The twist coefficient of :data:`TWIST_TABLE` for a face ``width`` wide on a tooth
-    ``tooth_height`` high (mm): linear in b/h between the table's widths, held beyond them."""
-    b, c = np.array(TWIST_TABLE).T
-    return float(np.interp(width / tooth_height, b, c))
+    ``tooth_height`` high (mm) (:func:`_by_width`)."""
+    return _by_width(TWIST_TABLE, width / tooth_height)[0]
 
 
 def neighbour_tilts(width: float, tooth_height: float) -> tuple[float, ...]:
     """The other teeth's tilts of :data:`NEIGHBOUR_TILTS` for a face ``width`` wide on a tooth
-    ``tooth_height`` high (mm), each linear in b/h between the table's widths, held beyond
-    them."""
-    b = np.array([w for w, _ in NEIGHBOUR_TILTS])
-    c = np.array([t for _, t in NEIGHBOUR_TILTS])
-    return tuple(float(np.interp(width / tooth_height, b, c[:, d])) for d in range(c.shape[1]))
+    ``tooth_height`` high (mm) (:func:`_by_width`)."""
+    return _by_width(NEIGHBOUR_TILTS, width / tooth_height)
+
+
+def _by_width(table, b_h: float) -> tuple[float, ...]:
+    """A table's row ((b/h, value or values), …) at ``b_h``: each value linear in b/h between
+    the table's widths, held beyond them."""
+    b = np.array([w for w, _ in table])
+    c = np.array([np.atleast_1d(v) for _, v in table], dtype=float)
+    return tuple(float(np.interp(b_h, b, c[:, d])) for d in range(c.shape[1]))
