@@ -141,9 +141,11 @@ class CyclicBody:
         return u
 
     def cut_motions(self, rho: dict[int, np.ndarray], sectors) -> np.ndarray:
-        """Cut-face displacements (2 n_f, len(sectors)) of the ``sectors`` under the cut loads
-        ``rho`` (loaded sector → its loads carried to the cuts, :meth:`cut_loads`)."""
-        cuts = np.zeros((len(self.interface), len(sectors)))
+        """Cut-face displacements (2 n_f, len(sectors), …) of the ``sectors`` under the cut
+        loads ``rho`` (loaded sector → its loads carried to the cuts, :meth:`cut_loads`:
+        (2 n_f, …), a column each of several load cases)."""
+        tail = next(iter(rho.values())).shape[1:] if rho else ()
+        cuts = np.zeros((len(self.interface), len(sectors)) + tail)
         for j, s in enumerate(sectors):
             for t, r in rho.items():
                 cuts[:, j] += self.coupling(t - s) @ r

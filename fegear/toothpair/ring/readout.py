@@ -19,6 +19,8 @@ root zones' (a sample's von Mises peak is at a contact, five times the root's on
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 from ...fe import projector, stress_field
@@ -27,7 +29,6 @@ from .model import RingModel
 from .side import GearSide
 from .stresses import (
     RingStresses,
-    loaded_sectors,
     root_zone,
     side_root_nodes,
     surface_tangent,
@@ -112,35 +113,89 @@ def brief_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
     ``strains`` of the contact it was turned from), read off the cut motions and loads
     (module docstring); the largest von Mises stress away from the contacts is the root
     zones'. No fields, no submodels. Without ``strains``, the root zones alone: the surface
-    estimate is NaN (a caller that reads the roots and the pressures)."""
-    roots, motions = [], []
-    for side, loads in zip(model.gears, contact.loads):
-        reading = readout(side)
-        f = {t: b.matrix @ pressure[b.columns] for t, b in loads.items()
-             if pressure[b.columns].any()}   # (a kept contact's wide grids: most unloaded)
-        f = {t: v for t, v in f.items() if np.any(v)}
-        sectors = loaded_sectors(side, loads, pressure)
-        rho = {t: side.cut_loads(loads[t].dofs) @ v for t, v in f.items()}
-        cuts = side.body.cut_motions(rho, sectors)
-        motions.append((dict(zip(sectors, cuts.T)), f))
-        at = reading.through_cuts @ cuts
-        for j, s in enumerate(sectors):
-            if s in f:
-                at[:, j] += reading.clamped(side, loads[s].dofs) @ f[s]
-        n = len(reading.nodes)
-        roots.append({s: stress_field(at[:n, j], at[n:2 * n, j], at[2 * n:, j],
-                                      side.body.material) for j, s in enumerate(sectors)})
+    estimate is NaN (a caller that reads the roots and the pressures). One column of
+    :func:`brief_stresses_of`."""
+    return brief_stresses_of(model, contact, pressure[:, None], strains)[0]
 
-    def strain(g: int, k: int, points: np.ndarray) -> np.ndarray:
-        cuts, f = motions[g]
-        if k not in cuts:
-            return np.zeros(len(points))
-        return strains.strain(g, contact.loads[g].get(k), cuts[k], f.get(k), points)
 
-    surface = (np.full((2, contact.npoints), np.nan) if strains is None else
-               surface_von_mises(model, contact, pressure, strain))
-    zones = tuple(root_zone(side, readout(side).nodes,
-                            {k: s.max_principal for k, s in r.items()})
-                  for side, r in zip(model.gears, roots))
-    bulk = max((float(s.von_mises.max()) for r in roots for s in r.values()), default=0.0)
-    return RingStresses(({}, {}), zones, surface, (), bulk)
+def brief_stresses_of(model: RingModel, contact: RingContact, pressures: np.ndarray,
+                      strains: SurfaceStrains | None) -> list[RingStresses]:
+    """:func:`brief_stresses` of each column of ``pressures`` (points, samples) on
+    ``contact``, read together: the loads, cut motions and root stresses of every sample as
+    one product a sector (the deviation sets solved on one kept contact, its numbering the
+    same: a class's samples at a position), each sample's then taken on its own loaded sectors
+    and one either side, as alone."""
+    reads = [_read_gear(side, loads, pressures) for side, loads in zip(model.gears,
+                                                                       contact.loads)]
+    out = []
+    for i in range(pressures.shape[1]):
+        own = [(r, r.sectors_of(i)) for r in reads]
+
+        def strain(g: int, k: int, points: np.ndarray, i=i, own=own) -> np.ndarray:
+            r, sectors = own[g]
+            if k not in sectors:
+                return np.zeros(len(points))
+            load = r.loads[k][:, i] if r.loads_sample(k, i) else None
+            return strains.strain(g, contact.loads[g].get(k), r.cuts[k][:, i], load, points)
+
+        surface = (np.full((2, contact.npoints), np.nan) if strains is None else
+                   surface_von_mises(model, contact, pressures[:, i], strain))
+        zones = tuple(root_zone(side, readout(side).nodes,
+                                {k: r.s1[k][:, i] for k in sectors})
+                      for side, (r, sectors) in zip(model.gears, own))
+        bulk = max((float(r.von_mises[k][:, i].max()) for r, sectors in own for k in sectors),
+                   default=0.0)
+        out.append(RingStresses(({}, {}), zones, surface, (), bulk))
+    return out
+
+
+@dataclass(frozen=True)
+class _GearRead:
+    """One gear's readout of many samples' pressures (:func:`brief_stresses_of`), over the
+    sectors any sample reads: the loaded sectors' template loads (dofs, samples) and which
+    samples load each (``loaded``: through its loads, ``pressed``: with a pressure on its
+    points, as :func:`~.stresses.loaded_sectors` counts them), and each sector's cut motions
+    (2 n_f, samples) and root nodes' σ1 and von Mises (nodes, samples)."""
+
+    count: int
+    loads: dict
+    loaded: dict
+    pressed: dict
+    cuts: dict
+    s1: dict
+    von_mises: dict
+
+    def loads_sample(self, k: int, i: int) -> bool:
+        return k in self.loaded and bool(self.loaded[k][i])
+
+    def sectors_of(self, i: int) -> list[int]:
+        """The sectors sample ``i``'s stresses read: those it presses and one either side."""
+        return sorted({(t + d) % self.count for t, on in self.pressed.items() if on[i]
+                       for d in (-1, 0, 1)})
+
+
+def _read_gear(side: GearSide, loads: dict, pressures: np.ndarray) -> _GearRead:
+    """:class:`_GearRead` of ``pressures`` (points, samples) through ``side``'s ``loads``."""
+    reading = readout(side)
+    f, loaded, pressed = {}, {}, {}
+    for t, b in loads.items():
+        on = pressures[b.columns]
+        pressed[t] = (on > 0).any(axis=0)
+        if on.any():   # (a kept contact's wide grids: most sectors unloaded)
+            v = b.matrix @ on
+            loaded[t] = on.any(axis=0) & v.any(axis=0)
+            if loaded[t].any():
+                f[t] = v
+    sectors = sorted({(t + d) % side.count for t, on in pressed.items() if on.any()
+                      for d in (-1, 0, 1)})
+    rho = {t: side.cut_loads(loads[t].dofs) @ v for t, v in f.items()}
+    cuts = side.body.cut_motions(rho, sectors)          # (2 n_f, sectors, samples)
+    n = len(reading.nodes)
+    s1, vm, by = {}, {}, {}
+    for j, s in enumerate(sectors):
+        at = reading.through_cuts @ cuts[:, j]
+        if s in f:
+            at += reading.clamped(side, loads[s].dofs) @ f[s]
+        field = stress_field(at[:n], at[n:2 * n], at[2 * n:], side.body.material)
+        s1[s], vm[s], by[s] = field.max_principal, field.von_mises, cuts[:, j]
+    return _GearRead(side.count, f, loaded, pressed, by, s1, vm)

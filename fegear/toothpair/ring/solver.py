@@ -10,16 +10,14 @@ the rotation the grids were placed at must be the solved one within
 the templates (:mod:`.stresses`); its contact submodels only where a cycle peaks
 (:mod:`.peaks`).
 
-The model (meshes, factors, responses to unit loads) is built once per geometry and quality and
-reused for every torque and position (:class:`~.model.RingModel`).
+The model (meshes, factors, responses to unit loads), built once per geometry and quality, serves
+every torque and position (:class:`~.model.RingModel`).
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-
-import numpy as np
 
 from ... import progress
 from ...errors import ContactError
@@ -47,7 +45,7 @@ from .placement import (
 )
 from .readout import brief_stresses
 from .results import RingDetail, equilibrium_residuals, solved_rigid_gap, tooth_results
-from .stresses import ring_stresses
+from .stresses import RingStresses, ring_stresses
 from .tangent import tangent_stiffness
 
 #: the one-off stages a solve reports: the model built (profile, mesh, assembly and
@@ -177,7 +175,7 @@ class RingSolver:
             with timed("assemble"):
                 kept = self.phases.keep(self.model, case, state, trial, solved.solution)
             if kept is not None:   # the position solved on its phase's contact
-                return _kept(kept, state)
+                return kept_attempt(kept, state)
         return judged
 
     def on_kept(self, case: SolveCase, state, brief: bool = False) -> PairSolution | None:
@@ -190,7 +188,7 @@ class RingSolver:
         row does not read. None where no contact is kept there or its grids do not hold this
         one's."""
         kept = self.phases.solve(self.model, case, state)
-        return None if kept is None else self._finished(case, state, _kept(kept, state),
+        return None if kept is None else self._finished(case, state, kept_attempt(kept, state),
                                                         brief)[0]
 
     def again(self, case: SolveCase, state, attempt: Attempt) -> PairSolution | None:
@@ -228,7 +226,7 @@ class RingSolver:
             if same is not None:
                 return Attempt(same, None)
             kept = self.phases.solve(self.model, case, state)
-        return None if kept is None else _kept(kept, state)
+        return None if kept is None else kept_attempt(kept, state)
 
     def reach(self, reach_um: float) -> None:
         """Keep the contacts from now on with grids reaching ``reach_um`` beyond the exact
@@ -304,10 +302,11 @@ class RingSolver:
             self.phases.solved(sol, rigid[0])
         return sol
 
-    def _finished(self, case: SolveCase, state, attempt: Attempt, brief: bool = False
-                  ) -> tuple[PairSolution, tuple[np.ndarray, np.ndarray]]:
+    def _finished(self, case: SolveCase, state, attempt: Attempt, brief: bool = False,
+                  read: RingStresses | None = None) -> tuple[PairSolution, tuple]:
         """The solved position and its rigid gaps at its solved rotation (with their rates);
-        ``brief`` as :meth:`on_kept`."""
+        ``brief`` as :meth:`on_kept`; ``read``: its stresses, read with others'
+        (:mod:`.kept_batch`)."""
         model, solved = self.model, attempt.solved
         contact, first_um = solved.contact, solved.first_um
         # the stresses take the clamped fields the contact's check formed, the teeth the
@@ -322,6 +321,8 @@ class RingSolver:
                        tangent_stiffness(model, contact, sol))
             if self.modes.contact_only:
                 stresses, cands = None, ()
+            elif read is not None:
+                stresses, cands = read, ()
             elif brief or roots_only:
                 strains = None if roots_only else self.phases.strains(model, case.beta)
                 stresses, cands = brief_stresses(model, contact, sol.pressure, strains), ()
@@ -358,7 +359,7 @@ class RingSolver:
         return out
 
 
-def _kept(kept: tuple, state) -> Attempt:
+def kept_attempt(kept: tuple, state) -> Attempt:
     """The attempt settled on a kept contact: ``kept``, its contact and solution."""
     return Attempt(RingAttempt(*kept, kept[0].grids, state.closest(+1).plus_um), None)
 

@@ -27,7 +27,6 @@ executor the caller gives; what a chain does at a position is this module's
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from itertools import groupby
@@ -36,19 +35,26 @@ import numpy as np
 
 from ....errors import FegearError
 from ....fe import Allowables, blas_threads, keep_freed_memory
-from ....geometry import closing_points, gear1_profile, least_clearances, moved_clearances
+from ....geometry import gear1_profile, moved_clearances
 from ....running import SERIAL, Executor
 from ....tolerance import Draw
-from ...case import PairSolution, SolveCase, revolution_positions
+from ...case import PairSolution, SolveCase
 from ...face import Face
 from ...face_room import FaceRoom
-from ...positions import TURN_CHECK, Clearances, chain, solve_position
+from ...positions import chain, solve_position
 from ...ring.face_results import face_sections
+from ...ring.kept_batch import KeptBatch
 from ...ring.phases import Phases
 from ...ring.solver import RingSolver, SolverModes
-from ...teeth import choose_teeth, closure
+from ...teeth import choose_teeth
 from .across import Across, across_of, worst_sections
 from .rows import EXACT, brief_of, gathered, sample_row
+from .states import States, jammed
+
+#: the samples a position holds on its kept contact before their stresses are read together
+#: (:class:`~fegear.toothpair.ring.kept_batch.KeptBatch`): the products a sector take them as
+#: columns; more only hold more contacts in memory
+BATCH = 64
 
 
 @dataclass(frozen=True)
@@ -111,7 +117,7 @@ def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = 
         across = None if samples.face is None else across_of(case, samples.face, samples.draw)
         if across is not None:
             reach += across.reach_um
-        states = _States(case, profile, tuple(samples.betas), reach, samples.pitches)
+        states = States(case, profile, tuple(samples.betas), reach, samples.pitches)
         solver.reach(reach)
         jammed = _jams(states, pairs, across, executor)
         solver.build(case, profile, lambda: states.loaded)
@@ -129,13 +135,13 @@ def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = 
                    exact)
 
 
-def _jams(states: _States, pairs: list, across: Across | None, executor: Executor) -> list:
-    """Where each of ``pairs`` jams (None where it turns): in the plane (:func:`_jammed`), or
-    across the face with its own face (:meth:`~...face_room.FaceRoom.jammed`), in a share of the
-    pairs a worker."""
+def _jams(states: States, pairs: list, across: Across | None, executor: Executor) -> list:
+    """Where each of ``pairs`` jams (None where it turns): in the plane
+    (:func:`~.states.jammed`), or across the face with its own face
+    (:meth:`~...face_room.FaceRoom.jammed`), in a share of the pairs a worker."""
     if across is None:
         def jams(k: int) -> str | None:
-            return _jammed(states, pairs[k])
+            return jammed(states, pairs[k])
     else:
         room = FaceRoom(states.case, states.turn, states.reach_um, across.face.sections)
 
@@ -164,64 +170,6 @@ def _parts(items, parts: int) -> list:
     return [items[a:b] for a, b in zip(cuts[:-1], cuts[1:])]
 
 
-class _States:
-    """The exact pair's clearance states at the positions (``loaded``: (β, state) pairs, the
-    loaded flanks, as the driver finds them: :class:`~.positions.Clearances`; with
-    ``pitches`` > 1, ``at(i, n)``: position i's state n gear-2 pitches on) and, for the check
-    that a sample leaves the pair its backlash, over a whole turn of gear 1 and at the
-    positions (``turn``: :data:`~.positions.TURN_CHECK` angles a pitch and the positions, both
-    sides of each state found in one search) and the loaded sides' closing points that
-    deviations reaching ``reach_um`` could close (``closing``, whose feet on gear 2 the first
-    pair checked finds and the others' searches start from)."""
-
-    def __init__(self, case: SolveCase, profile, betas: tuple[float, ...],
-                 reach_um: float, pitches: int = 1) -> None:
-        p = case.params
-        clearances = Clearances(case, profile, betas)
-        find = clearances.find
-        self.case = case
-        self.pitches = pitches
-        self.reach_um = reach_um
-        self.loaded = clearances.get()
-        # the positions too, as a deviated solve checks them: a pair that jams exactly
-        # there may turn at the turn's angles beside them
-        turn = (*revolution_positions(betas[0], TURN_CHECK, p.z1, p.z2), *betas)
-        self.turn = list(zip(turn, find(turn)))
-        self.closing = closing_points(p, [s for _, s in self.turn]).reachable(p, reach_um)
-        # place-major: one search a place, the other pitches its state renumbered
-        self.revolution = [s for _, s in self.loaded] if pitches == 1 else find(
-            [self.beta(i, n) for i in range(len(betas)) for n in range(pitches)],
-            directions=(+1,))
-
-    def beta(self, i: int, n: int) -> float:
-        """The rolling angle (rad) of position i, ``n`` gear-2 pitches on."""
-        return self.loaded[i][0] + n * 2 * math.pi / self.case.params.z2
-
-    def at(self, i: int, n: int):
-        """The exact pair's clearance state at position i, ``n`` gear-2 pitches on."""
-        return self.revolution[i * self.pitches + n]
-
-
-def _jammed(states: _States, deviations) -> str | None:
-    """Where ``deviations`` take up the pair's backlash over a whole turn (:func:`~.teeth.
-    closure`, in words), else None: the check a deviated solve makes
-    (:class:`~.positions.Clearances`), for many pairs against one set of closing points: the
-    smallest clearances alone, the loaded sides' over the turn in one batch of gaps, the coast
-    sides' where a loaded side overlaps in another."""
-    p = states.case.params
-    least, teeth = least_clearances(deviations, p, states.closing)
-    behind = np.flatnonzero(least < 0)
-    if not len(behind):
-        return None
-    coast = closing_points(p, [states.turn[i][1] for i in behind], -1)
-    back = least_clearances(deviations, p, coast)[0]
-    for i, b in zip(behind, back):
-        where = closure(states.turn[i][0], int(teeth[i]), float(least[i]), float(b))
-        if where is not None:
-            return str(where)
-    return None
-
-
 def _work(free: list[int], positions: int, pitches: int, parts: int
           ) -> list[tuple[range, dict[int, list[tuple[int, int]]]]]:
     """The chains: each one's positions (indices) and by position the (sample, gear-2
@@ -241,7 +189,7 @@ def _every(samples, positions: int, pitches: int) -> dict[int, list[tuple[int, i
     return {i: [(k, n) for k in samples for n in range(pitches)] for i in range(positions)}
 
 
-def _run_chains(case: SolveCase, states: _States, solver: RingSolver, work,
+def _run_chains(case: SolveCase, states: States, solver: RingSolver, work,
                 executor: Executor) -> tuple[dict[int, PairSolution], list[list[tuple]]]:
     """The chains of ``work`` ((positions, what is done at each) pairs) on ``executor``: the
     exact pair's solutions by position and what each chain gave at its positions
@@ -264,7 +212,7 @@ def _plain(case: SolveCase, loaded, span, at: OnKept) -> list[tuple]:
     return [(None, *got[1:]) for got in chain(case, loaded, span, at, label="samples")]
 
 
-def _exact(case: SolveCase, states: _States, solver: RingSolver) -> dict[int, PairSolution]:
+def _exact(case: SolveCase, states: States, solver: RingSolver) -> dict[int, PairSolution]:
     """The exact pair at the positions, one chain, on ``solver``'s model."""
     placed = RingSolver(solver.model, SolverModes(submodels="none"))
 
@@ -287,7 +235,7 @@ class OnKept:
     on the same kept contact (their worst sections' headlines and K_Hβ, the exact pair's under
     :data:`~.rows.EXACT`)."""
 
-    states: _States
+    states: States
     pairs: list
     solver: RingSolver
     jobs: dict[int, list[tuple[int, int]]]
@@ -309,10 +257,19 @@ class OnKept:
         took: dict[int, list] = {}
         if self.across is not None:
             found[EXACT] = [(at.beta, self._face(at, state, self.across.face))]
+        batch = None if self.across is not None else KeptBatch(solver)
+        held: list[tuple[int, float]] = []
         for k, n in self.jobs[i]:
             one = replace(at, beta=self.states.beta(i, n), deviations=self.pairs[k])
             try:
-                sol = self._sample(one, moved[k, n], placed, exact)
+                if batch is not None and batch.add(one, moved[k, n]):
+                    held.append((k, one.beta))
+                    if len(held) == BATCH:
+                        self._record(batch, held, found, took)
+                    continue
+                # the held ones first: placing this one widens the kept grids under them
+                self._record(batch, held, found, took)
+                sol = self._sample(one, moved[k, n], placed, exact, batch is None)
                 head = sol.headline() if self.across is None else \
                     self._face(one, moved[k, n], self.across.faces[k])
             except FegearError as err:
@@ -321,6 +278,7 @@ class OnKept:
             found.setdefault(k, []).append((one.beta, head))
             if self.read is not None:
                 took.setdefault(k, []).append(self.read(sol))
+        self._record(batch, held, found, took)
         solver.forget(at)
         return exact, found, took
 
@@ -343,12 +301,30 @@ class OnKept:
                 self.pairs[k], params, [self.states.at(i, n) for n in ns])))
         return moved
 
-    def _sample(self, one: SolveCase, state, placed: RingSolver, exact: PairSolution
-                ) -> PairSolution:
-        """A sample (``one``, its clearance ``state``) on the kept contact, or where the kept
-        grids miss it placed on its own (from ``exact``) and its teeth kept for those after
-        it."""
-        sol = self.solver.on_kept(one, state, brief=True)
+    def _record(self, batch: KeptBatch | None, held: list, found: dict, took: dict) -> None:
+        """The ``held`` samples' (sample, β) records, finished together (``batch``), into
+        ``found`` and ``took`` as :meth:`__call__` gives them; none held after."""
+        if not held:
+            return
+        try:
+            sols: list = batch.finish()
+        except FegearError as err:
+            sols = [err] * len(held)
+        for (k, beta), sol in zip(held, sols, strict=True):
+            if isinstance(sol, FegearError):
+                found.setdefault(k, []).append((beta, str(sol)))
+                continue
+            found.setdefault(k, []).append((beta, sol.headline()))
+            if self.read is not None:
+                took.setdefault(k, []).append(self.read(sol))
+        held.clear()
+
+    def _sample(self, one: SolveCase, state, placed: RingSolver, exact: PairSolution,
+                kept: bool = True) -> PairSolution:
+        """A sample (``one``, its clearance ``state``) on the kept contact (``kept``: else
+        known not to hold it), or where the kept grids miss it placed on its own (from
+        ``exact``) and its teeth kept for those after it."""
+        sol = self.solver.on_kept(one, state, brief=True) if kept else None
         if sol is None:
             sol = solve_position(one, state, placed,
                                  Phases.beside(self.solver.model, exact, one.beta))

@@ -1,0 +1,65 @@
+"""A position's deviation sets solved on the contact kept for its phase and read together
+(:class:`KeptBatch`): a tolerance class's samples at one position.
+
+Each set is solved on the kept contact as alone (:meth:`~.phases.Phases.solve`), in the order
+given, so that a set the kept grids do not hold can be placed on its own and widen them for
+the sets after it (:meth:`~.solver.RingSolver.widen`) before those are solved. Their brief
+stresses are read together (:func:`~.readout.brief_stresses_of`): the root zones' loads, cut
+motions and nodal stresses of every set as one product a sector where a set alone takes a
+product a sector each, the same numbers to rounding; the rest of each set's record is its own
+(:meth:`~.solver.RingSolver.on_kept`, brief).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...geometry import pitch_phase
+from ..case import PairSolution, SolveCase
+from ..positions import Attempt
+from .readout import brief_stresses_of
+from .solver import RingSolver, kept_attempt
+
+
+class KeptBatch:
+    """Deviation sets solved on ``solver``'s kept contacts (:meth:`add`), their records
+    finished together (:meth:`finish`)."""
+
+    def __init__(self, solver: RingSolver) -> None:
+        self.solver = solver
+        self.pending: list[tuple[SolveCase, object, Attempt]] = []
+
+    def add(self, case: SolveCase, state) -> bool:
+        """Solve ``case`` (clearance ``state``) on the contact kept for its phase and hold it
+        for :meth:`finish`; False (nothing held) where none is kept there or its grids do not
+        hold this one (:meth:`~.phases.Phases.solve`)."""
+        kept = self.solver.phases.solve(self.solver.model, case, state)
+        if kept is None:
+            return False
+        self.pending.append((case, state, kept_attempt(kept, state)))
+        return True
+
+    def finish(self) -> list[PairSolution]:
+        """The held sets' records, in the order they were added, brief (no first touch, no
+        tangent stiffness, no references: :meth:`~.solver.RingSolver.on_kept`); none held
+        after. Their stresses are read together where their contacts are numbered alike (the
+        same phase, turned by the same pitches), and on the strains kept for that phase."""
+        solver, pending = self.solver, self.pending
+        self.pending = []
+        groups: dict[tuple, list[int]] = {}
+        for i, (case, _, attempt) in enumerate(pending):
+            contact = attempt.solved.contact
+            key = (pitch_phase(case.beta, case.params.z2)[0], tuple(contact.loads[0]),
+                   tuple(contact.loads[1]))
+            groups.setdefault(key, []).append(i)
+        out: list[PairSolution | None] = [None] * len(pending)
+        for members in groups.values():
+            case, _, attempt = pending[members[0]]
+            pressures = np.column_stack([pending[i][2].solved.solution.pressure
+                                         for i in members])
+            read = brief_stresses_of(solver.model, attempt.solved.contact, pressures,
+                                     solver.phases.strains(solver.model, case.beta))
+            for i, stresses in zip(members, read, strict=True):
+                case, state, attempt = pending[i]
+                out[i] = solver._finished(case, state, attempt, brief=True, read=stresses)[0]
+        return out
