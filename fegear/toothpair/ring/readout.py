@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ...contact import strain_matrix
 from ...fe import projector, stress_field
 from .influence import RingContact
 from .model import RingModel
@@ -32,7 +33,6 @@ from .stresses import (
     root_zone,
     side_root_nodes,
     surface_tangent,
-    surface_von_mises,
 )
 
 
@@ -82,6 +82,7 @@ class SurfaceStrains:
 
     def __init__(self, model: RingModel, contact: RingContact) -> None:
         self.through_cuts, self.by_block = [], []
+        self._contact, self._moduli, self._near = contact, (model.case.E, model.case.nu), {}
         for side, loads, m in zip(model.gears, contact.loads, contact.matching):
             body = side.body
             rows = side.rows_at(m.cells, surface_tangent(m), strain=True).tocsc()
@@ -107,6 +108,17 @@ class SurfaceStrains:
         return out
 
 
+    def near(self, g: int, k: int) -> np.ndarray:
+        """The half-plane's strain along gear ``g``'s surface at grid ``k``'s matching points
+        per unit pressure of each of its hats (:func:`~fegear.contact.strain_matrix`: points,
+        hats), formed the first time it is asked for."""
+        if (g, k) not in self._near:
+            contact = self._contact
+            s, depth = contact.grids[k].s, contact.matching[g].depth[contact.block(k)]
+            self._near[g, k] = strain_matrix(s, depth, s, *self._moduli)
+        return self._near[g, k]
+
+
 def brief_stresses(model: RingModel, contact: RingContact, pressure: np.ndarray,
                    strains: SurfaceStrains | None) -> RingStresses:
     """The root zones and the surface von Mises estimate of ``pressure`` on ``contact`` (the
@@ -127,25 +139,52 @@ def brief_stresses_of(model: RingModel, contact: RingContact, pressures: np.ndar
     and one either side, as alone."""
     reads = [_read_gear(side, loads, pressures) for side, loads in zip(model.gears,
                                                                        contact.loads)]
+    samples = pressures.shape[1]
+    own = [[(r, r.sectors_of(i)) for r in reads] for i in range(samples)]
+    surfaces = (np.full((samples, 2, contact.npoints), np.nan) if strains is None else
+                _surfaces(model, contact, pressures, strains, reads, own))
     out = []
-    for i in range(pressures.shape[1]):
-        own = [(r, r.sectors_of(i)) for r in reads]
-
-        def strain(g: int, k: int, points: np.ndarray, i=i, own=own) -> np.ndarray:
-            r, sectors = own[g]
-            if k not in sectors:
-                return np.zeros(len(points))
-            load = r.loads[k][:, i] if r.loads_sample(k, i) else None
-            return strains.strain(g, contact.loads[g].get(k), r.cuts[k][:, i], load, points)
-
-        surface = (np.full((2, contact.npoints), np.nan) if strains is None else
-                   surface_von_mises(model, contact, pressures[:, i], strain))
+    for i in range(samples):
         zones = tuple(root_zone(side, readout(side).nodes,
                                 {k: r.s1[k][:, i] for k in sectors})
-                      for side, (r, sectors) in zip(model.gears, own))
-        bulk = max((float(r.von_mises[k][:, i].max()) for r, sectors in own for k in sectors),
-                   default=0.0)
-        out.append(RingStresses(({}, {}), zones, surface, (), bulk))
+                      for side, (r, sectors) in zip(model.gears, own[i]))
+        bulk = max((float(r.von_mises[k][:, i].max()) for r, sectors in own[i]
+                    for k in sectors), default=0.0)
+        out.append(RingStresses(({}, {}), zones, surfaces[i], (), bulk))
+    return out
+
+
+def _surfaces(model: RingModel, contact: RingContact, pressures: np.ndarray,
+              strains: SurfaceStrains, reads: list, own: list) -> np.ndarray:
+    """The surface von Mises estimate (:func:`~.stresses.surface_von_mises`) of each sample
+    (samples, 2, points): the template's strain along the surface at depth, a sector's
+    points for every sample at once (zero where the sample reads no field there), less the
+    half-plane's part there, each grid's hats for every sample at once
+    (:meth:`SurfaceStrains.near`), plus its surface value."""
+    E = model.case.E
+    loaded = pressures > 0
+    out = np.zeros((pressures.shape[1], 2, contact.npoints))
+    for g, read in enumerate(reads):
+        m = contact.matching[g]
+        eps = np.zeros(pressures.shape)
+        for k in np.unique(m.at.sector[loaded.any(axis=1)]):
+            k = int(k)
+            if k not in read.cuts:
+                continue
+            rows = np.flatnonzero(m.at.sector == k)
+            eps[rows] = strains.through_cuts[g][rows] @ read.cuts[k]
+            if k in read.loads:
+                place, blocks = strains.by_block[g]
+                eps[rows] += blocks[id(contact.loads[g][k])][1][place[rows]] @ read.loads[k]
+            eps[np.ix_(rows, [k not in sectors for _, sectors in
+                              (o[g] for o in own)])] = 0.0
+        for k in range(len(contact.grids)):
+            blk = contact.block(k)
+            if loaded[blk].any():
+                eps[blk] -= strains.near(g, k) @ pressures[blk]
+        sig_t = E * eps - pressures
+        vm = np.sqrt(pressures ** 2 + sig_t ** 2 + pressures * sig_t)
+        out[:, g] = np.where(loaded, vm, 0.0).T
     return out
 
 
