@@ -9,10 +9,9 @@ A light pair (25/24 teeth) at 20 N·m, coarse, without the error estimate:
 
 >>> import fegear
 >>> r = fegear.solve(z2=25, z1=24, torque=20, quality="coarse", no_estimate=True)
->>> r.headline[["root_stress_gear1_MPa", "contact_pressure_MPa"]].round(1)
-root_stress_gear1_MPa     74.5
-contact_pressure_MPa     804.8
-Name: headline, dtype: float64
+>>> h = r.headline
+>>> print(f"root {h.root_stress_gear1_MPa:.1f} MPa, contact {h.contact_pressure_MPa:.0f} MPa")
+root 74.5 MPa, contact 805 MPa
 >>> r.teeth.loc[r.teeth.load_N > 0, "load_share"].round(2).to_dict()
 {5: 0.44, 6: 0.56}
 """
