@@ -29,6 +29,9 @@ def turned(model: RingModel, contact: RingContact, pitches: int, beta: float,
     tooth that stood at a place is the one ``pitches`` before it, and gear 2's likewise; the
     gear-frame points turn back by as much, the template-frame numbers stay. ``placed``: the
     pair's deviations at ``beta``."""
+    if pitches == 0:   # its own pitch (a class's samples at a position): its own numbers
+        return replace(contact, beta=beta, feet=contact.feet.copy(), placed=placed,
+                       grids=tuple(replace(g, coarse=None) for g in contact.grids))
     g1, g2 = model.gears
     turn1, turn2 = pitches * g1.pitch, pitches * g2.pitch
     grids = tuple(turned_grid(g, pitches, g1.count, g1.pitch) for g in contact.grids)

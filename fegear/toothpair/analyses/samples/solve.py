@@ -45,6 +45,7 @@ from ...positions import chain, solve_position
 from ...ring.face_results import face_sections
 from ...ring.kept_batch import KeptBatch
 from ...ring.phases import Phases
+from ...ring.readout import readout
 from ...ring.solver import RingSolver, SolverModes
 from ...teeth import choose_teeth
 from .across import Across, across_of, worst_sections
@@ -121,6 +122,9 @@ def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = 
         solver.reach(reach)
         jammed = _jams(states, pairs, across, executor)
         solver.build(case, profile, lambda: states.loaded)
+        if not solver.modes.contact_only:   # the root zones' maps, before the chains fork
+            for side in solver.model.gears:
+                readout(side)
         free = [k for k in range(count) if jammed[k] is None]
         parts = max(2, executor.workers)
         work = [(span, OnKept(states, pairs, solver, jobs, read, across))
