@@ -32,6 +32,7 @@ from .stresses import (
     RingStresses,
     root_zone,
     side_root_nodes,
+    surface_stress,
     surface_tangent,
 )
 
@@ -107,7 +108,6 @@ class SurfaceStrains:
             out += blocks[id(block)][1][place[points]] @ load   # (the block kept: its id)
         return out
 
-
     def near(self, g: int, k: int) -> np.ndarray:
         """The half-plane's strain along gear ``g``'s surface at grid ``k``'s matching points
         per unit pressure of each of its hats (:func:`~fegear.contact.strain_matrix`: points,
@@ -161,8 +161,7 @@ def _surfaces(model: RingModel, contact: RingContact, pressures: np.ndarray,
     points for every sample at once (zero where the sample reads no field there), less the
     half-plane's part there, each grid's hats for every sample at once
     (:meth:`SurfaceStrains.near`), plus its surface value."""
-    E = model.case.E
-    loaded = pressures > 0
+    E, loaded = model.case.E, pressures > 0
     out = np.zeros((pressures.shape[1], 2, contact.npoints))
     for g, read in enumerate(reads):
         m = contact.matching[g]
@@ -182,9 +181,7 @@ def _surfaces(model: RingModel, contact: RingContact, pressures: np.ndarray,
             blk = contact.block(k)
             if loaded[blk].any():
                 eps[blk] -= strains.near(g, k) @ pressures[blk]
-        sig_t = E * eps - pressures
-        vm = np.sqrt(pressures ** 2 + sig_t ** 2 + pressures * sig_t)
-        out[:, g] = np.where(loaded, vm, 0.0).T
+        out[:, g] = surface_stress(E * eps, pressures).T
     return out
 
 

@@ -224,9 +224,16 @@ def surface_von_mises(model: RingModel, contact: RingContact, pressure: np.ndarr
                 a, b = loaded_hats(on, len(grid))
                 eps_hp[blk.start + on] = strain_matrix(grid.s[on], m.depth[blk][on],
                                                        grid.s[a:b], E, nu) @ pressure[blk][a:b]
-        sig_t = E * (eps_fe - eps_hp) - pressure
-        out[g] = np.where(loaded, np.sqrt(pressure ** 2 + sig_t ** 2 + pressure * sig_t), 0.0)
+        out[g] = surface_stress(E * (eps_fe - eps_hp), pressure)
     return out
+
+
+def surface_stress(stretch: np.ndarray, pressure: np.ndarray) -> np.ndarray:
+    """Von Mises (MPa) at a contact surface, plane stress, of the ``pressure`` (σ_nn = −p,
+    σ_nt = 0) and the stress along the surface its strain gives (``stretch``: E ε_tt, the
+    template's at depth less the half-plane's there, MPa); zero where no pressure acts."""
+    sig_t = stretch - pressure
+    return np.where(pressure > 0, np.sqrt(pressure ** 2 + sig_t ** 2 + pressure * sig_t), 0.0)
 
 
 def surface_tangent(matching) -> np.ndarray:
