@@ -4,9 +4,11 @@ Every sample is the same pair with other deviations (:mod:`fegear.tolerance.samp
 is the same model with other rigid gaps: at each position the exact pair is solved first, then
 its contact kept with grids on every tooth that any sample pairs there, each reaching as far as
 the deviations of any pair of the class can move a tooth (:class:`~.ring.phases.Phases`), and
-each sample is a contact solve and its stresses on that contact
-(:meth:`~.ring.solver.RingSolver.on_kept`); one whose contact the kept grids do not hold is
-placed and solved as a position of its own, and the contact kept again with its teeth too.
+each sample is a contact solve on that contact, its stresses read with the other samples'
+held there (:class:`~.ring.kept_batch.KeptBatch`: the same numbers as alone,
+:meth:`~.ring.solver.RingSolver.on_kept`); one whose contact the kept grids do not hold is
+placed and solved as a position of its own, after those held are read, and the contact kept
+again with its teeth too.
 
 A sample whose deviations take up the pair's backlash somewhere over a whole turn of gear 1
 (:func:`~.teeth.closure`, checked at :data:`~.positions.TURN_CHECK` angles a pitch, as a
@@ -231,8 +233,9 @@ def _exact(case: SolveCase, states: States, solver: RingSolver) -> dict[int, Pai
 class OnKept:
     """What a chain of the samples does at a position (:class:`~.positions.AtPosition`):
     the exact pair is solved as any position, then its contact kept with grids on every tooth
-    that the samples solved there pair (:func:`_paired`), each sample solved on it
-    (:meth:`~.ring.solver.RingSolver.on_kept`), and the contact let go of; ``jobs``: by
+    that the samples solved there pair (:func:`_paired`), each sample solved on it and held,
+    their stresses read together (:class:`~.ring.kept_batch.KeptBatch`, :data:`BATCH` at a
+    time), and the contact let go of; ``jobs``: by
     position, the samples solved there ((index into the drawn ``pairs``' deviations, gear-2
     pitches on) pairs). A solver received without its model (from another process) builds or
     finds one here. ``across``: the exact pair and each sample solved across the face too,
