@@ -43,7 +43,9 @@ class KeptBatch:
         """The held sets' records, in the order they were added, brief (no first touch, no
         tangent stiffness, no references: :meth:`~.solver.RingSolver.on_kept`); none held
         after. Their stresses are read together where their contacts are numbered alike (the
-        same phase, turned by the same pitches), and on the strains kept for that phase."""
+        same phase, turned by the same pitches), and on the strains kept for that phase; as
+        the solver's modes say (:class:`~.solver.SolverModes`: none for ``contact_only``, the
+        roots alone for ``roots_only``)."""
         solver, pending = self.solver, self.pending
         self.pending = []
         groups: dict[tuple, list[int]] = {}
@@ -53,12 +55,15 @@ class KeptBatch:
                    tuple(contact.loads[1]))
             groups.setdefault(key, []).append(i)
         out: list[PairSolution | None] = [None] * len(pending)
+        modes = solver.modes
         for members in groups.values():
             case, _, attempt = pending[members[0]]
             pressures = np.column_stack([pending[i][2].solved.solution.pressure
                                          for i in members])
-            read = brief_stresses_of(solver.model, attempt.solved.contact, pressures,
-                                     solver.phases.strains(solver.model, case.beta))
+            strains = None if modes.roots_only else solver.phases.strains(solver.model,
+                                                                          case.beta)
+            read = [None] * len(members) if modes.contact_only else brief_stresses_of(
+                solver.model, attempt.solved.contact, pressures, strains)
             for i, stresses in zip(members, read, strict=True):
                 case, state, attempt = pending[i]
                 out[i] = solver._finished(case, state, attempt, brief=True, read=stresses)[0]

@@ -57,3 +57,17 @@ def test_sets_read_together_are_each_one_solved_alone(kept):
     # the sets differ: each reads its own pressures, not its neighbour's
     roots = [s.headline()["root_stress_gear1_MPa"] for s in together[:len(SETS)]]
     assert len({round(r, 6) for r in roots}) == len(SETS)
+
+
+def test_a_solver_that_reads_only_the_contact_reads_no_stresses_together(baseline_ring):
+    # the tip-relief search's trials: the contact alone, whether finished alone or together
+    case = replace(baseline_ring.case, torque=200.0)
+    solver = RingSolver(baseline_ring, SolverModes(keep_phases=True, contact_only=True))
+    positions_of(solver, False)(case, (0.0,), SERIAL)
+    jobs = _jobs(case, 0)[:3]
+    alone = [solver.on_kept(one, state, brief=True) for one, state in jobs]
+    batch = KeptBatch(solver)
+    assert all(batch.add(one, state) for one, state in jobs)
+    for a, b in zip(alone, batch.finish(), strict=True):
+        assert math.isnan(b.root_stress[0]) and math.isnan(a.root_stress[0])
+        assert b.contact_pressure == pytest.approx(a.contact_pressure, rel=1e-12)
