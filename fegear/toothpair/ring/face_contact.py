@@ -146,9 +146,8 @@ class _Problem:
         × sections) at the points ``at`` (increasing), whose rows of the transposed parts
         are ``far_rows`` and ``near_rows``: the finite-element part between each pair of
         grids spread as the coupling spreads it between their teeth (:class:`FaceSpread`)."""
-        cuts = np.searchsorted(at, self.contact.offsets)
-        sources = [slice(lo, hi) for lo, hi in zip(cuts[:-1], cuts[1:])]
-        u = self.fe.approach(p, sources, far_rows, self.blocks)   # sections × points
+        u = self.fe.approach(p, grid_spans(at, self.contact.offsets), far_rows,
+                             self.blocks)                         # sections × points
         return (u + p.T @ near_rows).T
 
     def solve(self, start: FaceStart, within: np.ndarray):
@@ -197,6 +196,13 @@ class _Problem:
         ahead = self.rigid(theta + ARM_STEP, points[loaded])[1]
         return float(np.sum(self.w[points[loaded]] * pressure[loaded]
                             * ((ahead - a[loaded]) / ARM_STEP)[:, None]))
+
+
+def grid_spans(at: np.ndarray, offsets: np.ndarray) -> list[slice | None]:
+    """Each grid's slice of the points ``at`` (increasing indices of the contact's points,
+    whose grids start at ``offsets``), None where a grid has none of them."""
+    cuts = np.searchsorted(at, offsets)
+    return [slice(lo, hi) if hi > lo else None for lo, hi in zip(cuts[:-1], cuts[1:])]
 
 
 def spread_modes(spread: np.ndarray):
@@ -253,8 +259,7 @@ class _Sections:
         far_rows, near_rows = self.problem.far_t[at], self.problem.near_t[at]
         far = np.ascontiguousarray(far_rows[:, at].T)
         # the near field stays on its grid: one block a grid, the union's points grid by grid
-        cuts = np.searchsorted(at, self.problem.contact.offsets)
-        spans = [slice(lo, hi) if hi > lo else None for lo, hi in zip(cuts[:-1], cuts[1:])]
+        spans = grid_spans(at, self.problem.contact.offsets)
         grids = [g for g in spans if g is not None]
         near = [np.ascontiguousarray(near_rows[g, at[g]].T) for g in grids]
         sec_major = np.nonzero(on.T)

@@ -72,18 +72,15 @@ class FaceSpread:
                  targets: list[slice]) -> np.ndarray:
         """The finite-element part's approach (sections × points) at every point under the
         pressures ``p`` (loaded points × sections): ``far_rows`` the loaded points' rows of
-        A_feᵀ (loaded × every point), ``sources`` each grid's slice of the loaded points and
-        ``targets`` its slice of every point."""
+        A_feᵀ (loaded × every point), ``sources`` each grid's slice of the loaded points (None
+        where it has none) and ``targets`` its slice of every point."""
         if self.single:
             return (self.own @ p.T) @ far_rows
         u = np.zeros((len(self.own), far_rows.shape[1]))
-        reach = [None if s.stop == s.start else (p[s] @ self.right).T @ far_rows[s]
-                 for s in sources]
-        for j, s in enumerate(sources):
-            if reach[j] is None:
-                continue
-            t = targets[j]
-            u[:, t] += (self.own @ p[s].T) @ far_rows[s, t]
+        reach = [None if s is None else (p[s] @ self.right).T @ far_rows[s] for s in sources]
+        for s, t in zip(sources, targets):
+            if s is not None:
+                u[:, t] += (self.own @ p[s].T) @ far_rows[s, t]
         for i, t in enumerate(targets):
             mixed = np.zeros((self.left.shape[1], t.stop - t.start))
             for j, r in enumerate(reach):

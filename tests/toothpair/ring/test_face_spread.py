@@ -10,6 +10,7 @@ from fegear.toothpair.ring.face import (
     product_coupling,
     tilted_across,
 )
+from fegear.toothpair.ring.face_contact import grid_spans
 from fegear.toothpair.ring.face_spread import FaceSpread
 
 #: five grids: gear 1's teeth 43, 0, 1, 2 and 4 of 44 (0 and 43 adjacent across the count)
@@ -46,8 +47,8 @@ def test_the_spreads_low_rank_form_is_each_blocks_own_spread(coupling):
     # the approach at every point from the loaded ones' rows of A_feᵀ: grid 3 unloaded
     loaded = np.concatenate([np.arange(lo, hi) for k, (lo, hi) in
                              enumerate(zip(cuts[:-1], cuts[1:])) if k != 3])
-    cut_loaded = np.searchsorted(loaded, cuts)
-    sources = [slice(lo, hi) for lo, hi in zip(cut_loaded[:-1], cut_loaded[1:])]
+    sources = grid_spans(loaded, cuts)
+    assert sources[3] is None
     targets = [slice(lo, hi) for lo, hi in zip(cuts[:-1], cuts[1:])]
     p_loaded = p[loaded]
     at = np.zeros_like(p)
