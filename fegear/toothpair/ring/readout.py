@@ -188,21 +188,17 @@ def _surfaces(model: RingModel, contact: RingContact, pressures: np.ndarray,
 @dataclass(frozen=True)
 class _GearRead:
     """One gear's readout of many samples' pressures (:func:`brief_stresses_of`), over the
-    sectors any sample reads: the loaded sectors' template loads (dofs, samples) and which
-    samples load each (``loaded``: through its loads, ``pressed``: with a pressure on its
-    points, as :func:`~.stresses.loaded_sectors` counts them), and each sector's cut motions
-    (2 n_f, samples) and root nodes' σ1 and von Mises (nodes, samples)."""
+    sectors any sample reads: the loaded sectors' template loads (dofs, samples; a sample's
+    column zero where it loads none there), which samples press each sector's points
+    (``pressed``, as :func:`~.stresses.loaded_sectors` counts them), and each sector's cut
+    motions (2 n_f, samples) and root nodes' σ1 and von Mises (nodes, samples)."""
 
     count: int
     loads: dict
-    loaded: dict
     pressed: dict
     cuts: dict
     s1: dict
     von_mises: dict
-
-    def loads_sample(self, k: int, i: int) -> bool:
-        return k in self.loaded and bool(self.loaded[k][i])
 
     def sectors_of(self, i: int) -> list[int]:
         """The sectors sample ``i``'s stresses read: those it presses and one either side."""
@@ -213,14 +209,13 @@ class _GearRead:
 def _read_gear(side: GearSide, loads: dict, pressures: np.ndarray) -> _GearRead:
     """:class:`_GearRead` of ``pressures`` (points, samples) through ``side``'s ``loads``."""
     reading = readout(side)
-    f, loaded, pressed = {}, {}, {}
+    f, pressed = {}, {}
     for t, b in loads.items():
         on = pressures[b.columns]
         pressed[t] = (on > 0).any(axis=0)
         if on.any():   # (a kept contact's wide grids: most sectors unloaded)
             v = b.matrix @ on
-            loaded[t] = on.any(axis=0) & v.any(axis=0)
-            if loaded[t].any():
+            if v.any():
                 f[t] = v
     sectors = sorted({(t + d) % side.count for t, on in pressed.items() if on.any()
                       for d in (-1, 0, 1)})
@@ -234,4 +229,4 @@ def _read_gear(side: GearSide, loads: dict, pressures: np.ndarray) -> _GearRead:
             at += reading.clamped(side, loads[s].dofs) @ f[s]
         field = stress_field(at[:n], at[n:2 * n], at[2 * n:], side.body.material)
         s1[s], vm[s], by[s] = field.max_principal, field.von_mises, cuts[:, j]
-    return _GearRead(side.count, f, loaded, pressed, by, s1, vm)
+    return _GearRead(side.count, f, pressed, by, s1, vm)
