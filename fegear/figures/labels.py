@@ -30,10 +30,9 @@ from .pixels import (
     inside,
     overlap,
     px_per_pt,
-    segment_hits_box,
-    segment_hits_boxes,
-    segment_near,
     segments_cross,
+    segments_near,
+    segments_through_boxes,
 )
 
 #: the cost of a fault a label must not have (a covered marker, crossed leaders, …)
@@ -280,12 +279,11 @@ def _best(label: _Label, placed, others, scene: _Scene, frame):
         cost += FAULT * discs_hit(scene.markers, grown).sum(axis=1)
     if len(others):
         cost += FAULT * inside(others, grown).sum(axis=1)
-    for t in scene.texts:
-        cost += FAULT * (overlap(grown, t) > 0)
-    for box, line in placed:
-        cost += FAULT * (overlap(grown, box) > 0)
-        if line is not None:
-            cost += FAULT * segment_hits_boxes(*line, boxes)
+    cost += FAULT * (overlap(grown[:, None, :], scene.texts[None, :, :]) > 0).sum(axis=1)
+    boxes_placed, leaders = _placed(placed)
+    cost += FAULT * (overlap(grown[:, None, :], boxes_placed[None, :, :]) > 0).sum(axis=1)
+    if len(leaders):
+        cost += FAULT * segments_through_boxes(leaders[:, 0], leaders[:, 1], boxes).sum(axis=0)
     if exits is not None:
         cost += _leader_cost(exits, anchor, placed, scene)
     cost += LINE_COST * inside(scene.samples, boxes).sum(axis=1)
@@ -300,30 +298,40 @@ def _best(label: _Label, placed, others, scene: _Scene, frame):
 def _leader_cost(exits, anchor, placed, scene: _Scene) -> np.ndarray:
     """The cost of leaders from ``exits`` to ``anchor``: crossing a placed leader or running
     through a placed label (faults), grazing a marker, a text or a drawn line."""
-    cost = np.zeros(len(exits))
-    for box, line in placed:
-        cost += FAULT * segment_hits_box(exits, anchor, box)
-        if line is not None:
-            cost += FAULT * segments_cross(exits, anchor, *line)
+    boxes_placed, leaders = _placed(placed)
+    cost = FAULT * segments_through_boxes(exits, anchor, boxes_placed).sum(axis=1)
+    if len(leaders):
+        cost += FAULT * segments_cross(exits[:, None, :], anchor, leaders[None, :, 0],
+                                       leaders[None, :, 1]).sum(axis=1)
     if len(scene.markers):
         far = np.hypot(*(scene.markers[:, :2] - anchor).T) > scene.markers[:, 2] + 4.0
-        for m in scene.markers[far]:
-            cost += GRAZE * segment_near(exits, anchor, m[:2], m[2])
-    for t in scene.texts:
-        cost += GRAZE * segment_hits_box(exits, anchor, t)
+        cost += GRAZE * segments_near(exits, anchor, scene.markers[far]).sum(axis=1)
+    cost += GRAZE * segments_through_boxes(exits, anchor, scene.texts).sum(axis=1)
     # only the samples within SAMPLE_PX of the leaders' bounding box can be near one
     ends = np.vstack([exits, anchor])
     low, high = ends.min(axis=0) - SAMPLE_PX, ends.max(axis=0) + SAMPLE_PX
     samples = scene.samples[((scene.samples >= low) & (scene.samples <= high)).all(axis=1)] \
         if len(scene.samples) else scene.samples
     if len(samples):
-        d = anchor - exits                                  # (k, 2)
-        rel = samples[None, :, :] - exits[:, None, :]
-        t = np.clip((rel * d[:, None, :]).sum(axis=2)
-                    / np.maximum((d * d).sum(axis=1), 1e-12)[:, None], 0.0, 1.0)
-        near = np.hypot(*(rel - t[..., None] * d[:, None, :]).transpose(2, 0, 1)) < SAMPLE_PX
-        cost += LINE_COST * near.sum(axis=1)
+        # a sample's distance to each leader from its coordinates along and across it,
+        # measured from the anchor that all the leaders share: two products, no (k, n, 2)
+        d = exits - anchor                                  # (k, 2)
+        length = np.maximum(np.hypot(*d.T), 1e-12)
+        rel = samples - anchor                              # (n, 2)
+        along = rel @ (d / length[:, None]).T               # (n, k)
+        across = np.abs(rel[:, :1] * d[:, 1] - rel[:, 1:] * d[:, 0]) / length
+        r2 = (rel * rel).sum(axis=1)[:, None]
+        limit = SAMPLE_PX ** 2
+        near = (((along >= 0.0) & (along <= length) & (across < SAMPLE_PX)) | (r2 < limit)
+                | (r2 - 2.0 * along * length + length ** 2 < limit))
+        cost += LINE_COST * near.sum(axis=0)
     return cost
+
+
+def _placed(placed) -> tuple[np.ndarray, np.ndarray]:
+    """The boxes (m, 4) of the ``placed`` labels and their leaders (l, 2, 2): exit, anchor."""
+    boxes = np.array([box for box, _ in placed]).reshape(-1, 4)
+    return boxes, np.array([line for _, line in placed if line is not None]).reshape(-1, 2, 2)
 
 
 def _direction(ax, c: Callout):

@@ -176,34 +176,32 @@ def segments_cross(p1, p2, q1, q2) -> np.ndarray:
     return (d1 * d2 < 0) & (d3 * d4 < 0)
 
 
-def segment_hits_box(p, q, box) -> np.ndarray:
-    """Whether segments p–q (rows of ``p``; ``q`` one point) pass through ``box``."""
-    p = np.asarray(p, dtype=float)
+def segments_through_boxes(p, q, boxes) -> np.ndarray:
+    """(k, n): whether segment p–q (rows of ``p``, and of ``q`` or ``q`` one point) passes
+    through box n of ``boxes``: an end inside it, or one of its edges crossed."""
+    p = np.asarray(p, dtype=float).reshape(-1, 2)
     q = np.broadcast_to(np.asarray(q, dtype=float), p.shape)
-    return _hits(p, q, np.broadcast_to(box, (len(p), 4)))
+    p, q, b = p[:, None, :], q[:, None, :], np.asarray(boxes, dtype=float).reshape(1, -1, 4)
+    hit = _in(p, b) | _in(q, b)
+    x0, y0, x1, y1 = b[..., 0], b[..., 1], b[..., 2], b[..., 3]
+    corners = [np.stack(c, axis=-1) for c in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))]
+    for a, c in zip(corners, corners[1:] + corners[:1]):
+        hit |= segments_cross(p, q, a, c)
+    return hit
 
 
-def segment_hits_boxes(p, q, boxes) -> np.ndarray:
-    """Whether the one segment p–q passes through each of ``boxes``."""
-    n = len(boxes)
-    return _hits(np.broadcast_to(p, (n, 2)), np.broadcast_to(q, (n, 2)), boxes)
+def _in(p, b) -> np.ndarray:
+    """Point ``p`` strictly inside box ``b`` (broadcast)."""
+    return ((b[..., 0] < p[..., 0]) & (p[..., 0] < b[..., 2]) & (b[..., 1] < p[..., 1])
+            & (p[..., 1] < b[..., 3]))
 
 
-def _hits(p, q, boxes) -> np.ndarray:
-    """Row-wise: segment p–q meets box (an end inside, or a crossed edge)."""
-    inside = ((boxes[:, 0] < p[:, 0]) & (p[:, 0] < boxes[:, 2]) & (boxes[:, 1] < p[:, 1])
-              & (p[:, 1] < boxes[:, 3]))
-    inside |= ((boxes[:, 0] < q[:, 0]) & (q[:, 0] < boxes[:, 2]) & (boxes[:, 1] < q[:, 1])
-               & (q[:, 1] < boxes[:, 3]))
-    x0, y0, x1, y1 = boxes.T
-    corners = [np.column_stack(c) for c in ((x0, y0), (x1, y0), (x1, y1), (x0, y1))]
-    for a, b in zip(corners, corners[1:] + corners[:1]):
-        inside |= segments_cross(p, q, a, b)
-    return inside
-
-
-def segment_near(p, q, c, r) -> np.ndarray:
-    """Whether segments p–q (rows of ``p``; ``q`` one point) pass within ``r`` of ``c``."""
-    d = q - p
-    t = np.clip(((c - p) * d).sum(axis=1) / np.maximum((d * d).sum(axis=1), 1e-12), 0.0, 1.0)
-    return np.hypot(*(p + t[:, None] * d - c).T) < r
+def segments_near(p, q, discs) -> np.ndarray:
+    """(k, n): whether segment p–q (rows of ``p``; ``q`` one point) passes within disc n's
+    radius of its centre (``discs``: rows x, y, r)."""
+    p = np.asarray(p, dtype=float).reshape(-1, 2)
+    d = (np.asarray(q, dtype=float) - p)[:, None, :]
+    c = np.asarray(discs, dtype=float).reshape(-1, 3)
+    rel = c[None, :, :2] - p[:, None, :]
+    t = np.clip((rel * d).sum(axis=2) / np.maximum((d * d).sum(axis=2), 1e-12), 0.0, 1.0)
+    return np.hypot(*(t[..., None] * d - rel).transpose(2, 0, 1)) < c[None, :, 2]

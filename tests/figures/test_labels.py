@@ -6,7 +6,7 @@ from labels import label_faults
 
 from fegear.figures import pyplot
 from fegear.figures.labels import Callout, legend_cover, place_callouts, place_legend
-from fegear.figures.pixels import segments_cross
+from fegear.figures.pixels import segments_cross, segments_near, segments_through_boxes
 
 
 @pytest.fixture
@@ -47,6 +47,31 @@ def test_segments_cross():
     assert segments_cross([0, 0], [1, 1], [0, 1], [1, 0])
     assert not segments_cross([0, 0], [1, 1], [2, 0], [3, 1])
     assert not segments_cross([0, 0], [1, 1], [1, 1], [2, 0])        # touching ends
+
+
+def test_a_leader_goes_around_a_drawn_line(plt):
+    """A line a few pixels above the point, across every side its label would rather take:
+    the label goes below it rather than have its leader cross it (what the leaders' line
+    cost is for)."""
+    fig, ax = plt.subplots(figsize=(5, 5))
+    ax.set_xlim(-5, 5)
+    ax.set_ylim(-5, 5)
+    ax.plot([-2.0, 5.0], [0.13, 0.13], color="C0")
+    note, = place_callouts(ax, [Callout("peak", (0.0, 0.0), (1.0, 1.0),
+                                        {"arrowprops": {"arrowstyle": "-"}})])
+    assert note.xyann[1] < 0.0
+
+
+def test_segments_through_boxes_and_near_discs():
+    """Each segment against each box (k, n): through the middle with both ends out, one end
+    in, beside; and against discs, the distance to the segment's end counting past it."""
+    box = [[0.0, 0.0, 1.0, 1.0], [3.0, 0.0, 4.0, 1.0]]
+    hit = segments_through_boxes([[-1.0, 0.5], [0.5, 0.5], [-1.0, 2.0]], [2.0, 0.5], box)
+    assert hit.tolist() == [[True, False], [True, False], [False, False]]
+    assert segments_through_boxes([[2.0, 0.5]], [[5.0, 0.5]], box).tolist() == [[False, True]]
+    discs = [[1.0, 0.5, 0.6], [1.0, 0.5, 0.4], [3.0, 0.0, 1.1], [3.0, 0.0, 0.9]]
+    assert segments_near([[0.0, 0.0]], [2.0, 0.0], discs).tolist() == [
+        [True, False, True, False]]
 
 
 def test_a_legend_goes_where_it_covers_no_line(plt):
