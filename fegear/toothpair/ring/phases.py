@@ -9,10 +9,12 @@ the rigid gaps differ, where the pair's deviations differ from tooth to tooth. A
 z1 pitches meet each place within a pitch (a phase) z1 times; :class:`Phases` keeps one
 contact a phase and solves the other pitches as gap vectors on it:
 
-* the first position of a phase is placed and solved as any position; then the phase's
-  contact is made for its rotation, with fine grids on every paired tooth and one more either
-  side, each as wide as the largest deviation of any tooth needs, every column formed, and the
-  position is solved on it (:meth:`Phases.keep`);
+* the first position of a phase has the phase's contact made for its rotation, with fine
+  grids on every paired tooth and one more either side, each as wide as the largest deviation
+  of any tooth needs, every column formed, and is solved on it (:meth:`Phases.keep`): about
+  the rotation of the position solved before it (a position turns little from the next),
+  else, or where those grids do not hold it, about its own, placed and solved first as any
+  position;
 * another pitch is a contact solve on that contact turned to it, its iterations measuring the
   gaps to the kept points' foot circles (:mod:`.circles`) (:meth:`Phases.solve`); where
   the kept grids do not hold it (a tooth without a grid would close, a grid carries pressure
@@ -121,6 +123,10 @@ class Phases:
     def __len__(self) -> int:
         """How many phases have a contact kept."""
         return len(self._kept)
+
+    def keeps(self, beta: float, z2: int) -> bool:
+        """Whether a contact is kept for the phase of ``beta``."""
+        return pitch_phase(beta, z2)[0] in self._kept
 
     def gridded(self, beta: float, z2: int) -> set[int]:
         """The teeth with grids on the contact kept at ``beta`` itself (none where none is
@@ -255,11 +261,11 @@ class Phases:
         placed = Placed(case.deviations, case.params, case.beta) if case.deviations else None
         return turned(model, kept.contact, pitch - kept.pitch, case.beta, placed), kept
 
-    def keep(self, model: RingModel, case: SolveCase, state, trial: Trial,
-             settled: RingContactSolution, widen: bool = False
-             ) -> tuple[RingContact, RingContactSolution] | None:
-        """The contact of the phase of ``case.beta``, made from the position's ``settled``
-        solution on ``trial``'s teeth, kept, and solved: fine grids on every paired tooth and
+    def keep(self, model: RingModel, case: SolveCase, state, trial: Trial, rotation: float,
+             widen: bool = False) -> tuple[RingContact, RingContactSolution] | None:
+        """The contact of the phase of ``case.beta``, made about gear 1's ``rotation`` (rad:
+        the position's solved one, or the one before it) on ``trial``'s teeth, kept, and
+        solved: fine grids on every paired tooth and
         one more either side, each reaching as far as the largest deviation of any tooth
         could need (so that a pitch whose deviations sit on other teeth finds its grids),
         every column formed; ``widen``: grids on the teeth of the contact kept there before
@@ -271,8 +277,8 @@ class Phases:
         p = case.params
         phase, pitch = pitch_phase(case.beta, case.params.z2)
         first_um = state.closest(+1).plus_um
-        elastic_um = max(p.arc_um(settled.rotation) - first_um, 1e-6)
-        teeth = set(choose_teeth(state, p.arc_um(settled.rotation), case.extra_pairs + 1))
+        elastic_um = max(p.arc_um(rotation) - first_um, 1e-6)
+        teeth = set(choose_teeth(state, p.arc_um(rotation), case.extra_pairs + 1))
         teeth |= set(trial.teeth)
         before = self._kept.get(phase)
         if widen and before is not None:
@@ -283,14 +289,14 @@ class Phases:
         grids = place_grids(model, case, Trial(tuple(sorted(teeth)), elastic_um),
                             GridPlacement(frozenset(teeth), reach), first_um)
         placed = Placed(case.deviations, p, case.beta) if case.deviations else None
-        contact = assemble_contact(model, grids, case.beta,
-                                   p.ratio * case.beta + settled.rotation, ColumnRule(), placed)
+        contact = assemble_contact(model, grids, case.beta, p.ratio * case.beta + rotation,
+                                   ColumnRule(), placed)
         try:
-            sol = solve_with(model, contact, case.torque_Nmm, settled.rotation,
-                             Iterations(guess=settled.rotation))
+            sol = solve_with(model, contact, case.torque_Nmm, rotation,
+                             Iterations(guess=rotation))
         except ContactError:
             return None
-        kept = Kept(pitch, replace(contact, feet=contact.feet.copy()), settled.rotation,
+        kept = Kept(pitch, replace(contact, feet=contact.feet.copy()), rotation,
                     np.zeros(contact.npoints, bool), elastic_um, dict.fromkeys(teeth, widest),
                     seen_teeth(contact, p.z2))
         if sol is None or not _holds(case, state, kept, 0, contact, sol):

@@ -6,7 +6,9 @@ bring within reach of gear 2 (:func:`place_grids`): fine on the teeth the rigid 
 closes (:func:`expected_teeth`), a coarse probe on the others. A later position of a cycle
 starts from the position before it: its active set from where that one carried pressure
 (:func:`loaded_before`), its influence columns first on about that stretch
-(:func:`columns_before`), and its foot searches from that one's feet.
+(:func:`columns_before`), and its foot searches from that one's feet. A solved attempt has
+settled where its contact stays on its grids (:func:`outside`), else it gives the trial to
+place them again from (:func:`judged`).
 """
 
 from __future__ import annotations
@@ -18,7 +20,8 @@ import numpy as np
 from ...errors import FegearError
 from ...fe import contact_modulus
 from ..case import SolveCase
-from ..positions import SHARE_GUESS, Trial, expected_elastic_um
+from ..positions import SHARE_GUESS, Attempt, Trial, expected_elastic_um
+from ..teeth import choose_teeth
 from .grid import Facing, GridSpacing, ToothGrid, tooth_grids, windows
 from .model import RingModel
 from .results import RingDetail
@@ -143,3 +146,40 @@ def place_grids(model: RingModel, case: SolveCase, trial: Trial, placement: Grid
         if base > WIDEST_REACH * p.m:
             raise FegearError("no tooth comes within reach of gear 2: the pair does not mesh")
         base *= 4.0
+
+
+def judged(case: SolveCase, state, trial: Trial, placement: GridPlacement, solved,
+           predict: bool) -> Attempt:
+    """The attempt that ``solved`` (a :class:`~.solver.RingAttempt`) is: settled, or with the
+    trial to solve again from where the driver's rule at the solved rotation chooses a tooth
+    without a grid, a grid carries pressure at an end, a probe carries any, or the rotation is
+    not the one placed for (:mod:`.solver`)."""
+    p, sol = case.params, solved.solution
+    more, ends, touched = outside(case, state, solved)
+    solved_um = p.arc_um(sol.rotation) - solved.first_um
+    moved = abs(solved_um - trial.elastic_um) > PLACEMENT * max(abs(solved_um), 1e-3)
+    if not predict and more <= set(trial.teeth) and not ends and not moved and not touched:
+        return Attempt(solved, None)
+    reach = dict(placement.reach)
+    for t in ends:
+        reach[t] = 2.0 * reach.get(t, 1.0)
+    full = placement.full | touched | expected_teeth(state, p.arc_um(sol.rotation))
+    again = Trial(tuple(sorted(set(trial.teeth) | more)), max(solved_um, 1e-6),
+                  GridPlacement(frozenset(full), reach))
+    why = ("probe grids first: " if predict else "") + (
+        f"teeth {sorted(more - set(trial.teeth))}, ends {ends}, probes touched "
+        f"{sorted(touched)}, elastic {solved_um:.3g} µm, expected {trial.elastic_um:.3g}")
+    return Attempt(solved, again, why)
+
+
+def outside(case: SolveCase, state, solved) -> tuple[set, list, set]:
+    """What tells whether a solved contact (a :class:`~.solver.RingAttempt`) stays on its
+    grids: the teeth the driver's rule pairs at its rotation, the grids' teeth that carry
+    pressure at an end and the probes' that carry any."""
+    contact, sol, grids = solved.contact, solved.solution, solved.grids
+    paired = set(choose_teeth(state, case.params.arc_um(sol.rotation), case.extra_pairs))
+    ends = [g.tooth for k, g in enumerate(grids)
+            if sol.pressure[contact.block(k)][[0, -1]].max() > 0]
+    touched = {g.tooth for k, g in enumerate(grids)
+               if g.probe and sol.pressure[contact.block(k)].max() > 0}
+    return paired, ends, touched

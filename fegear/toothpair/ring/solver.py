@@ -26,7 +26,7 @@ from ...geometry import Gear1Profile, Placed
 from ...timing import note, timed
 from ..case import ContactChecks, PairSolution, SolveCase
 from ..positions import Attempt, Trial
-from ..teeth import candidate_data, choose_teeth
+from ..teeth import candidate_data
 from .contact import RingContactSolution, solve_ring_contact, touch_rotation
 from .grid import ToothGrid
 from .influence import ColumnRule, RingContact, assemble_contact
@@ -35,12 +35,13 @@ from .peaks import with_peak_submodels
 from .phases import Phases
 from .placement import (
     CANDIDATES,
-    PLACEMENT,
     GridPlacement,
     by_tooth,
     columns_before,
     expected_teeth,
+    judged,
     loaded_before,
+    outside,
     place_grids,
 )
 from .readout import brief_stresses
@@ -155,6 +156,16 @@ class RingSolver:
         if self.phases is not None and trial.own is None and (
                 on := self._on_phase(case, state)) is not None:
             return on
+        if self.phases is not None and near is not None and trial.own is None and not \
+                self.phases.keeps(case.beta, case.params.z2):
+            # a phase's first position after a solved one: its contact kept at once, about
+            # the rotation of the one before (it turns little from a position to the next),
+            # not first placed on grids of its own that the kept ones would replace; where
+            # the kept grids do not hold it, placed as below
+            with timed("assemble"):
+                kept = self.phases.keep(self.model, case, state, trial, near.rotation)
+            if kept is not None:
+                return kept_attempt(kept, state)
         # without a solution before, the expected rotation is an estimate (20-50 % off): a
         # first solve on probe grids only finds the rotation to place the fine grids at
         predict = near is None and trial.own is None
@@ -170,13 +181,14 @@ class RingSolver:
         if solved is None:   # probe grids too coarse for this contact to settle: fine grids
             return Attempt(None, replace(trial, own=replace(placement, full=None)),
                            "probe grids did not settle")
-        judged = _judged(case, state, trial, placement, solved, predict)
-        if self.phases is not None and judged.again is None:
+        outcome = judged(case, state, trial, placement, solved, predict)
+        if self.phases is not None and outcome.again is None:
             with timed("assemble"):
-                kept = self.phases.keep(self.model, case, state, trial, solved.solution)
+                kept = self.phases.keep(self.model, case, state, trial,
+                                        solved.solution.rotation)
             if kept is not None:   # the position solved on its phase's contact
                 return kept_attempt(kept, state)
-        return judged
+        return outcome
 
     def on_kept(self, case: SolveCase, state, brief: bool = False) -> PairSolution | None:
         """``case`` (clearance ``state``) solved on the contact kept for its phase, stresses and
@@ -213,7 +225,7 @@ class RingSolver:
         if sol is None:
             return None
         again = replace(solved, solution=sol)
-        paired, ends, touched = _outside(case, state, again)
+        paired, ends, touched = outside(case, state, again)
         if paired - set(solved.teeth) or ends or touched:
             return None
         return self._finished(case, state, Attempt(again, None))[0]
@@ -245,7 +257,7 @@ class RingSolver:
             return   # the kept grids have them all
         trial = Trial(teeth, case.params.arc_um(sol.rotation) - first_um)
         with timed("assemble"):
-            self.phases.keep(self.model, case, state, trial, sol.detail.solution, widen=True)
+            self.phases.keep(self.model, case, state, trial, sol.rotation, widen=True)
 
     def forget(self, case: SolveCase) -> None:
         """Let go of the contact kept for ``case``'s phase (:meth:`.phases.Phases.forget`)."""
@@ -362,39 +374,3 @@ class RingSolver:
 def kept_attempt(kept: tuple, state) -> Attempt:
     """The attempt settled on a kept contact: ``kept``, its contact and solution."""
     return Attempt(RingAttempt(*kept, kept[0].grids, state.closest(+1).plus_um), None)
-
-
-def _judged(case: SolveCase, state, trial: Trial, placement: GridPlacement, solved: RingAttempt,
-            predict: bool) -> Attempt:
-    """The attempt settled, or the trial to solve again from: the driver's rule at the solved
-    rotation chooses a tooth without a grid, a grid carries pressure at an end, a probe
-    carries any, or the rotation is not the one placed for (module docstring)."""
-    p, sol = case.params, solved.solution
-    more, ends, touched = _outside(case, state, solved)
-    solved_um = p.arc_um(sol.rotation) - solved.first_um
-    moved = abs(solved_um - trial.elastic_um) > PLACEMENT * max(abs(solved_um), 1e-3)
-    if not predict and more <= set(trial.teeth) and not ends and not moved and not touched:
-        return Attempt(solved, None)
-    reach = dict(placement.reach)
-    for t in ends:
-        reach[t] = 2.0 * reach.get(t, 1.0)
-    full = placement.full | touched | expected_teeth(state, p.arc_um(sol.rotation))
-    again = Trial(tuple(sorted(set(trial.teeth) | more)), max(solved_um, 1e-6),
-                  GridPlacement(frozenset(full), reach))
-    why = ("probe grids first: " if predict else "") + (
-        f"teeth {sorted(more - set(trial.teeth))}, ends {ends}, probes touched "
-        f"{sorted(touched)}, elastic {solved_um:.3g} µm, expected {trial.elastic_um:.3g}")
-    return Attempt(solved, again, why)
-
-
-def _outside(case: SolveCase, state, solved: RingAttempt) -> tuple[set, list, set]:
-    """What tells whether a solved contact stays on its grids: the teeth the driver's rule
-    pairs at its rotation, the grids' teeth that carry pressure at an end and the probes'
-    that carry any."""
-    contact, sol, grids = solved.contact, solved.solution, solved.grids
-    paired = set(choose_teeth(state, case.params.arc_um(sol.rotation), case.extra_pairs))
-    ends = [g.tooth for k, g in enumerate(grids)
-            if sol.pressure[contact.block(k)][[0, -1]].max() > 0]
-    touched = {g.tooth for k, g in enumerate(grids)
-               if g.probe and sol.pressure[contact.block(k)].max() > 0}
-    return paired, ends, touched

@@ -120,3 +120,26 @@ def test_pitches_that_see_the_same_deviations_are_one_contact_problem(settled):
     assert kept.seen(mate, 0, z) == exact and kept.seen(mate, 3, z) != exact
     # a runout's offset turns with its gear: no two pitches are known to be alike
     assert kept.seen(Deviations(runout1=Runout(6, 30)), 0, z) is None
+
+
+def test_a_phase_after_a_solved_one_is_kept_at_once(monkeypatch):
+    """A phase's first position after a solved one is kept about that one's rotation: the
+    grids of its own, which the kept ones would replace, are never placed; and it is the
+    position placed anew within the kept contacts' agreement (:data:`AGREE`)."""
+    import fegear.toothpair.ring.solver as ring_solver
+
+    placed = []
+    place = ring_solver.place_grids
+    monkeypatch.setattr(ring_solver, "place_grids",
+                        lambda *a, **k: placed.append(a[1].beta) or place(*a, **k))
+    job = prepare_job({"shift": 0.016, "rotation": 0.002, "quality": "coarse", "z2": 25,
+                       "z1": 24, "pitch-deviation": ["1:11=5"], "no-estimate": True})
+    betas = [0.0, 0.4 * 2 * math.pi / 25]            # two phases, one chain
+    solver = RingSolver(None, SolverModes(keep_phases=True))
+    kept = drive(job.case, betas, solver)
+    assert len(solver.phases) == 2
+    assert betas[0] in placed and betas[1] not in placed
+    anew = drive(job.case, betas, RingSolver(None, SolverModes()))
+    for key in HEADLINE:
+        assert kept[1].headline()[key] == pytest.approx(anew[1].headline()[key],
+                                                        rel=AGREE[key][1]), key
