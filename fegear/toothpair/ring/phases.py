@@ -265,13 +265,13 @@ class Phases:
              widen: bool = False) -> tuple[RingContact, RingContactSolution] | None:
         """The contact of the phase of ``case.beta``, made about gear 1's ``rotation`` (rad:
         the position's solved one, or the one before it) on ``trial``'s teeth, kept, and
-        solved: fine grids on every paired tooth and
-        one more either side, each reaching as far as the largest deviation of any tooth
-        could need (so that a pitch whose deviations sit on other teeth finds its grids),
-        every column formed; ``widen``: grids on the teeth of the contact kept there before
-        too (a deviation set that needed others: :meth:`~.solver.RingSolver.widen`). None
-        (nothing kept) where it does not hold the position's own contact, or the case's torque
-        is not the one the contacts are kept at (:class:`Phases`)."""
+        solved: fine grids on every paired tooth and one more either side, each reaching as far
+        as the largest deviation of any tooth could need (so that a pitch whose deviations sit
+        on other teeth finds its grids), every column formed; ``widen``: grids on the teeth of
+        the contact kept there before too (a deviation set that needed others:
+        :meth:`~.solver.RingSolver.widen`). None (nothing kept) where it does not hold the
+        position's own contact, or the case's torque is not the one the contacts are kept at
+        (:class:`Phases`)."""
         if self.torque is not None and case.torque != self.torque:
             return None
         p = case.params
