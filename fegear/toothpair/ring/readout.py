@@ -34,6 +34,7 @@ from .stresses import (
     side_root_nodes,
     surface_stress,
     surface_tangent,
+    with_neighbours,
 )
 
 
@@ -202,8 +203,7 @@ class _GearRead:
 
     def sectors_of(self, i: int) -> list[int]:
         """The sectors sample ``i``'s stresses read: those it presses and one either side."""
-        return sorted({(t + d) % self.count for t, on in self.pressed.items() if on[i]
-                       for d in (-1, 0, 1)})
+        return with_neighbours([t for t, on in self.pressed.items() if on[i]], self.count)
 
 
 def _read_gear(side: GearSide, loads: dict, pressures: np.ndarray) -> _GearRead:
@@ -217,8 +217,7 @@ def _read_gear(side: GearSide, loads: dict, pressures: np.ndarray) -> _GearRead:
             v = b.matrix @ on
             if v.any():
                 f[t] = v
-    sectors = sorted({(t + d) % side.count for t, on in pressed.items() if on.any()
-                      for d in (-1, 0, 1)})
+    sectors = with_neighbours([t for t, on in pressed.items() if on.any()], side.count)
     rho = {t: side.cut_loads(loads[t].dofs) @ v for t, v in f.items()}
     cuts = side.body.cut_motions(rho, sectors)          # (2 n_f, sectors, samples)
     n = len(reading.nodes)

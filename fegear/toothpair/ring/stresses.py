@@ -174,8 +174,13 @@ def _fields(side: GearSide, loads, pressure: np.ndarray,
 def loaded_sectors(side: GearSide, loads, pressure: np.ndarray) -> list[int]:
     """The sectors whose fields a position's stresses read: those the ``pressure`` loads
     through ``loads`` and one either side."""
-    loaded = [t for t, b in loads.items() if np.any(pressure[b.columns] > 0)]
-    return sorted({(t + k) % side.count for t in loaded for k in (-1, 0, 1)})
+    return with_neighbours([t for t, b in loads.items() if np.any(pressure[b.columns] > 0)],
+                           side.count)
+
+
+def with_neighbours(loaded, count: int) -> list[int]:
+    """The sectors ``loaded`` and one either side of each, of a ring of ``count``, in order."""
+    return sorted({(t + k) % count for t in loaded for k in (-1, 0, 1)})
 
 
 def root_zone(side: GearSide, nodes: np.ndarray, max_principal: dict) -> RootZone:
