@@ -66,5 +66,5 @@ class KeptBatch:
                 solver.model, attempt.solved.contact, pressures, strains)
             for i, stresses in zip(members, read, strict=True):
                 case, state, attempt = pending[i]
-                out[i] = solver._finished(case, state, attempt, brief=True, read=stresses)[0]
+                out[i] = solver.record(case, state, attempt, brief=True, read=stresses)[0]
         return out

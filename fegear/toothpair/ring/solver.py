@@ -200,7 +200,7 @@ class RingSolver:
         row does not read. None where no contact is kept there or its grids do not hold this
         one's."""
         kept = self.phases.solve(self.model, case, state)
-        return None if kept is None else self._finished(case, state, kept_attempt(kept, state),
+        return None if kept is None else self.record(case, state, kept_attempt(kept, state),
                                                         brief)[0]
 
     def again(self, case: SolveCase, state, attempt: Attempt) -> PairSolution | None:
@@ -228,7 +228,7 @@ class RingSolver:
         paired, ends, touched = outside(case, state, again)
         if paired - set(solved.teeth) or ends or touched:
             return None
-        return self._finished(case, state, Attempt(again, None))[0]
+        return self.record(case, state, Attempt(again, None))[0]
 
     def _on_phase(self, case: SolveCase, state) -> Attempt | None:
         """``case`` settled on what the phases keep: a solution at a pitch before, renumbered,
@@ -309,15 +309,16 @@ class RingSolver:
     def finish(self, case: SolveCase, state, attempt: Attempt) -> PairSolution:
         if isinstance(attempt.solved, PairSolution):   # a pitch that repeats one solved
             return attempt.solved
-        sol, rigid = self._finished(case, state, attempt)
+        sol, rigid = self.record(case, state, attempt)
         if self.phases is not None:
             self.phases.solved(sol, rigid[0])
         return sol
 
-    def _finished(self, case: SolveCase, state, attempt: Attempt, brief: bool = False,
-                  read: RingStresses | None = None) -> tuple[PairSolution, tuple]:
-        """The solved position and its rigid gaps at its solved rotation (with their rates);
-        ``brief`` as :meth:`on_kept`; ``read``: its stresses, read with others'
+    def record(self, case: SolveCase, state, attempt: Attempt, brief: bool = False,
+               read: RingStresses | None = None) -> tuple[PairSolution, tuple]:
+        """The record of a settled ``attempt`` (stresses, teeth, checks) and its rigid gaps at
+        its solved rotation (with their rates), kept for no later position (:meth:`finish`
+        keeps it); ``brief`` as :meth:`on_kept`; ``read``: its stresses, read with others'
         (:mod:`.kept_batch`)."""
         model, solved = self.model, attempt.solved
         contact, first_um = solved.contact, solved.first_um
