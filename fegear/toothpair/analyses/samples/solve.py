@@ -282,9 +282,7 @@ class OnKept:
             except FegearError as err:
                 found.setdefault(k, []).append((one.beta, str(err)))
                 continue
-            found.setdefault(k, []).append((one.beta, head))
-            if self.read is not None:
-                took.setdefault(k, []).append(self.read(sol))
+            self._add(found, took, k, one.beta, head, sol)
         self._record(batch, held, found, took)
         solver.forget(at)
         return exact, found, took
@@ -321,10 +319,16 @@ class OnKept:
             if isinstance(sol, FegearError):
                 found.setdefault(k, []).append((beta, str(sol)))
                 continue
-            found.setdefault(k, []).append((beta, sol.headline()))
-            if self.read is not None:
-                took.setdefault(k, []).append(self.read(sol))
+            self._add(found, took, k, beta, sol.headline(), sol)
         held.clear()
+
+    def _add(self, found: dict, took: dict, k: int, beta: float, head: dict,
+             sol: PairSolution) -> None:
+        """Sample ``k``'s headline ``head`` at ``beta`` into ``found``, and what ``read`` takes of
+        its solution into ``took``."""
+        found.setdefault(k, []).append((beta, head))
+        if self.read is not None:
+            took.setdefault(k, []).append(self.read(sol))
 
     def _sample(self, one: SolveCase, state, placed: RingSolver, exact: PairSolution,
                 kept: bool = True) -> PairSolution:
