@@ -344,7 +344,7 @@ def _drive(job: Job, analyses, executor: Executor):
         driven = analysis.drive(job, executor)
         if driven is not None:
             return driven
-    solver = RingSolver(None, SolverModes(keep_phases=job.revolution))
+    solver = RingSolver(None, SolverModes(keep_phases=job.revolution, read_kept=job.revolution))
     return solver, positions_of(solver, job.revolution)(job.case, job.betas, executor), None
 
 

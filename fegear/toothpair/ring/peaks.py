@@ -7,7 +7,9 @@ its largest von Mises stress need them (everything else a position reports, the 
 stresses included, does not depend on submodels): where the largest gear-1 root stress is (the
 position the job pictures and estimates), and wherever the estimate comes within
 :data:`PEAK_MARGIN` of the largest von Mises stress solved, until no other does. A single
-position is its own peak.
+position is its own peak. A position whose stresses were read without their fields (a
+revolution's on a kept contact: :attr:`~.solver.SolverModes.read_kept`) gets them, and its
+equilibrium residuals, where it gets its submodels (:func:`whole`).
 """
 
 from __future__ import annotations
@@ -17,7 +19,8 @@ from dataclasses import replace
 
 from ...timing import clocked, timed
 from ..case import PairSolution
-from .stresses import with_submodels
+from .results import equilibrium_residuals
+from .stresses import ring_stresses, with_submodels
 
 PEAK_MARGIN = 0.02   # a cycle's position gets its submodels where its von Mises estimate is
                      # within this fraction of the cycle's largest von Mises stress (the
@@ -54,6 +57,7 @@ def with_peak_submodels(sols: tuple[PairSolution, ...]) -> tuple[PairSolution, .
 
 def with_submodels_of(sol: PairSolution) -> PairSolution:
     """``sol`` with its contact submodels solved (their time in its "stresses" stage)."""
+    sol = whole(sol)
     d = sol.detail
     with clocked() as clock, timed("stresses"):
         stresses = with_submodels(d.model, d.contact, d.solution.pressure, d.stresses)
@@ -62,3 +66,19 @@ def with_submodels_of(sol: PairSolution) -> PairSolution:
     return replace(sol, von_mises_max=stresses.von_mises_max, timings_s=dict(times),
                    detail=replace(d, stresses=stresses),
                    von_mises_estimated=not stresses.submodels)
+
+
+def whole(sol: PairSolution) -> PairSolution:
+    """``sol`` with its loaded sectors' fields and its equilibrium residuals, where its
+    stresses were read without them (:attr:`~.solver.SolverModes.read_kept`); else ``sol``.
+    Its headline stresses stay: the fields' root zones and surface estimate are the ones read
+    (to rounding)."""
+    d = sol.detail
+    if any(d.stresses.fields):
+        return sol
+    with timed("stresses"):
+        stresses = ring_stresses(d.model, d.contact, d.solution.pressure, submodels=False)
+        residuals = tuple(equilibrium_residuals(d.model, d.contact, d.solution, stresses))
+    return replace(sol, von_mises_max=stresses.von_mises_max,
+                   detail=replace(d, stresses=stresses),
+                   checks=replace(sol.checks, residuals=residuals))

@@ -137,6 +137,12 @@ class Phases:
             return set()
         return {g.tooth for g in kept.contact.grids}
 
+    def on_kept(self, contact: RingContact, z2: int) -> bool:
+        """Whether ``contact`` is the one kept for its phase, turned to its pitch (it shares
+        the kept one's arrays), rather than placed on grids of its own."""
+        kept = self._kept.get(pitch_phase(contact.beta, z2)[0])
+        return kept is not None and contact.formed is kept.contact.formed
+
     def forget(self, beta: float, z2: int) -> None:
         """Let go of what is kept for the phase of ``beta`` (a position whose deviation sets
         are all solved: its contact is a large matrix)."""
@@ -210,10 +216,10 @@ class Phases:
         phase, pitch = pitch_phase(case.beta, case.params.z2)
         key = (phase, case.torque)
         contact = detail.contact
-        kept = self._kept.get(phase)
-        if kept is None or contact.formed is not kept.contact.formed:
+        if not self.on_kept(contact, case.params.z2):
             self._solved.pop(key, None)
             return
+        kept = self._kept[phase]
         self._solved[key] = SolvedPitch(pitch, gaps, sol)
         seen = kept.seen(case.deviations, pitch - kept.pitch, (case.params.z1, case.params.z2))
         if seen is not None:

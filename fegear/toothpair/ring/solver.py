@@ -31,7 +31,7 @@ from .contact import RingContactSolution, solve_ring_contact, touch_rotation
 from .grid import ToothGrid
 from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel, keep_cached, ring_model
-from .peaks import with_peak_submodels
+from .peaks import whole, with_peak_submodels
 from .phases import Phases
 from .placement import (
     CANDIDATES,
@@ -95,18 +95,27 @@ class SolverModes:
     :meth:`RingSolver.on_kept`): a contact solve each instead of a placement. The kept grids
     reach as far beyond the exact pair's as the deviations there, or the sets to be solved on
     them (:meth:`RingSolver.reach`), need; a lighter torque is solved on the contacts kept at
-    the heaviest, with its own solutions repeated over the pitches (:meth:`RingSolver.again`)."""
+    the heaviest, with its own solutions repeated over the pitches (:meth:`RingSolver.again`).
+    ``read_kept`` (with ``keep_phases``): a position solved on its phase's kept contact has its
+    stresses read as a sample's are (:func:`~.readout.brief_stresses`: the root zones and the
+    surface estimate, the same headline stresses), without the fields, the equilibrium
+    residuals or the submodels; the position pictured and the cycle's peaks get them
+    (:meth:`RingSolver.at_peaks`): for a revolution, of whose thousand positions the others
+    are read for their headlines, shares, rotations and stiffness alone."""
 
     submodels: str = "peaks"
     contact_only: bool = False
     roots_only: bool = False
     keep_phases: bool = False
+    read_kept: bool = False
 
     def __post_init__(self) -> None:
         if self.submodels not in SUBMODELS:
             raise ValueError(f"submodels must be one of {SUBMODELS}, not {self.submodels!r}")
         if self.contact_only and self.roots_only:
             raise ValueError("contact_only reads no stresses, roots_only the roots': not both")
+        if self.read_kept and not self.keep_phases:
+            raise ValueError("read_kept reads the positions on kept contacts: keep_phases too")
 
     @property
     def solved_submodels(self) -> str:
@@ -332,23 +341,15 @@ class RingSolver:
             roots_only = self.modes.roots_only
             tangent = (math.nan if brief or roots_only else
                        tangent_stiffness(model, contact, sol))
-            if self.modes.contact_only:
-                stresses, cands = None, ()
-            elif read is not None:
-                stresses, cands = read, ()
-            elif brief or roots_only:
-                strains = None if roots_only else self.phases.strains(model, case.beta)
-                stresses, cands = brief_stresses(model, contact, sol.pressure, strains), ()
-            else:
-                stresses = ring_stresses(model, contact, sol.pressure,
-                                         self.modes.solved_submodels == "all", clamped)
-                cands = candidate_data(case.params, model.shape, state,
-                                       tuple(g.tooth for g in solved.grids), case.beta)
+            stresses, lean = self._stresses(case, solved, sol.pressure, brief, read, clamped)
+            cands = () if stresses is None or brief or roots_only or read is not None else \
+                candidate_data(case.params, model.shape, state,
+                               tuple(g.tooth for g in solved.grids), case.beta)
             detail = RingDetail(model, case, replace(contact, A=None), sol, stresses)
             rigid = formed if formed is not None else solved_rigid_gap(detail)
             teeth = tooth_results(detail, state, cands, rigid,
                                   references=not (brief or roots_only))
-        residuals = () if stresses is None or brief or roots_only else tuple(
+        residuals = () if stresses is None or brief or roots_only or lean else tuple(
             equilibrium_residuals(model, contact, sol, stresses))
         return PairSolution(
             case=case, teeth=teeth,
@@ -362,11 +363,32 @@ class RingSolver:
             von_mises_estimated=stresses is None or not stresses.submodels,
             tangent_stiffness=tangent), rigid
 
+    def _stresses(self, case: SolveCase, solved: RingAttempt, pressure, brief: bool,
+                  read: RingStresses | None, clamped) -> tuple[RingStresses | None, bool]:
+        """A settled attempt's stresses as :meth:`record` forms them, and whether they were
+        read without the fields on a kept contact (:attr:`SolverModes.read_kept`)."""
+        model, contact = self.model, solved.contact
+        if self.modes.contact_only:
+            return None, False
+        if read is not None:
+            return read, False
+        lean = self.modes.read_kept and self.phases.on_kept(contact, case.params.z2)
+        if brief or self.modes.roots_only or lean:
+            strains = None if self.modes.roots_only else self.phases.strains(model, case.beta)
+            return brief_stresses(model, contact, pressure, strains), lean
+        return ring_stresses(model, contact, pressure, self.modes.solved_submodels == "all",
+                             clamped), False
+
     def at_peaks(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
         """``sols`` with their contact submodels where the cycle peaks
-        (:func:`~.peaks.with_peak_submodels`, with :attr:`SolverModes.submodels` "peaks"); the
-        model is then kept in the model cache if it is on (:func:`~.model.keep_cached`)."""
+        (:func:`~.peaks.with_peak_submodels`, with :attr:`SolverModes.submodels` "peaks"), and
+        with :attr:`SolverModes.read_kept` the pictured position's fields (the largest gear-1
+        root stress: :func:`~.peaks.whole`); the model is then kept in the model cache if it
+        is on (:func:`~.model.keep_cached`)."""
         out = with_peak_submodels(sols) if self.modes.solved_submodels == "peaks" else sols
+        if self.modes.read_kept and out:   # the pictured position's fields, without submodels
+            k = max(range(len(out)), key=lambda i: out[i].root_stress[0])
+            out = (*out[:k], whole(out[k]), *out[k + 1:])
         if self.model is not None:
             keep_cached(self.model)
         return out

@@ -9,7 +9,7 @@ import pytest
 
 from fegear.geometry import Deviations, ToothDeviation, pitch_phase
 from fegear.toothpair import prepare_job
-from fegear.toothpair.case import HEADLINE
+from fegear.toothpair.case import HEADLINE, phase_major
 from fegear.toothpair.positions import drive
 from fegear.toothpair.ring.phases import Phases
 from fegear.toothpair.ring.solver import RingSolver, SolverModes
@@ -143,3 +143,39 @@ def test_a_phase_after_a_solved_one_is_kept_at_once(monkeypatch):
     for key in HEADLINE:
         assert kept[1].headline()[key] == pytest.approx(anew[1].headline()[key],
                                                         rel=AGREE[key][1]), key
+
+
+def test_positions_read_on_kept_contacts_are_the_ones_formed_whole():
+    """A revolution's positions on kept contacts read without their fields
+    (:attr:`~fegear.toothpair.ring.solver.SolverModes.read_kept`) are those formed whole:
+    headlines, loads, rotations and stiffness to rounding. None of them holds fields until
+    the cycle's peaks are found; then the pictured one (the largest gear-1 root stress) holds
+    them, its equilibrium residuals and its submodels, as the whole one does."""
+    job = prepare_job({"shift": 0.016, "rotation": 0.002, "quality": "coarse", "z2": 25,
+                       "z1": 24, "pitch-deviation": ["1:11=5"], "runout": ["1=4@0"],
+                       "revolution": True, "positions": 2, "no-estimate": True})
+    # two places, each over its first five pitches (a runout: no pitch repeats another)
+    betas = [job.betas[k] for k in phase_major(len(job.betas), 24) if k // 2 < 5]
+    whole_solver = RingSolver(None, SolverModes(keep_phases=True))
+    whole = drive(job.case, betas, whole_solver)
+    solver = RingSolver(None, SolverModes(keep_phases=True, read_kept=True))
+    read = drive(job.case, betas, solver)
+    assert not any(any(s.detail.stresses.fields) for s in read)
+    for a, b in zip(read, whole, strict=True):
+        for key in HEADLINE:
+            assert a.headline()[key] == pytest.approx(b.headline()[key], rel=1e-9), key
+        assert [t.load_N for t in a.teeth] == pytest.approx([t.load_N for t in b.teeth])
+        assert [t.root1_MPa for t in a.teeth] == pytest.approx([t.root1_MPa for t in b.teeth])
+        assert (a.rotation, a.first_touch, a.tangent_stiffness) == pytest.approx(
+            (b.rotation, b.first_touch, b.tangent_stiffness), rel=1e-12)
+    read, whole = solver.at_peaks(read), whole_solver.at_peaks(whole)
+    k = max(range(len(read)), key=lambda i: read[i].root_stress[0])
+    assert any(read[k].detail.stresses.fields) and read[k].detail.stresses.submodels
+    assert read[k].checks.residuals == pytest.approx(whole[k].checks.residuals, abs=1e-12)
+    assert read[k].von_mises_max == pytest.approx(whole[k].von_mises_max, rel=1e-9)
+    assert [s.von_mises_estimated for s in read] == [s.von_mises_estimated for s in whole]
+
+
+def test_reading_kept_contacts_needs_them_kept():
+    with pytest.raises(ValueError, match="keep_phases"):
+        SolverModes(read_kept=True)
