@@ -310,6 +310,7 @@ def solve_job(job: Job, executor: Executor = SERIAL,
     gear1_profile(job.case.params)
     analyses = asked(job)
     solver, sols, driven = _drive(job, analyses, executor)
+    sols = solver.with_pictured(sols)
     if job.estimate and len(job.betas) > 1:   # while the peaks' submodels are solved here
         second = executor.submit(estimate.second_headline, _pictured(sols).case)
     if meanwhile is not None:

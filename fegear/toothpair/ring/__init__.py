@@ -13,8 +13,9 @@ system (:mod:`.contact_system`), and :mod:`.tangent` linearises the solved conta
 :mod:`.stresses` reads the root stresses from the templates and the contact stresses from a
 submodel at each peak, which :mod:`.peaks` solves where a cycle's stresses peak;
 :mod:`.results` gives per-tooth results and the rings' fields; :mod:`.solver` is the model's
-part of a position (:class:`RingSolver`; :class:`SolverModes`: what it gives and keeps) for
-the driver of :mod:`fegear.toothpair.positions`, which loops over the positions.
+part of a position (:class:`RingSolver`; :mod:`.modes`' :class:`SolverModes`: what it gives
+and keeps) for the driver of :mod:`fegear.toothpair.positions`, which loops over the
+positions.
 
 The baseline pair at 200 N·m, coarse:
 
@@ -44,6 +45,7 @@ from ...exports import lazy
 
 __getattr__, __dir__, __all__ = lazy(__name__, {
     "model": ("RingModel", "RingLevel", "LEVELS", "build_ring", "build_templates"),
-    "solver": ("RingSolver", "SolverModes", "RingAttempt"),
+    "solver": ("RingSolver", "RingAttempt"),
+    "modes": ("SolverModes",),
     "results": ("RingDetail",),
 })

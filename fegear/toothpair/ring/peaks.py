@@ -8,8 +8,9 @@ stresses included, does not depend on submodels): where the largest gear-1 root 
 position the job pictures and estimates), and wherever the estimate comes within
 :data:`PEAK_MARGIN` of the largest von Mises stress solved, until no other does. A single
 position is its own peak. A position whose stresses were read without their fields (a
-revolution's on a kept contact: :attr:`~.solver.SolverModes.read_kept`) gets them, and its
-equilibrium residuals, where it gets its submodels (:func:`whole`).
+revolution's on a kept contact: :attr:`~.solver.SolverModes.read_kept`) gets them, its
+equilibrium residuals and its teeth's half-plane references where it gets its submodels
+(:func:`whole`).
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ from dataclasses import replace
 
 from ...timing import clocked, timed
 from ..case import PairSolution
-from .results import equilibrium_residuals
+from .results import equilibrium_residuals, solved_rigid_gap, with_references
 from .stresses import ring_stresses, with_submodels
 
 PEAK_MARGIN = 0.02   # a cycle's position gets its submodels where its von Mises estimate is
@@ -69,16 +70,18 @@ def with_submodels_of(sol: PairSolution) -> PairSolution:
 
 
 def whole(sol: PairSolution) -> PairSolution:
-    """``sol`` with its loaded sectors' fields and its equilibrium residuals, where its
-    stresses were read without them (:attr:`~.solver.SolverModes.read_kept`); else ``sol``.
-    Its headline stresses stay: the fields' root zones and surface estimate are the ones read
-    (to rounding)."""
+    """``sol`` with its loaded sectors' fields, its equilibrium residuals and its teeth's
+    half-plane references, where it was read without them
+    (:attr:`~.solver.SolverModes.read_kept`); else ``sol``. Its root stresses stay (the
+    fields' root zones are the ones read, to rounding), its von Mises maximum is the fields'
+    (the same where it lies at a contact or in a root zone)."""
     d = sol.detail
     if any(d.stresses.fields):
         return sol
     with timed("stresses"):
         stresses = ring_stresses(d.model, d.contact, d.solution.pressure, submodels=False)
         residuals = tuple(equilibrium_residuals(d.model, d.contact, d.solution, stresses))
-    return replace(sol, von_mises_max=stresses.von_mises_max,
-                   detail=replace(d, stresses=stresses),
+        d = replace(d, stresses=stresses)
+        teeth = with_references(d, sol.teeth, solved_rigid_gap(d))
+    return replace(sol, teeth=teeth, von_mises_max=stresses.von_mises_max, detail=d,
                    checks=replace(sol.checks, residuals=residuals))

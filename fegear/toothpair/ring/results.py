@@ -13,7 +13,7 @@ sector model does (docs/model.md, "Hertz").
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -132,6 +132,23 @@ def tooth_result(detail: RingDetail, k: int, rigid: tuple[np.ndarray, np.ndarray
         resolved=bool(load <= 0 or per_b >= RESOLVED_PER_B),
         tooth2=(int(round(theta2 / pitch2)) % case.params.z2 if math.isfinite(theta2)
                 else None))
+
+
+def with_references(detail: RingDetail, teeth: tuple[ToothResult, ...],
+                    rigid: tuple[np.ndarray, np.ndarray]) -> tuple[ToothResult, ...]:
+    """``teeth`` (:func:`tooth_results` without ``references``, one a grid of ``detail``)
+    with each loaded tooth's half-plane reference and bending curvature, as
+    :func:`tooth_results` forms them with ``references``."""
+    out = []
+    for k, t in enumerate(teeth):
+        if t.load_N > 0:
+            blk = detail.contact.block(k)
+            curvature, ref = _references(detail, k, rigid[0][blk], t.load_N)
+            t = replace(t, halfplane_p_MPa=float(ref[0].max()) if ref else None,
+                        halfplane_flank_MPa=ref[1].flank_MPa if ref else None,
+                        bending_curvature=curvature)
+        out.append(t)
+    return tuple(out)
 
 
 def _references(detail: RingDetail, k: int, gap: np.ndarray, load: float):

@@ -31,6 +31,7 @@ from .contact import RingContactSolution, solve_ring_contact, touch_rotation
 from .grid import ToothGrid
 from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel, keep_cached, ring_model
+from .modes import WHOLE, SolverModes
 from .peaks import whole, with_peak_submodels
 from .phases import Phases
 from .placement import (
@@ -52,9 +53,6 @@ from .tangent import tangent_stiffness
 #: the one-off stages a solve reports: the model built (profile, mesh, assembly and
 #: factorisation), read back from the model cache, or kept from an earlier solve
 MODEL_STAGES = ("profile", "mesh", "assemble_factor", "cache", "model (kept)")
-#: where the contact submodels are solved: at every position, only where a cycle's von Mises
-#: peak is (and where any other headline stress peaks), or nowhere
-SUBMODELS = ("all", "peaks", "none")
 
 
 @dataclass(frozen=True)
@@ -71,65 +69,12 @@ class RingAttempt:
     teeth: tuple[int, ...] = ()
 
 
-@dataclass(frozen=True)
-class SolverModes:
-    """What a :class:`RingSolver` gives beyond a position's contact and what it keeps between
-    positions; the defaults give a position whole. Variants by :func:`dataclasses.replace`.
-
-    ``submodels``: where the contact submodels are solved (:data:`SUBMODELS`,
-    :meth:`RingSolver.at_peaks`): "peaks" where a cycle's headline stresses peak, "all" at
-    every position, "none" nowhere; without one, the von Mises stress at a contact is the
-    template's surface estimate (:func:`~.stresses.ring_stresses`) and all else the same: for
-    a caller that reads the estimate or no von Mises stress (a class's samples).
-    ``contact_only``: no stresses at all, for a caller that reads only the contact (loads,
-    shares, pressures, flank and edge apart, rotations: the tip-relief search), which then
-    skips their projection and readout; the root and von Mises stresses NaN, the teeth's Hertz
-    values and half-plane references None.
-    ``roots_only``: the contact and the root stresses read without fields
-    (:func:`~.readout.brief_stresses`), as a sample's are, for a caller that reads those alone
-    (a load spectrum's levels); the von Mises stress and the tangent stiffness NaN. Not with
-    ``contact_only``.
-    ``keep_phases``: each position's contact kept for its phase and the positions whole gear-2
-    pitches on solved on it (:mod:`.phases`), for positions that repeat over whole pitches (a
-    revolution) or one position solved for many deviation sets (a class's samples:
-    :meth:`RingSolver.on_kept`): a contact solve each instead of a placement. The kept grids
-    reach as far beyond the exact pair's as the deviations there, or the sets to be solved on
-    them (:meth:`RingSolver.reach`), need; a lighter torque is solved on the contacts kept at
-    the heaviest, with its own solutions repeated over the pitches (:meth:`RingSolver.again`).
-    ``read_kept`` (with ``keep_phases``): a position solved on its phase's kept contact has its
-    stresses read as a sample's are (:func:`~.readout.brief_stresses`: the root zones and the
-    surface estimate, the same headline stresses), without the fields, the equilibrium
-    residuals or the submodels; the position pictured and the cycle's peaks get them
-    (:meth:`RingSolver.at_peaks`): for a revolution, of whose thousand positions the others
-    are read for their headlines, shares, rotations and stiffness alone."""
-
-    submodels: str = "peaks"
-    contact_only: bool = False
-    roots_only: bool = False
-    keep_phases: bool = False
-    read_kept: bool = False
-
-    def __post_init__(self) -> None:
-        if self.submodels not in SUBMODELS:
-            raise ValueError(f"submodels must be one of {SUBMODELS}, not {self.submodels!r}")
-        if self.contact_only and self.roots_only:
-            raise ValueError("contact_only reads no stresses, roots_only the roots': not both")
-        if self.read_kept and not self.keep_phases:
-            raise ValueError("read_kept reads the positions on kept contacts: keep_phases too")
-
-    @property
-    def solved_submodels(self) -> str:
-        """Where the submodels are solved in effect: ``submodels``, or "none" where no von
-        Mises stress is read (``contact_only``, ``roots_only``)."""
-        return "none" if self.contact_only or self.roots_only else self.submodels
-
-
 class RingSolver:
     """The ring model as a :class:`~fegear.toothpair.positions.PositionModel`: ``model``, a
     ring model built before, is kept if it fits the case; ``modes``: what it gives and keeps
     (:class:`SolverModes`)."""
 
-    def __init__(self, model: RingModel | None = None, modes: SolverModes = SolverModes()) -> None:
+    def __init__(self, model: RingModel | None = None, modes: SolverModes = WHOLE) -> None:
         self.model = model
         self.modes = modes
         self.phases = Phases() if modes.keep_phases else None
@@ -348,7 +293,7 @@ class RingSolver:
             detail = RingDetail(model, case, replace(contact, A=None), sol, stresses)
             rigid = formed if formed is not None else solved_rigid_gap(detail)
             teeth = tooth_results(detail, state, cands, rigid,
-                                  references=not (brief or roots_only))
+                                  references=not (brief or roots_only or lean))
         residuals = () if stresses is None or brief or roots_only or lean else tuple(
             equilibrium_residuals(model, contact, sol, stresses))
         return PairSolution(
@@ -379,16 +324,20 @@ class RingSolver:
         return ring_stresses(model, contact, pressure, self.modes.solved_submodels == "all",
                              clamped), False
 
+    def with_pictured(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
+        """``sols`` with the position pictured (the largest gear-1 root stress) formed whole
+        where it was read without its fields (:attr:`SolverModes.read_kept`:
+        :func:`~.peaks.whole`), for what is drawn and checked of it."""
+        if not self.modes.read_kept or not sols:
+            return sols
+        k = max(range(len(sols)), key=lambda i: sols[i].root_stress[0])
+        return (*sols[:k], whole(sols[k]), *sols[k + 1:])
+
     def at_peaks(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
         """``sols`` with their contact submodels where the cycle peaks
-        (:func:`~.peaks.with_peak_submodels`, with :attr:`SolverModes.submodels` "peaks"), and
-        with :attr:`SolverModes.read_kept` the pictured position's fields (the largest gear-1
-        root stress: :func:`~.peaks.whole`); the model is then kept in the model cache if it
-        is on (:func:`~.model.keep_cached`)."""
+        (:func:`~.peaks.with_peak_submodels`, with :attr:`SolverModes.submodels` "peaks"); the
+        model is then kept in the model cache if it is on (:func:`~.model.keep_cached`)."""
         out = with_peak_submodels(sols) if self.modes.solved_submodels == "peaks" else sols
-        if self.modes.read_kept and out:   # the pictured position's fields, without submodels
-            k = max(range(len(out)), key=lambda i: out[i].root_stress[0])
-            out = (*out[:k], whole(out[k]), *out[k + 1:])
         if self.model is not None:
             keep_cached(self.model)
         return out

@@ -11,8 +11,8 @@ import pytest
 from fegear.geometry import Deviations, Runout, ToothDeviation, gear1_profile, moved_clearances
 from fegear.running import SERIAL
 from fegear.toothpair.positions import Clearances, positions_of
+from fegear.toothpair.ring import RingSolver, SolverModes
 from fegear.toothpair.ring.kept_batch import KeptBatch
-from fegear.toothpair.ring.solver import RingSolver, SolverModes
 
 #: deviation sets of a few µm on the teeth in mesh at β = 0, each kind on its own and mixed
 SETS = (Deviations(gear1={10: ToothDeviation(pitch=3.0)}),

@@ -11,8 +11,8 @@ from fegear.geometry import Deviations, ToothDeviation, pitch_phase
 from fegear.toothpair import prepare_job
 from fegear.toothpair.case import HEADLINE, phase_major
 from fegear.toothpair.positions import drive
+from fegear.toothpair.ring import RingSolver, SolverModes
 from fegear.toothpair.ring.phases import Phases
-from fegear.toothpair.ring.solver import RingSolver, SolverModes
 
 
 @pytest.fixture(scope="module")
@@ -148,9 +148,10 @@ def test_a_phase_after_a_solved_one_is_kept_at_once(monkeypatch):
 def test_positions_read_on_kept_contacts_are_the_ones_formed_whole():
     """A revolution's positions on kept contacts read without their fields
     (:attr:`~fegear.toothpair.ring.solver.SolverModes.read_kept`) are those formed whole:
-    headlines, loads, rotations and stiffness to rounding. None of them holds fields until
-    the cycle's peaks are found; then the pictured one (the largest gear-1 root stress) holds
-    them, its equilibrium residuals and its submodels, as the whole one does."""
+    headlines, loads, rotations and stiffness to rounding. None of them holds fields or
+    half-plane references; the pictured one (the largest gear-1 root stress) is then formed
+    whole (its fields, references and equilibrium residuals), and the cycle's peaks get their
+    submodels, as the whole ones do."""
     job = prepare_job({"shift": 0.016, "rotation": 0.002, "quality": "coarse", "z2": 25,
                        "z1": 24, "pitch-deviation": ["1:11=5"], "runout": ["1=4@0"],
                        "revolution": True, "positions": 2, "no-estimate": True})
@@ -168,14 +169,18 @@ def test_positions_read_on_kept_contacts_are_the_ones_formed_whole():
         assert [t.root1_MPa for t in a.teeth] == pytest.approx([t.root1_MPa for t in b.teeth])
         assert (a.rotation, a.first_touch, a.tangent_stiffness) == pytest.approx(
             (b.rotation, b.first_touch, b.tangent_stiffness), rel=1e-12)
-    read, whole = solver.at_peaks(read), whole_solver.at_peaks(whole)
     k = max(range(len(read)), key=lambda i: read[i].root_stress[0])
-    assert any(read[k].detail.stresses.fields) and read[k].detail.stresses.submodels
+    assert all(t.halfplane_flank_MPa is None for t in read[k].teeth)
+    assert any(t.halfplane_flank_MPa for t in whole[k].teeth)
+    pictured = solver.with_pictured(read)
+    assert [p is r for p, r in zip(pictured, read)].count(False) == 1
+    assert any(pictured[k].detail.stresses.fields)
+    for a, b in zip(pictured[k].teeth, whole[k].teeth, strict=True):
+        assert (a.halfplane_p_MPa, a.halfplane_flank_MPa, a.bending_curvature) == \
+            pytest.approx((b.halfplane_p_MPa, b.halfplane_flank_MPa, b.bending_curvature))
+    read, whole = solver.at_peaks(pictured), whole_solver.at_peaks(whole)
+    assert read[k].detail.stresses.submodels
     assert read[k].checks.residuals == pytest.approx(whole[k].checks.residuals, abs=1e-12)
     assert read[k].von_mises_max == pytest.approx(whole[k].von_mises_max, rel=1e-9)
     assert [s.von_mises_estimated for s in read] == [s.von_mises_estimated for s in whole]
 
-
-def test_reading_kept_contacts_needs_them_kept():
-    with pytest.raises(ValueError, match="keep_phases"):
-        SolverModes(read_kept=True)

@@ -212,14 +212,3 @@ def test_a_cycle_s_second_chain_solved_in_a_fork_is_the_one_solved_here(baseline
     later = beside[-1]
     assert {f.name for f in later.detail.body_fields(around=1)} == {"gear1", "gear2"}
 
-
-def test_the_solver_modes_refuse_what_they_cannot_do():
-    from fegear.toothpair.ring import SolverModes
-
-    with pytest.raises(ValueError, match="submodels must be one of"):
-        SolverModes(submodels="some")
-    with pytest.raises(ValueError, match="not both"):
-        SolverModes(contact_only=True, roots_only=True)
-    # no von Mises stress read, no submodel solved for it
-    assert SolverModes(contact_only=True).solved_submodels == "none"
-    assert replace(SolverModes(roots_only=True), roots_only=False).solved_submodels == "peaks"
