@@ -182,3 +182,17 @@ def test_iterating_on_the_points_near_closing_solves_the_same_contact(baseline_2
     assert np.abs(near.pressure - every.pressure).max() < 1e-9 * every.pressure.max()
     np.testing.assert_allclose(near.gap, every.gap, rtol=0, atol=1e-12)
     assert near.balance_error < 1e-9
+
+
+@pytest.mark.parametrize("start_um", [0.0, 3.0, -40.0])
+def test_the_first_touch_is_where_the_closest_grid_point_touches(baseline_200, start_um):
+    # measured again on the points near touching alone, from a start off by start_um of arc:
+    # every point's rigid gap is then open or closed to rounding, and one point touches
+    d = baseline_200.detail
+    p = d.case.params
+    touch = contact.touch_rotation(d.model, d.contact,
+                                   baseline_200.first_touch + p.turn_of(start_um))
+    g0, _ = contact.rigid_gap(d.model, d.contact, p.ratio * d.contact.beta + touch,
+                              d.contact.feet.copy())
+    assert g0.min() == pytest.approx(0.0, abs=1e-12)
+    assert touch == pytest.approx(baseline_200.first_touch, abs=1e-13)
