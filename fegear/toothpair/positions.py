@@ -157,17 +157,23 @@ def first_teeth(case: SolveCase, state, elastic_um: float) -> tuple[int, ...]:
 
 
 def drive(case: SolveCase, betas, solver: PositionModel,
-          profile: Gear1Profile | None = None, executor: Executor = SERIAL
-          ) -> tuple[PairSolution, ...]:
+          profile: Gear1Profile | None = None, executor: Executor = SERIAL,
+          handed: Callable[[range, list], list] | None = None) -> tuple[PairSolution, ...]:
     """Solve ``case`` at each rolling angle of ``betas`` (rad) with ``solver``; a cycle's
     chains on ``executor`` (module docstring). Each solution's times are its own stages, the
     first's with the one-off ones (the clearance states, the model's build). BLAS runs on one
     thread meanwhile (:data:`~fegear.fe.BLAS_THREADS`); the process's allocator keeps the
-    memory a solve frees (:func:`~fegear.fe.keep_freed_memory`)."""
+    memory a solve frees (:func:`~fegear.fe.keep_freed_memory`). ``handed(indices,
+    solutions)``: what of a chain's solutions (at those indices of ``betas``) comes back, made
+    in the process that solved them (where the caller reads only some positions' details)."""
     def one(k: int, at: SolveCase, state, near: tuple | None) -> tuple[PairSolution]:
         return (_clocked(solve_position, at, state, solver, near and near[0]),)
 
-    return tuple(sols[0] for sols in _chains(case, betas, solver, profile, executor, one))
+    def run(states, span) -> list:
+        got = chain(case, states, span, one)
+        return got if handed is None else [(sol,) for sol in handed(span, [g[0] for g in got])]
+
+    return tuple(sols[0] for sols in _chains(case, betas, solver, profile, executor, run))
 
 
 def drive_along(case: SolveCase, betas, solver: PositionModel, also,
@@ -180,7 +186,8 @@ def drive_along(case: SolveCase, betas, solver: PositionModel, also,
         sol = _clocked(solve_position, at, state, solver, near and near[0])
         return sol, also(at, state, sol)
 
-    return tuple(_chains(case, betas, solver, None, executor, one))
+    return tuple(_chains(case, betas, solver, None, executor,
+                         lambda states, span: chain(case, states, span, one)))
 
 
 def drive_torques(case: SolveCase, betas, torques, solver: SharesContacts,
@@ -207,18 +214,32 @@ def drive_torques(case: SolveCase, betas, torques, solver: SharesContacts,
                                   attempt, near and near[k])
         return tuple(out)
 
-    sols = _chains(case, betas, solver, None, executor, each)
+    sols = _chains(case, betas, solver, None, executor,
+                   lambda states, span: chain(case, states, span, each))
     return [tuple(at[k] for at in sols) for k in range(len(torques))]
 
 
 def positions_of(solver: PositionModel, revolution: bool = False):
     """How a job solves its positions with ``solver``: ``solve(case, betas, executor)``, a
     revolution (``revolution``) phase by phase (:func:`~.case.phase_major`), the solutions in
-    the order of ``betas``."""
+    the order of ``betas``, a revolution's with their details only where they are read after
+    the chains (the solver's peaks, :meth:`~.ring.solver.RingSolver.read_later`, and each
+    pitch's largest gear-1 root stress, its files' series): a chain hands back a tenth."""
 
     def solve(case: SolveCase, betas, executor: Executor):
         order = phase_major(len(betas), case.params.z1) if revolution else range(len(betas))
-        sols = drive(case, [betas[k] for k in order], solver, executor=executor)
+        per = len(betas) // case.params.z1
+
+        def handed(span, sols: list) -> list:
+            pitches: dict[int, list[int]] = {}
+            for i, k in enumerate(span):
+                pitches.setdefault(order[k] // per, []).append(i)
+            keep = solver.read_later(sols) | {max(run, key=lambda i: sols[i].root_stress[0])
+                                              for run in pitches.values()}
+            return [s if i in keep else replace(s, detail=None) for i, s in enumerate(sols)]
+
+        sols = drive(case, [betas[k] for k in order], solver, executor=executor,
+                     handed=handed if revolution else None)
         return in_given_order(order, sols)
 
     return solve
@@ -239,9 +260,10 @@ def families(torques) -> list[list[int]]:
 
 
 def _chains(case: SolveCase, betas, solver: PositionModel, profile: Gear1Profile | None,
-            executor: Executor, position: AtPosition) -> list[tuple[PairSolution, ...]]:
-    """The driver's loop (:func:`drive`): a chain or two (:func:`chain`), each position's
-    solutions what ``position`` gives there."""
+            executor: Executor, run) -> list[tuple[PairSolution, ...]]:
+    """The driver's loop (:func:`drive`): a chain or two, each what ``run(states, span)``
+    gives (:func:`chain` over the ``span`` of the positions' ``states`` with the caller's
+    :class:`AtPosition`, and what of it comes back)."""
     keep_freed_memory()
     with blas_threads(), clocked() as once:
         profile = profile if profile is not None else gear1_profile(case.params)
@@ -250,7 +272,7 @@ def _chains(case: SolveCase, betas, solver: PositionModel, profile: Gear1Profile
         states = states.get()
         cut = len(states) // 2 if len(states) >= CHAINED else len(states)
         spans = [range(cut), range(cut, len(states))] if cut < len(states) else [range(cut)]
-        chains = executor.map(lambda span: chain(case, states, span, position), spans)
+        chains = executor.map(lambda span: run(states, span), spans)
     sols = [sol for done in chains for sol in done]
     first = sols[0][0]
     sols[0] = (replace(first, timings_s={**once.stages, **first.timings_s}), *sols[0][1:])

@@ -56,6 +56,20 @@ def with_peak_submodels(sols: tuple[PairSolution, ...]) -> tuple[PairSolution, .
     return tuple(out)
 
 
+def peak_candidates(sols) -> set[int]:
+    """The positions of ``sols`` (a chain's, of a cycle) that :func:`with_peak_submodels` can
+    take wherever the other chains' positions peak: the largest gear-1 root stress among them
+    and every one whose von Mises estimate comes within twice :data:`PEAK_MARGIN` of their
+    largest (the cycle's largest is at least theirs, and a submodel moves an estimate by a
+    few tenths of a per cent)."""
+    if not sols:
+        return set()
+    estimated = max(s.von_mises_max for s in sols)
+    return ({max(range(len(sols)), key=lambda i: sols[i].root_stress[0])}
+            | {i for i, s in enumerate(sols)
+               if s.von_mises_max >= (1.0 - 2.0 * PEAK_MARGIN) * estimated})
+
+
 def with_submodels_of(sol: PairSolution) -> PairSolution:
     """``sol`` with its contact submodels solved (their time in its "stresses" stage)."""
     sol = whole(sol)

@@ -32,7 +32,7 @@ from .grid import ToothGrid
 from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel, keep_cached, ring_model
 from .modes import WHOLE, SolverModes
-from .peaks import whole, with_peak_submodels
+from .peaks import peak_candidates, whole, with_peak_submodels
 from .phases import Phases
 from .placement import (
     CANDIDATES,
@@ -332,6 +332,14 @@ class RingSolver:
             return sols
         k = max(range(len(sols)), key=lambda i: sols[i].root_stress[0])
         return (*sols[:k], whole(sols[k]), *sols[k + 1:])
+
+    def read_later(self, sols) -> set[int]:
+        """The positions of ``sols`` (a chain's) whose details this solver reads after the
+        chains: the pictured one (:meth:`with_pictured`) and, where the submodels are solved
+        at the peaks, the peaks' candidates (:func:`~.peaks.peak_candidates`)."""
+        if self.modes.solved_submodels == "peaks":
+            return peak_candidates(sols)
+        return {max(range(len(sols)), key=lambda i: sols[i].root_stress[0])} if sols else set()
 
     def at_peaks(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
         """``sols`` with their contact submodels where the cycle peaks

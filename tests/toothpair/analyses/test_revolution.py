@@ -162,3 +162,24 @@ def test_the_series_has_a_frame_a_pitch_at_its_largest_root_stress(deviated, tmp
         "root_stress_gear1_MPa"]).case.beta) for k in (0, 2)]
     assert steps == pytest.approx(want)
     assert len(list((tmp_path / "revolution").glob("*.vtu"))) == 4   # 2 frames, 2 gears
+
+
+
+def test_the_chains_hand_back_details_only_where_they_are_read():
+    # each pitch's largest gear-1 root stress (the series) and the peaks keep their details
+    # (the contact, the stresses); the other positions come back with their numbers alone
+    from fegear.running import SERIAL
+    from fegear.toothpair.positions import positions_of
+    from fegear.toothpair.ring import RingSolver, SolverModes
+
+    job = prepare_job({**BASE, "z2": 25, "z1": 24, "positions": 4,
+                       "pitch-deviation": ["1:11=5"]})
+    solver = RingSolver(None, SolverModes(keep_phases=True, read_kept=True))
+    sols = positions_of(solver, True)(job.case, job.betas, SERIAL)
+    peaks = [k + max(range(4), key=lambda i: sols[k + i].root_stress[0])
+             for k in range(0, len(sols), 4)]
+    assert all(sols[k].detail is not None for k in peaks)
+    light = [s for s in sols if s.detail is None]
+    assert len(light) >= len(sols) // 3 and all(s.teeth and s.headline() for s in light)
+    pictured = solver.at_peaks(solver.with_pictured(sols))   # what is read after the chains
+    assert sum(not s.von_mises_estimated for s in pictured) >= 1
