@@ -47,7 +47,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "stress": ("StressField", "recover", "recover_many", "projection_matrices", "projector",
                "stress_field"),
     "hertz": ("HertzLine", "line_contact"),
-    "vtu": ("vtu_fields", "write_vtu", "written_name"),
+    "vtu": ("FIELD_DTYPE", "vtu_fields", "write_vtu", "written_name"),
     "solvers": ("Factor", "SingularError", "BLAS_THREADS", "blas_threads"),
     "cyclic": ("CyclicBody", "assemble_cyclic", "cyclic_parts", "restore_cyclic"),
     "probe": ("Probe", "Cells"),

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ...contact import gap_contact, surface_matrix
-from ...fe import contact_modulus, recover_many, vtu_fields
+from ...fe import FIELD_DTYPE, contact_modulus, recover_many, vtu_fields
 from ...planar import rotate
 from ..case import BodyField, ContactZone, FlankPressure, SolveCase, ToothResult
 from ..edge import flank_and_edge, flank_centre
@@ -204,6 +204,17 @@ def _halfplane(detail: RingDetail, grid, gap: np.ndarray, q: float, surface: np.
     return p, flank_and_edge(grid.s, p, grid.on_round, thickness, radius, E_star)
 
 
+#: how many sectors :meth:`RingDetail.body_fields` forms at once
+FIELD_SECTORS = 8
+
+
+def _cells(mesh, copies: int) -> np.ndarray:
+    """The quadratic triangles of ``copies`` copies of the template ``mesh``, one after the
+    other, as 32-bit node numbers."""
+    shift = mesh.doflocs.shape[1] * np.arange(copies, dtype=np.int32)
+    return (mesh.dofs.element_dofs.T.astype(np.int32) + shift[:, None, None]).reshape(-1, 6)
+
+
 @dataclass(eq=False)
 class RingDetail:
     """The ring model's record of a solved position: the model, case, contact, its solution and
@@ -217,33 +228,45 @@ class RingDetail:
 
     def body_fields(self, around: int | None = None) -> tuple[BodyField, ...]:
         """Both gears in the fixed frame at the solved position: every sector's field and
-        nodal stresses, and the contact pressure on the profile nodes. Whole gears, or with
-        ``around`` only the sectors that carry pressure and ``around`` sectors either side
-        (a mesh cycle's series: a tenth of the size)."""
+        nodal stresses, and the contact pressure on the profile nodes, in
+        :data:`~fegear.fe.FIELD_DTYPE`. Whole gears, or with ``around`` only the sectors that
+        carry pressure and ``around`` sectors either side (a mesh cycle's series: a tenth of
+        the size). The sectors are formed :data:`FIELD_SECTORS` at a time, each written into
+        the whole arrays at once, so that what a group needs is freed and reused for the next
+        (on a machine where first touching memory is dear, the fields' own size is what they
+        cost)."""
         out = []
         for g, side in enumerate(self.model.gears):
-            turn, offset = self._placement(g)
-            loads = self.contact.loads[g]
             pressure = self._nodal_pressure(g)
             sectors = range(side.count) if around is None else sorted(
                 {(k + d) % side.count for k in pressure for d in range(-around, around + 1)})
-            fields = side.fields(loads, self.solution.pressure, sectors)
-            m = side.body.mesh
-            n = m.doflocs.shape[1]
-            points, cells, parts = [], [], []
-            recovered = recover_many(side.body, np.column_stack([fields[k] for k in sectors]))
-            for j, (k, s) in enumerate(zip(sectors, recovered)):
-                u = fields[k]
-                data = vtu_fields(u, s, {"contact_pressure": pressure.get(k, np.zeros(n))})
-                angle = k * side.pitch + turn
-                data["displacement"][:, :2] = rotate(data["displacement"][:, :2], angle)
-                data.update(s.turned(angle))
-                points.append(rotate(m.doflocs.T, angle) + offset)
-                cells.append(m.dofs.element_dofs.T + j * n)
-                parts.append(data)
-            data = {key: np.concatenate([d[key] for d in parts]) for key in parts[0]}
-            out.append(BodyField(side.body.name, np.vstack(points), np.vstack(cells), data))
+            n = side.body.mesh.doflocs.shape[1]
+            whole = BodyField(side.body.name, np.empty((len(sectors) * n, 2), FIELD_DTYPE),
+                              _cells(side.body.mesh, len(sectors)), {})
+            for j in range(0, len(sectors), FIELD_SECTORS):
+                self._fill(g, sectors[j:j + FIELD_SECTORS], pressure, whole, j * n)
+            out.append(whole)
         return tuple(out)
+
+    def _fill(self, g: int, sectors, pressure: dict, whole: BodyField, start: int) -> None:
+        """Gear ``g``'s ``sectors`` formed and written into ``whole`` from row ``start`` on."""
+        side = self.model.gears[g]
+        turn, offset = self._placement(g)
+        m = side.body.mesh
+        n = m.doflocs.shape[1]
+        fields = side.fields(self.contact.loads[g], self.solution.pressure, sectors)
+        recovered = recover_many(side.body, np.column_stack([fields[k] for k in sectors]))
+        for j, (k, s) in enumerate(zip(sectors, recovered)):
+            part = vtu_fields(fields[k], s, {"contact_pressure": pressure.get(k, np.zeros(n))})
+            angle = k * side.pitch + turn
+            part["displacement"][:, :2] = rotate(part["displacement"][:, :2], angle)
+            part.update(s.turned(angle))
+            rows = slice(start + j * n, start + (j + 1) * n)
+            for key, v in part.items():
+                if key not in whole.data:
+                    whole.data[key] = np.empty((len(whole.points), *v.shape[1:]), FIELD_DTYPE)
+                whole.data[key][rows] = v
+            whole.points[rows] = rotate(m.doflocs.T, angle) + offset
 
     def _nodal_pressure(self, gear: int) -> dict[int, np.ndarray]:
         """Per sector, the grid pressure at the template's profile nodes (MPa), by polar
@@ -274,7 +297,8 @@ class RingDetail:
         return out
 
     def peak_fields(self) -> tuple[BodyField, ...]:
-        """The contact submodels in the fixed frame: displacement, stresses."""
+        """The contact submodels in the fixed frame: displacement, stresses
+        (:data:`~fegear.fe.FIELD_DTYPE`, as :meth:`body_fields`)."""
         out = []
         for gear, turn, sm in self.stresses.submodels:
             angle, offset = self._placement(gear)
@@ -283,10 +307,11 @@ class RingDetail:
             data = vtu_fields(sm.u, sm.stress)
             data["displacement"][:, :2] = rotate(data["displacement"][:, :2], angle)
             data.update(sm.stress.turned(angle))
+            data = {key: v.astype(FIELD_DTYPE) for key, v in data.items()}
             name = f"gear{gear + 1}_contact"
             name += "" if name not in {b.name for b in out} else f"_{len(out)}"
-            out.append(BodyField(name, rotate(m.doflocs.T, angle) + offset,
-                                 m.dofs.element_dofs.T, data))
+            out.append(BodyField(name, (rotate(m.doflocs.T, angle) + offset).astype(FIELD_DTYPE),
+                                 m.dofs.element_dofs.T.astype(np.int32), data))
         return tuple(out)
 
     def flank_pressures(self) -> tuple[FlankPressure, ...]:

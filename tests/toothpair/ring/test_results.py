@@ -90,3 +90,27 @@ def test_a_tooth_s_load_is_its_pressure_integral_and_the_shares_make_up_the_torq
                                           d.solution.pressure[d.contact.block(k)])
     top = int(np.argmax(d.solution.pressure))
     assert d.contact_zone().label == f"tooth {d.contact.grids[d.contact.grid_index[top]].tooth}"
+
+
+def test_the_whole_gears_hold_each_sector_as_the_pictured_part_does(baseline_200):
+    """Whole gears and the sectors around the contact (formed in other groups of sectors) hold
+    every sector alike, to the bit, in the solve's field type; each sector's triangles number
+    its own nodes."""
+    from fegear.fe import FIELD_DTYPE
+
+    whole, near = baseline_200.detail.body_fields(), baseline_200.detail.body_fields(around=1)
+    for w, p in zip(whole, near):
+        count = {"gear1": 44, "gear2": 45}[w.name]
+        n = len(w.points) // count
+        assert len(w.points) == count * n and len(p.points) % n == 0 < len(p.points) < n * 9
+        assert w.points.dtype == FIELD_DTYPE and w.cells.dtype == np.int32
+        assert all(v.dtype == FIELD_DTYPE for v in (*w.data.values(), *p.data.values()))
+        per = len(w.cells) // count
+        assert np.array_equal(w.cells[:per] + n, w.cells[per:2 * per])
+        assert w.cells.min() == 0 and w.cells.max() == len(w.points) - 1
+        blocks = w.points.reshape(count, n, 2)
+        for j in range(len(p.points) // n):
+            rows = slice(j * n, (j + 1) * n)
+            k = next(k for k in range(count) if np.array_equal(blocks[k], p.points[rows]))
+            for key, v in p.data.items():
+                assert np.array_equal(w.data[key][k * n:(k + 1) * n], v[rows]), key
