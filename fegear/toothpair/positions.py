@@ -222,9 +222,9 @@ def drive_torques(case: SolveCase, betas, torques, solver: SharesContacts,
 def positions_of(solver: PositionModel, revolution: bool = False):
     """How a job solves its positions with ``solver``: ``solve(case, betas, executor)``, a
     revolution (``revolution``) phase by phase (:func:`~.case.phase_major`), the solutions in
-    the order of ``betas``, a revolution's with their details only where they are read after
-    the chains (the solver's peaks, :meth:`~.ring.solver.RingSolver.read_later`, and each
-    pitch's largest gear-1 root stress, its files' series): a chain hands back a tenth."""
+    the order of ``betas``, a revolution's with details only where read after the chains (the
+    solver's peaks, :meth:`~.ring.solver.RingSolver.read_later`, and each pitch's largest
+    gear-1 root stress, its files' series): about a tenth at 24 positions a pitch."""
 
     def solve(case: SolveCase, betas, executor: Executor):
         order = phase_major(len(betas), case.params.z1) if revolution else range(len(betas))
@@ -234,8 +234,8 @@ def positions_of(solver: PositionModel, revolution: bool = False):
             pitches: dict[int, list[int]] = {}
             for i, k in enumerate(span):
                 pitches.setdefault(order[k] // per, []).append(i)
-            keep = solver.read_later(sols) | {max(run, key=lambda i: sols[i].root_stress[0])
-                                              for run in pitches.values()}
+            keep = solver.read_later(sols) | {max(group, key=lambda i: sols[i].root_stress[0])
+                                              for group in pitches.values()}
             return [s if i in keep else replace(s, detail=None) for i, s in enumerate(sols)]
 
         sols = drive(case, [betas[k] for k in order], solver, executor=executor,
