@@ -65,39 +65,64 @@ def solve_active(system: ContactSystem, torque_nmm: float, active: np.ndarray,
 def gaps_at(system: ContactSystem, pressure: np.ndarray, step: float,
             active: np.ndarray) -> np.ndarray:
     """The gaps (mm) at the ``pressure`` (MPa, zero off ``active``) and rotation ``step``
-    (rad): A's active columns alone (a tenth of them on a phase's wide grids)."""
-    idx, _, columns = _block(system, active)
-    return system.g0 + system.a * step + pressure[idx] @ columns
+    (rad): A's columns of the points gathered so far (:class:`_Columns`; a tenth of them on
+    a phase's wide grids), the inactive ones at zero pressure, in one product and no copy."""
+    idx, _, slots = _block(system, active)
+    store = _store(system)
+    at = np.zeros(store.count)
+    at[slots] = pressure[idx]
+    return system.g0 + system.a * step + at @ store.rows[:store.count]
 
 
 def _block(system: ContactSystem, active: np.ndarray) -> tuple[np.ndarray, tuple, np.ndarray]:
-    """The ``active`` points (indices), their block of A factorised (LU) and A's columns of
-    theirs over every point, as rows (active, points), kept in ``system.blocks`` for the
-    solve's later linearisations. The columns are gathered from A once a point, when it
-    first joins (the active sets of one solve differ by a few points)."""
+    """The ``active`` points (indices), their block of A factorised (LU) and their rows of
+    the gathered columns (:class:`_Columns`), kept in ``system.blocks`` for the solve's later
+    linearisations."""
     key = active.tobytes()
     if key not in system.blocks:
         idx = np.flatnonzero(active)
-        columns = _columns(system, idx)
+        store = _store(system)
+        slots = store.gather(system, idx)
         with warnings.catch_warnings():   # a singular block: a non-finite solution, refused
             warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
-            factor = scipy.linalg.lu_factor(columns[:, idx].T, check_finite=False)
+            factor = scipy.linalg.lu_factor(store.rows[np.ix_(slots, idx)].T, check_finite=False)
         if len(system.blocks) >= BLOCKS + 1:
             system.blocks.pop(next(k for k in system.blocks if k != "columns"))
-        system.blocks[key] = (idx, factor, columns)
+        system.blocks[key] = (idx, factor, slots)
     return system.blocks[key]
 
 
-def _columns(system: ContactSystem, idx: np.ndarray) -> np.ndarray:
-    """A's columns of the points ``idx`` over the system's points, as rows (idx, points),
-    from the ones gathered before (``system.blocks["columns"]``)."""
-    n = len(system.g0)
-    if "columns" not in system.blocks:   # rows a point, filled as points join (np.empty:
-        system.blocks["columns"] = (np.empty((n, n)), np.zeros(n, bool))   # untouched pages
-    store, filled = system.blocks["columns"]                              # cost nothing)
-    new = idx[~filled[idx]]
-    if len(new):
-        rows = np.arange(n) if system.rows is None else system.rows
-        store[new] = system.A[np.ix_(rows, rows[new])].T
-        filled[new] = True
-    return store[idx]
+def _store(system: ContactSystem) -> _Columns:
+    """The solve's gathered columns of A (``system.blocks["columns"]``), made empty the
+    first time."""
+    if "columns" not in system.blocks:
+        system.blocks["columns"] = _Columns(len(system.g0))
+    return system.blocks["columns"]
+
+
+class _Columns:
+    """A's columns of the points that have been active in a solve, over the system's points,
+    each a row (``rows[:count]``) in the order the points first joined (``slot``: each point's
+    row, −1 before it joins). Gathered once a point, as it joins: a solve's active sets differ
+    by a few points. Gathering from A's transpose reads each column where it lies (A is kept
+    by columns) and writes each row whole."""
+
+    def __init__(self, n: int) -> None:
+        self.slot = np.full(n, -1)
+        self.rows = np.empty((0, n))
+        self.count = 0
+
+    def gather(self, system: ContactSystem, idx: np.ndarray) -> np.ndarray:
+        """The rows of the points ``idx``, gathered from A where they are new."""
+        new = idx[self.slot[idx] < 0]
+        if len(new):
+            end = self.count + len(new)
+            if end > len(self.rows):   # room for twice as many (np.empty: untouched pages
+                grown = np.empty((max(2 * end, 64), self.slot.size))   # cost nothing)
+                grown[:self.count] = self.rows[:self.count]
+                self.rows = grown
+            rows = np.arange(self.slot.size) if system.rows is None else system.rows
+            self.rows[self.count:end] = system.A.T[np.ix_(rows[new], rows)]
+            self.slot[new] = np.arange(self.count, end)
+            self.count = end
+        return self.slot[idx]

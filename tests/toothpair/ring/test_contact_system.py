@@ -65,3 +65,22 @@ def test_the_blocks_a_system_keeps_give_what_fresh_ones_give(contact_problem):
         np.testing.assert_array_equal(p, q)
         assert step == other
     assert len(system.blocks) == BLOCKS + 1     # BLOCKS sets kept, and the columns gathered
+
+
+def test_the_gaps_are_As_whichever_points_joined_and_left_before(contact_problem):
+    # a solve's sets grow past the rows first gathered for them (64), then lose points and
+    # gain others: every step's gaps are A's, on all points and on some of them
+    every = contact_problem(150, 3)
+    rows = np.flatnonzero(np.arange(150) % 5 != 2)
+    some = ContactSystem(every.A, every.w[rows], every.g0[rows], every.a[rows], rows)
+    block = every.A[np.ix_(rows, rows)]
+    order = np.argsort(some.g0)
+    sets = [order[:k] for k in (10, 40, 90)] + [order[20:100], order[::3]]
+    for system, A in ((some, block), (every, every.A)):
+        for chosen in sets:
+            active = np.zeros(len(system.g0), bool)
+            active[chosen] = True
+            pressure, step = solve_active(system, TORQUE, active, 0.0)
+            np.testing.assert_allclose(gaps_at(system, pressure, step, active),
+                                       system.g0 + system.a * step + A @ pressure, rtol=0,
+                                       atol=1e-14 * np.abs(system.g0).max())
