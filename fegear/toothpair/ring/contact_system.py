@@ -85,7 +85,8 @@ def _block(system: ContactSystem, active: np.ndarray) -> tuple[np.ndarray, tuple
         slots = store.gather(system, idx)
         with warnings.catch_warnings():   # a singular block: a non-finite solution, refused
             warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
-            factor = scipy.linalg.lu_factor(store.rows[np.ix_(slots, idx)].T, check_finite=False)
+            factor = scipy.linalg.lu_factor(store.rows[np.ix_(slots, idx)].T, overwrite_a=True,
+                                            check_finite=False)   # a gathered copy
         if len(system.blocks) >= BLOCKS + 1:
             system.blocks.pop(next(k for k in system.blocks if k != "columns"))
         system.blocks[key] = (idx, factor, slots)
