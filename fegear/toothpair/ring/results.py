@@ -232,9 +232,8 @@ class RingDetail:
         :data:`~fegear.fe.FIELD_DTYPE`. Whole gears, or with ``around`` only the sectors that
         carry pressure and ``around`` sectors either side (a mesh cycle's series: a tenth of
         the size). The sectors are formed :data:`FIELD_SECTORS` at a time, each written into
-        the whole arrays at once, so that what a group needs is freed and reused for the next
-        (on a machine where first touching memory is dear, the fields' own size is what they
-        cost)."""
+        the whole arrays at once, so that what a group needs is freed and reused for the next:
+        the memory the fields take is about their own size."""
         out = []
         for g, side in enumerate(self.model.gears):
             pressure = self._nodal_pressure(g)
