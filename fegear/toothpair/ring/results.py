@@ -105,8 +105,8 @@ def tooth_result(detail: RingDetail, k: int, rigid: tuple[np.ndarray, np.ndarray
     split = flank_and_edge(grid.s, pk, grid.on_round, case.thickness, model.shape.radius_mm,
                            contact_modulus(case.E, case.E))
     b = local_half_width(contact, sol.pressure, i) if load > 0 else 0.0
-    curvature, ref = (_references(detail, k, gap[blk], load)
-                      if stresses is not None and references else (0.0, None))
+    refs = (_referenced(detail, k, gap[blk], load) if stresses is not None and references
+            else {"halfplane_p_MPa": None, "halfplane_flank_MPa": None, "bending_curvature": 0.0})
     j = i - blk.start
     spacing = 0.5 * (grid.s[min(j + 1, len(grid) - 1)] - grid.s[max(j - 1, 0)])
     per_b = b / spacing if load > 0 else 0.0
@@ -125,13 +125,10 @@ def tooth_result(detail: RingDetail, k: int, rigid: tuple[np.ndarray, np.ndarray
         peak_on_round=bool(load > 0 and grid.on_round[i - blk.start]),
         flank_p_MPa=split.flank_MPa, edge_p_MPa=split.edge_MPa,
         edge_load_N=split.edge_load_N,
-        halfplane_p_MPa=float(ref[0].max()) if ref else None,
-        halfplane_flank_MPa=ref[1].flank_MPa if ref else None,
-        bending_curvature=curvature,
         per_half_width=float(per_b),
         resolved=bool(load <= 0 or per_b >= RESOLVED_PER_B),
         tooth2=(int(round(theta2 / pitch2)) % case.params.z2 if math.isfinite(theta2)
-                else None))
+                else None), **refs)
 
 
 def with_references(detail: RingDetail, teeth: tuple[ToothResult, ...],
@@ -142,13 +139,18 @@ def with_references(detail: RingDetail, teeth: tuple[ToothResult, ...],
     out = []
     for k, t in enumerate(teeth):
         if t.load_N > 0:
-            blk = detail.contact.block(k)
-            curvature, ref = _references(detail, k, rigid[0][blk], t.load_N)
-            t = replace(t, halfplane_p_MPa=float(ref[0].max()) if ref else None,
-                        halfplane_flank_MPa=ref[1].flank_MPa if ref else None,
-                        bending_curvature=curvature)
+            t = replace(t, **_referenced(detail, k, rigid[0][detail.contact.block(k)], t.load_N))
         out.append(t)
     return tuple(out)
+
+
+def _referenced(detail: RingDetail, k: int, gap: np.ndarray, load: float) -> dict:
+    """Grid ``k``'s tooth's half-plane reference peak and flank pressure and its bending
+    curvature (:func:`_references`), as :class:`~..case.ToothResult`'s fields."""
+    curvature, ref = _references(detail, k, gap, load)
+    return {"halfplane_p_MPa": float(ref[0].max()) if ref else None,
+            "halfplane_flank_MPa": ref[1].flank_MPa if ref else None,
+            "bending_curvature": curvature}
 
 
 def _references(detail: RingDetail, k: int, gap: np.ndarray, load: float):
