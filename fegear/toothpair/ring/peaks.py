@@ -39,10 +39,7 @@ def with_peak_submodels(sols: tuple[PairSolution, ...]) -> tuple[PairSolution, .
     if not sols:
         return sols
     out = list(sols)
-    estimated = max(s.von_mises_max for s in sols)
-    want = {max(range(len(sols)), key=lambda i: sols[i].root_stress[0])}
-    want |= {i for i, s in enumerate(sols)
-             if s.von_mises_max >= (1.0 - PEAK_MARGIN) * estimated}
+    want = _near_peak(sols, PEAK_MARGIN)
     done: set[int] = set()
     while want:
         for i in sorted(want):
@@ -62,12 +59,20 @@ def peak_candidates(sols) -> set[int]:
     and every one whose von Mises estimate comes within twice :data:`PEAK_MARGIN` of their
     largest (the cycle's largest is at least theirs, and a submodel moves an estimate by a
     few tenths of a per cent)."""
-    if not sols:
-        return set()
+    return _near_peak(sols, 2.0 * PEAK_MARGIN) if sols else set()
+
+
+def pictured(sols) -> int:
+    """The index of the position pictured among ``sols``: the largest gear-1 root stress."""
+    return max(range(len(sols)), key=lambda i: sols[i].root_stress[0])
+
+
+def _near_peak(sols, margin: float) -> set[int]:
+    """The pictured position of ``sols`` and every one whose von Mises estimate is within
+    ``margin`` (a fraction) of their largest."""
     estimated = max(s.von_mises_max for s in sols)
-    return ({max(range(len(sols)), key=lambda i: sols[i].root_stress[0])}
-            | {i for i, s in enumerate(sols)
-               if s.von_mises_max >= (1.0 - 2.0 * PEAK_MARGIN) * estimated})
+    return {pictured(sols)} | {i for i, s in enumerate(sols)
+                               if s.von_mises_max >= (1.0 - margin) * estimated}
 
 
 def with_submodels_of(sol: PairSolution) -> PairSolution:

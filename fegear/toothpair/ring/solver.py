@@ -32,7 +32,7 @@ from .grid import ToothGrid
 from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel, keep_cached, ring_model
 from .modes import WHOLE, SolverModes
-from .peaks import peak_candidates, whole, with_peak_submodels
+from .peaks import peak_candidates, pictured, whole, with_peak_submodels
 from .phases import Phases
 from .placement import (
     CANDIDATES,
@@ -330,7 +330,7 @@ class RingSolver:
         :func:`~.peaks.whole`), for what is drawn and checked of it."""
         if not self.modes.read_kept or not sols:
             return sols
-        k = max(range(len(sols)), key=lambda i: sols[i].root_stress[0])
+        k = pictured(sols)
         return (*sols[:k], whole(sols[k]), *sols[k + 1:])
 
     def read_later(self, sols) -> set[int]:
@@ -339,7 +339,7 @@ class RingSolver:
         at the peaks, the peaks' candidates (:func:`~.peaks.peak_candidates`)."""
         if self.modes.solved_submodels == "peaks":
             return peak_candidates(sols)
-        return {max(range(len(sols)), key=lambda i: sols[i].root_stress[0])} if sols else set()
+        return {pictured(sols)} if sols else set()
 
     def at_peaks(self, sols: tuple[PairSolution, ...]) -> tuple[PairSolution, ...]:
         """``sols`` with their contact submodels where the cycle peaks
