@@ -46,12 +46,17 @@ class Samples(Analysis):
             estimated = list(sampled.across)
         return samples_summary(sampled.rows, estimated, ClassReading(
             draw=job.draw, quantile=job.quantile, allowables=job.allowables,
-            positions=len(job.betas), revolution=job.revolution, face=job.face))
+            positions=len(job.betas), revolution=job.revolution, face=job.face,
+            solved_per_pair=sampled.solved_per_pair))
 
     def printed(self, entry: dict, summary: dict) -> str:
         over = ("the same positions" if entry["over"] == "cycle" else
                 f"a whole revolution each ({entry['positions_per_pair']} positions: the "
                 "cycle's at every pitch of gear 1)")
+        if entry.get("screened"):
+            over += (", screened: each at every pitch at a few of the cycle's places, then "
+                     "about those nearest its largest, "
+                     f"{entry['positions_solved_per_pair']:.0f} positions a pair on average")
         face = (", across the face, the exact pair and each of them at its worst section"
                 if "across" in entry else "")
         return (f"\nThe exact pair above; the pairs of its tolerance class over {over}{face} "

@@ -36,7 +36,8 @@ class ClassReading:
     the share of the pairs (``quantile``) whose stresses the safety factors are stated at, the
     ``allowables`` (MPa) and the positions each pair is solved at (``positions``, over a whole
     ``revolution`` of gear 1 or a cycle), across the ``face`` where the job has one (its
-    pairs' stresses their worst sections', and their K_Hβ)."""
+    pairs' stresses their worst sections', and their K_Hβ); ``solved_per_pair``: a
+    revolution screened, the positions solved a pair that turns (mean; None: all)."""
 
     draw: Draw
     quantile: float
@@ -44,6 +45,7 @@ class ClassReading:
     positions: int = 1
     revolution: bool = False
     face: Face | None = None
+    solved_per_pair: float | None = None
 
 
 def samples_summary(rows, nominal_rows: list[dict], reading: ClassReading) -> dict:
@@ -69,6 +71,8 @@ def samples_summary(rows, nominal_rows: list[dict], reading: ClassReading) -> di
     return {"grade": grade.summary(), "samples": n, "seed": reading.draw.seed,
             "quantile": quantile, "positions_per_pair": reading.positions,
             "over": "revolution" if reading.revolution else "cycle",
+            **({} if reading.solved_per_pair is None else
+               {"screened": True, "positions_solved_per_pair": reading.solved_per_pair}),
             "solved": len(solved), "jammed": jammed, "failed": len(failed),
             "jammed_share": share, "jammed_share_error": math.sqrt(share * (1 - share) / n),
             "failures": sorted({r["why"] for r in failed}),

@@ -10,6 +10,11 @@ held there (:class:`~.ring.kept_batch.KeptBatch`: the same numbers as alone,
 placed and solved as a position of its own, after those held are read, and the contact kept
 again with its teeth too.
 
+Over a whole revolution, where a cycle has places to spare and only the headlines are read,
+the pairs are screened (:mod:`.screen`): each solved at every pitch at a few of the places
+first, then at the positions about those that came nearest its largest, and its row the
+largest of the positions solved.
+
 A sample whose deviations take up the pair's backlash somewhere over a whole turn of gear 1
 (:func:`~.teeth.closure`, checked at :data:`~.positions.TURN_CHECK` angles a pitch, as a
 deviated solve checks it) cannot be turned: it is counted as jammed, with where, and carries no
@@ -21,9 +26,9 @@ position's kept contact at the face's sections, with its own helix deviations an
 misalignment, and the exact pair too: each one's stresses are its worst section's, with its
 K_Hβ; a sample whose face takes up the backlash (:class:`~...face_room.FaceRoom`) is jammed.
 
-The positions are the parallel work: two chains of the driver's (:func:`~.positions.chain`),
-each every other position with every sample (one position: half the samples each), on the
-executor the caller gives; what a chain does at a position is this module's
+The positions are the parallel work: two chains of the driver's (:mod:`.chains`), each every
+other position with every sample (one position: half the samples each), on the executor the
+caller gives; what a chain does at a position is this module's
 (:class:`~.positions.AtPosition`: the exact pair's contact found, then kept for the samples).
 """
 
@@ -33,8 +38,6 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from itertools import groupby
 
-import numpy as np
-
 from ....errors import FegearError
 from ....fe import Allowables, blas_threads, keep_freed_memory
 from ....geometry import gear1_profile, moved_clearances
@@ -43,7 +46,7 @@ from ....tolerance import Draw
 from ...case import PairSolution, SolveCase
 from ...face import Face
 from ...face_room import FaceRoom
-from ...positions import chain, solve_position
+from ...positions import solve_position
 from ...ring.face_results import face_sections
 from ...ring.kept_batch import KeptBatch
 from ...ring.phases import Phases
@@ -51,7 +54,9 @@ from ...ring.readout import readout
 from ...ring.solver import RingSolver, SolverModes
 from ...teeth import choose_teeth
 from .across import Across, across_of, worst_sections
+from .chains import Chains, parts_of, work_of
 from .rows import EXACT, brief_of, gathered, sample_row
+from .screen import scout_places, screened
 from .states import States, jammed
 
 #: the samples a position holds on its kept contact before their stresses are read together
@@ -65,8 +70,11 @@ class SampleCase:
     """A tolerance class's pairs to solve: the exact pair's ``case`` at the rolling angles
     ``betas`` (rad) and ``draw``'s samples, their safety factors against ``allowables``;
     ``pitches`` > 1: each sample at ``betas`` and at each of that many gear-2 pitches on (a
-    revolution: z1), its worst over all of them; ``face``: each solved across it too, with
-    its own helix deviations and misalignment (``draw`` across the face), its worst section's.
+    revolution: z1), its worst over all of them, screened (``screen``, :mod:`.screen`: each
+    at every pitch at a few places, then about where those came nearest its largest) where a
+    cycle has places to spare and nothing but the headlines is read; ``face``: each solved
+    across it too, with its own helix deviations and misalignment (``draw`` across the face),
+    its worst section's.
     """
 
     case: SolveCase
@@ -75,6 +83,7 @@ class SampleCase:
     allowables: Allowables
     pitches: int = 1
     face: Face | None = None
+    screen: bool = True
 
 
 @dataclass(frozen=True)
@@ -84,12 +93,15 @@ class Sampled:
     solved its largest headline stresses over the positions, each with its position, and
     the safety factors they give; ``readings``: by sample, what the caller's ``read`` took of
     its solution at each position (:func:`solve_samples`); ``across``: across the face, the
-    exact pair's headlines at its worst sections and K_Hβ at the positions (in order)."""
+    exact pair's headlines at its worst sections and K_Hβ at the positions (in order);
+    ``solved_per_pair``: a revolution screened, the positions solved a pair that turns (mean;
+    None: every position)."""
 
     nominal: tuple[PairSolution, ...]
     rows: tuple[dict, ...]
     readings: dict = field(default_factory=dict)
     across: tuple[dict, ...] = ()
+    solved_per_pair: float | None = None
 
     @property
     def turning(self) -> list[int]:
@@ -128,17 +140,23 @@ def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = 
             for side in solver.model.gears:
                 readout(side)
         free = [k for k in range(count) if jammed[k] is None]
-        parts = max(2, executor.workers)
-        work = [(span, OnKept(states, pairs, solver, jobs, read, across))
-                for span, jobs in _work(free, len(samples.betas), samples.pitches, parts)]
-        nominal, chains = _run_chains(case, states, solver, work, executor)
+        places = list(range(len(samples.betas)))
+        scouts = (scout_places(len(places)) if samples.screen and samples.pitches > 1
+                  and read is None and across is None else None)
+        run = Chains(states, solver, executor, lambda jobs: OnKept(states, pairs, solver, jobs,
+                                                                   read, across))
+        if scouts is None:
+            nominal, chains = run(work_of(free, places, samples.pitches, run.parts))
+            solved = None
+        else:
+            nominal, chains, solved = screened(run, free, scouts, samples.pitches)
     found, readings = gathered(chains)
     z = (case.params.z1, case.params.z2)
     rows = tuple(sample_row(k, brief_of(pairs[k], z, across and across.faces[k]), jammed[k],
                             found.get(k, []), samples.allowables) for k in range(count))
     exact = tuple(head for _, head in sorted(found.get(EXACT, []), key=lambda g: g[0]))
     return Sampled(tuple(nominal[i] for i in range(len(samples.betas))), rows, readings,
-                   exact)
+                   exact, solved)
 
 
 def _jams(states: States, pairs: list, across: Across | None, executor: Executor) -> list:
@@ -153,7 +171,7 @@ def _jams(states: States, pairs: list, across: Across | None, executor: Executor
 
         def jams(k: int) -> str | None:
             return room.jammed(pairs[k], across.faces[k])
-    parts = _parts(range(len(pairs)), max(2, executor.workers))
+    parts = parts_of(range(len(pairs)), max(2, executor.workers))
     return [j for part in executor.map(lambda ks: [jams(k) for k in ks], parts) for j in part]
 
 
@@ -167,66 +185,6 @@ def class_samples(job, allowables: Allowables, read=None, contact_only: bool = F
     face = None if contact_only else job.face
     return solve_samples(SampleCase(job.case, job.betas, job.draw, allowables, face=face),
                          solver, executor, read)
-
-
-def _parts(items, parts: int) -> list:
-    """``items`` in ``parts`` runs as even as they come (fewer where there are fewer items)."""
-    items = list(items)
-    cuts = np.linspace(0, len(items), min(parts, max(len(items), 1)) + 1).round().astype(int)
-    return [items[a:b] for a, b in zip(cuts[:-1], cuts[1:])]
-
-
-def _work(free: list[int], positions: int, pitches: int, parts: int
-          ) -> list[tuple[range, dict[int, list[tuple[int, int]]]]]:
-    """The chains: each one's positions (indices) and by position the (sample, gear-2
-    pitches on) pairs it solves there, of the samples ``free`` (not jammed). Every
-    ``parts``-th position a chain, every sample at each (a cycle's positions where more teeth
-    carry, more points in contact and dearer solves, come in a run); one position: a share of
-    the samples each."""
-    if positions > 1:
-        jobs = _every(free, positions, pitches)
-        return [(range(k, positions, parts), jobs) for k in range(min(parts, positions))]
-    return [(range(1), _every(part, 1, pitches)) for part in _parts(free, parts)]
-
-
-def _every(samples, positions: int, pitches: int) -> dict[int, list[tuple[int, int]]]:
-    """By position (the first ``positions``), the (sample, gear-2 pitches on) pairs solved
-    there: every one of ``samples`` at each of the ``pitches``."""
-    return {i: [(k, n) for k in samples for n in range(pitches)] for i in range(positions)}
-
-
-def _run_chains(case: SolveCase, states: States, solver: RingSolver, work,
-                executor: Executor) -> tuple[dict[int, PairSolution], list[list[tuple]]]:
-    """The chains of ``work`` ((positions, what is done at each) pairs) on ``executor``: the
-    exact pair's solutions by position and what each chain gave at its positions
-    (:meth:`OnKept.__call__`). A chain's exact solutions refer to the model it solved them
-    on: they come back from a process that shares this one's; elsewhere (a cluster) a chain
-    gives plain data alone and the exact pair is solved here meanwhile."""
-    if executor.shares_memory:
-        chains = executor.map(lambda job: chain(case, states.loaded, *job, label="samples"),
-                              work)
-        return {i: got[0] for (span, _), done in zip(work, chains)
-                for i, got in zip(span, done)}, chains
-    tasks = [executor.submit(_plain, case, states.loaded, span, at) for span, at in work]
-    nominal = _exact(case, states, solver)
-    return nominal, [task.result() for task in tasks]
-
-
-def _plain(case: SolveCase, loaded, span, at: OnKept) -> list[tuple]:
-    """A chain of the samples (:func:`~.positions.chain`) in another process: what it gave
-    without the exact pair's solutions (plain data alone)."""
-    return [(None, *got[1:]) for got in chain(case, loaded, span, at, label="samples")]
-
-
-def _exact(case: SolveCase, states: States, solver: RingSolver) -> dict[int, PairSolution]:
-    """The exact pair at the positions, one chain, on ``solver``'s model."""
-    placed = RingSolver(solver.model, SolverModes(submodels="none"))
-
-    def settled(k: int, at: SolveCase, state, near: tuple | None) -> tuple[PairSolution]:
-        return (solve_position(at, state, placed, near and near[0]),)
-
-    sols = chain(case, states.loaded, range(len(states.loaded)), settled)
-    return {i: got[0] for i, got in enumerate(sols)}
 
 
 @dataclass(frozen=True)
