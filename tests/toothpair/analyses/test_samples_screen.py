@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from fegear.toothpair.analyses.samples.screen import (
+    BEFORE,
     MARGINS,
     SCOUTS,
     about_scouts,
@@ -68,6 +69,24 @@ def test_nothing_beyond_the_revolution_is_asked_for():
     wanted = about_scouts(_scouted(values, places, pitches), places, pitches)
     assert min(wanted) >= 0 and max(wanted) < places * pitches
     assert np.isin([1, 9, 11], sorted(wanted)).all()
+
+
+
+def test_a_flanks_pressure_is_solved_about_before_its_scout_alone():
+    # a flank takes the load over from its tip round in a jump, which the scout after it sees
+    # decaying: the positions after that scout are not asked for on its account
+    places, pitches = 8, 5
+    end = places * pitches
+    scouted = {r: {key: 150.0 if (key in BEFORE and r == 12) else 100.0 for key in HEADLINE}
+               for n in range(pitches) for r in (n * places, n * places + 4)}
+    # the other headlines the same at every scout: each scout solved about on both sides
+    assert about_scouts(scouted, places, pitches) == set(range(end)) - set(scouted)
+    for r, head in scouted.items():
+        for key in HEADLINE:
+            if key not in BEFORE:
+                head[key] = 100.0 + (50.0 if r == end - 4 else 0.0)
+    wanted = about_scouts(scouted, places, pitches)
+    assert wanted == ({9, 10, 11} | set(range(end - 7, end))) - set(scouted)
 
 
 # slow (about 60 s: a class over a revolution solved twice); the default run checks the

@@ -7,8 +7,9 @@ round striking as it comes into mesh, its flank taking the load the round gave u
 lasts a few of the cycle's places and recurs for every tooth. The scouts, :data:`SCOUTS`
 places a pitch evenly apart, see every tooth's events from no more than half a pitch away;
 each headline's scouts within its margin (:data:`MARGINS`) of that pair's largest scout are
-then solved about, at every position nearer than the next scout on either side, and the
-revolution's last places (which no scout follows) too. Nothing is estimated: every stress a
+then solved about, at every position nearer than the next scout on either side (a flank's
+pressure before it alone: :data:`BEFORE`), and the revolution's last places (which no scout
+follows) too. Nothing is estimated: every stress a
 row gives is a solve's, and a row is the largest of the positions solved. What the screen can
 miss is an event that no scout near it shows within the margin; the margins were set on the
 whole revolutions of 200 pairs and proven on 200 others (docs/tolerance.md).
@@ -30,8 +31,12 @@ SCOUTS = 2
 #: be solved about: the roots' maxima are broad, the pressures' (a round striking, a flank
 #: taking over from the round) last a place or two and the scouts see them decayed
 MARGINS = {"root_stress_gear1_MPa": 0.04, "root_stress_gear2_MPa": 0.04,
-           "contact_pressure_MPa": 0.08, "flank_contact_pressure_MPa": 0.08,
+           "contact_pressure_MPa": 0.08, "flank_contact_pressure_MPa": 0.12,
            "von_mises_max_MPa": 0.08}
+#: headlines solved about a scout only before it: a flank's largest pressure is where it
+#: takes the load over from its tip round, a jump that the scout after it sees decaying
+#: (by up to a fifth over half a pitch) and the scout before it not at all
+BEFORE = frozenset({"flank_contact_pressure_MPa"})
 
 
 def scout_places(places: int) -> list[int] | None:
@@ -46,16 +51,17 @@ def scout_places(places: int) -> list[int] | None:
 def about_scouts(scouted: dict[int, dict], places: int, pitches: int) -> set[int]:
     """The positions (along the revolution: module docstring) to solve a pair at after its
     scouts (``scouted``: headline by position), beyond those: about each headline's scouts
-    within its margin of its largest, every position nearer than the next scout either side,
-    and the revolution's last places."""
+    within its margin of its largest, every position nearer than the next scout either side
+    (before it alone for :data:`BEFORE`), and the revolution's last places."""
     spacing = places // SCOUTS
     end = places * pitches
     wanted = set(range(end - spacing + 1, end))
     at = sorted(scouted)
     for key, margin in MARGINS.items():
         values = np.array([scouted[r][key] for r in at])
+        after = 1 if key in BEFORE else spacing
         for r in np.array(at)[values >= (1.0 - margin) * values.max()]:
-            wanted.update(range(max(int(r) - spacing + 1, 0), min(int(r) + spacing, end)))
+            wanted.update(range(max(int(r) - spacing + 1, 0), min(int(r) + after, end)))
     return wanted - set(scouted)
 
 
