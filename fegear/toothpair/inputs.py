@@ -39,7 +39,8 @@ LOAD_INPUTS = (
           "--positions in each, 24 if not given): the worst of each stress with its tooth, the "
           "stresses per tooth and the transmission error's spectrum; writes revolution.csv, "
           "revolution.png, revolution_teeth.png and revolution.pvd; with --grade, each pair "
-          "of the class over the whole turn, its worst there its row"),
+          "of the class over the whole turn, its worst there its row (screened: every pitch "
+          "at two places, then about each pair's largest; docs/tolerance.md)"),
 )
 
 MODEL_INPUTS = (
