@@ -175,6 +175,22 @@ def test_a_dask_cluster_gives_the_local_rows():
             b.headline()["root_stress_gear1_MPa"], rel=1e-4)
 
 
+def test_a_class_over_a_revolution_keeps_a_contact_a_place_for_every_pitch():
+    # the solve's own class and a relief or design search's (class_samples) alike: each
+    # pair at the first pitch's places, at every one of gear 1's pitches from them (so that
+    # a place keeps one contact for all of them), not at z1 times as many places of their own
+    from fegear.toothpair.analyses.samples.solve import class_case
+
+    job = prepare_job({"grade": 5, "revolution": True, "positions": 4, "quality": "coarse"})
+    z1, z2 = job.case.params.z1, job.case.params.z2
+    assert len(job.betas) == 4 * z1
+    case = class_case(job, DEFAULT_ALLOWABLES, None)
+    assert case.pitches == z1
+    assert case.betas == job.betas[:4]
+    assert np.all(np.diff(case.betas) > 0) and case.betas[-1] - case.betas[0] < 2 * math.pi / z2
+    assert class_case(replace(job, revolution=False), DEFAULT_ALLOWABLES, None).pitches == 1
+
+
 @pytest.mark.parametrize("values, name", [
     ({"grade": 6, "pitch-deviation": "1:11=5"}, "grade"),
     ({"samples": 10}, "samples"),

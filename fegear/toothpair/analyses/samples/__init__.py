@@ -82,14 +82,10 @@ def _sampled(job, executor: Executor):
     """The job's class solved at its positions (:func:`~.solve.solve_samples`), across its
     face where it has one: (the solver, the :class:`~.solve.Sampled`)."""
     from ...ring.solver import RingSolver, SolverModes  # lazy: heavy: scikit-fem
-    from .solve import SampleCase, solve_samples  # lazy: heavy: scikit-fem
+    from .solve import class_case, solve_samples  # lazy: heavy: scikit-fem
 
     solver = RingSolver(None, SolverModes(keep_phases=True))
-    # a revolution: each pair over gear 1's turn from the first pitch's places
-    pitches = job.case.params.z1 if job.revolution else 1
-    samples = SampleCase(job.case, job.betas[:len(job.betas) // pitches], job.draw,
-                         job.allowables, pitches, job.face)
-    return solver, solve_samples(samples, solver, executor)
+    return solver, solve_samples(class_case(job, job.allowables, job.face), solver, executor)
 
 
 SAMPLES = Samples()

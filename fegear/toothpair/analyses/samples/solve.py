@@ -183,8 +183,16 @@ def class_samples(job, allowables: Allowables, read=None, contact_only: bool = F
     solver = RingSolver(None, SolverModes(submodels="none", contact_only=contact_only,
                                          keep_phases=True))
     face = None if contact_only else job.face
-    return solve_samples(SampleCase(job.case, job.betas, job.draw, allowables, face=face),
-                         solver, executor, read)
+    return solve_samples(class_case(job, allowables, face), solver, executor, read)
+
+
+def class_case(job, allowables: Allowables, face: Face | None) -> SampleCase:
+    """A checked job's class (``job.draw``) to solve at its positions, across ``face`` where
+    given: over a revolution (``job.revolution``), the first pitch's places at each of gear
+    1's z1 pitches, so that each place keeps one contact for all of them."""
+    pitches = job.case.params.z1 if job.revolution else 1
+    return SampleCase(job.case, job.betas[:len(job.betas) // pitches], job.draw, allowables,
+                      pitches, face)
 
 
 @dataclass(frozen=True)
