@@ -101,4 +101,3 @@ def _exact(case: SolveCase, states: States, solver: RingSolver) -> dict[int, Pai
 
     sols = chain(case, states.loaded, range(len(states.loaded)), settled)
     return {i: got[0] for i, got in enumerate(sols)}
-

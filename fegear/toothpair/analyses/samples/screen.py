@@ -1,6 +1,6 @@
 """A tolerance class over a whole revolution, screened: each pair solved at every pitch at a
-few of the cycle's places (the scouts), then at every place about the pitches where its
-scouts came nearest its largest (docs/tolerance.md, "The revolution screened").
+few of the cycle's places (the scouts), then at the positions about the scouts that came
+nearest its largest (docs/tolerance.md, "The revolution screened").
 
 A pair's worst over a revolution is an event of one tooth (its root loaded hardest, its tip
 round striking as it comes into mesh, its flank taking the load the round gave up) that
@@ -9,10 +9,10 @@ places a pitch evenly apart, see every tooth's events from no more than half a p
 each headline's scouts within its margin (:data:`MARGINS`) of that pair's largest scout are
 then solved about, at every position nearer than the next scout on either side (a flank's
 pressure before it alone: :data:`BEFORE`), and the revolution's last places (which no scout
-follows) too. Nothing is estimated: every stress a
-row gives is a solve's, and a row is the largest of the positions solved. What the screen can
-miss is an event that no scout near it shows within the margin; the margins were set on the
-whole revolutions of 200 pairs and proven on 200 others (docs/tolerance.md).
+follows) too. Nothing is estimated: every stress a row gives is a solve's, and a row is the
+largest of the positions solved. What the screen can miss is an event that no scout near it
+shows within the margin; the margins were set on the whole revolutions of 400 pairs and
+checked on 200 more, of another class and design (docs/tolerance.md).
 
 The positions are numbered along the revolution, place by place within each pitch:
 ``r = n * places + i`` for place i, n gear-2 pitches on.
