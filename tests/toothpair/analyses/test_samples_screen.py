@@ -89,6 +89,28 @@ def test_a_flanks_pressure_is_solved_about_before_its_scout_alone():
     assert wanted == ({9, 10, 11} | set(range(end - 7, end))) - set(scouted)
 
 
+
+def test_a_screened_class_that_all_jams_still_has_the_exact_pair_at_every_place(baseline_ring):
+    # no pair turns, so no place but the scouts asks for a solve: the exact pair is solved at
+    # every place all the same (the class's nominal row), without a contact kept there
+    from fegear.geometry import PairParameters
+    from fegear.tolerance import Draw, grade_of
+    from fegear.toothpair import SolveCase
+    from fegear.toothpair.analyses.samples.solve import SampleCase, solve_samples
+    from fegear.toothpair.case import revolution_positions
+    from fegear.toothpair.ring.solver import RingSolver, SolverModes
+    from fegear.toothpair.safety import DEFAULT_ALLOWABLES
+
+    pair = PairParameters(shift=0.016, rotation=0.002)
+    case = SolveCase(pair, torque=200.0, quality="coarse")
+    places = revolution_positions(0.0, 4, pair.z1, pair.z2)[:4]
+    sampled = solve_samples(SampleCase(case, places, Draw(grade_of(9, pair), 2, 0),
+                                       DEFAULT_ALLOWABLES, pair.z1),
+                            RingSolver(baseline_ring, SolverModes(keep_phases=True)))
+    assert [r["status"] for r in sampled.rows] == ["jammed", "jammed"]
+    assert [s.case.beta for s in sampled.nominal] == pytest.approx(list(places))
+
+
 # slow (about 60 s: a class over a revolution solved twice); the default run checks the
 # screen's choice of positions above, and test_samples.py a revolution's sample against the
 # same pair turned alone

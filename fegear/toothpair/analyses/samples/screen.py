@@ -85,7 +85,7 @@ def screened(run: Chains, free: list[int], scouts: list[int], pitches: int):
         for r in sorted(wanted):
             jobs[r % places].append((k, r // places))
         count += len(wanted)
-    rest = [i for i in jobs if jobs[i]]
+    rest = list(jobs)   # each, where no sample is solved, for the exact pair's solution
     more_nominal, more = run([(rest[k::run.parts], jobs) for k in range(run.parts)
                               if rest[k::run.parts]], exact=False)
     return {**more_nominal, **nominal}, [*chains, *more], count / max(len(free), 1)

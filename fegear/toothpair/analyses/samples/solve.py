@@ -224,6 +224,8 @@ class OnKept:
             solver.build(at, gear1_profile(at.params), lambda: self.states.loaded)
         placed = RingSolver(solver.model, SolverModes(submodels="none"))
         exact = solve_position(at, state, placed, near and near[0])
+        if not self.jobs.get(i) and self.across is None:   # no sample here: no contact kept
+            return exact, {}, {}
         moved = self._moved(i, at.params)
         solver.widen(at, state, exact, _paired(at, exact, state, moved))
         found: dict[int, list] = {}
