@@ -152,6 +152,8 @@ def _title(solved: Solved) -> str:
     n = len(solved.solutions)
     where = f"{n} position{'s' if n > 1 else ''}"
     if solved.job.revolution and "revolution" not in solved.summary:   # a class's pairs
-        where += f" a pitch over a revolution ({len(solved.job.betas)})"
+        where += f" a pitch over a revolution ({len(solved.job.betas)}"
+        screened = solved.summary.get("samples", {}).get("positions_solved_per_pair")
+        where += f"; screened: {screened:.0f} a pair solved)" if screened else ")"
     return (f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T {i['torque_Nm']:g} N·m, "
             f"{where}, quality {i['quality']}")
