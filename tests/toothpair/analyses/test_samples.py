@@ -12,7 +12,6 @@ import pytest
 
 from fegear.errors import ParameterError
 from fegear.geometry import PairParameters
-from fegear.running import spare_core
 from fegear.tolerance import Draw, grade_of
 from fegear.toothpair import SolveCase, prepare_job, solve_pair
 from fegear.toothpair.analyses import SAMPLES
@@ -211,20 +210,15 @@ def test_a_quantile_falls_within_its_printed_error_of_a_20000_pair_reference():
     # enough that hardly any jams, `coarse`, one position: each headline's P95 of the pairs
     # that turn within 2.5 of its printed standard error, the reference's own (a tenth of it)
     # added (about three minutes on 2 cores)
-    from fegear.toothpair import solve_job
+    from class_quantiles import SHIFTED_CLASS_5, apart, turning_p95
+
     from fegear.toothpair.case import HEADLINE
 
-    def p95(seed, count):
-        job = prepare_job({"shift": 0.03, "rotation": 0.002, "quality": "coarse",
-                           "no-estimate": True, "grade": 5, "samples": count, "seed": seed})
-        with spare_core() as executor:
-            s = solve_job(job, executor=executor).summary["samples"]
+    (s1, small), (s2, large) = (turning_p95(SHIFTED_CLASS_5, 1, 200),
+                                turning_p95(SHIFTED_CLASS_5, 2, 20000))
+    for s in (s1, s2):
         assert s["jammed_share"] < 0.02 and s["failed"] == 0
-        return {k: next(q for q in v["turning"] if q["q"] == 0.95)
-                for k, v in s["stresses"].items()}
-
-    small, large = p95(1, 200), p95(2, 20000)
     for key in HEADLINE:
         a, b = small[key], large[key]
-        assert abs(a["value"] - b["value"]) <= 2.5 * math.hypot(a["error"], b["error"]), key
+        assert apart(a, b) <= 2.5, key
         assert b["error"] < 0.2 * a["error"], key   # a hundred times the pairs: a tenth

@@ -161,22 +161,11 @@ def test_a_revolutions_quantile_falls_within_its_printed_error_of_2000_other_pai
     # disjoint draws), class 5 with backlash enough that few jam, `coarse`, 4 places a pitch,
     # screened: each headline's P95 of the pairs that turn within 2.5 of the combined printed
     # standard errors
-    import math
+    from class_quantiles import SHIFTED_CLASS_5, apart, turning_p95
 
-    from fegear.running import spare_core
-    from fegear.toothpair import prepare_job, solve_job
-
-    def p95(seed, count):
-        job = prepare_job({"shift": 0.03, "rotation": 0.002, "quality": "coarse",
-                           "no-estimate": True, "grade": 5, "samples": count, "seed": seed,
-                           "positions": 4, "revolution": True})
-        with spare_core() as executor:
-            s = solve_job(job, executor=executor).summary["samples"]
+    values = {**SHIFTED_CLASS_5, "positions": 4, "revolution": True}
+    (s1, small), (s2, large) = turning_p95(values, 1, 200), turning_p95(values, 2, 2000)
+    for s in (s1, s2):
         assert s["screened"] and s["jammed_share"] < 0.1 and s["failed"] == 0
-        return {k: next(q for q in v["turning"] if q["q"] == 0.95)
-                for k, v in s["stresses"].items()}
-
-    small, large = p95(1, 200), p95(2, 2000)
     for key in HEADLINE:
-        a, b = small[key], large[key]
-        assert abs(a["value"] - b["value"]) <= 2.5 * math.hypot(a["error"], b["error"]), key
+        assert apart(small[key], large[key]) <= 2.5, key
