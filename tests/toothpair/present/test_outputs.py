@@ -518,3 +518,28 @@ def test_the_charts_handed_out_while_the_submodels_are_solved_are_the_charts_aft
     early_files, after = _contents(tmp_path / "early"), _contents(tmp_path / "after")
     for name in ("flank_pressure.png", "root_stress.png"):
         assert early_files[name] == after[name]
+
+
+def test_the_fields_are_formed_with_blas_on_one_thread(tmp_path, monkeypatch):
+    """write_job forms and writes the fields with BLAS on one thread, as the solve does (the
+    pictures are drawn on the other core meanwhile), and leaves the threads as it found them."""
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    from fegear.toothpair import write_job
+    from fegear.toothpair.job import solve_job
+    from fegear.toothpair.present import output
+
+    def blas():
+        return {i["filepath"]: i["num_threads"] for i in threadpool_info()
+                if i["user_api"] == "blas"}
+
+    seen = []
+    write_vtu = output.write_vtu
+    monkeypatch.setattr(output, "write_vtu", lambda *a: seen.append(blas()) or write_vtu(*a))
+    solved = solve_job(prepare_job({"quality": "coarse", "no-estimate": True}))
+    with threadpool_limits(limits=2, user_api="blas"):
+        before = blas()
+        assert set(before.values()) == {2}
+        write_job(solved, tmp_path, pictures=False)
+        assert seen and all(set(s.values()) == {1} for s in seen)
+        assert blas() == before
