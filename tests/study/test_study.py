@@ -109,10 +109,15 @@ def _failing_env() -> dict:
 
 
 def _start(toml: Path, out: Path) -> subprocess.Popen:
+    """The study of ``toml`` started into ``out``, to be stopped or killed: its temporary
+    folders (a worker killed mid-case cannot remove its case's) in pytest's own temporary
+    folder, beside the test's (which some tests check holds nothing else), not in /tmp."""
+    tmp = toml.parent.parent / f"{toml.parent.name}-tmp"
+    tmp.mkdir(exist_ok=True)
     return subprocess.Popen([sys.executable, "-m", "fegear", "study", str(toml), "--workers",
                              "1", "--out", str(out), "--no-progress"], cwd=ROOT,
-                            env=_failing_env(), stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+                            env={**_failing_env(), "TMPDIR": str(tmp)},
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
 # --- the study file ---------------------------------------------------------------------------
