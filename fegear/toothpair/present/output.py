@@ -136,8 +136,8 @@ def write_job(solved: Solved, out: Path, fields: bool = True, pictures: bool = T
     Returns name → path.
 
     The fields are formed with BLAS on one thread, as the solve's are: the pictures are drawn
-    on the other core meanwhile, and a second BLAS thread there only spins against them (the
-    fields' CPU is twice their time with two)."""
+    on the other core meanwhile, and a second BLAS thread there only spins against them
+    (docs/benchmark.md, the files' sixth pass)."""
     from ...fe import blas_threads  # lazy: heavy: scipy (a refused input imports none)
 
     progress.stage(f"writing files to {out}")
