@@ -57,3 +57,13 @@ def label_faults(ax) -> list[str]:
             if pa is not None and pb is not None and segments_cross(ca, pa, cb, pb):
                 faults.append(f"the leaders of labels {j} and {i} cross")
     return faults
+
+
+def panels_overlapping(fig) -> list[tuple[int, int]]:
+    """The pairs of ``fig``'s axes whose drawn extents (frame, tick labels, axis labels and
+    title) overlap: a panel's label written over its neighbour's ticks."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    boxes = [ax.get_tightbbox(renderer) for ax in fig.axes]
+    return [(j, i) for i, a in enumerate(boxes) for j, b in enumerate(boxes[:i])
+            if min(a.x1, b.x1) > max(a.x0, b.x0) and min(a.y1, b.y1) > max(a.y0, b.y0)]

@@ -123,6 +123,19 @@ def test_the_summary_and_the_table_read_k_hbeta_and_the_class_across_the_face(gr
         figure.get_suptitle()
 
 
+def test_the_samples_panels_keep_apart_with_hundreds_of_pairs_a_bar(graded):
+    """Each panel's axis label and tick labels stay clear of its neighbour's, with counts of
+    three digits (a thousand pairs drew "pairs" over the next panel's ticks)."""
+    from labels import panels_overlapping
+
+    job, solved = graded
+    s = solved.summary["samples"]
+    many = {**s, "rows": s["rows"] * 300}   # the same pairs, each counted 300 times
+    figure = samples_figure(many, job.allowables, "a title")
+    assert max(p.get_height() for p in figure.axes[0].patches) >= 300
+    assert panels_overlapping(figure) == []
+
+
 # slow (10 s: each pair's moved clearances over a whole turn)
 @pytest.mark.slow
 def test_a_deviated_pairs_room_is_its_backlash_over_the_turn_and_closes_with_its_face():

@@ -58,5 +58,5 @@ def samples_figure(samples: dict, allowables, title: str):
                  f"{samples['solved']} solved, {samples['jammed']} jammed "
                  f"({100 * samples['jammed_share']:.3g} %), {samples['failed']} failed; "
                  f"{samples['verdict'].split(':', 1)[0]} at P{100 * q:g}", fontsize=10)
-    margins(fig, left=0.75, right=0.25, bottom=0.6, top=1.0, hspace=0.8, wspace=0.35)
+    margins(fig, left=0.75, right=0.25, bottom=0.6, top=1.0, hspace=0.8, wspace=0.75)
     return fig
