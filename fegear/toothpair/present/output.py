@@ -154,13 +154,15 @@ def write_job(solved: Solved, out: Path, fields: bool = True, pictures: bool = T
 
 
 def _title(solved: Solved) -> str:
-    """The pictures' title: the design, the torque, the positions and the quality."""
+    """The pictures' title: the design, the torque, the positions and the quality; a class's
+    pairs over a revolution on a line of their own (one line would be wider than a narrow
+    picture)."""
     i = solved.summary["inputs"]
     n = len(solved.solutions)
-    where = f"{n} position{'s' if n > 1 else ''}"
+    design = f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T {i['torque_Nm']:g} N·m"
     if solved.job.revolution and "revolution" not in solved.summary:   # a class's pairs
-        where += f" a pitch over a revolution ({len(solved.job.betas)}"
         screened = solved.summary.get("samples", {}).get("positions_solved_per_pair")
-        where += f"; screened: {screened:.0f} a pair solved)" if screened else ")"
-    return (f"m {i['m']:g}, h1 {i['h1']:g}, f1 {i['f1']:g}, T {i['torque_Nm']:g} N·m, "
-            f"{where}, quality {i['quality']}")
+        return (f"{design}, quality {i['quality']}\n{n} positions a pitch over a revolution "
+                f"({len(solved.job.betas)}"
+                + (f"; screened: {screened:.0f} a pair solved)" if screened else ")"))
+    return f"{design}, {n} position{'s' if n > 1 else ''}, quality {i['quality']}"

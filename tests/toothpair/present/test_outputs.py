@@ -193,6 +193,33 @@ def test_the_cycle_picture_carries_the_allowable_and_the_smallest_factors():
     plt.close(far)
 
 
+def test_the_cycle_picture_s_title_of_a_class_over_a_revolution_fits_over_its_panels():
+    """A class's pairs over a revolution add a second line to the pictures' title; on the
+    narrow cycle picture it stays inside the figure and clear of the first panel (one line
+    of it ran off both sides)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from fegear.toothpair.analyses.cycle.plot import cycle_figure
+
+    rows = [{"position_deg": b, "share_10": 1.0, "root_stress_gear1_MPa": 280.0,
+             "contact_pressure_MPa": 1000.0, "rotation_urad": 0.0, "first_touch_urad": 0.0,
+             "transmission_error_urad": 0.0} for b in (0.0, 4.0)]
+    title = ("m 2, h1 0.3, f1 0.15, T 200 N·m, quality standard\n8 positions a pitch over a "
+             "revolution (352; screened: 171 a pair solved)")
+    fig = cycle_figure(rows, title, {"root_stress_gear1_MPa": "gear 1",
+                                     "contact_pressure_MPa": "peak pressure"})
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    shown = next(t for t in fig.texts if t.get_text() == title)
+    box, whole = shown.get_window_extent(renderer), fig.bbox
+    assert whole.x0 <= box.x0 and box.x1 <= whole.x1 and box.y1 <= whole.y1
+    assert box.y0 > fig.axes[0].get_tightbbox(renderer).y1
+    plt.close(fig)
+
+
 @pytest.fixture(scope="module")
 def summary(solved):
     from fegear.toothpair import pair_summary

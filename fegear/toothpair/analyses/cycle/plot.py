@@ -67,7 +67,9 @@ def cycle_figure(rows: list[dict], title: str, stresses: dict[str, str], allowab
     for a in ax:
         a.grid(alpha=0.3)
     fig.suptitle(title, fontsize=10)
-    margins(fig, left=0.85, right=0.2, bottom=0.6, top=0.55, hspace=0.15)
+    # room for the title's lines (0.2 in each at 10 pt) over the first panel
+    margins(fig, left=0.85, right=0.2, bottom=0.6, top=0.35 + 0.2 * (title.count("\n") + 1),
+            hspace=0.15)
     for a, ncol in zip(ax, (3, 1, 1, 1)):
         place_legend(a, fontsize=8, ncol=ncol)
     return fig
