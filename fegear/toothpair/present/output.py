@@ -143,7 +143,7 @@ def write_job(solved: Solved, out: Path, fields: bool = True, pictures: bool = T
     progress.stage(f"writing files to {out}")
     out = prepare_dir(out)
     summary = solved.summary
-    writing = Writing(solved, out, _title(solved), fields, pictures)
+    writing = Writing(solved, out, pictures_title(solved), fields, pictures)
     files: dict[str, Path] = {}
     with blas_threads():
         for analysis in shown(summary):
@@ -153,7 +153,7 @@ def write_job(solved: Solved, out: Path, fields: bool = True, pictures: bool = T
     return files
 
 
-def _title(solved: Solved) -> str:
+def pictures_title(solved: Solved) -> str:
     """The pictures' title: the design, the torque, the positions and the quality; a class's
     pairs over a revolution on a line of their own (one line would be wider than a narrow
     picture)."""

@@ -197,18 +197,29 @@ def test_the_cycle_picture_s_title_of_a_class_over_a_revolution_fits_over_its_pa
     """A class's pairs over a revolution add a second line to the pictures' title; on the
     narrow cycle picture it stays inside the figure and clear of the first panel (one line
     of it ran off both sides)."""
+    from types import SimpleNamespace
+
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     from fegear.toothpair.analyses.cycle.plot import cycle_figure
+    from fegear.toothpair.present.output import pictures_title
 
     rows = [{"position_deg": b, "share_10": 1.0, "root_stress_gear1_MPa": 280.0,
              "contact_pressure_MPa": 1000.0, "rotation_urad": 0.0, "first_touch_urad": 0.0,
              "transmission_error_urad": 0.0} for b in (0.0, 4.0)]
-    title = ("m 2, h1 0.3, f1 0.15, T 200 N·m, quality standard\n8 positions a pitch over a "
-             "revolution (352; screened: 171 a pair solved)")
+    # what pictures_title reads of a solved class over a revolution: a design whose numbers
+    # run long, 8 places a pitch, the pairs screened
+    inputs = {"m": 1.58867, "h1": 0.26827, "f1": 0.199558, "torque_Nm": 200.0,
+              "quality": "standard"}
+    solved = SimpleNamespace(
+        summary={"inputs": inputs, "samples": {"positions_solved_per_pair": 171.6}},
+        solutions=[None] * 8, job=SimpleNamespace(revolution=True, betas=[0.0] * 352))
+    title = pictures_title(solved)
+    assert title.endswith("quality standard\n8 positions a pitch over a revolution (352; "
+                          "screened: 172 a pair solved)")
     fig = cycle_figure(rows, title, {"root_stress_gear1_MPa": "gear 1",
                                      "contact_pressure_MPa": "peak pressure"})
     fig.canvas.draw()
