@@ -89,7 +89,6 @@ def test_a_flanks_pressure_is_solved_about_before_its_scout_alone():
     assert wanted == ({9, 10, 11} | set(range(end - 7, end))) - set(scouted)
 
 
-
 def test_a_screened_class_that_all_jams_still_has_the_exact_pair_at_every_place(baseline_ring):
     # no pair turns, so no place but the scouts asks for a solve: the exact pair is solved at
     # every place all the same (the class's nominal row), without a contact kept there
