@@ -6,7 +6,14 @@ refactor) gave, and write the same files. New keys are allowed; a key or row tha
 fails. The reference is tests/data/before_house/<run>.json, made by the old code:
 
     git worktree add /tmp/old 9417a6e
-    .venv/bin/python tests/test_same_results.py --regenerate /tmp/old
+    cd /tmp && python /path/to/tests/test_same_results.py --regenerate /tmp/old [RUN ...]
+
+A change made on purpose since is the reference of the runs it moved, made by its commit
+(:data:`MADE_BY`). Since issue 70's coarse level a kept solve's iterations start elsewhere and
+settle the same solution to their tolerance (pressures within about 1e-9 of the largest): the
+iteration counts are not compared, a column's numbers are compared within 1e-9 of its
+largest (a spectrum's small amplitudes are differences of rotations), and an error estimate,
+the difference of two solves about a hundredth of either, within 1e-7.
 """
 
 import csv
@@ -40,6 +47,14 @@ RUN_DEPENDENT = {"timings_s", "wall_s", "estimate_s", "solve_s"}
 #: result's own keys: wording may change (8a55da4 reworded a jam on both sides)
 WORDING = {"why", "verdict"}
 RELATIVE, ABSOLUTE = 1e-9, 1e-12
+#: how many iterations reached a solution: where they start moves it, not the solution
+ITERATIONS = {"iterations"}
+#: an error estimate's keys start so: a difference of two solves, compared within this
+ESTIMATE, ESTIMATE_RELATIVE = "error_estimate", 1e-7
+#: the commit that made a run's reference where not 9417a6e: cc6ab24 kept a revolution's
+#: phase's contact at once about the position before's rotation, which moved its worst
+#: stresses by up to 3e-4 (the kept grids stand a little differently)
+MADE_BY = {"revolution": "cc6ab24"}
 #: a list longer than this is kept every k-th entry, about LONG / 2 of them (the revolution's
 #: 1056 positions would take 2 MB)
 LONG = 60
@@ -104,24 +119,26 @@ def record(run: str, out: Path) -> dict:
                         "outputs": outputs}, out)}
 
 
-def differences(old, new, where: str) -> list[str]:
-    """Every place where ``new`` departs from ``old`` (numbers beyond RELATIVE, or ABSOLUTE
-    near zero; anything else exactly), as ``where.key: old ..., new ...``. Keys only in
-    ``new`` are allowed."""
+def differences(old, new, where: str, scale: float = 0.0, rel: float = RELATIVE) -> list[str]:
+    """Every place where ``new`` departs from ``old`` (numbers beyond ``rel`` of the larger
+    of them and ``scale``, the largest of their column, or ABSOLUTE near zero; anything else
+    exactly), as ``where.key: old ..., new ...``. Keys only in ``new`` are allowed; the
+    iteration counts are not compared (module docstring)."""
     if isinstance(old, dict) and old.keys() == {"every", "of", "rows"} and isinstance(new, dict):
         if new.get("of") != old["of"]:
             return [f"{where}: {old['of']} rows before, {new.get('of')} now"]
-        return _entries(old["rows"], new["rows"], where, old["every"])
+        return _entries(old["rows"], new["rows"], where, old["every"], rel)
     if isinstance(old, dict) and isinstance(new, dict):
-        return [d for k, v in old.items() for d in (
-            differences(v, new[k], f"{where}.{k}") if k in new else
-            [f"{where}.{k}: missing now (before: {_short(v)})"])]
+        return [d for k, v in old.items() if k not in ITERATIONS for d in (
+            differences(v, new[k], f"{where}.{k}", scale,
+                        ESTIMATE_RELATIVE if k.startswith(ESTIMATE) else rel)
+            if k in new else [f"{where}.{k}: missing now (before: {_short(v)})"])]
     if isinstance(old, list) and isinstance(new, list):
         if len(old) != len(new):
             return [f"{where}: {len(old)} entries before, {len(new)} now"]
-        return _entries(old, new, where)
+        return _entries(old, new, where, 1, rel)
     if _number(old) and _number(new):
-        if (math.isclose(old, new, rel_tol=RELATIVE, abs_tol=ABSOLUTE)
+        if (math.isclose(old, new, rel_tol=rel, abs_tol=max(ABSOLUTE, rel * scale))
                 or math.isnan(old) and math.isnan(new)):
             return []
         change = abs(new - old) / max(abs(old), abs(new))
@@ -131,11 +148,13 @@ def differences(old, new, where: str) -> list[str]:
     return [f"{where}: {_short(old)} before, {_short(new)} now"]
 
 
-def _entries(old: list, new: list, where: str, every: int = 1) -> list[str]:
+def _entries(old: list, new: list, where: str, every: int = 1,
+             rel: float = RELATIVE) -> list[str]:
     """:func:`differences` of two lists entry by entry, each named by its index in the whole
-    list (of which these are every ``every``-th)."""
+    list (of which these are every ``every``-th), numbers against the largest of the list."""
+    scale = max((abs(v) for v in old if _number(v) and math.isfinite(v)), default=0.0)
     return [d for i, (o, n) in enumerate(zip(old, new))
-            for d in differences(o, n, f"{where}[{i * every}]")]
+            for d in differences(o, n, f"{where}[{i * every}]", scale, rel)]
 
 
 def _number(value) -> bool:
@@ -163,19 +182,20 @@ def test_the_same_results_as_before_the_house_refactor(run, tmp_path):
              f"before, not now; {sorted(set(now['files']) - set(reference['files']))} new"
              ] if reference["files"] != now["files"] else []
     found += differences({**reference, "files": None}, {**now, "files": None}, run)
-    assert not found, f"{len(found)} differences from 9417a6e:\n" + "\n".join(found)
+    made = MADE_BY.get(run, "9417a6e")
+    assert not found, f"{len(found)} differences from {made}:\n" + "\n".join(found)
 
 
-def regenerate(old_checkout: Path) -> None:
-    """Run every run with the fegear of ``old_checkout`` and keep what it wrote as the
-    reference."""
+def regenerate(old_checkout: Path, runs=RUNS) -> None:
+    """Run ``runs`` (default every run) with the fegear of ``old_checkout`` and keep what it
+    wrote as their references."""
     env = dict(os.environ, PYTHONPATH=str(old_checkout.absolute()), FEGEAR_CACHE="off",
                OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1")
     where = subprocess.run([sys.executable, "-c", "import fegear; print(fegear.__file__)"],
                            env=env, capture_output=True, text=True, check=True).stdout
     assert Path(where.strip()).is_relative_to(old_checkout.absolute()), where
     DATA.mkdir(parents=True, exist_ok=True)
-    for run in RUNS:
+    for run in runs:
         with tempfile.TemporaryDirectory() as tmp:
             solve(run, Path(tmp) / "out", env)
             text = json.dumps(record(run, Path(tmp) / "out"), indent=1, ensure_ascii=False)
@@ -183,6 +203,6 @@ def regenerate(old_checkout: Path) -> None:
 
 
 if __name__ == "__main__":
-    if sys.argv[1:2] != ["--regenerate"] or len(sys.argv) != 3:
-        sys.exit("usage: python tests/test_same_results.py --regenerate OLD_CHECKOUT")
-    regenerate(Path(sys.argv[2]))
+    if sys.argv[1:2] != ["--regenerate"] or len(sys.argv) < 3 or set(sys.argv[3:]) - set(RUNS):
+        sys.exit("usage: python tests/test_same_results.py --regenerate OLD_CHECKOUT [RUN ...]")
+    regenerate(Path(sys.argv[2]), sys.argv[3:] or RUNS)

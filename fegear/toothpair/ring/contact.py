@@ -12,6 +12,7 @@ gap is nonlinear in θ only through the turn, a µrad here).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -21,6 +22,9 @@ from .contact_system import ContactSystem, RingContactError, gaps_at, solve_acti
 from .influence import RingContact, approach_open
 from .master import Gear2Master
 from .model import RingModel
+
+if TYPE_CHECKING:   # a kept contact's, made by its phases; it steps with this module's methods
+    from .coarse import CoarseContact
 
 MAX_ACTIVE_SET = 80     # active-set changes per linearisation
 MAX_TURNS = 30          # linearisations of the rigid gap
@@ -93,12 +97,15 @@ class Iterations:
     far from closing); the others are checked at the solution, and where one overlaps the
     contact is solved again on every point. ``circles``: the contact's points' foot circles
     (:mod:`.circles`), which they measure the gaps to instead of searching gear 2's curve; the
-    last evaluation is exact, and where the two differ they go on with the exact gaps."""
+    last evaluation is exact, and where the two differ they go on with the exact gaps.
+    ``coarse``: the contact's coarse level (:mod:`.coarse`), which predicts the points and
+    the rotation they start from, from ``start``."""
 
     start: np.ndarray | None = None
     guess: float | None = None
     within: float | None = None
     circles: FootCircles | None = None
+    coarse: CoarseContact | None = None
 
 
 def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float, theta: float,
@@ -119,7 +126,7 @@ def solve_with(model: RingModel, contact: RingContact, torque_nmm: float, theta:
     and the others kept open; that is the solution if none of them then overlaps (their
     pressures zero, their columns act on nothing), else None: the caller forms them."""
     gaps = _Gaps(model, contact, how.circles)
-    it = _first(gaps, theta, how)
+    it = _first(gaps, theta, how, torque_nmm)
     _linearise(gaps, it, torque_nmm)
     g0, a = it.rigid   # every point's, exact at the solution
     balance = abs(-(it.w * it.pressure) @ a[it.on] - torque_nmm) / torque_nmm
@@ -186,13 +193,19 @@ class _Iterate:
     rigid: tuple | None = None
 
 
-def _first(gaps: _Gaps, theta: float, how: Iterations) -> _Iterate:
-    """The points the iterations take, their rigid gaps at ``theta`` and the active set they
-    start from (:class:`Iterations`)."""
+def _first(gaps: _Gaps, theta: float, how: Iterations, torque_nmm: float) -> _Iterate:
+    """The points the iterations take, their rigid gaps at ``theta`` (or where the coarse
+    level predicts the rotation) and the active set they start from (:class:`Iterations`)."""
     model, contact = gaps.model, gaps.contact
     on = np.flatnonzero(contact.formed)
     feet = contact.feet[on]
     g0, a = gaps(gaps.alpha + theta, feet, on)
+    if how.coarse is not None and contact.complete:   # on: every point
+        predicted = how.coarse.predict(g0, a, torque_nmm, how.start, how.within)
+        if predicted is not None:
+            how = Iterations(predicted[0], how.guess, how.within)
+            theta += predicted[1]
+            g0, a = gaps(gaps.alpha + theta, feet, on)
     near, rows = None, None
     if how.within is not None and contact.complete and (g0 > g0.min() + how.within).any():
         near = g0 <= g0.min() + how.within

@@ -42,6 +42,7 @@ from ..case import PairSolution, SolveCase
 from ..positions import Trial
 from ..teeth import choose_teeth
 from .circles import FootCircles, foot_circles
+from .coarse import CoarseLevels
 from .contact import Iterations, RingContactSolution, rigid_gap, solve_with
 from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel
@@ -119,6 +120,7 @@ class Phases:
         self._seen: dict[tuple[int, float], dict[tuple, SolvedPitch]] = {}   # … what it saw
         self._circles: dict[int, FootCircles] = {}   # phase → its kept contact's feet …
         self._strains: dict[int, SurfaceStrains] = {}   # … and surface strains
+        self._coarse = CoarseLevels()   # … and coarse level
 
     def __len__(self) -> int:
         """How many phases have a contact kept."""
@@ -147,7 +149,7 @@ class Phases:
         """Let go of what is kept for the phase of ``beta`` (a position whose deviation sets
         are all solved: its contact is a large matrix)."""
         phase = pitch_phase(beta, z2)[0]
-        for kept in (self._kept, self._circles, self._strains):
+        for kept in (self._kept, self._circles, self._strains, self._coarse):
             kept.pop(phase, None)
         self._drop_solved(phase)
 
@@ -250,7 +252,8 @@ class Phases:
         try:
             sol = solve_with(model, contact, case.torque_Nmm, kept.rotation, Iterations(
                 start=kept.active, within=NEAR * 1e-3 * max(kept.elastic_um, 1.0),
-                circles=self._circles[phase]))
+                circles=self._circles[phase],
+                coarse=self._coarse.level(phase, kept.contact, model.case.thickness)))
         except ContactError:
             return None
         if sol is None or not _holds(case, state, kept, pitch - kept.pitch, contact, sol):
@@ -311,8 +314,8 @@ class Phases:
                                     elastic_um=p.arc_um(sol.rotation) - first_um)
         self.torque = case.torque
         self._drop_solved(phase)   # what was solved on the contact it replaces
-        self._circles.pop(phase, None)
-        self._strains.pop(phase, None)
+        for dropped in (self._circles, self._strains, self._coarse):
+            dropped.pop(phase, None)
         return contact, sol
 
 
