@@ -54,19 +54,18 @@ class CoarseContact:
                 start: np.ndarray | None, within: float | None
                 ) -> tuple[np.ndarray, float] | None:
         """The points (a mask over the contact's) that carry pressure and gear 1's rotation
-        step (rad) where the contact is solved on the coarse level with the rigid gaps ``g0``
-        (mm) and their rates ``a`` (mm/rad) of every point linearised about one rotation,
-        under ``torque_nmm`` (N·mm), from the points ``start`` (a mask; None or none of the
-        coarse ones: the point of least gap), on the coarse points within ``within`` (mm) of
-        the least gap (None: all); None where the coarse points cannot carry the torque. The
-        torque's arm is taken at each coarse point (its hat's force times the point's rate):
-        a prediction, which the fine solve corrects."""
-        g, rate = g0[self.pick], a[self.pick]
-        near = np.arange(len(g)) if within is None else np.flatnonzero(g <= g.min() + within)
+        step (rad) where the contact is solved on the coarse level with the coarse points'
+        rigid gaps ``g0`` (mm) and their rates ``a`` (mm/rad) linearised about one rotation,
+        under ``torque_nmm`` (N·mm), from the points ``start`` (a mask over the contact's;
+        None or none of the coarse ones: the point of least gap), on the coarse points within
+        ``within`` (mm) of the least gap (None: all); None where the coarse points cannot
+        carry the torque. The torque's arm is taken at each coarse point (its hat's force
+        times the point's rate): a prediction, which the fine solve corrects."""
+        near = np.arange(len(g0)) if within is None else np.flatnonzero(g0 <= g0.min() + within)
         first = None if start is None else start[self.pick][near]
         if first is None or not first.any():
-            first = g[near] <= g[near].min()
-        system = ContactSystem(self.A, self.w[near], g[near], rate[near], near)
+            first = g0[near] <= g0[near].min()
+        system = ContactSystem(self.A, self.w[near], g0[near], a[near], near)
         try:
             found = active_set(system, torque_nmm, first)
         except ContactError:

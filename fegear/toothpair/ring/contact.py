@@ -199,13 +199,14 @@ def _first(gaps: _Gaps, theta: float, how: Iterations, torque_nmm: float) -> _It
     model, contact = gaps.model, gaps.contact
     on = np.flatnonzero(contact.formed)
     feet = contact.feet[on]
-    g0, a = gaps(gaps.alpha + theta, feet, on)
     if how.coarse is not None and contact.complete:   # on: every point
-        predicted = how.coarse.predict(g0, a, torque_nmm, how.start, how.within)
+        pick = how.coarse.pick
+        predicted = how.coarse.predict(*gaps(gaps.alpha + theta, contact.feet[pick], pick),
+                                       torque_nmm, how.start, how.within)
         if predicted is not None:
             how = Iterations(predicted[0], how.guess, how.within)
             theta += predicted[1]
-            g0, a = gaps(gaps.alpha + theta, feet, on)
+    g0, a = gaps(gaps.alpha + theta, feet, on)
     near, rows = None, None
     if how.within is not None and contact.complete and (g0 > g0.min() + how.within).any():
         near = g0 <= g0.min() + how.within
