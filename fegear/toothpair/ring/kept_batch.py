@@ -1,13 +1,16 @@
 """A position's deviation sets solved on the contact kept for its phase and read together
-(:class:`KeptBatch`): a tolerance class's samples at one position.
+(:class:`KeptBatch`): a tolerance class's samples at one position, or at one place over a
+revolution's pitches.
 
 Each set is solved on the kept contact as alone (:meth:`~.phases.Phases.solve`), in the order
 given, so that a set the kept grids do not hold can be placed on its own and widen them for
 the sets after it (:meth:`~.solver.RingSolver.widen`) before those are solved. Their brief
 stresses are read together (:func:`~.readout.brief_stresses_of`): the root zones' loads, cut
-motions and nodal stresses of every set as one product a sector where a set alone takes a
-product a sector each, the same numbers to rounding; the rest of each set's record is its own
-(:meth:`~.solver.RingSolver.on_kept`, brief).
+motions and nodal stresses of every set of a phase as one product a sector where a set alone
+takes a product a sector each, the same numbers to rounding. A set turned by whole pitches
+from the kept contact is the kept contact's problem with its sectors renumbered, so it is read
+in the kept contact's numbering and its stresses turned to its own; the rest of each set's
+record is its own (:meth:`~.solver.RingSolver.on_kept`, brief).
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ from ..case import PairSolution, SolveCase
 from ..positions import Attempt
 from .readout import brief_stresses_of
 from .solver import RingSolver, kept_attempt
+from .turning import turned_stresses
 
 
 class KeptBatch:
@@ -42,29 +46,31 @@ class KeptBatch:
     def finish(self) -> list[PairSolution]:
         """The held sets' records, in the order they were added, brief (no first touch, no
         tangent stiffness, no references: :meth:`~.solver.RingSolver.on_kept`); none held
-        after. Their stresses are read together where their contacts are numbered alike (the
-        same phase, turned by the same pitches), and on the strains kept for that phase; as
-        the solver's modes say (:class:`~.solver.SolverModes`: none for ``contact_only``, the
-        roots alone for ``roots_only``)."""
+        after. The stresses of the sets of one phase are read together, on the contact kept
+        for it and the strains kept with it, whatever pitch each was turned to, and each
+        set's then turned to its own pitch (:func:`~.turning.turned_stresses`: the ring's
+        sectors renumbered); as the solver's modes say (:class:`~.solver.SolverModes`: none
+        for ``contact_only``, the roots alone for ``roots_only``)."""
         solver, pending = self.solver, self.pending
         self.pending = []
-        groups: dict[tuple, list[int]] = {}
-        for i, (case, _, attempt) in enumerate(pending):
-            contact = attempt.solved.contact
-            key = (pitch_phase(case.beta, case.params.z2)[0], tuple(contact.loads[0]),
-                   tuple(contact.loads[1]))
-            groups.setdefault(key, []).append(i)
+        groups: dict[int, list[int]] = {}
+        for i, (case, _, _) in enumerate(pending):
+            groups.setdefault(pitch_phase(case.beta, case.params.z2)[0], []).append(i)
         out: list[PairSolution | None] = [None] * len(pending)
         modes = solver.modes
         for members in groups.values():
-            case, _, attempt = pending[members[0]]
+            case = pending[members[0]][0]
+            kept = solver.phases.kept(case.beta, case.params.z2)
             pressures = np.column_stack([pending[i][2].solved.solution.pressure
                                          for i in members])
             strains = None if modes.roots_only else solver.phases.strains(solver.model,
                                                                           case.beta)
             read = [None] * len(members) if modes.contact_only else brief_stresses_of(
-                solver.model, attempt.solved.contact, pressures, strains)
+                solver.model, kept.contact, pressures, strains)
             for i, stresses in zip(members, read, strict=True):
                 case, state, attempt = pending[i]
+                pitches = pitch_phase(case.beta, case.params.z2)[1] - kept.pitch
+                if stresses is not None and pitches:
+                    stresses = turned_stresses(solver.model, stresses, pitches)
                 out[i] = solver.record(case, state, attempt, brief=True, read=stresses)[0]
         return out

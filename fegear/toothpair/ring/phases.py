@@ -260,6 +260,10 @@ class Phases:
             return None
         return contact, sol
 
+    def kept(self, beta: float, z2: int) -> Kept | None:
+        """What is kept for the phase of ``beta`` (None: nothing)."""
+        return self._kept.get(pitch_phase(beta, z2)[0])
+
     def contact_at(self, model: RingModel, case: SolveCase) -> tuple[RingContact, Kept] | None:
         """The contact kept for the phase of ``case.beta`` turned to it, its rigid gaps with
         the case's deviations, and what was kept with it; None where none is kept."""
