@@ -52,15 +52,15 @@ class FootCircles:
 @dataclass(frozen=True)
 class Moved:
     """What one solve's deviations do to a contact's points (:func:`moved`): the points
-    turned by the kinematic angle (gear-1 frame to fixed, (n, 2)), each one's extra turn with
-    its tooth's pitch (rad), its gear-2 tooth's turn (rad; None: none turns), gear 1's axis
-    and the teeth's offset from it (mm, fixed frame), gear 1's flank departures (mm), and
-    the placed deviations with each point's gear-2 tooth, whose flank departures are taken
-    where the point's foot slides to (None: gear 2 has none)."""
+    turned by the kinematic angle and each by its tooth's pitch deviation (gear-1 frame to
+    fixed, (n, 2)), the cosine and sine of each one's gear-2 tooth's turn (None: none
+    turns), gear 1's axis and the teeth's offset from it (mm, fixed frame), gear 1's flank
+    departures (mm), and the placed deviations with each point's gear-2 tooth, whose flank
+    departures are taken where the point's foot slides to (None: gear 2 has none). The
+    per-point turns are taken once a solve: an evaluation turns the points by one angle."""
 
     x: np.ndarray
-    turn1: np.ndarray
-    turn2: np.ndarray | None
+    turn2: tuple[np.ndarray, np.ndarray] | None
     axis: np.ndarray
     offset: np.ndarray
     flank1: np.ndarray
@@ -83,16 +83,16 @@ def moved(circles: FootCircles, model: RingModel, contact: RingContact) -> Moved
     pair) on its points, as :meth:`~fegear.geometry.Placed.gap` moves them: its teeth, and the
     gear-2 teeth its feet face as it stands."""
     p = model.case.params
-    x = rotate(contact.x, p.ratio * contact.beta)
-    n = contact.npoints
     placed = contact.placed
     if placed is None:
-        return Moved(x, np.zeros(n), None, np.array([0.0, p.e]), np.zeros(2), np.zeros(n))
+        return Moved(rotate(contact.x, p.ratio * contact.beta), None, np.array([0.0, p.e]),
+                     np.zeros(2), np.zeros(contact.npoints))
     dev, teeth = placed.deviations, contact.teeth
+    x = rotate(contact.x, p.ratio * contact.beta + dev.turns(1, teeth, p.r1))
     k2 = gear2_tooth(contact.feet, p.z2)
     turn2 = dev.turns(2, k2, p.r0) if dev.gear2 else None
-    return Moved(x, dev.turns(1, teeth, p.r1), turn2, placed.axis1, placed.teeth_offset,
-                 dev.flank_offset(1, teeth, placed.roll(1, contact.x)),
+    return Moved(x, None if turn2 is None else (np.cos(turn2), np.sin(turn2)), placed.axis1,
+                 placed.teeth_offset, dev.flank_offset(1, teeth, placed.roll(1, contact.x)),
                  (placed, k2) if dev.gear2 else None)
 
 
@@ -102,11 +102,12 @@ def circle_gaps(circles: FootCircles, moved: Moved, theta: float,
     1 turned by ``theta`` (rad, beyond the kinematic angle) and the points ``moved``, and the
     gaps' rate with that turn (mm/rad)."""
     sel = slice(None) if idx is None else idx
-    lever = rotate(moved.x[sel], theta + moved.turn1[sel]) + moved.offset
+    lever = rotate(moved.x[sel], theta) + moved.offset
     point = lever + moved.axis
     if moved.turn2 is not None:   # gear 2's tooth turned: the point turned back about its axis
-        point = rotate(point, -moved.turn2[sel])
-        lever = rotate(lever, -moved.turn2[sel])
+        c, s = moved.turn2[0][sel], moved.turn2[1][sel]
+        point = _back(point, c, s)
+        lever = _back(lever, c, s)
     u = point - circles.foot[sel]
     normal, tangent, kappa = circles.normal[sel], circles.tangent[sel], circles.kappa[sel]
     d = np.einsum("ij,ij->i", u, normal)
@@ -121,3 +122,9 @@ def circle_gaps(circles: FootCircles, moved: Moved, theta: float,
         gap -= placed.deviations.flank_offset(2, k2[sel], placed.roll(2, slid))
     grad = (bend[:, None] * normal - (kappa * s)[:, None] * tangent) / q[:, None]
     return gap, grad[:, 1] * lever[:, 0] - grad[:, 0] * lever[:, 1]
+
+
+def _back(v: np.ndarray, c: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """The points ``v`` (n, 2) turned back by the angles whose cosines and sines are ``c`` and
+    ``s``."""
+    return np.column_stack([c * v[:, 0] + s * v[:, 1], c * v[:, 1] - s * v[:, 0]])
