@@ -1,12 +1,16 @@
 """The solved cases the ring model's tests share: the baseline pair's model (``model``, the
-session's ``baseline_ring``), its position at β = 0 under 200 N·m, and random contact
-problems (``contact_problem``)."""
+session's ``baseline_ring``), its position at β = 0 under 200 N·m, a solver with that
+position's contact kept for deviation sets (``kept_at_zero``), and random contact problems
+(``contact_problem``)."""
 
 from dataclasses import replace
 
 import numpy as np
 import pytest
 
+from fegear.running import SERIAL
+from fegear.toothpair.positions import positions_of
+from fegear.toothpair.ring import RingSolver, SolverModes
 from fegear.toothpair.ring.contact_system import ContactSystem
 
 
@@ -23,6 +27,21 @@ def baseline_200(baseline_ring):
     from fegear.toothpair import solve_pair
 
     return solve_pair(replace(baseline_ring.case, torque=200.0), model=baseline_ring)
+
+
+@pytest.fixture(scope="session")
+def kept_at_zero(baseline_ring):
+    """A ring solver with the baseline's position at β = 0 under 200 N·m solved and its
+    contact kept, reaching as far as the deviation sets given move a tooth, and the case."""
+
+    def kept(sets) -> tuple:
+        case = replace(baseline_ring.case, torque=200.0)
+        solver = RingSolver(baseline_ring, SolverModes(keep_phases=True))
+        solver.reach(max(d.reach_um(t) for d in sets for t in range(case.params.z1)))
+        positions_of(solver, False)(case, (0.0,), SERIAL)
+        return solver, case
+
+    return kept
 
 
 @pytest.fixture(scope="session")

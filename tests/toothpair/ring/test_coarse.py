@@ -3,15 +3,10 @@ the fine pressures linearly, its compliance is the fine one's under them, it pre
 deviated contact's rotation, and a solve that starts from its prediction settles the solution
 it settles without, in fewer iterations."""
 
-from dataclasses import replace
-
 import numpy as np
 import pytest
 
 from fegear.geometry import Deviations, Placed, ToothDeviation
-from fegear.running import SERIAL
-from fegear.toothpair.positions import positions_of
-from fegear.toothpair.ring import RingSolver, SolverModes
 from fegear.toothpair.ring.circles import foot_circles
 from fegear.toothpair.ring.coarse import AFTER, STRIDE, CoarseLevels, coarse_contact
 from fegear.toothpair.ring.contact import Iterations, rigid_gap, solve_with
@@ -25,11 +20,8 @@ SETS = (Deviations(gear1={10: ToothDeviation(pitch=4.0)}),
 
 
 @pytest.fixture(scope="module")
-def kept(baseline_ring):
-    case = replace(baseline_ring.case, torque=200.0)
-    solver = RingSolver(baseline_ring, SolverModes(keep_phases=True))
-    solver.reach(max(d.reach_um(t) for d in SETS for t in range(case.params.z1)))
-    positions_of(solver, False)(case, (0.0,), SERIAL)
+def kept(kept_at_zero):
+    solver, case = kept_at_zero(SETS)
     held = solver.phases.contact_at(solver.model, case)[1]
     return solver.model, case, held, coarse_contact(held.contact, case.thickness)
 

@@ -23,12 +23,8 @@ SETS = (Deviations(gear1={10: ToothDeviation(pitch=3.0)}),
 
 
 @pytest.fixture(scope="module")
-def kept(baseline_ring):
-    case = replace(baseline_ring.case, torque=200.0)
-    solver = RingSolver(baseline_ring, SolverModes(keep_phases=True))
-    solver.reach(max(d.reach_um(t) for d in SETS for t in range(case.params.z1)))
-    positions_of(solver, False)(case, (0.0,), SERIAL)
-    return solver, case
+def kept(kept_at_zero):
+    return kept_at_zero(SETS)
 
 
 def _jobs(case, pitches: int):
