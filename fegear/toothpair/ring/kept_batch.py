@@ -49,7 +49,9 @@ class KeptBatch:
         after. The stresses of the sets of one phase are read together, on the contact kept
         for it and the strains kept with it, whatever pitch each was turned to, and each
         set's then turned to its own pitch (:func:`~.turning.turned_stresses`: the ring's
-        sectors renumbered); as the solver's modes say (:class:`~.solver.SolverModes`: none
+        sectors renumbered): every set held was solved on the contact kept now (a caller
+        finishes the held sets before it places one that widens the kept grids, as a class's
+        chains do); as the solver's modes say (:class:`~.solver.SolverModes`: none
         for ``contact_only``, the roots alone for ``roots_only``)."""
         solver, pending = self.solver, self.pending
         self.pending = []
