@@ -2,8 +2,9 @@
 standard quality (the baseline, a cycle, a revolution with a pitch deviation, a class of 50
 pairs, the sensitivities and a 4-level spectrum over a cycle) gave every number of their
 summary.json and of their CSV and JSON files within 1e-9 of what commit 9417a6e (before the
-refactor) gave, and wrote the same files; they still do, within the tolerances below. New keys are allowed; a key or row that went missing
-fails. The reference is tests/data/before_house/<run>.json, made by the old code:
+refactor) gave, and wrote the same files; they still do, within the tolerances below. New
+keys are allowed; a key or row that went missing fails. The reference is
+tests/data/before_house/<run>.json, made by the old code:
 
     git worktree add /tmp/old 9417a6e
     cd /tmp && python /path/to/tests/test_same_results.py --regenerate /tmp/old [RUN ...]
