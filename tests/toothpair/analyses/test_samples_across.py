@@ -136,6 +136,16 @@ def test_the_samples_panels_keep_apart_with_hundreds_of_pairs_a_bar(graded):
     assert panels_overlapping(figure) == []
 
 
+def test_the_samples_legend_counts_one_pair_as_one(graded):
+    job, solved = graded
+    s = solved.summary["samples"]
+    one = {**s, "samples": 1, "rows": [next(r for r in s["rows"] if r["status"] == "solved")]}
+    figure = samples_figure(one, job.allowables, "a title")
+    assert "1 pair solved" in [t.get_text() for t in figure.axes[0].get_legend().get_texts()]
+    assert "\n1 pair of ISO 1328-1 class" in figure.get_suptitle()
+    assert "\n1 pair of ISO 1328-1:2013 class" in SAMPLES.printed(one, solved.summary)
+
+
 # slow (10 s: each pair's moved clearances over a whole turn)
 @pytest.mark.slow
 def test_a_deviated_pairs_room_is_its_backlash_over_the_turn_and_closes_with_its_face():

@@ -32,7 +32,7 @@ def samples_figure(samples: dict, allowables, title: str):
         v = samples["safety"][key]
         if len(s):
             ax.hist(s, bins=min(40, max(8, len(s) // 8)), color="tab:blue", alpha=0.6,
-                    label=f"{len(s)} pairs solved")
+                    label=f"{len(s)} pair{'' if len(s) == 1 else 's'} solved")
             ax.set_ylim(0, 1.45 * ax.get_ylim()[1])   # room for the legend above the bars
         ax.axvline(1.0, color="tab:red", lw=1.5, label="S = 1 (the allowable)")
         if v["nominal"] is not None:
@@ -54,7 +54,8 @@ def samples_figure(samples: dict, allowables, title: str):
         title += (f"\nacross the face at its worst section, misalignment "
                   f"{across['misalignment_um']:g}" + (f" ± {band:g}" if band else "") + " µm, "
                   "each tooth's helix drawn")
-    fig.suptitle(f"{title}\n{samples['samples']} pairs of ISO 1328-1 class {g}: "
+    n = samples["samples"]
+    fig.suptitle(f"{title}\n{n} pair{'' if n == 1 else 's'} of ISO 1328-1 class {g}: "
                  f"{samples['solved']} solved, {samples['jammed']} jammed "
                  f"({100 * samples['jammed_share']:.3g} %), {samples['failed']} failed; "
                  f"{samples['verdict'].split(':', 1)[0]} at P{100 * q:g}", fontsize=10)

@@ -213,7 +213,8 @@ def samples_table(s: dict) -> str:
                                            if v["at_quantile_error"] is not None else ""))
         lines.append(f"| {f.label} | {_num(v['nominal'])} | {at} | {_num(v['worst'])} |")
     g = s["grade"]
-    lines += ["", f"{s['samples']} pairs of ISO 1328-1:2013 class {g['grade']} (seed "
+    lines += ["", f"{s['samples']} pair{'' if s['samples'] == 1 else 's'} of ISO 1328-1:2013 "
+              f"class {g['grade']} (seed "
               f"{s['seed']}): {s['solved']} solved, {s['jammed']} jammed "
               f"({100 * s['jammed_share']:.3g} ± {100 * s['jammed_share_error']:.2g} %), "
               f"{s['failed']} failed" + (f" ({'; '.join(s['failures'])})" if s["failures"]
