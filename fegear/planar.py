@@ -13,5 +13,11 @@ def wrap(x: np.ndarray | float) -> np.ndarray | float:
 
 def rotate(v: np.ndarray, ang) -> np.ndarray:
     """Rotate (n, 2) points counter-clockwise by ``ang`` (scalar or per point)."""
-    c, s = np.cos(ang), np.sin(ang)
+    return rotate_by(v, np.cos(ang), np.sin(ang))
+
+
+def rotate_by(v: np.ndarray, c, s) -> np.ndarray:
+    """Rotate (n, 2) points counter-clockwise by the angle whose cosine is ``c`` and sine
+    ``s`` (scalars or per point): :func:`rotate` with the trigonometry done once, for points
+    turned by the same angles again and again."""
     return np.stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]], axis=-1)

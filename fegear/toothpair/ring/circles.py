@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...geometry import gear2_tooth
-from ...planar import rotate
+from ...planar import rotate, rotate_by
 from .influence import RingContact
 from .model import RingModel
 
@@ -105,9 +105,9 @@ def circle_gaps(circles: FootCircles, moved: Moved, theta: float,
     lever = rotate(moved.x[sel], theta) + moved.offset
     point = lever + moved.axis
     if moved.turn2 is not None:   # gear 2's tooth turned: the point turned back about its axis
-        c, s = moved.turn2[0][sel], moved.turn2[1][sel]
-        point = _back(point, c, s)
-        lever = _back(lever, c, s)
+        c, s = moved.turn2[0][sel], -moved.turn2[1][sel]
+        point = rotate_by(point, c, s)
+        lever = rotate_by(lever, c, s)
     u = point - circles.foot[sel]
     normal, tangent, kappa = circles.normal[sel], circles.tangent[sel], circles.kappa[sel]
     d = np.einsum("ij,ij->i", u, normal)
@@ -123,8 +123,3 @@ def circle_gaps(circles: FootCircles, moved: Moved, theta: float,
     grad = (bend[:, None] * normal - (kappa * s)[:, None] * tangent) / q[:, None]
     return gap, grad[:, 1] * lever[:, 0] - grad[:, 0] * lever[:, 1]
 
-
-def _back(v: np.ndarray, c: np.ndarray, s: np.ndarray) -> np.ndarray:
-    """The points ``v`` (n, 2) turned back by the angles whose cosines and sines are ``c`` and
-    ``s``."""
-    return np.column_stack([c * v[:, 0] + s * v[:, 1], c * v[:, 1] - s * v[:, 0]])
