@@ -55,24 +55,24 @@ class KeptBatch:
         for ``contact_only``, the roots alone for ``roots_only``)."""
         solver, pending = self.solver, self.pending
         self.pending = []
-        groups: dict[int, list[int]] = {}
+        groups: dict[int, list[tuple[int, int]]] = {}   # phase → (set, its pitch)
         for i, (case, _, _) in enumerate(pending):
-            groups.setdefault(pitch_phase(case.beta, case.params.z2)[0], []).append(i)
+            phase, pitch = pitch_phase(case.beta, case.params.z2)
+            groups.setdefault(phase, []).append((i, pitch))
         out: list[PairSolution | None] = [None] * len(pending)
         modes = solver.modes
         for members in groups.values():
-            case = pending[members[0]][0]
+            case = pending[members[0][0]][0]
             kept = solver.phases.kept(case.beta, case.params.z2)
             pressures = np.column_stack([pending[i][2].solved.solution.pressure
-                                         for i in members])
+                                         for i, _ in members])
             strains = None if modes.roots_only else solver.phases.strains(solver.model,
                                                                           case.beta)
             read = [None] * len(members) if modes.contact_only else brief_stresses_of(
                 solver.model, kept.contact, pressures, strains)
-            for i, stresses in zip(members, read, strict=True):
+            for (i, pitch), stresses in zip(members, read, strict=True):
                 case, state, attempt = pending[i]
-                pitches = pitch_phase(case.beta, case.params.z2)[1] - kept.pitch
-                if stresses is not None and pitches:
-                    stresses = turned_stresses(solver.model, stresses, pitches)
+                if stresses is not None and pitch != kept.pitch:
+                    stresses = turned_stresses(solver.model, stresses, pitch - kept.pitch)
                 out[i] = solver.record(case, state, attempt, brief=True, read=stresses)[0]
         return out
