@@ -124,18 +124,19 @@ def record(run: str, out: Path) -> dict:
                         "outputs": outputs}, out)}
 
 
-def differences(old, new, where: str, scale: float = 0.0, rel: float = RELATIVE) -> list[str]:
+def differences(old, new, where: str, absolute: float = ABSOLUTE,
+                rel: float = RELATIVE) -> list[str]:
     """Every place where ``new`` departs from ``old`` (numbers beyond ``rel`` of the larger
-    of them and ``scale``, the largest of their column, or ABSOLUTE near zero; anything else
-    exactly), as ``where.key: old ..., new ...``. Keys only in ``new`` are allowed; the
-    iteration counts are not compared, the residues within RESIDUE (module docstring)."""
+    of them, and beyond ``absolute``: ABSOLUTE, ``rel`` of their column's largest, or a
+    residue's RESIDUE; anything else exactly), as ``where.key: old ..., new ...``. Keys only
+    in ``new`` are allowed; the iteration counts are not compared (module docstring)."""
     if isinstance(old, dict) and old.keys() == {"every", "of", "rows"} and isinstance(new, dict):
         if new.get("of") != old["of"]:
             return [f"{where}: {old['of']} rows before, {new.get('of')} now"]
         return _entries(old["rows"], new["rows"], where, old["every"], rel)
     if isinstance(old, dict) and isinstance(new, dict):
         return [d for k, v in old.items() if k not in ITERATIONS for d in (
-            differences(v, new[k], f"{where}.{k}", RESIDUE / rel if k in RESIDUES else scale,
+            differences(v, new[k], f"{where}.{k}", RESIDUE if k in RESIDUES else absolute,
                         ESTIMATE_RELATIVE if k.startswith(ESTIMATE) else rel)
             if k in new else [f"{where}.{k}: missing now (before: {_short(v)})"])]
     if isinstance(old, list) and isinstance(new, list):
@@ -143,7 +144,7 @@ def differences(old, new, where: str, scale: float = 0.0, rel: float = RELATIVE)
             return [f"{where}: {len(old)} entries before, {len(new)} now"]
         return _entries(old, new, where, 1, rel)
     if _number(old) and _number(new):
-        if (math.isclose(old, new, rel_tol=rel, abs_tol=max(ABSOLUTE, rel * scale))
+        if (math.isclose(old, new, rel_tol=rel, abs_tol=absolute)
                 or math.isnan(old) and math.isnan(new)):
             return []
         change = abs(new - old) / max(abs(old), abs(new))
@@ -157,9 +158,10 @@ def _entries(old: list, new: list, where: str, every: int = 1,
              rel: float = RELATIVE) -> list[str]:
     """:func:`differences` of two lists entry by entry, each named by its index in the whole
     list (of which these are every ``every``-th), numbers against the largest of the list."""
-    scale = max((abs(v) for v in old if _number(v) and math.isfinite(v)), default=0.0)
+    largest = max((abs(v) for v in old if _number(v) and math.isfinite(v)), default=0.0)
     return [d for i, (o, n) in enumerate(zip(old, new))
-            for d in differences(o, n, f"{where}[{i * every}]", scale, rel)]
+            for d in differences(o, n, f"{where}[{i * every}]", max(ABSOLUTE, rel * largest),
+                                 rel)]
 
 
 def _number(value) -> bool:
