@@ -18,7 +18,7 @@ import numpy as np
 
 from ...planar import rotate
 from .circles import TOLERANCE, FootCircles, circle_gaps, moved
-from .contact_system import ContactSystem, RingContactError, gaps_at, solve_active
+from .contact_system import ContactSystem, RingContactError, gaps_at, loaded_product, solve_active
 from .influence import RingContact, approach_open
 from .master import Gear2Master
 from .model import RingModel
@@ -282,8 +282,7 @@ def _closed(model: RingModel, contact: RingContact, pressure: np.ndarray, g0: np
     full = np.zeros(contact.npoints)
     full[on] = pressure
     gap = g0.copy()
-    idx = np.flatnonzero(pressure)   # the loaded columns alone
-    gap[on] += contact.A[:, idx] @ pressure[idx]
+    gap[on] += loaded_product(contact.A, pressure)
     clamped = None
     if not contact.complete:
         rest = np.flatnonzero(~contact.formed)

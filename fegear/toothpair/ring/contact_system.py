@@ -74,6 +74,22 @@ def gaps_at(system: ContactSystem, pressure: np.ndarray, step: float,
     return system.g0 + system.a * step + at @ store.rows[:store.count]
 
 
+def loaded_product(A: np.ndarray, pressure: np.ndarray) -> np.ndarray:
+    """A p over ``A``'s columns where ``pressure`` is not zero: one product a run of
+    consecutive loaded columns, each a view of A kept by columns (a tooth's loaded points are
+    one run), not a gathered copy of them all (half the time)."""
+    out = np.zeros(A.shape[0])
+    for lo, hi in true_runs(pressure != 0):
+        out += A[:, lo:hi] @ pressure[lo:hi]
+    return out
+
+
+def true_runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """The runs [lo, hi) of consecutive True in ``mask``."""
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], mask.astype(np.int8), [0]])))
+    return list(zip(edges[0::2].tolist(), edges[1::2].tolist()))
+
+
 def _block(system: ContactSystem, active: np.ndarray) -> tuple[np.ndarray, tuple, np.ndarray]:
     """The ``active`` points (indices), their block of A factorised (LU) and their rows of
     the gathered columns (:class:`_Columns`), kept in ``system.blocks`` for the solve's later
@@ -85,8 +101,10 @@ def _block(system: ContactSystem, active: np.ndarray) -> tuple[np.ndarray, tuple
         slots = store.gather(system, idx)
         with warnings.catch_warnings():   # a singular block: a non-finite solution, refused
             warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
-            factor = scipy.linalg.lu_factor(store.rows[np.ix_(slots, idx)].T, overwrite_a=True,
-                                            check_finite=False)   # a gathered copy
+            # a gathered copy: the active columns of the rows gathered so far, then the active
+            # rows (two plain gathers, not one of np.ix_: a third of the time)
+            block = np.take(store.rows[:store.count], idx, axis=1)[slots].T
+            factor = scipy.linalg.lu_factor(block, overwrite_a=True, check_finite=False)
         if len(system.blocks) >= BLOCKS + 1:
             system.blocks.pop(next(k for k in system.blocks if k != "columns"))
         system.blocks[key] = (idx, factor, slots)
@@ -123,7 +141,9 @@ class _Columns:
                 grown[:self.count] = self.rows[:self.count]
                 self.rows = grown
             rows = np.arange(self.slot.size) if system.rows is None else system.rows
-            self.rows[self.count:end] = system.A.T[np.ix_(rows[new], rows)]
+            # the new points' rows of A's transpose whole, then the system's columns of them
+            # (two plain gathers, not one of np.ix_: less than half the time)
+            np.take(system.A.T[rows[new]], rows, axis=1, out=self.rows[self.count:end])
             self.slot[new] = np.arange(self.count, end)
             self.count = end
         return self.slot[idx]

@@ -25,6 +25,7 @@ from ...contact import approach_matrix
 from ...fe import Cells
 from ...geometry import Placed
 from ...planar import rotate
+from .contact_system import true_runs
 from .grid import ToothGrid
 from .master import Gear2Master
 from .model import RingModel
@@ -211,7 +212,7 @@ def _add_near_field(model: RingModel, contact: RingContact, place: np.ndarray,
         if not len(rows):
             continue
         first = place[blk.start + rows[0]]
-        for lo, hi in _true_runs(formed[blk]):
+        for lo, hi in true_runs(formed[blk]):
             # the hats lo … hi − 1 on the grid's points from lo − 1 to hi: the same integrals
             # as over the whole grid (each hat's two intervals), for the formed ones alone
             a, b = max(lo - 1, 0), min(hi + 1, len(g))
@@ -219,12 +220,6 @@ def _add_near_field(model: RingModel, contact: RingContact, place: np.ndarray,
             for m in contact.matching:
                 A[first:first + len(rows), c:c + hi - lo] += approach_matrix(
                     g.s[rows], m.depth[blk][rows], g.s[a:b], case.E, case.nu)[:, lo - a:hi - a]
-
-
-def _true_runs(mask: np.ndarray) -> list[tuple[int, int]]:
-    """The runs [lo, hi) of consecutive True in ``mask``."""
-    edges = np.flatnonzero(np.diff(np.concatenate([[0], mask.astype(np.int8), [0]])))
-    return list(zip(edges[0::2].tolist(), edges[1::2].tolist()))
 
 
 def _hat_loads(model: RingModel, grids, offsets, thickness: float, formed: np.ndarray):
