@@ -386,6 +386,21 @@ class Closing:
         return Closing(self.direction, teeth, self.beta[keep], self.um[keep], self.x[keep],
                        self.tooth[keep], feet[keep])
 
+    def states(self) -> np.ndarray:
+        """Each point's state (index into ``teeth``)."""
+        return np.repeat(np.arange(len(self.teeth)), [len(c) for c in self.teeth])
+
+    def of_states(self, index: np.ndarray) -> Closing:
+        """The closing points of the states ``index`` (increasing) alone, their feet copied."""
+        pick = np.flatnonzero(np.isin(self.states(), index))
+        return Closing(self.direction, [self.teeth[i] for i in index], self.beta[pick],
+                       self.um[pick], self.x[pick], self.tooth[pick], self.feet[pick])
+
+    def turns(self, params) -> np.ndarray:
+        """Gear 1's turn (rad, kinematic angle included) at which each point closes the exact
+        pair: its state's β turned on by its clearance."""
+        return params.ratio * self.beta + self.direction * params.turn_of(self.um)
+
 
 def closing_points(params, states, direction: int = +1) -> Closing:
     """``states``' closing points in ``direction`` (:class:`Closing`): one set of arrays for
@@ -408,14 +423,18 @@ def least_clearances(deviations: Deviations, params, closing: Closing
     :func:`moved_clearances`' numbers without new states (a whole turn's states a pair of
     many: new states a tooth cost more than the gaps). The points' feet are kept for the
     next pair's searches."""
-    um = _moved_um(deviations, params, closing)
-    ends = np.cumsum([0] + [len(c) for c in closing.teeth])
+    return least_of_states(_moved_um(deviations, params, closing), closing)
+
+
+def least_of_states(um: np.ndarray, closing: Closing) -> tuple[np.ndarray, np.ndarray]:
+    """Each of the ``closing`` states' least of its points' clearances ``um`` (µm; +inf
+    where it has no point) and the tooth of its first point that holds it (−1 where none)."""
+    state = closing.states()
     least = np.full(len(closing.teeth), np.inf)
+    np.minimum.at(least, state, um)
     teeth = np.full(len(closing.teeth), -1)
-    for i, (a, b) in enumerate(zip(ends[:-1], ends[1:])):
-        if b > a:
-            j = int(np.argmin(um[a:b]))
-            least[i], teeth[i] = um[a + j], closing.tooth[a + j]
+    first = np.flatnonzero(um == least[state])[::-1]   # the first of a state's written last
+    teeth[state[first]] = closing.tooth[first]
     return least, teeth
 
 
@@ -444,6 +463,6 @@ def _gaps(deviations: Deviations, params, closing: Closing, feet: np.ndarray
     lever (mm/rad) a Newton step on the clearance divides them by (:meth:`Placed.levers`);
     the foot searches start at ``feet``, overwritten with the feet found."""
     at = Placed(deviations, params, closing.beta)
-    turn = params.ratio * closing.beta + closing.direction * params.turn_of(closing.um)
-    g, rate = at.gap(closing.x, closing.tooth, turn, feet, flanks=closing.direction > 0)
+    g, rate = at.gap(closing.x, closing.tooth, closing.turns(params), feet,
+                     flanks=closing.direction > 0)
     return g, at.levers(rate, closing.direction)

@@ -1,6 +1,13 @@
 """The exact pair's clearance states at a class's positions and over a whole turn
 (:class:`States`), and where a sampled pair takes up the backlash (:func:`jammed`): what every
-sample of a tolerance class is solved against, found once (:mod:`.solve`)."""
+sample of a tolerance class is solved against, found once (:mod:`.solve`).
+
+A pair's check over a turn measures its deviated clearances first on the closing points'
+foot circles (:class:`ClosingCircles`: the exact pair's feet on gear 2's curve, found once,
+and the curve there replaced by its osculating circle, as a kept contact's points are,
+:mod:`~fegear.toothpair.ring.circles`), then exactly at the states whose least came within
+:func:`screen_um` of closing: the states that close are the same, and every number the check
+gives is the exact one."""
 
 from __future__ import annotations
 
@@ -8,10 +15,66 @@ import math
 
 import numpy as np
 
-from ....geometry import closing_points, least_clearances
+from ....geometry import (
+    NO_DEVIATIONS,
+    Closing,
+    Placed,
+    closing_points,
+    gear2_tooth,
+    least_clearances,
+    least_of_states,
+)
+from ....planar import rotate
 from ...case import SolveCase, revolution_positions
 from ...positions import TURN_CHECK, Clearances
+from ...ring.circles import FootCircles, Moved, circle_gaps
 from ...teeth import closure
+
+#: how near closing (µm of arc at r0) a state's least clearance on the foot circles has to come
+#: to be measured exactly (:func:`screen_um`): the circles match gear 2's curve to the second
+#: order in a foot's slide, so their clearances are off by the cube of how far a pair's
+#: deviations move its teeth, at most 1.1e-6 µm a µm³ over the baseline's classes 4-10 (0.03
+#: µm for class 6, 5 µm for class 10): a margin of 1 µm and twenty times that
+SCREEN_UM, SCREEN_CUBIC = 1.0, 2e-5
+
+
+def screen_um(deviations) -> float:
+    """How near closing (µm) a state's least clearance on the foot circles has to come to be
+    measured exactly with ``deviations`` (:data:`SCREEN_UM`)."""
+    return SCREEN_UM + SCREEN_CUBIC * deviations.widest_um() ** 3
+
+
+class ClosingCircles:
+    """The ``closing`` points' foot circles on the exact pair (:mod:`~fegear.toothpair.ring.
+    circles`; gear 2's own frame, where each point closes the exact pair), found once with
+    the points' feet, which the closing points keep for the exact searches to start from,
+    and each point's gear-2 tooth."""
+
+    def __init__(self, params, closing: Closing) -> None:
+        self.params, self.closing = params, closing
+        self.turns = closing.turns(params)
+        at = Placed(NO_DEVIATIONS, params, closing.beta)
+        at.gap(closing.x, closing.tooth, self.turns, closing.feet, flanks=closing.direction > 0)
+        foot, tangent, normal, kappa = at.curve2.frame(closing.feet)
+        self.circles = FootCircles(foot, normal, tangent, kappa)
+        self.teeth2 = gear2_tooth(closing.feet, params.z2)
+
+    def clearances(self, deviations) -> np.ndarray:
+        """Each point's clearance (µm of arc at r0) moved by ``deviations``, measured to its
+        foot circle as :func:`~fegear.geometry.point_clearances` measures it to gear 2's
+        curve: the points moved as :meth:`~fegear.geometry.Placed.gap` moves them, gear 2's
+        tooth turned with its β."""
+        p, c, dev = self.params, self.closing, deviations
+        placed = Placed(dev, p, c.beta)
+        loaded = c.direction > 0
+        turn2 = c.beta + (dev.turns(2, self.teeth2, p.r0) if dev.gear2 else 0.0)
+        flank1 = (dev.flank_offset(1, c.tooth, placed.roll(1, c.x)) if loaded
+                  else np.zeros(len(c.um)))
+        moved = Moved(rotate(c.x, self.turns + dev.turns(1, c.tooth, p.r1)),
+                      (np.cos(turn2), np.sin(turn2)), placed.axis1, placed.teeth_offset,
+                      flank1, (placed, self.teeth2) if dev.gear2 and loaded else None)
+        gap, rate = circle_gaps(self.circles, moved, 0.0)
+        return c.um + p.arc_um(np.abs(gap) / placed.levers(rate, c.direction)) * np.sign(gap)
 
 
 class States:
@@ -20,9 +83,9 @@ class States:
     ``pitches`` > 1, ``at(i, n)``: position i's state n gear-2 pitches on) and, for the check
     that a sample leaves the pair its backlash, over a whole turn of gear 1 and at the
     positions (``turn``: :data:`~.positions.TURN_CHECK` angles a pitch and the positions, both
-    sides of each state found in one search) and the loaded sides' closing points that
-    deviations reaching ``reach_um`` could close (``closing``, whose feet on gear 2 the first
-    pair checked finds and the others' searches start from)."""
+    sides of each state found in one search), the loaded sides' closing points that
+    deviations reaching ``reach_um`` could close (``closing``) with their foot circles
+    (``circles``), and the coast sides' (``coast``)."""
 
     def __init__(self, case: SolveCase, profile, betas: tuple[float, ...],
                  reach_um: float, pitches: int = 1) -> None:
@@ -38,6 +101,8 @@ class States:
         turn = (*revolution_positions(betas[0], TURN_CHECK, p.z1, p.z2), *betas)
         self.turn = list(zip(turn, find(turn)))
         self.closing = closing_points(p, [s for _, s in self.turn]).reachable(p, reach_um)
+        self.circles = ClosingCircles(p, self.closing)
+        self.coast = closing_points(p, [s for _, s in self.turn], -1)
         # place-major: one search a place, the other pitches its state renumbered
         self.revolution = [s for _, s in self.loaded] if pitches == 1 else find(
             [self.beta(i, n) for i in range(len(betas)) for n in range(pitches)],
@@ -51,22 +116,29 @@ class States:
         """The exact pair's clearance state at position i, ``n`` gear-2 pitches on."""
         return self.revolution[i * self.pitches + n]
 
+    def near(self, deviations) -> np.ndarray:
+        """The states over the turn (indices into ``turn``) whose least loaded clearance that
+        ``deviations`` leave on the foot circles is within :func:`screen_um` of closing."""
+        least = least_of_states(self.circles.clearances(deviations), self.closing)[0]
+        return np.flatnonzero(least < screen_um(deviations))
+
 
 def jammed(states: States, deviations) -> str | None:
     """Where ``deviations`` take up the pair's backlash over a whole turn (:func:`~.teeth.
     closure`, in words), else None: the check a deviated solve makes
     (:class:`~.positions.Clearances`), for many pairs against one set of closing points: the
-    smallest clearances alone, the loaded sides' over the turn in one batch of gaps, the coast
-    sides' where a loaded side overlaps in another."""
+    smallest clearances alone, the loaded sides' over the turn measured exactly where the foot
+    circles put them near closing (:meth:`States.near`), the coast sides' where a loaded side
+    overlaps."""
     p = states.case.params
-    least, teeth = least_clearances(deviations, p, states.closing)
+    near = states.near(deviations)
+    least, teeth = least_clearances(deviations, p, states.closing.of_states(near))
     behind = np.flatnonzero(least < 0)
     if not len(behind):
         return None
-    coast = closing_points(p, [states.turn[i][1] for i in behind], -1)
-    back = least_clearances(deviations, p, coast)[0]
+    back = least_clearances(deviations, p, states.coast.of_states(near[behind]))[0]
     for i, b in zip(behind, back):
-        where = closure(states.turn[i][0], int(teeth[i]), float(least[i]), float(b))
+        where = closure(states.turn[near[i]][0], int(teeth[i]), float(least[i]), float(b))
         if where is not None:
             return str(where)
     return None
