@@ -31,14 +31,14 @@ def states_and_pairs():
 
 
 def _circles_error(states, pairs) -> float:
-    """The largest error of a pair's foot circles' clearances against the exact ones, as a
-    share of its screen's margin."""
+    """The largest error of a pair's foot circles' clearances against the exact ones on
+    either side, as a share of its screen's margin."""
     worst = 0.0
     for dev in pairs:
-        circles = states.circles.clearances(dev)
-        exact = point_clearances(dev, PAIR, states.closing)
-        assert np.abs(exact - states.closing.um).max() > 5.0   # the pairs move them by µm
-        worst = max(worst, np.abs(circles - exact).max() / screen_um(dev))
+        for side in (states.circles, states.coast):   # the loaded flanks, the coast flanks
+            exact = point_clearances(dev, PAIR, side.closing)
+            assert np.abs(exact - side.closing.um).max() > 5.0   # the pairs move them by µm
+            worst = max(worst, np.abs(side.clearances(dev) - exact).max() / screen_um(dev))
     return worst
 
 
@@ -56,7 +56,7 @@ def _jammed_exactly(states, dev):
     """Where ``dev`` jams by every state's exact clearances (the check without its screen)."""
     least, teeth = least_clearances(dev, PAIR, states.closing)
     behind = np.flatnonzero(least < 0)
-    back = least_clearances(dev, PAIR, states.coast.of_states(behind))[0]
+    back = least_clearances(dev, PAIR, states.coast.closing.of_states(behind))[0]
     for i, b in zip(behind, back):
         where = closure(states.turn[i][0], int(teeth[i]), float(least[i]), float(b))
         if where is not None:

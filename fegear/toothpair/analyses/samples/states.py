@@ -28,7 +28,7 @@ from ....planar import rotate
 from ...case import SolveCase, revolution_positions
 from ...positions import TURN_CHECK, Clearances
 from ...ring.circles import FootCircles, Moved, circle_gaps
-from ...teeth import closure
+from ...teeth import INTERFERENCE_UM, closure
 
 #: how near closing (µm of arc at r0) a state's least clearance on the foot circles has to come
 #: to be measured exactly (:func:`screen_um`): the circles match gear 2's curve to the second
@@ -85,7 +85,7 @@ class States:
     positions (``turn``: :data:`~.positions.TURN_CHECK` angles a pitch and the positions, both
     sides of each state found in one search), the loaded sides' closing points that
     deviations reaching ``reach_um`` could close (``closing``) with their foot circles
-    (``circles``), and the coast sides' (``coast``)."""
+    (``circles``), and the coast sides' circles (``coast``, its points its ``closing``)."""
 
     def __init__(self, case: SolveCase, profile, betas: tuple[float, ...],
                  reach_um: float, pitches: int = 1) -> None:
@@ -102,7 +102,7 @@ class States:
         self.turn = list(zip(turn, find(turn)))
         self.closing = closing_points(p, [s for _, s in self.turn]).reachable(p, reach_um)
         self.circles = ClosingCircles(p, self.closing)
-        self.coast = closing_points(p, [s for _, s in self.turn], -1)
+        self.coast = ClosingCircles(p, closing_points(p, [s for _, s in self.turn], -1))
         # place-major: one search a place, the other pitches its state renumbered
         self.revolution = [s for _, s in self.loaded] if pitches == 1 else find(
             [self.beta(i, n) for i in range(len(betas)) for n in range(pitches)],
@@ -129,14 +129,17 @@ def jammed(states: States, deviations) -> str | None:
     (:class:`~.positions.Clearances`), for many pairs against one set of closing points: the
     smallest clearances alone, the loaded sides' over the turn measured exactly where the foot
     circles put them near closing (:meth:`States.near`), the coast sides' where a loaded side
-    overlaps."""
+    overlaps and the coast's circles leave the two sides near taking up the backlash."""
     p = states.case.params
     near = states.near(deviations)
     least, teeth = least_clearances(deviations, p, states.closing.of_states(near))
     behind = np.flatnonzero(least < 0)
     if not len(behind):
         return None
-    back = least_clearances(deviations, p, states.coast.of_states(near[behind]))[0]
+    coast = states.coast.closing
+    back = least_of_states(states.coast.clearances(deviations), coast)[0][near[behind]]
+    behind = behind[least[behind] + back < screen_um(deviations) - INTERFERENCE_UM]
+    back = least_clearances(deviations, p, coast.of_states(near[behind]))[0]
     for i, b in zip(behind, back):
         where = closure(states.turn[near[i]][0], int(teeth[i]), float(least[i]), float(b))
         if where is not None:
