@@ -3,7 +3,8 @@
 Every sample is the same pair with other deviations (:mod:`fegear.tolerance.sampling`), so it
 is the same model with other rigid gaps: at each position the exact pair is solved first, then
 its contact kept with grids on every tooth that any sample pairs there, each reaching as far as
-the deviations of any pair of the class can move a tooth (:class:`~.ring.phases.Phases`), and
+the deviations of any pair that turns can move a tooth (:class:`~.ring.phases.Phases`; a pair
+that jams is not solved), and
 each sample is a contact solve on that contact, its stresses read with the other samples'
 held there (:class:`~.ring.kept_batch.KeptBatch`: the same numbers as alone,
 :meth:`~.ring.solver.RingSolver.on_kept`); one whose contact the kept grids do not hold is
@@ -118,23 +119,21 @@ def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = 
                   read: Callable[[PairSolution], object] | None = None) -> Sampled:
     """The exact pair and the class's samples (``samples``) solved with ``solver``, a ring
     solver that keeps a contact a position (:attr:`~.ring.solver.SolverModes.keep_phases`),
-    its grids set here to reach as far as the drawn deviations move a tooth (module
-    docstring), through the driver's chains (:func:`~.positions.chain`) on ``executor``;
-    ``read``: what to keep of each sample's solution at each position beside its headlines (a
-    relief search's tip-round loads, say). Across the face (``samples.face``), the grids
-    reach as far as the samples' faces move a flank besides."""
+    its grids set here to reach as far as the deviations of the drawn pairs that turn move a
+    tooth (module docstring), through the driver's chains (:func:`~.positions.chain`) on
+    ``executor``; ``read``: what to keep of each sample's solution at each position beside
+    its headlines (a relief search's tip-round loads, say). Across the face
+    (``samples.face``), the grids reach as far as the samples' faces move a flank besides."""
     keep_freed_memory()
     case, count = samples.case, samples.draw.count
     with blas_threads():
         profile = gear1_profile(case.params)
         pairs = [samples.draw.pair(k) for k in range(count)]   # drawn once, here
-        reach = max(d.widest_um() for d in pairs)              # … and how far they move a tooth
         across = None if samples.face is None else across_of(case, samples.face, samples.draw)
-        if across is not None:
-            reach += across.reach_um
-        states = States(case, profile, tuple(samples.betas), reach, samples.pitches)
-        solver.reach(reach)
+        states = States(case, profile, tuple(samples.betas), _reach_um(pairs, across),
+                        samples.pitches)
         jammed = _jams(states, pairs, across, executor)
+        solver.reach(_reach_um([d for d, j in zip(pairs, jammed) if j is None], across))
         solver.build(case, profile, lambda: states.loaded)
         if not solver.modes.contact_only:   # the root zones' maps, before the chains fork
             for side in solver.model.gears:
@@ -157,6 +156,13 @@ def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = 
     exact = tuple(head for _, head in sorted(found.get(EXACT, []), key=lambda g: g[0]))
     return Sampled(tuple(nominal[i] for i in range(len(samples.betas))), rows, readings,
                    exact, solved)
+
+
+def _reach_um(pairs: list, across: Across | None) -> float:
+    """How far (µm) the deviations of ``pairs`` move a tooth at most, their faces a flank
+    besides (``across``)."""
+    return (max((d.widest_um() for d in pairs), default=0.0)
+            + (across.reach_um if across is not None else 0.0))
 
 
 def _jams(states: States, pairs: list, across: Across | None, executor: Executor) -> list:
