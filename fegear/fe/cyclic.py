@@ -148,11 +148,7 @@ class CyclicBody:
         cuts = np.zeros((len(self.interface), len(sectors)) + tail)
         for j, s in enumerate(sectors):
             for t, r in rho.items():
-                factors = self.coupling_factors(t - s)
-                if factors is None:
-                    cuts[:, j] += self.coupling(t - s) @ r
-                else:   # a far sector: through W(Δ)'s thin factors
-                    cuts[:, j] += factors[0] @ (factors[1] @ r)
+                cuts[:, j] += self.coupling(t - s) @ r
         return cuts
 
     def coupling(self, delta: int) -> np.ndarray:
