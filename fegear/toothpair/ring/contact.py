@@ -30,6 +30,7 @@ MAX_ACTIVE_SET = 80     # active-set changes per linearisation
 MAX_TURNS = 30          # linearisations of the rigid gap
 MAX_PRIMAL = 4          # … and, by the primal method, this many per grid point
 ARM_STEP = 1e-7         # turn (rad) of the torque arm's difference quotient
+CONTRACTION = 0.01      # steps of the rotation shrinking by this at least are read as settling
 
 
 @dataclass(frozen=True)
@@ -191,6 +192,7 @@ class _Iterate:
     turns: int = 0
     blocks: dict = field(default_factory=dict)
     rigid: tuple | None = None
+    steps: list = field(default_factory=list)
 
 
 def _first(gaps: _Gaps, theta: float, how: Iterations, torque_nmm: float) -> _Iterate:
@@ -232,8 +234,7 @@ def _linearise(gaps: _Gaps, it: _Iterate, torque_nmm: float) -> None:
         it.iterations += found.iterations
         it.turns += 1
         it.theta += found.step
-        # settled to rounding: 1e-12 of the rotation, or a 1e-13 mm turn at the pitch circle
-        if abs(found.step) <= max(1e-12 * abs(it.theta), 1e-13 / gaps.model.case.params.r0):
+        if _settled(it, found.step, gaps.model.case.params.r0, found.iterations == 1):
             if _exact(gaps, it, found.step):
                 return
             continue
@@ -241,6 +242,25 @@ def _linearise(gaps: _Gaps, it: _Iterate, torque_nmm: float) -> None:
         if it.turns == MAX_TURNS:
             raise RingContactError(f"the rotation did not settle in {MAX_TURNS} "
                                    "linearisations")
+
+
+def _settled(it: _Iterate, step: float, r0: float, kept: bool) -> bool:
+    """Whether the rotation has settled to rounding, 1e-12 of it or a 1e-13 mm turn at the
+    pitch circle (``r0``, mm): its ``step`` (rad) within that, or, where the steps contract
+    (each at most :data:`CONTRACTION` of the one before: the linearisations gain about four
+    digits each), the steps still to come, the last one times its ratio to the one before
+    over one less it. A ratio is read as the rotation's alone where the linearisation kept
+    its active set (``kept``), else the two last ratios, the larger (an active set's change
+    makes a step of its own)."""
+    tol = max(1e-12 * abs(it.theta), 1e-13 / r0)
+    it.steps.append(abs(step))
+    if it.steps[-1] <= tol:
+        return True
+    steps = it.steps[-2:] if kept else it.steps[-3:]
+    if len(steps) < (2 if kept else 3) or not all(steps[:-1]):
+        return False
+    ratio = max(b / a for a, b in zip(steps, steps[1:]))
+    return ratio <= CONTRACTION and it.steps[-1] * ratio / (1.0 - ratio) <= tol
 
 
 def _arm_rate(gaps: _Gaps, it: _Iterate) -> float:
@@ -364,31 +384,3 @@ def primal_active_set(system: ContactSystem, torque_nmm: float, start: np.ndarra
         active &= pressure > 1e-14 * pressure.max()
         pressure[~active] = 0.0
     raise RingContactError(f"the active set did not settle in {k} iterations")
-
-
-def touch_rotation(model: RingModel, contact: RingContact, theta: float) -> float:
-    """The rotation θ (rad) at which gear 1's rigid, rounded teeth first touch: the smallest
-    closure over the grid points, repeated on the exact gaps. After the first step only the
-    points whose closure came within :data:`TOUCH_NEAR` of the smallest (and of the step) are
-    measured again: the others cannot touch first, and a kept contact has thousands."""
-    alpha = model.case.params.ratio * contact.beta
-    feet = contact.feet.copy()
-    idx = None
-    for _ in range(8):
-        g0, a = rigid_gap(model, contact, alpha + theta, feet, idx)
-        closing = a < 0
-        closure = np.full(len(g0), np.inf)
-        closure[closing] = g0[closing] / -a[closing]
-        step = float(closure.min())
-        theta += step
-        if abs(step) < 1e-14:
-            break
-        near = np.flatnonzero(closure <= step + TOUCH_NEAR * max(abs(step), 1e-6))
-        idx, feet = (near, feet[near]) if idx is None else (idx[near], feet[near])
-    return theta
-
-
-#: a point is measured again in :func:`touch_rotation` where its closure is within this many
-#: times the step (or a µrad) of the smallest: the closures move by the gaps' curvature over
-#: the step, a small fraction of it
-TOUCH_NEAR = 1.0

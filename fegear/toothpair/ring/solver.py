@@ -27,7 +27,7 @@ from ...timing import note, timed
 from ..case import ContactChecks, PairSolution, SolveCase
 from ..positions import Attempt, Trial
 from ..teeth import candidate_data
-from .contact import RingContactSolution, solve_ring_contact, touch_rotation
+from .contact import RingContactSolution, solve_ring_contact
 from .grid import ToothGrid
 from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel, keep_cached, ring_model
@@ -49,6 +49,7 @@ from .readout import brief_stresses
 from .results import RingDetail, equilibrium_residuals, solved_rigid_gap, tooth_results
 from .stresses import RingStresses, ring_stresses
 from .tangent import tangent_stiffness
+from .touch import touch_rotation
 
 #: the one-off stages a solve reports: the model built (profile, mesh, assembly and
 #: factorisation), read back from the model cache, or kept from an earlier solve

@@ -13,13 +13,13 @@ from ...geometry import Placed
 from ...planar import rotate
 from ..case import PairSolution, SolveCase
 from ..teeth import candidate_data
-from .contact import touch_rotation
 from .grid import ToothGrid
 from .influence import Matching, RingContact
 from .model import RingModel
 from .results import RingDetail, tooth_result
 from .side import Located
 from .stresses import RingStresses, RootZone
+from .touch import touch_rotation
 
 
 def turned(model: RingModel, contact: RingContact, pitches: int, beta: float,

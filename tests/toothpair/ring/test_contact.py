@@ -1,8 +1,8 @@
 """The contact solve (:mod:`fegear.toothpair.ring.contact`): its two methods and its Newton on
 the rotation on the designs the random-pair property test (tests/toothpair/test_properties.py)
 found unsettled, the slower method against the fast one on problems both settle, a contact
-without its probe columns, a rotation started near its solution and one iterated on the points
-near closing."""
+without its probe columns, a rotation started near its solution, the linearisations settled
+by their contraction, and one iterated on the points near closing."""
 
 from dataclasses import replace
 
@@ -16,6 +16,10 @@ from fegear.toothpair.pair import solve_positions
 from fegear.toothpair.ring import contact
 from fegear.toothpair.ring.influence import ColumnRule, assemble_contact
 
+#: how far two solves of one contact may differ in pressure, of the peak: the rotation settles
+#: to 1e-12 of itself, the pressures to about 1e-9 of the peak (a contact edge's point joins
+#: or not as the iterations go)
+SETTLED = 1e-8
 #: z 8/9, h1 0.36, f1 ≈ 0 with a relief: the contact sits by gear 2's sharp tip, whose normal
 #: turns 25 % of the torque arm in the first step; without the arm's rate in the torque row the
 #: rotation settled half a digit a linearisation and ran out of them
@@ -152,8 +156,7 @@ def test_a_contact_without_its_probe_columns_solves_as_the_complete_one(baseline
                                atol=1e-9 * b.pressure.max())
 
 
-def test_the_rotation_started_near_its_solution_settles_sooner_to_the_same_contact(
-        baseline_200):
+def test_the_rotation_started_near_its_solution_settles_to_the_same_contact(baseline_200):
     # a cycle's later position starts the rotation's linearisations at the expected rotation
     # (the position before's elastic part, a few per cent off), not at the first touch
     d = baseline_200.detail
@@ -162,9 +165,24 @@ def test_the_rotation_started_near_its_solution_settles_sooner_to_the_same_conta
     far = contact.solve_ring_contact(d.model, assembled, torque, touch, guess=turn)
     expected = touch + 1.03 * (far.rotation - touch)
     near = contact.solve_ring_contact(d.model, assembled, torque, expected, guess=turn)
-    assert near.turns < far.turns
+    assert near.turns <= far.turns
     assert near.rotation == pytest.approx(far.rotation, rel=1e-12)
-    assert np.abs(near.pressure - far.pressure).max() < 1e-9 * far.pressure.max()
+    assert np.abs(near.pressure - far.pressure).max() < SETTLED * far.pressure.max()
+
+
+def test_contracting_linearisations_settle_without_one_that_only_confirms(baseline_200,
+                                                                          monkeypatch):
+    # the rotation's steps 3.5e-4, 9.3e-8, 1.6e-13 rad: what the next would add (below 1e-18)
+    # is read off their ratios, where the step alone needs a fourth linearisation to tell
+    d = baseline_200.detail
+    turn, torque, touch = d.contact.turn, d.case.torque * 1e3, baseline_200.first_touch
+    assembled = assemble_contact(d.model, d.contact.grids, 0.0, turn)
+    read = contact.solve_ring_contact(d.model, assembled, torque, touch, guess=turn)
+    monkeypatch.setattr(contact, "CONTRACTION", 0.0)   # the step alone
+    stepped = contact.solve_ring_contact(d.model, assembled, torque, touch, guess=turn)
+    assert read.turns == stepped.turns - 1
+    assert read.rotation == pytest.approx(stepped.rotation, rel=1e-12)
+    assert np.abs(read.pressure - stepped.pressure).max() < SETTLED * stepped.pressure.max()
 
 
 @pytest.mark.parametrize("within_um", [0.5, 3.0, 20.0])
@@ -179,20 +197,6 @@ def test_iterating_on_the_points_near_closing_solves_the_same_contact(baseline_2
     near = contact.solve_with(d.model, assembled, torque, touch,
                               contact.Iterations(guess=turn, within=1e-3 * within_um))
     assert near.rotation == pytest.approx(every.rotation, rel=1e-12)
-    assert np.abs(near.pressure - every.pressure).max() < 1e-9 * every.pressure.max()
+    assert np.abs(near.pressure - every.pressure).max() < SETTLED * every.pressure.max()
     np.testing.assert_allclose(near.gap, every.gap, rtol=0, atol=1e-12)
     assert near.balance_error < 1e-9
-
-
-@pytest.mark.parametrize("start_um", [0.0, 3.0, -40.0])
-def test_the_first_touch_is_where_the_closest_grid_point_touches(baseline_200, start_um):
-    # measured again on the points near touching alone, from a start off by start_um of arc:
-    # every point's rigid gap is then open or closed to rounding, and one point touches
-    d = baseline_200.detail
-    p = d.case.params
-    touch = contact.touch_rotation(d.model, d.contact,
-                                   baseline_200.first_touch + p.turn_of(start_um))
-    g0, _ = contact.rigid_gap(d.model, d.contact, p.ratio * d.contact.beta + touch,
-                              d.contact.feet.copy())
-    assert g0.min() == pytest.approx(0.0, abs=1e-12)
-    assert touch == pytest.approx(baseline_200.first_touch, abs=1e-13)
