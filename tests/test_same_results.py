@@ -58,8 +58,11 @@ ESTIMATE, ESTIMATE_RELATIVE = "error_estimate", 1e-6
 RESIDUES, RESIDUE = {"max_penetration_um"}, 1e-9
 #: the commit that made a run's reference where not 9417a6e: cc6ab24 kept a revolution's
 #: phase's contact at once about the position before's rotation, which moved its worst
-#: stresses by up to 3e-4 (the kept grids stand a little differently)
-MADE_BY = {"revolution": "cc6ab24"}
+#: stresses by up to 3e-4 (the kept grids stand a little differently); 0f8b020 settled the
+#: rotation a linearisation sooner, where a contact edge's point of 1e-9 of the peak joins or
+#: not, and the sensitivities (the derivatives on the settled active set) moved with it by up
+#: to 1.2e-6, two tied rates (the runouts') swapping their rows
+MADE_BY = {"revolution": "cc6ab24", "sensitivities": "0f8b020"}
 #: a list longer than this is kept every k-th entry, about LONG / 2 of them (the revolution's
 #: 1056 positions would take 2 MB)
 LONG = 60
