@@ -77,7 +77,7 @@ def gaps_at(system: ContactSystem, pressure: np.ndarray, step: float,
 def loaded_product(A: np.ndarray, pressure: np.ndarray) -> np.ndarray:
     """A p over ``A``'s columns where ``pressure`` is not zero: one product a run of
     consecutive loaded columns, each a view of A kept by columns (a tooth's loaded points are
-    one run), not a gathered copy of them all (half the time)."""
+    one run), not a gathered copy of them all."""
     out = np.zeros(A.shape[0])
     for lo, hi in true_runs(pressure != 0):
         out += A[:, lo:hi] @ pressure[lo:hi]

@@ -1,6 +1,6 @@
-"""The rotation at which gear 1's rigid teeth first touch gear 2 (:func:`touch_rotation`):
-the secant mesh stiffness's reference (:attr:`~fegear.toothpair.case.PairSolution.
-first_touch`), from a contact's exact rigid gaps."""
+"""The rotation at which gear 1's rigid teeth first touch gear 2 (:func:`touch_rotation`),
+from a contact's exact rigid gaps: what the secant mesh stiffness is measured from (a
+solution's ``first_touch``)."""
 
 from __future__ import annotations
 

@@ -45,10 +45,10 @@ def screen_um(deviations) -> float:
 
 
 class ClosingCircles:
-    """The ``closing`` points' foot circles on the exact pair (:mod:`~fegear.toothpair.ring.
-    circles`; gear 2's own frame, where each point closes the exact pair), found once with
-    the points' feet, which the closing points keep for the exact searches to start from,
-    and each point's gear-2 tooth."""
+    """The ``closing`` points' foot circles on the exact pair (gear 2's own frame, where each
+    point closes the exact pair: :mod:`~fegear.toothpair.ring.circles`), found once with the
+    points' feet, which the closing points keep for the exact searches to start from, and
+    each point's gear-2 tooth."""
 
     def __init__(self, params, closing: Closing) -> None:
         self.params, self.closing = params, closing
