@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...geometry import gear2_tooth
+from ...geometry import Placed, gear2_tooth
 from ...planar import rotate, rotate_by
 from .influence import RingContact
 from .model import RingModel
@@ -81,19 +81,30 @@ def foot_circles(model: RingModel, contact: RingContact, theta: float) -> FootCi
 def moved(circles: FootCircles, model: RingModel, contact: RingContact) -> Moved:
     """``contact``'s deviations (:attr:`~.influence.RingContact.placed`, none: the exact
     pair) on its points, as :meth:`~fegear.geometry.Placed.gap` moves them: its teeth, and the
-    gear-2 teeth its feet face as it stands."""
+    gear-2 teeth its feet face as it stands (:func:`moved_by`)."""
     p = model.case.params
-    placed = contact.placed
-    if placed is None:
+    if contact.placed is None:
         return Moved(rotate(contact.x, p.ratio * contact.beta), None, np.array([0.0, p.e]),
                      np.zeros(2), np.zeros(contact.npoints))
-    dev, teeth = placed.deviations, contact.teeth
-    x = rotate(contact.x, p.ratio * contact.beta + dev.turns(1, teeth, p.r1))
-    k2 = gear2_tooth(contact.feet, p.z2)
-    turn2 = dev.turns(2, k2, p.r0) if dev.gear2 else None
-    return Moved(x, None if turn2 is None else (np.cos(turn2), np.sin(turn2)), placed.axis1,
-                 placed.teeth_offset, dev.flank_offset(1, teeth, placed.roll(1, contact.x)),
-                 (placed, k2) if dev.gear2 else None)
+    return moved_by(contact.placed, contact.x, contact.teeth, p.ratio * contact.beta,
+                    gear2_tooth(contact.feet, p.z2))
+
+
+def moved_by(placed: Placed, x: np.ndarray, teeth: np.ndarray, turn, teeth2: np.ndarray,
+             flanks: bool = True) -> Moved:
+    """Gear 1's points ``x`` (its own frame, (n, 2)) on its ``teeth`` moved by ``placed``'s
+    deviations as :meth:`~fegear.geometry.Placed.gap` moves them: turned by ``turn`` (rad,
+    the kinematic angle included; scalar or a point's) and each by its tooth's pitch
+    deviation, the gear-2 teeth ``teeth2`` under them turned by theirs; ``flanks``: whether
+    the points are on the loaded flanks, which the slope and form deviations move."""
+    dev, p = placed.deviations, placed.params
+    turn2 = dev.turns(2, teeth2, p.r0) if dev.gear2 else None
+    flank1 = (dev.flank_offset(1, teeth, placed.roll(1, x)) if flanks
+              else np.zeros(len(x)))
+    return Moved(rotate(x, turn + dev.turns(1, teeth, p.r1)),
+                 None if turn2 is None else (np.cos(turn2), np.sin(turn2)), placed.axis1,
+                 placed.teeth_offset, flank1,
+                 (placed, teeth2) if dev.gear2 and flanks else None)
 
 
 def circle_gaps(circles: FootCircles, moved: Moved, theta: float,
@@ -122,4 +133,3 @@ def circle_gaps(circles: FootCircles, moved: Moved, theta: float,
         gap -= placed.deviations.flank_offset(2, k2[sel], placed.roll(2, slid))
     grad = (bend[:, None] * normal - (kappa * s)[:, None] * tangent) / q[:, None]
     return gap, grad[:, 1] * lever[:, 0] - grad[:, 0] * lever[:, 1]
-

@@ -27,7 +27,7 @@ from ....geometry import (
 from ....planar import rotate
 from ...case import SolveCase, revolution_positions
 from ...positions import TURN_CHECK, Clearances
-from ...ring.circles import FootCircles, Moved, circle_gaps
+from ...ring.circles import FootCircles, circle_gaps, moved_by
 from ...teeth import INTERFERENCE_UM, closure
 
 #: how near closing (µm of arc at r0) a state's least clearance on the foot circles has to come
@@ -45,10 +45,11 @@ def screen_um(deviations) -> float:
 
 
 class ClosingCircles:
-    """The ``closing`` points' foot circles on the exact pair (gear 2's own frame, where each
-    point closes the exact pair: :mod:`~fegear.toothpair.ring.circles`), found once with the
-    points' feet, which the closing points keep for the exact searches to start from, and
-    each point's gear-2 tooth."""
+    """The ``closing`` points' foot circles on the exact pair (in the fixed frame at each
+    point's β, where it closes the exact pair, as a kept contact's stand:
+    :mod:`~fegear.toothpair.ring.circles`), found once with the points' feet, which the
+    closing points keep for the exact searches to start from, and each point's gear-2
+    tooth."""
 
     def __init__(self, params, closing: Closing) -> None:
         self.params, self.closing = params, closing
@@ -56,23 +57,19 @@ class ClosingCircles:
         at = Placed(NO_DEVIATIONS, params, closing.beta)
         at.gap(closing.x, closing.tooth, self.turns, closing.feet, flanks=closing.direction > 0)
         foot, tangent, normal, kappa = at.curve2.frame(closing.feet)
-        self.circles = FootCircles(foot, normal, tangent, kappa)
+        beta = closing.beta
+        self.circles = FootCircles(rotate(foot, beta), rotate(normal, beta),
+                                   rotate(tangent, beta), kappa)
         self.teeth2 = gear2_tooth(closing.feet, params.z2)
 
     def clearances(self, deviations) -> np.ndarray:
         """Each point's clearance (µm of arc at r0) moved by ``deviations``, measured to its
         foot circle as :func:`~fegear.geometry.point_clearances` measures it to gear 2's
-        curve: the points moved as :meth:`~fegear.geometry.Placed.gap` moves them, gear 2's
-        tooth turned with its β."""
-        p, c, dev = self.params, self.closing, deviations
-        placed = Placed(dev, p, c.beta)
-        loaded = c.direction > 0
-        turn2 = c.beta + (dev.turns(2, self.teeth2, p.r0) if dev.gear2 else 0.0)
-        flank1 = (dev.flank_offset(1, c.tooth, placed.roll(1, c.x)) if loaded
-                  else np.zeros(len(c.um)))
-        moved = Moved(rotate(c.x, self.turns + dev.turns(1, c.tooth, p.r1)),
-                      (np.cos(turn2), np.sin(turn2)), placed.axis1, placed.teeth_offset,
-                      flank1, (placed, self.teeth2) if dev.gear2 and loaded else None)
+        curve: the points moved as :meth:`~fegear.geometry.Placed.gap` moves them
+        (:func:`~fegear.toothpair.ring.circles.moved_by`)."""
+        p, c = self.params, self.closing
+        placed = Placed(deviations, p, c.beta)
+        moved = moved_by(placed, c.x, c.tooth, self.turns, self.teeth2, c.direction > 0)
         gap, rate = circle_gaps(self.circles, moved, 0.0)
         return c.um + p.arc_um(np.abs(gap) / placed.levers(rate, c.direction)) * np.sign(gap)
 
