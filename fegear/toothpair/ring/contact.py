@@ -174,9 +174,9 @@ class _Iterate:
     over those and ``rows`` their rows of A), each one's force per unit pressure ``w`` (mm²)
     and foot on gear 2, gear 1's rotation ``theta`` (rad), the rigid gaps ``g0`` (mm) and
     their rates ``a`` (mm/rad) there, the ``active`` set and ``pressure`` (MPa) found, the
-    active-set iterations and linearisations counted, the blocks of A met
-    (:class:`~.contact_system.ContactSystem`) and, once settled, every point's exact rigid
-    gaps and rates (``rigid``)."""
+    active-set iterations counted and each linearisation's rotation step (``steps``, rad, its
+    size), the blocks of A met (:class:`~.contact_system.ContactSystem`) and, once settled,
+    every point's exact rigid gaps and rates (``rigid``)."""
 
     on: np.ndarray
     w: np.ndarray
@@ -189,10 +189,14 @@ class _Iterate:
     near: np.ndarray | None = None
     rows: np.ndarray | None = None
     iterations: int = 0
-    turns: int = 0
     blocks: dict = field(default_factory=dict)
     rigid: tuple | None = None
     steps: list = field(default_factory=list)
+
+    @property
+    def turns(self) -> int:
+        """The linearisations made."""
+        return len(self.steps)
 
 
 def _first(gaps: _Gaps, theta: float, how: Iterations, torque_nmm: float) -> _Iterate:
@@ -232,9 +236,9 @@ def _linearise(gaps: _Gaps, it: _Iterate, torque_nmm: float) -> None:
         found = _set_settled(system, torque_nmm, it.active, _arm_rate(gaps, it))
         it.pressure, it.active = found.pressure, found.active
         it.iterations += found.iterations
-        it.turns += 1
         it.theta += found.step
-        if _settled(it, found.step, gaps.model.case.params.r0, found.iterations == 1):
+        it.steps.append(abs(found.step))
+        if _settled(it, gaps.model.case.params.r0, found.iterations == 1):
             if _exact(gaps, it, found.step):
                 return
             continue
@@ -247,9 +251,8 @@ def _linearise(gaps: _Gaps, it: _Iterate, torque_nmm: float) -> None:
 def _set_settled(system: ContactSystem, torque_nmm: float, active: np.ndarray,
                  arm_rate: float) -> ActiveSet:
     """:func:`active_set` with the torque arm's rate, or without it where the set does not
-    settle with it: the rate only speeds the linearisations up (the same rotation settles
-    without it, more slowly). On a pointed tooth's few probe points, whose compliance is far
-    from symmetric, the rate can leave the bordered system without a descent."""
+    settle with it (the rate only speeds the linearisations up): on a pointed tooth's few
+    probe points, their compliance far from symmetric, it can leave no descent."""
     try:
         return active_set(system, torque_nmm, active, arm_rate)
     except RingContactError:
@@ -258,16 +261,13 @@ def _set_settled(system: ContactSystem, torque_nmm: float, active: np.ndarray,
         return active_set(system, torque_nmm, active)
 
 
-def _settled(it: _Iterate, step: float, r0: float, kept: bool) -> bool:
-    """Whether the rotation has settled to rounding, 1e-12 of it or a 1e-13 mm turn at the
-    pitch circle (``r0``, mm): its ``step`` (rad) within that, or, where the steps contract
-    (each at most :data:`CONTRACTION` of the one before: the linearisations gain about four
-    digits each), the steps still to come, the last one times its ratio to the one before
-    over one less it. A ratio is read as the rotation's alone where the linearisation kept
-    its active set (``kept``), else the two last ratios, the larger (an active set's change
-    makes a step of its own)."""
+def _settled(it: _Iterate, r0: float, kept: bool) -> bool:
+    """Whether the rotation has settled to 1e-12 of it or a 1e-13 mm turn at the pitch circle
+    (``r0``, mm): its last step within that, or, where the steps contract (by at least
+    :data:`CONTRACTION` each), the steps to come, the last times its ratio r to the one before
+    over 1 − r; r is the last ratio where the linearisation kept its active set (``kept``),
+    else the larger of the last two (an active set's change makes a step of its own)."""
     tol = max(1e-12 * abs(it.theta), 1e-13 / r0)
-    it.steps.append(abs(step))
     if it.steps[-1] <= tol:
         return True
     steps = it.steps[-2:] if kept else it.steps[-3:]
