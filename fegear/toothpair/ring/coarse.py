@@ -21,8 +21,7 @@ import numpy as np
 import scipy.sparse
 
 from ...errors import ContactError
-from .contact import active_set
-from .contact_system import ContactSystem
+from .contact_system import ContactSystem, active_set
 from .influence import RingContact
 
 #: every this many of a grid's points carries a coarse hat (and the grid's last): coarse

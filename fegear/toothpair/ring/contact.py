@@ -3,10 +3,10 @@ the contact moments balancing the torque on gear 1 (load control); no penalty.
 
 The gap of grid point i at gear 1's rotation θ (from its kinematic position) is
 g_i = g_rigid,i(θ) + Σ_j A_ij p_j, the exact rigid gap to gear 2's curve plus the elastic
-separation (:mod:`.influence`). Active-set iterations (:func:`active_set`, on the linear
-system of :mod:`.contact_system`) solve the linearised rigid gap with the torque balance; the
-exact gap is then evaluated again at the new rotation until the rotation settles (the rigid
-gap is nonlinear in θ only through the turn, a µrad here).
+separation (:mod:`.influence`). Active-set iterations (:mod:`.contact_system`) solve the
+linearised rigid gap with the torque balance; the exact gap is then evaluated again at the new
+rotation until the rotation settles (the rigid gap is nonlinear in θ only through the turn, a
+µrad here).
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ import numpy as np
 
 from ...planar import rotate
 from .circles import TOLERANCE, FootCircles, circle_gaps, moved
-from .contact_system import ContactSystem, RingContactError, gaps_at, loaded_product, solve_active
+from .contact_system import ActiveSet, ContactSystem, RingContactError, active_set, loaded_product
 from .influence import RingContact, approach_open
 from .master import Gear2Master
 from .model import RingModel
@@ -26,9 +26,7 @@ from .model import RingModel
 if TYPE_CHECKING:   # a kept contact's, made by its phases; it steps with this module's methods
     from .coarse import CoarseContact
 
-MAX_ACTIVE_SET = 80     # active-set changes per linearisation
 MAX_TURNS = 30          # linearisations of the rigid gap
-MAX_PRIMAL = 4          # … and, by the primal method, this many per grid point
 ARM_STEP = 1e-7         # turn (rad) of the torque arm's difference quotient
 CONTRACTION = 0.01      # steps of the rotation shrinking by this at least are read as settling
 
@@ -53,18 +51,6 @@ class RingContactSolution:
     max_penetration: float
     clamped: tuple | None = field(default=None, repr=False, compare=False)
     rigid: tuple | None = field(default=None, repr=False, compare=False)
-
-
-@dataclass(frozen=True)
-class ActiveSet:
-    """What an active-set method settled: the pressure per point (MPa, zero off the active
-    set), the rotation step (rad), the active set (a mask over the points) and the
-    iterations counted so far."""
-
-    pressure: np.ndarray
-    step: float
-    active: np.ndarray
-    iterations: int
 
 
 def rigid_gap(model: RingModel, contact: RingContact, turn: float,
@@ -325,76 +311,3 @@ def _closed(model: RingModel, contact: RingContact, pressure: np.ndarray, g0: np
         if (gap[rest] < 0).any():
             return None
     return full, gap, clamped
-
-
-def active_set(system: ContactSystem, torque_nmm: float, active: np.ndarray,
-               arm_rate: float = 0.0) -> ActiveSet:
-    """Pressures on the active points and the rotation step with the gap linear in the step:
-    A p + a δ = −g0 on the active points, −Σ w a p − ``arm_rate`` δ = T (``arm_rate``: the
-    torque's rate with the turn at the last pressures, Σ w (da/dθ) p); from the points
-    ``active``, points join when their gap closes and leave when their pressure pulls, all at
-    once; where that cycles, :func:`primal_active_set` settles it."""
-    seen = set()
-    pressure = np.zeros(len(system.g0))
-    for k in range(1, MAX_ACTIVE_SET + 1):
-        pressure, step = solve_active(system, torque_nmm, active, arm_rate)
-        gap = gaps_at(system, pressure, step, active)
-        new = np.where(active, pressure > 0, gap < 0)
-        if not new.any():
-            new = gap <= gap.min()
-        if np.array_equal(new, active):
-            return ActiveSet(pressure, step, active, k)
-        key = new.tobytes()
-        if key in seen:   # it cycles: on by the primal method, which cannot
-            break
-        seen.add(key)
-        active = new
-    return primal_active_set(system, torque_nmm, pressure, arm_rate, k)
-
-
-def primal_active_set(system: ContactSystem, torque_nmm: float, start: np.ndarray,
-                      arm_rate: float = 0.0, used: int = 0) -> ActiveSet:
-    """The primal active-set method (after Lawson and Hanson's, with the torque row) where
-    swapping every violated point at once cycles or does not settle (large loads on sharp
-    teeth, where the teeth's near fields overlap): pressures stay ≥ 0 and the torque balanced
-    throughout, so the energy falls at every step and no set comes back. From ``start`` (the
-    fast method's last pressures, the pulling ones dropped and the rest scaled to the torque;
-    else the closing point of least gap): the point of most overlap joins, one at a time (its
-    pressure then rises from zero); a pressure that would pull stops the step where it reaches
-    zero and leaves. Finite for a symmetric positive definite compliance (the ring's,
-    collocated at the grid points, is close to one); bounded by MAX_PRIMAL steps a point.
-    ``used``: the iterations spent before (the fast method's), counted on."""
-    w, g0, a = system.w, system.g0, system.a
-    pressure = np.maximum(start, 0.0)
-    carried = -(w * pressure) @ a
-    if carried > 0:
-        pressure *= torque_nmm / carried
-    else:
-        closing = np.flatnonzero(a < 0)
-        if len(closing) == 0:
-            raise RingContactError("no contact point closes under the torque")
-        first = closing[np.argmin(g0[closing])]
-        pressure[:] = 0.0
-        pressure[first] = -torque_nmm / (w[first] * a[first])
-    step = 0.0
-    active = pressure > 0
-    tol = 1e-12 * max(float(np.abs(g0).max()), 1e-9)
-    for k in range(used + 1, used + MAX_PRIMAL * len(g0) + 1):
-        trial, trial_step = solve_active(system, torque_nmm, active, arm_rate)
-        pulls = active & (trial <= 0)
-        if not pulls.any():
-            pressure, step = trial, trial_step
-            gap = gaps_at(system, pressure, step, active)
-            gap[active] = np.inf
-            worst = int(np.argmin(gap))
-            if gap[worst] >= -tol:
-                return ActiveSet(pressure, step, active, k)
-            active[worst] = True
-            continue
-        i = np.flatnonzero(pulls)
-        share = float(np.min(pressure[i] / (pressure[i] - trial[i])))
-        pressure += share * (trial - pressure)
-        step += share * (trial_step - step)
-        active &= pressure > 1e-14 * pressure.max()
-        pressure[~active] = 0.0
-    raise RingContactError(f"the active set did not settle in {k} iterations")

@@ -1,7 +1,8 @@
-"""The contact's linear system at one linearisation of the rigid gap (:class:`ContactSystem`),
-which both active-set methods of the contact solve (:mod:`.contact`) step on: the pressures and
-rotation step that close an active set's gaps and balance the torque, the gaps they leave, and
-A's blocks for the active sets met, factorised once and kept for the solve's later
+"""The contact's linear system at one linearisation of the rigid gap (:class:`ContactSystem`)
+and the two active-set methods that step on it (:func:`active_set`, :func:`primal_active_set`),
+which the contact solve (:mod:`.contact`) runs at each linearisation: the pressures and rotation
+step that close an active set's gaps and balance the torque, the gaps they leave, and A's
+blocks for the active sets met, factorised once and kept for the solve's later
 linearisations."""
 
 from __future__ import annotations
@@ -18,10 +19,24 @@ from ...errors import ContactError
 #: active sets whose blocks a contact solve keeps (the last few: a linearisation's iterations
 #: and the next one's start)
 BLOCKS = 4
+MAX_ACTIVE_SET = 80     # active-set changes per linearisation
+MAX_PRIMAL = 4          # … and, by the primal method, this many per grid point
 
 
 class RingContactError(ContactError):
     """The ring model's contact at one position has no solution the iterations could find."""
+
+
+@dataclass(frozen=True)
+class ActiveSet:
+    """What an active-set method settled: the pressure per point (MPa, zero off the active
+    set), the rotation step (rad), the active set (a mask over the points) and the
+    iterations counted so far."""
+
+    pressure: np.ndarray
+    step: float
+    active: np.ndarray
+    iterations: int
 
 
 @dataclass(frozen=True)
@@ -147,3 +162,76 @@ class _Columns:
             self.slot[new] = np.arange(self.count, end)
             self.count = end
         return self.slot[idx]
+
+
+def active_set(system: ContactSystem, torque_nmm: float, active: np.ndarray,
+               arm_rate: float = 0.0) -> ActiveSet:
+    """Pressures on the active points and the rotation step with the gap linear in the step:
+    A p + a δ = −g0 on the active points, −Σ w a p − ``arm_rate`` δ = T (``arm_rate``: the
+    torque's rate with the turn at the last pressures, Σ w (da/dθ) p); from the points
+    ``active``, points join when their gap closes and leave when their pressure pulls, all at
+    once; where that cycles, :func:`primal_active_set` settles it."""
+    seen = set()
+    pressure = np.zeros(len(system.g0))
+    for k in range(1, MAX_ACTIVE_SET + 1):
+        pressure, step = solve_active(system, torque_nmm, active, arm_rate)
+        gap = gaps_at(system, pressure, step, active)
+        new = np.where(active, pressure > 0, gap < 0)
+        if not new.any():
+            new = gap <= gap.min()
+        if np.array_equal(new, active):
+            return ActiveSet(pressure, step, active, k)
+        key = new.tobytes()
+        if key in seen:   # it cycles: on by the primal method, which cannot
+            break
+        seen.add(key)
+        active = new
+    return primal_active_set(system, torque_nmm, pressure, arm_rate, k)
+
+
+def primal_active_set(system: ContactSystem, torque_nmm: float, start: np.ndarray,
+                      arm_rate: float = 0.0, used: int = 0) -> ActiveSet:
+    """The primal active-set method (after Lawson and Hanson's, with the torque row) where
+    swapping every violated point at once cycles or does not settle (large loads on sharp
+    teeth, where the teeth's near fields overlap): pressures stay ≥ 0 and the torque balanced
+    throughout, so the energy falls at every step and no set comes back. From ``start`` (the
+    fast method's last pressures, the pulling ones dropped and the rest scaled to the torque;
+    else the closing point of least gap): the point of most overlap joins, one at a time (its
+    pressure then rises from zero); a pressure that would pull stops the step where it reaches
+    zero and leaves. Finite for a symmetric positive definite compliance (the ring's,
+    collocated at the grid points, is close to one); bounded by MAX_PRIMAL steps a point.
+    ``used``: the iterations spent before (the fast method's), counted on."""
+    w, g0, a = system.w, system.g0, system.a
+    pressure = np.maximum(start, 0.0)
+    carried = -(w * pressure) @ a
+    if carried > 0:
+        pressure *= torque_nmm / carried
+    else:
+        closing = np.flatnonzero(a < 0)
+        if len(closing) == 0:
+            raise RingContactError("no contact point closes under the torque")
+        first = closing[np.argmin(g0[closing])]
+        pressure[:] = 0.0
+        pressure[first] = -torque_nmm / (w[first] * a[first])
+    step = 0.0
+    active = pressure > 0
+    tol = 1e-12 * max(float(np.abs(g0).max()), 1e-9)
+    for k in range(used + 1, used + MAX_PRIMAL * len(g0) + 1):
+        trial, trial_step = solve_active(system, torque_nmm, active, arm_rate)
+        pulls = active & (trial <= 0)
+        if not pulls.any():
+            pressure, step = trial, trial_step
+            gap = gaps_at(system, pressure, step, active)
+            gap[active] = np.inf
+            worst = int(np.argmin(gap))
+            if gap[worst] >= -tol:
+                return ActiveSet(pressure, step, active, k)
+            active[worst] = True
+            continue
+        i = np.flatnonzero(pulls)
+        share = float(np.min(pressure[i] / (pressure[i] - trial[i])))
+        pressure += share * (trial - pressure)
+        step += share * (trial_step - step)
+        active &= pressure > 1e-14 * pressure.max()
+        pressure[~active] = 0.0
+    raise RingContactError(f"the active set did not settle in {k} iterations")

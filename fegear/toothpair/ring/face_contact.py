@@ -6,7 +6,7 @@ Section s's gaps are the 2D rigid gaps plus the face's offsets there plus the ap
 A_hp p_s + A_fe Σ_t S_st p_t (with the coupling's ``across`` spreads, A_fe's blocks between
 different grids take the spread between their teeth in place of S: one tooth's load reaches
 the others through the rims; :mod:`.face_spread`).
-The method is the 2D solve's (:func:`~.contact.active_set`: every violated point swapped at
+The method is the 2D solve's (:func:`~.contact_system.active_set`: every violated point swapped at
 once; the rigid gap linearised in the turn and evaluated again until the rotation settles).
 The active points' system is never formed: N sections of n points would make a matrix N²
 times the 2D one, and its LU N³ times as costly. GMRES (:mod:`.krylov`) solves it from two
@@ -27,7 +27,8 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg
 
-from .contact import ARM_STEP, MAX_ACTIVE_SET, MAX_TURNS, RingContactError, rigid_gap
+from .contact import ARM_STEP, MAX_TURNS, RingContactError, rigid_gap
+from .contact_system import MAX_ACTIVE_SET
 from .face import FaceCoupling
 from .face_spread import FaceSpread
 from .influence import RingContact, near_field

@@ -5,7 +5,14 @@ points as the system of their block, and the blocks it keeps giving what fresh o
 import numpy as np
 import pytest
 
-from fegear.toothpair.ring.contact_system import BLOCKS, ContactSystem, gaps_at, solve_active
+from fegear.toothpair.ring.contact_system import (
+    BLOCKS,
+    ContactSystem,
+    active_set,
+    gaps_at,
+    primal_active_set,
+    solve_active,
+)
 
 TORQUE = 5.0   # N·mm
 
@@ -84,3 +91,24 @@ def test_the_gaps_are_As_whichever_points_joined_and_left_before(contact_problem
             np.testing.assert_allclose(gaps_at(system, pressure, step, active),
                                        system.g0 + system.a * step + A @ pressure, rtol=0,
                                        atol=1e-14 * np.abs(system.g0).max())
+
+
+@pytest.mark.parametrize("seed", range(5))
+@pytest.mark.parametrize("warm", [False, True])
+def test_the_primal_method_meets_the_contact_conditions_and_agrees_with_the_fast_one(
+        contact_problem, seed, warm):
+    system = contact_problem(60, seed)
+    A, w, g0, a = system.A, system.w, system.g0, system.a
+    torque = 5.0
+    fast = active_set(system, torque, g0 <= g0.min())
+    start = fast.pressure * (1.0 + np.random.default_rng(seed).uniform(-0.5, 0.5, len(g0))) - 1.0
+    slow = primal_active_set(system, torque, start if warm else np.zeros(len(g0)))
+    for found in (fast, slow):
+        gap = g0 + a * found.step + A @ found.pressure
+        assert found.pressure.min() >= 0.0
+        assert gap.min() >= -1e-12 * np.abs(g0).max()
+        assert np.abs(gap[found.active]).max() <= 1e-12 * np.abs(g0).max()
+        assert -(w * found.pressure) @ a == pytest.approx(torque, rel=1e-12)
+    np.testing.assert_allclose(slow.pressure, fast.pressure, rtol=1e-9,
+                               atol=1e-12 * fast.pressure.max())
+    assert slow.step == pytest.approx(fast.step, rel=1e-9)
