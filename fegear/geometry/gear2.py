@@ -115,6 +115,16 @@ class Cycloid:
         kappa = (d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / speed**3
         return p, t, n, kappa
 
+    def curvature_rate(self, xi: np.ndarray) -> np.ndarray:
+        """The signed curvature's rate with arc length, dκ/ds (1/mm²), at ``xi``: with
+        κ = (P' × P'') / |P'|³, dκ/dξ = (P' × P''') / |P'|³ − 3 κ (P' · P'') / |P'|², and
+        ds/dξ = |P'|."""
+        _, d1, d2, d3 = self.derivatives(xi, 3)
+        speed = np.hypot(d1[:, 0], d1[:, 1])
+        kappa = (d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]) / speed**3
+        cross3 = (d1[:, 0] * d3[:, 1] - d1[:, 1] * d3[:, 0]) / speed**3
+        return (cross3 - 3.0 * kappa * np.einsum("ij,ij->i", d1, d2) / speed**2) / speed
+
     def curvature_radius(self, xi: np.ndarray) -> np.ndarray:
         """Signed curvature radius [mm]: > 0 where gear 2's surface is convex, < 0 concave.
 

@@ -31,6 +31,15 @@ def test_third_derivative_by_central_difference():
     assert np.abs(d3 - fd).max() / np.abs(d3).max() < 1e-6  # FD truncation ~1e-7
 
 
+def test_the_curvatures_rate_is_its_derivative_along_the_arc():
+    c = Cycloid(45.0, 0.6, 0.09, 45, 0.002)
+    h = 1e-6
+    speed = np.hypot(*c.derivatives(XI, 1)[1].T)
+    fd = (c.frame(XI + h)[3] - c.frame(XI - h)[3]) / (2 * h) / speed
+    rate = c.curvature_rate(XI)
+    assert np.abs(rate - fd).max() / np.abs(rate).max() < 1e-6
+
+
 def test_baseline_radii_and_parameter_convention():
     p = PairParameters()
     assert (p.r0, p.e1, p.e2, p.e) == pytest.approx((45.0, 0.6, 0.09, 1.0))

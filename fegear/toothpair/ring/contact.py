@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...planar import rotate
-from .circles import TOLERANCE, FootCircles, circle_gaps, moved
+from .circles import TOLERANCE, FootCircles, circle_gaps, moved, unsure
 from .contact_system import ActiveSet, ContactSystem, RingContactError, active_set, loaded_product
 from .influence import RingContact, approach_open
 from .master import Gear2Master
@@ -86,13 +86,17 @@ class Iterations:
     (:mod:`.circles`), which they measure the gaps to instead of searching gear 2's curve; the
     last evaluation is exact, and where the two differ they go on with the exact gaps.
     ``coarse``: the contact's coarse level (:mod:`.coarse`), which predicts the points and
-    the rotation they start from, from ``start``."""
+    the rotation they start from, from ``start``. ``brief``: with circles, on a contact with
+    every column formed, the last evaluation is exact only where a point carries pressure or
+    the circles cannot tell it open (:func:`~.circles.unsure`); the others keep the circles'
+    gaps (a record that reads no open point's rigid gap: a class's brief sample)."""
 
     start: np.ndarray | None = None
     guess: float | None = None
     within: float | None = None
     circles: FootCircles | None = None
     coarse: CoarseContact | None = None
+    brief: bool = False
 
 
 def solve_ring_contact(model: RingModel, contact: RingContact, torque_nmm: float, theta: float,
@@ -112,7 +116,7 @@ def solve_with(model: RingModel, contact: RingContact, torque_nmm: float, theta:
     formed (:func:`~.influence.assemble_contact`), the points of the formed columns are solved
     and the others kept open; that is the solution if none of them then overlaps (their
     pressures zero, their columns act on nothing), else None: the caller forms them."""
-    gaps = _Gaps(model, contact, how.circles)
+    gaps = _Gaps(model, contact, how.circles, how.brief and contact.complete)
     it = _first(gaps, theta, how, torque_nmm)
     _linearise(gaps, it, torque_nmm)
     g0, a = it.rigid   # every point's, exact at the solution
@@ -136,10 +140,11 @@ def solve_with(model: RingModel, contact: RingContact, torque_nmm: float, theta:
 class _Gaps:
     """The rigid gaps a solve's iterations measure: the exact ones (:func:`rigid_gap`), or
     given foot circles the circles' until the last evaluation finds them off the exact ones
-    (then ``points`` is None)."""
+    (then ``points`` is None); ``brief`` as :class:`Iterations`'."""
 
-    def __init__(self, model: RingModel, contact: RingContact, circles: FootCircles | None):
-        self.model, self.contact, self.circles = model, contact, circles
+    def __init__(self, model: RingModel, contact: RingContact, circles: FootCircles | None,
+                 brief: bool = False):
+        self.model, self.contact, self.circles, self.brief = model, contact, circles, brief
         self.alpha = model.case.params.ratio * contact.beta   # gear 1's kinematic turn (rad)
         self.points = None if circles is None else moved(circles, model, contact)
 
@@ -151,6 +156,25 @@ class _Gaps:
         if self.points is None:
             return rigid_gap(self.model, self.contact, turn, feet, idx)
         return circle_gaps(self.circles, self.points, turn - self.alpha, idx)
+
+    def settled(self, it: _Iterate) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Every point's rigid gaps (mm) and rates (mm/rad) at the rotation ``it`` settled at,
+        and a mask of those measured exactly: every point, or where ``brief`` (and circles)
+        those the circles do not settle, the others the circles' (:func:`~.circles.unsure`;
+        the contact's every column formed, so A spans its points)."""
+        contact, turn = self.contact, self.alpha + it.theta
+        if self.points is None or not self.brief:
+            g0, a = rigid_gap(self.model, contact, turn, contact.feet)
+            return g0, a, np.ones(len(g0), bool)
+        pressure = np.zeros(contact.npoints)
+        pressure[it.on] = it.pressure
+        g0, a, exact = unsure(self.model, self.circles, self.points, it.theta,
+                              loaded_product(contact.A, pressure), pressure > 0)
+        idx = np.flatnonzero(exact)
+        feet = contact.feet[idx]
+        g0[idx], a[idx] = rigid_gap(self.model, contact, turn, feet, idx)
+        contact.feet[idx] = feet
+        return g0, a, exact
 
 
 @dataclass
@@ -276,18 +300,20 @@ def _arm_rate(gaps: _Gaps, it: _Iterate) -> float:
 
 
 def _exact(gaps: _Gaps, it: _Iterate, step: float) -> bool:
-    """The last evaluation, exact at every point (the open ones' gaps are checked with it):
-    True where the gaps the iterations settled on are the exact ones (always without foot
-    circles); else the iterations go on with the exact gaps."""
+    """The last evaluation, exact at every point or, ``brief``, at those the circles do not
+    settle (:meth:`_Gaps.settled`; the open ones' gaps are checked with it): True where the
+    gaps the iterations settled on are the exact ones there (always without foot circles);
+    else the iterations go on with the exact gaps."""
     contact = gaps.contact
     if gaps.points is None:
         contact.feet[it.on] = it.feet
     iterated = it.g0 + it.a * step   # the gaps the iterations settled on
-    g0, a = rigid_gap(gaps.model, contact, gaps.alpha + it.theta, contact.feet)
-    if gaps.points is None or np.abs(g0[it.on] - iterated).max() <= TOLERANCE:
+    g0, a, exact = gaps.settled(it)
+    if gaps.points is None or np.abs(g0[it.on] - iterated)[exact[it.on]].max() <= TOLERANCE:
         it.rigid = (g0, a)
         return True
-    gaps.points = None   # the circles' gaps left the exact ones
+    gaps.points = None   # the circles' gaps left the exact ones: every point's measured
+    g0, a, _ = gaps.settled(it)
     it.feet, it.g0, it.a = contact.feet[it.on], g0[it.on], a[it.on]
     return False
 

@@ -37,7 +37,7 @@ class KeptBatch:
         """Solve ``case`` (clearance ``state``) on the contact kept for its phase and hold it
         for :meth:`finish`; False (nothing held) where none is kept there or its grids do not
         hold this one (:meth:`~.phases.Phases.solve`)."""
-        kept = self.solver.phases.solve(self.solver.model, case, state)
+        kept = self.solver.phases.solve(self.solver.model, case, state, brief=True)
         if kept is None:
             return False
         self.pending.append((case, state, kept_attempt(kept, state)))

@@ -235,12 +235,13 @@ class Phases:
             self._strains[phase] = SurfaceStrains(model, self._kept[phase].contact)
         return self._strains[phase]
 
-    def solve(self, model: RingModel, case: SolveCase, state
+    def solve(self, model: RingModel, case: SolveCase, state, brief: bool = False
               ) -> tuple[RingContact, RingContactSolution] | None:
         """The contact at ``case.beta`` on the contact kept for its phase, turned to it, and its
         solution; None where none is kept or the kept grids do not hold this contact: the
         driver's rule at the solved rotation (``state``) chooses a tooth without a grid, or a
-        grid carries pressure at an end (:func:`_holds`)."""
+        grid carries pressure at an end (:func:`_holds`). ``brief``: its record reads no open
+        point's rigid gap (:class:`~.contact.Iterations`)."""
         phase, pitch = pitch_phase(case.beta, case.params.z2)
         kept = self._kept.get(phase)
         if kept is None:
@@ -253,7 +254,8 @@ class Phases:
             sol = solve_with(model, contact, case.torque_Nmm, kept.rotation, Iterations(
                 start=kept.active, within=NEAR * 1e-3 * max(kept.elastic_um, 1.0),
                 circles=self._circles[phase],
-                coarse=self._coarse.level(phase, kept.contact, model.case.thickness)))
+                coarse=self._coarse.level(phase, kept.contact, model.case.thickness),
+                brief=brief))
         except ContactError:
             return None
         if sol is None or not _holds(case, state, kept, pitch - kept.pitch, contact, sol):

@@ -154,7 +154,7 @@ class RingSolver:
         half-plane references or an unloaded tooth's root stress on gear 2, which a sample's
         row does not read. None where no contact is kept there or its grids do not hold this
         one's."""
-        kept = self.phases.solve(self.model, case, state)
+        kept = self.phases.solve(self.model, case, state, brief)
         return None if kept is None else self.record(case, state, kept_attempt(kept, state),
                                                         brief)[0]
 

@@ -6,7 +6,15 @@ import numpy as np
 import pytest
 
 from fegear.geometry import Deviations, Placed, Runout, ToothDeviation, gear2_tooth
-from fegear.toothpair.ring.circles import TOLERANCE, circle_gaps, foot_circles, moved
+from fegear.toothpair.ring import contact as ring_contact
+from fegear.toothpair.ring.circles import (
+    MARGIN,
+    TOLERANCE,
+    circle_gaps,
+    foot_circles,
+    moved,
+    unsure,
+)
 from fegear.toothpair.ring.contact import Iterations, rigid_gap, solve_ring_contact, solve_with
 from fegear.toothpair.ring.influence import ColumnRule, assemble_contact
 from fegear.toothpair.ring.turning import turned
@@ -95,3 +103,61 @@ def test_a_contact_solved_on_the_circles_is_the_one_solved_on_the_exact_gaps(set
     assert on_circles.rotation == pytest.approx(exact.rotation, rel=1e-5)
     top = exact.pressure.max()
     assert np.abs(on_circles.pressure - exact.pressure).max() < 2e-3 * top
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_the_points_the_circles_tell_open_are_open_on_the_exact_gaps(settled, kind):
+    # a class-9 move (30 µm on a tooth, 6e-4 rad of rotation) under the settled pressures:
+    # every point the circles settle is open on the exact gaps, the circles' error within a
+    # twentieth of the margin they are read with
+    model, contact, sol = settled.model, settled.contact, settled.solution
+    theta = sol.rotation
+    circles = foot_circles(model, contact, theta)
+    dev = _deviations(settled, 30.0)[kind]
+    placed = Placed(dev, model.case.params, contact.beta)
+    at = turned(model, contact, 0, contact.beta, placed)
+    elastic = sol.gap - rigid_gap(model, contact, contact.turn + theta, contact.feet.copy())[0]
+    (g, _), (gc, _) = _both(settled, dev, theta + 6e-4, circles)
+    gu, _, exact = unsure(model, circles, moved(circles, model, at), theta + 6e-4, elastic,
+                          sol.pressure > 0)
+    assert np.array_equal(gu, gc)
+    assert np.abs(gc - g).max() < MARGIN / 20
+    assert (g + elastic)[~exact].min() > 0
+    # and it settles every point left open by more than twice the margin
+    assert not (exact & (sol.pressure == 0) & (g + elastic > 2 * MARGIN)).any()
+
+
+def test_a_brief_solve_measures_fewer_points_exactly_for_the_same_contact(settled,
+                                                                          monkeypatch):
+    model, solved = settled.model, settled.contact
+    p, torque = model.case.params, settled.case.torque * 1e3
+    contact = assemble_contact(model, solved.grids, solved.beta, solved.turn, ColumnRule())
+    assert contact.complete    # as a kept contact: every column formed
+    theta = settled.solution.rotation
+    circles = foot_circles(model, contact, theta)
+    dev = Deviations({int(t): ToothDeviation(pitch=3.0 * (-1) ** int(t), slope=-2.0)
+                      for t in set(contact.teeth)},
+                     gear2={k: ToothDeviation(form=2.0) for k in range(p.z2)},
+                     centre_distance=2.0, runout1=Runout(4.0, 40))
+    placed = Placed(dev, p, contact.beta)
+    measured = []
+    exact_gap = ring_contact.rigid_gap
+
+    def counted(model, contact, turn, feet=None, idx=None):
+        measured.append(contact.npoints if idx is None else len(idx))
+        return exact_gap(model, contact, turn, feet, idx)
+
+    monkeypatch.setattr(ring_contact, "rigid_gap", counted)
+    solved = {}
+    for brief in (False, True):
+        measured.clear()
+        solved[brief] = solve_with(
+            model, turned(model, contact, 0, contact.beta, placed), torque, theta,
+            Iterations(start=settled.solution.pressure > 0, circles=circles, brief=brief))
+        solved[brief, "points"] = sum(measured)
+    full, brief = solved[False], solved[True]
+    loaded = full.pressure > 0
+    assert np.array_equal(brief.pressure > 0, loaded)
+    assert brief.rotation == pytest.approx(full.rotation, rel=1e-9)
+    assert np.abs(brief.pressure - full.pressure).max() < 1e-6 * full.pressure.max()
+    assert solved[True, "points"] < solved[False, "points"] / 2
