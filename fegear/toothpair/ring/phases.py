@@ -48,7 +48,7 @@ from .influence import ColumnRule, RingContact, assemble_contact
 from .model import RingModel
 from .placement import PLACEMENT, REACH, REACH_FLOOR, GridPlacement, place_grids
 from .readout import SurfaceStrains
-from .turning import renumbered, turned
+from .turning import renumbered, turned, turned_again
 
 #: rigid gaps (mm) that differ by less than this anywhere are the same contact problem: 0.1 nm,
 #: a ten-thousandth of the smallest deviation given in whole µm, far above the turned
@@ -121,6 +121,7 @@ class Phases:
         self._circles: dict[int, FootCircles] = {}   # phase → its kept contact's feet …
         self._strains: dict[int, SurfaceStrains] = {}   # … and surface strains
         self._coarse = CoarseLevels()   # … and coarse level
+        self._turns: dict[int, dict] = {}   # … and its turned copies, by pitches
 
     def __len__(self) -> int:
         """How many phases have a contact kept."""
@@ -149,7 +150,7 @@ class Phases:
         """Let go of what is kept for the phase of ``beta`` (a position whose deviation sets
         are all solved: its contact is a large matrix)."""
         phase = pitch_phase(beta, z2)[0]
-        for kept in (self._kept, self._circles, self._strains, self._coarse):
+        for kept in (self._kept, self._circles, self._strains, self._coarse, self._turns):
             kept.pop(phase, None)
         self._drop_solved(phase)
 
@@ -247,7 +248,8 @@ class Phases:
         if kept is None:
             return None
         placed = Placed(case.deviations, case.params, case.beta) if case.deviations else None
-        contact = turned(model, kept.contact, pitch - kept.pitch, case.beta, placed)
+        contact = turned_again(self._turns.setdefault(phase, {}), model, kept.contact,
+                               pitch - kept.pitch, case.beta, placed)
         if phase not in self._circles:
             self._circles[phase] = foot_circles(model, kept.contact, kept.rotation)
         try:
@@ -320,7 +322,7 @@ class Phases:
                                     elastic_um=p.arc_um(sol.rotation) - first_um)
         self.torque = case.torque
         self._drop_solved(phase)   # what was solved on the contact it replaces
-        for dropped in (self._circles, self._strains, self._coarse):
+        for dropped in (self._circles, self._strains, self._coarse, self._turns):
             dropped.pop(phase, None)
         return contact, sol
 

@@ -46,6 +46,17 @@ def turned(model: RingModel, contact: RingContact, pitches: int, beta: float,
         contact.A, contact.formed, contact.feet - turn2, placed)
 
 
+def turned_again(turns: dict[int, RingContact], model: RingModel, contact: RingContact,
+                 pitches: int, beta: float, placed: Placed | None) -> RingContact:
+    """:func:`turned`, with what it turns kept in ``turns`` (by pitches) for the calls after
+    it: a contact kept for a phase is turned to the same few pitches for every deviation set
+    solved on it. Each call has its own feet (a solve writes them)."""
+    if pitches not in turns:
+        turns[pitches] = turned(model, contact, pitches, beta, None)
+    same = turns[pitches]
+    return replace(same, beta=beta, feet=same.feet.copy(), placed=placed)
+
+
 def turned_grid(grid: ToothGrid, pitches: int, count: int, pitch: float) -> ToothGrid:
     """``grid`` on the tooth ``pitches`` before its own (its points turned back by as many
     pitches, the tooth numbered within the gear)."""
