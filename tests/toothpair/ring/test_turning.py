@@ -9,7 +9,7 @@ import pytest
 from fegear.geometry import Deviations, Placed, ToothDeviation
 from fegear.toothpair.ring.contact import rigid_gap
 from fegear.toothpair.ring.influence import ColumnRule, assemble_contact
-from fegear.toothpair.ring.turning import turned, turned_grid
+from fegear.toothpair.ring.turning import turned, turned_again, turned_grid
 
 
 @pytest.fixture(scope="module")
@@ -61,3 +61,24 @@ def test_a_deviated_pitch_on_the_kept_contact_takes_its_own_gaps(settled):
     # the tooth turned 5 µm into the mesh stands about 5 µm closer along its normal's share
     assert (g_nom[on] - g_dev[on]).max() == pytest.approx(5e-3, rel=0.3)
     assert np.abs(g_nom[~on] - g_dev[~on]).max() < 1e-12
+
+
+@pytest.mark.parametrize("pitches", [0, 5])
+def test_a_contact_turned_again_is_turned_once_and_each_call_keeps_its_own_feet(settled,
+                                                                                 pitches):
+    model, contact = settled.model, settled.contact
+    p = model.case.params
+    beta = contact.beta + pitches * 2 * math.pi / p.z2
+    placed = Placed(Deviations({3: ToothDeviation(pitch=2)}), p, beta)
+    turns = {}
+    first = turned_again(turns, model, contact, pitches, beta, placed)
+    first.feet[:] = 0.0   # a solve writes its feet
+    again = turned_again(turns, model, contact, pitches, beta, None)
+    once = turned(model, contact, pitches, beta, placed)
+    assert list(turns) == [pitches]
+    assert again.x is first.x and again.grids is first.grids   # turned once
+    assert first.placed is placed and again.placed is None
+    assert np.array_equal(again.feet, once.feet)                # not the first call's
+    assert np.array_equal(first.x, once.x)
+    assert [g.tooth for g in first.grids] == [g.tooth for g in once.grids]
+
