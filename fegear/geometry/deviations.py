@@ -315,7 +315,10 @@ class Placed:
     def roll(self, gear: int, x: np.ndarray) -> np.ndarray:
         """The roll fractions on ``gear``'s flanks (0 at the root end, 1 at the tip end: class
         docstring) of its points ``x`` (n, 2, about its own axis)."""
-        r = np.hypot(x[:, 0], x[:, 1])
+        return self.roll_at(gear, np.hypot(x[:, 0], x[:, 1]))
+
+    def roll_at(self, gear: int, r: np.ndarray) -> np.ndarray:
+        """The roll fractions on ``gear``'s flanks of its points at the radii ``r`` (mm)."""
         if gear == 1:
             return (r - self.roots1) / (self.tips1 - self.roots1)
         return (self.roots2 - r) / (self.roots2 - self.tips2)

@@ -117,21 +117,95 @@ def circle_gaps(circles: FootCircles, moved: Moved, theta: float,
     """The rigid gaps (mm) of the points ``idx`` (default all) to their foot circles with gear
     1 turned by ``theta`` (rad, beyond the kinematic angle) and the points ``moved``, and the
     gaps' rate with that turn (mm/rad)."""
-    return _measured(circles, moved, theta, idx)[:2]
+    return projected(circles, moved, idx).measured(theta)[:2]
 
 
-def unsure(model: RingModel, circles: FootCircles, moved: Moved, theta: float,
-           elastic: np.ndarray, loaded: np.ndarray
-           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Every point's rigid gap (mm) to its circle with gear 1 turned by ``theta`` (rad, beyond
-    the kinematic angle) and the points ``moved``, its rate with the turn (mm/rad), and the
-    points whose gaps the circles do not settle: those ``loaded`` (carrying pressure) and
-    those whose gap with the ``elastic`` separation (mm) added comes within :data:`MARGIN`
-    plus ten times the circles' error bound of closing. A circle matches gear 2's curve to the
-    second order, so its gap is off by about |dκ/ds| |slide|³ / 6, the slide being the
-    point's tangential offset from its foot; the bound takes the curve's largest |dκ/ds|
-    (:func:`third_order`). The others are open whatever the exact gap."""
-    gap, rate, slide = _measured(circles, moved, theta, None)
+@dataclass(frozen=True)
+class Projected:
+    """Points moved (:class:`Moved`) and measured against their foot circles at any turn of
+    gear 1 (:func:`projected`): turned by θ beyond the kinematic angle, a point less its foot
+    is cos θ a + sin θ b + c and its lever about gear 1's axis cos θ a + sin θ b + o (gear 2's
+    tooth's turn included), so an evaluation combines the vectors' projections on the
+    circle's normal (``n``, rows a, b, c, o) and tangent (``t``) with its curvature
+    ``kappa``, less gear 1's flank departures ``flank1`` (mm); gear 2's flank departures are
+    read at the roll fraction of the foot's slide, from the foot's projections and squared
+    length (``foot``: rows n, t, |f|²) and ``gear2`` (the placed deviations and each point's
+    gear-2 tooth; None: none)."""
+
+    n: np.ndarray
+    t: np.ndarray
+    kappa: np.ndarray
+    flank1: np.ndarray
+    foot: np.ndarray | None = None
+    gear2: tuple | None = None
+
+    def take(self, idx: np.ndarray) -> Projected:
+        """The points ``idx`` of these."""
+        return Projected(self.n[:, idx], self.t[:, idx], self.kappa[idx], self.flank1[idx],
+                         None if self.foot is None else self.foot[:, idx],
+                         None if self.gear2 is None else (self.gear2[0], self.gear2[1][idx]))
+
+    def measured(self, theta: float, idx: np.ndarray | None = None
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The points' (``idx``'s, default all) rigid gaps (mm) and their rates with the turn
+        (mm/rad) at gear 1 turned by ``theta`` (rad, beyond the kinematic angle), and each
+        one's slide along its circle's tangent from its foot (mm)."""
+        at = self if idx is None else self.take(idx)
+        turn = np.array([[math.cos(theta), math.sin(theta), 1.0, 0.0],
+                         [math.cos(theta), math.sin(theta), 0.0, 1.0]])
+        (d, nv), (s, tv) = turn @ at.n, turn @ at.t   # a point's offsets, its lever's
+        kappa = at.kappa
+        bend = 1.0 - kappa * d
+        ks = kappa * s
+        q = np.sqrt(bend * bend + ks * ks)
+        gap = (2.0 * d - kappa * (d * d + s * s)) / (1.0 + q) - at.flank1
+        if at.gear2 is not None:   # the foot slid along the circle by s t + h n, over q
+            placed, k2 = at.gear2
+            h = ks * s / (q + bend)
+            fn, ft, f2 = at.foot
+            r = np.sqrt(f2 + 2.0 * (s * ft + h * fn) / q + (s * s + h * h) / (q * q))
+            gap -= placed.deviations.flank_offset(2, k2, placed.roll_at(2, r))
+        # the gradient (bend n − κ s t) / q on the lever turned a quarter, J v: n · J v = t · v
+        # and t · J v = −n · v
+        return gap, (bend * tv + ks * nv) / q, s
+
+
+def projected(circles: FootCircles, moved: Moved, idx: np.ndarray | None = None) -> Projected:
+    """The points ``moved`` (those of ``idx``, default all) projected on their ``circles``
+    (:class:`Projected`)."""
+    sel = slice(None) if idx is None else idx
+    x = moved.x[sel]
+    a, b = x, np.column_stack([-x[:, 1], x[:, 0]])
+    o = np.broadcast_to(moved.offset, x.shape)
+    axis = np.broadcast_to(moved.axis, x.shape)
+    if moved.turn2 is not None:   # gear 2's tooth turned: the point turned back about its axis
+        cos, sin = moved.turn2[0][sel], -moved.turn2[1][sel]
+        a, b, o, axis = (rotate_by(v, cos, sin) for v in (a, b, o, axis))
+    foot, normal, tangent = circles.foot[sel], circles.normal[sel], circles.tangent[sel]
+    vectors = (a, b, o + axis - foot, o)
+    n = np.stack([np.einsum("ij,ij->i", v, normal) for v in vectors])
+    t = np.stack([np.einsum("ij,ij->i", v, tangent) for v in vectors])
+    gear2, on_foot = None, None
+    if moved.gear2 is not None:
+        placed, k2 = moved.gear2
+        gear2 = (placed, k2[sel])
+        on_foot = np.stack([np.einsum("ij,ij->i", foot, normal),
+                            np.einsum("ij,ij->i", foot, tangent),
+                            np.einsum("ij,ij->i", foot, foot)])
+    return Projected(n, t, circles.kappa[sel], moved.flank1[sel], on_foot, gear2)
+
+
+def unsure(model: RingModel, points: Projected, theta: float, elastic: np.ndarray,
+           loaded: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every point's rigid gap (mm) to its circle (the ``points`` projected on them) with gear
+    1 turned by ``theta`` (rad, beyond the kinematic angle), its rate with the turn (mm/rad),
+    and the points whose gaps the circles do not settle: those ``loaded`` (carrying pressure)
+    and those whose gap with the ``elastic`` separation (mm) added comes within
+    :data:`MARGIN` plus ten times the circles' error bound of closing. A circle matches gear
+    2's curve to the second order, so its gap is off by about |dκ/ds| |slide|³ / 6, the
+    slide being the point's tangential offset from its foot; the bound takes the curve's
+    largest |dκ/ds| (:func:`third_order`). The others are open whatever the exact gap."""
+    gap, rate, slide = points.measured(theta)
     bound = MARGIN + 10.0 * third_order(model.curve2) * np.abs(slide) ** 3
     return gap, rate, loaded | (gap + elastic <= bound)
 
@@ -142,29 +216,3 @@ def third_order(curve: Cycloid) -> float:
     |dκ/ds| over a lobe (sampled at 4096 points), over 6."""
     xi = np.linspace(0.0, 2.0 * math.pi / curve.z, 4097)
     return float(np.abs(curve.curvature_rate(xi)).max()) / 6.0
-
-
-def _measured(circles: FootCircles, moved: Moved, theta: float, idx: np.ndarray | None
-              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`circle_gaps`, and each point's slide along its circle's tangent (mm)."""
-    sel = slice(None) if idx is None else idx
-    lever = rotate(moved.x[sel], theta) + moved.offset
-    point = lever + moved.axis
-    if moved.turn2 is not None:   # gear 2's tooth turned: the point turned back about its axis
-        c, s = moved.turn2[0][sel], -moved.turn2[1][sel]
-        point = rotate_by(point, c, s)
-        lever = rotate_by(lever, c, s)
-    u = point - circles.foot[sel]
-    normal, tangent, kappa = circles.normal[sel], circles.tangent[sel], circles.kappa[sel]
-    d = np.einsum("ij,ij->i", u, normal)
-    s = np.einsum("ij,ij->i", u, tangent)
-    bend = 1.0 - kappa * d
-    q = np.sqrt(bend * bend + (kappa * s) ** 2)
-    gap = (2.0 * d - kappa * (d * d + s * s)) / (1.0 + q) - moved.flank1[sel]
-    if moved.gear2 is not None:   # at the roll fraction of the point's foot on its circle
-        placed, k2 = moved.gear2
-        slid = circles.foot[sel] + (s[:, None] * tangent + (kappa * s * s / (q + bend))[:, None]
-                                    * normal) / q[:, None]
-        gap -= placed.deviations.flank_offset(2, k2[sel], placed.roll(2, slid))
-    grad = (bend[:, None] * normal - (kappa * s)[:, None] * tangent) / q[:, None]
-    return gap, grad[:, 1] * lever[:, 0] - grad[:, 0] * lever[:, 1], s

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...planar import rotate
-from .circles import TOLERANCE, FootCircles, circle_gaps, moved, unsure
+from .circles import TOLERANCE, FootCircles, moved, projected, unsure
 from .contact_system import ActiveSet, ContactSystem, RingContactError, active_set, loaded_product
 from .influence import RingContact, approach_open
 from .master import Gear2Master
@@ -140,13 +140,17 @@ def solve_with(model: RingModel, contact: RingContact, torque_nmm: float, theta:
 class _Gaps:
     """The rigid gaps a solve's iterations measure: the exact ones (:func:`rigid_gap`), or
     given foot circles the circles' until the last evaluation finds them off the exact ones
-    (then ``points`` is None); ``brief`` as :class:`Iterations`'."""
+    (then ``points`` is None), the points projected on them once (:class:`~.circles.Projected`;
+    the last points asked for taken once too: the linearisations ask for the same);
+    ``brief`` as :class:`Iterations`'."""
 
     def __init__(self, model: RingModel, contact: RingContact, circles: FootCircles | None,
                  brief: bool = False):
         self.model, self.contact, self.circles, self.brief = model, contact, circles, brief
         self.alpha = model.case.params.ratio * contact.beta   # gear 1's kinematic turn (rad)
-        self.points = None if circles is None else moved(circles, model, contact)
+        self.points = None if circles is None else projected(circles,
+                                                              moved(circles, model, contact))
+        self._taken: tuple | None = None
 
     def __call__(self, turn: float, feet: np.ndarray, idx: np.ndarray
                  ) -> tuple[np.ndarray, np.ndarray]:
@@ -155,7 +159,9 @@ class _Gaps:
         :func:`rigid_gap`'s."""
         if self.points is None:
             return rigid_gap(self.model, self.contact, turn, feet, idx)
-        return circle_gaps(self.circles, self.points, turn - self.alpha, idx)
+        if self._taken is None or self._taken[0] is not idx:
+            self._taken = (idx, self.points.take(idx))
+        return self._taken[1].measured(turn - self.alpha)[:2]
 
     def settled(self, it: _Iterate) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Every point's rigid gaps (mm) and rates (mm/rad) at the rotation ``it`` settled at,
@@ -168,7 +174,7 @@ class _Gaps:
             return g0, a, np.ones(len(g0), bool)
         pressure = np.zeros(contact.npoints)
         pressure[it.on] = it.pressure
-        g0, a, exact = unsure(self.model, self.circles, self.points, it.theta,
+        g0, a, exact = unsure(self.model, self.points, it.theta,
                               loaded_product(contact.A, pressure), pressure > 0)
         idx = np.flatnonzero(exact)
         feet = contact.feet[idx]

@@ -13,6 +13,7 @@ from fegear.toothpair.ring.circles import (
     circle_gaps,
     foot_circles,
     moved,
+    projected,
     unsure,
 )
 from fegear.toothpair.ring.contact import Iterations, rigid_gap, solve_ring_contact, solve_with
@@ -118,8 +119,8 @@ def test_the_points_the_circles_tell_open_are_open_on_the_exact_gaps(settled, ki
     at = turned(model, contact, 0, contact.beta, placed)
     elastic = sol.gap - rigid_gap(model, contact, contact.turn + theta, contact.feet.copy())[0]
     (g, _), (gc, _) = _both(settled, dev, theta + 6e-4, circles)
-    gu, _, exact = unsure(model, circles, moved(circles, model, at), theta + 6e-4, elastic,
-                          sol.pressure > 0)
+    points = projected(circles, moved(circles, model, at))
+    gu, _, exact = unsure(model, points, theta + 6e-4, elastic, sol.pressure > 0)
     assert np.array_equal(gu, gc)
     assert np.abs(gc - g).max() < MARGIN / 20
     assert (g + elastic)[~exact].min() > 0
@@ -161,3 +162,52 @@ def test_a_brief_solve_measures_fewer_points_exactly_for_the_same_contact(settle
     assert brief.rotation == pytest.approx(full.rotation, rel=1e-9)
     assert np.abs(brief.pressure - full.pressure).max() < 1e-6 * full.pressure.max()
     assert solved[True, "points"] < solved[False, "points"] / 2
+
+
+def _direct(circles, moved_points, theta):
+    """The gaps, rates and slides of the moved points measured to their circles as vectors:
+    turned, offset, turned back with gear 2's tooth, then the foot's normal and tangent."""
+    from fegear.planar import rotate, rotate_by
+
+    lever = rotate(moved_points.x, theta) + moved_points.offset
+    point = lever + moved_points.axis
+    if moved_points.turn2 is not None:
+        c, s = moved_points.turn2[0], -moved_points.turn2[1]
+        point, lever = rotate_by(point, c, s), rotate_by(lever, c, s)
+    u = point - circles.foot
+    d = np.einsum("ij,ij->i", u, circles.normal)
+    s = np.einsum("ij,ij->i", u, circles.tangent)
+    k = circles.kappa
+    bend = 1.0 - k * d
+    q = np.hypot(bend, k * s)
+    gap = (2.0 * d - k * (d * d + s * s)) / (1.0 + q) - moved_points.flank1
+    placed, k2 = moved_points.gear2
+    slid = circles.foot + (s[:, None] * circles.tangent
+                           + (k * s * s / (q + bend))[:, None] * circles.normal) / q[:, None]
+    gap -= placed.deviations.flank_offset(2, k2, placed.roll(2, slid))
+    grad = (bend[:, None] * circles.normal - (k * s)[:, None] * circles.tangent) / q[:, None]
+    return gap, grad[:, 1] * lever[:, 0] - grad[:, 0] * lever[:, 1], s
+
+
+def test_the_projected_points_measure_what_the_moved_points_measure_at_any_turn(settled):
+    model, contact = settled.model, settled.contact
+    p = model.case.params
+    theta = settled.solution.rotation
+    circles = foot_circles(model, contact, theta)
+    dev = Deviations({int(t): ToothDeviation(pitch=4.0, slope=-3.0, form=2.0)
+                      for t in set(contact.teeth)},
+                     gear2={k: ToothDeviation(pitch=-3.0, form=3.0) for k in range(p.z2)},
+                     centre_distance=5.0, runout1=Runout(8.0, 40), runout2=Runout(6.0, 100))
+    at = turned(model, contact, 0, contact.beta, Placed(dev, p, contact.beta))
+    points = moved(circles, model, at)
+    some = np.arange(3, contact.npoints, 7)
+    for turn in (theta, theta + 3e-4, theta - 1e-3):
+        gap, rate, slide = _direct(circles, points, turn)
+        every = projected(circles, points).measured(turn)
+        taken = projected(circles, points).take(some).measured(turn)
+        for got in (every, tuple(v[some] for v in every), taken):
+            sel = slice(None) if len(got[0]) == len(gap) else some
+            assert np.abs(got[0] - gap[sel]).max() < 1e-12
+            assert np.abs(got[1] - rate[sel]).max() < 1e-12 * np.abs(rate).max()
+            assert np.abs(got[2] - slide[sel]).max() < 1e-12
+
