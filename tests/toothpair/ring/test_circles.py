@@ -83,6 +83,15 @@ def test_the_circles_follow_the_deviated_gaps_to_the_third_order(settled, kind):
     assert errors[0] / errors[1] > 5.0    # third order: 8
 
 
+def _every_kind(contact, p, um: float) -> Deviations:
+    """Pitches of ±1.5 ``um`` alternating on the contact's teeth and their slopes −``um``,
+    gear 2's forms ``um``, the centre distance ``um`` and gear 1's runout 2 ``um`` (µm)."""
+    return Deviations({int(t): ToothDeviation(pitch=1.5 * um * (-1) ** int(t), slope=-um)
+                       for t in set(contact.teeth)},
+                      gear2={k: ToothDeviation(form=um) for k in range(p.z2)},
+                      centre_distance=um, runout1=Runout(2.0 * um, 40))
+
+
 def test_a_contact_solved_on_the_circles_is_the_one_solved_on_the_exact_gaps(settled):
     model, solved = settled.model, settled.contact
     p, torque = model.case.params, settled.case.torque * 1e3
@@ -90,11 +99,7 @@ def test_a_contact_solved_on_the_circles_is_the_one_solved_on_the_exact_gaps(set
                                ColumnRule(probes=False))
     theta = settled.solution.rotation
     circles = foot_circles(model, contact, theta)
-    dev = Deviations({int(t): ToothDeviation(pitch=1.5 * (-1) ** int(t), slope=-1.0)
-                      for t in set(contact.teeth)},
-                     gear2={k: ToothDeviation(form=1.0) for k in range(p.z2)},
-                     centre_distance=1.0, runout1=Runout(2.0, 40))
-    placed = Placed(dev, p, contact.beta)
+    placed = Placed(_every_kind(contact, p, 1.0), p, contact.beta)
     on_circles = solve_with(model, turned(model, contact, 0, contact.beta, placed), torque,
                             theta, Iterations(start=settled.solution.pressure > 0,
                                               circles=circles))
@@ -136,11 +141,7 @@ def test_a_brief_solve_measures_fewer_points_exactly_for_the_same_contact(settle
     assert contact.complete    # as a kept contact: every column formed
     theta = settled.solution.rotation
     circles = foot_circles(model, contact, theta)
-    dev = Deviations({int(t): ToothDeviation(pitch=3.0 * (-1) ** int(t), slope=-2.0)
-                      for t in set(contact.teeth)},
-                     gear2={k: ToothDeviation(form=2.0) for k in range(p.z2)},
-                     centre_distance=2.0, runout1=Runout(4.0, 40))
-    placed = Placed(dev, p, contact.beta)
+    placed = Placed(_every_kind(contact, p, 2.0), p, contact.beta)
     measured = []
     exact_gap = ring_contact.rigid_gap
 
