@@ -16,8 +16,10 @@ The circle matches the curve to the second order in the foot's slide: the gap is
 the third, about 2e-7 mm where a class-6 pair's teeth move 10 µm and turn 9 µm of arc. The
 whole pair repeats over whole pitches, so the circles made at the kept pitch, in the fixed
 frame, serve every pitch of its phase. A solve's last evaluation is of the exact gaps at every
-point; where they differ from the circles' by more than :data:`TOLERANCE` on the points it
-iterated on, its iterations go on with the exact gaps (:func:`~.contact.solve_with`).
+point (a brief one's where the circles cannot tell a point open: :func:`unsure`); where they
+differ from the circles' by more than :data:`TOLERANCE` on the points it iterated on, its
+iterations go on with the exact gaps (:func:`~.contact.solve_with`). A solve projects its
+points on their circles once (:class:`Projected`), and each evaluation reads the projections.
 """
 
 from __future__ import annotations
@@ -145,24 +147,22 @@ class Projected:
                          None if self.foot is None else self.foot[:, idx],
                          None if self.gear2 is None else (self.gear2[0], self.gear2[1][idx]))
 
-    def measured(self, theta: float, idx: np.ndarray | None = None
-                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """The points' (``idx``'s, default all) rigid gaps (mm) and their rates with the turn
-        (mm/rad) at gear 1 turned by ``theta`` (rad, beyond the kinematic angle), and each
-        one's slide along its circle's tangent from its foot (mm)."""
-        at = self if idx is None else self.take(idx)
+    def measured(self, theta: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The points' rigid gaps (mm) and their rates with the turn (mm/rad) at gear 1 turned
+        by ``theta`` (rad, beyond the kinematic angle), and each one's slide along its circle's
+        tangent from its foot (mm)."""
         turn = np.array([[math.cos(theta), math.sin(theta), 1.0, 0.0],
                          [math.cos(theta), math.sin(theta), 0.0, 1.0]])
-        (d, nv), (s, tv) = turn @ at.n, turn @ at.t   # a point's offsets, its lever's
-        kappa = at.kappa
+        (d, nv), (s, tv) = turn @ self.n, turn @ self.t   # a point's offsets, its lever's
+        kappa = self.kappa
         bend = 1.0 - kappa * d
         ks = kappa * s
         q = np.sqrt(bend * bend + ks * ks)
-        gap = (2.0 * d - kappa * (d * d + s * s)) / (1.0 + q) - at.flank1
-        if at.gear2 is not None:   # the foot slid along the circle by s t + h n, over q
-            placed, k2 = at.gear2
+        gap = (2.0 * d - kappa * (d * d + s * s)) / (1.0 + q) - self.flank1
+        if self.gear2 is not None:   # the foot slid along the circle by s t + h n, over q
+            placed, k2 = self.gear2
             h = ks * s / (q + bend)
-            fn, ft, f2 = at.foot
+            fn, ft, f2 = self.foot
             r = np.sqrt(f2 + 2.0 * (s * ft + h * fn) / q + (s * s + h * h) / (q * q))
             gap -= placed.deviations.flank_offset(2, k2, placed.roll_at(2, r))
         # the gradient (bend n − κ s t) / q on the lever turned a quarter, J v: n · J v = t · v

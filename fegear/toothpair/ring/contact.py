@@ -315,7 +315,8 @@ def _exact(gaps: _Gaps, it: _Iterate, step: float) -> bool:
         contact.feet[it.on] = it.feet
     iterated = it.g0 + it.a * step   # the gaps the iterations settled on
     g0, a, exact = gaps.settled(it)
-    if gaps.points is None or np.abs(g0[it.on] - iterated)[exact[it.on]].max() <= TOLERANCE:
+    off = np.abs(g0[it.on] - iterated)[exact[it.on]]
+    if gaps.points is None or off.max(initial=0.0) <= TOLERANCE:
         it.rigid = (g0, a)
         return True
     gaps.points = None   # the circles' gaps left the exact ones: every point's measured
