@@ -153,7 +153,7 @@ def test_a_screened_revolution_gives_every_pairs_worst_as_the_whole_one(baseline
     assert turning >= 4
 
 
-# slow (about 20 minutes on 2 cores: 2200 pairs over a revolution)
+# slow (about 9 minutes on 2 cores: 2200 pairs over a revolution)
 @pytest.mark.slow
 def test_a_revolutions_quantile_falls_within_its_printed_error_of_2000_other_pairs():
     # issue 70: P95 over a revolution of 200 pairs against 2000 others (another seed:
