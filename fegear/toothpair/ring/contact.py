@@ -125,7 +125,7 @@ def solve_with(model: RingModel, contact: RingContact, torque_nmm: float, theta:
     if it.near is not None:   # the points left out: the pressures act on them too
         pressure = np.zeros(len(it.near))
         pressure[it.near] = it.pressure
-    closed = _closed(model, contact, pressure, g0)
+    closed = _closed(model, contact, pressure, g0, it.elastic)
     if closed is None:
         return None
     full, gap, clamped = closed
@@ -167,15 +167,17 @@ class _Gaps:
         """Every point's rigid gaps (mm) and rates (mm/rad) at the rotation ``it`` settled at,
         and a mask of those measured exactly: every point, or where ``brief`` (and circles)
         those the circles do not settle, the others the circles' (:func:`~.circles.unsure`;
-        the contact's every column formed, so A spans its points)."""
+        the contact's every column formed, so A spans its points: the pressures' A p, which
+        that reads, kept in ``it.elastic`` for the solution's gaps)."""
         contact, turn = self.contact, self.alpha + it.theta
+        it.elastic = None
         if self.points is None or not self.brief:
             g0, a = rigid_gap(self.model, contact, turn, contact.feet)
             return g0, a, np.ones(len(g0), bool)
         pressure = np.zeros(contact.npoints)
         pressure[it.on] = it.pressure
-        g0, a, exact = unsure(self.model, self.points, it.theta,
-                              loaded_product(contact.A, pressure), pressure > 0)
+        it.elastic = loaded_product(contact.A, pressure)
+        g0, a, exact = unsure(self.model, self.points, it.theta, it.elastic, pressure > 0)
         idx = np.flatnonzero(exact)
         feet = contact.feet[idx]
         g0[idx], a[idx] = rigid_gap(self.model, contact, turn, feet, idx)
@@ -192,7 +194,8 @@ class _Iterate:
     their rates ``a`` (mm/rad) there, the ``active`` set and ``pressure`` (MPa) found, the
     active-set iterations counted and each linearisation's rotation step (``steps``, rad, its
     size), the blocks of A met (:class:`~.contact_system.ContactSystem`) and, once settled,
-    every point's exact rigid gaps and rates (``rigid``)."""
+    every point's exact rigid gaps and rates (``rigid``) and, where the last evaluation
+    formed it, A p at every point (``elastic``, mm)."""
 
     on: np.ndarray
     w: np.ndarray
@@ -208,6 +211,7 @@ class _Iterate:
     blocks: dict = field(default_factory=dict)
     rigid: tuple | None = None
     steps: list = field(default_factory=list)
+    elastic: np.ndarray | None = None
 
     @property
     def turns(self) -> int:
@@ -325,17 +329,19 @@ def _exact(gaps: _Gaps, it: _Iterate, step: float) -> bool:
     return False
 
 
-def _closed(model: RingModel, contact: RingContact, pressure: np.ndarray, g0: np.ndarray
+def _closed(model: RingModel, contact: RingContact, pressure: np.ndarray, g0: np.ndarray,
+            elastic: np.ndarray | None = None
             ) -> tuple[np.ndarray, np.ndarray, tuple | None] | None:
     """The formed points' ``pressure`` (MPa) spread over every point, the gaps (mm) from the
-    rigid gaps ``g0`` of every point (A p added on the formed points, the fields' approach on
-    the others: :func:`~.influence.approach_open`) and each gear's clamped fields that check
-    formed (None where every column is formed); None where a point left out closes."""
+    rigid gaps ``g0`` of every point (A p added on the formed points, ``elastic`` where it was
+    formed before, the fields' approach on the others: :func:`~.influence.approach_open`) and
+    each gear's clamped fields that check formed (None where every column is formed); None
+    where a point left out closes."""
     on = np.flatnonzero(contact.formed)
     full = np.zeros(contact.npoints)
     full[on] = pressure
     gap = g0.copy()
-    gap[on] += loaded_product(contact.A, pressure)
+    gap[on] += loaded_product(contact.A, pressure) if elastic is None else elastic
     clamped = None
     if not contact.complete:
         rest = np.flatnonzero(~contact.formed)
