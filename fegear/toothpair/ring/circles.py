@@ -55,6 +55,13 @@ class FootCircles:
     tangent: np.ndarray
     kappa: np.ndarray
 
+    @classmethod
+    def at_feet(cls, curve: Cycloid, xi: np.ndarray, beta) -> FootCircles:
+        """The circles at gear 2's ``curve`` parameters ``xi``, the curve turned by ``beta``
+        (rad; scalar or a point's) into the fixed frame."""
+        foot, tangent, normal, kappa = curve.frame(xi)
+        return cls(rotate(foot, beta), rotate(normal, beta), rotate(tangent, beta), kappa)
+
 
 @dataclass(frozen=True)
 class Moved:
@@ -80,9 +87,7 @@ def foot_circles(model: RingModel, contact: RingContact, theta: float) -> FootCi
     p = model.case.params
     fixed = rotate(contact.x, p.ratio * contact.beta + theta) + np.array([0.0, p.e])
     xi = model.curve2.feet(rotate(fixed, -contact.beta), start=contact.feet.copy())
-    foot, tangent, normal, kappa = model.curve2.frame(xi)
-    return FootCircles(rotate(foot, contact.beta), rotate(normal, contact.beta),
-                       rotate(tangent, contact.beta), kappa)
+    return FootCircles.at_feet(model.curve2, xi, contact.beta)
 
 
 def moved(circles: FootCircles, model: RingModel, contact: RingContact) -> Moved:

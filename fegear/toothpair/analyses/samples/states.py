@@ -24,7 +24,6 @@ from ....geometry import (
     least_clearances,
     least_of_states,
 )
-from ....planar import rotate
 from ...case import SolveCase, revolution_positions
 from ...positions import TURN_CHECK, Clearances
 from ...ring.circles import FootCircles, circle_gaps, moved_by
@@ -56,10 +55,7 @@ class ClosingCircles:
         self.turns = closing.turns(params)
         at = Placed(NO_DEVIATIONS, params, closing.beta)
         at.gap(closing.x, closing.tooth, self.turns, closing.feet, flanks=closing.direction > 0)
-        foot, tangent, normal, kappa = at.curve2.frame(closing.feet)
-        beta = closing.beta
-        self.circles = FootCircles(rotate(foot, beta), rotate(normal, beta),
-                                   rotate(tangent, beta), kappa)
+        self.circles = FootCircles.at_feet(at.curve2, closing.feet, closing.beta)
         self.teeth2 = gear2_tooth(closing.feet, params.z2)
 
     def clearances(self, deviations) -> np.ndarray:
