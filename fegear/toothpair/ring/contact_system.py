@@ -8,11 +8,10 @@ linearisations."""
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg
+from scipy.linalg.lapack import dgetrf, dgetrs
 
 from ...errors import ContactError
 
@@ -65,9 +64,9 @@ def solve_active(system: ContactSystem, torque_nmm: float, active: np.ndarray,
     (w a)·p + ``arm_rate`` δ = −T by its Schur complement on the active points' factorised
     block (:func:`_block`), which the linearisations after the first, on the same points, use
     again."""
-    idx, factor, _ = _block(system, active)
+    idx, (lu, piv), _ = _block(system, active)
     a, wa = system.a[idx], system.w[idx] * system.a[idx]
-    free, per_step = scipy.linalg.lu_solve(factor, np.column_stack([-system.g0[idx], a])).T
+    free, per_step = dgetrs(lu, piv, np.column_stack([-system.g0[idx], a]))[0].T
     denominator = arm_rate - wa @ per_step
     step = (-torque_nmm - wa @ free) / denominator if denominator else math.inf
     if not math.isfinite(step) or not np.isfinite(free).all():
@@ -114,12 +113,13 @@ def _block(system: ContactSystem, active: np.ndarray) -> tuple[np.ndarray, tuple
         idx = np.flatnonzero(active)
         store = _store(system)
         slots = store.gather(system, idx)
-        with warnings.catch_warnings():   # a singular block: a non-finite solution, refused
-            warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
-            # a gathered copy: the active columns of the rows gathered so far, then the active
-            # rows (two plain gathers, not one of np.ix_: a third of the time)
-            block = np.take(store.rows[:store.count], idx, axis=1)[slots].T
-            factor = scipy.linalg.lu_factor(block, overwrite_a=True, check_finite=False)
+        # a gathered copy: the active columns of the rows gathered so far, then the active
+        # rows (two plain gathers, not one of np.ix_: a third of the time), factorised by
+        # LAPACK's getrf itself, without scipy's checks around it (the block is finite and
+        # its own); a singular block gives a non-finite solution, which solve_active refuses
+        block = np.take(store.rows[:store.count], idx, axis=1)[slots].T
+        lu, piv, _ = dgetrf(block, overwrite_a=True)
+        factor = (lu, piv)
         if len(system.blocks) >= BLOCKS + 1:
             system.blocks.pop(next(k for k in system.blocks if k != "columns"))
         system.blocks[key] = (idx, factor, slots)
