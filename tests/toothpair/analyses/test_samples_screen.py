@@ -9,8 +9,11 @@ from fegear.toothpair.analyses.samples.screen import (
     BEFORE,
     MARGINS,
     SCOUTS,
+    STRIDE,
     about_scouts,
+    beside_largest,
     scout_places,
+    stride_of,
 )
 from fegear.toothpair.case import HEADLINE
 
@@ -38,8 +41,9 @@ def _scouted(values: dict[int, float], places: int, pitches: int, rest: float = 
 
 
 def test_a_pair_is_solved_about_its_scouts_within_the_margin_and_at_the_revolutions_end():
-    places, pitches = 8, 5                     # scouts at places 0 and 4: 4 apart
+    places, pitches = 8, 5                     # scouts at places 0 and 4: 4 apart, stride 2
     end = places * pitches
+    assert stride_of(places) == STRIDE == 2
     margin = MARGINS["root_stress_gear1_MPa"]
     # the largest at position 12 (pitch 1, place 4); position 20 just within the margin,
     # position 28 just without; everything else at 100
@@ -47,29 +51,59 @@ def test_a_pair_is_solved_about_its_scouts_within_the_margin_and_at_the_revoluti
                         28: 200.0 * (1 - margin) - 1e-3}, places, pitches)
     wanted = about_scouts(scouted, places, pitches)
     # every other headline is the same at every scout: all are its largest, so all are
-    # solved about: a pressure whose scouts do not differ is screened by none
-    assert wanted == set(range(end)) - set(scouted)
-    # the other headlines largest at the last scout alone: about 12 and 20 (nearer than the
-    # next scout either side), about the last scout, and the last places
+    # solved about, at every other position: a pressure whose scouts do not differ is
+    # screened by none; the revolution's last places at every one
+    tail = set(range(end - 3, end))
+    assert wanted == (set(range(0, end, 2)) | tail) - set(scouted)
+    # the other headlines largest at the last scout alone: about 12 and 20 (the positions
+    # of the stride nearer than the next scout either side), about the last scout, and the
+    # last places
     flat = {r: {key: (v if key == "root_stress_gear1_MPa" else 150.0 if r == end - 4 else 100.0)
                 for key, v in head.items()} for r, head in scouted.items()}
     others = {key: max(flat, key=lambda r: flat[r][key]) for key in HEADLINE}
     assert set(others.values()) == {12, end - 4}
     wanted = about_scouts(flat, places, pitches)
-    about = {12: range(9, 16), 20: range(17, 24), end - 4: range(end - 7, end)}
-    expected = set().union(*about.values(), range(end - 3, end)) - set(flat)
-    assert wanted == expected
+    assert wanted == {10, 14, 18, 22, end - 6} | tail
     assert not wanted & set(flat)
-    assert 28 not in wanted and 25 not in wanted and 31 not in wanted
+    assert 28 not in wanted and 26 not in wanted and 30 not in wanted
 
 
-def test_nothing_beyond_the_revolution_is_asked_for():
-    places, pitches = 4, 3
+def test_where_the_scouts_stand_close_every_position_about_them_is_solved_at_once():
+    places, pitches = 4, 3                     # scouts 2 apart: nothing between to leave
+    assert stride_of(places) == 1
     values = {0: 500.0, 10: 500.0}             # the first scout and the last one largest
-    wanted = about_scouts(_scouted(values, places, pitches), places, pitches)
+    scouted = _scouted(values, places, pitches)
+    wanted = about_scouts(scouted, places, pitches)
     assert min(wanted) >= 0 and max(wanted) < places * pitches
     assert np.isin([1, 9, 11], sorted(wanted)).all()
+    # nothing is left between the positions solved for the last round
+    solved = {**{r: scouted[r] for r in scouted}, **{r: scouted[0] for r in wanted}}
+    assert beside_largest(solved, places, pitches) == set()
 
+
+def test_the_last_round_solves_beside_the_positions_within_half_the_margin():
+    places, pitches = 8, 5                     # stride 2: solved every other position
+    end = places * pitches
+    margin = MARGINS["root_stress_gear1_MPa"]
+    solved = {r: {key: 100.0 for key in HEADLINE} for r in range(0, end, 2)}
+    for key in HEADLINE:                       # every headline largest at 20
+        solved[20][key] = 200.0
+    solved[8]["root_stress_gear1_MPa"] = 200.0 * (1 - margin / 2) + 1e-9   # within half
+    solved[30]["root_stress_gear1_MPa"] = 200.0 * (1 - margin / 2) - 1e-3  # without
+    wanted = beside_largest(solved, places, pitches)
+    # either side of 20 and of 8 (the roots), before 20 alone for a flank's pressure: both
+    # sides all the same for the others
+    assert wanted == {7, 9, 19, 21}
+    assert not wanted & set(solved)
+    # the flank's pressure alone largest at 20: before it alone; the others at 36
+    for key in HEADLINE:
+        if key not in BEFORE:
+            solved[20][key] = solved[8][key] = 100.0
+            solved[36][key] = 200.0
+    assert beside_largest(solved, places, pitches) == {19, 35, 37}
+    # all the same everywhere: beside every position, nothing beyond the revolution
+    solved = {r: {key: 100.0 for key in HEADLINE} for r in range(0, end, 2)}
+    assert beside_largest(solved, places, pitches) == set(range(1, end, 2))
 
 
 def test_a_flanks_pressure_is_solved_about_before_its_scout_alone():
@@ -80,13 +114,14 @@ def test_a_flanks_pressure_is_solved_about_before_its_scout_alone():
     scouted = {r: {key: 150.0 if (key in BEFORE and r == 12) else 100.0 for key in HEADLINE}
                for n in range(pitches) for r in (n * places, n * places + 4)}
     # the other headlines the same at every scout: each scout solved about on both sides
-    assert about_scouts(scouted, places, pitches) == set(range(end)) - set(scouted)
+    assert about_scouts(scouted, places, pitches) == (set(range(0, end, 2))
+                                                      | set(range(end - 3, end))) - set(scouted)
     for r, head in scouted.items():
         for key in HEADLINE:
             if key not in BEFORE:
                 head[key] = 100.0 + (50.0 if r == end - 4 else 0.0)
     wanted = about_scouts(scouted, places, pitches)
-    assert wanted == ({9, 10, 11} | set(range(end - 7, end))) - set(scouted)
+    assert wanted == ({10, end - 6} | set(range(end - 3, end))) - set(scouted)
 
 
 def test_a_screened_class_that_all_jams_still_has_the_exact_pair_at_every_place(baseline_ring):

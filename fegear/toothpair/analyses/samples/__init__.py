@@ -55,7 +55,7 @@ class Samples(Analysis):
                 "cycle's at every pitch of gear 1)")
         if entry.get("screened"):
             over += (", screened: each at every pitch at a few of the cycle's places, then "
-                     "about those nearest its largest, "
+                     "about and beside those nearest its largest, "
                      f"{entry['positions_solved_per_pair']:.0f} positions a pair on average")
         face = (", across the face, the exact pair and each of them at its worst section"
                 if "across" in entry else "")

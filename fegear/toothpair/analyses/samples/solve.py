@@ -13,8 +13,8 @@ again with its teeth too.
 
 Over a whole revolution, where a cycle has places to spare and only the headlines are read,
 the pairs are screened (:mod:`.screen`): each solved at every pitch at a few of the places
-first, then at the positions about those that came nearest its largest, and its row the
-largest of the positions solved.
+first, then at every other position about those that came nearest its largest, then beside
+the ones of those nearest it, and its row the largest of the positions solved.
 
 A sample whose deviations take up the pair's backlash somewhere over a whole turn of gear 1
 (:func:`~.teeth.closure`, checked at :data:`~.positions.TURN_CHECK` angles a pitch, as a
