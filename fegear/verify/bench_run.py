@@ -23,7 +23,7 @@ from . import bench, history
 from .ccx_files import PeerError
 from .pair_targets import PEER_KEYS, PairRuns, pair_targets, sector_error
 from .peer_contact import CASES, LEVELS, contact_peer, peer_table
-from .ring_bench import SINGLE_TARGET, class_run, face_run, spectrum_run
+from .ring_bench import SINGLE_TARGET, class_run, face_run, revolution_run, spectrum_run
 from .sector import cross_check, cross_table
 
 if TYPE_CHECKING:
@@ -56,7 +56,8 @@ class BenchPlan:
     samples over the cycle (:func:`~.ring_bench.class_run`); ``spectrum``: also time a 4-level
     load spectrum over the cycle against the cycle (:func:`~.ring_bench.spectrum_run`);
     ``face``: also time one position and a cycle across the face against the 2D pair
-    (:func:`~.ring_bench.face_run`);
+    (:func:`~.ring_bench.face_run`); ``revolution``: also time whole revolutions, one deviated
+    pair's and 200 pairs', against one position (:func:`~.ring_bench.revolution_run`);
     ``files``: pairs of whole ``fegear solve`` commands without and with ``--out`` that time
     the files' cost (:func:`~.bench.files_run`; 0: none); ``only``: one of :data:`ONLY`;
     ``out``: the directory (checked, made when there is something to write); ``history``: the
@@ -80,6 +81,7 @@ class BenchPlan:
     tolerance_class: bool = False
     spectrum: bool = False
     face: bool = False
+    revolution: bool = False
     files: int = 0
     only: str = ""
     history: Path | None = None
@@ -117,7 +119,8 @@ def _everything(plan: BenchPlan, say: Say) -> None:
                    study=verify.paper_study_s() if plan.paper_study else None,
                    tolerance=class_run(plan.pair_args) if plan.tolerance_class else None,
                    spectrum=spectrum_run(plan.pair_args) if plan.spectrum else None,
-                   face=face_run(plan.pair_args) if plan.face else None)
+                   face=face_run(plan.pair_args) if plan.face else None,
+                   revolution=revolution_run(plan.pair_args) if plan.revolution else None)
     files = None
     if plan.files:
         say("")
@@ -237,6 +240,8 @@ def _ring_record(runs: PairRuns, scale: list, targets: list[str],
     if runs.face is not None:
         record["face"] = {name: {"flat_s": flat, "face_s": face}
                           for name, (flat, face) in runs.face.items()}
+    if runs.revolution is not None:
+        record["revolution"] = runs.revolution
     if files is not None:
         record["files"] = {"args": list(files.args), "without_s": list(files.without),
                            "with_out_s": list(files.written), "cost_s": files.cost_s}

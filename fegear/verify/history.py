@@ -59,6 +59,10 @@ def bench_metrics(record: dict) -> dict[str, float]:
     if ring.get("spectrum") is not None:
         s = ring["spectrum"]
         out["4-level spectrum / its cycle, whole commands [×]"] = s["spectrum_s"] / s["cycle_s"]
+    rev = ring.get("revolution")
+    if rev is not None:
+        out["one deviated pair's revolution [s]"] = rev["pair_s"]
+        out["200 class-5 pairs over a revolution [s]"] = rev["class_s"]
     for name, f in (ring.get("face") or {}).items():
         out[f"across the face / 2D, {name}, whole commands [×]"] = f["face_s"] / f["flat_s"]
     return out

@@ -32,8 +32,9 @@ class PairRuns:
     where they were run the mesh cycle, the sector model's ladder (with CalculiX's times on
     its meshes), the paper study (s, cases), the model cache's runs and a tolerance class's
     samples (s, their counts: :func:`~.ring_bench.class_run`) and a load spectrum's cycle (s
-    alone, s with the spectrum: :func:`~.ring_bench.spectrum_run`) and the pair across the
-    face against the 2D one (:func:`~.ring_bench.face_run`)."""
+    alone, s with the spectrum: :func:`~.ring_bench.spectrum_run`), the pair across the
+    face against the 2D one (:func:`~.ring_bench.face_run`) and whole revolutions against one
+    position (:func:`~.ring_bench.revolution_run`)."""
 
     default: RingRun
     extra: RingRun
@@ -45,6 +46,7 @@ class PairRuns:
     tolerance: tuple[float, dict] | None = None
     spectrum: tuple[float, float] | None = None
     face: dict[str, tuple[float, float]] | None = None
+    revolution: dict[str, float] | None = None
 
 
 def sector_error(values: dict, keys=None) -> float:
@@ -88,6 +90,7 @@ def pair_targets(runs: PairRuns, peer_target: float = PEER_TARGET) -> list[str]:
                      f"{alone:.2f} s alone, "
                      f"{rated / alone:.2f}× (target <= {rb.SPECTRUM_TARGET:g}×): "
                      f"{_status(rated / alone <= rb.SPECTRUM_TARGET)}")
+    lines += _revolution(runs.revolution)
     for name, (flat, face) in (runs.face or {}).items():
         target = rb.FACE_TARGETS[name]
         lines.append(f"* {name} across the face (`{' '.join(rb.FACE_ARGS)}`): {face:.2f} s "
@@ -155,6 +158,22 @@ def _cycle(cycle: RingRun | None, default: RingRun) -> list[str]:
             f"{ratio:.2f}× one position (target <= {rb.CYCLE_TARGET:g}×): "
             f"{_status(ratio <= rb.CYCLE_TARGET)}; each later position "
             f"{sum(later.values()):.2f} s, most in {top} ({later[top]:.2f} s)"]
+
+
+def _revolution(run: dict[str, float] | None) -> list[str]:
+    """One deviated pair's revolution and 200 pairs', each against its seconds' target, with
+    its multiple of one position's whole command (none if they were not run)."""
+    if run is None:
+        return []
+    one = run["solve_s"]
+    return [f"* `fegear solve {' '.join(rb.REVOLUTION_ARGS)}`: {run['pair_s']:.1f} s, "
+            f"{run['pair_s'] / one:.1f}× one position's {one:.2f} s (target <= "
+            f"{rb.REVOLUTION_TARGET_S:g} s): {_status(run['pair_s'] <= rb.REVOLUTION_TARGET_S)}",
+            f"* `fegear solve {' '.join(rb.REVOLUTION_CLASS_ARGS)}`: {run['class_s']:.1f} s, "
+            f"{run['class_s'] / one:.0f}× one position, "
+            f"{run['positions_solved_per_pair']:.0f} positions solved a pair (target <= "
+            f"{rb.REVOLUTION_CLASS_TARGET_S:g} s): "
+            f"{_status(run['class_s'] <= rb.REVOLUTION_CLASS_TARGET_S)}"]
 
 
 def _peer(sector: Ladder, ring: list[RingRun], peer_target: float) -> list[str]:

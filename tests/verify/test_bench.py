@@ -264,9 +264,37 @@ def test_a_tolerance_class_is_judged_by_its_whole_command_with_what_its_pairs_ca
         out = pair_targets(PairRuns(one, one, [one], tolerance=(seconds, counts)), 20.0)
         return next(x for x in out if "--grade 6" in x)
 
-    assert line(59.6).endswith("161 pairs solved at every position, 839 jammed, 0 failed "
-                               "(target <= 60 s): met")
-    assert line(60.4).endswith("MISSED")
+    assert line(19.6).endswith("161 pairs solved at every position, 839 jammed, 0 failed "
+                               "(target <= 20 s): met")
+    assert line(20.4).endswith("MISSED")
+
+
+def test_whole_revolutions_are_judged_by_their_seconds_with_their_multiple_of_one_position():
+    from fegear.verify import ring_bench as rb
+    from fegear.verify.history import bench_metrics
+    from fegear.verify.pair_targets import PairRuns, pair_targets
+
+    ref = dict(rb.SECTOR_REFERENCE, von_mises_max_MPa=rb.VON_MISES_RESOLVED)
+    one = rb.RingRun("standard", {"mesh": 1.0}, 1.0, 500.0, 1, 1, ref, {})
+
+    def lines(pair, every):
+        run = {"solve_s": 2.0, "pair_s": pair, "class_s": every,
+               "positions_solved_per_pair": 234.4}
+        out = pair_targets(PairRuns(one, one, [one], revolution=run), 20.0)
+        return [x for x in out if "--revolution" in x]
+
+    pair, every = lines(4.9, 59.0)
+    assert pair.startswith("* `fegear solve --revolution --pitch-deviation 1:11=5")
+    assert pair.endswith("4.9 s, 2.5× one position's 2.00 s (target <= 5 s): met")
+    assert "--samples 200" in every and "--shift 0.03" in every
+    assert every.endswith("59.0 s, 30× one position, 234 positions solved a pair "
+                          "(target <= 60 s): met")
+    assert [x.endswith("MISSED") for x in lines(5.1, 61.0)] == [True, True]
+    assert [x.endswith("met") for x in lines(4.0, 61.0)] == [True, False]
+    got = bench_metrics({"ring": {"revolution": {"solve_s": 2.0, "pair_s": 8.0,
+                                                 "class_s": 120.0}}})
+    assert got["one deviated pair's revolution [s]"] == 8.0
+    assert got["200 class-5 pairs over a revolution [s]"] == 120.0
 
 
 def test_a_spectrum_is_judged_against_its_cycle_alone():
