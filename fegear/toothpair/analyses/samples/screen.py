@@ -11,7 +11,7 @@ each headline's scouts within its margin (:data:`MARGINS`) of that pair's larges
 then solved about, at every :data:`STRIDE`-th position nearer than the next scout on either
 side (a flank's pressure before it alone: :data:`BEFORE`), and at the revolution's last
 places (which no scout follows) at every one; last, each headline's positions solved within
-half its margin of the pair's largest so far are solved beside, at the positions between
+half its margin of the pair's largest so far are solved beside at the positions between
 them and the next solved ones. Nothing is estimated: every stress a row gives is a solve's,
 and a row is the largest of the positions solved. What the screen can miss is an event that
 no scout near it shows within the margin, or that falls between two positions of the second
