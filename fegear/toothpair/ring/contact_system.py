@@ -66,7 +66,10 @@ def solve_active(system: ContactSystem, torque_nmm: float, active: np.ndarray,
     again."""
     idx, (lu, piv), _ = _block(system, active)
     a, wa = system.a[idx], system.w[idx] * system.a[idx]
-    free, per_step = dgetrs(lu, piv, np.column_stack([-system.g0[idx], a]))[0].T
+    rhs = np.column_stack([-system.g0[idx], a])
+    # no active point: the rotation alone carries the torque (an empty block, which LAPACK
+    # does not take)
+    free, per_step = (dgetrs(lu, piv, rhs)[0] if len(idx) else rhs).T
     denominator = arm_rate - wa @ per_step
     step = (-torque_nmm - wa @ free) / denominator if denominator else math.inf
     if not math.isfinite(step) or not np.isfinite(free).all():
@@ -118,8 +121,7 @@ def _block(system: ContactSystem, active: np.ndarray) -> tuple[np.ndarray, tuple
         # LAPACK's getrf itself, without scipy's checks around it (the block is finite and
         # its own); a singular block gives a non-finite solution, which solve_active refuses
         block = np.take(store.rows[:store.count], idx, axis=1)[slots].T
-        lu, piv, _ = dgetrf(block, overwrite_a=True)
-        factor = (lu, piv)
+        factor = dgetrf(block, overwrite_a=True)[:2] if len(idx) else (block, idx)
         if len(system.blocks) >= BLOCKS + 1:
             system.blocks.pop(next(k for k in system.blocks if k != "columns"))
         system.blocks[key] = (idx, factor, slots)

@@ -47,6 +47,22 @@ def test_a_step_closes_the_active_gaps_and_balances_the_torque(contact_problem, 
     assert step == pytest.approx(whole[n], rel=1e-9)
 
 
+def test_with_no_active_point_the_rotation_alone_carries_the_torque(contact_problem):
+    # the torque's rate with the turn carries it where no point is active (a step of the
+    # iterations can leave none); without that rate nothing can, and the step is refused
+    from fegear.toothpair.ring.contact_system import RingContactError
+
+    system = contact_problem(40, 0)
+    none = np.zeros(len(system.g0), bool)
+    pressure, step = solve_active(system, TORQUE, none, 40.0)
+    assert not pressure.any()
+    assert step == pytest.approx(-TORQUE / 40.0, rel=1e-15)
+    np.testing.assert_array_equal(gaps_at(system, pressure, step, none),
+                                  system.g0 + system.a * step)
+    with pytest.raises(RingContactError, match="cannot carry"):
+        solve_active(system, TORQUE, none, 0.0)
+
+
 def test_a_system_on_some_of_As_points_is_the_system_of_their_block(contact_problem):
     every = contact_problem(60, 1)
     rows = np.flatnonzero(np.arange(60) % 3 != 1)
