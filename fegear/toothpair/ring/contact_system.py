@@ -121,7 +121,7 @@ def _block(system: ContactSystem, active: np.ndarray) -> tuple[np.ndarray, tuple
         # LAPACK's getrf itself, without scipy's checks around it (the block is finite and
         # its own); a singular block gives a non-finite solution, which solve_active refuses
         block = np.take(store.rows[:store.count], idx, axis=1)[slots].T
-        factor = dgetrf(block, overwrite_a=True)[:2] if len(idx) else (block, idx)
+        factor = dgetrf(block, overwrite_a=True)[:2] if len(idx) else (None, None)
         if len(system.blocks) >= BLOCKS + 1:
             system.blocks.pop(next(k for k in system.blocks if k != "columns"))
         system.blocks[key] = (idx, factor, slots)
