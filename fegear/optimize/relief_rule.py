@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from ..errors import FegearError, ParameterError
 from ..geometry import gear1_profile
@@ -81,6 +81,7 @@ class ReliefSizing:
     tip_clearance_mm: float
     without: CycleResult
     with_relief: CycleResult
+    pitches: int = 1   # gear-2 pitches a trial's positions repeat over: z1 over a revolution
 
     def summary(self) -> dict:
         def row(r: CycleResult) -> dict:
@@ -90,6 +91,7 @@ class ReliefSizing:
                 "given_tip_clearance_mm": self.given_tip_clearance_mm,
                 "relief_extent_mm": self.extent_mm,
                 "relief_shape": self.shape, "margin": self.margin, "positions": self.positions,
+                "pitches": self.pitches,
                 "without_relief": row(self.without), "with_relief": row(self.with_relief),
                 "trials": [row(t) for t in self.trials]}
 
@@ -121,8 +123,6 @@ def graded_cycle_result(values: Mapping, amount_um: float, torque: float, positi
     where, of the pairs that turn, more than ``1 - quantile`` load a round by the pitch point,
     or a far-side one (the search then raises the tip clearance as for one pair). A class of
     which more pairs jam than the quantile leaves has no relief: refused by name."""
-    from dataclasses import replace
-
     from ..toothpair import class_samples  # lazy: heavy: scikit-fem; `fegear relief` imports this
 
     job = prepare_job({**values, "relief": amount_um, "torque": torque,
@@ -228,7 +228,8 @@ def size_relief(values: Mapping, search: ReliefSearch = ReliefSearch(),
     params = prepare_job({**values, "relief": FIRST_UM, "positions": search.positions,
                           "no-estimate": True}).case.params
     ahead = _Ahead(solve or cycle_result, values, search.positions, executor)
-    return _Sizing(params, float(values.get("torque", 200.0)), search, ahead, report).run()
+    found = _Sizing(params, float(values.get("torque", 200.0)), search, ahead, report).run()
+    return replace(found, pitches=params.z1 if values.get("revolution") else 1)
 
 
 class _Sizing:
@@ -355,10 +356,13 @@ def _no_relief(trials, extent: float, torque: float, tip_note: str) -> str:
 
 
 def sizing_table(s: ReliefSizing) -> str:
-    """What ``fegear relief`` prints."""
+    """What ``fegear relief`` prints: over a whole turn of gear 1 where the trials took one
+    (``s.pitches`` > 1), and for a class's pairs the share of them that load a round in each
+    trial."""
     a, b = s.without, s.with_relief
+    over = "over the cycle" if s.pitches == 1 else "over a whole turn of gear 1"
     lines = [f"tip relief {s.amount_um:.2f} µm, {s.shape}, over {s.extent_mm:g} mm along the "
-             f"flank: the smallest that keeps every tip round unloaded over the cycle at "
+             f"flank: the smallest that keeps every tip round unloaded {over} at "
              f"{(1 + s.margin) * a.torque:g} N·m ({100 * s.margin:.0f} % over {a.torque:g})"]
     found = f"{s.amount_um:.2f} µm"
     if s.tip_clearance_mm > s.given_tip_clearance_mm:
@@ -380,10 +384,13 @@ def sizing_table(s: ReliefSizing) -> str:
     for tooth in sorted(set(a.shares) | set(b.shares)):
         lines.append(f"| largest load share, tooth {tooth} | {a.shares.get(tooth, 0.0):.3f} | "
                      f"{b.shares.get(tooth, 0.0):.3f} |")
-    lines += ["", f"{len(s.trials)} trials, each over {s.positions} positions:"]
+    each = (f"{s.positions} positions" if s.pitches == 1 else
+            f"{s.positions} positions a pitch, {s.positions * s.pitches} over the turn")
+    lines += ["", f"{len(s.trials)} trials, each over {each}:"]
     lines += [f"  {t.amount_um:7.3f} µm, tip clearance {1e3 * t.tip_clearance_mm:5.1f} µm: "
               + ("off the rounds" if t.off_the_rounds else
-                                              f"rounds of teeth {list(t.edge_teeth)} carry "
-                                              f"{t.edge_load_N:.1f} N")
+                 f"rounds of teeth {list(t.edge_teeth)} carry {t.edge_load_N:.1f} N")
+              + ("" if t.edge_share is None else
+                 f" ({100 * t.edge_share:.0f} % of the pairs that turn load one)")
               for t in s.trials]
     return "\n".join(lines)

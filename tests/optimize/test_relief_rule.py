@@ -101,6 +101,31 @@ def test_a_far_side_round_that_no_tip_clearance_frees_is_refused_naming_the_limi
     assert max(tip for *_, tip in calls) == pytest.approx(0.596, abs=1e-9)
 
 
+def test_over_a_revolution_the_table_says_so_and_a_class_s_trials_give_the_share_on_a_round():
+    """A search whose trials take a whole turn (``revolution`` among the inputs) reports its
+    relief as over the turn and its trials' positions over it (8 a pitch, 44 pitches); a
+    class's trial names the share of its pairs that load a round, a passing one's too."""
+    from dataclasses import replace
+
+    solve, _ = _fake(7.3)
+
+    def graded(values, amount, torque, positions):
+        r = solve(values, amount, torque, positions)
+        return replace(r, edge_share=0.3 if r.edge_teeth else 0.02)
+
+    s = size_relief({**BASE, "revolution": True}, ReliefSearch(positions=8), solve=graded)
+    assert s.pitches == 44 and s.summary()["pitches"] == 44
+    table = sizing_table(s)
+    assert "keeps every tip round unloaded over a whole turn of gear 1 at 240 N·m" in table
+    assert "trials, each over 8 positions a pitch, 352 over the turn:" in table
+    assert "carry 50.0 N (30 % of the pairs that turn load one)" in table
+    assert "off the rounds (2 % of the pairs that turn load one)" in table
+    one = size_relief(BASE, ReliefSearch(positions=8), solve=solve)
+    assert one.pitches == 1
+    assert "unloaded over the cycle at" in sizing_table(one) and "load one" not in \
+        sizing_table(one)
+
+
 @pytest.mark.parametrize("kind", [dict(needed_um=7.3),
                                   dict(needed_um=7.3, far_from_um=4.0, far_off_mm=0.021),
                                   dict(needed_um=7.3, far_from_um=4.0, far_off_mm=0.021,
