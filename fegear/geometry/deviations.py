@@ -241,6 +241,15 @@ def _amount(d: ToothDeviation) -> float:
 #: step divides a deviation's gap (:meth:`Placed.clearances`): below the flanks' own, down to
 #: about 0.05 r1 on the teeth farthest from the mesh, above a tip meeting a tip
 LEVER_FLOOR = 0.02
+#: a closing point whose deviated gap's rate is below this fraction of r1 grazes gear 2 (a tip
+#: passing a tip, the gap least about where the exact pair touches; the flanks' lever arms in
+#: the mesh are several times more): a Newton step from it overshoots, and the deviated gap is
+#: followed back along the turn instead (:func:`_grazed`)
+GRAZING = 0.1
+#: regula falsi's steps at most, and the deviated gap (mm) at which it stops, that follow a
+#: grazing point's gap back along the turn (:func:`_grazed`)
+GRAZED_STEPS = 40
+GRAZED_GAP = 1e-8
 
 
 @lru_cache(maxsize=64)
@@ -457,7 +466,50 @@ def _moved_um(deviations: Deviations, params, closing: Closing) -> np.ndarray:
     g, lever = _gaps(deviations, params, closing, closing.feet)
     # the gap's rate with the turn is < 0 on a loaded flank and > 0 on a coast flank:
     # either way the clearance grows by the gap over its rate's size
-    return closing.um + params.arc_um(np.abs(g) / lever) * np.sign(g)
+    um = closing.um + params.arc_um(np.abs(g) / lever) * np.sign(g)
+    grazing = np.flatnonzero((g < 0) & (lever < GRAZING * params.r1))
+    if len(grazing):
+        um[grazing] = _grazed(deviations, params, closing, grazing, um[grazing], g[grazing])
+    return um
+
+
+def _grazed(deviations: Deviations, params, closing: Closing, idx: np.ndarray,
+            newton: np.ndarray, shut_gap: np.ndarray) -> np.ndarray:
+    """The clearances (µm) of the ``closing`` points ``idx`` that graze gear 2
+    (:data:`GRAZING`) and that the deviations close (their deviated gap ``shut_gap`` < 0 mm at
+    the exact pair's clearance): their own deviated gap followed back along the turn to where
+    it opens, by regula falsi (the Illinois variant) between the exact pair's clearance and
+    the Newton step's ``newton``. A grazing gap is about convex in the turn, so the step's
+    tangent lies below it and the step overshoots, by as much as its rate is small (a tip 500
+    µm of arc from its mate read as standing 124 µm in it). Where the gap is closed at the
+    step's turn too, the point stands in its mate at least that far: the step's number is
+    kept."""
+    at = Placed(deviations, params, closing.beta[idx])
+    x, tooth, feet = closing.x[idx], closing.tooth[idx], closing.feet[idx].copy()
+    flanks = closing.direction > 0
+
+    def gap(um: np.ndarray) -> np.ndarray:
+        turn = params.ratio * closing.beta[idx] + closing.direction * params.turn_of(um)
+        return at.gap(x, tooth, turn, feet, flanks=flanks)[0]
+
+    low, high = newton.copy(), closing.um[idx].copy()     # open at low (else kept), shut at high
+    f_low, f_high = gap(low), shut_gap.copy()
+    shut = f_low <= 0
+    f_low[shut] = 1.0                                     # any opening: its number is kept
+    last = np.zeros(len(idx))                             # the end moved last: +1 low, −1 high
+    root = high
+    for _ in range(GRAZED_STEPS):
+        root = high - f_high * (high - low) / (f_high - f_low)
+        f = gap(root)
+        closed = f <= 0
+        f_low = np.where(closed & (last < 0), 0.5 * f_low, f_low)      # Illinois: an end kept
+        f_high = np.where(~closed & (last > 0), 0.5 * f_high, f_high)  # twice weighs half
+        high, f_high = np.where(closed, root, high), np.where(closed, f, f_high)
+        low, f_low = np.where(closed, low, root), np.where(closed, f_low, f)
+        last = np.where(closed, -1.0, 1.0)
+        if np.all((np.abs(f) < GRAZED_GAP) | shut):
+            break
+    return np.where(shut, newton, root)
 
 
 def _gaps(deviations: Deviations, params, closing: Closing, feet: np.ndarray

@@ -192,6 +192,39 @@ def test_a_newton_step_divides_by_a_flank_s_lever_not_by_a_tip_s():
     assert placed.levers(-0.03, -1) == floor and placed.levers(0.0, +1) == floor
 
 
+def test_a_far_side_tip_grazing_its_mate_is_not_read_as_standing_in_it():
+    """A far-side tip passing gear 2's tooth across the mesh: its closing point's gap barely
+    moves with the turn, and a class-5 pair's deviations close it by 10 µm there. A Newton
+    step divided by that small rate read the tip, 508 µm of arc from its mate, as standing 24
+    µm in it, and the pair as jammed; the gap followed back along the turn opens it at 358 µm,
+    and the pair turns. (The relieved design with a 42 µm tip clearance, class 5, seed 7:
+    five of 1000 pairs were refused so.)"""
+    from fegear.geometry import closing_points, moved_clearances
+    from fegear.toothpair.positions import Clearances
+
+    job = prepare_job({"shift": 0.03, "relief": 4.0, "tip-clearance": 0.042, "grade": 5,
+                       "samples": 626, "seed": 7, "quality": "coarse"})
+    p = job.case.params
+    dev = job.draw.pair(625)
+    state = ToothContact(p, gear1_profile(p)).states([np.radians(5.0)])
+    closing = closing_points(p, state)
+    tip = int(np.flatnonzero(closing.tooth == 30)[0])
+    at = Placed(dev, p, np.radians(5.0))
+    gap, rate = at.gap(closing.x[[tip]], closing.tooth[[tip]], closing.turns(p)[[tip]])
+    exact = closing.um[tip]
+    newton = exact - p.arc_um(abs(gap[0]) / at.levers(rate, +1)[0])
+    assert exact == pytest.approx(508.4, abs=0.1) and gap[0] < -0.010 and newton < 0
+    moved = {t.tooth: t.plus_um for t in moved_clearances(dev, p, state)[0].teeth}[30]
+    assert 300 < moved < exact
+
+    def gap_at(um):   # the tip's deviated gap with gear 1 turned on by um of arc
+        turn = p.ratio * np.radians(5.0) + p.turn_of(um)
+        return at.gap(closing.x[[tip]], closing.tooth[[tip]], turn)[0][0]
+
+    assert abs(gap_at(moved)) < 1e-7 and gap_at(moved - 1.0) > 0 > gap_at(moved + 1.0)
+    Clearances(replace(job.case, deviations=dev), gear1_profile(p), job.betas).get()
+
+
 def test_the_least_clearances_of_many_states_are_those_their_moved_states_hold():
     from fegear.geometry import closing_points, least_clearances, moved_clearances
 

@@ -6,7 +6,13 @@ jams as the exact clearances of every state would."""
 import numpy as np
 import pytest
 
-from fegear.geometry import gear1_profile, least_clearances, least_of_states, point_clearances
+from fegear.geometry import (
+    deviations,
+    gear1_profile,
+    least_clearances,
+    least_of_states,
+    point_clearances,
+)
 from fegear.tolerance import Draw, grade_of
 from fegear.toothpair import SolveCase
 from fegear.toothpair.analyses.samples.states import States, jammed, screen_um
@@ -30,26 +36,35 @@ def states_and_pairs():
     return states_of(DRAW)
 
 
-def _circles_error(states, pairs) -> float:
-    """The largest error of a pair's foot circles' clearances against the exact ones on
-    either side, as a share of its screen's margin."""
+def _circles_error(states, pairs, monkeypatch) -> float:
+    """The largest error of a pair's foot circles' clearances against the exact Newton steps
+    on either side, as a share of its screen's margin. Where a closing point grazes gear 2
+    the exact clearance follows its gap along the turn instead of the step
+    (:data:`~fegear.geometry.deviations.GRAZING`), and only raises it: the circles' are
+    never above the exact ones, so no state that closes escapes the screen."""
     worst = 0.0
     for dev in pairs:
         for side in (states.circles, states.coast):   # the loaded flanks, the coast flanks
             exact = point_clearances(dev, PAIR, side.closing)
+            with monkeypatch.context() as m:
+                m.setattr(deviations, "GRAZING", 0.0)
+                newton = point_clearances(dev, PAIR, side.closing)
             assert np.abs(exact - side.closing.um).max() > 5.0   # the pairs move them by µm
-            worst = max(worst, np.abs(side.clearances(dev) - exact).max() / screen_um(dev))
+            circles = side.clearances(dev)
+            assert (newton <= exact + 1e-6).all()   # to the feet searches' rounding
+            assert (circles - exact).max() < screen_um(dev) / 20
+            worst = max(worst, np.abs(circles - newton).max() / screen_um(dev))
     return worst
 
 
 def test_the_foot_circles_give_the_closing_points_clearances_to_a_fraction_of_the_margin(
-        states_and_pairs):
-    assert _circles_error(*states_and_pairs) < 1 / 20   # measured 1/60
+        states_and_pairs, monkeypatch):
+    assert _circles_error(*states_and_pairs, monkeypatch) < 1 / 20   # measured 1/60
 
 
-def test_a_coarse_classs_margin_grows_with_the_cube_of_its_deviations():
+def test_a_coarse_classs_margin_grows_with_the_cube_of_its_deviations(monkeypatch):
     # class 9's teeth move 2.5 times class 6's: the circles' error 15 times as large
-    assert _circles_error(*states_of(Draw(grade_of(9, PAIR), 8, 1))) < 1 / 10
+    assert _circles_error(*states_of(Draw(grade_of(9, PAIR), 8, 1)), monkeypatch) < 1 / 10
 
 
 def _jammed_exactly(states, dev):
