@@ -247,9 +247,15 @@ LEVER_FLOOR = 0.02
 #: followed back along the turn instead (:func:`_grazed`)
 GRAZING = 0.1
 #: regula falsi's steps at most, and the deviated gap (mm) at which it stops, that follow a
-#: grazing point's gap back along the turn (:func:`_grazed`)
+#: grazing point's gap back along the turn (:func:`_grazed`); the times its bracket is widened
+#: where the Newton step's turn is closed too
 GRAZED_STEPS = 40
-GRAZED_GAP = 1e-8
+GRAZED_GAP = 1e-7
+GRAZED_WIDER = 6
+#: the tooth's outline about a grazing point (× m) whose deviated gaps it takes too, and the
+#: chord (mm) its vertices stand within of the curve
+GRAZED_NEAR = 0.1
+GRAZED_CHORD = 2e-5
 
 
 @lru_cache(maxsize=64)
@@ -467,49 +473,95 @@ def _moved_um(deviations: Deviations, params, closing: Closing) -> np.ndarray:
     # the gap's rate with the turn is < 0 on a loaded flank and > 0 on a coast flank:
     # either way the clearance grows by the gap over its rate's size
     um = closing.um + params.arc_um(np.abs(g) / lever) * np.sign(g)
-    grazing = np.flatnonzero((g < 0) & (lever < GRAZING * params.r1))
+    # a grazing point's step lies below its clearance: where it leaves the point open, the
+    # smaller number costs no more than a tooth paired that does not touch; where it puts
+    # the point in its mate, the tooth's gap is followed (a pair is not refused on it)
+    grazing = np.flatnonzero(grazes(g, lever, params) & (um < 0))
     if len(grazing):
         um[grazing] = _grazed(deviations, params, closing, grazing, um[grazing], g[grazing])
     return um
+
+
+def grazes(gap: np.ndarray, lever: np.ndarray, params) -> np.ndarray:
+    """Which closing points graze gear 2 where their deviated ``gap`` (mm) closes them: the
+    gap's rate (``lever``, mm/rad) below :data:`GRAZING` r1. A Newton step does not give
+    their clearance (:func:`_grazed`); a screen of many pairs measures their states exactly
+    (:class:`~fegear.toothpair.analyses.samples.states.States`)."""
+    return (gap < 0) & (lever < GRAZING * params.r1)
 
 
 def _grazed(deviations: Deviations, params, closing: Closing, idx: np.ndarray,
             newton: np.ndarray, shut_gap: np.ndarray) -> np.ndarray:
     """The clearances (µm) of the ``closing`` points ``idx`` that graze gear 2
     (:data:`GRAZING`) and that the deviations close (their deviated gap ``shut_gap`` < 0 mm at
-    the exact pair's clearance): their own deviated gap followed back along the turn to where
-    it opens, by regula falsi (the Illinois variant) between the exact pair's clearance and
-    the Newton step's ``newton``. A grazing gap is about convex in the turn, so the step's
-    tangent lies below it and the step overshoots, by as much as its rate is small (a tip 500
-    µm of arc from its mate read as standing 124 µm in it). Where the gap is closed at the
-    step's turn too, the point stands in its mate at least that far: the step's number is
-    kept."""
-    at = Placed(deviations, params, closing.beta[idx])
-    x, tooth, feet = closing.x[idx], closing.tooth[idx], closing.feet[idx].copy()
+    the exact pair's clearance): the turn at which the deviated gap of the point or of its
+    tooth's outline about it (:data:`GRAZED_NEAR`: a grazing tip's closure moves along it
+    under the deviations) first closes, by regula falsi (the Illinois variant) between the
+    exact pair's clearance and the Newton step's ``newton`` (or below, where the outline is
+    closed there too). A grazing gap is about convex in the turn, so the step's tangent lies
+    below it and the step overshoots, by as much as its rate is small (a tip 159 µm of arc
+    from its mate read as standing 10 µm in it, where its outline closes at 22 µm)."""
+    owner, x, tooth = _about(params, closing, idx)
+    beta = closing.beta[idx][owner]
+    at = Placed(deviations, params, beta)
+    feet = closing.feet[idx][owner]
     flanks = closing.direction > 0
 
-    def gap(um: np.ndarray) -> np.ndarray:
-        turn = params.ratio * closing.beta[idx] + closing.direction * params.turn_of(um)
-        return at.gap(x, tooth, turn, feet, flanks=flanks)[0]
+    def least(um: np.ndarray) -> np.ndarray:   # each point's least gap over its outline
+        turn = params.ratio * beta + closing.direction * params.turn_of(um[owner])
+        out = np.full(len(idx), np.inf)
+        np.minimum.at(out, owner, at.gap(x, tooth, turn, feet, flanks=flanks)[0])
+        return out
 
-    low, high = newton.copy(), closing.um[idx].copy()     # open at low (else kept), shut at high
-    f_low, f_high = gap(low), shut_gap.copy()
-    shut = f_low <= 0
-    f_low[shut] = 1.0                                     # any opening: its number is kept
-    last = np.zeros(len(idx))                             # the end moved last: +1 low, −1 high
-    root = high
+    high = closing.um[idx].copy()
+    f_high = np.minimum(shut_gap, least(high))
+    low = newton.copy()
+    f_low = least(low)
+    for _ in range(GRAZED_WIDER):               # closed at the step too: a wider bracket
+        shut = f_low <= 0
+        if not shut.any():
+            break
+        low = np.where(shut, high - 2.0 * (high - low), low)
+        f_low = np.where(shut, least(low), f_low)
+    last = np.zeros(len(idx))                   # the end moved last: +1 low, −1 high
+    root = low.copy()
     for _ in range(GRAZED_STEPS):
-        root = high - f_high * (high - low) / (f_high - f_low)
-        f = gap(root)
+        span = np.where(f_low > f_high, f_low - f_high, 1.0)   # > 0 in a bracket
+        root = np.where(f_low > 0, high + f_high * (high - low) / span, low)
+        f = least(root)
         closed = f <= 0
         f_low = np.where(closed & (last < 0), 0.5 * f_low, f_low)      # Illinois: an end kept
         f_high = np.where(~closed & (last > 0), 0.5 * f_high, f_high)  # twice weighs half
         high, f_high = np.where(closed, root, high), np.where(closed, f, f_high)
         low, f_low = np.where(closed, low, root), np.where(closed, f_low, f)
         last = np.where(closed, -1.0, 1.0)
-        if np.all((np.abs(f) < GRAZED_GAP) | shut):
+        if np.all((np.abs(f) < GRAZED_GAP) | (f_low <= 0)):
             break
-    return np.where(shut, newton, root)
+    return root
+
+
+def _about(params, closing: Closing, idx: np.ndarray
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The points ``idx`` of ``closing`` and their teeth's outline vertices within
+    :data:`GRAZED_NEAR` of each: which of them each belongs to (index into ``idx``), where
+    they are (gear 1's frame) and their teeth."""
+    outline = _outline(params)
+    pitch = 2.0 * math.pi / params.z1
+    owner, x, tooth = [], [], []
+    for j, i in enumerate(idx):
+        pts = rotate(outline, closing.tooth[i] * pitch)
+        near = pts[np.hypot(*(pts - closing.x[i]).T) < GRAZED_NEAR * params.m]
+        owner.append(np.full(len(near) + 1, j))
+        x.append(np.vstack([closing.x[i][None], near]))
+        tooth.append(np.full(len(near) + 1, closing.tooth[i]))
+    return np.concatenate(owner), np.vstack(x), np.concatenate(tooth)
+
+
+@lru_cache(maxsize=16)
+def _outline(params) -> np.ndarray:
+    """Tooth 0's outline (gear 1's frame): a pitch of its profile, its vertices within
+    :data:`GRAZED_CHORD` of the curve."""
+    return gear1_profile(params).period_polyline(GRAZED_CHORD)
 
 
 def _gaps(deviations: Deviations, params, closing: Closing, feet: np.ndarray

@@ -62,7 +62,11 @@ class ClosingCircles:
         """Each point's clearance (µm of arc at r0) moved by ``deviations``, measured to its
         foot circle as :func:`~fegear.geometry.point_clearances` measures it to gear 2's
         curve: the points moved as :meth:`~fegear.geometry.Placed.gap` moves them
-        (:func:`~fegear.toothpair.ring.circles.moved_by`)."""
+        (:func:`~fegear.toothpair.ring.circles.moved_by`), by the Newton step alone: where a
+        point grazes gear 2 and the deviations close it the exact clearance follows the
+        tooth's gap along the turn instead (:func:`~fegear.geometry.deviations.grazes`),
+        and the step lies below it (the gap about convex in the turn), so that the screen
+        measures such a state sooner, not later."""
         p, c = self.params, self.closing
         placed = Placed(deviations, p, c.beta)
         moved = moved_by(placed, c.x, c.tooth, self.turns, self.teeth2, c.direction > 0)
