@@ -61,8 +61,10 @@ RESIDUES, RESIDUE = {"max_penetration_um"}, 1e-9
 #: stresses by up to 3e-4 (the kept grids stand a little differently); 0f8b020 settled the
 #: rotation a linearisation sooner, where a contact edge's point of 1e-9 of the peak joins or
 #: not, and the sensitivities (the derivatives on the settled active set) moved with it by up
-#: to 1.2e-6, two tied rates (the runouts') swapping their rows
-MADE_BY = {"revolution": "cc6ab24", "sensitivities": "0f8b020"}
+#: to 1.2e-6, two tied rates (the runouts') swapping their rows; aae4c2c measured a grazing
+#: far-side tip's deviated clearance along its tooth's outline, where a Newton step had read
+#: one of the class's 50 pairs (sample 11) as jammed: 14 pairs turn where 13 did
+MADE_BY = {"revolution": "cc6ab24", "sensitivities": "0f8b020", "class": "aae4c2c"}
 #: a list longer than this is kept every k-th entry, about LONG / 2 of them (the revolution's
 #: 1056 positions would take 2 MB)
 LONG = 60
