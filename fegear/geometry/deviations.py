@@ -485,8 +485,9 @@ def _moved_um(deviations: Deviations, params, closing: Closing) -> np.ndarray:
 def grazes(gap: np.ndarray, lever: np.ndarray, params) -> np.ndarray:
     """Which closing points graze gear 2 where their deviated ``gap`` (mm) closes them: the
     gap's rate (``lever``, mm/rad) below :data:`GRAZING` r1. A Newton step does not give
-    their clearance (:func:`_grazed`); a screen of many pairs measures their states exactly
-    (:class:`~fegear.toothpair.analyses.samples.states.States`)."""
+    their clearance (:func:`_grazed`), but lies below it: a screen of many pairs that keeps the
+    step (:class:`~fegear.toothpair.analyses.samples.states.ClosingCircles`) measures their
+    states sooner, not later."""
     return (gap < 0) & (lever < GRAZING * params.r1)
 
 
@@ -498,9 +499,10 @@ def _grazed(deviations: Deviations, params, closing: Closing, idx: np.ndarray,
     tooth's outline about it (:data:`GRAZED_NEAR`: a grazing tip's closure moves along it
     under the deviations) first closes, by regula falsi (the Illinois variant) between the
     exact pair's clearance and the Newton step's ``newton`` (or below, where the outline is
-    closed there too). A grazing gap is about convex in the turn, so the step's tangent lies
-    below it and the step overshoots, by as much as its rate is small (a tip 159 µm of arc
-    from its mate read as standing 10 µm in it, where its outline closes at 22 µm)."""
+    closed there too, down to :data:`GRAZED_WIDER` doublings of the bracket; closed still, the
+    lowest turn tried: the tooth stands in its mate at least that far). A grazing gap is about
+    convex in the turn, so the step's tangent lies below it and the step overshoots, by as much
+    as its rate is small (docs/deviations.md)."""
     owner, x, tooth = _about(params, closing, idx)
     beta = closing.beta[idx][owner]
     at = Placed(deviations, params, beta)
