@@ -15,7 +15,9 @@ both are shown.
 
 from __future__ import annotations
 
+import contextlib
 import math
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -134,8 +136,6 @@ def _child(task: dict) -> dict:
         extra["estimate_pct"] = estimate
         extra["estimate_from"] = other
     if task.get("output"):
-        import tempfile
-
         with tempfile.TemporaryDirectory() as tmp:
             writing = Stopwatch()
             write_pair_outputs(sol, Path(tmp), pair_summary(sol))
@@ -222,8 +222,6 @@ def cache_runs(params: PairParameters, torque: float, quality: str,
     a fresh process, one position and one with the estimate read back; and ``fegear solve
     PAIR_ARGS`` timed as a user types it, without the cache and with the models read back
     (``pair_args``: the pair's options as given to the bench)."""
-    import tempfile
-
     with tempfile.TemporaryDirectory(prefix="fegear-bench-cache-") as tmp:
         run_fresh("fill", params, torque, quality, estimate=True, cache=tmp)
         read = run_fresh(f"{quality}, model read from the cache", params, torque, quality,
@@ -241,6 +239,15 @@ def cache_runs(params: PairParameters, torque: float, quality: str,
             commands[name] = command_s([*args, *extra], {"FEGEAR_CACHE": cache,
                                                          "FEGEAR_CACHE_DIR": tmp})
     return CacheRuns(read, both, commands)
+
+
+@contextlib.contextmanager
+def _scratch(name: str):
+    """A folder for a bench run's whole commands (removed after) and what their environment
+    adds: the model cache, where this environment turns it on, in an empty folder of the
+    run's, so that no model cached before it is read."""
+    with tempfile.TemporaryDirectory(prefix=f"fegear-bench-{name}-") as tmp:
+        yield Path(tmp), {"FEGEAR_CACHE_DIR": f"{tmp}/cache"}
 
 
 def command_s(args: list[str], env: dict) -> float:
@@ -358,8 +365,6 @@ def paper_study_s(workers: int = 2) -> tuple[float, int]:
     """Wall time (s) of studies/paper_trends.toml (with estimates) on ``workers`` workers in
     a temporary directory, and the cases computed; with the model cache on in an empty folder
     of its own, as ``fegear study`` runs it the first time."""
-    import tempfile
-
     root = Path(__file__).resolve().parents[2] / "studies" / "paper_trends.toml"
     with tempfile.TemporaryDirectory(prefix="fegear-bench-paper-") as tmp, \
             model_cache(True, Path(tmp) / "cache"):
@@ -375,11 +380,9 @@ def class_run(pair_args: tuple[str, ...]) -> tuple[float, dict]:
     empty folder of its own, and what its samples came to (pairs solved, jammed, failed: a
     jammed pair costs its check over a turn alone)."""
     import json
-    import tempfile
 
-    with tempfile.TemporaryDirectory(prefix="fegear-bench-class-") as tmp:
-        seconds = command_s([*pair_args, *CLASS_ARGS, "--out", f"{tmp}/out"],
-                            {"FEGEAR_CACHE_DIR": f"{tmp}/cache"})
+    with _scratch("class") as (tmp, env):
+        seconds = command_s([*pair_args, *CLASS_ARGS, "--out", f"{tmp}/out"], env)
         samples = json.loads(Path(tmp, "out", "summary.json").read_text())["samples"]
     return seconds, {k: samples[k] for k in ("solved", "jammed", "failed")}
 
@@ -390,12 +393,10 @@ def spectrum_run(pair_args: tuple[str, ...]) -> tuple[float, float]:
     the 4-level :data:`SPECTRUM` at :data:`SPECTRUM_KA`, each the whole command in a fresh
     process."""
     import statistics
-    import tempfile
 
-    with tempfile.TemporaryDirectory(prefix="fegear-bench-spectrum-") as tmp:
-        path = Path(tmp) / "duty.csv"
+    with _scratch("spectrum") as (tmp, env):
+        path = tmp / "duty.csv"
         path.write_text(SPECTRUM)
-        env = {"FEGEAR_CACHE_DIR": f"{tmp}/cache"}
         alone, rated = [], []
         for _ in range(SPECTRUM_RUNS):
             alone.append(command_s([*pair_args, *SPECTRUM_ARGS], env))
@@ -409,11 +410,9 @@ def face_run(pair_args: tuple[str, ...]) -> dict[str, tuple[float, float]]:
     each of :data:`FACE_CASES` (the pair's options ``pair_args``) as the 2D pair and across the
     face (:data:`FACE_ARGS`), each the whole command in a fresh process: case → (2D, face)."""
     import statistics
-    import tempfile
 
     out = {}
-    with tempfile.TemporaryDirectory(prefix="fegear-bench-face-") as tmp:
-        env = {"FEGEAR_CACHE_DIR": f"{tmp}/cache"}
+    with _scratch("face") as (_, env):
         for name, args in FACE_CASES.items():
             flat, face = [], []
             for _ in range(FACE_RUNS):
@@ -427,13 +426,11 @@ def revolution_run(pair_args: tuple[str, ...]) -> dict[str, float]:
     """Wall times (s) of ``fegear solve`` at one position (the pair's options ``pair_args``,
     nothing else: the reference the revolutions are read against), over one deviated pair's
     revolution (:data:`REVOLUTION_ARGS`) and over 200 pairs' (:data:`REVOLUTION_CLASS_ARGS`),
-    each the whole command in a fresh process with the model cache in an empty folder of its
-    own, and the positions the class solved a pair (its screen's)."""
+    each the whole command in a fresh process (:func:`_scratch`), and the positions the class
+    solved a pair (its screen's)."""
     import json
-    import tempfile
 
-    with tempfile.TemporaryDirectory(prefix="fegear-bench-revolution-") as tmp:
-        env = {"FEGEAR_CACHE_DIR": f"{tmp}/cache"}
+    with _scratch("revolution") as (tmp, env):
         one = command_s(list(pair_args), env)
         pair = command_s([*pair_args, *REVOLUTION_ARGS], env)
         every = command_s([*pair_args, *REVOLUTION_CLASS_ARGS, "--out", f"{tmp}/out"], env)
