@@ -84,9 +84,7 @@ def run(a: argparse.Namespace) -> int:
 def _graded(values: dict, given: dict):
     """A class's draw and the trial that solves its pairs (None, None without ``--grade``),
     its inputs checked as ``fegear solve`` checks them."""
-    from functools import partial
-
-    from ..optimize.relief_rule import graded_cycle_result
+    from ..optimize.relief_rule import Graded
     from ..toothpair import prepare_job
 
     if given.get("grade") is None:
@@ -96,4 +94,4 @@ def _graded(values: dict, given: dict):
     draw = job.draw
     return ({"grade": draw.grade.grade, "samples": draw.count, "seed": draw.seed,
              "quantile": job.quantile},
-            partial(graded_cycle_result, draw=draw, quantile=job.quantile))
+            Graded(draw, job.quantile))

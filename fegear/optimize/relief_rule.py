@@ -14,6 +14,13 @@ or if no amount up to the admissible limit passes, it says why and names what to
 
 The relief found is then solved at the design torque beside the unrelieved pair: flank and
 peak pressure, transmission error and load sharing over the cycle.
+
+A trial of a tolerance class's pairs ends as soon as its answer is known: a trial asked
+whether the rounds by the pitch point stay unloaded (the scan and the bisection) stops once
+more pairs have loaded one of them than the quantile leaves, one asked about the far side
+(the tip clearance's steps) once more have loaded a far-side round; the search takes the
+same path as with every pair solved, and such a trial reports what it saw until then
+(``stopped``).
 """
 
 from __future__ import annotations
@@ -34,6 +41,8 @@ TOLERANCE_UM = 0.5   # bisection stops when the bracket is this narrow
 POSITIONS = 12       # rolling angles per trial
 FAR_DEG = 45.0       # teeth farther than this from the pitch point (about O1) are far-side
 CLEARANCE_STEP = 0.002  # × m: the tip clearance's step when a far-side tip lands on its round
+#: a tooth's side of the mesh by where it stands (° from the pitch point about O1)
+SIDES = {"near": lambda angle: abs(angle) <= FAR_DEG, "far": lambda angle: abs(angle) > FAR_DEG}
 
 
 @dataclass(frozen=True)
@@ -50,8 +59,8 @@ class CycleResult:
     amount_um: float
     torque: float
     edge_load_N: float
-    edge_teeth: tuple[int, ...]
-    edge_angles: tuple[float, ...]   # where those teeth stood: ° from the pitch point about O1
+    edge_teeth: tuple[int, ...]      # each once a side of the mesh it loaded a round on …
+    edge_angles: tuple[float, ...]   # … and where it stood: ° from the pitch point about O1
     flank_MPa: float
     contact_MPa: float
     te_mean_urad: float
@@ -59,6 +68,7 @@ class CycleResult:
     shares: dict
     tip_clearance_mm: float = 0.0
     edge_share: float | None = None   # a class's pairs: the share whose rounds carry load
+    stopped: bool = False   # a class's trial that ended once its side had failed: what it saw
 
     @property
     def off_the_rounds(self) -> bool:
@@ -96,9 +106,12 @@ class ReliefSizing:
                 "trials": [row(t) for t in self.trials]}
 
 
-def cycle_result(values: Mapping, amount_um: float, torque: float, positions: int) -> CycleResult:
+def cycle_result(values: Mapping, amount_um: float, torque: float, positions: int,
+                 stop_on: str | None = None) -> CycleResult:
     """Solve the pair of ``values`` (``fegear solve`` inputs) with a relief of ``amount_um``
-    at ``torque`` over ``positions`` rolling angles."""
+    at ``torque`` over ``positions`` rolling angles. ``stop_on``: the side a trial asks about
+    (:func:`graded_cycle_result`); one pair's cycle is solved whole whatever it asks (no pair
+    to leave out)."""
     job = prepare_job({**values, "relief": amount_um, "torque": torque,
                        "positions": positions, "no-estimate": True})
     profile = gear1_profile(job.case.params)
@@ -116,23 +129,46 @@ def _tip_angles(profile, params, sol) -> list[tuple[int, float]]:
             for t in sol.teeth if t.edge_contact]
 
 
+@dataclass(frozen=True)
+class Graded:
+    """A relief's trials on a tolerance class: ``draw``'s pairs, the rounds judged at the
+    ``quantile`` of those that turn; called as a search's ``solve`` (:func:`size_relief`),
+    :func:`graded_cycle_result`."""
+
+    draw: object
+    quantile: float
+
+    def __call__(self, values: Mapping, amount_um: float, torque: float, positions: int,
+                 stop_on: str | None = None) -> CycleResult:
+        return graded_cycle_result(values, amount_um, torque, positions, self, stop_on)
+
+
 def graded_cycle_result(values: Mapping, amount_um: float, torque: float, positions: int,
-                        draw, quantile: float) -> CycleResult:
-    """:func:`cycle_result` for the pairs of a tolerance class (``draw``: its samples): the
-    exact pair's loads, pressures and transmission error, and its tip rounds counted as loaded
-    where, of the pairs that turn, more than ``1 - quantile`` load a round by the pitch point,
-    or a far-side one (the search then raises the tip clearance as for one pair). A class of
-    which more pairs jam than the quantile leaves has no relief: refused by name."""
-    from ..toothpair import class_samples  # lazy: heavy: scikit-fem; `fegear relief` imports this
+                        graded: Graded, stop_on: str | None = None) -> CycleResult:
+    """:func:`cycle_result` for the pairs of a tolerance class (``graded``): the exact pair's
+    loads, pressures and transmission error, and its tip rounds counted as loaded where, of
+    the pairs that turn, more than ``1 - quantile`` load a round by the pitch point, or a
+    far-side one (the search then raises the tip clearance as for one pair). ``stop_on``
+    ("near" or "far"): the trial ends once more pairs than that have loaded a round on that
+    side (module docstring; a pair that would fail at a position left unsolved counts as
+    turning). A class of which more pairs jam than the quantile leaves has no relief: refused
+    by name."""
+    from ..toothpair import (  # lazy: heavy: scikit-fem; `fegear relief` imports this
+        Enough,
+        class_samples,
+    )
 
     job = prepare_job({**values, "relief": amount_um, "torque": torque,
                        "positions": positions, "no-estimate": True})
+    draw, quantile = graded.draw, graded.quantile
     job = replace(job, draw=draw, quantile=quantile)
     p = job.case.params
     profile = gear1_profile(p)
+    enough = None if stop_on is None else Enough(
+        lambda taken: any(SIDES[stop_on](a) for _, a in taken[1]), 1.0 - quantile)
     sampled = class_samples(job, DEFAULT_ALLOWABLES, contact_only=True,
                             read=lambda sol: (sum(t.edge_load_N for t in sol.teeth),
-                                              _tip_angles(profile, p, sol)))
+                                              _tip_angles(profile, p, sol)), enough=enough)
     turning, jammed = sampled.turning, sampled.jammed_share
     if jammed > 1.0 - quantile:
         raise ParameterError("grade", draw.grade.grade, f"a class whose pairs turn in "
@@ -142,24 +178,23 @@ def graded_cycle_result(values: Mapping, amount_um: float, torque: float, positi
     exact = _exact(sampled.nominal, profile, p, amount_um, torque)
     loaded = {k: [e for load, tips in sampled.readings.get(k, []) for e in tips]
               for k in turning}
-    teeth: dict[int, float] = {}
-    for side in (lambda a: abs(a) <= FAR_DEG, lambda a: abs(a) > FAR_DEG):
+    tips: list[tuple[int, float]] = []
+    for side in SIDES.values():
         hit = [k for k in turning if any(side(a) for _, a in loaded[k])]
         if len(hit) > (1.0 - quantile) * len(turning):
-            teeth.update({t: a for k in hit for t, a in loaded[k] if side(a)})
+            tips += [(t, a) for k in hit for t, a in loaded[k] if side(a)]
     any_round = sum(bool(loaded[k]) for k in turning) / max(len(turning), 1)
     most = max((load for k in turning for load, _ in sampled.readings.get(k, [])),
                default=0.0)
-    return CycleResult(amount_um, torque, most if teeth else 0.0, tuple(sorted(teeth)),
-                       tuple(teeth[t] for t in sorted(teeth)), exact.flank_MPa,
+    teeth, angles = by_side(tips)
+    return CycleResult(amount_um, torque, most if teeth else 0.0, teeth, angles, exact.flank_MPa,
                        exact.contact_MPa, exact.te_mean_urad, exact.te_p2p_urad, exact.shares,
-                       p.radial_tip_clearance, any_round)
+                       p.radial_tip_clearance, any_round, sampled.stopped)
 
 
 def _exact(sols, profile, p, amount_um: float, torque: float) -> CycleResult:
     """The exact pair's :class:`CycleResult` from its solutions over the cycle."""
-    edge = [e for s in sols for e in _tip_angles(profile, p, s)]
-    angles = dict(edge)
+    teeth, angles = by_side(e for s in sols for e in _tip_angles(profile, p, s))
     te = [1e6 * (s.rotation - s.first_touch) for s in sols]
     shares: dict[int, float] = {}
     for s in sols:
@@ -168,7 +203,7 @@ def _exact(sols, profile, p, amount_um: float, torque: float) -> CycleResult:
     return CycleResult(
         amount_um=amount_um, torque=torque,
         edge_load_N=max((sum(t.edge_load_N for t in s.teeth) for s in sols), default=0.0),
-        edge_teeth=tuple(sorted(angles)), edge_angles=tuple(angles[k] for k in sorted(angles)),
+        edge_teeth=teeth, edge_angles=angles,
         flank_MPa=max(s.flank_contact_pressure for s in sols),
         contact_MPa=max(s.contact_pressure for s in sols),
         te_mean_urad=sum(te) / len(te), te_p2p_urad=max(te) - min(te),
@@ -189,9 +224,9 @@ class ReliefSearch:
 
 
 class _Ahead:
-    """Trials by key (amount µm, torque, tip clearance mm or None for the one given), solved
-    by ``solve`` on ``executor``, a guessed next one with a needed one while a worker is
-    free. A trial's error is raised where it is needed."""
+    """Trials by key (amount µm, torque, tip clearance mm or None for the one given, the side
+    it asks about or None), solved by ``solve`` on ``executor``, a guessed next one with a
+    needed one while a worker is free. A trial's error is raised where it is needed."""
 
     def __init__(self, solve: Callable[..., CycleResult], values: Mapping, positions: int,
                  executor: Executor) -> None:
@@ -200,9 +235,9 @@ class _Ahead:
         self.tasks: dict[tuple, Task] = {}
 
     def _args(self, key: tuple) -> tuple:
-        amount, torque, tip = key
+        amount, torque, tip, stop_on = key
         values = self.values if tip is None else {**self.values, "tip-clearance": tip}
-        return values, amount, torque, self.positions
+        return values, amount, torque, self.positions, stop_on
 
     def get(self, key: tuple, guess: tuple | None = None) -> CycleResult:
         # a guess goes with a trial submitted now, not with one already under way (it
@@ -222,8 +257,8 @@ def size_relief(values: Mapping, search: ReliefSearch = ReliefSearch(),
     """The smallest relief (module docstring) for the pair, torque, extent and shape of
     ``values``, as ``search`` says. ``executor`` solves trials, the next one guessed ahead
     where it has a worker free. ``solve`` evaluates one trial (values, amount µm, torque,
-    positions) → :class:`CycleResult` (default :func:`cycle_result`), ``report`` is told of
-    each trial."""
+    positions, the side it asks about: "near", "far" or None for all of it) →
+    :class:`CycleResult` (default :func:`cycle_result`), ``report`` is told of each trial."""
     # every input checked before any solve, the extent and shape with a relief in place
     params = prepare_job({**values, "relief": FIRST_UM, "positions": search.positions,
                           "no-estimate": True}).case.params
@@ -247,12 +282,18 @@ class _Sizing:
         self.trials: list[CycleResult] = []
         self.tip_note = "a larger tip_clearance keeps them off"
 
-    def trial(self, amount: float, guess: tuple | None = None) -> CycleResult:
-        r = self.ahead.get((amount, self.raised, self.tip), guess)
+    def trial(self, amount: float, guess: tuple | None = None, side: str = "near"
+              ) -> CycleResult:
+        """The trial of ``amount`` (µm) at the raised torque and the present tip clearance,
+        asked about the rounds on ``side`` ("near", "far"); ``guess``: a key to solve
+        ahead."""
+        r = self.ahead.get((amount, self.raised, self.tip, side), guess)
         self.trials.append(r)
         if self.report:
-            where = (f"rounds of teeth {list(r.edge_teeth)} carry {r.edge_load_N:.1f} N"
+            where = (f"rounds of teeth {sorted(set(r.edge_teeth))} carry "
+                     f"{r.edge_load_N:.1f} N"
                      if not r.off_the_rounds else "off the rounds")
+            where += " (stopped there)" if r.stopped else ""
             self.report(f"relief {amount:7.3f} µm, tip clearance {1e3 * self.tip:5.1f} µm at "
                         f"{self.raised:g} N·m: {where}; flank {r.flank_MPa:.0f} MPa")
         return r
@@ -261,12 +302,12 @@ class _Sizing:
         """The smallest amount above ``low`` (which fails, or is 0) whose near-side rounds stay
         unloaded at the present tip clearance, to the tolerance; None if none up to the
         limit. The trials' far-side teeth are left to the caller."""
-        if low == 0.0 and not near(self.trial(0.0, (0.0, self.torque, None))):
+        if low == 0.0 and not near(self.trial(0.0, (0.0, self.torque, None, None))):
             return 0.0
         amount, high = max(FIRST_UM, 2.0 * low), None
         while amount <= self.limit:
-            guess = (2.0 * amount, self.raised, self.tip) if 2.0 * amount <= self.limit \
-                else None
+            guess = (2.0 * amount, self.raised, self.tip, "near") \
+                if 2.0 * amount <= self.limit else None
             try:
                 passed = not near(self.trial(amount, guess))
             except ParameterError as exc:   # deeper than the extent can take: the scan ends
@@ -279,7 +320,7 @@ class _Sizing:
             low, amount = amount, 2.0 * amount
         while high is not None and high - low > self.search.tolerance_um:
             mid = 0.5 * (low + high)
-            if near(self.trial(mid, (0.5 * (low + mid), self.raised, self.tip))):
+            if near(self.trial(mid, (0.5 * (low + mid), self.raised, self.tip, "near"))):
                 low = mid
             else:
                 high = mid
@@ -305,7 +346,7 @@ class _Sizing:
                                  f"{1e3 * (self.tip - step):.0f} µm, the most this pair "
                                  f"takes is {1e3 * self.most:.0f} µm")
                 raise self.refused()
-            last = self.trial(high, (high, self.torque, self.tip))
+            last = self.trial(high, (high, self.torque, self.tip, None), "far")
         return last
 
     def run(self) -> ReliefSizing:
@@ -321,8 +362,19 @@ class _Sizing:
         return ReliefSizing(p.relief_extent, p.relief_shape, self.search.margin,
                             self.search.positions, tuple(self.trials), high,
                             p.radial_tip_clearance, self.tip,
-                            self.ahead.get((0.0, self.torque, None)),
-                            self.ahead.get((high, self.torque, self.tip)))
+                            self.ahead.get((0.0, self.torque, None, None)),
+                            self.ahead.get((high, self.torque, self.tip, None)))
+
+
+def by_side(tips) -> tuple[tuple[int, ...], tuple[float, ...]]:
+    """The teeth of ``tips`` ((tooth, ° from the pitch point) where a round carried load),
+    each once a side of the mesh it stood on (:data:`SIDES`; the last angle seen there), in
+    order, and those angles: over a whole turn every tooth passes both sides, and a tooth
+    kept once would be read on the side it was seen last (a round loaded by the pitch point
+    then hid behind one loaded across the mesh)."""
+    last = {(t, abs(a) > FAR_DEG): a for t, a in tips}
+    keys = sorted(last)
+    return tuple(t for t, _ in keys), tuple(last[k] for k in keys)
 
 
 def near(r: CycleResult) -> list[int]:
@@ -389,8 +441,10 @@ def sizing_table(s: ReliefSizing) -> str:
     lines += ["", f"{len(s.trials)} trials, each over {each}:"]
     lines += [f"  {t.amount_um:7.3f} µm, tip clearance {1e3 * t.tip_clearance_mm:5.1f} µm: "
               + ("off the rounds" if t.off_the_rounds else
-                 f"rounds of teeth {list(t.edge_teeth)} carry {t.edge_load_N:.1f} N")
+                 f"rounds of teeth {sorted(set(t.edge_teeth))} carry {t.edge_load_N:.1f} N")
               + ("" if t.edge_share is None else
-                 f" ({100 * t.edge_share:.0f} % of the pairs that turn load one)")
+                 f" ({100 * t.edge_share:.0f} % of the pairs that turn "
+                 + ("had loaded one when it stopped: more than the quantile leaves)"
+                    if t.stopped else "load one)"))
               for t in s.trials]
     return "\n".join(lines)

@@ -93,6 +93,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "analyses": ("ANALYSES", "Analysis", "Verdict", "asked", "shown"),
     "analyses.cycle.report": ("cycle_table", "write_cycle_outputs", "write_mesh_stiffness"),
     "analyses.samples.solve": ("class_samples", "Sampled"),
+    "analyses.samples.chains": ("Enough",),
     "analyses.samples.report": ("ClassReading", "samples_columns", "samples_summary",
                                 "samples_table"),
     "analyses.rating.report": ("damage_text", "life_text", "safety_text"),

@@ -224,6 +224,21 @@ def test_solve_grade_writes_the_samples_and_sensitivities_tables_pictures_and_su
     assert "Sensitivities:" in r.out and (tmp_path / "sensitivities.png").exists()
 
 
+def test_relief_for_a_class_sizes_one_and_names_the_trials_that_stopped_early(capfd):
+    """`fegear relief --grade`: a relief and tip clearance for 3 class-4 pairs over a
+    2-position cycle; the trials that failed by the pitch point with every pair's round loaded
+    say they stopped there, the passing ones give the share they saw over every pair."""
+    r = fegear(capfd, "relief", "--grade", "4", "--samples", "3", "--shift", "0.03",
+               "--cycle-positions", "2", "--quality", "coarse")
+    assert r.code == 0, r.lines
+    assert "tip relief 2.50 µm" in r.out and "tip clearance raised from 30.0 to 34.0 µm" in r.out
+    trials = [line for line in r.out.splitlines() if " µm, tip clearance " in line]
+    stopped = [line for line in trials if "when it stopped" in line]
+    assert stopped and all("rounds of teeth" in line for line in stopped)
+    assert any("off the rounds (0 % of the pairs that turn load one)" in line
+               for line in trials)
+
+
 @pytest.mark.parametrize("argv,hint", [
     (["solve", "--modul", "2"], "--m"),             # by the first word of its help, "module"
     (["solve", "--module-mm", "2"], "--m"),         # drive reducer's option, not solve's

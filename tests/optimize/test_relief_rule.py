@@ -7,7 +7,13 @@ from concurrent.futures import ThreadPoolExecutor
 import pytest
 
 from fegear.errors import FegearError
-from fegear.optimize.relief_rule import CycleResult, ReliefSearch, size_relief, sizing_table
+from fegear.optimize.relief_rule import (
+    CycleResult,
+    ReliefSearch,
+    ReliefSizing,
+    size_relief,
+    sizing_table,
+)
 
 BASE = {"shift": 0.016, "rotation": 0.002, "torque": 200.0, "relief-extent": 0.5,
         "quality": "coarse"}
@@ -28,7 +34,7 @@ def _fake(needed_um: float, far_from_um: float | None = None, far_off_mm: float 
     below ``far_off_mm``."""
     calls = []
 
-    def solve(values, amount, torque, positions):
+    def solve(values, amount, torque, positions, stop_on=None):
         tip = values.get("tip-clearance", 0.016)
         calls.append((amount, torque, positions, tip))
         edge = []
@@ -109,7 +115,7 @@ def test_over_a_revolution_the_table_says_so_and_a_class_s_trials_give_the_share
 
     solve, _ = _fake(7.3)
 
-    def graded(values, amount, torque, positions):
+    def graded(values, amount, torque, positions, stop_on=None):
         r = solve(values, amount, torque, positions)
         return replace(r, edge_share=0.3 if r.edge_teeth else 0.02)
 
@@ -124,6 +130,40 @@ def test_over_a_revolution_the_table_says_so_and_a_class_s_trials_give_the_share
     assert one.pitches == 1
     assert "unloaded over the cycle at" in sizing_table(one) and "load one" not in \
         sizing_table(one)
+
+
+def test_a_tooth_that_loads_its_round_on_both_sides_of_the_mesh_counts_on_both():
+    """Over a whole turn every tooth passes the pitch point and the far side: a round loaded
+    by the pitch point stays a near-side load whatever the same tooth does across the mesh
+    (it hid behind the far-side load it was seen with last, and the search then took a
+    failing amount for a passing one)."""
+    from fegear.optimize.relief_rule import by_side, far, near
+
+    teeth, angles = by_side([(7, 3.0), (7, 120.0), (2, -40.0), (7, -5.0)])
+    assert teeth == (2, 7, 7) and angles == (-40.0, -5.0, 120.0)
+    r = CycleResult(4.5, 240.0, 70.0, teeth, angles, 900.0, 900.0, 390.0, 26.0, {})
+    assert near(r) == [2, 7] and far(r) == [7]
+    assert "rounds of teeth [2, 7] carry" in sizing_table(ReliefSizing(
+        0.5, "parabolic", 0.2, 8, (r,), 5.0, 0.03, 0.042, r, r))
+
+
+def test_each_trial_is_asked_about_the_side_its_verdict_reads():
+    """The scan and the bisection read the rounds by the pitch point, the tip clearance's
+    steps the far side: a class's trial may end once that side has failed. The pair at the
+    design torque, reported whole, is asked about nothing."""
+    solve, _ = _fake(7.3, far_from_um=4.0, far_off_mm=0.021)
+    asked = []
+
+    def recording(values, amount, torque, positions, stop_on=None):
+        asked.append((amount, torque, values.get("tip-clearance", 0.016), stop_on))
+        return solve(values, amount, torque, positions)
+
+    s = size_relief(BASE, ReliefSearch(tolerance_um=0.25), solve=recording)
+    raised = [a for a in asked if a[1] == pytest.approx(240.0)]
+    assert {a[3] for a in raised if a[2] == 0.016} == {"near"}
+    assert {a[3] for a in raised if a[2] > 0.016} == {"far"}      # 0.024 mm: off from 0.021
+    assert {a[3] for a in asked if a[1] == 200.0} == {None}
+    assert s.tip_clearance_mm == pytest.approx(0.024)
 
 
 @pytest.mark.parametrize("kind", [dict(needed_um=7.3),
@@ -175,14 +215,14 @@ def class4():
 
 def test_a_class_s_trial_loads_a_round_where_more_of_its_pairs_do_than_the_quantile_leaves(
         class4):
-    from fegear.optimize.relief_rule import cycle_result, graded_cycle_result, near
+    from fegear.optimize.relief_rule import Graded, cycle_result, graded_cycle_result, near
 
     # 2.5 µm keeps the exact pair off its rounds; some class-4 pairs still press a round by
     # the pitch point: at the 95th percentile of 8 pairs (any one of them) that fails, at the
     # median (more than four) it passes where no more than four do
     exact = cycle_result(CLASSED, 2.5, 240.0, 4)
-    strict = graded_cycle_result(CLASSED, 2.5, 240.0, 4, class4, 0.95)
-    lax = graded_cycle_result(CLASSED, 2.5, 240.0, 4, class4, 0.5)
+    strict = graded_cycle_result(CLASSED, 2.5, 240.0, 4, Graded(class4, 0.95))
+    lax = graded_cycle_result(CLASSED, 2.5, 240.0, 4, Graded(class4, 0.5))
     assert not near(exact) and near(strict)
     assert 0 < strict.edge_share <= 1 and strict.edge_share == lax.edge_share
     assert bool(near(lax)) == (strict.edge_share > 0.5)
@@ -195,10 +235,31 @@ def test_a_class_s_trial_loads_a_round_where_more_of_its_pairs_do_than_the_quant
 def test_a_class_whose_pairs_mostly_jam_has_no_relief_and_says_why():
     from fegear.errors import ParameterError
     from fegear.geometry import PairParameters
-    from fegear.optimize.relief_rule import graded_cycle_result
+    from fegear.optimize.relief_rule import Graded, graded_cycle_result
     from fegear.tolerance import Draw, grade_of
 
     draw = Draw(grade_of(6, PairParameters(shift=0.016, rotation=0.002)), 6, 0)
     with pytest.raises(ParameterError, match="jam: no relief frees them") as err:
-        graded_cycle_result({**CLASSED, "shift": 0.016}, 3.0, 240.0, 2, draw, 0.95)
+        graded_cycle_result({**CLASSED, "shift": 0.016}, 3.0, 240.0, 2, Graded(draw, 0.95))
     assert err.value.name == "grade"
+
+
+def test_a_class_s_trial_asked_about_a_side_ends_once_that_side_fails_with_the_same_verdict(
+        class4):
+    """Asked about the far side (as the tip clearance's steps ask), a trial of 8 class-4 pairs
+    stops solving pairs once more of them than the quantile leaves have loaded a far-side
+    round (two do, from the first position on): the same verdict and the exact pair's same
+    numbers, with the share it saw until then (at most the whole trial's); where that side
+    passes (at the median), nothing stops and the trial is the whole one."""
+    from fegear.optimize.relief_rule import Graded, far, graded_cycle_result
+
+    whole = graded_cycle_result(CLASSED, 2.5, 240.0, 4, Graded(class4, 0.95))
+    ended = graded_cycle_result(CLASSED, 2.5, 240.0, 4, Graded(class4, 0.95), "far")
+    assert far(whole) and far(ended)
+    assert ended.stopped and not whole.stopped
+    assert 0 < ended.edge_share <= whole.edge_share
+    assert (ended.flank_MPa, ended.te_mean_urad) == (whole.flank_MPa, whole.te_mean_urad)
+    lax = graded_cycle_result(CLASSED, 2.5, 240.0, 4, Graded(class4, 0.5))
+    lax_asked = graded_cycle_result(CLASSED, 2.5, 240.0, 4, Graded(class4, 0.5), "far")
+    assert not far(lax) and not lax_asked.stopped
+    assert lax_asked == lax

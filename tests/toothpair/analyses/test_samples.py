@@ -174,6 +174,29 @@ def test_a_dask_cluster_gives_the_local_rows():
             b.headline()["root_stress_gear1_MPa"], rel=1e-4)
 
 
+def test_a_run_that_has_seen_enough_ends_and_its_rows_say_so(baseline_ring, sampled):
+    """A run whose question is answered once one pair shows it (here: any pair carrying its
+    load on the contact at all) solves no more pairs: fewer readings than pairs at the
+    position, the rows of the pairs that turn "stopped" (with the worst of what they were
+    solved at, the same numbers as the whole run's), and they count as turning."""
+    from fegear.toothpair import Enough
+
+    enough = Enough(lambda reading: reading > 0.0, 0.0)
+    solver = RingSolver(baseline_ring, KEEP)
+    ended = solve_samples(SampleCase(CASE, (0.0,), DRAW, DEFAULT_ALLOWABLES), solver,
+                          read=lambda sol: sum(t.load_N for t in sol.teeth), enough=enough)
+    assert ended.stopped and not sampled.stopped
+    turning = [r for r in sampled.rows if r["status"] == "solved"]
+    assert 0 < sum(len(v) for v in ended.readings.values()) < len(turning)
+    assert [r["status"] for r in ended.rows] == [
+        "jammed" if r["status"] == "jammed" else "stopped" for r in sampled.rows]
+    assert ended.turning == sampled.turning
+    for whole, row in zip(sampled.rows, ended.rows):
+        if "root_stress_gear1_MPa" in row:
+            assert row["root_stress_gear1_MPa"] == pytest.approx(whole["root_stress_gear1_MPa"],
+                                                                 rel=1e-9)
+
+
 def test_a_class_over_a_revolution_keeps_a_contact_a_place_for_every_pitch():
     # the solve's own class and a relief or design search's (class_samples) alike: each
     # pair at the first pitch's places, at every one of gear 1's pitches from them (so that

@@ -2,7 +2,7 @@
 of the driver's (:func:`~.positions.chain`), each every other position with every sample
 there (one position: a share of the samples each), on the executor the caller gives, and the
 exact pair's solutions at the positions from them (or, where the chains run elsewhere,
-solved here meanwhile)."""
+solved here meanwhile); and when a run may end early (:class:`Enough`)."""
 
 from __future__ import annotations
 
@@ -16,6 +16,34 @@ from ...case import PairSolution, SolveCase
 from ...positions import chain, solve_position
 from ...ring.solver import RingSolver, SolverModes
 from .states import States
+
+
+class Enough:
+    """When a class's run may end before every pair is solved everywhere: once more of its
+    pairs that turn than ``share`` of them show what ``shows`` finds in a reading (what the
+    run's ``read`` took of a solution), the answer asked of the run is known (a relief trial
+    fails where more pairs load a tip round than the quantile leaves, whatever the others
+    do). Counted where the chains run: chains in one process count together, a forked
+    chain its own pairs (each count alone reaching the bound is enough for the whole)."""
+
+    def __init__(self, shows: Callable[[object], bool], share: float) -> None:
+        self.shows, self.share = shows, share
+        self.bound = 0.0
+        self.seen: set[int] = set()
+
+    def among(self, turning: int) -> None:
+        """The run's pairs that turn (not jammed): the count ``share`` is of."""
+        self.bound = self.share * turning
+
+    def saw(self, k: int, reading) -> None:
+        """Pair ``k``'s ``reading`` at a position."""
+        if self.shows(reading):
+            self.seen.add(k)
+
+    @property
+    def reached(self) -> bool:
+        """Whether more pairs than the bound have shown it."""
+        return len(self.seen) > self.bound
 
 
 @dataclass(frozen=True)

@@ -16,6 +16,9 @@ from ...safety import safety_factors
 
 #: the exact pair's key among what the chains gave by sample (its readings across the face)
 EXACT = -1
+#: … and the positions a chain did not solve its pairs at, (β, how many) each, where its run
+#: ended early (:class:`~.chains.Enough`)
+SKIPPED = -2
 #: what a sample solved across the face gives beside its headlines: the face's load factor
 K_HBETA = "K_Hbeta"
 
@@ -35,15 +38,25 @@ def gathered(chains) -> tuple[dict[int, list], dict[int, list]]:
     return found, readings
 
 
+#: why a pair that turns has the status "stopped": its run ended early (:class:`~.chains.Enough`)
+STOPPED = ("the run ended before this pair was solved everywhere: enough pairs had shown "
+           "what it asked")
+
+
 def sample_row(k: int, brief: dict, jammed: str | None, got: list,
-               allowables: Allowables) -> dict:
+               allowables: Allowables, whole: bool = True) -> dict:
     """Sample k's row: its deviations in ``brief`` (:func:`brief_of`), its status and why, and
-    where it turns its worst over its positions (``got``: (β, headline or why) pairs)."""
+    where it turns its worst over its positions (``got``: (β, headline or why) pairs); not
+    ``whole`` (a run that ended early), "stopped" with the worst of those it was solved at,
+    if any."""
     if jammed is not None:
         return {"sample": k, **brief, "status": "jammed", "why": jammed}
     failed = [why for _, why in got if isinstance(why, str)]
     if failed:
         return {"sample": k, **brief, "status": "failed", "why": failed[0]}
+    if not whole:
+        return {"sample": k, **brief, "status": "stopped", "why": STOPPED,
+                **(worst_of(got, allowables) if got else {})}
     return {"sample": k, **brief, "status": "solved", "why": "", **worst_of(got, allowables)}
 
 

@@ -55,8 +55,8 @@ from ...ring.readout import readout
 from ...ring.solver import RingSolver, SolverModes
 from ...teeth import choose_teeth
 from .across import Across, across_of, worst_sections
-from .chains import Chains, parts_of, work_of
-from .rows import EXACT, brief_of, gathered, sample_row
+from .chains import Chains, Enough, parts_of, work_of
+from .rows import EXACT, SKIPPED, brief_of, gathered, sample_row
 from .screen import scout_places, screened
 from .states import States, jammed
 
@@ -103,11 +103,14 @@ class Sampled:
     readings: dict = field(default_factory=dict)
     across: tuple[dict, ...] = ()
     solved_per_pair: float | None = None
+    stopped: bool = False
 
     @property
     def turning(self) -> list[int]:
-        """The samples solved at every position (neither jammed nor failed)."""
-        return [r["sample"] for r in self.rows if r["status"] == "solved"]
+        """The samples solved at every position (neither jammed nor failed); in a run that
+        ended early (``stopped``: :class:`~.chains.Enough`), those neither jammed nor failed
+        where they were solved."""
+        return [r["sample"] for r in self.rows if r["status"] in ("solved", "stopped")]
 
     @property
     def jammed_share(self) -> float:
@@ -116,13 +119,16 @@ class Sampled:
 
 
 def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = SERIAL,
-                  read: Callable[[PairSolution], object] | None = None) -> Sampled:
+                  read: Callable[[PairSolution], object] | None = None,
+                  enough: Enough | None = None) -> Sampled:
     """The exact pair and the class's samples (``samples``) solved with ``solver``, a ring
     solver that keeps a contact a position (:attr:`~.ring.solver.SolverModes.keep_phases`),
     its grids set here to reach as far as the deviations of the drawn pairs that turn move a
     tooth (module docstring), through the driver's chains (:func:`~.positions.chain`) on
     ``executor``; ``read``: what to keep of each sample's solution at each position beside
-    its headlines (a relief search's tip-round loads, say). Across the face
+    its headlines (a relief search's tip-round loads, say), and ``enough``: when what it
+    read answers the run's question before every pair is solved (:class:`~.chains.Enough`:
+    the rest is not solved, and the rows say "stopped"). Across the face
     (``samples.face``), the grids reach as far as the samples' faces move a flank besides."""
     keep_freed_memory()
     case, count = samples.case, samples.draw.count
@@ -139,23 +145,27 @@ def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = 
             for side in solver.model.gears:
                 readout(side)
         free = [k for k in range(count) if jammed[k] is None]
+        if enough is not None:
+            enough.among(len(free))
         places = list(range(len(samples.betas)))
         scouts = (scout_places(len(places)) if samples.screen and samples.pitches > 1
                   and read is None and across is None else None)
         run = Chains(states, solver, executor, lambda jobs: OnKept(states, pairs, solver, jobs,
-                                                                   read, across))
+                                                                   read, across, enough))
         if scouts is None:
             nominal, chains = run(work_of(free, places, samples.pitches, run.parts))
             solved = None
         else:
             nominal, chains, solved = screened(run, free, scouts, samples.pitches)
     found, readings = gathered(chains)
+    stopped = SKIPPED in found
     z = (case.params.z1, case.params.z2)
     rows = tuple(sample_row(k, brief_of(pairs[k], z, across and across.faces[k]), jammed[k],
-                            found.get(k, []), samples.allowables) for k in range(count))
+                            found.get(k, []), samples.allowables, not stopped)
+                 for k in range(count))
     exact = tuple(head for _, head in sorted(found.get(EXACT, []), key=lambda g: g[0]))
     return Sampled(tuple(nominal[i] for i in range(len(samples.betas))), rows, readings,
-                   exact, solved)
+                   exact, solved, stopped)
 
 
 def _reach_um(pairs: list, across: Across | None) -> float:
@@ -182,14 +192,15 @@ def _jams(states: States, pairs: list, across: Across | None, executor: Executor
 
 
 def class_samples(job, allowables: Allowables, read=None, contact_only: bool = False,
-                  executor: Executor = SERIAL) -> Sampled:
-    """A checked job's class (``job.draw``) solved at its positions (:func:`solve_samples`)
-    on a ring solver made for it: the stresses without submodels (across the job's face where
-    it has one), or the contact alone (``contact_only``: a relief search's trial)."""
+                  executor: Executor = SERIAL, enough: Enough | None = None) -> Sampled:
+    """A checked job's class (``job.draw``) solved at its positions (:func:`solve_samples`,
+    ``read`` and ``enough`` as there) on a ring solver made for it: the stresses without
+    submodels (across the job's face where it has one), or the contact alone
+    (``contact_only``: a relief search's trial)."""
     solver = RingSolver(None, SolverModes(submodels="none", contact_only=contact_only,
                                          keep_phases=True))
     face = None if contact_only else job.face
-    return solve_samples(class_case(job, allowables, face), solver, executor, read)
+    return solve_samples(class_case(job, allowables, face), solver, executor, read, enough)
 
 
 def class_case(job, allowables: Allowables, face: Face | None) -> SampleCase:
@@ -212,7 +223,9 @@ class OnKept:
     pitches on) pairs). A solver received without its model (from another process) builds or
     finds one here. ``across``: the exact pair and each sample solved across the face too,
     on the same kept contact (their worst sections' headlines and K_Hβ, the exact pair's under
-    :data:`~.rows.EXACT`)."""
+    :data:`~.rows.EXACT`); ``enough``: once it is reached, the pairs are solved no more
+    (the exact pair still is), and the positions left say how many they skipped
+    (:data:`~.rows.SKIPPED`)."""
 
     states: States
     pairs: list
@@ -220,6 +233,7 @@ class OnKept:
     jobs: dict[int, list[tuple[int, int]]]
     read: Callable[[PairSolution], object] | None = None
     across: Across | None = None
+    enough: Enough | None = None
 
     def __call__(self, i: int, at: SolveCase, state, near: tuple | None
                  ) -> tuple[PairSolution, dict[int, list], dict[int, list]]:
@@ -232,6 +246,8 @@ class OnKept:
         exact = solve_position(at, state, placed, near and near[0])
         if not self.jobs.get(i) and self.across is None:   # no sample here: no contact kept
             return exact, {}, {}
+        if self._enough():
+            return exact, {SKIPPED: [(at.beta, len(self.jobs[i]))]}, {}
         moved = self._moved(i, at.params)
         solver.widen(at, state, exact, _paired(at, exact, state, moved))
         found: dict[int, list] = {}
@@ -240,7 +256,10 @@ class OnKept:
             found[EXACT] = [(at.beta, self._face(at, state, self.across.face))]
         batch = None if self.across is not None else KeptBatch(solver)
         held: list[tuple[int, float]] = []
-        for k, n in self.jobs[i]:
+        for j, (k, n) in enumerate(self.jobs[i]):
+            if self._enough():
+                found[SKIPPED] = [(at.beta, len(self.jobs[i]) - j)]
+                break
             one = replace(at, beta=self.states.beta(i, n), deviations=self.pairs[k])
             try:
                 if batch is not None and batch.add(one, moved[k, n]):
@@ -260,6 +279,10 @@ class OnKept:
         self._record(batch, held, found, took)
         solver.forget(at)
         return exact, found, took
+
+    def _enough(self) -> bool:
+        """Whether the run's question is answered (:attr:`enough`)."""
+        return self.enough is not None and self.enough.reached
 
     def _face(self, one: SolveCase, state, face: Face) -> dict[str, float]:
         """``one`` (clearance ``state``) across ``face`` on the contact kept at its position:
@@ -303,6 +326,8 @@ class OnKept:
         found.setdefault(k, []).append((beta, head))
         if self.read is not None:
             took.setdefault(k, []).append(self.read(sol))
+            if self.enough is not None:
+                self.enough.saw(k, took[k][-1])
 
     def _sample(self, one: SolveCase, state, placed: RingSolver, exact: PairSolution,
                 kept: bool = True) -> PairSolution:
