@@ -20,7 +20,12 @@ whether the rounds by the pitch point stay unloaded (the scan and the bisection)
 more pairs have loaded one of them than the quantile leaves, one asked about the far side
 (the tip clearance's steps) once more have loaded a far-side round; the search takes the
 same path as with every pair solved, and such a trial reports what it saw until then
-(``stopped``).
+(``stopped``). And a trial by the pitch point solves only the pairs that loaded a round there
+in the largest trial below it solved whole (at the same torque and tip clearance): a larger
+relief cuts more of every tip, and a round it keeps off at one amount stays off at a larger
+one (docs/tolerance.md shows it on a class's pairs). The amount the scan and bisection end
+at is then solved again with every pair, and where that fails (a pair left out that loads a
+round after all) the search goes on above it: the amount found is always one solved whole.
 """
 
 from __future__ import annotations
@@ -69,6 +74,9 @@ class CycleResult:
     tip_clearance_mm: float = 0.0
     edge_share: float | None = None   # a class's pairs: the share whose rounds carry load
     stopped: bool = False   # a class's trial that ended once its side had failed: what it saw
+    loading: tuple = ((), ())   # … the pairs (by sample) that loaded a round by the pitch
+                                # point, and across the mesh, of those it solved …
+    left_out: int = 0           # … and how many it did not solve (:class:`Ask`)
 
     @property
     def off_the_rounds(self) -> bool:
@@ -107,9 +115,9 @@ class ReliefSizing:
 
 
 def cycle_result(values: Mapping, amount_um: float, torque: float, positions: int,
-                 stop_on: str | None = None) -> CycleResult:
+                 ask: Ask | None = None) -> CycleResult:
     """Solve the pair of ``values`` (``fegear solve`` inputs) with a relief of ``amount_um``
-    at ``torque`` over ``positions`` rolling angles. ``stop_on``: the side a trial asks about
+    at ``torque`` over ``positions`` rolling angles. ``ask``: what a trial asks
     (:func:`graded_cycle_result`); one pair's cycle is solved whole whatever it asks (no pair
     to leave out)."""
     job = prepare_job({**values, "relief": amount_um, "torque": torque,
@@ -130,6 +138,16 @@ def _tip_angles(profile, params, sol) -> list[tuple[int, float]]:
 
 
 @dataclass(frozen=True)
+class Ask:
+    """What a trial is asked: about the rounds on ``side`` ("near": by the pitch point, "far":
+    across the mesh), and of a class's pairs ``only`` these (by sample; None: every one), the
+    others known to keep that side's rounds unloaded (module docstring)."""
+
+    side: str
+    only: frozenset[int] | None = None
+
+
+@dataclass(frozen=True)
 class Graded:
     """A relief's trials on a tolerance class: ``draw``'s pairs, the rounds judged at the
     ``quantile`` of those that turn; called as a search's ``solve`` (:func:`size_relief`),
@@ -139,20 +157,21 @@ class Graded:
     quantile: float
 
     def __call__(self, values: Mapping, amount_um: float, torque: float, positions: int,
-                 stop_on: str | None = None) -> CycleResult:
-        return graded_cycle_result(values, amount_um, torque, positions, self, stop_on)
+                 ask: Ask | None = None) -> CycleResult:
+        return graded_cycle_result(values, amount_um, torque, positions, self, ask)
 
 
 def graded_cycle_result(values: Mapping, amount_um: float, torque: float, positions: int,
-                        graded: Graded, stop_on: str | None = None) -> CycleResult:
+                        graded: Graded, ask: Ask | None = None) -> CycleResult:
     """:func:`cycle_result` for the pairs of a tolerance class (``graded``): the exact pair's
     loads, pressures and transmission error, and its tip rounds counted as loaded where, of
     the pairs that turn, more than ``1 - quantile`` load a round by the pitch point, or a
-    far-side one (the search then raises the tip clearance as for one pair). ``stop_on``
-    ("near" or "far"): the trial ends once more pairs than that have loaded a round on that
-    side (module docstring; a pair that would fail at a position left unsolved counts as
-    turning). A class of which more pairs jam than the quantile leaves has no relief: refused
-    by name."""
+    far-side one (the search then raises the tip clearance as for one pair). ``ask``: the
+    trial ends once more pairs than that have loaded a round on its side, and solves only
+    its ``only`` pairs, the others counted as turning with that side's rounds unloaded
+    (module docstring; a pair that would fail at a position left unsolved counts as
+    turning). A class of which more pairs jam than the quantile leaves has no relief:
+    refused by name."""
     from ..toothpair import (  # lazy: heavy: scikit-fem; `fegear relief` imports this
         Enough,
         class_samples,
@@ -164,8 +183,8 @@ def graded_cycle_result(values: Mapping, amount_um: float, torque: float, positi
     job = replace(job, draw=draw, quantile=quantile)
     p = job.case.params
     profile = gear1_profile(p)
-    enough = None if stop_on is None else Enough(
-        lambda taken: any(SIDES[stop_on](a) for _, a in taken[1]), 1.0 - quantile)
+    enough = None if ask is None else Enough(
+        lambda taken: any(SIDES[ask.side](a) for _, a in taken[1]), 1.0 - quantile, ask.only)
     sampled = class_samples(job, DEFAULT_ALLOWABLES, contact_only=True,
                             read=lambda sol: (sum(t.edge_load_N for t in sol.teeth),
                                               _tip_angles(profile, p, sol)), enough=enough)
@@ -179,8 +198,10 @@ def graded_cycle_result(values: Mapping, amount_um: float, torque: float, positi
     loaded = {k: [e for load, tips in sampled.readings.get(k, []) for e in tips]
               for k in turning}
     tips: list[tuple[int, float]] = []
+    loading = []
     for side in SIDES.values():
         hit = [k for k in turning if any(side(a) for _, a in loaded[k])]
+        loading.append(tuple(hit))
         if len(hit) > (1.0 - quantile) * len(turning):
             tips += [(t, a) for k in hit for t, a in loaded[k] if side(a)]
     any_round = sum(bool(loaded[k]) for k in turning) / max(len(turning), 1)
@@ -189,7 +210,8 @@ def graded_cycle_result(values: Mapping, amount_um: float, torque: float, positi
     teeth, angles = by_side(tips)
     return CycleResult(amount_um, torque, most if teeth else 0.0, teeth, angles, exact.flank_MPa,
                        exact.contact_MPa, exact.te_mean_urad, exact.te_p2p_urad, exact.shares,
-                       p.radial_tip_clearance, any_round, sampled.stopped)
+                       p.radial_tip_clearance, any_round, sampled.stopped, tuple(loading),
+                       sum(r["status"] == "left out" for r in sampled.rows))
 
 
 def _exact(sols, profile, p, amount_um: float, torque: float) -> CycleResult:
@@ -224,9 +246,10 @@ class ReliefSearch:
 
 
 class _Ahead:
-    """Trials by key (amount µm, torque, tip clearance mm or None for the one given, the side
-    it asks about or None), solved by ``solve`` on ``executor``, a guessed next one with a
-    needed one while a worker is free. A trial's error is raised where it is needed."""
+    """Trials by key (amount µm, torque, tip clearance mm or None for the one given, what it
+    is asked (:class:`Ask`) or None), solved by ``solve`` on ``executor``, a guessed next one
+    with a needed one while a worker is free. A trial's error is raised where it is
+    needed."""
 
     def __init__(self, solve: Callable[..., CycleResult], values: Mapping, positions: int,
                  executor: Executor) -> None:
@@ -235,9 +258,9 @@ class _Ahead:
         self.tasks: dict[tuple, Task] = {}
 
     def _args(self, key: tuple) -> tuple:
-        amount, torque, tip, stop_on = key
+        amount, torque, tip, ask = key
         values = self.values if tip is None else {**self.values, "tip-clearance": tip}
-        return values, amount, torque, self.positions, stop_on
+        return values, amount, torque, self.positions, ask
 
     def get(self, key: tuple, guess: tuple | None = None) -> CycleResult:
         # a guess goes with a trial submitted now, not with one already under way (it
@@ -257,7 +280,7 @@ def size_relief(values: Mapping, search: ReliefSearch = ReliefSearch(),
     """The smallest relief (module docstring) for the pair, torque, extent and shape of
     ``values``, as ``search`` says. ``executor`` solves trials, the next one guessed ahead
     where it has a worker free. ``solve`` evaluates one trial (values, amount µm, torque,
-    positions, the side it asks about: "near", "far" or None for all of it) →
+    positions, what it is asked: an :class:`Ask`, or None for all of it) →
     :class:`CycleResult` (default :func:`cycle_result`), ``report`` is told of each trial."""
     # every input checked before any solve, the extent and shape with a relief in place
     params = prepare_job({**values, "relief": FIRST_UM, "positions": search.positions,
@@ -282,31 +305,61 @@ class _Sizing:
         self.trials: list[CycleResult] = []
         self.tip_note = "a larger tip_clearance keeps them off"
 
-    def trial(self, amount: float, guess: tuple | None = None, side: str = "near"
+    def trial(self, amount: float, guess: tuple | None = None, ask: Ask | None = None
               ) -> CycleResult:
         """The trial of ``amount`` (µm) at the raised torque and the present tip clearance,
-        asked about the rounds on ``side`` ("near", "far"); ``guess``: a key to solve
-        ahead."""
-        r = self.ahead.get((amount, self.raised, self.tip, side), guess)
+        asked ``ask`` (default: about the near side, :meth:`asked`); ``guess``: a key to
+        solve ahead."""
+        ask = ask or self.asked(amount)
+        r = self.ahead.get((amount, self.raised, self.tip, ask), guess)
         self.trials.append(r)
         if self.report:
             where = (f"rounds of teeth {sorted(set(r.edge_teeth))} carry "
                      f"{r.edge_load_N:.1f} N"
                      if not r.off_the_rounds else "off the rounds")
             where += " (stopped there)" if r.stopped else ""
+            where += f" ({r.left_out} pairs left out)" if r.left_out else ""
             self.report(f"relief {amount:7.3f} µm, tip clearance {1e3 * self.tip:5.1f} µm at "
                         f"{self.raised:g} N·m: {where}; flank {r.flank_MPa:.0f} MPa")
         return r
 
+    def asked(self, amount: float) -> Ask:
+        """What the trial of ``amount`` is asked about the rounds by the pitch point: of a
+        class's pairs, only those that loaded one in the largest trial below it solved whole
+        at this torque and tip clearance (a larger relief keeps the others' off: module
+        docstring), where there is one."""
+        below = [t for t in self.trials if t.amount_um < amount and t.edge_share is not None
+                 and not (t.stopped or t.left_out) and t.torque == self.raised
+                 and abs(t.tip_clearance_mm - self.tip) < 1e-12]
+        if not below:
+            return Ask("near")
+        return Ask("near", frozenset(max(below, key=lambda t: t.amount_um).loading[0]))
+
     def near_side(self, low: float) -> float | None:
         """The smallest amount above ``low`` (which fails, or is 0) whose near-side rounds stay
-        unloaded at the present tip clearance, to the tolerance; None if none up to the
-        limit. The trials' far-side teeth are left to the caller."""
+        unloaded at the present tip clearance, to the tolerance, its trial solved whole; None
+        if none up to the limit. The trials' far-side teeth are left to the caller."""
+        while True:
+            high = self._bracketed(low)
+            latest = None if high is None else self.latest(high)
+            if latest is None or not latest.left_out:
+                return high
+            if not near(self.trial(high, ask=Ask("near"))):   # the pairs left out kept off
+                return high
+            low = high
+
+    def latest(self, amount: float) -> CycleResult:
+        """The last trial of ``amount``."""
+        return next(t for t in reversed(self.trials) if t.amount_um == amount)
+
+    def _bracketed(self, low: float) -> float | None:
+        """:meth:`near_side`'s scan and bisection, its trials of a class's pairs asked of
+        some (:meth:`asked`)."""
         if low == 0.0 and not near(self.trial(0.0, (0.0, self.torque, None, None))):
             return 0.0
         amount, high = max(FIRST_UM, 2.0 * low), None
         while amount <= self.limit:
-            guess = (2.0 * amount, self.raised, self.tip, "near") \
+            guess = (2.0 * amount, self.raised, self.tip, self.asked(2.0 * amount)) \
                 if 2.0 * amount <= self.limit else None
             try:
                 passed = not near(self.trial(amount, guess))
@@ -320,7 +373,8 @@ class _Sizing:
             low, amount = amount, 2.0 * amount
         while high is not None and high - low > self.search.tolerance_um:
             mid = 0.5 * (low + high)
-            if near(self.trial(mid, (0.5 * (low + mid), self.raised, self.tip, "near"))):
+            quarter = 0.5 * (low + mid)
+            if near(self.trial(mid, (quarter, self.raised, self.tip, self.asked(quarter)))):
                 low = mid
             else:
                 high = mid
@@ -333,7 +387,7 @@ class _Sizing:
     def far_side_off(self, high: float) -> CycleResult:
         """The trial at ``high`` once the tip clearance is raised until its far-side rounds
         are off (the search's ``clearance``), in steps of ``CLEARANCE_STEP`` · m."""
-        last = next(t for t in reversed(self.trials) if t.amount_um == high)
+        last = self.latest(high)
         if far(last) and not self.search.clearance:
             self.tip_note = ("a larger tip_clearance keeps them off: without "
                              "--keep-tip-clearance fegear relief raises it")
@@ -346,7 +400,7 @@ class _Sizing:
                                  f"{1e3 * (self.tip - step):.0f} µm, the most this pair "
                                  f"takes is {1e3 * self.most:.0f} µm")
                 raise self.refused()
-            last = self.trial(high, (high, self.torque, self.tip, None), "far")
+            last = self.trial(high, (high, self.torque, self.tip, None), Ask("far"))
         return last
 
     def run(self) -> ReliefSizing:
@@ -446,5 +500,7 @@ def sizing_table(s: ReliefSizing) -> str:
                  f" ({100 * t.edge_share:.0f} % of the pairs that turn "
                  + ("had loaded one when it stopped: more than the quantile leaves)"
                     if t.stopped else "load one)"))
+              + (f"; {t.left_out} pairs left out, off by the pitch point at a smaller relief"
+                 if t.left_out else "")
               for t in s.trials]
     return "\n".join(lines)

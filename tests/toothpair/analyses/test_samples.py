@@ -197,6 +197,29 @@ def test_a_run_that_has_seen_enough_ends_and_its_rows_say_so(baseline_ring, samp
                                                                  rel=1e-9)
 
 
+def test_a_run_that_needs_some_pairs_solves_those_alone_with_the_same_numbers(
+        baseline_ring, sampled):
+    """A run that needs only some pairs solved (their answer unknown, the others' known)
+    reads those alone, with the whole run's numbers; the rest are "left out" and turn."""
+    from fegear.toothpair import Enough
+
+    turning = [r["sample"] for r in sampled.rows if r["status"] == "solved"]
+    only = frozenset(turning[:2])
+    solver = RingSolver(baseline_ring, KEEP)
+    some = solve_samples(SampleCase(CASE, (0.0,), DRAW, DEFAULT_ALLOWABLES), solver,
+                         read=lambda sol: sol.root_stress[0],
+                         enough=Enough(lambda reading: False, 1.0, only))
+    assert set(some.readings) == only and not some.stopped
+    for whole, row in zip(sampled.rows, some.rows):
+        if row["sample"] in only:
+            assert row["status"] == "solved"
+            assert row["root_stress_gear1_MPa"] == pytest.approx(whole["root_stress_gear1_MPa"],
+                                                                 rel=1e-9)
+        else:
+            assert row["status"] == ("jammed" if whole["status"] == "jammed" else "left out")
+    assert some.turning == sampled.turning
+
+
 def test_a_class_over_a_revolution_keeps_a_contact_a_place_for_every_pitch():
     # the solve's own class and a relief or design search's (class_samples) alike: each
     # pair at the first pitch's places, at every one of gear 1's pitches from them (so that

@@ -19,21 +19,29 @@ from .states import States
 
 
 class Enough:
-    """When a class's run may end before every pair is solved everywhere: once more of its
-    pairs that turn than ``share`` of them show what ``shows`` finds in a reading (what the
-    run's ``read`` took of a solution), the answer asked of the run is known (a relief trial
-    fails where more pairs load a tip round than the quantile leaves, whatever the others
-    do). Counted where the chains run: chains in one process count together, a forked
-    chain its own pairs (each count alone reaching the bound is enough for the whole)."""
+    """What a class's run needs solved to answer its question: ``only`` its pairs of these (by
+    sample; None: every one), the others' answer known already (a relief trial's pairs that
+    kept a round off at a smaller relief); and when it may end before those are solved
+    everywhere: once more of its pairs that turn than ``share`` of them show what ``shows``
+    finds in a reading (what the run's ``read`` took of a solution), the answer is known (a
+    relief trial fails where more pairs load a tip round than the quantile leaves, whatever
+    the others do). Counted where the chains run: chains in one process count together, a
+    forked chain its own pairs (each count alone reaching the bound is enough for the
+    whole)."""
 
-    def __init__(self, shows: Callable[[object], bool], share: float) -> None:
-        self.shows, self.share = shows, share
+    def __init__(self, shows: Callable[[object], bool], share: float,
+                 only: frozenset[int] | None = None) -> None:
+        self.shows, self.share, self.only = shows, share, only
         self.bound = 0.0
         self.seen: set[int] = set()
 
     def among(self, turning: int) -> None:
-        """The run's pairs that turn (not jammed): the count ``share`` is of."""
+        """The run's pairs that turn (not jammed), solved or not: the count ``share`` is of."""
         self.bound = self.share * turning
+
+    def wants(self, k: int) -> bool:
+        """Whether pair ``k`` is to be solved (:attr:`only`)."""
+        return self.only is None or k in self.only
 
     def saw(self, k: int, reading) -> None:
         """Pair ``k``'s ``reading`` at a position."""

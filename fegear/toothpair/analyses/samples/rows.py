@@ -41,6 +41,8 @@ def gathered(chains) -> tuple[dict[int, list], dict[int, list]]:
 #: why a pair that turns has the status "stopped": its run ended early (:class:`~.chains.Enough`)
 STOPPED = ("the run ended before this pair was solved everywhere: enough pairs had shown "
            "what it asked")
+#: … and why one has the status "left out": its run did not need it solved
+LEFT_OUT = "not solved: its run knew its answer already (from a run it was solved in)"
 
 
 def sample_row(k: int, brief: dict, jammed: str | None, got: list,

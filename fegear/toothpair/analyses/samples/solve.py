@@ -56,7 +56,7 @@ from ...ring.solver import RingSolver, SolverModes
 from ...teeth import choose_teeth
 from .across import Across, across_of, worst_sections
 from .chains import Chains, Enough, parts_of, work_of
-from .rows import EXACT, SKIPPED, brief_of, gathered, sample_row
+from .rows import EXACT, LEFT_OUT, SKIPPED, brief_of, gathered, sample_row
 from .screen import scout_places, screened
 from .states import States, jammed
 
@@ -109,8 +109,9 @@ class Sampled:
     def turning(self) -> list[int]:
         """The samples solved at every position (neither jammed nor failed); in a run that
         ended early (``stopped``: :class:`~.chains.Enough`), those neither jammed nor failed
-        where they were solved."""
-        return [r["sample"] for r in self.rows if r["status"] in ("solved", "stopped")]
+        where they were solved, and in one that left some out (:attr:`~.chains.Enough.only`)
+        those too."""
+        return [r["sample"] for r in self.rows if r["status"] not in ("jammed", "failed")]
 
     @property
     def jammed_share(self) -> float:
@@ -147,6 +148,7 @@ def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = 
         free = [k for k in range(count) if jammed[k] is None]
         if enough is not None:
             enough.among(len(free))
+            free = [k for k in free if enough.wants(k)]
         places = list(range(len(samples.betas)))
         scouts = (scout_places(len(places)) if samples.screen and samples.pitches > 1
                   and read is None and across is None else None)
@@ -161,8 +163,12 @@ def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = 
     stopped = SKIPPED in found
     z = (case.params.z1, case.params.z2)
     rows = tuple(sample_row(k, brief_of(pairs[k], z, across and across.faces[k]), jammed[k],
-                            found.get(k, []), samples.allowables, not stopped)
+                            found.get(k, []), samples.allowables,
+                            not stopped and (enough is None or enough.wants(k)))
                  for k in range(count))
+    if enough is not None and enough.only is not None:
+        rows = tuple(r if r["status"] == "jammed" or r["sample"] in enough.only else
+                     {**r, "status": "left out", "why": LEFT_OUT} for r in rows)
     exact = tuple(head for _, head in sorted(found.get(EXACT, []), key=lambda g: g[0]))
     return Sampled(tuple(nominal[i] for i in range(len(samples.betas))), rows, readings,
                    exact, solved, stopped)
