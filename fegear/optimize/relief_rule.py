@@ -18,14 +18,14 @@ peak pressure, transmission error and load sharing over the cycle.
 A trial of a tolerance class's pairs ends as soon as its answer is known: a trial asked
 whether the rounds by the pitch point stay unloaded (the scan and the bisection) stops once
 more pairs have loaded one of them than the quantile leaves, one asked about the far side
-(the tip clearance's steps) once more have loaded a far-side round; the search takes the
-same path as with every pair solved, and such a trial reports what it saw until then
-(``stopped``). And a trial by the pitch point solves only the pairs that loaded a round there
-in the largest trial below it solved whole (at the same torque and tip clearance): a larger
-relief cuts more of every tip, and a round it keeps off at one amount stays off at a larger
-one (docs/tolerance.md shows it on a class's pairs). The amount the scan and bisection end
-at is then solved again with every pair, and where that fails (a pair left out that loads a
-round after all) the search goes on above it: the amount found is always one solved whole.
+(the tip clearance's steps) once more have loaded a far-side round; that end changes no
+decision of the search, and such a trial reports what it saw until then (``stopped``). And a
+trial by the pitch point solves only the pairs that loaded a round there in the largest trial
+below it solved whole (at the same torque and tip clearance): a larger relief cuts more of
+every tip, and a round it keeps off at one amount stays off at a larger one
+(docs/tolerance.md shows it on a class's pairs). The amount the scan and bisection end at is
+then solved again with every pair, and where that fails (a pair left out that loads a round
+after all) the search goes on above it: the amount found is always one solved whole.
 """
 
 from __future__ import annotations
