@@ -118,6 +118,19 @@ def test_a_class_s_design_is_measured_at_the_quantile_of_its_pairs():
     assert (rec["violation_edge_load"] > 0) == (rec["edge_share"] > 0.5)
 
 
+def test_a_class_s_design_whose_pairs_load_their_rounds_is_solved_no_further():
+    """Without a relief every pair loads a tip round: once more than the quantile leaves
+    have (one of four at the 95th percentile), the design breaks the rounds' constraint
+    whatever the rest give, and its pairs are solved no further: its factors at the quantile
+    unknown (blank), its objective 0, the share and load those it saw."""
+    values = {**BASE, "quality": "coarse", "shift": 0.03, "grade": 4, "samples": 4,
+              "quantile": 0.95}
+    rec = evaluate(values, 2, {})
+    assert rec["status"] == "ok" and "solved no further" in rec["reason"]
+    assert rec["objective_safety"] == 0.0 and rec["S_F1_P95"] is None
+    assert rec["violation_edge_load"] > 0 and 0.05 < rec["edge_share"] <= 1.0
+
+
 def test_a_design_the_solve_refuses_comes_back_as_a_violation_not_an_error():
     rec = evaluate({**BASE, "quality": "coarse", "tip-clearance": 5.0}, 2, {})
     assert rec["status"] == "refused" and "tip-clearance" in rec["reason"]
