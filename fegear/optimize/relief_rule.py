@@ -426,19 +426,19 @@ def by_side(tips) -> tuple[tuple[int, ...], tuple[float, ...]]:
     order, and those angles: over a whole turn every tooth passes both sides, and a tooth
     kept once would be read on the side it was seen last (a round loaded by the pitch point
     then hid behind one loaded across the mesh)."""
-    last = {(t, abs(a) > FAR_DEG): a for t, a in tips}
+    last = {(t, SIDES["far"](a)): a for t, a in tips}
     keys = sorted(last)
     return tuple(t for t, _ in keys), tuple(last[k] for k in keys)
 
 
 def near(r: CycleResult) -> list[int]:
     """The teeth by the pitch point whose rounds carried load in the trial ``r``."""
-    return [k for k, a in zip(r.edge_teeth, r.edge_angles) if abs(a) <= FAR_DEG]
+    return [k for k, a in zip(r.edge_teeth, r.edge_angles) if SIDES["near"](a)]
 
 
 def far(r: CycleResult) -> list[int]:
     """The far-side teeth whose rounds carried load in the trial ``r``."""
-    return [k for k, a in zip(r.edge_teeth, r.edge_angles) if abs(a) > FAR_DEG]
+    return [k for k, a in zip(r.edge_teeth, r.edge_angles) if SIDES["far"](a)]
 
 
 def _no_relief(trials, extent: float, torque: float, tip_note: str) -> str:
