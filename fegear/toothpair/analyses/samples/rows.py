@@ -46,18 +46,19 @@ LEFT_OUT = "not solved: its run knew its answer already (from a run it was solve
 
 
 def sample_row(k: int, brief: dict, jammed: str | None, got: list,
-               allowables: Allowables, whole: bool = True) -> dict:
+               allowables: Allowables, unfinished: tuple[str, str] | None = None) -> dict:
     """Sample k's row: its deviations in ``brief`` (:func:`brief_of`), its status and why, and
-    where it turns its worst over its positions (``got``: (β, headline or why) pairs); not
-    ``whole`` (a run that ended early), "stopped" with the worst of those it was solved at,
-    if any."""
+    where it turns its worst over its positions (``got``: (β, headline or why) pairs);
+    ``unfinished``: the status and why of a pair that turns but was not solved everywhere
+    ("stopped": :data:`STOPPED`, "left out": :data:`LEFT_OUT`), with the worst of those it
+    was solved at, if any."""
     if jammed is not None:
         return {"sample": k, **brief, "status": "jammed", "why": jammed}
     failed = [why for _, why in got if isinstance(why, str)]
     if failed:
         return {"sample": k, **brief, "status": "failed", "why": failed[0]}
-    if not whole:
-        return {"sample": k, **brief, "status": "stopped", "why": STOPPED,
+    if unfinished is not None:
+        return {"sample": k, **brief, "status": unfinished[0], "why": unfinished[1],
                 **(worst_of(got, allowables) if got else {})}
     return {"sample": k, **brief, "status": "solved", "why": "", **worst_of(got, allowables)}
 

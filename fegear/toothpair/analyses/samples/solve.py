@@ -56,7 +56,7 @@ from ...ring.solver import RingSolver, SolverModes
 from ...teeth import choose_teeth
 from .across import Across, across_of, worst_sections
 from .chains import Chains, Enough, parts_of, work_of
-from .rows import EXACT, LEFT_OUT, SKIPPED, brief_of, gathered, sample_row
+from .rows import EXACT, LEFT_OUT, SKIPPED, STOPPED, brief_of, gathered, sample_row
 from .screen import scout_places, screened
 from .states import States, jammed
 
@@ -164,14 +164,19 @@ def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = 
     z = (case.params.z1, case.params.z2)
     rows = tuple(sample_row(k, brief_of(pairs[k], z, across and across.faces[k]), jammed[k],
                             found.get(k, []), samples.allowables,
-                            not stopped and (enough is None or enough.wants(k)))
+                            _unfinished(enough, k, stopped))
                  for k in range(count))
-    if enough is not None and enough.only is not None:
-        rows = tuple(r if r["status"] == "jammed" or r["sample"] in enough.only else
-                     {**r, "status": "left out", "why": LEFT_OUT} for r in rows)
     exact = tuple(head for _, head in sorted(found.get(EXACT, []), key=lambda g: g[0]))
     return Sampled(tuple(nominal[i] for i in range(len(samples.betas))), rows, readings,
                    exact, solved, stopped)
+
+
+def _unfinished(enough: Enough | None, k: int, stopped: bool) -> tuple[str, str] | None:
+    """Sample ``k``'s status and why where its run did not solve it everywhere: left out
+    (``enough`` did not want it), or stopped (the run ended early); None where it did."""
+    if enough is not None and not enough.wants(k):
+        return "left out", LEFT_OUT
+    return ("stopped", STOPPED) if stopped else None
 
 
 def _reach_um(pairs: list, across: Across | None) -> float:
