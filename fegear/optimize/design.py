@@ -56,7 +56,7 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
     from ..toothpair import (  # lazy: heavy: numpy; `fegear --help` imports this module
         allowables_of,
         prepare_job,
-        solve_positions,
+        solve_job_positions,
     )
 
     watch = Stopwatch()
@@ -85,7 +85,7 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
     try:
         # the objective reads root stresses and contact pressures: no contact submodels
         sols, worst = (_across(job) if job.face is not None else
-                       (solve_positions(job.case, job.betas, submodels="none"), None))
+                       (solve_job_positions(job, submodels="none"), None))
     except FegearError as exc:
         return _infeasible(rec, "failed", str(exc), watch)
     allow = allowables_of(values)

@@ -38,7 +38,7 @@ from ..errors import FegearError, ParameterError
 from ..geometry import gear1_profile
 from ..planar import wrap
 from ..running import SERIAL, Executor, Task
-from ..toothpair import DEFAULT_ALLOWABLES, prepare_job, solve_positions
+from ..toothpair import DEFAULT_ALLOWABLES, prepare_job, solve_job_positions
 
 FIRST_UM = 2.0       # the scan's first amount
 MARGIN = 0.2         # torque overload the relief must cover
@@ -124,7 +124,7 @@ def cycle_result(values: Mapping, amount_um: float, torque: float, positions: in
                        "positions": positions, "no-estimate": True})
     profile = gear1_profile(job.case.params)
     # the search reads contact loads and pressures only: no stresses, no submodels
-    sols = solve_positions(job.case, job.betas, contact_only=True)
+    sols = solve_job_positions(job, contact_only=True)
     return _exact(sols, profile, job.case.params, amount_um, torque)
 
 

@@ -62,7 +62,7 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "inputs": ("SOLVE_INPUTS", "JOB_INPUTS", "QUALITY", "TIP_ROUND", "RENAMED"),
     "case": ("SolveCase", "PairSolution", "ToothResult", "ContactChecks", "BodyField",
              "ContactZone", "HEADLINE", "cycle_positions"),
-    "pair": ("solve_pair", "solve_positions"),
+    "pair": ("solve_pair", "solve_positions", "solve_job_positions"),
     "teeth": ("choose_teeth", "candidate_data", "refuse_interference", "Candidate",
               "tension_fillets", "TOOTH_STIFFNESS"),
     "face": ("deepest_lead_um",),

@@ -26,6 +26,22 @@ def solve_positions(case: SolveCase, betas, *, model=None, submodels: str = "pea
     return solver.at_peaks(drive(case, betas, solver, executor=executor))
 
 
+def solve_job_positions(job, *, submodels: str = "peaks", contact_only: bool = False
+                        ) -> tuple[PairSolution, ...]:
+    """A prepared job's pair (:func:`~.job.prepare_job`) at its positions, ``submodels`` and
+    ``contact_only`` as :func:`solve_positions`'; a revolution's (``job.revolution``) as
+    ``fegear solve --revolution`` solves them, phase by phase with each phase's contact kept,
+    so that a pitch that sees the same teeth as one solved before (every pitch of a perfect
+    pair) is that one renumbered, not solved again (:func:`~.positions.positions_of`)."""
+    from .positions import positions_of  # lazy: heavy: the driver loads scipy
+    from .ring.solver import RingSolver, SolverModes  # lazy: heavy: scikit-fem
+
+    modes = SolverModes(submodels=submodels, contact_only=contact_only,
+                        keep_phases=job.revolution, read_kept=job.revolution)
+    solver = RingSolver(None, modes)
+    return solver.at_peaks(positions_of(solver, job.revolution)(job.case, job.betas, SERIAL))
+
+
 def solve_pair(case: SolveCase, *, model=None) -> PairSolution:
     """Solve ``case`` at its rolling angle (``model``: a ring model built before, kept)."""
     return solve_positions(case, (case.beta,), model=model)[0]

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from fegear.geometry import Deviations, Placed, Runout, ToothContact, gear1_profile
-from fegear.toothpair import prepare_job, solve_pair
+from fegear.toothpair import prepare_job, solve_job_positions, solve_pair
 from fegear.toothpair.analyses import Writing
 from fegear.toothpair.analyses.revolution.report import revolution_table, write_revolution_outputs
 from fegear.toothpair.analyses.revolution.solve import amplitudes, loaded_rotation
@@ -100,6 +100,23 @@ def test_a_deviated_revolution_is_not_the_perfect_one_beyond_its_teeth(perfect, 
     b = amplitudes(loaded_rotation(perfect.solutions))
     assert a[1] > 10.0 and b[1] < 1e-3
     assert _largest_order(deviated) == 1
+
+
+def test_a_jobs_positions_are_a_revolution_solved_as_the_job_does(perfect, deviated):
+    # the design search's and the relief's nominal pair: the same driver as `fegear solve
+    # --revolution`, so a perfect pair's pitches repeat its first (renumbered, not solved
+    # again) and a deviated pair's positions are the job's
+    sols = solve_job_positions(deviated.job, submodels="none")
+    for a, b in zip(sols, deviated.solutions, strict=True):
+        assert a.case.beta == b.case.beta and a.rotation == b.rotation
+        assert np.array_equal(a.root_stress, b.root_stress)
+        assert [t.p_max_MPa for t in a.teeth] == [t.p_max_MPa for t in b.teeth]
+    job = perfect.job
+    sols = solve_job_positions(job, submodels="none")
+    per = len(job.betas) // job.case.params.z1
+    for a, b in zip(sols, sols[per:]):
+        assert a.headline()["root_stress_gear1_MPa"] == b.headline()["root_stress_gear1_MPa"]
+        assert a.rotation == b.rotation
 
 
 def _largest_order(solved) -> int:
