@@ -140,13 +140,15 @@ def _across(job) -> tuple[tuple, dict]:
 def _graded(job, allow) -> dict:
     """A design measured on a tolerance class's pairs (``job.draw``, the same pairs for every
     design of a search: common random numbers): each limiting factor at the ``job.quantile``
-    of the pairs (0 where more of them jam), the smallest the objective, and the tip rounds'
-    constraint violated where more of the pairs that turn load a round than the quantile
-    leaves (by the largest such load, N). Its pairs are solved no further once that many
-    have loaded a round (the constraint is broken whatever the rest give): the factors are
-    then not known (None), the objective 0 as for a design whose pairs jam, and the share and
-    load those it saw (a sampler ranks a design that breaks a constraint by how far, not by
-    its objective)."""
+    of the pairs (0 where more of them jam), the smallest the objective; the jam constraint
+    violated where more of the pairs jam than the quantile leaves (by the share beyond it:
+    the design cannot be built to turn at that class), and the tip rounds' constraint where
+    more of the pairs that turn load a round (by the largest such load, N). Its pairs are
+    not solved where too many jam, and solved no further once too many have loaded a round
+    (the constraint is broken whatever the rest give): the factors are then not known
+    (None), the objective 0 as for a design whose pairs jam, and the shares and load those it
+    saw (a sampler ranks a design that breaks a constraint by how far, not by its
+    objective)."""
     from ..toothpair import (  # lazy: heavy: scikit-fem; `fegear --help` imports this module
         ClassReading,
         Enough,
@@ -157,21 +159,25 @@ def _graded(job, allow) -> dict:
 
     draw, q = job.draw, job.quantile
     sampled = class_samples(job, allow, read=lambda sol: sum(t.edge_load_N for t in sol.teeth),
-                            enough=Enough(_loads_a_round, 1.0 - q))
+                            enough=Enough(_loads_a_round, 1.0 - q, jams=1.0 - q))
     turning = sampled.turning
     loads = [max(sampled.readings.get(k, [0.0])) for k in turning]
     loaded = [x for x in loads if x > 0]
-    out = {"edge_share": len(loaded) / max(len(turning), 1)}
+    out = {"edge_share": len(loaded) / max(len(turning), 1),
+           "jammed_share": sampled.jammed_share,
+           "violation_jam": sampled.jammed_share - (1.0 - q)}
     out["violation_edge_load"] = (max(loaded) if out["edge_share"] > 1.0 - q else 0.0)
     if sampled.stopped:
-        out.update({"jammed_share": sampled.jammed_share, "objective_safety": 0.0,
-                    **{f"{n}_P{100 * q:g}": None for n in LIMITS},
-                    "reason": f"its pairs solved no further once {len(loaded)} of the "
-                              f"{len(turning)} that turn had loaded a tip round"})
+        jammed = round(sampled.jammed_share * draw.count)
+        why = (f"{jammed} of its {draw.count} pairs jam, more than the {100 * (1.0 - q):g} % "
+               "the quantile leaves: its pairs not solved" if out["violation_jam"] > 0 else
+               f"its pairs solved no further once {len(loaded)} of the {len(turning)} that "
+               "turn had loaded a tip round")
+        out.update({"objective_safety": 0.0, "reason": why,
+                    **{f"{n}_P{100 * q:g}": None for n in LIMITS}})
         return out
     summary = samples_summary(sampled.rows, cycle_rows(sampled.nominal, allow),
                               ClassReading(draw=draw, quantile=q, allowables=allow))
-    out["jammed_share"] = summary["jammed_share"]
     for name, f in LIMITS.items():
         out[f"{name}_P{100 * q:g}"] = summary["safety"][f.key]["at_quantile"] or 0.0
     out["objective_safety"] = min(out[f"{n}_P{100 * q:g}"] for n in LIMITS)

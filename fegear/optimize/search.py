@@ -2,8 +2,9 @@
 over a mesh cycle (:func:`~.design.evaluate`), and the answers go back as objective values
 and constraint values.
 
-* **Constraints, not exceptions.** A design the solve refuses or cannot solve, one that loads
-  a tip round, one too large for its housing or outside its backlash bounds comes back with
+* **Constraints, not exceptions.** A design the solve refuses or cannot solve, one whose
+  tolerance class jams in more pairs than its quantile leaves, one that loads a tip round,
+  one too large for its housing or outside its backlash bounds comes back with
   its constraint values > 0 (Optuna's ``constraints_func``): the sampler learns where the
   feasible region ends. A trial that raised would be FAILED and teach it nothing.
 * **A journal that survives a kill.** Trials are stored in Optuna's journal file
@@ -38,7 +39,8 @@ from .space import SAMPLERS, Space
 STUDY = "fegear-optimize"
 JOURNAL = "search.journal"
 #: the constraints every trial reports (> 0: violated), in this order
-CONSTRAINTS = ("buildable", "edge_load", "outer_diameter", "centre_distance", "backlash")
+CONSTRAINTS = ("buildable", "jam", "edge_load", "outer_diameter", "centre_distance",
+               "backlash")
 STARTUP = 40    # trials spread by a scrambled Sobol sequence before TPE models the objective
                 # (with TPE's own 10 random ones, its median best over three seeds did not
                 # beat a random search's: docs/optimize.md)

@@ -115,7 +115,24 @@ def test_a_class_s_design_is_measured_at_the_quantile_of_its_pairs():
     assert rec["objective_safety"] == min(rec["S_F1_P50"], rec["S_F2_P50"],
                                           rec["S_H_flank_P50"])
     assert rec["jammed_share"] == s["samples"]["jammed_share"]
+    assert rec["violation_jam"] == pytest.approx(rec["jammed_share"] - 0.5)
     assert (rec["violation_edge_load"] > 0) == (rec["edge_share"] > 0.5)
+
+
+def test_a_class_s_design_whose_pairs_jam_beyond_the_quantile_breaks_the_jam_constraint():
+    """The baseline's backlash at class 6 leaves most pairs jammed: more than the quantile
+    leaves (one of four at the 95th percentile) is a design that cannot be built to turn at
+    that class, infeasible by how far beyond (not a feasible design of objective 0, which a
+    sampler would seek out), and none of its pairs is solved."""
+    values = {**BASE, "quality": "coarse", "relief": 3.0, "tip-clearance": 0.04, "grade": 6,
+              "samples": 4, "quantile": 0.95}
+    rec = evaluate(values, 2, {})
+    assert rec["status"] == "ok" and rec["jammed_share"] >= 0.25
+    assert rec["violation_jam"] == pytest.approx(rec["jammed_share"] - 0.05)
+    assert f"{round(4 * rec['jammed_share'])} of its 4 pairs jam" in rec["reason"]
+    assert rec["objective_safety"] == 0.0 and rec["S_F1_P95"] is None
+    # none solved: no pair's rounds were read
+    assert rec["edge_share"] == 0.0 and rec["violation_edge_load"] == 0.0
 
 
 def test_a_class_s_design_whose_pairs_load_their_rounds_is_solved_no_further():

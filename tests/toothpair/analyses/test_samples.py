@@ -197,6 +197,26 @@ def test_a_run_that_has_seen_enough_ends_and_its_rows_say_so(baseline_ring, samp
                                                                  rel=1e-9)
 
 
+def test_a_run_whose_pairs_jam_beyond_its_bound_solves_none_of_them(baseline_ring, sampled):
+    """A run answered by its jammed share (a design search's design that jams in more pairs
+    than its quantile leaves) reads no pair: every one that turns "stopped" unread; one
+    whose jammed share is within the bound solves them all."""
+    from fegear.toothpair import Enough
+
+    jammed = sum(r["status"] == "jammed" for r in sampled.rows) / len(sampled.rows)
+    assert 0 < jammed < 1
+    for bound, ends in ((0.99 * jammed, True), (jammed, False)):
+        solver = RingSolver(baseline_ring, KEEP)
+        run = solve_samples(SampleCase(CASE, (0.0,), DRAW, DEFAULT_ALLOWABLES), solver,
+                            read=lambda sol: sol.root_stress[0],
+                            enough=Enough(lambda reading: False, 1.0, jams=bound))
+        assert run.stopped == ends and run.turning == sampled.turning
+        assert (not run.readings) == ends
+        assert [r["status"] for r in run.rows] == [
+            "jammed" if r["status"] == "jammed" else "stopped" if ends else r["status"]
+            for r in sampled.rows]
+
+
 def test_a_run_that_needs_some_pairs_solves_those_alone_with_the_same_numbers(
         baseline_ring, sampled):
     """A run that needs only some pairs solved (their answer unknown, the others' known)

@@ -27,17 +27,22 @@ class Enough:
     relief trial fails where more pairs load a tip round than the quantile leaves, whatever
     the others do). Counted where the chains run: chains in one process count together, a
     forked chain its own pairs (each count alone reaching the bound is enough for the
-    whole)."""
+    whole). ``jams``: the answer is known before any pair is solved where more than this
+    share of all the pairs jam (a design search's design that jams in more of its class's
+    pairs than the quantile leaves: not buildable at that class)."""
 
     def __init__(self, shows: Callable[[object], bool], share: float,
-                 only: frozenset[int] | None = None) -> None:
-        self.shows, self.share, self.only = shows, share, only
+                 only: frozenset[int] | None = None, jams: float | None = None) -> None:
+        self.shows, self.share, self.only, self.jams = shows, share, only, jams
         self.bound = 0.0
         self.seen: set[int] = set()
+        self.jammed = False
 
-    def among(self, turning: int) -> None:
-        """The run's pairs that turn (not jammed), solved or not: the count ``share`` is of."""
+    def among(self, turning: int, count: int) -> None:
+        """The run's ``count`` pairs and those of them that turn (not jammed), solved or not:
+        the count ``share`` is of."""
         self.bound = self.share * turning
+        self.jammed = self.jams is not None and count - turning > self.jams * count
 
     def wants(self, k: int) -> bool:
         """Whether pair ``k`` is to be solved (:attr:`only`)."""
@@ -50,8 +55,8 @@ class Enough:
 
     @property
     def reached(self) -> bool:
-        """Whether more pairs than the bound have shown it."""
-        return len(self.seen) > self.bound
+        """Whether more pairs than the bound have shown it, or more jam than ``jams``."""
+        return self.jammed or len(self.seen) > self.bound
 
 
 @dataclass(frozen=True)

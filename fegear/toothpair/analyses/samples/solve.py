@@ -147,7 +147,7 @@ def solve_samples(samples: SampleCase, solver: RingSolver, executor: Executor = 
                 readout(side)
         free = [k for k in range(count) if jammed[k] is None]
         if enough is not None:
-            enough.among(len(free))
+            enough.among(len(free), count)
             free = [k for k in free if enough.wants(k)]
         places = list(range(len(samples.betas)))
         scouts = (scout_places(len(places)) if samples.screen and samples.pitches > 1
