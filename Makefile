@@ -38,9 +38,10 @@ system-programs:
 
 bench: $(STAMP)
 	# the paper's baseline pair; the sector model and CalculiX beside it, the paper study, a
-	# tolerance class's samples, a load spectrum and whole revolutions timed
+	# tolerance class's samples, a load spectrum, whole revolutions and the design search over a
+	# turn timed
 	$(BIN)/fegear bench --shift 0.016 --rotation 0.002 --sector-levels coarse,fast --paper-study \
-		--tolerance-class --spectrum --revolution --history docs/bench/history.jsonl
+		--tolerance-class --spectrum --revolution --search --history docs/bench/history.jsonl
 
 study: $(STAMP)
 	$(BIN)/fegear study studies/paper_trends.toml  # the paper's Tables 4-6, about 15 s

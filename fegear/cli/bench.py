@@ -59,6 +59,9 @@ def add_parser(sub) -> None:
     p.add_argument("--revolution", action="store_true",
                    help="also time fegear solve over a revolution, one deviated pair's and "
                         "200 class-5 pairs', against one position (about three minutes)")
+    p.add_argument("--search", action="store_true",
+                   help="also time fegear optimize over a revolution, 200 trials of 50 "
+                        "class-5 pairs (about six minutes)")
     p.add_argument("--no-peer", action="store_true",
                    help="do not run CalculiX beside the ladders even if ccx is installed")
     p.add_argument("--study-only", action="store_true",
@@ -183,6 +186,6 @@ def _plan(a: argparse.Namespace) -> BenchPlan:
                      pair_args=tuple(x for k, v in given.items() for x in (f"--{k}", f"{v}")),
                      peer=not a.no_peer, paper_study=a.paper_study,
                      tolerance_class=a.tolerance_class, spectrum=a.spectrum, face=a.face,
-                     revolution=a.revolution,
+                     revolution=a.revolution, search=a.search,
                      files=own["files"], only=only,
                      history=None if a.history is None else Path(a.history))

@@ -23,7 +23,14 @@ from . import bench, history
 from .ccx_files import PeerError
 from .pair_targets import PEER_KEYS, PairRuns, pair_targets, sector_error
 from .peer_contact import CASES, LEVELS, contact_peer, peer_table
-from .ring_bench import SINGLE_TARGET, class_run, face_run, revolution_run, spectrum_run
+from .ring_bench import (
+    SINGLE_TARGET,
+    class_run,
+    face_run,
+    revolution_run,
+    search_run,
+    spectrum_run,
+)
 from .sector import cross_check, cross_table
 
 if TYPE_CHECKING:
@@ -58,6 +65,7 @@ class BenchPlan:
     ``face``: also time one position and a cycle across the face against the 2D pair
     (:func:`~.ring_bench.face_run`); ``revolution``: also time whole revolutions, one deviated
     pair's and 200 pairs', against one position (:func:`~.ring_bench.revolution_run`);
+    ``search``: also time the design search over a turn (:func:`~.ring_bench.search_run`);
     ``files``: pairs of whole ``fegear solve`` commands without and with ``--out`` that time
     the files' cost (:func:`~.bench.files_run`; 0: none); ``only``: one of :data:`ONLY`;
     ``out``: the directory (checked, made when there is something to write); ``history``: the
@@ -82,6 +90,7 @@ class BenchPlan:
     spectrum: bool = False
     face: bool = False
     revolution: bool = False
+    search: bool = False
     files: int = 0
     only: str = ""
     history: Path | None = None
@@ -120,7 +129,8 @@ def _everything(plan: BenchPlan, say: Say) -> None:
                    tolerance=class_run(plan.pair_args) if plan.tolerance_class else None,
                    spectrum=spectrum_run(plan.pair_args) if plan.spectrum else None,
                    face=face_run(plan.pair_args) if plan.face else None,
-                   revolution=revolution_run(plan.pair_args) if plan.revolution else None)
+                   revolution=revolution_run(plan.pair_args) if plan.revolution else None,
+                   search=search_run() if plan.search else None)
     files = None
     if plan.files:
         say("")
@@ -242,6 +252,8 @@ def _ring_record(runs: PairRuns, scale: list, targets: list[str],
                           for name, (flat, face) in runs.face.items()}
     if runs.revolution is not None:
         record["revolution"] = runs.revolution
+    if runs.search is not None:
+        record["search"] = runs.search
     if files is not None:
         record["files"] = {"args": list(files.args), "without_s": list(files.without),
                            "with_out_s": list(files.written), "cost_s": files.cost_s}

@@ -63,6 +63,8 @@ def bench_metrics(record: dict) -> dict[str, float]:
     if rev is not None:
         out["one deviated pair's revolution [s]"] = rev["pair_s"]
         out["200 class-5 pairs over a revolution [s]"] = rev["class_s"]
+    if ring.get("search") is not None:
+        out["design search over a turn, 200 trials of 50 pairs [s]"] = ring["search"]["seconds"]
     for name, f in (ring.get("face") or {}).items():
         out[f"across the face / 2D, {name}, whole commands [×]"] = f["face_s"] / f["flat_s"]
     return out

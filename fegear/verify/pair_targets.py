@@ -33,8 +33,9 @@ class PairRuns:
     its meshes), the paper study (s, cases), the model cache's runs and a tolerance class's
     samples (s, their counts: :func:`~.ring_bench.class_run`) and a load spectrum's cycle (s
     alone, s with the spectrum: :func:`~.ring_bench.spectrum_run`), the pair across the
-    face against the 2D one (:func:`~.ring_bench.face_run`) and whole revolutions against one
-    position (:func:`~.ring_bench.revolution_run`)."""
+    face against the 2D one (:func:`~.ring_bench.face_run`), whole revolutions against one
+    position (:func:`~.ring_bench.revolution_run`) and the design search over a turn
+    (:func:`~.ring_bench.search_run`)."""
 
     default: RingRun
     extra: RingRun
@@ -47,6 +48,7 @@ class PairRuns:
     spectrum: tuple[float, float] | None = None
     face: dict[str, tuple[float, float]] | None = None
     revolution: dict[str, float] | None = None
+    search: dict[str, float] | None = None
 
 
 def sector_error(values: dict, keys=None) -> float:
@@ -90,7 +92,7 @@ def pair_targets(runs: PairRuns, peer_target: float = PEER_TARGET) -> list[str]:
                      f"{alone:.2f} s alone, "
                      f"{rated / alone:.2f}× (target <= {rb.SPECTRUM_TARGET:g}×): "
                      f"{_status(rated / alone <= rb.SPECTRUM_TARGET)}")
-    lines += _revolution(runs.revolution)
+    lines += _revolution(runs.revolution) + _search(runs.search)
     for name, (flat, face) in (runs.face or {}).items():
         target = rb.FACE_TARGETS[name]
         lines.append(f"* {name} across the face (`{' '.join(rb.FACE_ARGS)}`): {face:.2f} s "
@@ -174,6 +176,17 @@ def _revolution(run: dict[str, float] | None) -> list[str]:
             f"{run['positions_solved_per_pair']:.0f} positions solved a pair (target <= "
             f"{rb.REVOLUTION_CLASS_TARGET_S:g} s): "
             f"{_status(run['class_s'] <= rb.REVOLUTION_CLASS_TARGET_S)}"]
+
+
+def _search(run: dict[str, float] | None) -> list[str]:
+    """The design search over a turn against its seconds' target, with its trials, how many
+    were feasible and the best (none if it was not run)."""
+    if run is None:
+        return []
+    best = "none" if run["best_trial"] is None else f"trial {run['best_trial']}"
+    return [f"* `fegear optimize {' '.join(rb.SEARCH_ARGS)}`: {run['seconds']:.0f} s, "
+            f"{run['trials']} trials, {run['feasible']} feasible, best {best} (target <= "
+            f"{rb.SEARCH_TARGET_S:g} s): {_status(run['seconds'] <= rb.SEARCH_TARGET_S)}"]
 
 
 def _peer(sector: Ladder, ring: list[RingRun], peer_target: float) -> list[str]:

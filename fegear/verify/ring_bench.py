@@ -61,6 +61,13 @@ REVOLUTION_TARGET_S = 5.0
 REVOLUTION_CLASS_ARGS = ("--grade", "5", "--samples", "200", "--positions", "24",
                          "--revolution", "--shift", "0.03", "--relief", "3", "--no-estimate")
 REVOLUTION_CLASS_TARGET_S = 60.0
+#: the design search over a turn (issue 70): 200 trials of 50 class-5 pairs, 4 positions a
+#: pitch at `coarse`, the space of docs/tolerance.md's search; the whole command on 2 cores
+SEARCH_ARGS = ("--max-outer-diameter", "104.4", "--grade", "5", "--samples", "50", "--trials",
+               "200", "--revolution", "--positions", "4", "--vary", "m=1:2.5", "--vary",
+               "h1=0.2:0.4", "--vary", "f1=0.1:0.2", "--vary", "relief=0:10", "--vary",
+               "tip-clearance=0.01:0.04", "--vary", "shift=0.008:0.04")
+SEARCH_TARGET_S = 1800.0
 #: a 4-level load spectrum over the 24-position cycle (issue 58): at most twice the cycle alone
 SPECTRUM = "torque,cycles\n60,1e8\n120,5e6\n160,3e5\n200,2e4\n"
 SPECTRUM_ARGS = ("--positions", "24", "--no-estimate")
@@ -250,15 +257,15 @@ def _scratch(name: str):
         yield Path(tmp), {"FEGEAR_CACHE_DIR": f"{tmp}/cache"}
 
 
-def command_s(args: list[str], env: dict) -> float:
-    """Wall time (s) of ``fegear solve ARGS -q`` in a new Python process with ``env`` added
+def command_s(args: list[str], env: dict, command: str = "solve") -> float:
+    """Wall time (s) of ``fegear COMMAND -q ARGS`` in a new Python process with ``env`` added
     to this one's environment: the whole command, imports included."""
     import os
     import subprocess
     import sys
 
     watch = Stopwatch()
-    subprocess.run([sys.executable, "-m", "fegear", "solve", "-q", *args],
+    subprocess.run([sys.executable, "-m", "fegear", command, "-q", *args],
                    env={**os.environ, **env}, check=True, stdout=subprocess.DEVNULL)
     return watch.s
 
@@ -437,3 +444,17 @@ def revolution_run(pair_args: tuple[str, ...]) -> dict[str, float]:
         samples = json.loads(Path(tmp, "out", "summary.json").read_text())["samples"]
     return {"solve_s": one, "pair_s": pair, "class_s": every,
             "positions_solved_per_pair": samples.get("positions_solved_per_pair", math.nan)}
+
+
+def search_run() -> dict[str, float]:
+    """Wall time (s) of the design search over a turn (:data:`SEARCH_ARGS`), the whole
+    ``fegear optimize`` in a fresh process (:func:`_scratch`), with its trials, how many were
+    feasible and its best trial's number."""
+    import json
+
+    with _scratch("search") as (tmp, env):
+        seconds = command_s([*SEARCH_ARGS, "--out", f"{tmp}/out"], env, "optimize")
+        found = json.loads(Path(tmp, "out", "search.json").read_text())
+    best = found["best"][0]["trial"] if found["best"] else None
+    return {"seconds": seconds, "trials": found["trials"], "feasible": found["feasible"],
+            "best_trial": best}

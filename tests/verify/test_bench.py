@@ -297,6 +297,28 @@ def test_whole_revolutions_are_judged_by_their_seconds_with_their_multiple_of_on
     assert got["200 class-5 pairs over a revolution [s]"] == 120.0
 
 
+def test_the_design_search_over_a_turn_is_judged_by_its_seconds_with_what_it_found():
+    from fegear.verify import ring_bench as rb
+    from fegear.verify.history import bench_metrics
+    from fegear.verify.pair_targets import PairRuns, pair_targets
+
+    ref = dict(rb.SECTOR_REFERENCE, von_mises_max_MPa=rb.VON_MISES_RESOLVED)
+    one = rb.RingRun("standard", {"mesh": 1.0}, 1.0, 500.0, 1, 1, ref, {})
+
+    def line(seconds, best):
+        run = {"seconds": seconds, "trials": 200, "feasible": 1, "best_trial": best}
+        out = pair_targets(PairRuns(one, one, [one], search=run), 20.0)
+        return [x for x in out if "fegear optimize" in x]
+
+    [met] = line(350.0, 6)
+    assert "--trials 200" in met and "--samples 50" in met and "--revolution" in met
+    assert met.endswith("350 s, 200 trials, 1 feasible, best trial 6 (target <= 1800 s): met")
+    [missed] = line(1801.0, None)
+    assert missed.endswith("best none (target <= 1800 s): MISSED")
+    got = bench_metrics({"ring": {"search": {"seconds": 350.0}}})
+    assert got["design search over a turn, 200 trials of 50 pairs [s]"] == 350.0
+
+
 def test_a_spectrum_is_judged_against_its_cycle_alone():
     from fegear.verify import ring_bench as rb
     from fegear.verify.history import bench_metrics
