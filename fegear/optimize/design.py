@@ -45,11 +45,14 @@ def centre_distance(values: Mapping) -> float:
     return 0.5 * float(v["m"]) * (int(v["z2"]) - int(v["z1"]))
 
 
-def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
+def evaluate(values: Mapping, positions: int, constraints: Mapping,
+             bar: float | None = None) -> dict:
     """Solve ``values`` (``fegear solve`` inputs by name) over ``positions`` rolling angles
     and measure it against ``constraints`` (``max_outer_diameter`` and ``max_centre_distance``
-    mm, ``min_backlash``/``max_backlash`` µm, each optional). Returns a flat record:
-    ``status`` (``ok``, ``refused`` or ``failed``), ``reason``, the worst headline stresses
+    mm, ``min_backlash``/``max_backlash`` µm, each optional); ``bar``: on a class's pairs, the
+    objective the design must reach to be kept (:mod:`.bar`; None: none). Returns a flat
+    record: ``status`` (``ok``, ``refused``, ``failed``, or ``pruned`` where its pairs showed
+    it below the bar), ``reason``, the worst headline stresses
     over the cycle with the rolling angle (°) and tooth of each, the safety factors,
     ``objective_*``, the constraint values (``violation_*``, > 0 violated) and the solve's
     time."""
@@ -71,6 +74,9 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
         job = prepare_job({**values, "positions": positions, "no-estimate": True})
     except FegearError as exc:       # outside the admissible region, named (ParameterError)
         return _infeasible(rec, "refused", str(exc), watch)
+    # the force the torque puts on gear 1's pitch circle: what a load on the rounds is read
+    # against (:func:`~.search.sampler_violation`)
+    rec["pitch_force_N"] = 1000.0 * job.case.torque / job.case.params.r1
     if constraints.get("min_backlash") is not None or constraints.get("max_backlash") is not None:
         from ..geometry import (  # lazy: heavy: numpy; `fegear --help` imports this module
             ToothContact,
@@ -116,7 +122,7 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping) -> dict:
     rec["objective_safety"] = rec[limit]
     if job.draw is not None:   # a class's pairs: the factors their quantile meets decide
         try:
-            rec.update(_graded(job, allow))
+            rec.update(_graded(job, allow, bar))
         except FegearError as exc:
             return _infeasible(rec, "failed", str(exc), watch)
     rec["objective_te"] = rec["te_p2p_urad"]
@@ -137,7 +143,7 @@ def _across(job) -> tuple[tuple, dict]:
     return solved.solutions, {**face["worst"], "K_Hbeta": face["K_Hbeta"]}
 
 
-def _graded(job, allow) -> dict:
+def _graded(job, allow, bar: float | None = None) -> dict:
     """A design measured on a tolerance class's pairs (``job.draw``, the same pairs for every
     design of a search: common random numbers): each limiting factor at the ``job.quantile``
     of the pairs (0 where more of them jam), the smallest the objective; the jam constraint
@@ -145,36 +151,46 @@ def _graded(job, allow) -> dict:
     the design cannot be built to turn at that class), and the tip rounds' constraint where
     more of the pairs that turn load a round (by the largest such load, N). Its pairs are
     not solved where too many jam, and solved no further once too many have loaded a round
-    (the constraint is broken whatever the rest give): the factors are then not known
-    (None), the objective 0 as for a design whose pairs jam, and the shares and load those it
-    saw (a sampler ranks a design that breaks a constraint by how far, not by its
-    objective)."""
+    (the constraint is broken whatever the rest give), nor once they bound its objective
+    below ``bar`` (:class:`~.bar.Beaten`: ``status`` "pruned", that bound in
+    ``objective_bound``). The factors are then not known (None), the objective 0 (pruned:
+    None), and the shares and load are those it saw (a sampler ranks a design that breaks a
+    constraint by how far, not by its objective)."""
+    import numpy as np  # lazy: heavy: `fegear --help` imports this module
+
     from ..toothpair import (  # lazy: heavy: scikit-fem; `fegear --help` imports this module
         ClassReading,
-        Enough,
         class_samples,
         cycle_rows,
         samples_summary,
     )
+    from .bar import Beaten, bound_of  # lazy: heavy: the samples' Enough
 
     draw, q = job.draw, job.quantile
-    sampled = class_samples(job, allow, read=lambda sol: sum(t.edge_load_N for t in sol.teeth),
-                            enough=Enough(_loads_a_round, 1.0 - q, jams=1.0 - q))
+    allowable = np.array([getattr(allow, f.stress.allowable) for f in LIMITS.values()])
+    sampled = class_samples(job, allow, read=_reading, enough=Beaten(q, allowable, bar))
     turning = sampled.turning
-    loads = [max(sampled.readings.get(k, [0.0])) for k in turning]
+    loads = [max(r[0] for r in sampled.readings.get(k, [(0.0,)])) for k in turning]
     loaded = [x for x in loads if x > 0]
     out = {"edge_share": len(loaded) / max(len(turning), 1),
            "jammed_share": sampled.jammed_share,
            "violation_jam": sampled.jammed_share - (1.0 - q)}
     out["violation_edge_load"] = (max(loaded) if out["edge_share"] > 1.0 - q else 0.0)
     if sampled.stopped:
+        out.update({"objective_safety": 0.0, **{f"{n}_P{100 * q:g}": None for n in LIMITS}})
         jammed = round(sampled.jammed_share * draw.count)
-        why = (f"{jammed} of its {draw.count} pairs jam, more than the {100 * (1.0 - q):g} % "
-               "the quantile leaves: its pairs not solved" if out["violation_jam"] > 0 else
-               f"its pairs solved no further once {len(loaded)} of the {len(turning)} that "
-               "turn had loaded a tip round")
-        out.update({"objective_safety": 0.0, "reason": why,
-                    **{f"{n}_P{100 * q:g}": None for n in LIMITS}})
+        if out["violation_jam"] > 0:
+            out["reason"] = (f"{jammed} of its {draw.count} pairs jam, more than the "
+                             f"{100 * (1.0 - q):g} % the quantile leaves: its pairs not solved")
+        elif out["violation_edge_load"] > 0:
+            out["reason"] = (f"its pairs solved no further once {len(loaded)} of the "
+                             f"{len(turning)} that turn had loaded a tip round")
+        else:
+            bound = bound_of(sampled.readings, turning, jammed, q, allowable)
+            out.update(status="pruned", objective_bound=bound, objective_safety=None,
+                       reason=f"its pairs solved no further once they put its objective at "
+                              f"{bound:.3g} at most, below {bar:.3g}, the last of the best "
+                              "designs kept")
         return out
     summary = samples_summary(sampled.rows, cycle_rows(sampled.nominal, allow),
                               ClassReading(draw=draw, quantile=q, allowables=allow))
@@ -184,9 +200,14 @@ def _graded(job, allow) -> dict:
     return out
 
 
-def _loads_a_round(edge_load_N: float) -> bool:
-    """Whether a pair's reading (the load on its tip rounds at a position, N) loads one."""
-    return edge_load_N > 0.0
+def _reading(sol) -> tuple:
+    """What a design's class reads of a pair's solution at a position: the load on its tip
+    rounds (N) and each limiting factor's stress (MPa, :data:`LIMITS`' order)."""
+    import numpy as np  # lazy: heavy: `fegear --help` imports this module
+
+    head = sol.headline()
+    return (sum(t.edge_load_N for t in sol.teeth),
+            np.array([head[f.stress.key] for f in LIMITS.values()]))
 
 
 def carrying_tooth(sol, key: str) -> int:

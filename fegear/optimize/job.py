@@ -58,7 +58,7 @@ def run_optimize(settings: SearchSettings) -> SearchOutcome:
     s, space = settings, settings.space
     watch = Stopwatch()
     result = run_search(space, s.out, s.trials, s.workers, s.sampler, s.seed,
-                        report=progress.stage, scheduler=s.scheduler)
+                        report=progress.stage, scheduler=s.scheduler, keep=max(s.best, 1))
     search_s = watch.s
     table = load_trials(s.out)
     best = best_trials(result.study, space, max(s.best, 1))

@@ -1,6 +1,7 @@
 """Search plots: the objective against each design variable (feasible designs filled,
-infeasible ones open and grey, the best marked) and the search's history (each trial and the
-best so far); with two objectives, their front."""
+infeasible ones open and grey, pruned ones at the bound they were pruned at, the best marked)
+and the search's history (each trial and the best so far); with two objectives, their
+front."""
 
 from __future__ import annotations
 
@@ -25,6 +26,7 @@ def search_pngs(table, variables: list[str], objectives: list[str], out: Path,
     done = table[table["state"] == "COMPLETE"]
     ok = done[done["feasible"].astype(str) == "True"]
     bad = done[done["feasible"].astype(str) != "True"]
+    pruned = table[table["state"] == "PRUNED"]
     o = objectives[0]
     col = f"objective_{o}"
     files = {}
@@ -40,6 +42,7 @@ def search_pngs(table, variables: list[str], objectives: list[str], out: Path,
                 ax.scatter(bad[v], [0.0] * len(bad), s=14, facecolors="none",
                            edgecolors="0.6", label="infeasible (at 0)")
             ax.scatter(ok[v], ok[c], s=16, color="C0", label="feasible")
+            _pruned(ax, pruned, v)
             if best is not None:
                 ax.scatter([best[v]], [best[c]], s=90, marker="*", color="C3", zorder=3,
                            label=f"best (trial {int(best['trial'])})")
@@ -59,6 +62,7 @@ def search_pngs(table, variables: list[str], objectives: list[str], out: Path,
     ax.scatter(bad["trial"], [0.0] * len(bad), s=12, facecolors="none", edgecolors="0.6",
                label="infeasible (at 0)")
     ax.scatter(ok["trial"], ok[col], s=12, color="C0", label="feasible")
+    _pruned(ax, pruned, "trial")
     if len(ok):
         ordered = ok.sort_values("trial")
         run = ordered[col].cummax() if OBJECTIVES[o] == "maximize" else ordered[col].cummin()
@@ -92,6 +96,14 @@ def search_pngs(table, variables: list[str], objectives: list[str], out: Path,
         files["front_png"] = save_png(fig, out / "front.png", 120)
         plt.close(fig)
     return files
+
+
+def _pruned(ax, pruned, x: str) -> None:
+    """The pruned trials (:mod:`.bar`) at the bound of their objective they were pruned at,
+    against ``x``: their objective is at most that."""
+    if len(pruned):
+        ax.scatter(pruned[x], pruned["objective_bound"], s=14, marker="v", facecolors="none",
+                   edgecolors="C1", label="pruned (at most)")
 
 
 def _baselines(ax, baseline: float | None, relieved: float | None) -> None:

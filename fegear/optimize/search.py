@@ -18,6 +18,10 @@ and constraint values.
   budget and are never solved again, queued ones are solved first.
 * **Cheap levels first.** Trials are screened at ``coarse``; the best are solved again at
   ``standard`` with the error estimate (:mod:`.report`).
+* **A design that cannot be kept is not finished.** On a class's pairs, with the safety
+  factor the one objective, a trial is given the objective of the last of the ``keep`` best
+  feasible designs so far (the bar) and ends once its pairs bound its own below it
+  (:mod:`.bar`): Optuna's PRUNED, with that bound as its last intermediate value.
 """
 
 from __future__ import annotations
@@ -70,8 +74,38 @@ class SearchReport:
 
 
 def _constraints(trial) -> list[float]:
-    """A finished trial's constraint values, in :data:`CONSTRAINTS`' order (> 0: violated)."""
+    """A finished trial's constraint values as the sampler has them, in :data:`CONSTRAINTS`'
+    order (> 0: violated; :func:`sampler_violation`)."""
     return [float(trial.constraints.get(c, 1.0)) for c in CONSTRAINTS]
+
+
+def _violations(trial) -> list[float | None]:
+    """A finished trial's constraint values in their own units, as its record has them
+    (``violation_*``), in :data:`CONSTRAINTS`' order; the sampler's where the record has
+    none (a trial of an older search)."""
+    return [trial.user_attrs.get(f"violation_{c}", v)
+            for c, v in zip(CONSTRAINTS, _constraints(trial))]
+
+
+def sampler_violation(rec: dict, c: str, constraints: dict) -> float:
+    """Constraint ``c``'s value of the record ``rec`` (``violation_c``, > 0 violated) on the
+    scale the sampler ranks infeasible designs by, the sum of their violations: each as a
+    share of what it is measured against, so that none outweighs the others by its unit. A
+    load on the rounds (N) as a share of the force the torque puts on gear 1's pitch circle
+    (``pitch_force_N``), a size over its bound (mm, µm) as a share of that bound; the jammed
+    share beyond the quantile and ``buildable`` (1) as they are."""
+    v = float(rec.get(f"violation_{c}", 0.0))
+    if c == "edge_load":
+        return v / rec["pitch_force_N"] if "pitch_force_N" in rec else v
+    if c in ("outer_diameter", "centre_distance"):
+        bound = constraints.get(f"max_{c}")
+        return v / bound if bound else v
+    if c == "backlash":
+        lo, hi = constraints.get("min_backlash"), constraints.get("max_backlash")
+        below = lo is not None and rec.get("backlash_um", lo) < lo
+        bound = lo if below else hi
+        return v / bound if bound else v
+    return v
 
 
 def _sampler(kind: str, seed: int, objectives: int):
@@ -119,12 +153,13 @@ def open_study(space: Space, out: Path, sampler: str = "tpe", seed: int = 0):
 
 def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: str = "tpe",
                seed: int = 0, report: Callable[[str], None] | None = None,
-               scheduler: str | None = None) -> SearchReport:
+               scheduler: str | None = None, keep: int = 3) -> SearchReport:
     """Search ``space`` for ``trials`` finished trials in all (those of an earlier run in
     ``out`` included) on ``workers`` local processes, or on the Dask cluster whose scheduler
     is at ``scheduler`` (as many at once as it has worker threads; its workers need fegear
     installed); the trials table is written at the end and at a stop. ``report`` is told
-    after each trial (a line: done, best, time left)."""
+    after each trial (a line: done, best, time left); ``keep``: the best designs the caller
+    reads, which a trial on a class's pairs must be able to join (module docstring)."""
     from optuna.trial import TrialState
 
     watch = Stopwatch()
@@ -140,7 +175,7 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
     for t in stale:                      # a search killed outright left these running
         _requeue(study, t.number, _whole_design(study, space, t),
                  "the search ended while it ran (killed outright)")
-    found = sum(t.state == TrialState.COMPLETE for t in study.get_trials(deepcopy=False))
+    found = sum(t.state.name in FINISHED for t in study.get_trials(deepcopy=False))
     done, solved, stop = found, 0, None
     running: dict[str, tuple] = {}     # a trial's task → the trial and its design
     try:
@@ -158,7 +193,7 @@ def run_search(space: Space, out: Path, trials: int, workers: int = 2, sampler: 
                     name = f"trial {trial.number}"
                     running[name] = (trial, params)
                     tasks.submit(name, evaluate, space.values(params), space.positions,
-                                 dict(space.constraints))
+                                 dict(space.constraints), bar_of(study, space, keep))
                 for o in tasks.ended():
                     trial, params = running.pop(o.name)
                     if o.lost is not None:
@@ -216,11 +251,27 @@ def _clean(value):
     return value
 
 
+def bar_of(study, space: Space, keep: int) -> float | None:
+    """The objective a new trial must reach to join the ``keep`` best feasible designs so
+    far, where the search prunes (a class's pairs, the safety factor its one objective); None
+    before there are that many, or where it does not."""
+    if tuple(space.objectives) != ("safety",) or space.fixed.get("grade") is None:
+        return None
+    best = best_trials(study, space, keep)
+    return best[-1].values[0] if len(best) == keep else None
+
+
 def _tell(study, trial, rec: dict, space: Space) -> None:
+    from optuna.trial import TrialState
+
     for k, v in rec.items():
         trial.set_user_attr(k, _clean(v))
     for c in CONSTRAINTS:
-        trial.set_constraint(c, float(rec.get(f"violation_{c}", 0.0)))
+        trial.set_constraint(c, sampler_violation(rec, c, space.constraints))
+    if rec.get("status") == "pruned":   # its bound, as Optuna keeps a pruned trial's value
+        trial.report(rec["objective_bound"], 0)
+        study.tell(trial, state=TrialState.PRUNED)
+        return
     values = []
     for o in space.objectives:
         v = rec.get(f"objective_{o}")
@@ -228,6 +279,10 @@ def _tell(study, trial, rec: dict, space: Space) -> None:
             v = 0.0 if OBJECTIVES[o] == "maximize" else 1e9
         values.append(float(v))
     study.tell(trial, values if len(values) > 1 else values[0])
+
+
+#: the states (names) of a trial that finished: solved, or ended once it could not be kept
+FINISHED = ("COMPLETE", "PRUNED")
 
 
 def feasible(t) -> bool:
@@ -266,7 +321,8 @@ def _progress(study, space: Space, done: int, total: int, solved: int, wall: flo
     return f"trial {done} of {total}, {text}, about {left / 60:.1f} min left"
 
 
-TABLE_COLUMNS = ("status", "objective_safety", "objective_te", "objective_stiffness",
+TABLE_COLUMNS = ("status", "objective_safety", "objective_bound", "objective_te",
+                 "objective_stiffness",
                  "limited_by", "S_F1", "S_F2", "S_H_flank", "S_H",
                  "root_stress_gear1_MPa", "root_stress_gear1_beta_deg",
                  "root_stress_gear1_tooth", "root_stress_gear2_MPa",
@@ -298,7 +354,7 @@ def write_trials(study, space: Space, out: Path) -> Path:
     for t in trials:
         cut = _unfinished(t, copies)
         a = cut if cut.get("status") == "cut" else {**t.user_attrs, **cut}
-        cons = _constraints(t) if t.state.name == "COMPLETE" else [None] * len(CONSTRAINTS)
+        cons = _violations(t) if t.state.name in FINISHED else [None] * len(CONSTRAINTS)
         rows.append([t.number, t.state.name, feasible(t), *(t.params.get(n) for n in names),
                      *cons, *(a.get(c) for c in columns)])
     path = write_csv(out / "trials.csv", header,
@@ -306,8 +362,9 @@ def write_trials(study, space: Space, out: Path) -> Path:
     best = best_trials(study, space)
     write_json(out / "search.json", {
         "settings": study.user_attrs.get("settings"),
-        "trials": len(rows), "finished": sum(t.state.name == "COMPLETE" for t in
+        "trials": len(rows), "finished": sum(t.state.name in FINISHED for t in
                                              study.get_trials(deepcopy=False)),
+        "pruned": sum(t.state.name == "PRUNED" for t in study.get_trials(deepcopy=False)),
         "feasible": sum(feasible(t) for t in study.get_trials(deepcopy=False)),
         "best": [{"trial": t.number, "params": t.params, "values": t.values,
                   **{k: _clean(t.user_attrs.get(k)) for k in TABLE_COLUMNS}} for t in best]})

@@ -154,6 +154,29 @@ def test_a_design_the_solve_refuses_comes_back_as_a_violation_not_an_error():
     assert rec["violation_buildable"] == 1.0
 
 
+def test_the_sampler_ranks_violations_as_shares_of_what_each_is_measured_against():
+    """A sampler ranks infeasible designs by the sum of their violations: a load on the rounds
+    in N beside a jammed share would outweigh it a thousand times. Each reaches it as a share:
+    the load of the force on gear 1's pitch circle, a size of its bound; the record keeps the
+    units."""
+    from fegear.optimize.search import sampler_violation
+
+    rec = evaluate({**BASE, "quality": "coarse"}, 2, {"max_outer_diameter": 100.0})
+    force = rec["pitch_force_N"]
+    assert force == pytest.approx(1000.0 * 200.0 / 44.0)   # 200 N·m at r1 = m z1 / 2 = 44 mm
+    assert rec["violation_edge_load"] > 100.0       # no relief: the rounds carry load (N)
+    cons = {"max_outer_diameter": 100.0}
+    assert sampler_violation(rec, "edge_load", cons) == rec["violation_edge_load"] / force
+    assert sampler_violation(rec, "outer_diameter", cons) == pytest.approx(4.4 / 100.0)
+    assert sampler_violation(rec, "buildable", cons) == 0.0
+    assert sampler_violation({"violation_jam": 0.15}, "jam", cons) == 0.15
+    low = {"backlash_um": 8.0, "violation_backlash": 2.0}
+    high = {"backlash_um": 14.0, "violation_backlash": 2.0}
+    both = {"min_backlash": 10.0, "max_backlash": 12.0}
+    assert sampler_violation(low, "backlash", both) == 0.2
+    assert sampler_violation(high, "backlash", both) == pytest.approx(2.0 / 12.0)
+
+
 # --- the search ----------------------------------------------------------------------------
 def _params(out: Path, state: str = "COMPLETE") -> list[tuple]:
     table = load_trials(out)

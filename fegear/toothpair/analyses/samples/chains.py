@@ -53,6 +53,10 @@ class Enough:
         if self.shows(reading):
             self.seen.add(k)
 
+    def failed(self, k: int) -> None:
+        """Pair ``k`` failed at a position (its contact did not settle): left out of what the
+        run reads, here nothing (a subclass that bounds a quantile drops it)."""
+
     @property
     def reached(self) -> bool:
         """Whether more pairs than the bound have shown it, or more jam than ``jams``."""

@@ -284,7 +284,7 @@ class OnKept:
                 head = sol.headline() if self.across is None else \
                     self._face(one, moved[k, n], self.across.faces[k])
             except FegearError as err:
-                found.setdefault(k, []).append((one.beta, str(err)))
+                self._failed(found, k, one.beta, err)
                 continue
             self._add(found, took, k, one.beta, head, sol)
         self._record(batch, held, found, took)
@@ -325,10 +325,17 @@ class OnKept:
             sols = [err] * len(held)
         for (k, beta), sol in zip(held, sols, strict=True):
             if isinstance(sol, FegearError):
-                found.setdefault(k, []).append((beta, str(sol)))
+                self._failed(found, k, beta, sol)
                 continue
             self._add(found, took, k, beta, sol.headline(), sol)
         held.clear()
+
+    def _failed(self, found: dict, k: int, beta: float, err: FegearError) -> None:
+        """Sample ``k`` failed at ``beta`` (``err`` says why): into ``found``, and
+        :attr:`enough` told (a failed pair is left out of a class's quantiles)."""
+        found.setdefault(k, []).append((beta, str(err)))
+        if self.enough is not None:
+            self.enough.failed(k)
 
     def _add(self, found: dict, took: dict, k: int, beta: float, head: dict,
              sol: PairSolution) -> None:
