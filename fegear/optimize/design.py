@@ -153,9 +153,9 @@ def _graded(job, allow, bar: float | None = None) -> dict:
     not solved where too many jam, and solved no further once too many have loaded a round
     (the constraint is broken whatever the rest give), nor once they bound its objective
     below ``bar`` (:class:`~.bar.Beaten`: ``status`` "pruned", that bound in
-    ``objective_bound``). The factors are then not known (None), the objective 0 (pruned:
-    None), and the shares and load are those it saw (a sampler ranks a design that breaks a
-    constraint by how far, not by its objective)."""
+    ``objective_bound``; not across the face). The factors are then not known (None), the
+    objective 0 (pruned: None), and the shares and load are those it saw (a sampler ranks a
+    design that breaks a constraint by how far, not by its objective)."""
     import numpy as np  # lazy: heavy: `fegear --help` imports this module
 
     from ..toothpair import (  # lazy: heavy: scikit-fem; `fegear --help` imports this module
@@ -168,6 +168,9 @@ def _graded(job, allow, bar: float | None = None) -> dict:
 
     draw, q = job.draw, job.quantile
     allowable = np.array([getattr(allow, f.stress.allowable) for f in LIMITS.values()])
+    # across the face a pair's worst sections decide, which its reading (the 2D pair's) does
+    # not bound: no bar there
+    bar = bar if job.face is None else None
     sampled = class_samples(job, allow, read=_reading, enough=Beaten(q, allowable, bar))
     turning = sampled.turning
     loads = [max(r[0] for r in sampled.readings.get(k, [(0.0,)])) for k in turning]
