@@ -52,10 +52,9 @@ def evaluate(values: Mapping, positions: int, constraints: Mapping,
     mm, ``min_backlash``/``max_backlash`` µm, each optional); ``bar``: on a class's pairs, the
     objective the design must reach to be kept (:mod:`.bar`; None: none). Returns a flat
     record: ``status`` (``ok``, ``refused``, ``failed``, or ``pruned`` where its pairs showed
-    it below the bar), ``reason``, the worst headline stresses
-    over the cycle with the rolling angle (°) and tooth of each, the safety factors,
-    ``objective_*``, the constraint values (``violation_*``, > 0 violated) and the solve's
-    time."""
+    it below the bar), ``reason``, the worst headline stresses over the cycle with the
+    rolling angle (°) and tooth of each, the safety factors, ``objective_*``, the constraint
+    values (``violation_*``, > 0 violated) and the solve's time."""
     from ..toothpair import (  # lazy: heavy: numpy; `fegear --help` imports this module
         allowables_of,
         prepare_job,
