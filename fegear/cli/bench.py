@@ -61,7 +61,7 @@ def add_parser(sub) -> None:
                         "200 class-5 pairs', against one position (about three minutes)")
     p.add_argument("--search", action="store_true",
                    help="also time fegear optimize over a revolution, 200 trials of 50 "
-                        "class-5 pairs (about six minutes)")
+                        "class-5 pairs (about 18 minutes)")
     p.add_argument("--no-peer", action="store_true",
                    help="do not run CalculiX beside the ladders even if ccx is installed")
     p.add_argument("--study-only", action="store_true",
