@@ -67,12 +67,7 @@ class Beaten(Enough):
         self.quantile, self.allowable, self.bar = quantile, allowable, bar
         self.tops: dict[int, np.ndarray] = {}
         self.out: set[int] = set()
-        self.turning = self.jammed_pairs = 0
         self.below = False
-
-    def among(self, turning: int, count: int) -> None:
-        super().among(turning, count)
-        self.turning, self.jammed_pairs = turning, count - turning
 
     def saw(self, k: int, reading) -> None:
         super().saw(k, reading)
@@ -81,7 +76,7 @@ class Beaten(Enough):
         self.tops[k] = np.maximum(self.tops.get(k, 0.0), reading[1])
         bound = objective_bound(list(self.tops.values()),
                                 self.turning - len(self.tops) - len(self.out),
-                                self.jammed_pairs, self.quantile, self.allowable)
+                                self.count - self.turning, self.quantile, self.allowable)
         self.below = bound < self.bar
 
     def failed(self, k: int) -> None:

@@ -34,15 +34,13 @@ class Enough:
     def __init__(self, shows: Callable[[object], bool], share: float,
                  only: frozenset[int] | None = None, jams: float | None = None) -> None:
         self.shows, self.share, self.only, self.jams = shows, share, only, jams
-        self.bound = 0.0
+        self.turning = self.count = 0
         self.seen: set[int] = set()
-        self.jammed = False
 
     def among(self, turning: int, count: int) -> None:
         """The run's ``count`` pairs and those of them that turn (not jammed), solved or not:
         the count ``share`` is of."""
-        self.bound = self.share * turning
-        self.jammed = self.jams is not None and count - turning > self.jams * count
+        self.turning, self.count = turning, count
 
     def wants(self, k: int) -> bool:
         """Whether pair ``k`` is to be solved (:attr:`only`)."""
@@ -60,7 +58,9 @@ class Enough:
     @property
     def reached(self) -> bool:
         """Whether more pairs than the bound have shown it, or more jam than ``jams``."""
-        return self.jammed or len(self.seen) > self.bound
+        jammed = self.count - self.turning
+        return ((self.jams is not None and jammed > self.jams * self.count)
+                or len(self.seen) > self.share * self.turning)
 
 
 @dataclass(frozen=True)
