@@ -15,6 +15,7 @@ the prediction changes where they start, never what they settle on.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -42,12 +43,15 @@ class CoarseContact:
     pressures per unit pressure of each coarse hat (``P``, sparse, points × coarse points:
     linear between coarse points in arc length), the gaps at the coarse points per unit
     coarse pressure (``A``, mm/MPa, A[pick] P) and each coarse hat's force per unit pressure
-    (``w``, mm², Pᵀ w of the fine hats')."""
+    (``w``, mm², Pᵀ w of the fine hats'); ``form``: where the kept contact forms its A's
+    columns as they are read (:mod:`.lazy`), what forms the coarse columns given from them
+    (:class:`_Columns`)."""
 
     pick: np.ndarray
     P: scipy.sparse.csr_matrix
     A: np.ndarray
     w: np.ndarray
+    form: Callable[[np.ndarray], None] | None = None
 
     def predict(self, g0: np.ndarray, a: np.ndarray, torque_nmm: float,
                 start: np.ndarray | None, within: float | None
@@ -64,7 +68,7 @@ class CoarseContact:
         first = None if start is None else start[self.pick][near]
         if first is None or not first.any():
             first = g0[near] <= g0[near].min()
-        system = ContactSystem(self.A, self.w[near], g0[near], a[near], near)
+        system = ContactSystem(self.A, self.w[near], g0[near], a[near], near, form=self.form)
         try:
             found = active_set(system, torque_nmm, first)
         except ContactError:
@@ -118,8 +122,34 @@ def coarse_contact(contact: RingContact, thickness: float) -> CoarseContact:
     P = scipy.sparse.csr_matrix((np.concatenate(values), (np.concatenate(rows),
                                                            np.concatenate(cols))),
                                 shape=(contact.npoints, len(pick)))
-    return CoarseContact(pick, P, _sampled(contact.A, pick, P),
-                         P.T @ (contact.weight * thickness))
+    w = P.T @ (contact.weight * thickness)
+    if contact.former is None:
+        return CoarseContact(pick, P, _sampled(contact.A, pick, P), w)
+    columns = _Columns(contact, pick, P)
+    return CoarseContact(pick, P, columns.A, w, columns)
+
+
+class _Columns:
+    """A_c's columns formed where they are read, as the kept contact's A is
+    (:mod:`.lazy`): a coarse hat's column from the fine columns under it, those formed
+    first."""
+
+    def __init__(self, contact: RingContact, pick: np.ndarray, P: scipy.sparse.csr_matrix):
+        self.contact, self.pick, self.P = contact, pick, P.tocsc()
+        self.A = np.empty((len(pick), P.shape[1]), order="F")
+        self.formed = np.zeros(P.shape[1], bool)
+
+    def __call__(self, coarse: np.ndarray) -> None:
+        """Form A_c's columns of the ``coarse`` points (indices) where they are not yet."""
+        new = np.unique(coarse[~self.formed[coarse]])
+        if not len(new):
+            return
+        part = self.P[:, new]
+        fine = np.unique(part.indices)
+        self.contact.ready(fine)
+        rows = np.take(self.contact.A[:, fine], self.pick, axis=0)
+        self.A[:, new] = rows @ part[fine].toarray()
+        self.formed[new] = True
 
 
 def _sampled(A: np.ndarray, pick: np.ndarray, P: scipy.sparse.csr_matrix) -> np.ndarray:

@@ -176,6 +176,7 @@ class _Gaps:
             return g0, a, np.ones(len(g0), bool)
         pressure = np.zeros(contact.npoints)
         pressure[it.on] = it.pressure
+        contact.ready(np.flatnonzero(pressure))
         it.elastic = loaded_product(contact.A, pressure)
         g0, a, exact = unsure(self.model, self.points, it.theta, it.elastic, pressure > 0)
         idx = np.flatnonzero(exact)
@@ -252,7 +253,8 @@ def _linearise(gaps: _Gaps, it: _Iterate, torque_nmm: float) -> None:
     """The active-set method on the rigid gap linearised at the rotation, turned by its step
     and linearised again until the rotation settles, to rounding (module docstring)."""
     while True:
-        system = ContactSystem(gaps.contact.A, it.w, it.g0, it.a, it.rows, it.blocks)
+        system = ContactSystem(gaps.contact.A, it.w, it.g0, it.a, it.rows, it.blocks,
+                               gaps.contact.former)
         found = _set_settled(system, torque_nmm, it.active, _arm_rate(gaps, it))
         it.pressure, it.active = found.pressure, found.active
         it.iterations += found.iterations
@@ -341,6 +343,7 @@ def _closed(model: RingModel, contact: RingContact, pressure: np.ndarray, g0: np
     full = np.zeros(contact.npoints)
     full[on] = pressure
     gap = g0.copy()
+    contact.ready(on[pressure != 0])
     gap[on] += loaded_product(contact.A, pressure) if elastic is None else elastic
     clamped = None
     if not contact.complete:

@@ -8,6 +8,7 @@ linearisations."""
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -47,7 +48,9 @@ class ContactSystem:
     pressures p and a rotation step δ the gaps are g0 + a δ + A p, and −Σ w a p is the torque
     (N·mm) the pressures carry. ``rows``: the points' rows (and columns) of ``A`` where they
     are some of its points (None: all); ``blocks``: A's blocks for the active sets met so far
-    (:func:`_block`), which a contact solve's linearisations share."""
+    (:func:`_block`), which a contact solve's linearisations share; ``form``: where A's
+    columns are formed as they are read (:mod:`.lazy`), what forms those of the points
+    given (A's columns, not the system's), before a block reads them."""
 
     A: np.ndarray
     w: np.ndarray
@@ -55,6 +58,7 @@ class ContactSystem:
     a: np.ndarray
     rows: np.ndarray | None = None
     blocks: dict = field(default_factory=dict, repr=False, compare=False)
+    form: Callable[[np.ndarray], None] | None = field(default=None, repr=False, compare=False)
 
 
 def solve_active(system: ContactSystem, torque_nmm: float, active: np.ndarray,
@@ -158,6 +162,8 @@ class _Columns:
                 grown[:self.count] = self.rows[:self.count]
                 self.rows = grown
             rows = np.arange(self.slot.size) if system.rows is None else system.rows
+            if system.form is not None:
+                system.form(rows[new])
             # the new points' rows of A's transpose whole, then the system's columns of them
             # (two plain gathers, not one of np.ix_: less than half the time)
             np.take(system.A.T[rows[new]], rows, axis=1, out=self.rows[self.count:end])

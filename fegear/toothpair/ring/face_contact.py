@@ -120,6 +120,7 @@ class _Problem:
                  coupling: FaceCoupling, torque_nmm: float) -> None:
         self.model, self.contact, self.offsets, self.torque = model, contact, offsets, torque_nmm
         near = near_field(model, contact)
+        contact.ready(np.arange(contact.npoints))
         # transposed: a set's products read the rows of its points, which are contiguous
         self.near_t = np.ascontiguousarray(near.T)
         self.far_t = np.subtract(contact.A.T, near.T, out=np.empty_like(near))

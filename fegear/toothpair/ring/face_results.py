@@ -94,7 +94,7 @@ def face_sections(model, phases: Phases, case: SolveCase, state, face: Face,
     strains = phases.strains(model, case.beta)
     g2, rate = rigid_gap(model, contact, case.params.ratio * contact.beta + solved.rotation,
                          contact.feet.copy())
-    bare = replace(contact, A=None)
+    bare = replace(contact, A=None, former=None)
 
     def section(s: int) -> PairSolution:
         """Section ``s``'s pair (module docstring)."""

@@ -17,6 +17,7 @@ a column a hat), the same numbers as its row of A times the pressure.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -64,9 +65,9 @@ class RingContact:
     outward normals there (its own frame) and its curve's parameter ξ there, the foot last
     found (the rigid gap's searches at nearby rotations start from it:
     :func:`~.contact.rigid_gap`); A (mm/MPa) between the ``formed`` points (rows and
-    columns in the points' order), which only the solve reads: a solved position's record
-    (:class:`~.results.RingDetail`) is without it (38 MB at the baseline's 2 200 points, 0.9 GB
-    over a 24-position cycle)."""
+    columns in the points' order), which only the solve reads (a solved position's record,
+    :class:`~.results.RingDetail`, is without it), and what forms A's columns of the points
+    given where they are formed as they are read (``former``, :mod:`.lazy`; else None)."""
 
     beta: float
     turn: float
@@ -83,6 +84,12 @@ class RingContact:
     feet: np.ndarray = field(repr=False)     # gear 2's parameter ξ at each point's foot, the
                                              # last found: the next search's start
     placed: Placed | None = field(default=None, repr=False)   # the pair's deviations here
+    former: Callable[[np.ndarray], None] | None = field(default=None, repr=False)
+
+    def ready(self, points: np.ndarray) -> None:
+        """Have A's columns of ``points`` formed (:attr:`former`) before they are read."""
+        if self.former is not None:
+            self.former(points)
 
     @property
     def teeth(self) -> np.ndarray:
@@ -91,7 +98,8 @@ class RingContact:
 
     @property
     def complete(self) -> bool:
-        """Whether every column of A is formed (else the probe grids' are left out: zero)."""
+        """Whether A spans every point (its columns formed, or formed where read: :attr:`former`;
+        else the probe grids' are left out: zero)."""
         return bool(self.formed.all())
 
     @property
@@ -120,11 +128,13 @@ class ColumnRule:
     point overlaps rigidly: on the baseline's cycle, by a fifth of the elastic approach or
     more at the expected turn); with ``mask`` (over the points), only those of these points
     (where the position before carried pressure, say). A rule that would leave no column
-    keeps those of the rules before it."""
+    keeps those of the rules before it. Without ``now``, A is left to the caller (None:
+    :mod:`.lazy` forms it where it is read)."""
 
     probes: bool = True
     within: float | None = None
     mask: np.ndarray | None = None
+    now: bool = True
 
     def formed(self, grids, offsets: np.ndarray, gap: np.ndarray) -> np.ndarray:
         """The points whose columns are formed, of the ``grids`` (their points from
@@ -142,12 +152,10 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
                      turn: float, rule: ColumnRule = ColumnRule(),
                      placed: Placed | None = None) -> RingContact:
     """The contact of the ``grids`` with gear 2 turned by β and gear 1 by ``turn`` (rad, its
-    kinematic angle included, about its centre), A formed on the columns ``rule`` gives (its
-    rigid gaps with the pair's deviations ``placed`` at β, where there are any). A's rows are
-    formed at those points alone (they were three in five of its products at a cycle's later
-    position, read only to tell whether a point left out closes: :func:`approach_open` tells
-    that from the solved pressure's fields). The elastic part is the exact pair's: the
-    deviations move the surfaces by µm."""
+    kinematic angle included, about its centre), its rigid gaps with the pair's deviations
+    ``placed`` at β where there are any, and A on the columns and rows ``rule`` gives (whether
+    a point left out closes is told from the solved pressure's fields: :func:`approach_open`).
+    The elastic part is the exact pair's: the deviations move the surfaces by µm."""
     p, case = model.case.params, model.case
     g1, g2 = model.gears
     offsets = np.cumsum([0] + [len(g) for g in grids])
@@ -172,7 +180,7 @@ def assemble_contact(model: RingModel, grids: tuple[ToothGrid, ...], beta: float
              _matching(g2, x2, n2, model.level.depth, grids, offsets))
     contact = RingContact(beta, turn, tuple(grids), offsets, x, n1, weight, (loads1, loads2),
                           match, (x2, n2), None, formed, feet, placed)
-    return replace(contact, A=_influence(model, contact))
+    return replace(contact, A=_influence(model, contact)) if rule.now else contact
 
 
 def _influence(model: RingModel, contact: RingContact) -> np.ndarray:
@@ -183,7 +191,7 @@ def _influence(model: RingModel, contact: RingContact) -> np.ndarray:
     place[on] = np.arange(len(on))
     A = np.zeros((len(on), len(on)), order="F")   # read by columns: the loaded points'
     for side, loads, m in zip(model.gears, contact.loads, contact.matching):
-        _fe_part(side, loads, m.take(on), place, A)
+        add_fe_part(side, loads, m.take(on), place, A)
     _add_near_field(model, contact, place, A)
     return A
 
@@ -242,8 +250,7 @@ def _hat_loads(model: RingModel, grids, offsets, thickness: float, formed: np.nd
         phi = np.interp(sq.ravel(), g.s, g.phi) - g.tooth * samples.shape.pitch
         # load points need no exactness: tooth 0's dense samples (nm off) turned to the tooth
         xq = np.column_stack([np.interp(phi, samples.phi, samples.x[:, d]) for d in (0, 1)])
-        nq = np.column_stack([np.interp(phi, samples.phi, samples.normal[:, d])
-                              for d in (0, 1)])
+        nq = np.column_stack([np.interp(phi, samples.phi, samples.normal[:, d]) for d in (0, 1)])
         nq /= np.linalg.norm(nq, axis=1)[:, None]
         turn = g.tooth * samples.shape.pitch
         xs.append(rotate(xq, turn))
@@ -316,10 +323,8 @@ def loaded_hats(loaded: np.ndarray, n: int) -> tuple[int, int]:
 def _fe_approach(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
                  pressure: np.ndarray) -> tuple[np.ndarray, dict]:
     """n · u_FE at the matching points under the hats' ``pressure`` (one load, not a column
-    per hat: :func:`_fe_part` times p), and the clamped fields of the loaded sectors."""
-    at = match.at
-    N = side.rows_at(match.cells, match.direction)
-    NQ = np.asarray(N @ side.cut_field)
+    per hat: :func:`add_fe_part` times p), and the clamped fields of the loaded sectors."""
+    at, (N, NQ, _) = match.at, matching_rows(side, match)
     rho = {t: side.cut_loads(blk.dofs) @ (blk.matrix @ pressure[blk.columns])
            for t, blk in loads.items()}
     f = {t: blk.vector(pressure, side.body.ndofs) for t, blk in loads.items()}
@@ -337,24 +342,37 @@ def _fe_approach(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
     return out, clamped
 
 
-def _fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
-             place: np.ndarray, out: np.ndarray) -> None:
+def matching_rows(side: GearSide, match: Matching) -> tuple:
+    """The matching points' rows of the template's fields (sparse: the approach per template
+    dof) and of the cut motions (dense, points × cut dofs: by Ψ), which :func:`add_fe_part`
+    reads, and room for what it forms of them (a sector's rows, their products with a far
+    coupling's thin factor) for its later calls on the same points."""
+    N = side.rows_at(match.cells, match.direction)
+    return N, np.asarray(N @ side.cut_field), {}
+
+
+def add_fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
+                place: np.ndarray, out: np.ndarray, fields: tuple | None = None) -> None:
     """Add n · u_FE at the matching points per unit pressure of each hat (see module
     docstring) to ``out`` (points × formed hats; ``place``: each hat's column there): for the
     points in sector k and the hats loading sector t, the clamped field if t = k plus
     N Ψ W(t − k) ρ, the product taken through the thin factors of W where the sectors are far
     apart (:meth:`~fegear.fe.cyclic.CyclicBody.coupling_factors`). A sector's points and a
     sector's hats are each one run of rows and of columns but where a grid straddles two
-    sectors."""
+    sectors. ``fields``: :func:`matching_rows` of ``match``, where formed before. The clamped
+    fields are read at the points of the loaded sectors alone (zero in every other)."""
     at = match.at
-    N = side.rows_at(match.cells, match.direction)
-    NQ = np.asarray(N @ side.cut_field)
+    N, NQ, kept = matching_rows(side, match) if fields is None else fields
     dofs = np.unique(np.concatenate([blk.dofs for blk in loads.values()]))
-    clamped = side.clamped_rows(N, dofs)                     # (points, loaded dofs)
+    loaded = np.isin(at.sector, np.fromiter(loads, int))
+    own = np.cumsum(loaded) - 1                           # a loaded sector's point's row …
+    clamped = side.clamped_rows(N if loaded.all() else N[loaded], dofs)   # … here
     rho = {t: side.cut_loads(blk.dofs) @ blk.matrix for t, blk in loads.items()}
     columns = {t: _run(place[blk.columns]) for t, blk in loads.items()}
     for k in np.unique(at.sector):
-        r = np.flatnonzero(at.sector == k)
+        if k not in kept:
+            kept[k] = np.flatnonzero(at.sector == k), {}
+        r, far = kept[k]
         rows = _run(r)
         Nk = NQ[r]
         for t, blk in loads.items():
@@ -364,10 +382,11 @@ def _fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
                 block = ((Nk @ W) @ rho[t] if len(r) < rho[t].shape[1]
                          else Nk @ (W @ rho[t]))
             else:
-                U, V = factors
-                block = (Nk @ U) @ (V @ rho[t])
+                if t - k not in far:
+                    far[t - k] = Nk @ factors[0]
+                block = far[t - k] @ (factors[1] @ rho[t])
             if t == k:
-                block += clamped[rows][:, np.searchsorted(dofs, blk.dofs)] @ blk.matrix
+                block += clamped[_run(own[r])][:, np.searchsorted(dofs, blk.dofs)] @ blk.matrix
             if isinstance(rows, slice) or isinstance(columns[t], slice):
                 out[rows, columns[t]] += block
             else:

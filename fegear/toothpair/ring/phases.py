@@ -45,6 +45,7 @@ from .circles import FootCircles, foot_circles
 from .coarse import CoarseLevels
 from .contact import Iterations, RingContactSolution, rigid_gap, solve_with
 from .influence import ColumnRule, RingContact, assemble_contact
+from .lazy import with_lazy_columns
 from .model import RingModel
 from .placement import PLACEMENT, REACH, REACH_FLOOR, GridPlacement, place_grids
 from .readout import SurfaceStrains
@@ -306,8 +307,9 @@ class Phases:
         grids = place_grids(model, case, Trial(tuple(sorted(teeth)), elastic_um),
                             GridPlacement(frozenset(teeth), reach), first_um)
         placed = Placed(case.deviations, p, case.beta) if case.deviations else None
-        contact = assemble_contact(model, grids, case.beta, p.ratio * case.beta + rotation,
-                                   ColumnRule(), placed)
+        contact = with_lazy_columns(model, assemble_contact(
+            model, grids, case.beta, p.ratio * case.beta + rotation, ColumnRule(now=False),
+            placed))
         try:
             sol = solve_with(model, contact, case.torque_Nmm, rotation,
                              Iterations(guess=rotation))

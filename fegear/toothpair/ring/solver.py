@@ -291,7 +291,7 @@ class RingSolver:
             cands = () if stresses is None or brief or roots_only or read is not None else \
                 candidate_data(case.params, model.shape, state,
                                tuple(g.tooth for g in solved.grids), case.beta)
-            detail = RingDetail(model, case, replace(contact, A=None), sol, stresses)
+            detail = RingDetail(model, case, replace(contact, A=None, former=None), sol, stresses)
             rigid = formed if formed is not None else solved_rigid_gap(detail)
             teeth = tooth_results(detail, state, cands, rigid,
                                   references=not (brief or roots_only or lean))

@@ -44,6 +44,7 @@ def solved_system(model: RingModel, contact: RingContact, sol: RingContactSoluti
                       idx)[1]
     arm_rate = (w[idx] * sol.pressure[idx]) @ (ahead - a[idx]) / ARM_STEP
     rows = (np.cumsum(contact.formed) - 1)[idx]     # the active points' rows of A
+    contact.ready(idx)
     return idx, _bordered(contact.A[np.ix_(rows, rows)], w[idx], a[idx], arm_rate)
 
 

@@ -43,7 +43,7 @@ def turned(model: RingModel, contact: RingContact, pitches: int, beta: float,
         (_turned_matching(contact.matching[0], pitches, g1.count, turn1),
          _turned_matching(contact.matching[1], pitches, g2.count, turn2)),
         (rotate(contact.facing[0], -turn2), rotate(contact.facing[1], -turn2)),
-        contact.A, contact.formed, contact.feet - turn2, placed)
+        contact.A, contact.formed, contact.feet - turn2, placed, contact.former)
 
 
 def turned_again(turns: dict[int, RingContact], model: RingModel, contact: RingContact,

@@ -44,6 +44,8 @@ def test_the_coarse_hats_interpolate_the_fine_pressures_linearly(kept):
 
 def test_the_coarse_compliance_is_the_fine_one_under_the_coarse_hats(kept):
     _, case, held, level = kept
+    assert level.form is not None   # a kept contact's: formed where it is read
+    level.form(np.arange(len(level.pick)))   # every coarse column, and the fine under them
     dense = held.contact.A[level.pick] @ level.P.toarray()
     np.testing.assert_allclose(level.A, dense, rtol=1e-12, atol=1e-14 * np.abs(dense).max())
     np.testing.assert_allclose(level.w, level.P.T @ (held.contact.weight * case.thickness),
@@ -97,6 +99,8 @@ def test_a_kept_contact_forms_its_coarse_level_once_it_is_solved_again_and_again
     assert [levels.level(3, held.contact, case.thickness) for _ in range(AFTER - 1)] == \
         [None] * (AFTER - 1)
     formed = levels.level(3, held.contact, case.thickness)
+    for each in (formed, level):
+        each.form(np.arange(len(each.pick)))
     np.testing.assert_array_equal(formed.A, level.A)
     assert levels.level(3, held.contact, case.thickness) is formed   # kept, not formed again
     assert levels.level(4, held.contact, case.thickness) is None     # each phase its own
