@@ -96,8 +96,9 @@ class CoarseLevels(dict):
 
 
 def coarse_contact(contact: RingContact, thickness: float) -> CoarseContact:
-    """The coarse level (:class:`CoarseContact`) of ``contact``, every column of whose A is
-    formed (a kept contact), with the face width ``thickness`` (mm)."""
+    """The coarse level (:class:`CoarseContact`) of ``contact``, whose A spans every point (a
+    kept contact), with the face width ``thickness`` (mm): its columns formed where they are
+    read where the kept contact's are (:mod:`.lazy`)."""
     rows, cols, values, pick = [], [], [], []
     first = 0   # the grid's first coarse point's number
     for k, grid in enumerate(contact.grids):

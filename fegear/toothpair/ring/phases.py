@@ -11,7 +11,8 @@ contact a phase and solves the other pitches as gap vectors on it:
 
 * the first position of a phase has the phase's contact made for its rotation, with fine
   grids on every paired tooth and one more either side, each as wide as the largest deviation
-  of any tooth needs, every column formed, and is solved on it (:meth:`Phases.keep`): about
+  of any tooth needs, A's columns formed where a solve first reads them (:mod:`.lazy`), and
+  is solved on it (:meth:`Phases.keep`): about
   the rotation of the position solved before it (a position turns little from the next),
   else, or where those grids do not hold it, about its own, placed and solved first as any
   position;
@@ -74,7 +75,8 @@ class SolvedPitch:
 @dataclass(frozen=True)
 class Kept:
     """A position's contact kept for the positions whole pitches away: assembled at the rolling
-    angle ``pitch`` gear-2 pitches from zero, every fine grid's columns formed, with its
+    angle ``pitch`` gear-2 pitches from zero, A spanning every point (its columns formed
+    where first read: :mod:`.lazy`), with its
     solved rotation (rad), the points that carried pressure (where a solve at another pitch
     starts from), the rotation's elastic part (µm of arc at r0), and the teeth paired there,
     each with the reach (µm) beyond the exact pair's that its grid was sought within (a paired
@@ -285,7 +287,8 @@ class Phases:
         the position's solved one, or the one before it) on ``trial``'s teeth, kept, and
         solved: fine grids on every paired tooth and one more either side, each reaching as far
         as the largest deviation of any tooth could need (so that a pitch whose deviations sit
-        on other teeth finds its grids), every column formed; ``widen``: grids on the teeth of
+        on other teeth finds its grids), A's columns formed where a solve first reads them
+        (:mod:`.lazy`); ``widen``: grids on the teeth of
         the contact kept there before too (a deviation set that needed others:
         :meth:`~.solver.RingSolver.widen`). None (nothing kept) where it does not hold the
         position's own contact, or the case's torque is not the one the contacts are kept at
