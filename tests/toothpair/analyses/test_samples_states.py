@@ -15,6 +15,7 @@ from fegear.geometry import (
 )
 from fegear.tolerance import Draw, grade_of
 from fegear.toothpair import SolveCase
+from fegear.toothpair.analyses.samples import states as states_module
 from fegear.toothpair.analyses.samples.states import States, jammed, screen_um
 from fegear.toothpair.teeth import closure
 
@@ -78,7 +79,11 @@ def _jammed_exactly(states, dev):
     return None
 
 
-def test_the_screened_check_finds_every_closing_state_and_the_same_jam(states_and_pairs):
+@pytest.mark.parametrize("at_once", [1, 16])
+def test_the_screened_check_finds_every_closing_state_and_the_same_jam(states_and_pairs,
+                                                                        at_once, monkeypatch):
+    # the near states measured a few at a time, in turn order: the same first closing state
+    monkeypatch.setattr(states_module, "STATES_AT_ONCE", at_once)
     states, pairs = states_and_pairs
     verdicts, measured = [], []
     for dev in pairs:

@@ -35,6 +35,9 @@ from ...teeth import INTERFERENCE_UM, closure
 #: deviations move its teeth, at most 1.1e-6 µm a µm³ over the baseline's classes 4-10 (0.03
 #: µm for class 6, 5 µm for class 10): a margin of 1 µm and twenty times that
 SCREEN_UM, SCREEN_CUBIC = 1.0, 2e-5
+#: the states near closing a pair's check measures exactly at a time, in turn order
+#: (:func:`jammed`): a pair that jams is told so at the first that closes
+STATES_AT_ONCE = 16
 
 
 def screen_um(deviations) -> float:
@@ -126,17 +129,33 @@ def jammed(states: States, deviations) -> str | None:
     (:class:`~.positions.Clearances`), for many pairs against one set of closing points: the
     smallest clearances alone, the loaded sides' over the turn measured exactly where the foot
     circles put them near closing (:meth:`States.near`), the coast sides' where a loaded side
-    overlaps and the coast's circles leave the two sides near taking up the backlash."""
-    p = states.case.params
+    overlaps and the coast's circles leave the two sides near taking up the backlash. The
+    near states are measured :data:`STATES_AT_ONCE` at a time, in turn order, until one
+    closes: the first that does, as where every one is measured."""
     near = states.near(deviations)
+    coast: list = []   # the coast sides' least on their circles, formed where first wanted
+    for lo in range(0, len(near), STATES_AT_ONCE):
+        where = _closes(states, deviations, near[lo:lo + STATES_AT_ONCE], coast)
+        if where is not None:
+            return where
+    return None
+
+
+def _closes(states: States, deviations, near: np.ndarray, coast: list) -> str | None:
+    """Where ``deviations`` take up the backlash at the first of the states ``near`` (indices
+    into ``turn``, increasing) that they close (:func:`jammed`), else None; ``coast``: the
+    coast sides' least clearances on their circles by state, once formed (empty before)."""
+    p = states.case.params
     least, teeth = least_clearances(deviations, p, states.closing.of_states(near))
     behind = np.flatnonzero(least < 0)
     if not len(behind):
         return None
-    coast = states.coast.closing
-    back = least_of_states(states.coast.clearances(deviations), coast)[0][near[behind]]
+    if not coast:
+        coast.append(least_of_states(states.coast.clearances(deviations),
+                                     states.coast.closing)[0])
+    back = coast[0][near[behind]]
     behind = behind[least[behind] + back < screen_um(deviations) - INTERFERENCE_UM]
-    back = least_clearances(deviations, p, coast.of_states(near[behind]))[0]
+    back = least_clearances(deviations, p, states.coast.closing.of_states(near[behind]))[0]
     for i, b in zip(behind, back):
         where = closure(states.turn[near[i]][0], int(teeth[i]), float(least[i]), float(b))
         if where is not None:
