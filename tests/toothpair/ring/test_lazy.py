@@ -1,10 +1,17 @@
 """A kept contact's A formed where it is read (:mod:`fegear.toothpair.ring.lazy`): the columns
-asked for are those of A formed whole, to rounding, the others are left unformed, and a
-contact solve on it settles the solution of A formed whole."""
+asked for are those of A formed whole, to rounding, the others are left unformed, a contact
+solve on it settles the solution of A formed whole, and deviation sets solved on a kept
+contact never read a column it left unformed."""
+
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
+from fegear.geometry import Deviations, ToothDeviation, gear1_profile, moved_clearances
+from fegear.toothpair.positions import Clearances
+from fegear.toothpair.ring import phases
+from fegear.toothpair.ring.coarse import AFTER
 from fegear.toothpair.ring.contact import solve_ring_contact
 from fegear.toothpair.ring.influence import ColumnRule, assemble_contact
 from fegear.toothpair.ring.lazy import CHUNK, LazyColumns, with_lazy_columns
@@ -60,3 +67,29 @@ def test_a_solve_on_a_lazy_contact_settles_the_solution_of_a_formed_whole(baseli
                                atol=1e-10 * full.pressure.max())
     assert part.rotation == pytest.approx(full.rotation, rel=1e-12)
     assert lazy.former.formed.mean() < 0.8   # the solve read some of its columns
+
+
+def test_sets_solved_on_a_kept_contact_read_no_column_left_unformed(kept_at_zero, monkeypatch):
+    # the kept contact's columns NaN until formed: a solve, its record or its coarse level
+    # reading one left out would carry NaN into a set's numbers
+    def unformed_nan(model, contact):
+        former = LazyColumns(model, contact)
+        former.A[:] = np.nan
+        return replace(contact, A=former.A, former=former)
+
+    monkeypatch.setattr(phases, "with_lazy_columns", unformed_nan)
+    sets = (Deviations(gear1={10: ToothDeviation(pitch=3.0)}),
+            Deviations(gear1={11: ToothDeviation(pitch=-2.0, slope=2.0)}),
+            Deviations(centre_distance=4.0))
+    solver, case = kept_at_zero(sets)
+    state = Clearances(case, gear1_profile(case.params), (0.0,)).get()[0][1]
+    kept = solver.phases.kept(0.0, case.params.z2)
+    assert np.isnan(kept.contact.A).any()   # columns left unformed after the exact pair
+    for _ in range(AFTER // len(sets) + 2):   # past its coarse level's forming too
+        for d in sets:
+            one = replace(case, deviations=d)
+            sol = solver.on_kept(one, moved_clearances(d, case.params, [state])[0], brief=True)
+            assert sol is not None
+            assert all(np.isfinite(v) for v in sol.headline().values()), sol.headline()
+            assert np.isfinite(sol.detail.solution.pressure).all()
+    assert kept.contact.former.formed.mean() < 0.9
