@@ -1,8 +1,8 @@
 """A kept contact's influence matrix formed where it is read (:class:`LazyColumns`).
 
 A contact kept for a phase (:mod:`.phases`) has grids wide enough for every deviation set
-solved on it, so its A is large (2 000-4 000 points: 30-130 MB) and most of it is never read:
-a solve reads A's columns only at the points that join one of its active sets (or carry
+solved on it, so its A is large and most of it is never read (docs/tolerance.md): a solve
+reads A's columns only at the points that join one of its active sets (or carry
 pressure), over the points it iterates on. Each column of A is the same product whichever
 others are formed (the finite-element part N Ψ W(t − k) ρ of every sector of points under
 one hat's loads, plus its grid's half-plane near field), so A is formed a run of
@@ -24,8 +24,8 @@ from .model import RingModel
 from .side import LoadBlock
 
 #: points a run of A's columns is formed for at a time (a grid's runs do not cross its end):
-#: a solve's active set grows by a few points at a time, and about a third of a kept
-#: contact's columns are read at all
+#: a solve's active set grows by a few points at a time, and a whole grid is a coarser unit
+#: than the columns the solves read
 CHUNK = 24
 
 
