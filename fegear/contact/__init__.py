@@ -47,5 +47,6 @@ __getattr__, __dir__, __all__ = lazy(__name__, {
     "curves": ("CurvePoints", "ExactCurve"),
     "search": ("locate_on_facets", "FacetLocator", "p2_edge_shape", "facet_curve",
                "ordered_boundary"),
-    "halfplane": ("approach_matrix", "strain_matrix", "surface_matrix", "gap_contact"),
+    "halfplane": ("approach_matrix", "hat_columns", "strain_matrix", "surface_matrix",
+                  "gap_contact"),
 })

@@ -79,6 +79,14 @@ def approach_matrix(t, d, s, E: float, nu: float) -> np.ndarray:
     return _hat_matrix(t, d, s, _antiderivatives, nu) / (math.pi * E)
 
 
+def hat_columns(t, d, s, lo: int, hi: int, E: float, nu: float) -> np.ndarray:
+    """:func:`approach_matrix`'s columns of the hats ``lo`` … ``hi`` − 1 of the grid ``s``
+    alone, from the grid's points ``lo`` − 1 … ``hi``: each hat's two intervals, the same
+    integrals as over the whole grid."""
+    a, b = max(lo - 1, 0), min(hi + 1, len(s))
+    return approach_matrix(t, d, s[a:b], E, nu)[:, lo - a:hi - a]
+
+
 def strain_matrix(t, d, s, E: float, nu: float) -> np.ndarray:
     """ε_tt at depth ``d_i`` below surface point ``t_i`` (tangential strain, + stretching) per
     unit pressure of hat j on the grid ``s``: 1/MPa."""

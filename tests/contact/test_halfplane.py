@@ -8,7 +8,13 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from fegear.contact.halfplane import approach_matrix, gap_contact, strain_matrix, surface_matrix
+from fegear.contact.halfplane import (
+    approach_matrix,
+    gap_contact,
+    hat_columns,
+    strain_matrix,
+    surface_matrix,
+)
 from fegear.fe import line_contact
 
 E, NU = 206000.0, 0.29
@@ -105,3 +111,12 @@ def test_the_gap_beyond_its_curvature_at_one_point_moves_and_reshapes_the_pressu
     quartic = gap_contact(s, parabola * (1.0 + (s / hz.b) ** 2), 200.0, E / 2.0)
     on = s[quartic > 0]
     assert quartic.max() > 1.1 * hz.p0 and 0.5 * (on.max() - on.min()) < 0.8 * hz.b
+
+
+@pytest.mark.parametrize("lo, hi", [(0, 4), (3, 9), (7, 12), (0, 12)])
+def test_a_run_of_hats_alone_has_their_columns_over_the_whole_grid(lo, hi):
+    s = np.sort(np.random.default_rng(1).uniform(0.0, 0.3, 12))
+    t, d = s + 0.004, np.full(12, 0.05)
+    whole = approach_matrix(t, d, s, 210e3, 0.3)
+    np.testing.assert_allclose(hat_columns(t, d, s, lo, hi, 210e3, 0.3), whole[:, lo:hi],
+                               rtol=1e-12, atol=1e-15 * np.abs(whole).max())

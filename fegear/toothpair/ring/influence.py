@@ -22,7 +22,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ...contact import approach_matrix
+from ...contact import approach_matrix, hat_columns
 from ...fe import Cells
 from ...geometry import Placed
 from ...planar import rotate
@@ -220,14 +220,11 @@ def _add_near_field(model: RingModel, contact: RingContact, place: np.ndarray,
         if not len(rows):
             continue
         first = place[blk.start + rows[0]]
-        for lo, hi in true_runs(formed[blk]):
-            # the hats lo … hi − 1 on the grid's points from lo − 1 to hi: the same integrals
-            # as over the whole grid (each hat's two intervals), for the formed ones alone
-            a, b = max(lo - 1, 0), min(hi + 1, len(g))
+        for lo, hi in true_runs(formed[blk]):   # the formed hats' columns alone
             c = place[blk.start + lo]
             for m in contact.matching:
-                A[first:first + len(rows), c:c + hi - lo] += approach_matrix(
-                    g.s[rows], m.depth[blk][rows], g.s[a:b], case.E, case.nu)[:, lo - a:hi - a]
+                A[first:first + len(rows), c:c + hi - lo] += hat_columns(
+                    g.s[rows], m.depth[blk][rows], g.s, lo, hi, case.E, case.nu)
 
 
 def _hat_loads(model: RingModel, grids, offsets, thickness: float, formed: np.ndarray):
@@ -362,7 +359,7 @@ def add_fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
     sectors. ``fields``: :func:`matching_rows` of ``match``, where formed before. The clamped
     fields are read at the points of the loaded sectors alone (zero in every other)."""
     at = match.at
-    N, NQ, kept = matching_rows(side, match) if fields is None else fields
+    N, NQ, by_sector = matching_rows(side, match) if fields is None else fields
     dofs = np.unique(np.concatenate([blk.dofs for blk in loads.values()]))
     loaded = np.isin(at.sector, np.fromiter(loads, int))
     own = np.cumsum(loaded) - 1                           # a loaded sector's point's row …
@@ -370,9 +367,9 @@ def add_fe_part(side: GearSide, loads: dict[int, LoadBlock], match: Matching,
     rho = {t: side.cut_loads(blk.dofs) @ blk.matrix for t, blk in loads.items()}
     columns = {t: _run(place[blk.columns]) for t, blk in loads.items()}
     for k in np.unique(at.sector):
-        if k not in kept:
-            kept[k] = np.flatnonzero(at.sector == k), {}
-        r, far = kept[k]
+        if k not in by_sector:
+            by_sector[k] = np.flatnonzero(at.sector == k), {}
+        r, far = by_sector[k]
         rows = _run(r)
         Nk = NQ[r]
         for t, blk in loads.items():

@@ -18,7 +18,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ...contact import approach_matrix
+from ...contact import hat_columns
 from .influence import RingContact, add_fe_part, matching_rows
 from .model import RingModel
 from .side import LoadBlock
@@ -77,12 +77,11 @@ class LazyColumns:
         k = self.grid[r]
         g, start = self.grids[k], int(self.offsets[k])
         lo, hi = int(self.starts[r]) - start, int(self.ends[r]) - start
-        a, b = max(lo - 1, 0), min(hi + 1, len(g))
         case = self.model.case
         block = slice(start, int(self.offsets[k + 1]))
         for m in self.matching:
-            self.A[block, start + lo:start + hi] += approach_matrix(
-                g.s, m.depth[block], g.s[a:b], case.E, case.nu)[:, lo - a:hi - a]
+            self.A[block, start + lo:start + hi] += hat_columns(
+                g.s, m.depth[block], g.s, lo, hi, case.E, case.nu)
 
 
 def _restricted(loads: dict[int, LoadBlock], columns: np.ndarray) -> dict[int, LoadBlock]:

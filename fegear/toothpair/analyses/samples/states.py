@@ -12,6 +12,8 @@ gives is the exact one."""
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from functools import cache
 
 import numpy as np
 
@@ -133,7 +135,8 @@ def jammed(states: States, deviations) -> str | None:
     near states are measured :data:`STATES_AT_ONCE` at a time, in turn order, until one
     closes: the first that does, as where every one is measured."""
     near = states.near(deviations)
-    coast: list = []   # the coast sides' least on their circles, formed where first wanted
+    coast = cache(lambda: least_of_states(states.coast.clearances(deviations),
+                                          states.coast.closing)[0])
     for lo in range(0, len(near), STATES_AT_ONCE):
         where = _closes(states, deviations, near[lo:lo + STATES_AT_ONCE], coast)
         if where is not None:
@@ -141,19 +144,17 @@ def jammed(states: States, deviations) -> str | None:
     return None
 
 
-def _closes(states: States, deviations, near: np.ndarray, coast: list) -> str | None:
+def _closes(states: States, deviations, near: np.ndarray,
+            coast: Callable[[], np.ndarray]) -> str | None:
     """Where ``deviations`` take up the backlash at the first of the states ``near`` (indices
-    into ``turn``, increasing) that they close (:func:`jammed`), else None; ``coast``: the
-    coast sides' least clearances on their circles by state, once formed (empty before)."""
+    into ``turn``, increasing) that they close (:func:`jammed`), else None; ``coast()``: the
+    coast sides' least clearances on their circles by state (formed once, where wanted)."""
     p = states.case.params
     least, teeth = least_clearances(deviations, p, states.closing.of_states(near))
     behind = np.flatnonzero(least < 0)
     if not len(behind):
         return None
-    if not coast:
-        coast.append(least_of_states(states.coast.clearances(deviations),
-                                     states.coast.closing)[0])
-    back = coast[0][near[behind]]
+    back = coast()[near[behind]]
     behind = behind[least[behind] + back < screen_um(deviations) - INTERFERENCE_UM]
     back = least_clearances(deviations, p, states.coast.closing.of_states(near[behind]))[0]
     for i, b in zip(behind, back):
