@@ -354,16 +354,19 @@ class Placed:
         return moved_clearances(self.deviations, self.params, [state], direction)[0]
 
 
-def moved_clearances(deviations: Deviations, params, states, direction: int = +1) -> list:
+def moved_clearances(deviations: Deviations, params, states, direction: int = +1,
+                     closing: Closing | None = None) -> list:
     """``states`` (:class:`~.clearance.ContactState` s, each at its own β) with each tooth's
     clearance in ``direction`` (+1: the + torque's, the loaded flanks; -1: the coast flanks,
     which only the pitch, centre-distance and runout deviations move) moved by
     ``deviations``: one Newton step on the deviated gap at the point that closes it (exact for
     a pitch deviation of gear 1, to the second order in the deviation otherwise). Every
     state's closing points are one batch of gaps (:class:`Placed` with a β a point): a whole
-    turn's states cost about what one does."""
+    turn's states cost about what one does. ``closing``: the states' closing points in
+    ``direction`` where found before (:meth:`Closing.found`: their feet where the searches
+    start), else found here."""
     key = "plus_um" if direction > 0 else "minus_um"
-    closing = closing_points(params, states, direction)
+    closing = closing_points(params, states, direction) if closing is None else closing
     um = _moved_um(deviations, params, closing)
     out, k = [], 0
     for s, c in zip(states, closing.teeth):
@@ -413,6 +416,14 @@ class Closing:
         pick = np.flatnonzero(np.isin(self.states(), index))
         return Closing(self.direction, [self.teeth[i] for i in index], self.beta[pick],
                        self.um[pick], self.x[pick], self.tooth[pick], self.feet[pick])
+
+    def found(self, params) -> Closing:
+        """These points with their feet found on the exact pair, where each closes it: where
+        many pairs' deviated clearances of the same states are moved (:func:`moved_clearances`,
+        a class's samples at one place), each pair's searches start there, not anew."""
+        feet = self.feet.copy()
+        _gaps(NONE, params, self, feet)
+        return replace(self, feet=feet)
 
     def turns(self, params) -> np.ndarray:
         """Gear 1's turn (rad, kinematic angle included) at which each point closes the exact

@@ -256,6 +256,34 @@ def test_the_least_clearances_of_many_states_are_those_their_moved_states_hold()
                 assert tooth == c.tooth
 
 
+def test_states_moved_from_closing_points_found_before_are_those_moved_anew():
+    # a class's samples at one place: every pitch's closing points found once, on the exact
+    # pair, and each pair's states moved from some of them (its pitches)
+    from fegear.geometry import closing_points, moved_clearances
+
+    find = ToothContact(PAIR, gear1_profile(PAIR)).states
+    states = find([0.0, 0.05, 0.1, 0.15])
+    every = closing_points(PAIR, states).found(PAIR)
+    assert np.isfinite(every.feet).all()
+    devs = [Deviations({11: ToothDeviation(pitch=3, slope=-2), 30: ToothDeviation(form=4)},
+                       gear2={12: ToothDeviation(pitch=-2)}, centre_distance=1.5,
+                       runout1=Runout(6, 20)),
+            Deviations({10: ToothDeviation(pitch=-4)}, gear2={11: ToothDeviation(slope=3)})]
+    for dev in devs:
+        for some in ([0, 1, 2, 3], [1, 3], [2]):
+            chosen = [states[j] for j in some]
+            again = moved_clearances(dev, PAIR, chosen, closing=every.of_states(some))
+            for s, t in zip(moved_clearances(dev, PAIR, chosen), again, strict=True):
+                assert s.beta == t.beta
+                for a, b in zip(s.teeth, t.teeth, strict=True):
+                    assert a.tooth == b.tooth
+                    if a.plus_um is None:   # no point of it closes
+                        assert b.plus_um is None
+                        continue
+                    assert a.plus_um == pytest.approx(b.plus_um, rel=0, abs=1e-9)
+    assert np.isfinite(every.feet).all()   # of_states copies the feet: those found stay
+
+
 def test_the_widest_reach_is_the_largest_of_any_tooth():
     dev = Deviations({3: ToothDeviation(pitch=2, slope=-1), 11: ToothDeviation(form=-4)},
                      gear2={5: ToothDeviation(pitch=-3)}, centre_distance=1.0,

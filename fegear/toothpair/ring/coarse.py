@@ -148,8 +148,10 @@ class _Columns:
         part = self.P[:, new]
         fine = np.unique(part.indices)
         self.contact.ready(fine)
-        rows = np.take(self.contact.A[:, fine], self.pick, axis=0)
-        self.A[:, new] = rows @ part[fine].toarray()
+        # the fine columns' rows at the coarse points gathered alone (not every row first),
+        # times the coarse hats' few fine weights as the sparse matrix they are
+        rows = self.contact.A[np.ix_(self.pick, fine)]
+        self.A[:, new] = (part[fine].T @ rows.T).T
         self.formed[new] = True
 
 

@@ -41,7 +41,7 @@ from itertools import groupby
 
 from ....errors import FegearError
 from ....fe import Allowables, blas_threads, keep_freed_memory
-from ....geometry import gear1_profile, moved_clearances
+from ....geometry import closing_points, gear1_profile, moved_clearances
 from ....running import SERIAL, Executor
 from ....tolerance import Draw
 from ...case import PairSolution, SolveCase
@@ -306,12 +306,18 @@ class OnKept:
 
     def _moved(self, i: int, params) -> dict:
         """The clearance states at position i of the samples ``jobs[i]`` names, by (sample,
-        gear-2 pitches on): a sample's pitches moved at once."""
+        gear-2 pitches on): a sample's pitches moved at once, from the closing points of every
+        pitch solved here found once (:meth:`~fegear.geometry.Closing.found`)."""
+        pitches = sorted({n for _, n in self.jobs[i]})
+        states = [self.states.at(i, n) for n in pitches]
+        every = closing_points(params, states).found(params)
+        where = {n: j for j, n in enumerate(pitches)}
         moved = {}
         for k, run in groupby(self.jobs[i], key=lambda job: job[0]):
-            ns = [n for _, n in run]
+            ns = sorted(n for _, n in run)
+            at = [where[n] for n in ns]
             moved.update(zip(((k, n) for n in ns), moved_clearances(
-                self.pairs[k], params, [self.states.at(i, n) for n in ns])))
+                self.pairs[k], params, [states[j] for j in at], closing=every.of_states(at))))
         return moved
 
     def _record(self, batch: KeptBatch | None, held: list, found: dict, took: dict) -> None:
