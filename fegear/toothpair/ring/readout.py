@@ -78,36 +78,40 @@ class SurfaceStrains:
     """A kept contact's matching points' strain along the surface (the von Mises estimate's,
     :func:`~.stresses.surface_von_mises`) as linear maps, per gear: ``through_cuts`` (points,
     2 n_f) of the cut motions of the point's sector, and per load block (a sector's loads,
-    which a contact turned by whole pitches shares) its points and the map of its loads
-    (points, dofs). Made once for a contact kept for a phase, and read by every solve on it,
-    whatever pitch it is turned to."""
+    which a contact turned by whole pitches shares) the map of its loads at its points
+    (:meth:`loaded`: points, dofs), formed the first time a solve loads that block (the
+    kept contact's wide grids: most of its sectors no solve loads). Made once for a contact
+    kept for a phase, and read by every solve on it, whatever pitch it is turned to."""
 
     def __init__(self, model: RingModel, contact: RingContact) -> None:
-        self.through_cuts, self.by_block = [], []
+        self.through_cuts, self._rows, self._place = [], [], []
         self._contact, self._moduli, self._near = contact, (model.case.E, model.case.nu), {}
-        for side, loads, m in zip(model.gears, contact.loads, contact.matching):
+        self._sides = model.gears
+        self._sector: dict[int, tuple] = {}   # id of a load block → (gear, sector, block)
+        self._loaded: dict[int, np.ndarray] = {}   # … → its map, where formed
+        for g, (side, loads, m) in enumerate(zip(model.gears, contact.loads, contact.matching)):
             body = side.body
             rows = side.rows_at(m.cells, surface_tangent(m), strain=True).tocsc()
             self.through_cuts.append(np.asarray(rows[:, body.interior] @ body.psi
                                                 + rows[:, body.interface]))
             place = np.full(contact.npoints, -1)
-            blocks = {}
             for t, b in loads.items():
                 points = np.flatnonzero(m.at.sector == t)
-                if len(points):
-                    place[points] = np.arange(len(points))
-                    blocks[id(b)] = (b, side.clamped_rows(rows[points], b.dofs))
-            self.by_block.append((place, blocks))
+                place[points] = np.arange(len(points))
+                self._sector[id(b)] = (g, t, b)   # (the block kept: its id stays its own)
+            self._rows.append(rows)
+            self._place.append(place)
 
-    def strain(self, g: int, block, cuts: np.ndarray, load: np.ndarray | None,
-               points: np.ndarray) -> np.ndarray:
-        """Gear ``g``'s strain at ``points`` of one sector, whose cut motions are ``cuts`` and
-        whose loads ``load`` on the template dofs of its load ``block`` (None: unloaded)."""
-        out = self.through_cuts[g][points] @ cuts
-        if load is not None:
-            place, blocks = self.by_block[g]
-            out += blocks[id(block)][1][place[points]] @ load   # (the block kept: its id)
-        return out
+    def loaded(self, g: int, block, points: np.ndarray) -> np.ndarray:
+        """Gear ``g``'s strain at ``points`` (of one sector) per unit load at each template
+        dof of the load ``block`` there (points, dofs): the block's clamped fields read at its
+        sector's points, formed the first time."""
+        key = id(block)
+        if key not in self._loaded:
+            _, t, b = self._sector[key]
+            at = np.flatnonzero(self._contact.matching[g].at.sector == t)
+            self._loaded[key] = self._sides[g].clamped_rows(self._rows[g][at], b.dofs)
+        return self._loaded[key][self._place[g][points]]
 
     def near(self, g: int, k: int) -> np.ndarray:
         """The half-plane's strain along gear ``g``'s surface at grid ``k``'s matching points
@@ -174,8 +178,7 @@ def _surfaces(model: RingModel, contact: RingContact, pressures: np.ndarray,
             rows = np.flatnonzero(m.at.sector == k)
             eps[rows] = strains.through_cuts[g][rows] @ read.cuts[k]
             if k in read.loads:
-                place, blocks = strains.by_block[g]
-                eps[rows] += blocks[id(contact.loads[g][k])][1][place[rows]] @ read.loads[k]
+                eps[rows] += strains.loaded(g, contact.loads[g][k], rows) @ read.loads[k]
             eps[np.ix_(rows, [k not in sectors for _, sectors in
                               (o[g] for o in own)])] = 0.0
         for k in range(len(contact.grids)):
