@@ -143,12 +143,15 @@ class CyclicBody:
     def cut_motions(self, rho: dict[int, np.ndarray], sectors) -> np.ndarray:
         """Cut-face displacements (2 n_f, len(sectors), …) of the ``sectors`` under the cut
         loads ``rho`` (loaded sector → its loads carried to the cuts, :meth:`cut_loads`:
-        (2 n_f, …), a column each of several load cases)."""
+        (2 n_f, …), a column each of several load cases): a far sector's through the
+        coupling's thin factors (:meth:`coupling_factors`)."""
         tail = next(iter(rho.values())).shape[1:] if rho else ()
         cuts = np.zeros((len(self.interface), len(sectors)) + tail)
         for j, s in enumerate(sectors):
             for t, r in rho.items():
-                cuts[:, j] += self.coupling(t - s) @ r
+                factors = self.coupling_factors(t - s)
+                cuts[:, j] += (self.coupling(t - s) @ r if factors is None
+                               else factors[0] @ (factors[1] @ r))
         return cuts
 
     def coupling(self, delta: int) -> np.ndarray:
