@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from fegear.toothpair.edge import EDGE_ZONE, flank_and_edge
+from fegear.toothpair.edge import EDGE_ZONE, FlankEdge, flank_and_edge
 
 E_STAR = 103_000.0
 
@@ -20,6 +20,15 @@ def test_a_flank_contact_alone_is_all_flank():
     split = flank_and_edge(s, p, s < 0.2, 5.0, 0.25, E_STAR)
     assert split.flank_MPa == pytest.approx(p.max(), rel=0.0)
     assert split.edge_MPa == 0.0 and split.edge_load_N == 0.0 and not split.edge
+
+
+@pytest.mark.parametrize("round_at", [0.2, -1.0])   # with a tip round and without
+def test_a_tooth_without_pressure_is_nothing_on_flank_or_round(round_at):
+    # what a record gives an unloaded tooth without splitting its pressure
+    # (fegear.toothpair.ring.results.tooth_result)
+    s = np.linspace(0.0, 1.0, 41)
+    assert flank_and_edge(s, np.zeros(41), s < round_at, 5.0, 0.25, E_STAR) == \
+        FlankEdge(0.0, 0.0, 0.0)
 
 
 def test_an_edge_spike_beside_a_flank_contact_is_split_at_its_own_width():

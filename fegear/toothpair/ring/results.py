@@ -21,7 +21,7 @@ from ...contact import gap_contact, surface_matrix
 from ...fe import FIELD_DTYPE, contact_modulus, recover_many, vtu_fields
 from ...planar import rotate
 from ..case import BodyField, ContactZone, FlankPressure, SolveCase, ToothResult
-from ..edge import flank_and_edge, flank_centre
+from ..edge import FlankEdge, flank_and_edge, flank_centre
 from ..teeth import tension_fillets
 from .contact import RingContactSolution, rigid_gap
 from .influence import RingContact
@@ -87,12 +87,12 @@ def tooth_result(detail: RingDetail, k: int, rigid: tuple[np.ndarray, np.ndarray
     model, case, contact, sol = detail.model, detail.case, detail.contact, detail.solution
     stresses = detail.stresses
     pitch1, pitch2 = model.shape.pitch, 2 * math.pi / case.params.z2
-    w = contact.weight * case.thickness
     gap, rate = rigid
     grid, blk = contact.grids[k], contact.block(k)
+    w = contact.weight[blk] * case.thickness
     pk = sol.pressure[blk]
-    load = float(w[blk] @ pk)
-    i = blk.start + int(np.argmax(pk))
+    load = float(w @ pk)
+    i = blk.start + int(np.argmax(pk)) if load > 0 else blk.start
     if load > 0:
         x2 = contact.facing[0][i]
         theta2 = math.atan2(x2[1], x2[0])
@@ -102,17 +102,21 @@ def tooth_result(detail: RingDetail, k: int, rigid: tuple[np.ndarray, np.ndarray
           if load > 0 and cand is not None else None)
     fillets = tension_fillets(model.shape.tooth_center + grid.tooth * pitch1, pitch1,
                               theta2 if math.isfinite(theta2) else 0.0, pitch2)
-    split = flank_and_edge(grid.s, pk, grid.on_round, case.thickness, model.shape.radius_mm,
-                           contact_modulus(case.E, case.E))
+    # an unloaded tooth (most of a kept contact's wide grids): nothing on its flank or round,
+    # no reference, as the forms below give for a pressure of zero
+    split = (flank_and_edge(grid.s, pk, grid.on_round, case.thickness, model.shape.radius_mm,
+                            contact_modulus(case.E, case.E)) if load > 0
+             else FlankEdge(0.0, 0.0, 0.0))
     b = local_half_width(contact, sol.pressure, i) if load > 0 else 0.0
-    refs = (_referenced(detail, k, gap[blk], load) if stresses is not None and references
+    refs = (_referenced(detail, k, gap[blk], load)
+            if stresses is not None and references and load > 0
             else {"halfplane_p_MPa": None, "halfplane_flank_MPa": None, "bending_curvature": 0.0})
     j = i - blk.start
     spacing = 0.5 * (grid.s[min(j + 1, len(grid) - 1)] - grid.s[max(j - 1, 0)])
     per_b = b / spacing if load > 0 else 0.0
     return ToothResult(
         tooth=grid.tooth, clearance_um=clearance_um, load_N=load,
-        load_share=float(-(w[blk] * pk) @ rate[blk] / (case.torque_Nmm)),
+        load_share=float(-(w * pk) @ rate[blk] / (case.torque_Nmm)),
         p_max_MPa=float(pk.max()),
         half_width_mm=b,
         hertz_p0_MPa=hz.p0 if hz else None, hertz_b_mm=hz.b if hz else None,
