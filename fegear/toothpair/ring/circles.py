@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...geometry import Cycloid, Placed, gear2_tooth
-from ...planar import rotate, rotate_by
+from ...planar import rotate
 from .influence import RingContact
 from .model import RingModel
 
@@ -180,16 +180,17 @@ def projected(circles: FootCircles, moved: Moved, idx: np.ndarray | None = None)
     (:class:`Projected`)."""
     sel = slice(None) if idx is None else idx
     x = moved.x[sel]
-    a, b = x, np.column_stack([-x[:, 1], x[:, 0]])
-    o = np.broadcast_to(moved.offset, x.shape)
-    axis = np.broadcast_to(moved.axis, x.shape)
+    # the vectors a, b, o and the axis, each (n, 2), as one array (4, n, 2)
+    v = np.stack([x, np.column_stack([-x[:, 1], x[:, 0]]),
+                  *np.broadcast_arrays(moved.offset, moved.axis, x)[:2]])
     if moved.turn2 is not None:   # gear 2's tooth turned: the point turned back about its axis
         cos, sin = moved.turn2[0][sel], -moved.turn2[1][sel]
-        a, b, o, axis = (rotate_by(v, cos, sin) for v in (a, b, o, axis))
+        v = np.stack([cos * v[..., 0] - sin * v[..., 1], sin * v[..., 0] + cos * v[..., 1]],
+                     axis=-1)
     foot, normal, tangent = circles.foot[sel], circles.normal[sel], circles.tangent[sel]
-    vectors = (a, b, o + axis - foot, o)
-    n = np.stack([np.einsum("ij,ij->i", v, normal) for v in vectors])
-    t = np.stack([np.einsum("ij,ij->i", v, tangent) for v in vectors])
+    v = np.stack([v[0], v[1], v[2] + v[3] - foot, v[2]])   # a, b, o + axis − foot, o
+    n = v[..., 0] * normal[:, 0] + v[..., 1] * normal[:, 1]
+    t = v[..., 0] * tangent[:, 0] + v[..., 1] * tangent[:, 1]
     gear2, on_foot = None, None
     if moved.gear2 is not None:
         placed, k2 = moved.gear2
