@@ -102,8 +102,8 @@ def tooth_result(detail: RingDetail, k: int, rigid: tuple[np.ndarray, np.ndarray
           if load > 0 and cand is not None else None)
     fillets = tension_fillets(model.shape.tooth_center + grid.tooth * pitch1, pitch1,
                               theta2 if math.isfinite(theta2) else 0.0, pitch2)
-    # an unloaded tooth (most of a kept contact's wide grids): nothing on its flank or round,
-    # no reference, as the forms below give for a pressure of zero
+    # an unloaded tooth (most of a kept contact's wide grids): nothing on its flank or round
+    # and no reference, what splitting and referencing no pressure give, without forming them
     split = (flank_and_edge(grid.s, pk, grid.on_round, case.thickness, model.shape.radius_mm,
                             contact_modulus(case.E, case.E)) if load > 0
              else FlankEdge(0.0, 0.0, 0.0))
