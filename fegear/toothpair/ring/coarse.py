@@ -30,6 +30,11 @@ from .influence import RingContact
 STRIDE = 2
 #: A's columns a coarse level is formed from at a time (:func:`_sampled`)
 CHUNK = 256
+#: where the coarse points overlap, those that overlap by more than this share of the largest
+#: overlap join the coarse level's active set at a step (``join`` of
+#: :func:`~.contact_system.active_set`): from the exact pair's set a sample's first step
+#: joined about twice the points it settles on
+JOIN = 0.5
 #: a kept contact forms its coarse level at its this-many-th solve (:class:`CoarseLevels`):
 #: the level costs about ten solves' savings to form, and a deviated pair's revolution
 #: solves a phase's contact only a few times
@@ -70,7 +75,7 @@ class CoarseContact:
             first = g0[near] <= g0[near].min()
         system = ContactSystem(self.A, self.w[near], g0[near], a[near], near, form=self.form)
         try:
-            found = active_set(system, torque_nmm, first)
+            found = active_set(system, torque_nmm, first, join=JOIN)
         except ContactError:
             return None
         pressure = np.zeros(len(self.pick))

@@ -179,18 +179,23 @@ class _Columns:
 
 
 def active_set(system: ContactSystem, torque_nmm: float, active: np.ndarray,
-               arm_rate: float = 0.0) -> ActiveSet:
+               arm_rate: float = 0.0, join: float = 0.0) -> ActiveSet:
     """Pressures on the active points and the rotation step with the gap linear in the step:
     A p + a δ = −g0 on the active points, −Σ w a p − ``arm_rate`` δ = T (``arm_rate``: the
     torque's rate with the turn at the last pressures, Σ w (da/dθ) p); from the points
     ``active``, points join when their gap closes and leave when their pressure pulls, all at
-    once; where that cycles, :func:`primal_active_set` settles it."""
+    once; where that cycles, :func:`primal_active_set` settles it. ``join``: where points
+    overlap, only those that overlap by more than this share of the largest overlap join at
+    a step (0: every one that overlaps): from a set far from the one it settles on, the method joins
+    every overlapping point, twice what it keeps, and sheds the surplus a few points a step;
+    the deepest overlap always joins, and once none overlaps the set is settled as before."""
     seen = set()
     pressure = np.zeros(len(system.g0))
     for k in range(1, MAX_ACTIVE_SET + 1):
         pressure, step = solve_active(system, torque_nmm, active, arm_rate)
         gap = gaps_at(system, pressure, step, active)
-        new = np.where(active, pressure > 0, gap < 0)
+        least = gap.min()
+        new = np.where(active, pressure > 0, gap < (join * least if least < 0 else 0.0))
         if not new.any():
             new = gap <= gap.min()
         if np.array_equal(new, active):

@@ -90,6 +90,22 @@ def test_the_blocks_a_system_keeps_give_what_fresh_ones_give(contact_problem):
     assert len(system.blocks) == BLOCKS + 1     # BLOCKS sets kept, and the columns gathered
 
 
+@pytest.mark.parametrize("seed", range(4))
+def test_joining_the_deepest_overlaps_first_settles_the_same_contact(contact_problem, seed):
+    # from a set far from the one it settles on (the least gap's point, or a wide band), the
+    # method joining only the points that overlap by more than half the largest overlap takes
+    # its own steps to the same pressures and set as joining every overlapping point
+    system = contact_problem(80, seed)
+    for start in (_active(system, 1), _active(system, 60)):
+        every = active_set(system, TORQUE, start.copy())
+        deepest = active_set(ContactSystem(system.A, system.w, system.g0, system.a), TORQUE,
+                             start.copy(), join=0.5)
+        np.testing.assert_array_equal(deepest.active, every.active)
+        np.testing.assert_allclose(deepest.pressure, every.pressure, rtol=1e-10,
+                                   atol=1e-12 * every.pressure.max())
+        assert deepest.step == pytest.approx(every.step, rel=1e-10)
+
+
 def test_the_gaps_are_As_whichever_points_joined_and_left_before(contact_problem):
     # a solve's sets grow past the rows first gathered for them (64), then lose points and
     # gain others: every step's gaps are A's, on all points and on some of them
