@@ -197,7 +197,7 @@ def active_set(system: ContactSystem, torque_nmm: float, active: np.ndarray,
         least = gap.min()
         new = np.where(active, pressure > 0, gap < (join * least if least < 0 else 0.0))
         if not new.any():
-            new = gap <= gap.min()
+            new = gap <= least
         if np.array_equal(new, active):
             return ActiveSet(pressure, step, active, k)
         key = new.tobytes()

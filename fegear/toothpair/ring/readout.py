@@ -87,9 +87,9 @@ class SurfaceStrains:
         self.through_cuts, self._rows, self._place = [], [], []
         self._contact, self._moduli, self._near = contact, (model.case.E, model.case.nu), {}
         self._sides = model.gears
-        self._sector: dict[int, tuple] = {}   # id of a load block → (gear, sector, block)
+        self._sector: dict[int, tuple] = {}   # id of a load block → (its sector, the block)
         self._loaded: dict[int, np.ndarray] = {}   # … → its map, where formed
-        for g, (side, loads, m) in enumerate(zip(model.gears, contact.loads, contact.matching)):
+        for side, loads, m in zip(model.gears, contact.loads, contact.matching):
             body = side.body
             rows = side.rows_at(m.cells, surface_tangent(m), strain=True).tocsc()
             self.through_cuts.append(np.asarray(rows[:, body.interior] @ body.psi
@@ -98,7 +98,7 @@ class SurfaceStrains:
             for t, b in loads.items():
                 points = np.flatnonzero(m.at.sector == t)
                 place[points] = np.arange(len(points))
-                self._sector[id(b)] = (g, t, b)   # (the block kept: its id stays its own)
+                self._sector[id(b)] = (t, b)   # (the block kept: its id stays its own)
             self._rows.append(rows)
             self._place.append(place)
 
@@ -108,7 +108,7 @@ class SurfaceStrains:
         sector's points, formed the first time."""
         key = id(block)
         if key not in self._loaded:
-            _, t, b = self._sector[key]
+            t, b = self._sector[key]
             at = np.flatnonzero(self._contact.matching[g].at.sector == t)
             self._loaded[key] = self._sides[g].clamped_rows(self._rows[g][at], b.dofs)
         return self._loaded[key][self._place[g][points]]
