@@ -19,5 +19,6 @@ def rotate(v: np.ndarray, ang) -> np.ndarray:
 def rotate_by(v: np.ndarray, c, s) -> np.ndarray:
     """Rotate (n, 2) points counter-clockwise by the angle whose cosine is ``c`` and sine
     ``s`` (scalars or per point): :func:`rotate` with the trigonometry done once, for points
-    turned by the same angles again and again."""
-    return np.stack([c * v[:, 0] - s * v[:, 1], s * v[:, 0] + c * v[:, 1]], axis=-1)
+    turned by the same angles again and again. Several sets of the same points, (k, n, 2),
+    are turned alike."""
+    return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ...geometry import Cycloid, Placed, gear2_tooth
-from ...planar import rotate
+from ...planar import rotate, rotate_by
 from .influence import RingContact
 from .model import RingModel
 
@@ -185,8 +185,7 @@ def projected(circles: FootCircles, moved: Moved, idx: np.ndarray | None = None)
                   *np.broadcast_arrays(moved.offset, moved.axis, x)[:2]])
     if moved.turn2 is not None:   # gear 2's tooth turned: the point turned back about its axis
         cos, sin = moved.turn2[0][sel], -moved.turn2[1][sel]
-        v = np.stack([cos * v[..., 0] - sin * v[..., 1], sin * v[..., 0] + cos * v[..., 1]],
-                     axis=-1)
+        v = rotate_by(v, cos, sin)
     foot, normal, tangent = circles.foot[sel], circles.normal[sel], circles.tangent[sel]
     v = np.stack([v[0], v[1], v[2] + v[3] - foot, v[2]])   # a, b, o + axis − foot, o
     n = v[..., 0] * normal[:, 0] + v[..., 1] * normal[:, 1]
